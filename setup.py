@@ -1,0 +1,56 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+from glob import glob
+import os
+
+from setuptools import find_packages, setup
+
+package_name = 'vehicle_sim'
+
+
+def _data(pattern):
+    return [path for path in glob(pattern) if os.path.isfile(path)]
+
+
+setup(
+    name=package_name,
+    version='0.1.0',
+    packages=find_packages(exclude=['test', 'test.*', 'benchmarks', 'examples']),
+    package_data={'vehicle_msgs_py': ['msg/**/*', 'srv/**/*', 'definitions/**/*']},
+    include_package_data=True,
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+        ('share/' + package_name + '/launch', _data('launch/*.launch.py')),
+        ('share/' + package_name + '/config', _data('config/*.yaml')),
+        ('share/' + package_name + '/config/cars', _data('config/cars/*.yaml')),
+        ('share/' + package_name + '/config/robots', _data('config/robots/*.yaml')),
+        ('share/' + package_name + '/config/worlds', _data('config/worlds/*.yaml')),
+    ],
+    install_requires=['setuptools', 'numpy', 'pybullet', 'PyYAML', 'cyclonedds==11.0.1',
+                      'rosbags>=0.10'],
+    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib']},
+    zip_safe=True,
+    maintainer='vehicle_sim maintainers',
+    maintainer_email='maintainers@vehicle-sim.example.org',
+    description='PyBullet car simulator with the Webots automobile API and ROS 2 nodes.',
+    license='Apache-2.0',
+    tests_require=['pytest'],
+    entry_points={
+        'console_scripts': [
+            'vehicle-sim = vehicle_sim.cli:main',
+        ],
+    },
+)

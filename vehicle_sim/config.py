@@ -1,0 +1,107 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Finding and loading the YAML configuration files (car presets, robots, worlds).
+
+Kept outside ``core`` because it reads files with PyYAML; validation itself is core's.
+"""
+
+import os
+from pathlib import Path
+
+import yaml
+
+from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.params import car_params_from_dict, CarParams
+
+PACKAGE_NAME = 'vehicle_sim'
+
+
+def config_dirs():
+    """
+    Return the folders searched for configuration, most specific first.
+
+    ``VEHICLE_SIM_CONFIG_DIR``, the source tree (editable installs), then ``share/vehicle_sim/
+    config`` under the Python prefix and under every ``AMENT_PREFIX_PATH`` entry (ROS installs).
+    """
+    dirs = []
+    if os.environ.get('VEHICLE_SIM_CONFIG_DIR'):
+        dirs.append(Path(os.environ['VEHICLE_SIM_CONFIG_DIR']))
+    dirs.append(Path(__file__).resolve().parent.parent / 'config')
+    import sys
+    dirs.append(Path(sys.prefix) / 'share' / PACKAGE_NAME / 'config')
+    for prefix in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep):
+        if prefix:
+            dirs.append(Path(prefix) / 'share' / PACKAGE_NAME / 'config')
+    return [d for d in dirs if d.is_dir()]
+
+
+def find_config(subdir, name, suffix='.yaml'):
+    """
+    Resolve a configuration file by path or by name inside ``config/<subdir>``.
+
+    :raises InvalidParameterError: when nothing matches; the message lists the known names.
+    """
+    candidate = Path(name)
+    if candidate.suffix in ('.yaml', '.yml') and candidate.is_file():
+        return candidate
+    for folder in config_dirs():
+        path = folder / subdir / (name + suffix)
+        if path.is_file():
+            return path
+    known = sorted(available(subdir))
+    raise InvalidParameterError(
+        f'unknown {subdir[:-1] if subdir.endswith("s") else subdir} {name!r}; '
+        f'known: {", ".join(known) or "none"} (or give a path to a .yaml file)')
+
+
+def available(subdir):
+    """Names of the configuration files in ``config/<subdir>`` (without suffix)."""
+    names = set()
+    for folder in config_dirs():
+        if (folder / subdir).is_dir():
+            names.update(p.stem for p in (folder / subdir).glob('*.yaml'))
+    return names
+
+
+def read_yaml(path):
+    """Read a YAML file; a syntax error becomes InvalidParameterError naming the file."""
+    try:
+        with open(path, encoding='utf-8') as stream:
+            return yaml.safe_load(stream)
+    except yaml.YAMLError as error:
+        raise InvalidParameterError(f'{path}: not valid YAML: {error}') from error
+
+
+def load_car(name_or_path='Car'):
+    """
+    Load and validate a car preset.
+
+    :param name_or_path: preset name (``'ToyotaPrius'``), a path to a YAML file, or CarParams.
+    :return: CarParams; fields the file omits take the Car defaults.
+    :raises InvalidParameterError: naming file, field and value on any invalid content.
+    """
+    if isinstance(name_or_path, CarParams):
+        return name_or_path
+    path = find_config('cars', str(name_or_path))
+    data = read_yaml(path)
+    if data is None:
+        data = {}
+    return car_params_from_dict(data, source=str(path))
+
+
+def car_names():
+    """Names of the car presets shipped in config/cars."""
+    return sorted(available('cars'))

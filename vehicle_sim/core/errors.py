@@ -1,0 +1,27 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""Error types of the strict core API (DESIGN §4: invalid values raise, state unchanged)."""
+
+
+class VehicleSimError(Exception):
+    """Base class of every error raised by vehicle_sim."""
+
+
+class InvalidParameterError(VehicleSimError, ValueError):
+    """A configuration value (preset field, node parameter) is unknown, mistyped or impossible."""
+
+
+class InvalidCommandError(VehicleSimError, ValueError):
+    """A command (setter argument) is non-finite, out of range or not a defined enum value."""
