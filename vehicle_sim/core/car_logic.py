@@ -1,0 +1,726 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+CarLogic: the complete state of the Webots driver and car libraries, with a strict API.
+
+Built from CarParams; no ROS, no physics. Each basic step the physics body fills a Measurement,
+``CarLogic.step`` turns it into an Actuation (webots_spec.md §3.1 order), the body applies it and
+the world steps. Setters validate first and raise InvalidCommandError, naming the value and the
+valid range, without changing any state (DESIGN §4, core column). Getters are read-only
+properties (plus ``wheel_encoder_rad(i)`` / ``wheel_speed_radps(i)``); ``status()`` bundles all
+of them for publishers and tests.
+
+Accepted argument types: numbers are int or float (numpy scalars too) but not bool; enums and
+gears are ints (not bool, not float); flags are bool (numpy bool too) or the ints 0 and 1.
+"""
+
+from dataclasses import dataclass
+import math
+import numbers
+from typing import Tuple
+
+import numpy as np
+
+from vehicle_sim.core.ackermann import ackermann_angles
+from vehicle_sim.core.drivetrain import (
+    CAR_TYPE_BY_NAME,
+    central_ratio,
+    ControlMode,
+    cruise_wheel_targets,
+    current_speed_mps,
+    distribute_torque,
+    engine_rpm,
+    front_ratio,
+    max_signed_acceleration,
+    output_torque_nm,
+    ramp_toward,
+    rear_ratio,
+    update_slip_ratios,
+    wheel_acceleration_radps2,
+    wheel_speeds,
+)
+from vehicle_sim.core.engines import make_engine
+from vehicle_sim.core.errors import InvalidCommandError
+from vehicle_sim.core.signals import (
+    auto_disable_indicator,
+    backwards_light_on,
+    DEFAULT_INDICATOR_PERIOD_S,
+    Indicator,
+    indicator_lamps,
+    Lights,
+    Wiper,
+    WiperMode,
+)
+from vehicle_sim.core.units import kmh_to_mps, mps_to_kmh
+from vehicle_sim.core.vehicle_io import Actuation, WHEEL_COUNT, WheelMode
+
+# ---------------------------------------------------------------------------------------------
+# Validation helpers: each returns the normalised value or raises without side effects.
+
+def _number(name, value):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise InvalidCommandError(f'{name} must be a number, got {value!r}')
+    result = float(value)
+    if not math.isfinite(result):
+        raise InvalidCommandError(f'{name} = {value!r} is not a finite number')
+    return result
+
+
+def _number_in(name, value, low, high, unit=''):
+    result = _number(name, value)
+    if not low <= result <= high:
+        raise InvalidCommandError(
+            f'{name} = {result!r}{unit} is outside the valid range [{low!r}, {high!r}]{unit}')
+    return result
+
+
+def _integer_in(name, value, low, high, meaning=''):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
+        raise InvalidCommandError(f'{name} must be an int in {low}..{high}{meaning}, '
+                                  f'got {value!r}')
+    result = int(value)
+    if not low <= result <= high:
+        raise InvalidCommandError(f'{name} = {result} is outside the valid range '
+                                  f'{low}..{high}{meaning}')
+    return result
+
+
+def _flag(name, value):
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, numbers.Integral) and int(value) in (0, 1):
+        return bool(value)
+    raise InvalidCommandError(f'{name} must be a bool (or 0/1), got {value!r}')
+
+
+def _enum_meaning(enum_cls):
+    return ' (' + ', '.join(f'{member.value} {member.name}' for member in enum_cls) + ')'
+
+
+@dataclass(frozen=True)
+class Dimensions:
+    """Car dimensions as Webots' car library reports them [m]."""
+
+    track_front_m: float
+    track_rear_m: float
+    wheelbase_m: float
+    front_wheel_radius_m: float
+    rear_wheel_radius_m: float
+
+
+@dataclass(frozen=True)
+class CarStatus:
+    """Every value the driver and car library getters expose, at one instant."""
+
+    time_s: float
+    steering_angle_rad: float
+    commanded_steering_angle_rad: float
+    right_steering_angle_rad: float
+    left_steering_angle_rad: float
+    target_cruising_speed_kmh: float
+    current_speed_kmh: float
+    throttle: float
+    brake_intensity: float
+    gear: int
+    selected_gear: int
+    control_mode: int
+    rpm: float
+    indicator: int
+    hazard_flashers: bool
+    dipped_beams: bool
+    antifog_lights: bool
+    front_lights: bool
+    rear_lights: bool
+    brake_lights: bool
+    backwards_lights: bool
+    right_indicator_light: bool
+    left_indicator_light: bool
+    wiper_mode: int
+    wiper_angle_rad: float
+    indicator_period_s: float
+    limited_slip_differential: bool
+    indicator_auto_disabling: bool
+    wheel_encoders_rad: Tuple[float, float, float, float]
+    wheel_speeds_radps: Tuple[float, float, float, float]
+
+
+class CarLogic:
+    """
+    State and per-step logic of one Webots car (driver library + car library).
+
+    Start state (wbu_driver_init, wbu_car_init): control mode UNDEFINED with the driven wheels
+    held at 0 rad/s, gear 0, everything off, wipers DOWN, limited-slip differential and indicator
+    auto-disabling on, indicator period 0.34 s.
+    """
+
+    def __init__(self, params):
+        """
+        Build the logic of a car.
+
+        :param params: CarParams (validated presets, see core/params.py).
+        :raises InvalidParameterError: for an unknown engine type.
+        """
+        self._params = params
+        self._engine = make_engine(params)
+        self._car_type = params.car_type
+        self._driven = tuple(params.driven_wheels)
+        radius = np.array([params.front_tire_radius_m, params.front_tire_radius_m,
+                           params.rear_tire_radius_m, params.rear_tire_radius_m])
+        # Car.proto driven-wheel motors: acceleration (100/3.6)/time0To100/r, maxVelocity v/r.
+        self._wheel_acceleration_radps2 = wheel_acceleration_radps2(params.time_0_to_100_s,
+                                                                    radius)
+        self._max_wheel_radps = params.max_velocity_mps / radius
+        self._max_cruising_kmh = mps_to_kmh(params.max_velocity_mps)
+        self._min_steer = params.min_steering_angle_rad
+        self._max_steer = params.max_steering_angle_rad
+        self._max_gear = params.gear_number - 1
+
+        # Driver library commands (wbu_driver_init).
+        self._steering_rad = 0.0
+        self._cruising_kmh = 0.0
+        self._throttle = 0.0
+        self._brake = 0.0
+        self._gear = 0
+        self._mode = ControlMode.UNDEFINED
+        self._indicator = Indicator.OFF
+        self._indicator_angle_rad = 0.0
+        self._hazard = False
+        # Car library settings (wbu_car_init).
+        self._indicator_period_s = DEFAULT_INDICATOR_PERIOD_S
+        self._lsd = True
+        self._auto_disable = True
+        self._right_angle_rad = 0.0
+        self._left_angle_rad = 0.0
+
+        self._lights = Lights()
+        self._wiper = Wiper()
+
+        # Estimates from the measurements.
+        self._time_s = 0.0
+        self._rpm = 0.0
+        self._slip = np.zeros(3)
+        self._have_sample = False
+        self._encoder = np.zeros(WHEEL_COUNT)
+        self._previous_position = np.zeros(WHEEL_COUNT)
+        self._speed = np.zeros(WHEEL_COUNT)
+        self._previous_speed = np.zeros(WHEEL_COUNT)
+        self._max_acceleration = 0.0
+        self._measured_right_rad = 0.0
+        self._measured_left_rad = 0.0
+
+        # Wheel commands: cruise targets, ramped set-points (the motors' internal velocity),
+        # distributed torques, and scratch space for the ramp limit.
+        self._cruise_target = np.zeros(WHEEL_COUNT)
+        self._ramp = np.zeros(WHEEL_COUNT)
+        self._torque = np.zeros(WHEEL_COUNT)
+        self._ramp_limit = np.zeros(WHEEL_COUNT)
+
+        self._actuation = Actuation()
+        self._write_actuation(0.0)
+
+    # -----------------------------------------------------------------------------------------
+    # Driver library setters.
+
+    def set_steering_angle(self, angle_rad):
+        """
+        Steer the front wheels through the Ackermann geometry (wbu_driver_set_steering_angle).
+
+        In SPEED mode the cruise targets are recomputed (new differential ratios); the indicator
+        auto-disabling rule runs afterwards.
+
+        :param angle_rad: steering angle [rad], positive = right, within
+            [minSteeringAngle, maxSteeringAngle].
+        :raises InvalidCommandError: non-finite or out-of-range angle.
+        """
+        angle_rad = _number_in('steering angle', angle_rad, self._min_steer, self._max_steer,
+                               ' rad')
+        self._steering_rad = angle_rad
+        self._right_angle_rad, self._left_angle_rad = ackermann_angles(
+            angle_rad, self._params.track_front_m, self._params.wheelbase_m)
+        if self._mode == ControlMode.SPEED:
+            self._update_cruise_target()
+        if self._auto_disable:
+            self._indicator, self._indicator_angle_rad = auto_disable_indicator(
+                self._indicator, self._indicator_angle_rad, angle_rad)
+
+    def set_cruising_speed_kmh(self, speed_kmh):
+        """
+        Switch to SPEED mode and drive the wheels toward a speed (wbu_driver_set_cruising_speed).
+
+        The wheels' velocity set-points ramp at the acceleration implied by time0To100. Coming
+        from TORQUE mode the ramp starts at the wheels' estimated speeds.
+
+        :param speed_kmh: target speed [km/h], negative = reverse, |v| <= maxVelocity·3.6.
+        :raises InvalidCommandError: non-finite or too fast.
+        """
+        speed_kmh = _number_in('cruising speed', speed_kmh, -self._max_cruising_kmh,
+                               self._max_cruising_kmh, ' km/h')
+        if self._mode == ControlMode.TORQUE:
+            self._ramp[:] = self._speed
+        self._cruising_kmh = speed_kmh
+        self._mode = ControlMode.SPEED
+        self._update_cruise_target()
+
+    def set_throttle(self, throttle):
+        """
+        Switch to TORQUE mode with a throttle position (wbu_driver_set_throttle).
+
+        :param throttle: throttle in [0, 1].
+        :raises InvalidCommandError: non-finite or outside [0, 1].
+        """
+        self._throttle = _number_in('throttle', throttle, 0.0, 1.0)
+        self._mode = ControlMode.TORQUE
+
+    def set_brake_intensity(self, intensity):
+        """
+        Brake all four wheels; the brake light follows (wbu_driver_set_brake_intensity).
+
+        :param intensity: brake in [0, 1]; braking torque per wheel = intensity·brakeCoefficient.
+        :raises InvalidCommandError: non-finite or outside [0, 1].
+        """
+        self._brake = _number_in('brake intensity', intensity, 0.0, 1.0)
+        self._lights.brake = self._brake > 0.0
+
+    def set_gear(self, gear):
+        """
+        Engage a gear (wbu_driver_set_gear); used in TORQUE mode.
+
+        :param gear: −1 reverse, 0 neutral, 1..gear_number−1 forward.
+        :raises InvalidCommandError: not an int or out of range.
+        """
+        self._gear = _integer_in('gear', gear, -1, self._max_gear,
+                                 ' (-1 reverse, 0 neutral, then forward gears)')
+
+    def set_indicator(self, indicator):
+        """
+        Set the indicator (wbu_driver_set_indicator); remembers the steering angle for the rule.
+
+        :param indicator: 0 OFF, 1 RIGHT, 2 LEFT.
+        :raises InvalidCommandError: not one of those ints.
+        """
+        self._indicator = Indicator(_integer_in('indicator', indicator, 0, 2,
+                                                _enum_meaning(Indicator)))
+        self._indicator_angle_rad = self._steering_rad
+
+    def set_hazard_flashers(self, enabled):
+        """Turn the hazard flashers (both indicators blink) on or off; bool or 0/1."""
+        self._hazard = _flag('hazard flashers', enabled)
+
+    def set_dipped_beams(self, enabled):
+        """Turn the dipped beams (front and rear lights) on or off; bool or 0/1."""
+        self._lights.dipped_beams = _flag('dipped beams', enabled)
+
+    def set_antifog_lights(self, enabled):
+        """Turn the antifog lights on or off; bool or 0/1."""
+        self._lights.antifog = _flag('antifog lights', enabled)
+
+    def set_wiper_mode(self, mode):
+        """
+        Set the wiper mode (wbu_driver_set_wiper_mode).
+
+        :param mode: 0 DOWN, 1 SLOW, 2 NORMAL, 3 FAST.
+        :raises InvalidCommandError: not one of those ints.
+        """
+        self._wiper.set_mode(_integer_in('wiper mode', mode, 0, 3, _enum_meaning(WiperMode)))
+
+    # -----------------------------------------------------------------------------------------
+    # Car library setters.
+
+    def set_indicator_period_s(self, period_s):
+        """
+        Set the length of one ON (or OFF) phase of the indicators (wbu_car_set_indicator_period).
+
+        :param period_s: period [s] > 0 (Webots accepts any value; we reject <= 0).
+        :raises InvalidCommandError: non-finite or <= 0.
+        """
+        period_s = _number('indicator period', period_s)
+        if period_s <= 0.0:
+            raise InvalidCommandError(f'indicator period = {period_s!r} s must be > 0 s')
+        self._indicator_period_s = period_s
+
+    def set_right_steering_angle(self, angle_rad):
+        """
+        Command the right front wheel alone (wbu_car_set_right_steering_angle).
+
+        The angle feeds the front differential ratio; the driver's steering angle, cruise
+        targets and indicators are left alone, as in Webots.
+
+        :param angle_rad: wheel angle [rad], positive = right, within the steering limits.
+        :raises InvalidCommandError: non-finite or out of range.
+        """
+        self._right_angle_rad = _number_in('right steering angle', angle_rad, self._min_steer,
+                                           self._max_steer, ' rad')
+
+    def set_left_steering_angle(self, angle_rad):
+        """
+        Command the left front wheel alone (wbu_car_set_left_steering_angle).
+
+        :param angle_rad: wheel angle [rad], positive = right, within the steering limits.
+        :raises InvalidCommandError: non-finite or out of range.
+        """
+        self._left_angle_rad = _number_in('left steering angle', angle_rad, self._min_steer,
+                                          self._max_steer, ' rad')
+
+    def enable_limited_slip_differential(self, enabled):
+        """Enable the limited-slip differential used in TORQUE mode; bool or 0/1."""
+        self._lsd = _flag('limited slip differential', enabled)
+
+    def enable_indicator_auto_disabling(self, enabled):
+        """Enable switching the indicator off after the turn; bool or 0/1."""
+        self._auto_disable = _flag('indicator auto disabling', enabled)
+
+    # -----------------------------------------------------------------------------------------
+    # The step.
+
+    def step(self, measurement, now_s, dt_s):
+        """
+        Run one driver step (wbu_driver_step, webots_spec.md §3.1) and return the commands.
+
+        :param measurement: vehicle_io.Measurement read after the previous world step.
+        :param now_s: simulation time [s] before this step (indicator phase, wiper window).
+        :param dt_s: basic time step [s] > 0: the time since the previous measurement and the
+            length of the coming world step.
+        :return: the CarLogic's one Actuation object, refilled on every call.
+        :raises InvalidCommandError: non-finite time or non-positive dt.
+        """
+        now_s = _number('time', now_s)
+        dt_s = _number('time step', dt_s)
+        if dt_s <= 0.0:
+            raise InvalidCommandError(f'time step = {dt_s!r} s must be > 0 s')
+        self._time_s = now_s
+        lights = self._lights
+        # 1. Indicator lamps, with the time before the step.
+        lights.right_indicator, lights.left_indicator = indicator_lamps(
+            self._indicator, self._hazard, now_s, self._indicator_period_s)
+        # 2. Wipers. 3. Backwards light.
+        self._wiper.step(now_s, dt_s)
+        lights.backwards = backwards_light_on(self._mode, self._gear, self._cruising_kmh)
+        # 4. Wheel speeds; without a previous sample they are 0 (Webots: NaN twice).
+        position = measurement.wheel_position_rad
+        if not self._have_sample:
+            self._previous_position[:] = position
+            self._have_sample = True
+        wheel_speeds(position, self._previous_position, dt_s, out=self._speed)
+        self._max_acceleration = max_signed_acceleration(self._speed, self._previous_speed,
+                                                         dt_s)
+        self._previous_position[:] = position
+        self._previous_speed[:] = self._speed
+        self._encoder[:] = position
+        self._measured_right_rad = float(measurement.steer_right_rad)
+        self._measured_left_rad = float(measurement.steer_left_rad)
+        # 5. Engine rpm (every mode).
+        params = self._params
+        self._rpm = engine_rpm(self._speed, self._gear, params.gear_ratio, params.engine_max_rpm)
+        # 6. TORQUE mode: limited-slip integrator, then output torque and its distribution.
+        if self._mode == ControlMode.TORQUE:
+            if self._lsd:
+                update_slip_ratios(self._slip, self._speed, self._car_type)
+            torque = output_torque_nm(self._engine, self._rpm, self._gear, params.gear_ratio,
+                                      self._throttle, self._max_acceleration)
+            distribute_torque(torque, self._car_type, *self._ratios(),
+                              slip=self._slip if self._lsd else None, out=self._torque)
+        # 7. Brakes, and the commands for the coming world step.
+        return self._write_actuation(dt_s)
+
+    def _ratios(self):
+        steering = self._steering_rad
+        params = self._params
+        return (front_ratio(steering, self._right_angle_rad, self._left_angle_rad),
+                rear_ratio(steering, params.track_rear_m, params.wheelbase_m),
+                central_ratio(steering, params.front_tire_radius_m, params.rear_tire_radius_m))
+
+    def _update_cruise_target(self):
+        params = self._params
+        cruise_wheel_targets(kmh_to_mps(self._cruising_kmh), self._car_type, *self._ratios(),
+                             params.front_tire_radius_m, params.rear_tire_radius_m,
+                             out=self._cruise_target)
+        # The wheel motors saturate at maxVelocity / r (WbMotor; Webots warns).
+        np.clip(self._cruise_target, -self._max_wheel_radps, self._max_wheel_radps,
+                out=self._cruise_target)
+
+    def _write_actuation(self, dt_s):
+        actuation = self._actuation
+        actuation.steer_right_rad = min(max(self._right_angle_rad, self._min_steer),
+                                        self._max_steer)
+        actuation.steer_left_rad = min(max(self._left_angle_rad, self._min_steer),
+                                       self._max_steer)
+        modes = actuation.wheel_mode
+        velocity = actuation.wheel_velocity_radps
+        torque = actuation.wheel_torque_nm
+        velocity.fill(0.0)
+        torque.fill(0.0)
+        for wheel in range(WHEEL_COUNT):
+            modes[wheel] = WheelMode.FREE
+        if self._mode == ControlMode.TORQUE:
+            for wheel in self._driven:
+                modes[wheel] = WheelMode.TORQUE
+                torque[wheel] = self._torque[wheel]
+        else:
+            if self._mode == ControlMode.SPEED:
+                np.multiply(self._wheel_acceleration_radps2, dt_s, out=self._ramp_limit)
+                ramp_toward(self._ramp, self._cruise_target, self._ramp_limit, out=self._ramp)
+            for wheel in self._driven:
+                modes[wheel] = WheelMode.VELOCITY
+                velocity[wheel] = self._ramp[wheel]
+        actuation.brake_torque_nm.fill(self._brake * self._params.brake_coefficient_nm)
+        return actuation
+
+    # -----------------------------------------------------------------------------------------
+    # Getters.
+
+    @property
+    def params(self):
+        return self._params
+
+    @property
+    def actuation(self):
+        """The last Actuation (the same object every step returns)."""
+        return self._actuation
+
+    @property
+    def time_s(self):
+        return self._time_s
+
+    @property
+    def steering_angle_rad(self):
+        """Mean of the MEASURED right and left steering angles [rad] (driver.c)."""
+        return 0.5 * (self._measured_right_rad + self._measured_left_rad)
+
+    @property
+    def commanded_steering_angle_rad(self):
+        return self._steering_rad
+
+    @property
+    def right_steering_angle_rad(self):
+        return self._measured_right_rad
+
+    @property
+    def left_steering_angle_rad(self):
+        return self._measured_left_rad
+
+    @property
+    def target_cruising_speed_kmh(self):
+        return self._cruising_kmh
+
+    @property
+    def current_speed_kmh(self):
+        """Signed speed [km/h] estimated from the driven wheels' speeds."""
+        return mps_to_kmh(current_speed_mps(self._speed, self._car_type,
+                                            self._params.front_tire_radius_m,
+                                            self._params.rear_tire_radius_m))
+
+    @property
+    def throttle(self):
+        return self._throttle
+
+    @property
+    def brake_intensity(self):
+        return self._brake
+
+    @property
+    def gear(self):
+        """Engaged gear; 0 in SPEED mode, where Webots has no gear model."""
+        return 0 if self._mode == ControlMode.SPEED else self._gear
+
+    @property
+    def selected_gear(self):
+        """The last gear set, whatever the mode."""
+        return self._gear
+
+    @property
+    def gear_number(self):
+        """Number of gear ratios including reverse (Webots getGearNumber)."""
+        return self._params.gear_number
+
+    @property
+    def control_mode(self):
+        return self._mode
+
+    @property
+    def rpm(self):
+        """Engine speed estimate [rpm]; 0 in SPEED mode, where Webots has no engine model."""
+        return 0.0 if self._mode == ControlMode.SPEED else self._rpm
+
+    @property
+    def indicator(self):
+        return self._indicator
+
+    @property
+    def hazard_flashers(self):
+        return self._hazard
+
+    @property
+    def dipped_beams(self):
+        return self._lights.dipped_beams
+
+    @property
+    def antifog_lights(self):
+        return self._lights.antifog
+
+    @property
+    def front_lights(self):
+        return self._lights.front
+
+    @property
+    def rear_lights(self):
+        return self._lights.rear
+
+    @property
+    def brake_lights(self):
+        return self._lights.brake
+
+    @property
+    def backwards_lights(self):
+        return self._lights.backwards
+
+    @property
+    def right_indicator_light(self):
+        return self._lights.right_indicator
+
+    @property
+    def left_indicator_light(self):
+        return self._lights.left_indicator
+
+    @property
+    def wiper_mode(self):
+        return self._wiper.mode
+
+    @property
+    def wiper_angle_rad(self):
+        """Angle of both modelled wipers [rad], 0 = parked."""
+        return self._wiper.angle_rad
+
+    @property
+    def indicator_period_s(self):
+        return self._indicator_period_s
+
+    @property
+    def limited_slip_differential(self):
+        return self._lsd
+
+    @property
+    def indicator_auto_disabling(self):
+        return self._auto_disable
+
+    def _wheel_index(self, index):
+        return _integer_in('wheel index', index, 0, WHEEL_COUNT - 1,
+                           ' (0 FRONT_RIGHT, 1 FRONT_LEFT, 2 REAR_RIGHT, 3 REAR_LEFT)')
+
+    def wheel_encoder_rad(self, index):
+        """
+        Return a wheel's encoder value from the last measurement (wbu_car_get_wheel_encoder).
+
+        :param index: wheel index 0..3 (FR, FL, RR, RL).
+        :return: wheel angle [rad]; 0 before the first step.
+        :raises InvalidCommandError: index not an int in 0..3.
+        """
+        return float(self._encoder[self._wheel_index(index)])
+
+    def wheel_speed_radps(self, index):
+        """
+        Return a wheel's finite-difference speed from the last step (wbu_car_get_wheel_speed).
+
+        :param index: wheel index 0..3 (FR, FL, RR, RL).
+        :return: wheel speed [rad/s]; 0 before the second step.
+        :raises InvalidCommandError: index not an int in 0..3.
+        """
+        return float(self._speed[self._wheel_index(index)])
+
+    @property
+    def car_type(self):
+        """Webots WbuCarType value (drivetrain.CarType)."""
+        return CAR_TYPE_BY_NAME[self._car_type]
+
+    @property
+    def engine_type(self):
+        """Webots WbuCarEngineType value (engines.EngineType)."""
+        return self._engine.engine_type
+
+    @property
+    def engine(self):
+        return self._engine
+
+    @property
+    def track_front_m(self):
+        return self._params.track_front_m
+
+    @property
+    def track_rear_m(self):
+        return self._params.track_rear_m
+
+    @property
+    def wheelbase_m(self):
+        return self._params.wheelbase_m
+
+    @property
+    def front_wheel_radius_m(self):
+        return self._params.front_tire_radius_m
+
+    @property
+    def rear_wheel_radius_m(self):
+        return self._params.rear_tire_radius_m
+
+    @property
+    def min_steering_angle_rad(self):
+        return self._min_steer
+
+    @property
+    def max_steering_angle_rad(self):
+        return self._max_steer
+
+    @property
+    def max_cruising_speed_kmh(self):
+        return self._max_cruising_kmh
+
+    def dimensions(self):
+        """Return the car's Dimensions (Webots get_dimensions service)."""
+        params = self._params
+        return Dimensions(params.track_front_m, params.track_rear_m, params.wheelbase_m,
+                          params.front_tire_radius_m, params.rear_tire_radius_m)
+
+    def status(self):
+        """Return every getter's value at once, as a frozen CarStatus."""
+        return CarStatus(
+            time_s=self._time_s,
+            steering_angle_rad=self.steering_angle_rad,
+            commanded_steering_angle_rad=self._steering_rad,
+            right_steering_angle_rad=self._measured_right_rad,
+            left_steering_angle_rad=self._measured_left_rad,
+            target_cruising_speed_kmh=self._cruising_kmh,
+            current_speed_kmh=self.current_speed_kmh,
+            throttle=self._throttle,
+            brake_intensity=self._brake,
+            gear=self.gear,
+            selected_gear=self._gear,
+            control_mode=int(self._mode),
+            rpm=self.rpm,
+            indicator=int(self._indicator),
+            hazard_flashers=self._hazard,
+            dipped_beams=self._lights.dipped_beams,
+            antifog_lights=self._lights.antifog,
+            front_lights=self._lights.front,
+            rear_lights=self._lights.rear,
+            brake_lights=self._lights.brake,
+            backwards_lights=self._lights.backwards,
+            right_indicator_light=self._lights.right_indicator,
+            left_indicator_light=self._lights.left_indicator,
+            wiper_mode=int(self._wiper.mode),
+            wiper_angle_rad=self._wiper.angle_rad,
+            indicator_period_s=self._indicator_period_s,
+            limited_slip_differential=self._lsd,
+            indicator_auto_disabling=self._auto_disable,
+            wheel_encoders_rad=tuple(float(x) for x in self._encoder),
+            wheel_speeds_radps=tuple(float(x) for x in self._speed),
+        )
