@@ -1,0 +1,203 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+A PyBullet world: its own physics client, a ground plane, a fixed time step, explicit stepping.
+
+``World.step()`` is the only thing that advances simulated time. Each basic step it calls every
+registered body's ``pre_step()`` hook (bodies apply their commands there), then runs the physics
+sub-steps. PyBullet clears applied joint torques (TORQUE_CONTROL and URDF joint damping) after
+the first internal sub-step of ``stepSimulation``, so sub-steps are looped here, one
+``stepSimulation`` per sub-step, and bodies re-apply their torques in ``pre_substep()``; see
+docs/physics.md.
+"""
+
+from contextlib import contextmanager
+import os
+import sys
+
+import pybullet
+
+# Tyre-road friction coefficient of the ground (Bullet multiplies the two materials' values; car
+# wheels have 1.0). 0-100 km/h in time0To100 needs about 1.1 on the driven axle (DESIGN §3
+# "Grip"; TeslaModel3 is the hardest); Webots' vehicle worlds use coulombFriction 8.
+DEFAULT_FRICTION = 1.5
+DEFAULT_TIME_STEP_S = 0.010
+DEFAULT_SUBSTEPS = 1
+GROUND_SIZE_M = 1000.0
+# Constraint force mixing of every constraint row; a small value keeps the direct solver's
+# matrix regular (redundant contact rows) without visible softness.
+GLOBAL_CFM = 1.0e-6
+
+
+@contextmanager
+def _quiet_stdout():
+    """Silence C-level stdout (PyBullet prints some notices with printf)."""
+    try:
+        sys.stdout.flush()
+        saved = os.dup(1)
+    except (OSError, ValueError, AttributeError):
+        yield
+        return
+    try:
+        with open(os.devnull, 'w') as devnull:
+            os.dup2(devnull.fileno(), 1)
+            yield
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
+
+
+class World:
+    """
+    One simulation: a PyBullet client with a ground plane, stepped explicitly at a fixed dt.
+
+    Several worlds may exist in one process (each has its own DIRECT client; at most one GUI).
+    """
+
+    def __init__(self, time_step_s=DEFAULT_TIME_STEP_S, substeps=None, gui=False,
+                 friction=DEFAULT_FRICTION, gravity=9.81):
+        """
+        Create the world.
+
+        :param time_step_s: basic time step [s] (Webots' basicTimeStep; 10 ms by default).
+        :param substeps: physics sub-steps per basic step; None = DEFAULT_SUBSTEPS.
+        :param gui: open PyBullet's GUI instead of a DIRECT client.
+        :param friction: tyre-road friction coefficient of the ground [-].
+        :param gravity: gravity [m/s^2], acting along -z.
+        :raises ValueError: for a non-positive time step, sub-step count or friction.
+        """
+        substeps = DEFAULT_SUBSTEPS if substeps is None else substeps
+        if not time_step_s > 0.0:
+            raise ValueError(f'time_step_s = {time_step_s!r}: must be > 0')
+        if int(substeps) != substeps or substeps < 1:
+            raise ValueError(f'substeps = {substeps!r}: must be an integer >= 1')
+        if not friction > 0.0:
+            raise ValueError(f'friction = {friction!r}: must be > 0')
+        self.time_step_s = float(time_step_s)
+        self.substeps = int(substeps)
+        self.substep_s = self.time_step_s / self.substeps
+        self.friction = float(friction)
+        self.gravity = float(gravity)
+        self.client_id = pybullet.connect(pybullet.GUI if gui else pybullet.DIRECT)
+        if self.client_id < 0:
+            raise RuntimeError('PyBullet could not connect (is a GUI already open?)')
+        self._closed = False
+        self._bodies = []
+        self._pre_step = []
+        self._pre_substep = []
+        self._step_count = 0
+        cid = self.client_id
+        pybullet.setPhysicsEngineParameter(fixedTimeStep=self.substep_s, numSubSteps=0,
+                                           deterministicOverlappingPairs=1,
+                                           globalCFM=GLOBAL_CFM, physicsClientId=cid)
+        # The direct (Dantzig) MLCP solver converges exactly where PGS leaves light wheels
+        # sandwiched between a heavy chassis and the ground under-resolved (suspensions sagged
+        # by up to 6 cm with 50 PGS iterations); it is also cheaper for a car-sized island.
+        with _quiet_stdout():   # the switch is announced with printf
+            pybullet.setPhysicsEngineParameter(
+                constraintSolverType=pybullet.CONSTRAINT_SOLVER_LCP_DANTZIG, physicsClientId=cid)
+        pybullet.setGravity(0.0, 0.0, -self.gravity, physicsClientId=cid)
+        plane = pybullet.createCollisionShape(pybullet.GEOM_PLANE, physicsClientId=cid)
+        visual = pybullet.createVisualShape(
+            pybullet.GEOM_BOX, halfExtents=[GROUND_SIZE_M / 2, GROUND_SIZE_M / 2, 0.001],
+            rgbaColor=[0.45, 0.45, 0.45, 1.0], physicsClientId=cid) if gui else -1
+        self.ground_id = pybullet.createMultiBody(0.0, plane, visual, physicsClientId=cid)
+        pybullet.changeDynamics(self.ground_id, -1, lateralFriction=self.friction,
+                                restitution=0.0, physicsClientId=cid)
+        self._step_simulation = pybullet.stepSimulation
+
+    @property
+    def time_s(self):
+        """Simulated time [s]: basic steps taken times the time step."""
+        return self._step_count * self.time_step_s
+
+    @property
+    def step_count(self):
+        """Number of basic steps taken."""
+        return self._step_count
+
+    @property
+    def bodies(self):
+        """The registered bodies, in registration order."""
+        return tuple(self._bodies)
+
+    def add_body(self, body):
+        """
+        Register a body so that ``step()`` calls its hooks.
+
+        The body may define ``pre_step()`` (called once per basic step, before the physics) and
+        ``pre_substep()`` (called before every physics sub-step after the first).
+        """
+        if body in self._bodies:
+            return body
+        self._bodies.append(body)
+        self._rebuild_hooks()
+        return body
+
+    def remove(self, body):
+        """Unregister a body and remove it from the physics (its ``destroy()`` if it has one)."""
+        if body in self._bodies:
+            self._bodies.remove(body)
+            self._rebuild_hooks()
+        destroy = getattr(body, 'destroy', None)
+        if destroy is not None:
+            destroy()
+
+    def _rebuild_hooks(self):
+        self._pre_step = [b.pre_step for b in self._bodies if hasattr(b, 'pre_step')]
+        self._pre_substep = [b.pre_substep for b in self._bodies if hasattr(b, 'pre_substep')]
+
+    def step(self):
+        """Advance the world by one basic time step; return the new time [s]."""
+        if self._closed:
+            raise RuntimeError('World.step() after close()')
+        cid = self.client_id
+        for hook in self._pre_step:
+            hook()
+        self._step_simulation(physicsClientId=cid)
+        for _ in range(self.substeps - 1):
+            for hook in self._pre_substep:
+                hook()
+            self._step_simulation(physicsClientId=cid)
+        self._step_count += 1
+        return self.time_s
+
+    def close(self):
+        """Disconnect the physics client (idempotent)."""
+        if not self._closed:
+            self._closed = True
+            self._bodies.clear()
+            self._rebuild_hooks()
+            try:
+                pybullet.disconnect(physicsClientId=self.client_id)
+            except pybullet.error:
+                pass
+
+    @property
+    def closed(self):
+        return self._closed
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:   # interpreter shutdown: pybullet may already be gone
+            pass
