@@ -1,0 +1,106 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Shared test set-up.
+
+Before anything imports cyclonedds, DDS traffic of this test run is confined to the loopback
+interface (``ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST``) and to a ROS_DOMAIN_ID of its own, derived
+from the pid (1..101), so that concurrent runs do not see each other. Both are kept when set.
+"""
+
+import json
+import os
+import subprocess
+import sys
+import threading
+
+import pytest
+
+REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+if REPO_ROOT not in sys.path:
+    sys.path.insert(0, REPO_ROOT)
+
+os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
+os.environ.setdefault('ROS_DOMAIN_ID', str(1 + os.getpid() % 101))
+
+PEER_SCRIPT = os.path.join(REPO_ROOT, 'test', 'transport_peer.py')
+# Generous bound for anything that waits on another process (start-up, discovery).
+PEER_START_TIMEOUT_S = 60.0
+
+
+def pytest_configure(config):
+    config.addinivalue_line(
+        'markers', 'transport: cross-process tests over the embedded Cyclone DDS transport')
+
+
+def peer_env():
+    """Return the environment for a peer subprocess: this run's DDS settings, the repo first."""
+    env = dict(os.environ)
+    env['PYTHONPATH'] = REPO_ROOT + os.pathsep + env.get('PYTHONPATH', '')
+    env['PYTHONUNBUFFERED'] = '1'
+    return env
+
+
+class PeerProcess:
+    """A running peer subprocess and the JSON line it printed when ready."""
+
+    def __init__(self, args, script=PEER_SCRIPT):
+        self.proc = subprocess.Popen(
+            [sys.executable, script, *args], env=peer_env(), stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE, text=True)
+        self.info = None
+        self.stderr_lines = []
+        self._ready = threading.Event()
+        threading.Thread(target=self._read_stdout, daemon=True).start()
+        threading.Thread(target=self._read_stderr, daemon=True).start()
+        if not self._ready.wait(PEER_START_TIMEOUT_S) or self.info is None:
+            self.stop()
+            raise RuntimeError('peer did not start:\n' + ''.join(self.stderr_lines))
+
+    def _read_stdout(self):
+        for line in self.proc.stdout:
+            if self.info is None and line.startswith('{'):
+                self.info = json.loads(line)
+                self._ready.set()
+        self._ready.set()
+
+    def _read_stderr(self):
+        for line in self.proc.stderr:
+            self.stderr_lines.append(line)
+
+    def terminate(self, timeout_s=PEER_START_TIMEOUT_S):
+        """Send SIGTERM and return the exit status."""
+        self.proc.terminate()
+        return self.proc.wait(timeout_s)
+
+    def stop(self):
+        if self.proc.poll() is None:
+            self.proc.kill()
+            self.proc.wait()
+
+
+@pytest.fixture(scope='module')
+def spawn_peer():
+    """Return a function starting peer subprocesses; they are stopped after the module."""
+    peers = []
+
+    def spawn(*args):
+        peer = PeerProcess(list(args))
+        peers.append(peer)
+        return peer
+
+    yield spawn
+    for peer in peers:
+        peer.stop()

@@ -1,0 +1,300 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Cross-process tests of the embedded Cyclone DDS transport (ros2_wire Parts A and E).
+
+The peer node runs in a subprocess (test/transport_peer.py); the test process talks to it with
+its own DdsNode and, where the wire itself is checked, with raw cyclonedds readers and writers.
+Waits have generous bounds and the assertions are on outcomes, never on durations.
+"""
+
+import time
+
+from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsParticipant
+from cyclonedds.core import InstanceState
+from cyclonedds.domain import DomainParticipant
+from cyclonedds.pub import DataWriter
+from cyclonedds.sub import DataReader
+from cyclonedds.topic import Topic
+import pytest
+
+from vehicle_msgs_py import types as msg_types
+from vehicle_sim.transport import dds, port
+from vehicle_sim.transport.dds import DdsNode
+from vehicle_sim.transport.dds_config import domain_id
+
+pytestmark = pytest.mark.transport
+
+WAIT_S = 30.0
+NS = '/tp'
+
+
+def wait_for(predicate, timeout_s=WAIT_S, spin=None):
+    """Poll ``predicate`` (spinning ``spin`` if given) until true; return its last value."""
+    deadline = time.monotonic() + timeout_s
+    while True:
+        value = predicate()
+        if value or time.monotonic() >= deadline:
+            return value
+        if spin is not None:
+            spin.spin_once(0.02)
+        else:
+            time.sleep(0.01)
+
+
+@pytest.fixture(scope='module')
+def peer(spawn_peer):
+    # A long reply-match window makes the late-reader test independent of machine load.
+    return spawn_peer('--reply-timeout', '120', '--ros-args', '-r', '__ns:=' + NS,
+                      '-p', 'gain:=2.5')
+
+
+@pytest.fixture(scope='module')
+def node(peer):
+    test_node = DdsNode('tester', '/tp_test')
+    yield test_node
+    test_node.shutdown()
+
+
+@pytest.fixture(scope='module')
+def raw():
+    """Return a second, plain cyclonedds participant for wire-level checks."""
+    dds.ensure_domain()
+    return DomainParticipant(domain_id())
+
+
+def discovery_reader(raw_participant):
+    info_type = msg_types.message_type('rmw_dds_common/msg/ParticipantEntitiesInfo')
+    topic = Topic(raw_participant, 'ros_discovery_info', info_type)
+    return DataReader(raw_participant, topic, qos=dds._dds_qos(
+        port.QOS_DISCOVERY_INFO_READER, b'', writer=False))
+
+
+def test_topic_string_round_trips_both_directions(node, peer):
+    string = node.msg('std_msgs/msg/String')
+    received = []
+    sub = node.create_subscription('std_msgs/msg/String', NS + '/echo_out',
+                                   lambda m: received.append(m.data))
+    pub = node.create_publisher('std_msgs/msg/String', NS + '/echo_in')
+    assert wait_for(lambda: pub.get_subscription_count() and sub.get_publisher_count())
+
+    def echoed():
+        pub.publish(string(data='ping'))
+        node.spin_once(0.1)
+        return 'echo: ping' in received
+
+    assert wait_for(echoed, spin=node)
+
+
+def test_service_set_int_round_trip_echoes_request_header(node, peer, raw):
+    types = msg_types.service_types('vehicle_msgs/srv/SetInt')
+    tap = DataReader(raw, Topic(raw, 'rr' + NS + '/set_intReply', types.response_wire),
+                     qos=dds._dds_qos(port.QOS_SERVICES, b'', writer=False))
+    client = node.create_client('vehicle_msgs/srv/SetInt', NS + '/set_int')
+    assert client.wait_for_service(WAIT_S)
+    request = node.srv('vehicle_msgs/srv/SetInt').Request
+    assert client.call(request(value=4), WAIT_S).success is True
+    future = client.call_async(request(value=7))
+    assert node.spin_until(future.done, WAIT_S)
+    assert future.result().success is False
+    # The reply on the wire carries the client id and sequence number of the request.
+    headers = []
+    wait_for(lambda: headers.extend(
+        (s.client_id, s.sequence) for s in tap.take(N=64) if s.sample_info.valid_data)
+        or (client.client_id, future.sequence) in headers)
+    assert (client.client_id, future.sequence) in headers
+
+
+def test_client_ignores_replies_for_other_clients_and_sequences(node, peer, raw):
+    types = msg_types.service_types('vehicle_msgs/srv/SetInt')
+    client = node.create_client('vehicle_msgs/srv/SetInt', NS + '/set_int')
+    assert client.wait_for_service(WAIT_S)
+    forger = DataWriter(raw, Topic(raw, 'rr' + NS + '/set_intReply', types.response_wire),
+                        qos=dds._dds_qos(port.QOS_SERVICES, b'', writer=True))
+    assert wait_for(lambda: client._reader.get_matched_publications()
+                    and len(client._reader.get_matched_publications()) >= 2)
+    request = node.srv('vehicle_msgs/srv/SetInt').Request
+    future = client.call_async(request(value=7))  # the peer answers success=False
+    # Same-process delivery: these forged replies arrive before the peer's real one.
+    forged = types.response(success=True)
+    forger.write(types.response_to_wire(forged, client.client_id ^ 1, future.sequence))
+    forger.write(types.response_to_wire(forged, client.client_id, future.sequence + 1000))
+    assert node.spin_until(future.done, WAIT_S)
+    assert future.result().success is False
+
+
+def test_late_client_reply_reader_does_not_block_the_server(node, peer, raw):
+    types = msg_types.service_types('vehicle_msgs/srv/SetInt')
+    token = 'late-client-token'
+    late_writer = DataWriter(
+        raw, Topic(raw, 'rq' + NS + '/set_intRequest', types.request_wire),
+        qos=dds._dds_qos(port.QOS_SERVICES, f'clientid={token};'.encode(), writer=True))
+    assert wait_for(lambda: late_writer.get_matched_subscriptions())
+    late_writer.write(types.request_to_wire(types.request(value=8), 424242, 1))
+    # While that reply waits (up to 120 s) for a reply reader that does not exist yet, the
+    # peer keeps serving: a normal call is answered.
+    client = node.create_client('vehicle_msgs/srv/SetInt', NS + '/set_int')
+    assert client.wait_for_service(WAIT_S)
+    request = node.srv('vehicle_msgs/srv/SetInt').Request
+    assert client.call(request(value=2), WAIT_S).success is True
+    # The reply reader appears late and still gets its queued reply.
+    late_reader = DataReader(
+        raw, Topic(raw, 'rr' + NS + '/set_intReply', types.response_wire),
+        qos=dds._dds_qos(port.QOS_SERVICES, f'clientid={token};'.encode(), writer=False))
+    replies = []
+    wait_for(lambda: replies.extend(
+        s for s in late_reader.take(N=64) if s.sample_info.valid_data and s.client_id == 424242)
+        or replies)
+    assert [(r.sequence, r.success) for r in replies] == [(1, True)]
+
+
+def _node_entries(samples, participant_hex):
+    return [s.node_entities_info_seq for s in samples
+            if s.sample_info.valid_data and bytes(s.gid.data).hex() == participant_hex]
+
+
+def test_discovery_info_lists_peer_node_with_its_endpoint_gids(peer, raw):
+    reader = discovery_reader(raw)
+    seen = []
+
+    def peer_listed():
+        seen.extend(_node_entries(reader.take(N=256), peer.info['participant']))
+        return seen and seen[-1]
+
+    nodes = wait_for(peer_listed)
+    assert [(n.node_namespace, n.node_name) for n in nodes] == [(NS, 'peer')]
+    readers = {bytes(g.data).hex() for g in nodes[0].reader_gid_seq}
+    writers = {bytes(g.data).hex() for g in nodes[0].writer_gid_seq}
+    # A5.3: subscription and service request reader -> readers; publisher and reply writer ->
+    # writers; the hidden parameter services, /rosout and /parameter_events add more.
+    assert {peer.info['echo_in_reader'], peer.info['set_int_reader']} <= readers
+    assert {peer.info['echo_out_writer'], peer.info['set_int_writer']} <= writers
+    assert len(readers) == 2 + 6 and len(writers) == 2 + 6 + 2
+
+
+def test_node_leaving_publishes_empty_entity_list_before_its_participant_goes(
+        spawn_peer, raw):
+    leaver = spawn_peer('--ros-args', '-r', '__node:=leaver', '-r', '__ns:=/tp_leave')
+    guid_hex = leaver.info['participant']
+    info_reader = discovery_reader(raw)
+    participants = BuiltinDataReader(raw, BuiltinTopicDcpsParticipant)
+    history = []
+    handle = []
+
+    def listed():
+        history.extend(_node_entries(info_reader.take(N=256), guid_hex))
+        for s in participants.take(N=256):
+            if s.sample_info.valid_data and s.key.hex == guid_hex:
+                handle.append(s.sample_info.instance_handle)
+        return history and history[-1] and handle
+
+    assert wait_for(listed)
+    assert leaver.terminate() == 0
+    gone = []
+
+    def participant_gone():
+        for s in participants.take(N=256):
+            if (s.sample_info.instance_handle in handle
+                    and s.sample_info.instance_state != InstanceState.Alive):
+                # Read the discovery topic now: the empty list must already be there.
+                history.extend(_node_entries(info_reader.take(N=256), guid_hex))
+                gone.append(True)
+        return gone
+
+    assert wait_for(participant_gone)
+    assert list(history[-1]) == []
+
+
+def _parameter_client(node, service, srv_type):
+    client = node.create_client('rcl_interfaces/srv/' + srv_type, f'{NS}/peer/{service}')
+    assert client.wait_for_service(WAIT_S)
+    return client, node.srv('rcl_interfaces/srv/' + srv_type).Request
+
+
+def _double(node, value):
+    return node.msg('rcl_interfaces/msg/ParameterValue')(
+        type=port.PARAMETER_DOUBLE, double_value=value)
+
+
+def _get_gain(node):
+    client, request = _parameter_client(node, 'get_parameters', 'GetParameters')
+    (value,) = client.call(request(names=['gain']), WAIT_S).values
+    assert value.type == port.PARAMETER_DOUBLE
+    return value.double_value
+
+
+def test_parameter_services_list_get_set_and_reject(node, peer):
+    events = []
+    node.create_subscription('rcl_interfaces/msg/ParameterEvent', '/parameter_events',
+                             events.append, port.QOS_PARAMETER_EVENTS)
+    lister, list_request = _parameter_client(node, 'list_parameters', 'ListParameters')
+    names = lister.call(list_request(), WAIT_S).result.names
+    assert {'gain', 'use_sim_time'} <= set(names)
+    assert _get_gain(node) == 2.5  # the -p gain:=2.5 override
+
+    setter, set_request = _parameter_client(node, 'set_parameters', 'SetParameters')
+    parameter = node.msg('rcl_interfaces/msg/Parameter')
+    assert wait_for(lambda: setter._writer.get_matched_subscriptions())
+    (ok,) = setter.call(set_request(parameters=[parameter(name='gain',
+                                                          value=_double(node, 3.0))]),
+                        WAIT_S).results
+    assert ok.successful and _get_gain(node) == 3.0
+    (rejected,) = setter.call(set_request(parameters=[parameter(
+        name='gain', value=_double(node, 99.0))]), WAIT_S).results
+    assert not rejected.successful and 'outside [0, 10]' in rejected.reason
+    (wrong_type,) = setter.call(set_request(parameters=[parameter(
+        name='gain', value=node.msg('rcl_interfaces/msg/ParameterValue')(
+            type=port.PARAMETER_STRING, string_value='high'))]), WAIT_S).results
+    assert not wrong_type.successful
+    assert _get_gain(node) == 3.0  # unchanged by both rejected sets
+
+    def gain_event():
+        return [p.value.double_value for e in events if e.node == NS + '/peer'
+                for p in e.changed_parameters if p.name == 'gain']
+
+    assert wait_for(gain_event, spin=node) == [3.0]
+
+    typer, types_request = _parameter_client(node, 'get_parameter_types', 'GetParameterTypes')
+    assert list(typer.call(types_request(names=['gain', 'nope']), WAIT_S).types) == [
+        port.PARAMETER_DOUBLE, port.PARAMETER_NOT_SET]
+    describer, describe_request = _parameter_client(
+        node, 'describe_parameters', 'DescribeParameters')
+    (descriptor,) = describer.call(describe_request(names=['gain']), WAIT_S).descriptors
+    assert descriptor.description == 'test gain [1]'
+
+
+def test_rosout_receives_the_peer_log(node, peer):
+    logs = []
+    node.create_subscription('rcl_interfaces/msg/Log', '/rosout', logs.append, port.QOS_ROSOUT)
+    found = wait_for(lambda: [m for m in logs if m.name == 'tp.peer'], spin=node)
+    assert [(m.level, m.msg) for m in found] == [(20, 'peer ready')]
+
+
+def test_use_sim_time_node_clock_follows_clock_topic(node):
+    sim = DdsNode('sim_clock_user', '/tp_test', parameter_overrides={'use_sim_time': True})
+    try:
+        clock = node.create_publisher('rosgraph_msgs/msg/Clock', '/clock', port.QOS_CLOCK)
+        clock_msg = node.msg('rosgraph_msgs/msg/Clock')
+        time_msg = node.msg('builtin_interfaces/msg/Time')
+        assert sim.now().nanoseconds == 0
+
+        def ticked():
+            clock.publish(clock_msg(clock=time_msg(sec=42, nanosec=5)))
+            sim.spin_once(0.05)
+            return sim.now().nanoseconds == 42_000_000_005
+
+        assert wait_for(ticked)
+    finally:
+        sim.shutdown()

@@ -1,0 +1,165 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""Unit tests of the transport's pure parts: ROS arguments, names, QoS, env, selection (no DDS)."""
+
+import pytest
+
+from vehicle_sim.transport import dds_config, port, selection
+from vehicle_sim.transport.params import params_file_overrides, parse_ros_args
+from vehicle_sim.transport.port import resolve_name, TransportError
+
+
+def test_ros_args_param_values_are_read_as_yaml_like_rcl():
+    args = parse_ros_args(['run', '--ros-args', '-p', 'gain:=2.5', '-p', 'count:=3',
+                           '-p', 'on:=true', '--param', 'name:=car', '-p', 'xs:=[1.0, 2]',
+                           '-p', "quoted:='7'"])
+    assert args.non_ros_args == ['run']
+    assert args.parameter_overrides('n', '/') == {
+        'gain': 2.5, 'count': 3, 'on': True, 'name': 'car', 'xs': [1.0, 2.0], 'quoted': '7'}
+
+
+def test_ros_args_later_sources_win_and_node_prefix_limits_scope():
+    args = parse_ros_args(['--ros-args', '-p', 'a:=1', '-p', 'other:a:=5', '-p', 'a:=2',
+                           '-p', 'me:b:=3', '--', 'tail'])
+    assert args.parameter_overrides('me', '/') == {'a': 2, 'b': 3}
+    assert args.parameter_overrides('other', '/') == {'a': 2}
+    assert args.non_ros_args == ['tail']
+
+
+def test_ros_args_node_and_namespace_remaps_apply():
+    args = parse_ros_args(['--ros-args', '-r', '__node:=car', '-r', '__ns:=/fleet'])
+    assert args.node_name('vehicle') == 'car'
+    assert args.namespace('car', '') == '/fleet'
+
+
+def test_ros_args_topic_remap_resolves_both_sides():
+    args = parse_ros_args(['--ros-args', '-r', 'cmd:=/other/cmd'])
+    assert args.remap_name('/ns/cmd', 'n', '/ns') == '/other/cmd'
+    assert args.remap_name('/ns/odom', 'n', '/ns') == '/ns/odom'
+
+
+@pytest.mark.parametrize('bad', [['--ros-args', '-p', 'novalue'], ['--ros-args', '-p'],
+                                 ['--ros-args', '--bogus', 'x'],
+                                 ['--ros-args', '--log-level', 'loud']])
+def test_ros_args_malformed_raise_transport_error(bad):
+    with pytest.raises(TransportError):
+        parse_ros_args(bad)
+
+
+def test_params_file_node_wildcard_and_nested_namespace_sections(tmp_path):
+    path = tmp_path / 'p.yaml'
+    path.write_text(
+        '/**:\n  ros__parameters:\n    use_sim_time: true\n    rate: 10\n'
+        'vehicle:\n  ros__parameters:\n    rate: 50\n    limits:\n      v_max: 30.0\n'
+        '/fleet:\n  car:\n    ros__parameters:\n      rate: 20\n'
+        '/*/car:\n  ros__parameters:\n    color: red\n')
+    args = parse_ros_args(['--ros-args', '--params-file', str(path), '-p', 'rate:=99'])
+    assert args.parameter_overrides('vehicle', '/') == {
+        'use_sim_time': True, 'rate': 99, 'limits.v_max': 30.0}
+    assert params_file_overrides(
+        {'vehicle': {'ros__parameters': {'rate': 1}}}, '/fleet/vehicle') == {}
+    assert args.parameter_overrides('car', '/fleet') == {
+        'use_sim_time': True, 'rate': 99, 'color': 'red'}
+
+
+def test_params_file_missing_raises_naming_the_file(tmp_path):
+    with pytest.raises(TransportError, match='nope.yaml'):
+        parse_ros_args(['--ros-args', '--params-file', str(tmp_path / 'nope.yaml')])
+
+
+@pytest.mark.parametrize('name, expected', [
+    ('/abs/x', '/abs/x'), ('rel', '/car/rel'), ('~/private', '/car/node/private'),
+    ('a/b', '/car/a/b')])
+def test_resolve_name_expands_like_rcl(name, expected):
+    assert resolve_name(name, '/car', 'node') == expected
+
+
+def test_resolve_name_in_root_namespace_has_no_double_slash():
+    assert resolve_name('x', '', 'node') == '/x'
+    assert resolve_name('~/x', '/', 'node') == '/node/x'
+
+
+@pytest.mark.parametrize('bad', ['', 'a//b', 'x/', '1abc', 'sp ace', '/a/9b'])
+def test_resolve_name_rejects_invalid_names(bad):
+    with pytest.raises(TransportError):
+        resolve_name(bad, '/', 'node')
+
+
+def test_qos_presets_match_ros2_wire_a6():
+    assert (port.QOS_ROSOUT.depth, port.QOS_ROSOUT.durability, port.QOS_ROSOUT.lifespan_s) == (
+        1000, port.TRANSIENT_LOCAL, 10.0)
+    assert (port.QOS_SENSOR_DATA.depth, port.QOS_SENSOR_DATA.reliability) == (
+        5, port.BEST_EFFORT)
+    assert (port.QOS_CLOCK.depth, port.QOS_CLOCK.reliability) == (1, port.BEST_EFFORT)
+    assert (port.QOS_TF_STATIC.depth, port.QOS_TF_STATIC.durability) == (
+        1, port.TRANSIENT_LOCAL)
+    assert port.as_qos(7) == port.QosProfile(depth=7)
+    assert port.as_qos('tf') is port.QOS_TF
+    with pytest.raises(TransportError, match='valid'):
+        port.as_qos('fast')
+
+
+def test_localhost_range_gives_loopback_no_multicast_peer_and_auto_index():
+    xml = dds_config.cyclone_config({'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST'})
+    for part in ('<NetworkInterface address="127.0.0.1"/>', '<AllowMulticast>false',
+                 '<Peer address="127.0.0.1"/>', '<ParticipantIndex>auto'):
+        assert part in xml
+
+
+def test_deprecated_localhost_only_is_honoured_when_range_is_unset():
+    assert dds_config.discovery_range({'ROS_LOCALHOST_ONLY': '1'}) == 'LOCALHOST'
+    assert dds_config.discovery_range({}) == 'SUBNET'
+
+
+def test_subnet_default_leaves_cyclone_and_user_config_alone():
+    assert dds_config.cyclone_config({'CYCLONEDDS_URI': 'file:///x.xml'}) is None
+    localhost = dds_config.cyclone_config({'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST',
+                                           'CYCLONEDDS_URI': 'file:///x.xml'})
+    assert localhost.endswith(',file:///x.xml')
+
+
+@pytest.mark.parametrize('read, env', [
+    (dds_config.domain_id, {'ROS_DOMAIN_ID': 'x'}),
+    (dds_config.domain_id, {'ROS_DOMAIN_ID': '300'}),
+    (dds_config.discovery_range, {'ROS_AUTOMATIC_DISCOVERY_RANGE': 'PLANET'})])
+def test_bad_dds_environment_raises_transport_error(read, env):
+    with pytest.raises(TransportError):
+        read(env)
+
+
+def test_domain_id_defaults_to_zero():
+    assert dds_config.domain_id({}) == 0
+
+
+def test_selection_unknown_transport_lists_valid_values():
+    with pytest.raises(TransportError, match='auto, rclpy, dds'):
+        selection.transport_name('zenoh')
+
+
+def test_selection_auto_picks_dds_without_rclpy(monkeypatch):
+    monkeypatch.setattr(selection, 'rclpy_available', lambda: False)
+    assert selection.transport_name('auto') == 'dds'
+    with pytest.raises(TransportError, match='not importable'):
+        selection.transport_name('rclpy')
+
+
+def test_parameter_validator_reasons():
+    assert port.run_validator(lambda v: None, 1.0) is None
+    assert port.run_validator(lambda v: 'too big', 1.0) == 'too big'
+
+    def raises(value):
+        raise ValueError('bad value')
+
+    assert port.run_validator(raises, 1.0) == 'bad value'

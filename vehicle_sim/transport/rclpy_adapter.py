@@ -1,0 +1,282 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The rclpy adapter: a thin wrapper of a real ``rclpy.node.Node`` with the port API (DESIGN §6).
+
+Written against ROS 2 Jazzy's rclpy: ``rclpy.init`` / ``Node`` / ``create_publisher(msg_type,
+topic, QoSProfile)`` / ``create_service`` / ``create_client`` / ``call_async`` / ``spin_once`` /
+``try_shutdown``; message classes come from the generated ``pkg.msg`` / ``pkg.srv`` modules.
+Only imported when rclpy is importable.
+"""
+
+import importlib
+from typing import Any, Dict, List, Optional
+
+from builtin_interfaces.msg import Time as TimeMsg
+from rcl_interfaces.msg import ParameterDescriptor
+from rcl_interfaces.msg import SetParametersResult as RclSetParametersResult
+import rclpy
+from rclpy.clock import Clock, ClockType
+from rclpy.duration import Duration
+from rclpy.exceptions import ParameterException
+from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.parameter import Parameter as RclpyParameter
+from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+
+from vehicle_sim.transport import port
+from vehicle_sim.transport.port import (
+    as_qos,
+    Parameter,
+    SetParametersResult,
+    TransportError,
+)
+
+
+def import_type(ros_type: str):
+    """Return the generated class of ``pkg/msg/Name`` or ``pkg/srv/Name``."""
+    try:
+        pkg, kind, name = ros_type.split('/')
+        return getattr(importlib.import_module(f'{pkg}.{kind}'), name)
+    except (ValueError, ImportError, AttributeError) as exc:
+        raise TransportError(f'cannot import ROS type {ros_type!r}: {exc}') from None
+
+
+def to_rclpy_qos(qos) -> QoSProfile:
+    """Convert a port QoS (profile, depth or preset name) to an rclpy QoSProfile."""
+    profile = as_qos(qos)
+    kwargs = {
+        'history': (HistoryPolicy.KEEP_ALL if profile.history == port.KEEP_ALL
+                    else HistoryPolicy.KEEP_LAST),
+        'depth': profile.depth,
+        'reliability': (ReliabilityPolicy.RELIABLE if profile.reliability == port.RELIABLE
+                        else ReliabilityPolicy.BEST_EFFORT),
+        'durability': (DurabilityPolicy.TRANSIENT_LOCAL
+                       if profile.durability == port.TRANSIENT_LOCAL
+                       else DurabilityPolicy.VOLATILE),
+        'avoid_ros_namespace_conventions': profile.avoid_ros_namespace_conventions,
+    }
+    if profile.lifespan_s is not None:
+        kwargs['lifespan'] = Duration(nanoseconds=int(profile.lifespan_s * 1e9))
+    if profile.deadline_s is not None:
+        kwargs['deadline'] = Duration(nanoseconds=int(profile.deadline_s * 1e9))
+    return QoSProfile(**kwargs)
+
+
+class _Logger(port.Logger):
+    _METHODS = {10: 'debug', 20: 'info', 30: 'warning', 40: 'error', 50: 'fatal'}
+
+    def __init__(self, logger):
+        self._logger = logger
+
+    def log(self, level: int, message: str) -> None:
+        getattr(self._logger, self._METHODS.get(level, 'info'))(str(message))
+
+
+class _Subscription(port.Subscription):
+    def __init__(self, node: Node, subscription):
+        self._node = node
+        self.subscription = subscription
+        self.topic_name = subscription.topic_name
+
+    def get_publisher_count(self) -> int:
+        return self._node.count_publishers(self.topic_name)
+
+
+class _Client(port.Client):
+    def __init__(self, wrapper: 'RclpyNode', client, name: str):
+        self._wrapper = wrapper
+        self.client = client
+        self.service_name = name
+
+    def service_is_ready(self) -> bool:
+        return self.client.service_is_ready()
+
+    def wait_for_service(self, timeout_s: Optional[float] = None) -> bool:
+        return self.client.wait_for_service(timeout_sec=timeout_s)
+
+    def call_async(self, request):
+        return self.client.call_async(request)
+
+    def call(self, request, timeout_s: float = 5.0):
+        future = self.client.call_async(request)
+        self._wrapper.executor.spin_until_future_complete(future, timeout_sec=timeout_s)
+        if not future.done():
+            self.client.remove_pending_request(future)
+            raise port.ServiceTimeoutError(
+                f'no reply from {self.service_name} within {timeout_s} s')
+        return future.result()
+
+
+class RclpyNode(port.NodePort):
+    """
+    The port on a real rclpy Node.
+
+    :param name: node name.
+    :param namespace: node namespace.
+    :param args: the command line; initialises rclpy with it when rclpy is not yet initialised,
+        else it is given to the node as ``cli_args``.
+    :param parameter_overrides: parameter values that win over the command line.
+    """
+
+    def __init__(self, name: str, namespace: str = '', args=None,
+                 parameter_overrides: Optional[Dict[str, Any]] = None, context=None):
+        cli_args = None
+        if not rclpy.ok(context=context):
+            rclpy.init(args=args, context=context)
+        elif args:
+            cli_args = list(args)
+        self._context = context
+        self.node = Node(
+            name, namespace=namespace or None, context=context, cli_args=cli_args,
+            parameter_overrides=[RclpyParameter(k, value=v)
+                                 for k, v in (parameter_overrides or {}).items()])
+        self._validators: Dict[str, Any] = {}
+        self._user_callbacks: List[Any] = []
+        self.node.add_on_set_parameters_callback(self._on_set_parameters)
+        self._logger = _Logger(self.node.get_logger())
+        self._steady = Clock(clock_type=ClockType.STEADY_TIME)
+        # One executor per node, so that nodes of a private Context (tests) spin too.
+        self.executor = SingleThreadedExecutor(context=context)
+        self.executor.add_node(self.node)
+
+    def get_name(self) -> str:
+        return self.node.get_name()
+
+    def get_namespace(self) -> str:
+        return self.node.get_namespace()
+
+    def msg(self, ros_type: str):
+        return import_type(ros_type)
+
+    def srv(self, srv_type: str):
+        return import_type(srv_type)
+
+    def create_publisher(self, ros_type: str, topic: str, qos=None):
+        return self.node.create_publisher(import_type(ros_type), topic, to_rclpy_qos(qos))
+
+    def create_subscription(self, ros_type: str, topic: str, callback, qos=None):
+        return _Subscription(self.node, self.node.create_subscription(
+            import_type(ros_type), topic, callback, to_rclpy_qos(qos)))
+
+    def create_service(self, srv_type: str, name: str, callback, qos=port.QOS_SERVICES):
+        return self.node.create_service(import_type(srv_type), name, callback,
+                                        qos_profile=to_rclpy_qos(qos))
+
+    def create_client(self, srv_type: str, name: str, qos=port.QOS_SERVICES):
+        client = self.node.create_client(import_type(srv_type), name,
+                                         qos_profile=to_rclpy_qos(qos))
+        return _Client(self, client, client.srv_name)
+
+    def create_timer(self, period_s: float, callback):
+        return self.node.create_timer(period_s, callback, clock=self._steady)
+
+    def now(self) -> port.Time:
+        return port.Time(self.node.get_clock().now().nanoseconds)
+
+    def time_msg(self, t: Optional[port.Time] = None):
+        t = self.now() if t is None else t
+        return TimeMsg(sec=t.sec, nanosec=t.nanosec)
+
+    def get_logger(self) -> port.Logger:
+        return self._logger
+
+    # Parameters: validators and port callbacks run inside one rclpy on-set callback.
+
+    def _on_set_parameters(self, params) -> RclSetParametersResult:
+        for param in params:
+            reason = port.run_validator(self._validators.get(param.name), param.value)
+            if reason:
+                return RclSetParametersResult(successful=False, reason=reason)
+        converted = [Parameter(p.name, p.value) for p in params]
+        for callback in self._user_callbacks:
+            result = callback(converted)
+            if not result.successful:
+                return RclSetParametersResult(successful=False, reason=result.reason)
+        return RclSetParametersResult(successful=True)
+
+    def declare_parameter(self, name: str, default: Any, *, description: str = '',
+                          validator=None, read_only: bool = False,
+                          additional_constraints: str = '') -> Any:
+        if validator is not None:
+            self._validators[name] = validator
+        descriptor = ParameterDescriptor(description=description, read_only=read_only,
+                                         additional_constraints=additional_constraints)
+        try:
+            return self.node.declare_parameter(name, default, descriptor).value
+        except ParameterException as exc:
+            raise TransportError(f'parameter {name!r}: {exc}') from None
+
+    def get_parameter(self, name: str) -> Any:
+        try:
+            return self.node.get_parameter(name).value
+        except ParameterException as exc:
+            raise TransportError(str(exc)) from None
+
+    def has_parameter(self, name: str) -> bool:
+        return self.node.has_parameter(name)
+
+    def set_parameters(self, parameters: List[Parameter]) -> List[SetParametersResult]:
+        results = self.node.set_parameters(
+            [RclpyParameter(p.name, value=p.value) for p in parameters])
+        return [SetParametersResult(r.successful, r.reason) for r in results]
+
+    def add_on_set_parameters_callback(self, callback) -> None:
+        self._user_callbacks.append(callback)
+
+    def spin_once(self, timeout_s: Optional[float] = None) -> None:
+        self.executor.spin_once(timeout_sec=timeout_s)
+
+    def spin(self) -> None:
+        self.executor.spin()
+
+    def ok(self) -> bool:
+        return rclpy.ok(context=self._context)
+
+    def shutdown(self) -> None:
+        if self.node is not None:
+            self.executor.remove_node(self.node)
+            self.node.destroy_node()
+            self.node = None
+
+
+def create_rclpy_node(name: str, namespace: str = '', args=None, parameter_overrides=None,
+                      **kwargs) -> RclpyNode:
+    """Create an RclpyNode (the factory behind ``selection.create_node``)."""
+    return RclpyNode(name, namespace, args=args, parameter_overrides=parameter_overrides,
+                     **kwargs)
+
+
+def run_rclpy_node(node_factory, args=None) -> int:
+    """
+    Jazzy main shape: init, build, try spin, finally destroy_node and try_shutdown.
+
+    :param node_factory: ``node_factory(args)`` returning a NodePort or an object with ``.node``.
+    :param args: the command line.
+    :return: the process exit status.
+    """
+    rclpy.init(args=args)
+    node = None
+    try:
+        app = node_factory(args)
+        node = app if isinstance(app, port.NodePort) else app.node
+        node.spin()
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        if node is not None:
+            node.shutdown()
+        rclpy.try_shutdown()
+    return 0
