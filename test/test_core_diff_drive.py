@@ -383,3 +383,12 @@ def test_wheel_base_plausibility_warns_outside_half_to_three_treads(wheel_base_m
 def test_wheel_speeds_from_twist_pure_rotation_is_antisymmetric():
     left, right = wheel_speeds_from_twist(0.0, 1.0, 0.4)
     assert (left, right) == (-0.2, 0.2)
+
+
+def test_speed_limiter_disabled_with_zero_dt_passes_the_target_through():
+    # An unlimited (0 = off) limiter must not compute inf * 0 = NaN when no time has passed.
+    limiter = SpeedLimiter(max_accel=0.0, max_decel=0.0)
+    assert limiter.limit(2.0, 1.0, 0.0) == 2.0
+    assert limiter.limit(-2.0, 1.0, 0.0) == -2.0
+    limited = SpeedLimiter(max_accel=1.0, max_decel=1.0)
+    assert limited.limit(2.0, 1.0, 0.0) == 1.0

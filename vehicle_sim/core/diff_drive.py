@@ -335,13 +335,18 @@ class SpeedLimiter:
         decel = self.max_decel if self.max_decel > 0.0 else math.inf
         if previous * target < 0.0:
             # Sign change: brake to zero first, then accelerate with the remaining time.
-            time_to_zero_s = abs(previous) / decel
-            if dt_s <= time_to_zero_s:
-                return previous - math.copysign(decel * dt_s, previous)
-            reach = accel * (dt_s - time_to_zero_s)
+            time_to_zero_s = abs(previous) / decel      # 0 when deceleration is unlimited
+            if time_to_zero_s > 0.0 and dt_s <= time_to_zero_s:
+                return previous - math.copysign(_reach(decel, dt_s), previous)
+            reach = _reach(accel, dt_s - time_to_zero_s)
             return math.copysign(min(abs(target), reach), target)
-        bound = (accel if abs(target) > abs(previous) else decel) * dt_s
+        bound = _reach(accel if abs(target) > abs(previous) else decel, dt_s)
         return previous + max(-bound, min(bound, target - previous))
+
+
+def _reach(rate, dt_s):
+    """Return how far a rate-limited value moves in dt_s; unlimited (inf) stays inf at dt 0."""
+    return math.inf if math.isinf(rate) else rate * dt_s
 
 
 # ---------------------------------------------------------------------------------------------
