@@ -1,0 +1,361 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Webots-compatible ``Driver`` and ``Car`` classes on top of the strict core (DESIGN §4).
+
+A Webots Python controller runs unchanged apart from its import::
+
+    from vehicle_sim.webots import Driver   # Webots: from vehicle import Driver
+
+Odd input follows the facade column of the DESIGN §4 table: Webots semantics, each case
+reported with a ``WebotsWarning``: NaN/inf ignored, throttle/brake/steering/cruising speed/gear
+clamped, undefined enums and non-positive indicator periods ignored, wheel index outside 0..3
+returns 0, rpm and gear read in SPEED mode return 0. A value of the wrong type (a string for a
+number, a float for a gear) raises TypeError, as Webots' own wrapper fails on it.
+"""
+
+import math
+import numbers
+import os
+import warnings
+import weakref
+
+from vehicle_sim.config import load_car
+from vehicle_sim.core.drivetrain import ControlMode
+from vehicle_sim.physics.simulated_car import SimulatedCar
+from vehicle_sim.physics.world import World
+from vehicle_sim.webots.api_table import CAR_API, CAR_WHEEL_API, DRIVER_API, UNSUPPORTED_ROBOT_API
+
+
+class WebotsWarning(UserWarning):
+    """A Webots library warning (odd input handled the way Webots handles it)."""
+
+
+def _warn(message):
+    warnings.warn(message, WebotsWarning, stacklevel=3)
+
+
+def _is_number(value):
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
+
+
+def _is_integer(value):
+    return isinstance(value, numbers.Integral) and not isinstance(value, bool)
+
+
+def _coerce(row, value):
+    """
+    Apply the facade's odd-input policy to a setter argument.
+
+    :return: the value to hand to the core, or None when the call is to be ignored.
+    :raises TypeError: for a value of the wrong type.
+    """
+    name = row.setter
+    if row.kind == 'bool':
+        if isinstance(value, bool) or (_is_integer(value) and value in (0, 1)):
+            return bool(value)
+        raise TypeError(f'{name}() expects a bool, got {value!r}')
+    if row.kind in ('int', 'enum'):
+        if isinstance(value, float) and not math.isfinite(value):
+            _warn(f'{name}() called with an invalid argument ({value}); ignored')
+            return None
+        if not _is_integer(value):
+            raise TypeError(f'{name}() expects an int, got {value!r}')
+        value = int(value)
+        if row.kind == 'enum':
+            if value not in row.enum_values:
+                _warn(f'{name}({value}): undefined value, valid: '
+                      f'{", ".join(map(str, row.enum_values))}; ignored')
+                return None
+            return value
+    elif not _is_number(value):
+        raise TypeError(f'{name}() expects a number, got {value!r}')
+    else:
+        value = float(value)
+        if not math.isfinite(value):
+            _warn(f'{name}() called with an invalid argument ({value}); ignored')
+            return None
+    return value
+
+
+class _WorldSync:
+    """
+    Tick bookkeeping for Drivers sharing one World.
+
+    A ``step()`` call from a Driver that has seen the latest tick advances the world; a call
+    from a Driver behind it (another Driver already advanced this tick) only catches up. So a
+    loop ``a.step(); b.step()`` advances time once per iteration, and a loop over one Driver
+    alone still advances it on every call.
+    """
+
+    _by_world = weakref.WeakKeyDictionary()
+
+    def __init__(self):
+        self.tick = 0
+        self.seen = weakref.WeakKeyDictionary()
+
+    @classmethod
+    def of(cls, world):
+        sync = cls._by_world.get(world)
+        if sync is None:
+            sync = cls._by_world[world] = cls()
+        return sync
+
+    def join(self, driver):
+        self.seen[driver] = self.tick
+
+    def request_step(self, world, driver):
+        if self.seen.get(driver, self.tick) >= self.tick:
+            world.step()
+            self.tick += 1
+        self.seen[driver] = self.tick
+
+
+class Driver:
+    """
+    The Webots driver library (``wbu_driver_*``) on a simulated car.
+
+    :param car: preset name, YAML path or CarParams; default: ``VEHICLE_SIM_CAR`` or 'Car'.
+    :param world: a World to share with other vehicles; a new one (owned) when None.
+    :param position: (x [m], y [m], yaw [rad]) of the car on the ground.
+    :param gui: open PyBullet's GUI (owned world only).
+    :param time_step_ms: basic time step of an owned world [ms]; Webots' 10 ms by default.
+    :param duration_s: ``step()`` returns -1 once the simulation time reaches this [s];
+        default: ``VEHICLE_SIM_DURATION`` or never.
+    :param name: robot name of the car.
+    """
+
+    INDICATOR_OFF = 0
+    INDICATOR_RIGHT = 1
+    INDICATOR_LEFT = 2
+    SPEED = int(ControlMode.SPEED)
+    TORQUE = int(ControlMode.TORQUE)
+    DOWN = 0
+    SLOW = 1
+    NORMAL = 2
+    FAST = 3
+
+    _API = DRIVER_API
+
+    def __init__(self, car=None, world=None, position=(0.0, 0.0, 0.0), gui=False,
+                 time_step_ms=None, duration_s=None, name=None):
+        car = car if car is not None else os.environ.get('VEHICLE_SIM_CAR', 'Car')
+        params = load_car(car)
+        if duration_s is None and os.environ.get('VEHICLE_SIM_DURATION'):
+            duration_s = float(os.environ['VEHICLE_SIM_DURATION'])
+        self._owns_world = world is None
+        if world is None:
+            step_s = 0.010 if time_step_ms is None else time_step_ms / 1000.0
+            world = World(time_step_s=step_s, gui=gui)
+        elif time_step_ms is not None and abs(time_step_ms / 1000.0 - world.time_step_s) > 1e-12:
+            raise ValueError(f"time_step_ms={time_step_ms} differs from the shared world's "
+                             f'{world.time_step_s * 1000.0:g} ms')
+        self.world = world
+        self.simulated_car = SimulatedCar(world, params, position, name=name)
+        self.logic = self.simulated_car.logic
+        self._duration_s = duration_s
+        self._sync = _WorldSync.of(world)
+        self._sync.join(self)
+
+    # ---------------------------------------------------------------- Robot API subset
+    def step(self, duration_ms=None):
+        """
+        Run the driver logic and advance the simulation by one basic time step (or ``ms``).
+
+        :param duration_ms: a multiple of the basic time step [ms]; one basic step when None.
+        :return: 0, or -1 once the simulation has ended (closed, or ``duration_s`` reached).
+        """
+        basic_ms = self.getBasicTimeStep()
+        count = 1
+        if duration_ms is not None:
+            if not _is_number(duration_ms) or duration_ms < 0:
+                raise ValueError(f'step({duration_ms!r}): the duration must be a number >= 0 ms')
+            count = duration_ms / basic_ms
+            if abs(count - round(count)) > 1e-9:
+                raise ValueError(f'step({duration_ms!r}): the duration must be a multiple of '
+                                 f'the basic time step ({basic_ms:g} ms)')
+            count = max(1, int(round(count)))
+        if self.world.closed or self._ended():
+            return -1
+        for _ in range(count):
+            self._sync.request_step(self.world, self)
+        return -1 if self._ended() else 0
+
+    def _ended(self):
+        return self._duration_s is not None and self.world.time_s >= self._duration_s - 1e-9
+
+    def getBasicTimeStep(self):
+        """Return the basic time step [ms] (a float, as in Webots)."""
+        return self.world.time_step_s * 1000.0
+
+    def getTime(self):
+        """Return the simulation time [s]."""
+        return self.world.time_s
+
+    @property
+    def basic_time_step(self):
+        return self.getBasicTimeStep()
+
+    @property
+    def time(self):
+        return self.getTime()
+
+    def close(self):
+        """Leave the simulation; an owned world is closed, a shared one loses this car."""
+        if self._owns_world:
+            self.world.close()
+        elif not self.world.closed:
+            self.world.remove(self.simulated_car)
+        self._sync.seen.pop(self, None)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
+
+    def __getattr__(self, name):
+        if name in UNSUPPORTED_ROBOT_API:
+            def unsupported(*args, **kwargs):
+                raise NotImplementedError(
+                    f'{name}() is not available: vehicle_sim simulates no Webots devices. '
+                    'Supported: the driver and car library functions (see '
+                    'vehicle_sim.webots.api_table), step(), getBasicTimeStep(), getTime().')
+            return unsupported
+        raise AttributeError(f'{type(self).__name__!r} object has no attribute {name!r}')
+
+    # ---------------------------------------------------------------- special getters
+    def getControlMode(self):
+        """SPEED, TORQUE, or None before the first command (Webots Python returns None)."""
+        mode = int(self.logic.control_mode)
+        return None if mode == int(ControlMode.UNDEFINED) else mode
+
+
+def _make_setter(row):
+    core_setter = row.core_setter
+
+    def setter(self, value):
+        value = _coerce(row, value)
+        if value is None:
+            return
+        if row.limits is not None:
+            low, high = row.limits(self.logic)
+            if not (low < value if row.low_exclusive else low <= value) or value > high:
+                if row.out_of_range == 'ignore':
+                    _warn(f'{row.setter}({value}): outside the valid range ({low:g} .. '
+                          f'{high:g}); ignored')
+                    return
+                clamped = min(max(value, low), high)
+                _warn(f'{row.setter}({value}): outside the valid range ({low:g} .. {high:g}); '
+                      f'used {clamped:g} instead')
+                value = type(value)(clamped)
+        getattr(self.logic, core_setter)(value)
+
+    setter.__name__ = row.setter
+    setter.__doc__ = f'Webots {row.setter}(){": " + row.doc if row.doc else ""}' + (
+        f' [{row.unit}]' if row.unit else '') + '.'
+    return setter
+
+
+def _make_getter(row):
+    core_getter = row.core_getter
+
+    def getter(self):
+        if row.speed_mode_zero and self.logic.control_mode == ControlMode.SPEED:
+            _warn(f'no engine model when cruise control is enabled, {row.getter}() is '
+                  'therefore not allowed; returns 0')
+            return 0
+        value = getattr(self.logic, core_getter)
+        if row.kind == 'bool':
+            return bool(value)
+        if row.kind in ('int', 'enum'):
+            return int(value)
+        return float(value)
+
+    getter.__name__ = row.getter
+    getter.__doc__ = f'Webots {row.getter}(){": " + row.doc if row.doc else ""}' + (
+        f' [{row.unit}]' if row.unit else '') + '.'
+    return getter
+
+
+def _make_deprecated(name, target):
+    def alias(self, *args):
+        _warn(f'Deprecated {name}() use {target}() instead.')
+        return getattr(self, target)(*args)
+
+    alias.__name__ = name
+    alias.__doc__ = f'Deprecated alias of {target}().'
+    return alias
+
+
+def _make_wheel_getter(name, core_method):
+    def getter(self, index):
+        if not _is_integer(index):
+            raise TypeError(f'{name}() expects a wheel index (int), got {index!r}')
+        if not 0 <= index <= 3:
+            _warn(f'{name}({index}): maximum wheel index is 3; returns 0')
+            return 0.0
+        return float(getattr(self.logic, core_method)(int(index)))
+
+    getter.__name__ = name
+    getter.__doc__ = f'Webots {name}(index): index 0..3 (WHEEL_FRONT_RIGHT ... WHEEL_REAR_LEFT).'
+    return getter
+
+
+def _install(cls, rows):
+    for row in rows:
+        setter = getter = None
+        if row.setter:
+            setter = _make_setter(row)
+            setattr(cls, row.setter, setter)
+        if row.getter and not hasattr(cls, row.getter):
+            getter = _make_getter(row)
+            setattr(cls, row.getter, getter)
+        elif row.getter:
+            getter = getattr(cls, row.getter)
+        if row.aliases:
+            setter_alias, getter_alias = row.aliases
+            setattr(cls, setter_alias, _make_deprecated(setter_alias, row.setter))
+            setattr(cls, getter_alias, _make_deprecated(getter_alias, row.getter))
+        if row.prop and getter is not None:
+            setattr(cls, row.prop, property(getter, setter, doc=getter.__doc__))
+
+
+_install(Driver, DRIVER_API)
+
+
+class Car(Driver):
+    """The Webots car library (``wbu_car_*``) in addition to the driver library."""
+
+    TRACTION = 0
+    PROPULSION = 1
+    FOUR_BY_FOUR = 2
+    COMBUSTION_ENGINE = 0
+    ELECTRIC_ENGINE = 1
+    PARALLEL_HYBRID_ENGINE = 2
+    POWER_SPLIT_HYBRID_ENGINE = 3
+    WHEEL_FRONT_RIGHT = 0
+    WHEEL_FRONT_LEFT = 1
+    WHEEL_REAR_RIGHT = 2
+    WHEEL_REAR_LEFT = 3
+    WHEEL_NB = 4
+
+    _API = DRIVER_API + CAR_API
+
+
+_install(Car, CAR_API)
+for _name, _method in CAR_WHEEL_API:
+    setattr(Car, _name, _make_wheel_getter(_name, _method))
