@@ -51,6 +51,10 @@ setup(
     entry_points={
         'console_scripts': [
             'vehicle-sim = vehicle_sim.cli:main',
+            'automobile = vehicle_sim.ros.automobile_node:main',
+            'ackermann_to_differential = vehicle_sim.ros.bridge_node:main',
+            'diff_robot = vehicle_sim.ros.diff_robot_node:main',
         ],
+        'pytest11': ['vehicle_sim = vehicle_sim.testing'],
     },
 )

@@ -1,0 +1,131 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+CPU cost of the automobile node publishing every topic at the 10 ms step in real time.
+
+DESIGN §8 target: <= 20 % of one core. The node runs in a subprocess (embedded DDS transport,
+loopback-only discovery) at real_time_factor 1 with all topics published each basic step; a
+subscriber in this process counts the messages so the traffic is real. The CPU share is read
+from ``/proc/<pid>/stat`` (utime + stime) over the measurement window. Then, in-process, the
+cost of one step is split into physics (World.step with the car logic) and publishing.
+
+Usage: ``python benchmarks/bench_topics_cpu.py [--seconds S] [--step-ms MS]``.
+"""
+
+import argparse
+import os
+import subprocess
+import sys
+import time
+
+REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, REPO_ROOT)
+os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
+os.environ.setdefault('ROS_DOMAIN_ID', str(102 + os.getpid() % 100))
+
+TARGET_SHARE = 0.20
+
+
+def cpu_seconds(pid):
+    """Return utime + stime [s] of a process from /proc/<pid>/stat."""
+    with open(f'/proc/{pid}/stat', encoding='ascii') as stream:
+        fields = stream.read().rsplit(')', 1)[1].split()
+    ticks = int(fields[11]) + int(fields[12])   # utime, stime (fields 14, 15 of stat)
+    return ticks / os.sysconf('SC_CLK_TCK')
+
+
+def measure_node(seconds, step_ms):
+    from vehicle_sim.ros import interfaces as itf
+    from vehicle_sim.transport.dds import DdsNode
+    env = dict(os.environ, PYTHONPATH=REPO_ROOT + os.pathsep + os.environ.get('PYTHONPATH', ''))
+    proc = subprocess.Popen(
+        [sys.executable, '-m', 'vehicle_sim.ros.automobile_node', '--ros-args',
+         '-p', f'time_step_ms:={step_ms}', '-p', 'real_time_factor:=1.0'],
+        env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    listener = DdsNode('bench_listener')
+    counts = {}
+    subs = []
+    for spec in itf.TOPICS:
+        name = itf.vehicle_name(spec.name, '')
+        name = name if name.startswith('/') else '/' + name
+        counts[name] = 0
+        subs.append(listener.create_subscription(
+            spec.ros_type, name, lambda msg, key=name: counts.__setitem__(key, counts[key] + 1),
+            spec.qos))
+    try:
+        deadline = time.monotonic() + 60.0
+        while not all(s.get_publisher_count() for s in subs) and time.monotonic() < deadline:
+            listener.spin_once(0.05)
+        warmup_end = time.monotonic() + 1.0
+        while time.monotonic() < warmup_end:
+            listener.spin_once(0.05)
+        for key in counts:
+            counts[key] = 0
+        cpu0, wall0 = cpu_seconds(proc.pid), time.monotonic()
+        end = wall0 + seconds
+        while time.monotonic() < end:
+            listener.spin_once(0.05)
+        cpu1, wall1 = cpu_seconds(proc.pid), time.monotonic()
+    finally:
+        proc.terminate()
+        proc.wait(30)
+        listener.shutdown()
+    return (cpu1 - cpu0) / (wall1 - wall0), wall1 - wall0, counts
+
+
+def step_breakdown(steps, step_ms):
+    """Return (physics+logic, publishing) cost per step [ms], measured in this process."""
+    from vehicle_sim.ros.automobile_node import AutomobileNode
+    app = AutomobileNode(['bench', '--ros-args', '-r', '__ns:=/bench_inproc', '-p',
+                          'synchronous:=true', '-p', f'time_step_ms:={step_ms}'],
+                         transport='dds')
+    try:
+        app.vehicles[''].logic.set_cruising_speed_kmh(30.0)
+        app.step(50)
+        start = time.perf_counter()
+        for _ in range(steps):
+            app.world.step()
+        physics = (time.perf_counter() - start) / steps
+        start = time.perf_counter()
+        app.step(steps)
+        total = (time.perf_counter() - start) / steps
+    finally:
+        app.close()
+    return physics * 1e3, (total - physics) * 1e3
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    parser.add_argument('--seconds', type=float, default=10.0)
+    parser.add_argument('--step-ms', type=int, default=10)
+    options = parser.parse_args()
+    share, wall, counts = measure_node(options.seconds, options.step_ms)
+    clock = counts.get('/clock', 0)
+    print(f'automobile node, all topics every {options.step_ms} ms step, real time, '
+          f'{wall:.1f} s window')
+    print(f'  /clock messages received: {clock} ({clock / wall:.1f} Hz), '
+          f'current_speed: {counts.get("/automobile/current_speed", 0)}')
+    verdict = 'meets' if share <= TARGET_SHARE else f'misses by {share / TARGET_SHARE:.2f}x'
+    print(f'  CPU share of one core: {share * 100:.1f} % (target <= {TARGET_SHARE * 100:.0f} %, '
+          f'{verdict})')
+    physics_ms, publish_ms = step_breakdown(500, options.step_ms)
+    print(f'  per step, in process: physics + car logic {physics_ms:.3f} ms, '
+          f'publishing {publish_ms:.3f} ms '
+          f'(= {(physics_ms + publish_ms) / options.step_ms * 100:.1f} % of the step period)')
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,167 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Helpers of the automobile node tests: the node in a subprocess and a client node in the test.
+
+The node runs as ``python -m vehicle_sim.ros.automobile_node`` with this test run's DDS settings
+(test/conftest.py: localhost discovery, a ROS_DOMAIN_ID of its own). Waits are generous bounds
+on outcomes, never durations.
+"""
+
+import subprocess
+import sys
+import threading
+import time
+
+from conftest import peer_env
+
+from vehicle_sim.core.units import stamp_to_seconds
+from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.transport.dds import DdsNode
+from vehicle_sim.transport.port import QOS_TF_STATIC_LISTENER
+
+WAIT_S = 60.0
+NODE_MODULE = 'vehicle_sim.ros.automobile_node'
+
+
+def wait_for(predicate, timeout_s=WAIT_S, spin=None):
+    """Poll ``predicate`` (spinning ``spin`` if given) until true; return its last value."""
+    deadline = time.monotonic() + timeout_s
+    while True:
+        value = predicate()
+        if value or time.monotonic() >= deadline:
+            return value
+        if spin is not None:
+            spin.spin_once(0.02)
+        else:
+            time.sleep(0.01)
+
+
+class NodeProcess:
+    """The automobile node in a subprocess; stderr is collected for the assertions."""
+
+    def __init__(self, *args):
+        self.proc = subprocess.Popen(
+            [sys.executable, '-m', NODE_MODULE, *args], env=peer_env(),
+            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self.output = []
+        for stream in (self.proc.stdout, self.proc.stderr):
+            threading.Thread(target=self._read, args=(stream,), daemon=True).start()
+
+    def _read(self, stream):
+        for line in stream:
+            self.output.append(line)
+
+    def text(self):
+        return ''.join(self.output)
+
+    def wait(self, timeout_s=WAIT_S):
+        return self.proc.wait(timeout_s)
+
+    def stop(self):
+        if self.proc.poll() is None:
+            self.proc.terminate()
+            try:
+                self.proc.wait(WAIT_S)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+
+
+class AutomobileClient:
+    """
+    A test-side node talking to one vehicle namespace of the automobile node.
+
+    :param node: the test's DdsNode.
+    :param namespace: vehicle namespace ('' for the default car).
+    """
+
+    def __init__(self, node, namespace=''):
+        self.node = node
+        self.namespace = namespace
+        self._clients = {}
+        self.latest = {}
+        self.history = {}
+        self._subs = {}
+
+    def name(self, table_name):
+        name = itf.vehicle_name(table_name, self.namespace)
+        return name if name.startswith('/') else '/' + name
+
+    def call(self, table_name, value=None):
+        """Call a table service; ``value`` goes into ``value`` (setters) or is ignored."""
+        spec = itf.service(table_name)
+        client = self._clients.get(table_name)
+        if client is None:
+            client = self.node.create_client(spec.srv_type, self.name(table_name))
+            assert client.wait_for_service(WAIT_S), f'{self.name(table_name)} not available'
+            self._clients[table_name] = client
+        request = self.node.srv(spec.srv_type).Request()
+        if value is not None:
+            request.value = value
+        return client.call(request, WAIT_S)
+
+    def subscribe(self, table_name):
+        """Subscribe to a table topic, keeping the latest message; return the subscription."""
+        if table_name not in self._subs:
+            spec = itf.topic(table_name)
+            # A tf_static listener keeps 100 (ros2_wire A6): every broadcaster sends its own.
+            qos = QOS_TF_STATIC_LISTENER if table_name == '/tf_static' else spec.qos
+            self.history[table_name] = []
+            self._subs[table_name] = self.node.create_subscription(
+                spec.ros_type, self.name(table_name),
+                lambda msg, key=table_name: self._store(key, msg), qos)
+        return self._subs[table_name]
+
+    def _store(self, key, msg):
+        self.latest[key] = msg
+        if key.startswith('/tf_static') or key == 'robot_description':
+            self.history[key].append(msg)   # latched: several nodes may publish one each
+
+    def wait_matched(self, table_names):
+        subs = [self.subscribe(name) for name in table_names]
+        assert wait_for(lambda: all(s.get_publisher_count() for s in subs), spin=self.node)
+
+    def time_s(self):
+        return self.call('robot/get_time').value
+
+    def step_and_read(self, table_name, duration_ms=0):
+        """Step the world (synchronous node) and return the message stamped with the new time."""
+        assert self.call('robot/time_step', duration_ms).success
+        now = self.time_s()
+
+        def fresh():
+            msg = self.latest.get(table_name)
+            return msg is not None and abs(stamp_of(msg) - now) < 1e-9 and msg
+
+        msg = wait_for(fresh, spin=self.node)
+        assert msg, f'no {table_name} message stamped {now}'
+        return msg
+
+    def observe(self, table_name, duration_ms=0):
+        """Return what a getter service or a Float64Stamped topic reports now."""
+        if any(s.name == table_name for s in itf.SERVICES):
+            return self.call(table_name).value
+        return self.step_and_read(table_name, duration_ms).data
+
+
+def stamp_of(msg):
+    """Return the stamp [s] of a message with a header, or of a Clock."""
+    stamp = msg.clock if hasattr(msg, 'clock') else msg.header.stamp
+    return stamp_to_seconds(stamp.sec, stamp.nanosec)
+
+
+def make_client_node(name):
+    return DdsNode(name, '/automobile_test')

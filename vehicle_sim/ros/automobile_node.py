@@ -1,0 +1,338 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The ``automobile`` node: Webots' ``ros_automobile`` interface for simulated cars (DESIGN §5.2).
+
+The node owns one PyBullet :class:`~vehicle_sim.physics.World` and one or more
+:class:`~vehicle_sim.physics.SimulatedCar` (a world file, or one default car), and serves each
+car's ``/<ns>/automobile/*`` and ``/<ns>/robot/*`` endpoints from :mod:`.interfaces`. It is
+written once against the transport port, so the same code runs on rclpy and on the embedded
+Cyclone DDS transport.
+
+Time: in real-time mode a wall-clock timer of period ``time_step / real_time_factor`` steps the
+world while the node spins between steps (services stay responsive); ``real_time_factor`` 0
+steps on every non-blocking spin; ``synchronous`` steps only on ``robot/time_step`` calls.
+
+Run: ``ros2 run vehicle_sim automobile --ros-args -p car_model:=ToyotaPrius`` or
+``python -m vehicle_sim.ros.automobile_node --ros-args --params-file config/automobile.yaml``.
+"""
+
+from operator import attrgetter
+import sys
+from typing import Dict, List, Optional
+
+from vehicle_sim.config import load_car
+from vehicle_sim.core.drivetrain import ControlMode
+from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
+from vehicle_sim.physics import SimulatedCar, World
+from vehicle_sim.physics.urdf import car_urdf
+from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros.conversions import (
+    pose_in_frame,
+    quaternion_from_yaw,
+    RosMessages,
+    twist_in_body,
+)
+from vehicle_sim.ros.sim_params import declare_parameters, world_vehicles
+from vehicle_sim.transport import create_node, run_node, TransportError
+
+NODE_NAME = 'automobile'
+# Timer period standing for "as fast as possible" (the port's timers need a period > 0).
+AS_FAST_AS_POSSIBLE_PERIOD_S = 1e-6
+
+_FROM_CORE = {'float': float, 'int': int, 'bool': bool}
+
+
+def _to_core(kind, value):
+    # The Webots-shaped services carry the core's own units (km/h, rad + = right), so only the
+    # Python type is normalised; CarLogic does the validation.
+    if kind == 'float':
+        return float(value)
+    if kind == 'bool':
+        return bool(value)
+    return int(value)
+
+
+class _Vehicle:
+    """One car and its endpoints (wiring data only)."""
+
+    def __init__(self, spec, car):
+        self.spec = spec
+        self.car = car
+        self.logic = car.logic
+        self.body = car.body
+        self.prefix = itf.frame_prefix(spec.namespace)
+        self.base_frame = self.prefix + 'base_link'
+        self.odom_frame = self.prefix + 'odom'
+        self.spawn_xyz = (spec.x_m, spec.y_m, 0.0)
+        self.spawn_q = quaternion_from_yaw(spec.yaw_rad)
+        self.float_topics = []   # (getter of CarStatus, index, torque_only, publisher)
+        self.joint_names = None
+        self.odom_pub = None
+        self.joint_pub = None
+        self.description_pub = None
+        self.services = []
+
+
+class AutomobileNode:
+    """
+    Simulated cars behind Webots' ros_automobile interface.
+
+    In-process API (tests, benchmarks): :meth:`step_once`, :meth:`step`, :attr:`world`,
+    :attr:`vehicles` (namespace -> SimulatedCar), :attr:`settings`, :meth:`close`.
+    """
+
+    def __init__(self, args=None, *, transport: Optional[str] = None,
+                 parameter_overrides: Optional[Dict] = None, node=None):
+        """
+        Build the world, the cars and every endpoint.
+
+        :param args: command line (its ``--ros-args`` part: parameters, remaps).
+        :param transport: 'auto', 'rclpy' or 'dds' (default: VEHICLE_SIM_TRANSPORT).
+        :param parameter_overrides: parameter values winning over the command line.
+        :param node: an existing NodePort to use instead of creating one.
+        :raises InvalidParameterError: for a refused parameter or an invalid world file.
+        :raises TransportError: for a refused parameter override.
+        """
+        self.node = node if node is not None else create_node(
+            NODE_NAME, args=args, transport=transport,
+            parameter_overrides=parameter_overrides)
+        self.world = None
+        self._timer = None
+        try:
+            self._build()
+        except BaseException:
+            self.close()
+            raise
+
+    def _build(self):
+        node = self.node
+        self._logger = node.get_logger()
+        self.settings = settings = declare_parameters(node)
+        specs = world_vehicles(settings)
+        self.world = World(time_step_s=settings.time_step_s, friction=settings.friction)
+        self._publish_every = settings.publish_every_steps
+        self._msgs = RosMessages(node)
+        self._vehicles: List[_Vehicle] = []
+        for spec in specs:
+            car = SimulatedCar(self.world, load_car(spec.model), (spec.x_m, spec.y_m,
+                                                                  spec.yaw_rad), name=spec.name)
+            vehicle = _Vehicle(spec, car)
+            self._wire_vehicle(vehicle)
+            self._vehicles.append(vehicle)
+        self._clock_pub = node.create_publisher(itf.CLOCK.ros_type, itf.CLOCK.name,
+                                                itf.CLOCK.qos)
+        self._tf_pub = node.create_publisher(itf.TF.ros_type, itf.TF.name, itf.TF.qos)
+        self._tf_static_pub = node.create_publisher(itf.TF_STATIC.ros_type, itf.TF_STATIC.name,
+                                                    itf.TF_STATIC.qos)
+        self._publish_latched()
+        self._publish_step(self.world.time_s)
+        if not settings.synchronous:
+            period = (settings.time_step_s / settings.real_time_factor
+                      if settings.real_time_factor > 0.0 else AS_FAST_AS_POSSIBLE_PERIOD_S)
+            self._timer = node.create_timer(period, self._on_step_timer)
+        mode = ('synchronous (robot/time_step)' if settings.synchronous else
+                f'real_time_factor {settings.real_time_factor:g}')
+        names = ', '.join(f'{v.spec.name} ({v.spec.model}) under '
+                          f'/{itf.vehicle_name("automobile", v.spec.namespace)}'
+                          for v in self._vehicles)
+        self._logger.info(f'automobile ready: {names}; step {settings.time_step_ms} ms, {mode}')
+
+    # ------------------------------------------------------------------------------ wiring
+
+    def _wire_vehicle(self, vehicle):
+        node = self.node
+        ns = vehicle.spec.namespace
+        for spec in itf.AUTOMOBILE_TOPICS:
+            publisher = node.create_publisher(spec.ros_type, itf.vehicle_name(spec.name, ns),
+                                              spec.qos)
+            vehicle.float_topics.append(
+                (attrgetter(spec.status_field), spec.index, spec.torque_only, publisher))
+        vehicle.odom_pub = node.create_publisher(
+            itf.ODOM.ros_type, itf.vehicle_name(itf.ODOM.name, ns), itf.ODOM.qos)
+        vehicle.joint_pub = node.create_publisher(
+            itf.JOINT_STATES.ros_type, itf.vehicle_name(itf.JOINT_STATES.name, ns),
+            itf.JOINT_STATES.qos)
+        vehicle.description_pub = node.create_publisher(
+            itf.ROBOT_DESCRIPTION.ros_type, itf.vehicle_name(itf.ROBOT_DESCRIPTION.name, ns),
+            itf.ROBOT_DESCRIPTION.qos)
+        names, _, _ = vehicle.body.joint_states()
+        vehicle.joint_names = [vehicle.prefix + name for name in names]
+        handlers = {
+            itf.SETTER: self._handle_setter,
+            itf.GETTER: self._handle_getter,
+            itf.DIMENSIONS: self._handle_get_dimensions,
+            itf.TIME_STEP: self._handle_time_step,
+            itf.WORLD_TIME: self._handle_get_time,
+            itf.BASIC_TIME_STEP: self._handle_get_basic_time_step,
+        }
+        for spec in itf.SERVICES:
+            name = itf.vehicle_name(spec.name, ns)
+            handler = handlers[spec.kind]
+            vehicle.services.append(node.create_service(
+                spec.srv_type, name, self._bind(handler, spec, vehicle, name)))
+
+    @staticmethod
+    def _bind(handler, spec, vehicle, name):
+        def callback(request, response):
+            return handler(spec, vehicle, name, request, response)
+        return callback
+
+    # ------------------------------------------------------------------------------ services
+
+    def _handle_setter(self, spec, vehicle, name, request, response):
+        value = request.value
+        try:
+            getattr(vehicle.logic, spec.core)(_to_core(spec.value, value))
+        except InvalidCommandError as error:
+            # DESIGN §4, ROS column: success=false, nothing changed, the reason logged.
+            self._logger.warn(f'{name}: refused {value!r}: {error}; nothing changed')
+            response.success = False
+        else:
+            response.success = True
+        return response
+
+    def _handle_getter(self, spec, vehicle, name, request, response):
+        response.value = _FROM_CORE[spec.value](getattr(vehicle.logic, spec.core))
+        return response
+
+    def _handle_get_dimensions(self, spec, vehicle, name, request, response):
+        dims = vehicle.logic.dimensions()
+        response.track_front = float(dims.track_front_m)
+        response.track_rear = float(dims.track_rear_m)
+        response.wheel_base = float(dims.wheelbase_m)
+        response.front_wheel_radius = float(dims.front_wheel_radius_m)
+        response.rear_wheel_radius = float(dims.rear_wheel_radius_m)
+        return response
+
+    def _handle_time_step(self, spec, vehicle, name, request, response):
+        duration_ms = request.value
+        step_ms = self.settings.time_step_ms
+        if not self.settings.synchronous:
+            self._logger.warn(f'{name}: refused: the node is not synchronous '
+                              '(set the parameter synchronous:=true)')
+            response.success = False
+        elif duration_ms < 0 or duration_ms % step_ms:
+            self._logger.warn(f'{name}: refused {duration_ms} ms: must be 0 (one step) or a '
+                              f'positive multiple of the basic time step {step_ms} ms')
+            response.success = False
+        else:
+            self.step(max(1, duration_ms // step_ms))
+            response.success = True
+        return response
+
+    def _handle_get_time(self, spec, vehicle, name, request, response):
+        response.value = float(self.world.time_s)
+        return response
+
+    def _handle_get_basic_time_step(self, spec, vehicle, name, request, response):
+        response.value = float(self.settings.time_step_ms)
+        return response
+
+    # ------------------------------------------------------------------------------ stepping
+
+    def _on_step_timer(self):
+        self.step_once()
+
+    def step_once(self) -> float:
+        """
+        Advance the world by one basic step and publish; return the simulated time [s].
+
+        /clock is published every step, the other topics every publish period.
+        """
+        time_s = self.world.step()
+        self._publish_step(time_s)
+        return time_s
+
+    def step(self, count: int = 1) -> float:
+        """Advance the world by ``count`` basic steps; return the simulated time [s]."""
+        time_s = self.world.time_s
+        for _ in range(count):
+            time_s = self.step_once()
+        return time_s
+
+    # ------------------------------------------------------------------------------ publishing
+
+    def _publish_step(self, time_s):
+        msgs = self._msgs
+        stamp = msgs.stamp(time_s)
+        self._clock_pub.publish(msgs.clock(stamp))
+        if self.world.step_count % self._publish_every == 0:
+            transforms = [self._publish_vehicle(vehicle, stamp) for vehicle in self._vehicles]
+            self._tf_pub.publish(msgs.tf_message(transforms))
+
+    def _publish_vehicle(self, vehicle, stamp):
+        msgs = self._msgs
+        status = vehicle.logic.status()
+        header = msgs.header(stamp, vehicle.base_frame)
+        torque_mode = status.control_mode == ControlMode.TORQUE
+        for getter, index, torque_only, publisher in vehicle.float_topics:
+            if torque_only and not torque_mode:
+                continue   # Webots publishes rpm in TORQUE mode only
+            value = getter(status)
+            if index is not None:
+                value = value[index]
+            publisher.publish(msgs.float64_stamped(header, value))
+        body = vehicle.body
+        pose = body.pose()
+        linear, angular = body.velocity()
+        xyz, q = pose_in_frame(vehicle.spawn_xyz, vehicle.spawn_q, pose[:3], pose[3:])
+        linear_b, angular_b = twist_in_body(pose[3:], linear, angular)
+        vehicle.odom_pub.publish(msgs.odometry(msgs.header(stamp, vehicle.odom_frame),
+                                               vehicle.base_frame, xyz, q, linear_b, angular_b))
+        _, positions, velocities = body.joint_states()
+        vehicle.joint_pub.publish(msgs.joint_state(msgs.header(stamp, ''), vehicle.joint_names,
+                                                   positions, velocities))
+        return msgs.transform_stamped(stamp, vehicle.odom_frame, vehicle.base_frame, xyz, q)
+
+    def _publish_latched(self):
+        msgs = self._msgs
+        stamp = msgs.stamp(self.world.time_s)
+        statics = [msgs.transform_stamped(stamp, 'world', v.odom_frame, v.spawn_xyz, v.spawn_q)
+                   for v in self._vehicles]
+        self._tf_static_pub.publish(msgs.tf_message(statics))
+        for vehicle in self._vehicles:
+            urdf = car_urdf(vehicle.car.params, name=vehicle.spec.name, prefix=vehicle.prefix)
+            vehicle.description_pub.publish(msgs.string(urdf))
+
+    # ------------------------------------------------------------------------------ access
+
+    @property
+    def vehicles(self) -> Dict[str, SimulatedCar]:
+        """Namespace ('' for the default car) -> SimulatedCar."""
+        return {v.spec.namespace: v.car for v in self._vehicles}
+
+    def close(self):
+        """Stop stepping, leave the graph and free the physics (idempotent)."""
+        if self._timer is not None:
+            self._timer.cancel()
+            self._timer = None
+        if self.node is not None:
+            self.node.shutdown()
+        if self.world is not None:
+            self.world.close()
+
+
+def main(args=None):
+    """Entry point ``automobile``: build the node and spin it (Jazzy main shape)."""
+    try:
+        return run_node(AutomobileNode, args)
+    except (InvalidParameterError, TransportError) as error:
+        print(f'automobile: {error}', file=sys.stderr)
+        return 2
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,365 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The one table of every ROS endpoint of a simulated car (DESIGN §5.2, webots_spec.md §5.3).
+
+Names are relative to the vehicle namespace ``ns`` (empty for the default car): ``automobile/x``
+becomes ``/<ns>/automobile/x``; names with a leading ``/`` are global. The automobile node, its
+tests and ``docs/ros_interface.md`` (via :func:`interface_table_markdown`) iterate these tables,
+so a name cannot diverge between them (STYLE rule 9).
+
+Values keep Webots semantics on every ``automobile/*`` endpoint: km/h, steering angle in rad with
+positive = right, throttle and brake in [0, 1]. Standard ROS outputs are SI / REP 103.
+"""
+
+from dataclasses import dataclass
+import math
+from typing import Optional, Tuple
+
+from vehicle_sim.transport.port import (
+    QOS_DEFAULT,
+    QOS_LATCHED,
+    QOS_TF,
+    QOS_TF_STATIC,
+    QosProfile,
+)
+
+FLOAT64_STAMPED = 'vehicle_msgs/msg/Float64Stamped'
+SET_FLOAT = 'vehicle_msgs/srv/SetFloat'
+GET_FLOAT = 'vehicle_msgs/srv/GetFloat'
+SET_INT = 'vehicle_msgs/srv/SetInt'
+GET_INT = 'vehicle_msgs/srv/GetInt'
+SET_BOOL = 'vehicle_msgs/srv/SetBool'
+GET_BOOL = 'vehicle_msgs/srv/GetBool'
+GET_DIMENSIONS = 'vehicle_msgs/srv/GetDimensions'
+
+# /clock is published reliable with depth 1: it matches rclpy's best-effort TimeSource reader
+# and reliable readers alike (ros2_wire A6).
+QOS_CLOCK_PUBLISHER = QosProfile(depth=1)
+
+# Topic publishing cadence.
+EACH_STEP = 'each basic step'
+EACH_PUBLISH = 'each publish period'
+ONCE_LATCHED = 'once, latched'
+
+# Service kinds: how the node serves them.
+SETTER = 'setter'          # request.value -> CarLogic setter; success = accepted
+GETTER = 'getter'          # CarLogic getter -> response.value; request.ask ignored
+DIMENSIONS = 'dimensions'  # CarLogic.dimensions() -> the five fields
+TIME_STEP = 'time_step'    # synchronous stepping of the shared world
+WORLD_TIME = 'world_time'  # simulated time [s]
+BASIC_TIME_STEP = 'basic_time_step'  # basic time step [ms]
+
+NAN = float('nan')
+INF = float('inf')
+
+
+@dataclass(frozen=True)
+class TopicSpec:
+    """
+    One published topic.
+
+    :param name: name relative to the vehicle namespace (``/...`` = global).
+    :param ros_type: ROS type name.
+    :param qos: the publisher's QoS profile.
+    :param cadence: when it is published.
+    :param status_field: for Float64Stamped topics, the CarStatus field holding the value.
+    :param index: element of a tuple field (wheel index 0 FR, 1 FL, 2 RR, 3 RL).
+    :param torque_only: published only while the control mode is TORQUE (Webots' rpm).
+    :param unit: unit of ``data``.
+    :param doc: one-line description.
+    """
+
+    name: str
+    ros_type: str
+    qos: QosProfile
+    cadence: str
+    status_field: Optional[str] = None
+    index: Optional[int] = None
+    torque_only: bool = False
+    unit: str = ''
+    doc: str = ''
+
+    @property
+    def is_global(self) -> bool:
+        return self.name.startswith('/')
+
+    @property
+    def short_name(self) -> str:
+        return self.name.rsplit('/', 1)[-1]
+
+
+@dataclass(frozen=True)
+class ServiceSpec:
+    """
+    One service and what it maps to.
+
+    :param name: name relative to the vehicle namespace.
+    :param srv_type: ROS service type.
+    :param kind: SETTER, GETTER, DIMENSIONS, TIME_STEP, WORLD_TIME or BASIC_TIME_STEP.
+    :param core: CarLogic setter method (SETTER) or getter property (GETTER).
+    :param value: conversion of the value: 'float', 'int' or 'bool' (request for setters,
+        response for getters); the Webots units are the core units, so no scaling is needed.
+    :param unit: unit of the value.
+    :param legacy: kept for old Webots clients (same callback as its modern twin).
+    :param webots: True for the names of webots_spec §5.3, False for our additions.
+    :param observed_by: the getter service or Float64Stamped topic that reports what a setter
+        changed (None: Webots offers no getter for it).
+    :param example: a valid, non-default value (tests).
+    :param invalid: values the node must refuse with success=false (DESIGN §4 ROS column).
+    :param doc: one-line description.
+    """
+
+    name: str
+    srv_type: str
+    kind: str
+    core: Optional[str] = None
+    value: str = 'float'
+    unit: str = ''
+    legacy: bool = False
+    webots: bool = True
+    observed_by: Optional[str] = None
+    example: Optional[float] = None
+    invalid: Tuple = ()
+    doc: str = ''
+
+    @property
+    def short_name(self) -> str:
+        return self.name.rsplit('/', 1)[-1]
+
+
+def _f64(name, field, unit, doc, index=None, torque_only=False):
+    return TopicSpec('automobile/' + name, FLOAT64_STAMPED, QOS_DEFAULT, EACH_PUBLISH,
+                     status_field=field, index=index, torque_only=torque_only, unit=unit,
+                     doc=doc)
+
+
+_WHEELS = ('front_right', 'front_left', 'rear_right', 'rear_left')
+
+AUTOMOBILE_TOPICS = (
+    _f64('brake_intensity', 'brake_intensity', '1', 'brake intensity in [0, 1]'),
+    _f64('current_speed', 'current_speed_kmh', 'km/h',
+         'speed estimated from the driven wheels (Webots getCurrentSpeed)'),
+    _f64('rpm', 'rpm', 'rpm', 'engine speed; published in TORQUE mode only (Webots)',
+         torque_only=True),
+    _f64('steering_angle', 'steering_angle_rad', 'rad',
+         'mean of the measured front wheel angles, positive = right'),
+    _f64('right_steering_angle', 'right_steering_angle_rad', 'rad',
+         'measured right front wheel angle, positive = right'),
+    _f64('left_steering_angle', 'left_steering_angle_rad', 'rad',
+         'measured left front wheel angle, positive = right'),
+    _f64('throttle', 'throttle', '1', 'throttle in [0, 1]'),
+) + tuple(
+    _f64(f'{wheel}_wheel_encoder', 'wheel_encoders_rad', 'rad', f'{wheel} wheel angle',
+         index=i) for i, wheel in enumerate(_WHEELS)
+) + tuple(
+    _f64(f'{wheel}_wheel_speed', 'wheel_speeds_radps', 'rad/s', f'{wheel} wheel speed',
+         index=i) for i, wheel in enumerate(_WHEELS)
+)
+
+ODOM = TopicSpec('odom', 'nav_msgs/msg/Odometry', QOS_DEFAULT, EACH_PUBLISH,
+                 unit='m, rad, m/s, rad/s',
+                 doc='ground truth; frame <p>odom, child <p>base_link, twist in the child frame')
+TF = TopicSpec('/tf', 'tf2_msgs/msg/TFMessage', QOS_TF, EACH_PUBLISH,
+               doc='<p>odom -> <p>base_link of every vehicle, one message')
+TF_STATIC = TopicSpec('/tf_static', 'tf2_msgs/msg/TFMessage', QOS_TF_STATIC, ONCE_LATCHED,
+                      doc='world -> <p>odom at each spawn pose, one message holding all')
+JOINT_STATES = TopicSpec('joint_states', 'sensor_msgs/msg/JointState', QOS_DEFAULT,
+                         EACH_PUBLISH, unit='rad, m, rad/s, m/s',
+                         doc='wheel spin, steering and suspension joints, names prefixed <p>')
+ROBOT_DESCRIPTION = TopicSpec('robot_description', 'std_msgs/msg/String', QOS_LATCHED,
+                              ONCE_LATCHED, doc='URDF, link and joint names prefixed <p>')
+CLOCK = TopicSpec('/clock', 'rosgraph_msgs/msg/Clock', QOS_CLOCK_PUBLISHER, EACH_STEP,
+                  unit='s', doc='simulated time')
+
+STANDARD_TOPICS = (CLOCK, ODOM, TF, TF_STATIC, JOINT_STATES, ROBOT_DESCRIPTION)
+TOPICS = AUTOMOBILE_TOPICS + STANDARD_TOPICS
+
+_NON_FINITE = (NAN, INF, -INF)
+
+
+def _set(name, srv_type, core, value, observed_by, example, invalid=(), unit='', doc='',
+         legacy=False, webots=True):
+    if value == 'float':
+        invalid = _NON_FINITE + tuple(invalid)
+    return ServiceSpec('automobile/' + name, srv_type, SETTER, core, value, unit, legacy, webots,
+                       observed_by, example, tuple(invalid), doc)
+
+
+def _get(name, srv_type, core, value, unit='', doc='', legacy=False):
+    return ServiceSpec('automobile/' + name, srv_type, GETTER, core, value, unit, legacy,
+                       doc=doc)
+
+
+AUTOMOBILE_SERVICES = (
+    # Setters (webots_spec §5.3 order), then the documented-but-missing car-library setters.
+    _set('enable_indicator_auto_disabling', SET_BOOL, 'enable_indicator_auto_disabling', 'bool',
+         None, False, doc='switch the indicator off after a turn'),
+    _set('enable_limited_slip_differential', SET_BOOL, 'enable_limited_slip_differential',
+         'bool', None, False, doc='limited-slip differential in TORQUE mode'),
+    _set('set_antifog_light', SET_BOOL, 'set_antifog_lights', 'bool',
+         'automobile/get_antifog_light', True, doc='antifog lights on/off'),
+    _set('set_brake_intensity', SET_FLOAT, 'set_brake_intensity', 'float',
+         'automobile/brake_intensity', 0.25, invalid=(-0.1, 1.5), unit='1',
+         doc='brake intensity in [0, 1]'),
+    _set('set_cruising_speed', SET_FLOAT, 'set_cruising_speed_kmh', 'float',
+         'automobile/get_cruising_speed', 12.0, invalid=(1e6,), unit='km/h',
+         doc='switch to SPEED mode, target speed (negative = reverse)'),
+    _set('set_dipped_beam', SET_BOOL, 'set_dipped_beams', 'bool', 'automobile/get_dipped_beam',
+         True, doc='dipped beams on/off'),
+    _set('set_gear', SET_INT, 'set_gear', 'int', 'automobile/get_gear', 1, invalid=(99, -2),
+         doc='-1 reverse, 0 neutral, 1..N-1 forward'),
+    _set('set_hazard_flashers', SET_BOOL, 'set_hazard_flashers', 'bool',
+         'automobile/get_hazard_flashers', True, doc='hazard flashers on/off'),
+    _set('set_indicator', SET_INT, 'set_indicator', 'int', 'automobile/get_indicator', 2,
+         invalid=(7, -1), doc='0 OFF, 1 RIGHT, 2 LEFT (Webots source: set_int)'),
+    _set('set_indicator_period', SET_FLOAT, 'set_indicator_period_s', 'float',
+         'automobile/get_indicator_period', 0.5, invalid=(-0.2, 0.0), unit='s',
+         doc='length of one indicator ON (or OFF) phase, > 0'),
+    _set('set_steering_angle', SET_FLOAT, 'set_steering_angle', 'float',
+         'automobile/steering_angle', 0.2, invalid=(5.0, -5.0), unit='rad',
+         doc='Ackermann steering angle, positive = right, within the car limits'),
+    _set('set_throttle', SET_FLOAT, 'set_throttle', 'float', 'automobile/throttle', 0.4,
+         invalid=(2.0, -0.5), unit='1', doc='switch to TORQUE mode, throttle in [0, 1]'),
+    _set('set_wiper_mode', SET_INT, 'set_wiper_mode', 'int', 'automobile/get_wiper_mode', 2,
+         invalid=(9, -1), doc='0 DOWN, 1 SLOW, 2 NORMAL, 3 FAST'),
+    _set('set_wipers_mode', SET_INT, 'set_wiper_mode', 'int', 'automobile/get_wipers_mode', 3,
+         invalid=(9,), doc='legacy name of set_wiper_mode', legacy=True),
+    _set('set_right_steering_angle', SET_FLOAT, 'set_right_steering_angle', 'float',
+         'automobile/right_steering_angle', 0.15, invalid=(5.0,), unit='rad',
+         doc='right front wheel alone (car library; documented, missing in Webots)',
+         webots=False),
+    _set('set_left_steering_angle', SET_FLOAT, 'set_left_steering_angle', 'float',
+         'automobile/left_steering_angle', 0.1, invalid=(-5.0,), unit='rad',
+         doc='left front wheel alone (car library; documented, missing in Webots)',
+         webots=False),
+    # Getters.
+    _get('get_antifog_light', GET_BOOL, 'antifog_lights', 'bool'),
+    _get('get_backwards_light', GET_BOOL, 'backwards_lights', 'bool'),
+    _get('get_brake_light', GET_BOOL, 'brake_lights', 'bool'),
+    _get('get_control_mode', GET_INT, 'control_mode', 'int',
+         doc='-1 UNDEFINED, 0 SPEED, 1 TORQUE'),
+    _get('get_cruising_speed', GET_FLOAT, 'target_cruising_speed_kmh', 'float', unit='km/h',
+         doc='target cruising speed'),
+    ServiceSpec('automobile/get_dimensions', GET_DIMENSIONS, DIMENSIONS, 'dimensions',
+                value='float', unit='m', doc='track front/rear, wheel base, wheel radii'),
+    _get('get_dipped_beam', GET_BOOL, 'dipped_beams', 'bool'),
+    _get('get_engine_type', GET_INT, 'engine_type', 'int',
+         doc='0 combustion, 1 electric, 2 parallel hybrid, 3 power-split hybrid'),
+    _get('get_gear', GET_INT, 'gear', 'int', doc='engaged gear; 0 in SPEED mode (Webots)'),
+    _get('get_gear_number', GET_INT, 'gear_number', 'int',
+         doc='number of gear ratios including reverse'),
+    _get('get_hazard_flashers', GET_BOOL, 'hazard_flashers', 'bool'),
+    _get('get_indicator', GET_INT, 'indicator', 'int', doc='0 OFF, 1 RIGHT, 2 LEFT'),
+    _get('get_indicator_period', GET_FLOAT, 'indicator_period_s', 'float', unit='s'),
+    _get('get_type', GET_INT, 'car_type', 'int', doc='0 traction, 1 propulsion, 2 4x4'),
+    _get('get_wiper_mode', GET_INT, 'wiper_mode', 'int', doc='0 DOWN, 1 SLOW, 2 NORMAL, 3 FAST'),
+    _get('get_wipers_mode', GET_INT, 'wiper_mode', 'int', doc='legacy name of get_wiper_mode',
+         legacy=True),
+)
+
+ROBOT_SERVICES = (
+    ServiceSpec('robot/time_step', SET_INT, TIME_STEP, value='int', unit='ms',
+                invalid=(7, -10), example=10,
+                doc='synchronous mode: advance the shared world by value ms (a multiple of the '
+                    'basic step; 0 = one step); success=false otherwise'),
+    ServiceSpec('robot/get_time', GET_FLOAT, WORLD_TIME, value='float', unit='s',
+                doc='simulated time'),
+    ServiceSpec('robot/get_basic_time_step', GET_FLOAT, BASIC_TIME_STEP, value='float',
+                unit='ms', doc='basic time step'),
+)
+
+SERVICES = AUTOMOBILE_SERVICES + ROBOT_SERVICES
+
+# Names of webots_spec §5.3 that are deliberately not served (documented in the docs).
+NOT_SERVED = ('automobile/get_throttle', 'automobile/get_brake_intensity', 'automobile/get_rpm',
+              'automobile/set_brake')
+
+
+def topic(name: str) -> TopicSpec:
+    """Return the TopicSpec called ``name`` (relative name as in the table)."""
+    for spec in TOPICS:
+        if spec.name == name:
+            return spec
+    raise KeyError(name)
+
+
+def service(name: str) -> ServiceSpec:
+    """Return the ServiceSpec called ``name`` (relative name as in the table)."""
+    for spec in SERVICES:
+        if spec.name == name:
+            return spec
+    raise KeyError(name)
+
+
+def vehicle_name(name: str, namespace: str) -> str:
+    """
+    Return an endpoint name for a vehicle namespace.
+
+    :param name: table name; global names (leading ``/``) are returned unchanged.
+    :param namespace: vehicle namespace ('' or '/' for the default car, 'car1' or '/car1').
+    :return: a relative name (resolved under the node namespace) or the global name.
+    """
+    if name.startswith('/'):
+        return name
+    namespace = namespace.strip('/')
+    return f'{namespace}/{name}' if namespace else name
+
+
+def frame_prefix(namespace: str) -> str:
+    """Return ``p``: the namespace without its leading slash plus '/' ('' for no namespace)."""
+    namespace = namespace.strip('/')
+    return namespace + '/' if namespace else ''
+
+
+def _qos_text(qos: QosProfile) -> str:
+    return f'{qos.reliability}, {qos.durability}, depth {qos.depth}'
+
+
+def _value_text(value) -> str:
+    if isinstance(value, float) and not math.isfinite(value):
+        return str(value)
+    return repr(value)
+
+
+def interface_table_markdown() -> str:
+    """
+    Return the Markdown tables of every topic and service (the body of docs/ros_interface.md).
+
+    :return: two Markdown tables, topics then services.
+    """
+    lines = ['| topic | type | QoS | published | unit | notes |', '|---|---|---|---|---|---|']
+    for spec in TOPICS:
+        name = spec.name if spec.is_global else '/<ns>/' + spec.name
+        lines.append(f'| `{name}` | {spec.ros_type} | {_qos_text(spec.qos)} | {spec.cadence} | '
+                     f'{spec.unit} | {spec.doc} |')
+    lines += ['', '| service | type | maps to | value | unit | refused (success=false) | notes |',
+              '|---|---|---|---|---|---|---|']
+    for spec in SERVICES:
+        if spec.kind in (SETTER, GETTER):
+            target = f'CarLogic.{spec.core}'
+        elif spec.kind == DIMENSIONS:
+            target = 'CarLogic.dimensions()'
+        else:
+            target = f'world ({spec.kind})'
+        refused = ', '.join(_value_text(v) for v in spec.invalid)
+        notes = spec.doc
+        if spec.legacy:
+            notes += ' (legacy)'
+        if not spec.webots:
+            notes += " (not in Webots' ros_automobile)"
+        lines.append(f'| `/<ns>/{spec.name}` | {spec.srv_type} | {target} | {spec.value} | '
+                     f'{spec.unit} | {refused} | {notes} |')
+    return '\n'.join(lines) + '\n'
