@@ -1,0 +1,164 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The ``vehicle-sim`` command, run as a subprocess against real peers over the embedded transport.
+
+Peers: test/transport_peer.py (node /tp_cli/peer: service set_int, parameter gain in [0, 10]) and
+the automobile node started by ``vehicle-sim run`` (real time, endpoints under /automobile).
+"""
+
+import subprocess
+import sys
+
+from conftest import peer_env, PEER_START_TIMEOUT_S
+import pytest
+
+NS = '/tp_cli'
+# Generous bound for one CLI run (interpreter start, discovery, one exchange).
+CLI_TIMEOUT_S = 60.0
+
+pytestmark = pytest.mark.transport
+
+
+def vehicle_sim(*args, timeout_s=CLI_TIMEOUT_S):
+    """Run ``vehicle-sim ARGS`` and return the CompletedProcess (text output)."""
+    return subprocess.run([sys.executable, '-m', 'vehicle_sim.cli', *args], env=peer_env(),
+                          capture_output=True, text=True, timeout=timeout_s)
+
+
+@pytest.fixture(scope='module')
+def peer(spawn_peer):
+    return spawn_peer('--ros-args', '-r', '__ns:=' + NS)
+
+
+@pytest.fixture(scope='module')
+def automobile():
+    """``vehicle-sim run`` in the background; stopped with SIGTERM, which must exit 0."""
+    proc = subprocess.Popen(
+        [sys.executable, '-m', 'vehicle_sim.cli', 'run', '--no-status', '--duration', '300'],
+        env=peer_env(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    result = vehicle_sim('call', '/automobile/get_gear', '--wait', str(PEER_START_TIMEOUT_S))
+    assert result.returncode == 0, result.stderr
+    yield proc
+    proc.terminate()
+    assert proc.wait(PEER_START_TIMEOUT_S) == 0
+
+
+def test_list_shows_the_peer_node_topics_and_services_with_types(peer):
+    result = vehicle_sim('list', '--wait', '3')
+    assert result.returncode == 0, result.stderr
+    assert f'  {NS}/peer\n' in result.stdout
+    assert f'  {NS}/echo_out [std_msgs/msg/String]' in result.stdout
+    assert f'  {NS}/set_int [vehicle_msgs/srv/SetInt]' in result.stdout
+    assert '_vehicle_sim_cli' not in result.stdout
+
+
+def test_call_single_value_and_yaml_request_print_the_response(peer):
+    even = vehicle_sim('call', f'{NS}/set_int', '4')
+    odd = vehicle_sim('call', f'{NS}/set_int', '{value: 3}')
+    assert (even.returncode, even.stdout) == (0, 'success: true\n'), even.stderr
+    assert (odd.returncode, odd.stdout) == (0, 'success: false\n'), odd.stderr
+
+
+def test_call_with_a_value_of_the_wrong_type_fails_without_calling(peer):
+    result = vehicle_sim('call', f'{NS}/set_int', '2.5')
+    assert result.returncode == 1
+    assert 'expected an integer (int32), got 2.5' in result.stderr
+
+
+def test_call_unknown_service_exits_1_and_names_the_close_match(peer):
+    result = vehicle_sim('call', f'{NS}/set_in', '2', '--wait', '2')
+    assert result.returncode == 1
+    assert 'not found' in result.stderr and f'{NS}/set_int' in result.stderr
+
+
+def test_param_list_get_set_round_trip(peer):
+    listed = vehicle_sim('param', 'list', f'{NS}/peer')
+    assert listed.returncode == 0, listed.stderr
+    assert '  gain\n' in listed.stdout and '  use_sim_time\n' in listed.stdout
+    changed = vehicle_sim('param', 'set', f'{NS}/peer', 'gain', '2')
+    assert (changed.returncode, changed.stdout) == (0, 'Set parameter successful\n')
+    got = vehicle_sim('param', 'get', f'{NS}/peer', 'gain')
+    assert (got.returncode, got.stdout) == (0, 'Double value is: 2.0\n'), got.stderr
+
+
+def test_param_set_rejected_by_the_node_reports_failure(peer):
+    result = vehicle_sim('param', 'set', f'{NS}/peer', 'gain', '20')
+    assert result.returncode == 1
+    assert 'Setting parameter failed: gain 20.0 outside [0, 10]' in result.stderr
+
+
+def test_param_unknown_node_exits_1_and_names_the_close_match(peer):
+    result = vehicle_sim('param', 'get', f'{NS}/pear', 'gain', '--wait', '2')
+    assert result.returncode == 1
+    assert "node '/tp_cli/pear' not found" in result.stderr and f'{NS}/peer' in result.stderr
+
+
+def test_echo_unknown_topic_exits_1(peer):
+    result = vehicle_sim('echo', f'{NS}/nothing_here', '--wait', '1')
+    assert result.returncode == 1
+    assert 'not found on the graph' in result.stderr
+
+
+def test_echo_once_prints_one_stamped_value(automobile):
+    result = vehicle_sim('echo', '/automobile/current_speed', '--once', '--timeout', '30')
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.count('---\n') == 1
+    assert 'frame_id: base_link\n' in result.stdout and '\ndata: ' in result.stdout
+
+
+def test_call_set_cruising_speed_is_visible_through_the_getter(automobile):
+    assert vehicle_sim('call', '/automobile/set_cruising_speed', '30').stdout == 'success: true\n'
+    result = vehicle_sim('call', '/automobile/get_cruising_speed')
+    assert (result.returncode, result.stdout) == (0, 'value: 30.0\n'), result.stderr
+
+
+def test_export_interfaces_writes_the_vehicle_msgs_package(tmp_path):
+    result = vehicle_sim('export-interfaces', str(tmp_path))
+    assert result.returncode == 0, result.stderr
+    package = tmp_path / 'vehicle_msgs'
+    assert (package / 'package.xml').is_file()
+    assert (package / 'srv' / 'SetFloat.srv').is_file()
+    assert (package / 'msg' / 'Float64Stamped.msg').is_file()
+
+
+def test_run_for_one_second_without_status_exits_0():
+    result = vehicle_sim('run', '--duration', '1', '--no-status')
+    assert result.returncode == 0, result.stderr
+    assert result.stdout == ''
+
+
+def test_demo_is_reserved_and_exits_2():
+    result = vehicle_sim('demo')
+    assert result.returncode == 2 and 'not available yet' in result.stderr
+
+
+def test_status_line_shows_time_speed_rpm_gear_mode_and_indicator():
+    from vehicle_sim.cli import status_line
+    from vehicle_sim.config import load_car
+    from vehicle_sim.core.car_logic import CarLogic
+    status = CarLogic(load_car('Car')).status()
+    line = status_line(1.5, status)
+    assert line.startswith('t      1.50 s |    0.00 km/h | rpm      - | gear  0 | UNDEFINED')
+    assert line.endswith('indicator off')
+
+
+def test_format_message_prints_nested_fields_in_definition_order():
+    from vehicle_msgs_py import message_type
+    from vehicle_sim.cli import format_message
+    msg = message_type('vehicle_msgs/msg/Float64Stamped')(data=27.5)
+    msg.header.frame_id = 'base_link'
+    assert format_message(msg) == ('header:\n  stamp:\n    sec: 0\n    nanosec: 0\n'
+                                   '  frame_id: base_link\ndata: 27.5\n')

@@ -1,0 +1,425 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+pytest plugin: test ROS 2 code against the simulator with plain pytest, no launch_testing.
+
+Enable it with ``-p vehicle_sim.testing`` (or ``pytest_plugins = ['vehicle_sim.testing']`` in a
+``conftest.py``; an installed vehicle_sim registers it as the ``vehicle_sim`` pytest11 plugin).
+
+The ``automobile_node`` fixture starts the automobile node in **synchronous** mode in a
+subprocess and yields an :class:`AutomobileSim` whose ``client`` is a node on the selected
+transport (``VEHICLE_SIM_TRANSPORT``: rclpy on a ROS 2 machine, else the embedded Cyclone DDS
+transport). Time only moves when the test calls ``client.step(...)``, so assertions on published
+values and on ``/clock`` are deterministic::
+
+    def test_car_moves(automobile_node):
+        car = automobile_node.client
+        assert car.call('set_cruising_speed', 30.0).success
+        car.step(200)                                   # 200 basic steps = 2.0 s
+        assert car.latest('current_speed').data > 0.0
+
+Options: ``@pytest.mark.vehicle_sim(car='TeslaModel3', namespace='/sim',
+params={'friction': 1.2})``, or ``@pytest.mark.parametrize('automobile_node', ['BmwX5'],
+indirect=True)`` for the car model; ``--vehicle-sim-car`` sets the default model.
+
+Isolation: unless already set, the plugin confines DDS traffic to the loopback interface
+(``ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST``) and picks a ROS_DOMAIN_ID from the pid, before
+any DDS participant exists; the node subprocess inherits both.
+"""
+
+from dataclasses import dataclass, field
+import itertools
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from typing import Any, Callable, Dict, List, Optional
+
+import pytest
+
+# Generous bound for the node subprocess to come up (PyBullet import, discovery).
+START_TIMEOUT_S = 60.0
+# Bound for a reply or a message that the simulation is known to produce.
+DEFAULT_TIMEOUT_S = 10.0
+STOP_TIMEOUT_S = 10.0
+MAX_HISTORY = 10000
+DEFAULT_CAR = 'Car'
+_client_ids = itertools.count(1)
+
+
+# --------------------------------------------------------------------------------------------
+# Plugin hooks
+
+def pytest_addoption(parser):
+    group = parser.getgroup('vehicle_sim')
+    group.addoption('--vehicle-sim-car', default=None, metavar='MODEL',
+                    help=f'default car model of the automobile_node fixture ({DEFAULT_CAR})')
+
+
+def pytest_configure(config):
+    os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
+    os.environ.setdefault('ROS_DOMAIN_ID', str(1 + os.getpid() % 101))
+    config.addinivalue_line(
+        'markers', 'vehicle_sim(car=None, namespace=None, params=None): options of the '
+                   'automobile_node fixture (car model, node namespace, node parameters)')
+
+
+# --------------------------------------------------------------------------------------------
+# Time stamps
+
+def stamp_ns(msg: Any) -> int:
+    """Return a message's time stamp [ns]: ``header.stamp``, or ``clock`` for a Clock."""
+    stamp = msg.clock if hasattr(msg, 'clock') else msg.header.stamp
+    return int(stamp.sec) * 1_000_000_000 + int(stamp.nanosec)
+
+
+def stamp_s(msg: Any) -> float:
+    """Return the time stamp of a message in seconds."""
+    return stamp_ns(msg) * 1e-9
+
+
+# --------------------------------------------------------------------------------------------
+# The client
+
+@dataclass
+class _Topic:
+    name: str
+    ros_type: str
+    messages: List[Any] = field(default_factory=list)
+    subscription: Any = None
+
+
+class AutomobileClient:
+    """
+    A test node driving a synchronous automobile node through its ROS interface.
+
+    Endpoint names may be given in full (``/automobile/current_speed``, ``/clock``), relative to
+    the vehicle (``automobile/current_speed``, ``robot/time_step``) or by their last part
+    (``current_speed``, ``set_gear``, ``clock``); types come from ``vehicle_sim.ros.interfaces``.
+
+    :param namespace: the automobile node's namespace ('' or '/' for the root).
+    :param transport: 'auto', 'rclpy' or 'dds' (default: ``VEHICLE_SIM_TRANSPORT``).
+    :param publish_period_s: the node's topic period (0 = each basic step).
+    :param timeout_s: bound for replies and expected messages.
+    """
+
+    def __init__(self, namespace: str = '', transport: Optional[str] = None,
+                 publish_period_s: float = 0.0, timeout_s: float = DEFAULT_TIMEOUT_S):
+        from vehicle_sim.ros import interfaces as itf
+        from vehicle_sim.transport.selection import create_node
+        self._itf = itf
+        self.namespace = '/' + namespace.strip('/') if namespace.strip('/') else ''
+        self.timeout_s = timeout_s
+        self.publish_period_s = publish_period_s
+        self.node = create_node(f'_vehicle_sim_test_{os.getpid()}_{next(_client_ids)}',
+                                transport=transport,
+                                args=['--ros-args', '--disable-rosout-logs'])
+        self._topics: Dict[str, _Topic] = {}
+        self._clients: Dict[str, Any] = {}
+        self._time_s = None       # the node's answer to robot/get_time [s]
+        self._expected_s = None   # start time plus the steps this client requested [s]
+        self.basic_time_step_ms = None
+        # Subscriptions first: once a service reply comes back, the node has discovered every
+        # reader created before the client (DDS announces endpoints in order), so no message
+        # of a later step can be lost to discovery.
+        for spec in itf.TOPICS:
+            if spec.ros_type in (itf.FLOAT64_STAMPED, itf.CLOCK.ros_type):
+                self._subscribe(spec)
+
+    # ------------------------------------------------------------------------ names
+
+    def _full(self, spec_name: str) -> str:
+        return spec_name if spec_name.startswith('/') else f'{self.namespace}/{spec_name}'
+
+    def _find(self, name: str, specs, kind: str):
+        for spec in specs:
+            full = self._full(spec.name)
+            if name in (full, spec.name, spec.short_name, full.lstrip('/')):
+                return spec, full
+        from vehicle_sim.graph import close_names
+        names = [self._full(s.name) for s in specs]
+        close = close_names(name if name.startswith('/') else '/' + name, names)
+        hint = f'; did you mean: {", ".join(close)}' if close else ''
+        raise KeyError(f'unknown {kind} {name!r}{hint}')
+
+    # ------------------------------------------------------------------------ topics
+
+    def _subscribe(self, spec) -> _Topic:
+        full = self._full(spec.name)
+        found = self._topics.get(full)
+        if found is None:
+            from vehicle_sim.transport.port import QosProfile
+            found = _Topic(full, spec.ros_type)
+            qos = QosProfile(depth=max(10, spec.qos.depth), durability=spec.qos.durability)
+
+            def on_message(msg, topic=found):
+                topic.messages.append(msg)
+                if len(topic.messages) > MAX_HISTORY:
+                    del topic.messages[:len(topic.messages) - MAX_HISTORY]
+
+            found.subscription = self.node.create_subscription(
+                spec.ros_type, full, on_message, qos)
+            self._topics[full] = found
+        return found
+
+    def topic(self, name: str) -> _Topic:
+        """Return the subscription record of a topic (subscribing now if needed)."""
+        spec, _ = self._find(name, self._itf.TOPICS, 'topic')
+        return self._subscribe(spec)
+
+    def messages(self, name: str) -> List[Any]:
+        """Return every message received on a topic so far (oldest first)."""
+        self.node.spin_once(0.0)
+        return list(self.topic(name).messages)
+
+    def _fresh_after_ns(self) -> int:
+        """Stamp the newest message must reach: the last publishing step at the current time."""
+        if self._expected_s is None:
+            return 0
+        time_s = self._expected_s
+        if self.publish_period_s > 0.0:
+            time_s = (time_s // self.publish_period_s) * self.publish_period_s
+        # Half a basic step of slack: stamps are rounded to the step, not to the float sum.
+        return int(round(time_s * 1e9)) - int(self.basic_time_step_ms * 500_000)
+
+    def latest(self, name: str, timeout_s: Optional[float] = None):
+        """
+        Return the newest message of a topic published at (or after) the current sim time.
+
+        :raises TimeoutError: when no such message arrived within the timeout.
+        """
+        topic = self.topic(name)
+        needed = self._fresh_after_ns()
+
+        def fresh():
+            return bool(topic.messages) and (
+                not _has_stamp(topic.messages[-1]) or stamp_ns(topic.messages[-1]) >= needed)
+
+        if not self.node.spin_until(fresh, self.timeout_s if timeout_s is None else timeout_s):
+            got = (f'; newest stamp {stamp_s(topic.messages[-1]):.3f} s' if topic.messages
+                   else '; nothing received')
+            raise TimeoutError(f'no message on {topic.name} for sim time '
+                               f'{(self._expected_s or 0.0):.3f} s{got}')
+        return topic.messages[-1]
+
+    def wait_for(self, name: str, predicate: Callable[[Any], bool],
+                 timeout_s: Optional[float] = None):
+        """
+        Return the first message on a topic (the newest received included) ``predicate`` accepts.
+
+        Only spins (lets messages in); it never steps the simulation.
+
+        :raises TimeoutError: when none did within the timeout.
+        """
+        topic = self.topic(name)
+        index = max(0, len(topic.messages) - 1)
+        found = []
+
+        def check():
+            nonlocal index
+            while index < len(topic.messages):
+                msg = topic.messages[index]
+                index += 1
+                if predicate(msg):
+                    found.append(msg)
+                    return True
+            return False
+
+        if not self.node.spin_until(check, self.timeout_s if timeout_s is None else timeout_s):
+            raise TimeoutError(f'no message on {topic.name} matched the predicate')
+        return found[0]
+
+    # ------------------------------------------------------------------------ services
+
+    def call(self, name: str, value: Any = None, timeout_s: Optional[float] = None):
+        """
+        Call a service; ``value`` fills the request's single field (None: the defaults).
+
+        :return: the response (``.success`` for setters, ``.value`` for getters).
+        """
+        spec, full = self._find(name, self._itf.SERVICES, 'service')
+        timeout_s = self.timeout_s if timeout_s is None else timeout_s
+        client = self._clients.get(full)
+        if client is None:
+            client = self.node.create_client(spec.srv_type, full)
+            if not client.wait_for_service(timeout_s):
+                raise TimeoutError(f'service {full} is not available')
+            self._clients[full] = client
+        request = self.node.srv(spec.srv_type).Request()
+        if value is not None:
+            fields = [f for f in _field_names(request)
+                      if f != 'structure_needs_at_least_one_member']
+            if len(fields) != 1:
+                raise ValueError(f'{full} request has fields {fields}: build it yourself')
+            setattr(request, fields[0], type(getattr(request, fields[0]))(value))
+        return client.call(request, timeout_s)
+
+    def sim_time(self) -> float:
+        """Return the simulated time [s] (robot/get_time)."""
+        self._time_s = float(self.call('robot/get_time').value)
+        return self._time_s
+
+    def step(self, steps: int = 1, ms: Optional[int] = None) -> float:
+        """
+        Advance the simulation by ``steps`` basic steps, or by ``ms`` milliseconds.
+
+        :return: the simulated time after the step [s].
+        :raises AssertionError: when the node refused the step.
+        """
+        if self.basic_time_step_ms is None:
+            self.basic_time_step_ms = int(round(self.call('robot/get_basic_time_step').value))
+        if ms is None:
+            if steps < 1:
+                raise ValueError(f'steps must be >= 1, got {steps}')
+            ms = steps * self.basic_time_step_ms
+        response = self.call('robot/time_step', int(ms),
+                             timeout_s=max(self.timeout_s, 0.05 * ms))
+        assert response.success, (f'robot/time_step {ms} ms refused (a multiple of '
+                                  f'{self.basic_time_step_ms} ms, node synchronous?)')
+        self._expected_s += max(ms, self.basic_time_step_ms) / 1000.0
+        return self.sim_time()
+
+    def wait_until_ready(self, timeout_s: float, alive: Callable[[], bool] = lambda: True):
+        """Wait for the node's services and the subscriptions' matches; start the time base."""
+        deadline = time.monotonic() + timeout_s
+        while True:
+            try:
+                self.sim_time()
+                break
+            except TimeoutError:
+                if not alive() or time.monotonic() >= deadline:
+                    raise
+        for topic in self._topics.values():
+            if not self.node.spin_until(
+                    lambda t=topic: t.subscription.get_publisher_count() > 0,
+                    max(0.0, deadline - time.monotonic())):
+                raise TimeoutError(f'{topic.name}: no publisher matched')
+        self.basic_time_step_ms = int(round(self.call('robot/get_basic_time_step').value))
+        self._expected_s = self._time_s
+
+    def close(self) -> None:
+        self.node.shutdown()
+
+
+def _field_names(msg) -> List[str]:
+    if hasattr(msg, 'get_fields_and_field_types'):
+        return list(msg.get_fields_and_field_types())
+    import dataclasses
+    return [f.name for f in dataclasses.fields(msg)]
+
+
+def _has_stamp(msg) -> bool:
+    return hasattr(msg, 'clock') or hasattr(getattr(msg, 'header', None), 'stamp')
+
+
+# --------------------------------------------------------------------------------------------
+# The node process
+
+class AutomobileSim:
+    """
+    A synchronous automobile node in a subprocess and a client to drive it.
+
+    :param car: car preset name.
+    :param namespace: node namespace ('' = root: endpoints under /automobile).
+    :param params: extra node parameters ``{name: value}``.
+    :param transport: transport of node and client (default: ``VEHICLE_SIM_TRANSPORT``).
+    """
+
+    def __init__(self, car: str = DEFAULT_CAR, namespace: str = '',
+                 params: Optional[Dict[str, Any]] = None, transport: Optional[str] = None,
+                 start_timeout_s: float = START_TIMEOUT_S):
+        self.car = car
+        self.namespace = '/' + namespace.strip('/') if namespace.strip('/') else ''
+        params = dict(params or {})
+        params.setdefault('car_model', car)
+        params['synchronous'] = True
+        command = [sys.executable, '-m', 'vehicle_sim.ros.automobile_node', '--ros-args']
+        for name, value in params.items():
+            command += ['-p', f'{name}:={_ros_arg_value(value)}']
+        if self.namespace:
+            command += ['-r', f'__ns:={self.namespace}']
+        env = dict(os.environ)
+        env['PYTHONUNBUFFERED'] = '1'
+        if transport:
+            env['VEHICLE_SIM_TRANSPORT'] = transport
+        self._log = tempfile.TemporaryFile(mode='w+')
+        self.process = subprocess.Popen(command, env=env, stdout=self._log,
+                                        stderr=subprocess.STDOUT, text=True)
+        self.client = None
+        try:
+            period_ms = float(params.get('publish_period_ms', 0) or 0)
+            self.client = AutomobileClient(self.namespace, transport=transport,
+                                           publish_period_s=period_ms / 1000.0)
+            self.client.wait_until_ready(start_timeout_s,
+                                         alive=lambda: self.process.poll() is None)
+        except BaseException as exc:
+            self.close()
+            raise RuntimeError(f'the automobile node did not start ({exc}); its output:\n'
+                               f'{self.output()}') from exc
+
+    def output(self) -> str:
+        """Return what the node printed so far (stdout and stderr)."""
+        self._log.flush()
+        self._log.seek(0)
+        return self._log.read()
+
+    def close(self) -> int:
+        """Leave the graph, stop the node (SIGTERM, then SIGKILL) and return its exit status."""
+        if self.client is not None:
+            self.client.close()
+            self.client = None
+        if self.process.poll() is None:
+            self.process.send_signal(signal.SIGTERM)
+            try:
+                self.process.wait(STOP_TIMEOUT_S)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+                self.process.wait()
+        return self.process.returncode
+
+
+def _ros_arg_value(value: Any) -> str:
+    if isinstance(value, bool):
+        return 'true' if value else 'false'
+    if isinstance(value, str):
+        return value if value else "''"
+    return repr(value) if isinstance(value, float) else str(value)
+
+
+@pytest.fixture
+def automobile_node(request):
+    """
+    Start a synchronous automobile node in a subprocess; yield an :class:`AutomobileSim`.
+
+    Options: marker ``vehicle_sim(car=..., namespace=..., params=...)``; indirect
+    parametrization with a car model name; ``--vehicle-sim-car``.
+    """
+    options: Dict[str, Any] = {}
+    marker = request.node.get_closest_marker('vehicle_sim')
+    if marker is not None:
+        options.update(marker.kwargs)
+        if marker.args:
+            options.setdefault('car', marker.args[0])
+    if getattr(request, 'param', None) is not None:
+        param = request.param
+        options.update(param if isinstance(param, dict) else {'car': param})
+    options.setdefault('car', request.config.getoption('--vehicle-sim-car') or DEFAULT_CAR)
+    sim = AutomobileSim(**options)
+    try:
+        yield sim
+    finally:
+        sim.close()
