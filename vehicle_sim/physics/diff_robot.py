@@ -1,0 +1,383 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+A differential-drive robot in a World: URDF generated from RobotParams, wheel velocity motors.
+
+Frames (REP 103, FLU): ``base_link`` on the ground below the centre of the driven axle (caster
+drive) or of the wheel rectangle (skid steer). Wheel joints are ``continuous`` about +y, so a
+positive angle / speed rolls the wheel forward on both sides, as in the car URDF.
+
+Layouts:
+
+- ``caster``: ``left_wheel_joint`` at (0, +t/2, r), ``right_wheel_joint`` at (0, −t/2, r), a ball
+  caster (sphere of radius r_c, fixed to the body through ``caster_joint``) touching the ground
+  at x = ``caster_offset``. The caster is frictionless (lateral, rolling and spinning friction
+  0), the usual simulation stand-in for a free-swivelling caster wheel.
+- ``skid_steer``: four wheels at (±L/2, ±t/2, r); the left pair and the right pair get the same
+  command. Turning makes the wheels slip sideways, so the yaw rate is lower than (v_r − v_l)/t
+  (as on a real skid-steer base): the robot node's wheel odometry assumes the ideal law.
+
+Wheel collision shapes are spheres of the wheel radius (see car_urdf: Bullet's cylinder-plane
+contact wanders across the tread); the visuals are cylinders.
+"""
+
+from dataclasses import dataclass
+import math
+import os
+import tempfile
+from typing import Tuple
+from xml.sax.saxutils import escape
+
+import pybullet
+
+from vehicle_sim.config import find_config, read_yaml
+from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
+from vehicle_sim.core.robot_params import robot_params_from_dict, RobotParams
+from vehicle_sim.physics.urdf import wheel_inertia_kgm2
+
+CASTER_MASS_KG = 0.2
+# Spawn height of base_link above the ground [m]: the wheels touch down within a few steps.
+SPAWN_CLEARANCE_M = 0.001
+BODY_FRICTION = 0.5
+
+
+def load_robot(name_or_path='caster_robot'):
+    """
+    Load and validate a robot preset from ``config/robots``.
+
+    :param name_or_path: preset name (``'caster_robot'``), a path to a YAML file, or
+        RobotParams (returned as is).
+    :return: RobotParams.
+    :raises InvalidParameterError: naming file, field and value on any invalid content.
+    """
+    if isinstance(name_or_path, RobotParams):
+        return name_or_path
+    path = find_config('robots', str(name_or_path))
+    data = read_yaml(path)
+    return robot_params_from_dict({} if data is None else data, source=str(path))
+
+
+def wheel_anchor_m(params, index):
+    """
+    Return the joint anchor of a driven wheel in base_link (FLU).
+
+    :param params: RobotParams.
+    :param index: index into ``params.wheel_joints`` (left side first).
+    :return: (x, y, z) [m].
+    """
+    name = params.wheel_names[index]
+    y = params.wheel_tread_m / 2.0 * (1.0 if 'left' in name else -1.0)
+    x = 0.0
+    if name.startswith('front'):
+        x = params.wheel_base_m / 2.0
+    elif name.startswith('rear'):
+        x = -params.wheel_base_m / 2.0
+    return (x, y, params.wheel_radius_m)
+
+
+def _f(value):
+    return f'{float(value):.9g}'
+
+
+def _xyz(values):
+    return ' '.join(_f(v) for v in values)
+
+
+def _inertial(mass, ixx, iyy, izz, xyz=(0.0, 0.0, 0.0)):
+    return (f'    <inertial>\n      <origin xyz="{_xyz(xyz)}" rpy="0 0 0"/>\n'
+            f'      <mass value="{_f(mass)}"/>\n'
+            f'      <inertia ixx="{_f(ixx)}" ixy="0" ixz="0" iyy="{_f(iyy)}" iyz="0" '
+            f'izz="{_f(izz)}"/>\n    </inertial>\n')
+
+
+def _shape(tag, xyz, rpy, geometry):
+    return (f'    <{tag}>\n      <origin xyz="{_xyz(xyz)}" rpy="{_xyz(rpy)}"/>\n'
+            f'      <geometry>{geometry}</geometry>\n    </{tag}>\n')
+
+
+def robot_urdf(params, name=None, prefix=''):
+    """
+    Generate the URDF of a differential-drive robot.
+
+    :param params: RobotParams.
+    :param name: robot name; the preset's model name when None.
+    :param prefix: put in front of every link and joint name (e.g. ``'robot1/'``).
+    :return: URDF text.
+    """
+    length, width, height = params.body_size_m
+    radius = params.wheel_radius_m
+    base = f'{prefix}base_link'
+    body_xyz = (params.body_offset_m, 0.0, radius)
+    parts = [f'<?xml version="1.0"?>\n<robot name="{escape(name or params.model)}">\n',
+             f'  <link name="{base}">\n',
+             _inertial(params.mass_kg, params.mass_kg * (width ** 2 + height ** 2) / 12.0,
+                       params.mass_kg * (length ** 2 + height ** 2) / 12.0,
+                       params.mass_kg * (length ** 2 + width ** 2) / 12.0, body_xyz)]
+    box = f'<box size="{_xyz(params.body_size_m)}"/>'
+    parts.append(_shape('visual', body_xyz, (0.0, 0.0, 0.0), box))
+    parts.append(_shape('collision', body_xyz, (0.0, 0.0, 0.0), box))
+    parts.append('  </link>\n')
+    ixx, iyy, izz = wheel_inertia_kgm2(params.wheel_mass_kg, radius, params.wheel_width_m)
+    cylinder = f'<cylinder radius="{_f(radius)}" length="{_f(params.wheel_width_m)}"/>'
+    for index, (stem, joint) in enumerate(zip(params.wheel_names, params.wheel_joints)):
+        link = f'{prefix}{stem}_wheel_link'
+        parts.append(f'  <link name="{link}">\n'
+                     + _inertial(params.wheel_mass_kg, ixx, iyy, izz)
+                     + _shape('visual', (0.0, 0.0, 0.0), (math.pi / 2, 0.0, 0.0), cylinder)
+                     + _shape('collision', (0.0, 0.0, 0.0), (0.0, 0.0, 0.0),
+                              f'<sphere radius="{_f(radius)}"/>')
+                     + '  </link>\n')
+        parts.append(
+            f'  <joint name="{prefix}{joint}" type="continuous">\n'
+            f'    <parent link="{base}"/>\n    <child link="{link}"/>\n'
+            f'    <origin xyz="{_xyz(wheel_anchor_m(params, index))}" rpy="0 0 0"/>\n'
+            f'    <axis xyz="0 1 0"/>\n'
+            f'    <limit effort="{_f(params.wheel_motor_torque_nm)}" '
+            f'velocity="{_f(params.max_wheel_speed_radps)}"/>\n  </joint>\n')
+    if params.drive == 'caster':
+        r_c = params.caster_radius_m
+        i_c = 0.4 * CASTER_MASS_KG * r_c * r_c
+        sphere = f'<sphere radius="{_f(r_c)}"/>'
+        parts.append(f'  <link name="{prefix}caster_link">\n'
+                     + _inertial(CASTER_MASS_KG, i_c, i_c, i_c)
+                     + _shape('visual', (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), sphere)
+                     + _shape('collision', (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), sphere)
+                     + '  </link>\n')
+        parts.append(
+            f'  <joint name="{prefix}caster_joint" type="fixed">\n'
+            f'    <parent link="{base}"/>\n    <child link="{prefix}caster_link"/>\n'
+            f'    <origin xyz="{_xyz((params.caster_offset_m, 0.0, r_c))}" rpy="0 0 0"/>\n'
+            f'  </joint>\n')
+    parts.append('</robot>\n')
+    return ''.join(parts)
+
+
+def _pose_from(position):
+    values = tuple(float(v) for v in position)
+    if len(values) == 3:
+        x, y, yaw = values
+        return (x, y, SPAWN_CLEARANCE_M), (0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
+    if len(values) == 7:
+        return values[:3], values[3:]
+    raise ValueError(f'position {position!r}: give (x, y, yaw) or (x, y, z, qx, qy, qz, qw)')
+
+
+@dataclass(frozen=True)
+class RobotReading:
+    """
+    One reading of the driven wheels, in ``wheel_joints`` order (left side first).
+
+    Positions are unwrapped joint angles [rad]; velocities [rad/s], positive = rolling forward.
+    ``left_radps``/``right_radps`` are the side means.
+    """
+
+    wheel_position_rad: Tuple[float, ...]
+    wheel_velocity_radps: Tuple[float, ...]
+    left_radps: float
+    right_radps: float
+
+
+class DiffRobotBody:
+    """A differential-drive robot in a World, driven by wheel velocity motors."""
+
+    def __init__(self, world, params, position=(0.0, 0.0, 0.0), name=None, register=True):
+        """
+        Load the robot into the world.
+
+        :param world: the World to live in.
+        :param params: RobotParams, or a preset name / YAML path (see load_robot).
+        :param position: base_link pose: (x [m], y [m], yaw [rad]) on the ground, or the full
+            (x, y, z, qx, qy, qz, qw) in the world frame.
+        :param name: robot name in the URDF; the preset's model name when None.
+        :param register: register with the world's step hooks (kept for symmetry with CarBody;
+            the motors are implicit, so no per-step hook is needed).
+        """
+        params = load_robot(params)
+        self.world = world
+        self.params = params
+        self.name = name or params.model
+        self.urdf = robot_urdf(params, name=self.name)
+        cid = self._cid = world.client_id
+        base_pos, base_orn = _pose_from(position)
+        with tempfile.TemporaryDirectory(prefix='vehicle_sim_') as folder:
+            path = os.path.join(folder, 'robot.urdf')
+            with open(path, 'w', encoding='utf-8') as stream:
+                stream.write(self.urdf)
+            self.body_id = pybullet.loadURDF(
+                path, base_pos, base_orn, useFixedBase=False,
+                flags=pybullet.URDF_USE_INERTIA_FROM_FILE, physicsClientId=cid)
+        joints = {}
+        for index in range(pybullet.getNumJoints(self.body_id, physicsClientId=cid)):
+            info = pybullet.getJointInfo(self.body_id, index, physicsClientId=cid)
+            joints[info[1].decode()] = index
+        self._joint = joints
+        self.wheel_joints = params.wheel_joints
+        self._wheels = [joints[n] for n in self.wheel_joints]
+        self._left = [i for i, n in enumerate(self.wheel_joints) if 'left' in n]
+        self._right = [i for i, n in enumerate(self.wheel_joints) if 'right' in n]
+        info = pybullet.getDynamicsInfo(self.body_id, -1, physicsClientId=cid)
+        self._com_to_link = pybullet.invertTransform(info[3], info[4])
+        self._command_radps = (0.0,) * len(self._wheels)
+        self._configure_dynamics()
+        if register:
+            world.add_body(self)
+
+    def _configure_dynamics(self):
+        cid, body, params = self._cid, self.body_id, self.params
+        pybullet.changeDynamics(body, -1, linearDamping=0.0, angularDamping=0.0,
+                                lateralFriction=BODY_FRICTION, physicsClientId=cid)
+        for joint in self._wheels:
+            pybullet.changeDynamics(body, joint, linearDamping=0.0, angularDamping=0.0,
+                                    lateralFriction=params.wheel_friction, jointDamping=0.0,
+                                    physicsClientId=cid)
+        if 'caster_joint' in self._joint:
+            pybullet.changeDynamics(body, self._joint['caster_joint'], lateralFriction=0.0,
+                                    rollingFriction=0.0, spinningFriction=0.0,
+                                    linearDamping=0.0, angularDamping=0.0, physicsClientId=cid)
+        self._apply()
+
+    def _apply(self):
+        pybullet.setJointMotorControlArray(
+            self.body_id, self._wheels, pybullet.VELOCITY_CONTROL,
+            targetVelocities=list(self._command_radps),
+            forces=[self.params.wheel_motor_torque_nm] * len(self._wheels),
+            physicsClientId=self._cid)
+
+    # ---------------------------------------------------------------- commands
+    def _check_radps(self, name, value):
+        if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                or not math.isfinite(value):
+            raise InvalidCommandError(f'{name} = {value!r} rad/s: must be a finite number')
+        limit = self.params.max_wheel_speed_radps
+        if abs(value) > limit:
+            raise InvalidCommandError(
+                f'{name} = {value!r} rad/s: outside [-{limit:g}, {limit:g}] rad/s '
+                '(max_wheel_speed)')
+        return float(value)
+
+    def set_wheel_velocities(self, left_radps, right_radps):
+        """
+        Command the left and right wheel speeds (every wheel of a side gets its side's value).
+
+        :param left_radps: left wheel angular speed [rad/s], positive = forward.
+        :param right_radps: right wheel angular speed [rad/s], positive = forward.
+        :raises InvalidCommandError: for a non-finite value or |value| > max_wheel_speed; the
+            command in force is then unchanged (no clamping at this API).
+        """
+        left = self._check_radps('left_radps', left_radps)
+        right = self._check_radps('right_radps', right_radps)
+        command = [0.0] * len(self._wheels)
+        for i in self._left:
+            command[i] = left
+        for i in self._right:
+            command[i] = right
+        self._command_radps = tuple(command)
+        self._apply()
+
+    def set_joint_velocities(self, velocities_radps):
+        """
+        Command every driven wheel joint, in ``wheel_joints`` order.
+
+        :param velocities_radps: one angular speed per joint [rad/s].
+        :raises InvalidCommandError: for a wrong length, a non-finite value or |value| >
+            max_wheel_speed; the command in force is then unchanged.
+        """
+        values = list(velocities_radps)
+        if len(values) != len(self._wheels):
+            raise InvalidCommandError(
+                f'{len(values)} wheel velocities given, {len(self._wheels)} expected '
+                f'({", ".join(self.wheel_joints)})')
+        checked = tuple(self._check_radps(name, value)
+                        for name, value in zip(self.wheel_joints, values))
+        self._command_radps = checked
+        self._apply()
+
+    @property
+    def command_radps(self):
+        """The wheel speeds in force, in ``wheel_joints`` order [rad/s]."""
+        return self._command_radps
+
+    # ---------------------------------------------------------------- measurement
+    def read(self):
+        """Return a RobotReading of the driven wheels."""
+        states = pybullet.getJointStates(self.body_id, self._wheels, physicsClientId=self._cid)
+        positions = tuple(s[0] for s in states)
+        velocities = tuple(s[1] for s in states)
+        left = sum(velocities[i] for i in self._left) / len(self._left)
+        right = sum(velocities[i] for i in self._right) / len(self._right)
+        return RobotReading(positions, velocities, left, right)
+
+    def joint_states(self):
+        """
+        Return the driven wheel joints for sensor_msgs/JointState.
+
+        :return: (names, positions [rad], velocities [rad/s]) as tuples.
+        """
+        reading = self.read()
+        return self.wheel_joints, reading.wheel_position_rad, reading.wheel_velocity_radps
+
+    def pose(self):
+        """Ground-truth pose of base_link in the world: (x, y, z [m], qx, qy, qz, qw)."""
+        com_pos, com_orn = pybullet.getBasePositionAndOrientation(self.body_id,
+                                                                  physicsClientId=self._cid)
+        pos, orn = pybullet.multiplyTransforms(com_pos, com_orn, *self._com_to_link)
+        return tuple(pos) + tuple(orn)
+
+    def yaw_rad(self):
+        """Ground-truth heading of base_link [rad] (REP 103)."""
+        _, _, _, qx, qy, qz, qw = self.pose()
+        return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+
+    def velocity(self):
+        """
+        Ground-truth velocity of base_link in the world frame.
+
+        :return: ((vx, vy, vz) [m/s], (wx, wy, wz) [rad/s]).
+        """
+        cid = self._cid
+        com_pos, _ = pybullet.getBasePositionAndOrientation(self.body_id, physicsClientId=cid)
+        linear, angular = pybullet.getBaseVelocity(self.body_id, physicsClientId=cid)
+        pose = self.pose()
+        rx, ry, rz = (pose[0] - com_pos[0], pose[1] - com_pos[1], pose[2] - com_pos[2])
+        wx, wy, wz = angular
+        return ((linear[0] + wy * rz - wz * ry, linear[1] + wz * rx - wx * rz,
+                 linear[2] + wx * ry - wy * rx), tuple(angular))
+
+    def body_twist(self):
+        """
+        Ground-truth twist of base_link in base_link axes.
+
+        :return: ((vx, vy, vz) [m/s], (wx, wy, wz) [rad/s]), forward speed = vx, yaw rate = wz.
+        """
+        linear, angular = self.velocity()
+        matrix = pybullet.getMatrixFromQuaternion(self.pose()[3:], physicsClientId=self._cid)
+        # columns of the rotation matrix are the body axes in the world frame
+        axes = [(matrix[0 + c], matrix[3 + c], matrix[6 + c]) for c in range(3)]
+        return (tuple(sum(a * b for a, b in zip(axis, linear)) for axis in axes),
+                tuple(sum(a * b for a, b in zip(axis, angular)) for axis in axes))
+
+    def joint_index(self, name):
+        """PyBullet index of a joint by its URDF name."""
+        try:
+            return self._joint[name]
+        except KeyError:
+            raise InvalidParameterError(
+                f'unknown joint {name!r}; joints: {", ".join(sorted(self._joint))}') from None
+
+    def destroy(self):
+        """Remove the body from the physics (World.remove calls this)."""
+        if self.body_id is not None and not self.world.closed:
+            pybullet.removeBody(self.body_id, physicsClientId=self._cid)
+        self.body_id = None
