@@ -176,6 +176,7 @@ class CarLogic:
         self._engine = make_engine(params)
         self._car_type = params.car_type
         self._driven = tuple(params.driven_wheels)
+        self._driven_mode = None       # wheel modes last written into the Actuation
         radius = np.array([params.front_tire_radius_m, params.front_tire_radius_m,
                            params.rear_tire_radius_m, params.rear_tire_radius_m])
         # Car.proto driven-wheel motors: acceleration (100/3.6)/time0To100/r, maxVelocity v/r.
@@ -225,7 +226,6 @@ class CarLogic:
         self._cruise_target = np.zeros(WHEEL_COUNT)
         self._ramp = np.zeros(WHEEL_COUNT)
         self._torque = np.zeros(WHEEL_COUNT)
-        self._ramp_limit = np.zeros(WHEEL_COUNT)
 
         self._actuation = Actuation()
         self._write_actuation(0.0)
@@ -395,8 +395,12 @@ class CarLogic:
         :return: the CarLogic's one Actuation object, refilled on every call.
         :raises InvalidCommandError: non-finite time or non-positive dt.
         """
-        now_s = _number('time', now_s)
-        dt_s = _number('time step', dt_s)
+        if type(now_s) is not float or type(dt_s) is not float:
+            now_s = _number('time', now_s)
+            dt_s = _number('time step', dt_s)
+        elif not (math.isfinite(now_s) and math.isfinite(dt_s)):
+            _number('time', now_s)
+            _number('time step', dt_s)
         if dt_s <= 0.0:
             raise InvalidCommandError(f'time step = {dt_s!r} s must be > 0 s')
         self._time_s = now_s
@@ -456,24 +460,32 @@ class CarLogic:
                                         self._max_steer)
         actuation.steer_left_rad = min(max(self._left_angle_rad, self._min_steer),
                                        self._max_steer)
+        # Per-wheel writes in plain Python: numpy calls on 4-element arrays cost more than the
+        # arithmetic (benchmarks/bench_step.py).
         modes = actuation.wheel_mode
         velocity = actuation.wheel_velocity_radps
         torque = actuation.wheel_torque_nm
-        velocity.fill(0.0)
-        torque.fill(0.0)
-        for wheel in range(WHEEL_COUNT):
-            modes[wheel] = WheelMode.FREE
-        if self._mode == ControlMode.TORQUE:
+        driven_mode = WheelMode.TORQUE if self._mode == ControlMode.TORQUE else WheelMode.VELOCITY
+        if self._driven_mode != driven_mode:
+            self._driven_mode = driven_mode
+            velocity.fill(0.0)
+            torque.fill(0.0)
+            for wheel in range(WHEEL_COUNT):
+                modes[wheel] = driven_mode if wheel in self._driven else WheelMode.FREE
+        if driven_mode == WheelMode.TORQUE:
+            source = self._torque
             for wheel in self._driven:
-                modes[wheel] = WheelMode.TORQUE
-                torque[wheel] = self._torque[wheel]
+                torque[wheel] = source[wheel]
         else:
+            ramp = self._ramp
             if self._mode == ControlMode.SPEED:
-                np.multiply(self._wheel_acceleration_radps2, dt_s, out=self._ramp_limit)
-                ramp_toward(self._ramp, self._cruise_target, self._ramp_limit, out=self._ramp)
+                target = self._cruise_target
+                limits = self._wheel_acceleration_radps2
+                for wheel in self._driven:
+                    ramp[wheel] = ramp_toward(float(ramp[wheel]), float(target[wheel]),
+                                              float(limits[wheel]) * dt_s)
             for wheel in self._driven:
-                modes[wheel] = WheelMode.VELOCITY
-                velocity[wheel] = self._ramp[wheel]
+                velocity[wheel] = ramp[wheel]
         actuation.brake_torque_nm.fill(self._brake * self._params.brake_coefficient_nm)
         return actuation
 

@@ -191,6 +191,9 @@ def ramp_toward(current, target, max_delta, out=None):
     :param out: optional array receiving the result (may be ``current``).
     :return: the new value(s).
     """
+    if type(current) is float and out is None:
+        # Scalar fast path: the car logic calls this once per driven wheel every step.
+        return current + max(-max_delta, min(max_delta, target - current))
     if out is None:
         return np.asarray(current) + np.clip(np.subtract(target, current),
                                              np.negative(max_delta), max_delta)
@@ -227,8 +230,12 @@ def max_signed_acceleration(speed_radps, previous_speed_radps, dt_s):
     :return: signed acceleration [rad/s²] (the first wheel wins a tie, as in driver.c).
     """
     best = 0.0
-    for now, before in zip(speed_radps, previous_speed_radps):
-        acceleration = (float(now) - float(before)) / dt_s
+    for now, before in zip(speed_radps.tolist() if hasattr(speed_radps, 'tolist')
+                           else speed_radps,
+                           previous_speed_radps.tolist() if hasattr(previous_speed_radps,
+                                                                    'tolist')
+                           else previous_speed_radps):
+        acceleration = (now - before) / dt_s
         if abs(acceleration) > abs(best):
             best = acceleration
     return best

@@ -177,9 +177,9 @@ class Driver:
         :param duration_ms: a multiple of the basic time step [ms]; one basic step when None.
         :return: 0, or -1 once the simulation has ended (closed, or ``duration_s`` reached).
         """
-        basic_ms = self.getBasicTimeStep()
         count = 1
         if duration_ms is not None:
+            basic_ms = self.getBasicTimeStep()
             if not _is_number(duration_ms) or duration_ms < 0:
                 raise ValueError(f'step({duration_ms!r}): the duration must be a number >= 0 ms')
             count = duration_ms / basic_ms
@@ -187,14 +187,17 @@ class Driver:
                 raise ValueError(f'step({duration_ms!r}): the duration must be a multiple of '
                                  f'the basic time step ({basic_ms:g} ms)')
             count = max(1, int(round(count)))
-        if self.world.closed or self._ended():
+        world = self.world
+        if world.closed or self._ended():
             return -1
+        request_step = self._sync.request_step
         for _ in range(count):
-            self._sync.request_step(self.world, self)
+            request_step(world, self)
         return -1 if self._ended() else 0
 
     def _ended(self):
-        return self._duration_s is not None and self.world.time_s >= self._duration_s - 1e-9
+        duration_s = self._duration_s
+        return duration_s is not None and self.world.time_s >= duration_s - 1e-9
 
     def getBasicTimeStep(self):
         """Return the basic time step [ms] (a float, as in Webots)."""
