@@ -26,7 +26,7 @@ import math
 from typing import NamedTuple
 
 from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
-from vehicle_sim.core.params import ParamSpec
+from vehicle_sim.core.params import ParamSpec, validate_table
 from vehicle_sim.core.watchdog import DEFAULT_TIMEOUT_ACTION, DEFAULT_TIMEOUT_S, TIMEOUT_ACTIONS
 
 KINEMATIC_MODES = ('kinematic', 'literal')
@@ -466,7 +466,6 @@ BRIDGE_PARAM_SPECS = (
                   'last command'),
 )
 
-BRIDGE_SPEC_BY_KEY = {spec.key: spec for spec in BRIDGE_PARAM_SPECS}
 
 
 @dataclass(frozen=True)
@@ -489,30 +488,6 @@ class BridgeParams:
     timeout_action: str
 
 
-def _check_bridge_value(source, spec, value):
-    def fail(reason):
-        raise InvalidParameterError(f'{source}: parameter {spec.key!r} = {value!r}: {reason}')
-
-    if spec.kind == 'bool':
-        if not isinstance(value, bool):
-            fail('must be true or false')
-        return value
-    if spec.kind == 'enum':
-        if value not in spec.choices:
-            fail(f'must be one of {", ".join(spec.choices)}')
-        return value
-    if not _is_number(value) or not math.isfinite(value):
-        fail(f'must be a finite number [{spec.unit}]')
-    value = float(value)
-    if spec.gt is not None and not value > spec.gt:
-        fail(f'must be > {spec.gt:g} {spec.unit}')
-    if spec.ge is not None and not value >= spec.ge:
-        fail(f'must be >= {spec.ge:g} {spec.unit}')
-    if spec.le is not None and not value <= spec.le:
-        fail(f'must be <= {spec.le:g} {spec.unit}')
-    return value
-
-
 def default_bridge_dict():
     """Return the bridge defaults keyed by parameter name."""
     return {spec.key: spec.default for spec in BRIDGE_PARAM_SPECS}
@@ -528,16 +503,9 @@ def bridge_params_from_dict(data=None, source='bridge parameters'):
     :raises InvalidParameterError: naming the parameter, its value and the allowed range, for an
         unknown name, a wrong type or an out-of-range value (nothing is clamped).
     """
-    data = {} if data is None else data
-    for key, value in data.items():
-        if key not in BRIDGE_SPEC_BY_KEY:
-            raise InvalidParameterError(
-                f'{source}: unknown parameter {key!r} (value {value!r}); valid: '
-                + ', '.join(sorted(BRIDGE_SPEC_BY_KEY)))
-    merged = default_bridge_dict()
-    merged.update(data)
-    return BridgeParams(**{spec.attr: _check_bridge_value(source, spec, merged[spec.key])
-                           for spec in BRIDGE_PARAM_SPECS})
+    values = validate_table(BRIDGE_PARAM_SPECS, {} if data is None else data, source,
+                            default_bridge_dict(), 'bridge parameters', 'parameter')
+    return BridgeParams(**values)
 
 
 DEFAULT_BRIDGE_PARAMS = bridge_params_from_dict(source='bridge defaults')

@@ -232,8 +232,8 @@ def _is_number(value):
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
-def _fail(source, key, value, reason):
-    raise InvalidParameterError(f'{source}: field {key!r} = {value!r}: {reason}')
+def _fail(source, key, value, reason, what='field'):
+    raise InvalidParameterError(f'{source}: {what} {key!r} = {value!r}: {reason}')
 
 
 def _check_float(source, spec, value):
@@ -262,6 +262,13 @@ def _check_floats(source, spec, value, length=None):
     return tuple(result)
 
 
+def _check_vec3(source, spec, value):
+    vector = _check_floats(source, spec, value, 3)
+    if spec.gt is not None and min(vector) <= spec.gt:
+        _fail(source, spec.key, value, f'every entry must be > {spec.gt:g}')
+    return vector
+
+
 def _check_boxes(source, spec, value):
     if not isinstance(value, (list, tuple)) or not value:
         _fail(source, spec.key, value, 'must be a non-empty list of boxes')
@@ -285,7 +292,7 @@ _CHECKERS: dict = {
     'float': _check_float,
     'floats': lambda source, spec, value: _check_floats(source, spec, value, spec.length),
     'float_list': lambda source, spec, value: _check_floats(source, spec, value),
-    'vec3': lambda source, spec, value: _check_floats(source, spec, value, 3),
+    'vec3': lambda source, spec, value: _check_vec3(source, spec, value),
     'inertia': lambda source, spec, value: _check_floats(source, spec, value, 6),
     'boxes': _check_boxes,
 }
@@ -296,6 +303,10 @@ def _check_value(source, spec, value):
         if spec.optional:
             return None
         _fail(source, spec.key, value, 'must not be null')
+    if spec.kind == 'bool':
+        if not isinstance(value, bool):
+            _fail(source, spec.key, value, 'must be true or false')
+        return value
     if spec.kind in ('str', 'enum'):
         if not isinstance(value, str) or not value:
             _fail(source, spec.key, value, 'must be a non-empty string')
@@ -330,6 +341,38 @@ def _check_relations(source, values):
             _fail(source, 'inertiaMatrix', list(inertia), 'must be positive definite')
 
 
+def validate_table(specs, data, source, defaults, what='parameters', key_word='field'):
+    """
+    Validate a mapping against a ParamSpec table: the one validator of every parameter table.
+
+    :param specs: the ParamSpec rows.
+    :param data: mapping of keys to values; missing keys take ``defaults``.
+    :param source: file or node name quoted in error messages.
+    :param defaults: mapping of every key to its default.
+    :param what: what ``data`` is, for the error on a non-mapping ('a car preset', ...).
+    :param key_word: how errors name a key ('field', 'parameter').
+    :return: {attribute name: validated value} for every row.
+    :raises InvalidParameterError: naming source, key and value for an unknown key, a wrong
+        type or an impossible value.
+    """
+    if not isinstance(data, dict):
+        raise InvalidParameterError(f'{source}: {what} must be a mapping, got {data!r}')
+    by_key = {spec.key: spec for spec in specs}
+    for key, value in data.items():
+        if key not in by_key:
+            raise InvalidParameterError(
+                f'{source}: unknown {key_word} {key!r} (value {value!r}); valid {key_word}s: '
+                + ', '.join(sorted(by_key)))
+    merged = dict(defaults)
+    merged.update(data)
+    try:
+        return {spec.attr: _check_value(source, spec, merged[spec.key]) for spec in specs}
+    except InvalidParameterError as error:
+        if key_word == 'field':
+            raise
+        raise InvalidParameterError(str(error).replace(': field ', f': {key_word} ', 1)) from None
+
+
 def car_params_from_dict(data, source='<dict>', base=None):
     """
     Validate a preset dictionary and build CarParams.
@@ -341,17 +384,8 @@ def car_params_from_dict(data, source='<dict>', base=None):
     :raises InvalidParameterError: naming the source, field and value, for an unknown field, a
         wrong type or an impossible value.
     """
-    if not isinstance(data, dict):
-        raise InvalidParameterError(f'{source}: a car preset must be a mapping, got {data!r}')
-    for key, value in data.items():
-        if key not in SPEC_BY_KEY:
-            raise InvalidParameterError(
-                f'{source}: unknown field {key!r} (value {value!r}); valid fields: '
-                + ', '.join(sorted(SPEC_BY_KEY)))
-    merged = dict(default_car_dict() if base is None else base)
-    merged.update(data)
-    values = {spec.attr: _check_value(source, spec, merged[spec.key])
-              for spec in CAR_PARAM_SPECS}
+    values = validate_table(CAR_PARAM_SPECS, data, source,
+                            default_car_dict() if base is None else base, 'a car preset')
     _check_relations(source, values)
     return CarParams(**values)
 

@@ -23,11 +23,10 @@ driven axle (caster) or of the wheel rectangle (skid steer).
 """
 
 from dataclasses import dataclass
-import math
 from typing import Tuple
 
 from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.params import ParamSpec
+from vehicle_sim.core.params import ParamSpec, validate_table
 
 DRIVE_TYPES = ('caster', 'skid_steer')
 
@@ -46,7 +45,7 @@ ROBOT_PARAM_SPECS = (
               gt=0.0),
     ParamSpec('mass', 'mass_kg', 'float', 10.0, 'kg', 'body mass without the wheels', gt=0.0),
     ParamSpec('body_size', 'body_size_m', 'vec3', (0.5, 0.3, 0.1), 'm',
-              'body box [length, width, height]; centred on the axle height'),
+              'body box [length, width, height]; centred on the axle height', gt=0.0),
     ParamSpec('body_offset', 'body_offset_m', 'float', -0.1, 'm',
               'x of the body box centre relative to base_link (negative = behind the axle)'),
     ParamSpec('max_wheel_speed', 'max_wheel_speed_radps', 'float', 15.0, 'rad/s',
@@ -61,7 +60,6 @@ ROBOT_PARAM_SPECS = (
               'x of the caster contact relative to base_link (caster drive only; != 0)'),
 )
 
-ROBOT_SPEC_BY_KEY = {spec.key: spec for spec in ROBOT_PARAM_SPECS}
 
 
 @dataclass(frozen=True)
@@ -107,36 +105,8 @@ def default_robot_dict():
     return {spec.key: spec.default for spec in ROBOT_PARAM_SPECS}
 
 
-def _is_number(value):
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
-
-
 def _fail(source, key, value, reason):
     raise InvalidParameterError(f'{source}: field {key!r} = {value!r}: {reason}')
-
-
-def _check_value(source, spec, value):
-    if spec.kind in ('str', 'enum'):
-        if not isinstance(value, str) or not value:
-            _fail(source, spec.key, value, 'must be a non-empty string')
-        if spec.kind == 'enum' and value not in spec.choices:
-            _fail(source, spec.key, value, f'must be one of {", ".join(spec.choices)}')
-        return value
-    if spec.kind == 'vec3':
-        if not isinstance(value, (list, tuple)) or len(value) != 3 or not all(
-                _is_number(v) and math.isfinite(v) and v > 0.0 for v in value):
-            _fail(source, spec.key, value, f'must be a list of 3 finite numbers > 0 [{spec.unit}]')
-        return tuple(float(v) for v in value)
-    if not _is_number(value):
-        _fail(source, spec.key, value, f'must be a number [{spec.unit}]')
-    value = float(value)
-    if not math.isfinite(value):
-        _fail(source, spec.key, value, 'must be finite')
-    if spec.gt is not None and not value > spec.gt:
-        _fail(source, spec.key, value, f'must be > {spec.gt:g} {spec.unit}'.rstrip())
-    if spec.ge is not None and not value >= spec.ge:
-        _fail(source, spec.key, value, f'must be >= {spec.ge:g} {spec.unit}'.rstrip())
-    return value
 
 
 def _check_relations(source, values):
@@ -175,17 +145,8 @@ def robot_params_from_dict(data, source='<dict>'):
     :raises InvalidParameterError: naming the source, field and value, for an unknown field, a
         wrong type or an impossible value (nothing is clamped).
     """
-    if not isinstance(data, dict):
-        raise InvalidParameterError(f'{source}: a robot preset must be a mapping, got {data!r}')
-    for key, value in data.items():
-        if key not in ROBOT_SPEC_BY_KEY:
-            raise InvalidParameterError(
-                f'{source}: unknown field {key!r} (value {value!r}); valid fields: '
-                + ', '.join(sorted(ROBOT_SPEC_BY_KEY)))
-    merged = default_robot_dict()
-    merged.update(data)
-    values = {spec.attr: _check_value(source, spec, merged[spec.key])
-              for spec in ROBOT_PARAM_SPECS}
+    values = validate_table(ROBOT_PARAM_SPECS, data, source, default_robot_dict(),
+                            'a robot preset')
     _check_relations(source, values)
     return RobotParams(**values)
 

@@ -29,9 +29,6 @@ Mappings (derivations in docs/physics.md):
   PyBullet's joint damping (-c * omega each sub-step).
 """
 
-import math
-import os
-import tempfile
 
 import pybullet
 
@@ -47,21 +44,6 @@ STEER_P_PER_S = 10.0
 SUSPENSION_FORCE_LIMIT_G = 20.0
 WHEEL_FRICTION = 1.0     # multiplied with the ground's friction by Bullet
 CHASSIS_FRICTION = 0.5
-# Spawn clearance [m]: the tyres start this far above the ground and touch down at once.
-SPAWN_CLEARANCE_M = 0.0
-
-
-def _pose_from(position):
-    """(x, y, yaw) or (x, y, z, qx, qy, qz, qw) -> position, orientation of base_link."""
-    values = tuple(float(v) for v in position)
-    if len(values) == 3:
-        x, y, yaw = values
-        return (x, y, SPAWN_CLEARANCE_M), (0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
-    if len(values) == 7:
-        return values[:3], values[3:]
-    raise ValueError(f'position {position!r}: give (x, y, yaw) or (x, y, z, qx, qy, qz, qw)')
-
-
 def sprung_mass_per_corner_kg(params):
     """
     Return the reference mass of each suspension corner, front and rear [kg].
@@ -96,18 +78,7 @@ class CarBody:
         self.name = name or params.model
         self.urdf = car_urdf(params, name=self.name, wheel_shape=wheel_shape)
         cid = self._cid = world.client_id
-        base_pos, base_orn = _pose_from(position)
-        with tempfile.TemporaryDirectory(prefix='vehicle_sim_') as folder:
-            path = os.path.join(folder, 'car.urdf')
-            with open(path, 'w', encoding='utf-8') as stream:
-                stream.write(self.urdf)
-            self.body_id = pybullet.loadURDF(
-                path, base_pos, base_orn, useFixedBase=False,
-                flags=pybullet.URDF_USE_INERTIA_FROM_FILE, physicsClientId=cid)
-        joints = {}
-        for index in range(pybullet.getNumJoints(self.body_id, physicsClientId=cid)):
-            info = pybullet.getJointInfo(self.body_id, index, physicsClientId=cid)
-            joints[info[1].decode()] = index
+        self.body_id, joints = world.load_urdf(self.urdf, position)
         self._joint = joints
         names = joint_names()
         self._wheel = [joints[n] for n in names['wheel']]

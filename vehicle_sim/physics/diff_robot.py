@@ -35,8 +35,6 @@ contact wanders across the tread); the visuals are cylinders.
 
 from dataclasses import dataclass
 import math
-import os
-import tempfile
 from typing import Tuple
 from xml.sax.saxutils import escape
 
@@ -164,16 +162,6 @@ def robot_urdf(params, name=None, prefix=''):
     return ''.join(parts)
 
 
-def _pose_from(position):
-    values = tuple(float(v) for v in position)
-    if len(values) == 3:
-        x, y, yaw = values
-        return (x, y, SPAWN_CLEARANCE_M), (0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
-    if len(values) == 7:
-        return values[:3], values[3:]
-    raise ValueError(f'position {position!r}: give (x, y, yaw) or (x, y, z, qx, qy, qz, qw)')
-
-
 @dataclass(frozen=True)
 class RobotReading:
     """
@@ -210,18 +198,7 @@ class DiffRobotBody:
         self.name = name or params.model
         self.urdf = robot_urdf(params, name=self.name)
         cid = self._cid = world.client_id
-        base_pos, base_orn = _pose_from(position)
-        with tempfile.TemporaryDirectory(prefix='vehicle_sim_') as folder:
-            path = os.path.join(folder, 'robot.urdf')
-            with open(path, 'w', encoding='utf-8') as stream:
-                stream.write(self.urdf)
-            self.body_id = pybullet.loadURDF(
-                path, base_pos, base_orn, useFixedBase=False,
-                flags=pybullet.URDF_USE_INERTIA_FROM_FILE, physicsClientId=cid)
-        joints = {}
-        for index in range(pybullet.getNumJoints(self.body_id, physicsClientId=cid)):
-            info = pybullet.getJointInfo(self.body_id, index, physicsClientId=cid)
-            joints[info[1].decode()] = index
+        self.body_id, joints = world.load_urdf(self.urdf, position, SPAWN_CLEARANCE_M)
         self._joint = joints
         self.wheel_joints = params.wheel_joints
         self._wheels = [joints[n] for n in self.wheel_joints]

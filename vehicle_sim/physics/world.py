@@ -24,8 +24,10 @@ docs/physics.md.
 """
 
 from contextlib import contextmanager
+import math
 import os
 import sys
+import tempfile
 
 import pybullet
 
@@ -39,6 +41,25 @@ GROUND_SIZE_M = 1000.0
 # Constraint force mixing of every constraint row; a small value keeps the direct solver's
 # matrix regular (redundant contact rows) without visible softness.
 GLOBAL_CFM = 1.0e-6
+
+
+
+def pose_from(position, clearance_m=0.0):
+    """
+    Turn a spawn position into a base pose.
+
+    :param position: (x [m], y [m], yaw [rad]) with base_link on the ground, or the full
+        (x, y, z [m], qx, qy, qz, qw) in the world frame.
+    :param clearance_m: height of base_link above the ground for the (x, y, yaw) form [m].
+    :return: (position, orientation quaternion) for PyBullet.
+    """
+    values = tuple(float(v) for v in position)
+    if len(values) == 3:
+        x, y, yaw = values
+        return (x, y, clearance_m), (0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
+    if len(values) == 7:
+        return values[:3], values[3:]
+    raise ValueError(f'position {position!r}: give (x, y, yaw) or (x, y, z, qx, qy, qz, qw)')
 
 
 @contextmanager
@@ -154,6 +175,29 @@ class World:
         destroy = getattr(body, 'destroy', None)
         if destroy is not None:
             destroy()
+
+    def load_urdf(self, urdf, position, clearance_m=0.0):
+        """
+        Load a URDF string into this world (the only place bodies are loaded).
+
+        :param urdf: the URDF text (loadURDF needs a file: a temporary one is used).
+        :param position: base pose, see :func:`pose_from`.
+        :param clearance_m: spawn height of base_link for an (x, y, yaw) position [m].
+        :return: (body id, {joint name: joint index}); joints are looked up by name only.
+        """
+        base_position, base_orientation = pose_from(position, clearance_m)
+        with tempfile.TemporaryDirectory(prefix='vehicle_sim_') as folder:
+            path = os.path.join(folder, 'body.urdf')
+            with open(path, 'w', encoding='utf-8') as stream:
+                stream.write(urdf)
+            body_id = pybullet.loadURDF(
+                path, base_position, base_orientation, useFixedBase=False,
+                flags=pybullet.URDF_USE_INERTIA_FROM_FILE, physicsClientId=self.client_id)
+        joints = {}
+        for index in range(pybullet.getNumJoints(body_id, physicsClientId=self.client_id)):
+            info = pybullet.getJointInfo(body_id, index, physicsClientId=self.client_id)
+            joints[info[1].decode()] = index
+        return body_id, joints
 
     def _rebuild_hooks(self):
         self._pre_step = [b.pre_step for b in self._bodies if hasattr(b, 'pre_step')]
