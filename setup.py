@@ -54,6 +54,7 @@ setup(
             'automobile = vehicle_sim.ros.automobile_node:main',
             'ackermann_to_differential = vehicle_sim.ros.bridge_node:main',
             'diff_robot = vehicle_sim.ros.diff_robot_node:main',
+            'autoware_automobile = vehicle_sim.ros.autoware_automobile_node:main',
         ],
         'pytest11': ['vehicle_sim = vehicle_sim.testing'],
     },

@@ -140,9 +140,12 @@ def test_run_for_one_second_without_status_exits_0():
     assert result.stdout == ''
 
 
-def test_demo_is_reserved_and_exits_2():
-    result = vehicle_sim('demo')
-    assert result.returncode == 2 and 'not available yet' in result.stderr
+def test_demo_writes_a_png_where_asked(tmp_path):
+    out = tmp_path / 'demo.png'
+    result = vehicle_sim('demo', '--short', '--out', str(out))
+    assert result.returncode == 0, result.stderr
+    assert 'wrote' in result.stdout
+    assert out.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'
 
 
 def test_status_line_shows_time_speed_rpm_gear_mode_and_indicator():

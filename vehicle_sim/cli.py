@@ -23,7 +23,7 @@ Subcommands (``vehicle-sim <command> --help`` for details)::
     call SERVICE VALUE  call a service (like ``ros2 service call``)
     param get|set|list  the rcl_interfaces parameter services of a node (like ``ros2 param``)
     export-interfaces   write the vehicle_msgs ament package for a ROS workspace
-    demo                reserved
+    demo                run the end-to-end scenario and write a PNG of the paths
 
 Everything talks over the embedded Cyclone DDS transport, with ``ROS_DOMAIN_ID`` and
 ``ROS_AUTOMATIC_DISCOVERY_RANGE`` honoured like a ROS 2 node does (reference/ros2_wire.md).
@@ -540,8 +540,9 @@ def cmd_export(args) -> int:
 
 
 def cmd_demo(args) -> int:
-    raise CliError('`vehicle-sim demo` is not available yet; use `vehicle-sim run` and drive '
-                   'the car with `vehicle-sim call` (see docs/cli.md)', EXIT_USAGE)
+    from vehicle_sim import demo
+    demo.run_demo(args.out, args.car, args.short)
+    return EXIT_OK
 
 
 # --------------------------------------------------------------------------------------------
@@ -737,7 +738,10 @@ def build_parser() -> argparse.ArgumentParser:
     export.add_argument('dest_dir', metavar='DIR', help='e.g. <workspace>/src')
     export.set_defaults(func=cmd_export)
 
-    demo = sub.add_parser('demo', help='(not available yet)')
+    demo = sub.add_parser('demo', help='run the end-to-end scenario, write a PNG '
+                                       '(docs/end_to_end.md)')
+    from vehicle_sim.demo import add_arguments as add_demo_arguments
+    add_demo_arguments(demo)
     demo.set_defaults(func=cmd_demo)
     return parser
 

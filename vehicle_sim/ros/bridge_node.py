@@ -380,7 +380,7 @@ class AckermannToDifferentialNode:
             if values[switch]:
                 self._outputs[spec] = node.create_publisher(spec.ros_type, spec.name, spec.qos)
         self._input = bi.BRIDGE_INPUTS[self.input_type]
-        self._read_command = _COMMAND_READERS[self.input_type]
+        self._read_command = COMMAND_READERS[self.input_type]
         self._subs = [node.create_subscription(self._input.ros_type, self._input.name,
                                                self._on_command, self._input.qos)]
         self._status = {}
@@ -582,7 +582,7 @@ class AckermannToDifferentialNode:
 
 
 # input_type -> message -> (speed [m/s], steering [rad] or yaw rate [rad/s])
-_COMMAND_READERS = {
+COMMAND_READERS = {
     bi.CONTROL: lambda m: (m.longitudinal.velocity, m.lateral.steering_tire_angle),
     bi.AUTO_ACKERMANN: lambda m: (m.longitudinal.speed, m.lateral.steering_tire_angle),
     bi.ACKERMANN_DRIVE: lambda m: (m.drive.speed, m.drive.steering_angle),

@@ -1,0 +1,257 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The autoware_automobile node: Autoware commands drive a simulated car, reports come from it.
+
+In-process tests build the node on the embedded transport in synchronous mode and step the
+world themselves (sim time, deterministic); one cross-process test runs the node as a
+subprocess and talks to it over DDS like Autoware would. Signs: Autoware + left, Webots + right.
+"""
+
+import math
+import os
+import subprocess
+import sys
+
+import pytest
+
+from vehicle_sim.core.autoware_car import (
+    car_command,
+    CarLimits,
+    DRIVE,
+    NEUTRAL,
+    PARK,
+    REVERSE,
+)
+from vehicle_sim.core.errors import InvalidCommandError
+from vehicle_sim.core.units import mps_to_kmh
+from vehicle_sim.ros import bridge_interfaces as bi
+from vehicle_sim.ros.bridge_node import (
+    DISABLE,
+    ENABLE_LEFT,
+    GEAR_DRIVE,
+    GEAR_NEUTRAL,
+    GEAR_PARK,
+    GEAR_REVERSE,
+    HAZARD_ENABLE,
+    MODE_AUTONOMOUS,
+    MODE_MANUAL,
+)
+
+REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+WAIT_S = 30.0
+CAR = 'ToyotaPrius'          # wheelbase 2.8 m, steering limits ±1 rad (docs/end_to_end.md)
+LIMITS = CarLimits(-0.5, 0.6, 180.0, 2.8)
+
+
+# --------------------------------------------------------------------------------------------
+# core mapping
+
+
+def test_car_command_left_tyre_angle_becomes_negative_webots_steering():
+    command = car_command(5.0, 0.2, DRIVE, LIMITS)
+    assert command.steering_angle_rad == -0.2              # + left -> + right
+    assert command.cruising_speed_kmh == pytest.approx(18.0)   # 5 m/s = 18 km/h
+    assert (command.brake_intensity, command.webots_gear, command.coast) == (0.0, 1, False)
+
+
+@pytest.mark.parametrize('action, speed_kmh, brake, gear, coast', [
+    (DRIVE, 18.0, 0.0, 1, False), (REVERSE, -18.0, 0.0, -1, False),
+    (PARK, 0.0, 1.0, 0, False), (NEUTRAL, 0.0, 0.0, 0, True)])
+def test_car_command_gear_gives_direction_whatever_the_velocity_sign(action, speed_kmh, brake,
+                                                                      gear, coast):
+    for velocity in (5.0, -5.0):
+        command = car_command(velocity, 0.0, action, LIMITS)
+        assert command.cruising_speed_kmh == pytest.approx(speed_kmh)
+        assert (command.brake_intensity, command.webots_gear, command.coast) == (brake, gear,
+                                                                                 coast)
+
+
+@pytest.mark.parametrize('speed, steering', [
+    (float('nan'), 0.0), (1.0, math.inf), (1.0, 0.51), (1.0, -0.61), (50.01, 0.0)])
+def test_car_command_beyond_the_limits_is_rejected_not_clamped(speed, steering):
+    # limits in Autoware sign: [-max_webots, -min_webots] = [-0.6, 0.5] rad; top speed 50 m/s
+    with pytest.raises(InvalidCommandError):
+        car_command(speed, steering, DRIVE, LIMITS)
+
+
+# --------------------------------------------------------------------------------------------
+# in-process node
+
+
+@pytest.fixture
+def aw():
+    from vehicle_sim.ros.autoware_automobile_node import AutowareAutomobileNode
+    node = AutowareAutomobileNode([], transport='dds', parameter_overrides={
+        'car_model': CAR, 'synchronous': True, 'publish_period_ms': 100})
+    yield node
+    node.close()
+
+
+def control(node, speed, steering):
+    msg = node.node.msg(bi.CONTROL)()
+    msg.longitudinal.velocity = speed
+    msg.lateral.steering_tire_angle = steering
+    return msg
+
+
+def drive(node, speed, steering, seconds):
+    """Send the command at 50 Hz of sim time for ``seconds`` and step the world."""
+    for step in range(int(round(seconds / 0.01))):
+        if step % 2 == 0:
+            node.handle_command(control(node, speed, steering))
+        node.automobile.step_once()
+
+
+def gear(node, value):
+    node.handle_gear(node.node.msg(bi.GEAR_COMMAND.ros_type)(command=value))
+
+
+def test_node_left_command_turns_the_car_left_at_18_kmh(aw):
+    drive(aw, 5.0, 0.1, 6.0)
+    logic, body = aw.car.logic, aw.car.body
+    assert logic.commanded_steering_angle_rad == pytest.approx(-0.1)   # Webots + right
+    assert logic.current_speed_kmh == pytest.approx(18.0, rel=0.01)
+    assert body.yaw_rate_radps() > 0.0                                # REP 103: left
+    # steady turn: yaw rate ≈ v tan δ / L (low speed, high grip)
+    assert body.yaw_rate_radps() == pytest.approx(5.0 * math.tan(0.1) / 2.8, rel=0.05)
+    reports = aw.status_messages()
+    assert reports[bi.VELOCITY_STATUS].longitudinal_velocity == pytest.approx(5.0, rel=0.01)
+    assert reports[bi.VELOCITY_STATUS].heading_rate > 0.0
+    assert reports[bi.STEERING_STATUS].steering_tire_angle == pytest.approx(0.1, abs=0.005)
+    assert reports[bi.GEAR_STATUS].report == GEAR_DRIVE
+    assert reports[bi.CONTROL_MODE_STATUS].mode == MODE_AUTONOMOUS
+
+
+def test_node_reverse_gear_moves_backwards_and_reports_reverse(aw):
+    gear(aw, GEAR_REVERSE)
+    drive(aw, 2.0, 0.0, 3.0)
+    assert aw.car.body.forward_speed_mps() == pytest.approx(-2.0, rel=0.05)
+    assert aw.car.logic.backwards_lights
+    reports = aw.status_messages()
+    assert reports[bi.GEAR_STATUS].report == GEAR_REVERSE
+    assert reports[bi.VELOCITY_STATUS].longitudinal_velocity < -1.9
+
+
+def test_node_park_stops_the_car_and_holds_it(aw):
+    drive(aw, 3.0, 0.0, 3.0)
+    gear(aw, GEAR_PARK)
+    drive(aw, 3.0, 0.0, 3.0)      # commands keep coming; PARK wins
+    assert abs(aw.car.body.forward_speed_mps()) < 0.01
+    assert aw.car.logic.brake_intensity == 1.0
+    assert aw.status_messages()[bi.GEAR_STATUS].report == GEAR_PARK
+
+
+def test_node_neutral_coasts(aw):
+    drive(aw, 3.0, 0.0, 3.0)
+    gear(aw, GEAR_NEUTRAL)
+    drive(aw, 3.0, 0.0, 1.0)
+    speed = aw.car.body.forward_speed_mps()
+    assert 2.0 < speed < 3.0     # rolling on, slowly losing speed (no drive, no brake)
+    assert aw.status_messages()[bi.GEAR_STATUS].report == GEAR_NEUTRAL
+
+
+@pytest.mark.parametrize('speed, steering', [(float('nan'), 0.0), (3.0, float('nan')),
+                                             (3.0, 1.2), (3.0, -1.2), (60.0, 0.0)])
+def test_node_bad_command_is_rejected_and_the_car_is_unchanged(aw, speed, steering):
+    drive(aw, 3.0, 0.2, 1.0)
+    logic = aw.car.logic
+    before = (logic.commanded_steering_angle_rad, logic.target_cruising_speed_kmh,
+              aw.state.watchdog.last_feed_s)
+    assert aw.handle_command(control(aw, speed, steering)) is None
+    assert aw.rejected == 1
+    assert (logic.commanded_steering_angle_rad, logic.target_cruising_speed_kmh,
+            aw.state.watchdog.last_feed_s) == before
+
+
+def test_node_watchdog_stops_the_car_after_the_timeout_of_sim_time(aw):
+    drive(aw, 3.0, 0.0, 2.0)
+    last_s = aw.state.watchdog.last_feed_s
+    acted_s = None
+    while not aw.state.timed_out:
+        acted_s = aw.now_s()            # the hook runs at the time before the step
+        aw.automobile.step_once()
+    # stale once age > 0.5 s, checked every 10 ms step
+    assert 0.5 < acted_s - last_s <= 0.5 + 0.01 + 1e-9
+    assert aw.car.logic.target_cruising_speed_kmh == 0.0
+
+
+def test_node_lights_and_control_mode_are_reported_from_the_car(aw):
+    turn = aw.node.msg(bi.TURN_INDICATORS_COMMAND.ros_type)
+    hazard = aw.node.msg(bi.HAZARD_LIGHTS_COMMAND.ros_type)
+    aw.handle_turn_indicators(turn(command=ENABLE_LEFT))
+    aw.handle_hazard_lights(hazard(command=HAZARD_ENABLE))
+    assert aw.car.logic.indicator == 2 and aw.car.logic.hazard_flashers   # Webots LEFT = 2
+    reports = aw.status_messages()
+    assert reports[bi.TURN_INDICATORS_STATUS].report == ENABLE_LEFT
+    assert reports[bi.HAZARD_LIGHTS_STATUS].report == HAZARD_ENABLE
+    aw.handle_turn_indicators(turn(command=DISABLE))
+    assert aw.status_messages()[bi.TURN_INDICATORS_STATUS].report == DISABLE
+    drive(aw, 3.0, 0.0, 2.0)
+    assert aw.request_control_mode(MODE_MANUAL)
+    assert aw.car.logic.target_cruising_speed_kmh == 0.0           # one stop on MANUAL
+    aw.handle_command(control(aw, 3.0, 0.0))
+    assert aw.car.logic.target_cruising_speed_kmh == 0.0           # MANUAL: ignored
+    assert aw.status_messages()[bi.CONTROL_MODE_STATUS].mode == MODE_MANUAL
+    assert not aw.request_control_mode(2)
+    assert aw.request_control_mode(MODE_AUTONOMOUS)
+    aw.handle_command(control(aw, 3.0, 0.0))
+    assert aw.car.logic.target_cruising_speed_kmh == pytest.approx(mps_to_kmh(3.0))
+
+
+# --------------------------------------------------------------------------------------------
+# cross-process over DDS
+
+
+def test_node_subprocess_control_over_dds_drives_the_car_and_reports_velocity():
+    from vehicle_sim.transport.dds import DdsNode
+    env = dict(os.environ)
+    env['PYTHONPATH'] = REPO_ROOT + os.pathsep + env.get('PYTHONPATH', '')
+    proc = subprocess.Popen(
+        [sys.executable, '-m', 'vehicle_sim.ros.autoware_automobile_node', '--ros-args',
+         '-p', f'car_model:={CAR}', '-p', 'synchronous:=true', '-p', 'publish_period_ms:=100'],
+        env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    node = DdsNode('autoware_tester', '/aw_test')
+    try:
+        reports = []
+        node.create_subscription(bi.VELOCITY_STATUS.ros_type, bi.VELOCITY_STATUS.name,
+                                 reports.append, bi.VELOCITY_STATUS.qos)
+        publisher = node.create_publisher(bi.CONTROL, bi.BRIDGE_INPUTS[bi.CONTROL].name)
+        step = node.create_client('vehicle_msgs/srv/SetInt', '/robot/time_step')
+        assert node.spin_until(lambda: step.service_is_ready()
+                               and publisher.get_subscription_count() > 0, WAIT_S), \
+            proc.stderr.read() if proc.poll() is not None else 'node did not come up'
+        msg = node.msg(bi.CONTROL)()
+        msg.longitudinal.velocity, msg.lateral.steering_tire_angle = 5.0, 0.1
+        request = node.srv('vehicle_msgs/srv/SetInt').Request(value=100)
+        for _ in range(60):                 # 6 s of sim time, a command every 0.1 s
+            publisher.publish(msg)
+            node.spin_once(0.005)
+            assert step.call(request, timeout_s=WAIT_S).success
+        # /robot/time_step is the composed automobile node's: /automobile/* stays available
+        assert node.spin_until(lambda: any(m.longitudinal_velocity > 4.9 for m in reports),
+                               WAIT_S)
+        last = [m for m in reports if m.longitudinal_velocity > 4.9][-1]
+        print(f'velocity_status over DDS: {last.longitudinal_velocity:.3f} m/s, heading rate '
+              f'{last.heading_rate:.4f} rad/s')
+        assert last.longitudinal_velocity == pytest.approx(5.0, rel=0.01)
+        assert last.heading_rate > 0.0
+    finally:
+        node.shutdown()
+        proc.terminate()
+        try:
+            proc.wait(WAIT_S)
+        except subprocess.TimeoutExpired:
+            proc.kill()

@@ -1,0 +1,331 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The ``autoware_automobile`` node: Autoware's vehicle interface on a simulated Webots car.
+
+The same Autoware inputs as the bridge (``ros/bridge_interfaces.py``: the command of
+``input_type`` on /control/command/control_cmd by default, gear, turn indicators, hazard lights,
+/control/control_mode_request) drive a car, and the same /vehicle/status/* reports come back from
+the car's own data. The node composes an :class:`AutomobileNode` on the same ROS node, so the
+car's /automobile/*, /robot/time_step (synchronous stepping), /clock, odometry and TF stay
+available; the mapping is ``core/autoware_car.py`` (units and signs through ``core/units.py``).
+Behaviour, parameters and the gear table: docs/end_to_end.md.
+
+Run: ``ros2 run vehicle_sim autoware_automobile --ros-args -p car_model:=ToyotaPrius`` or
+``python -m vehicle_sim.ros.autoware_automobile_node --ros-args -p synchronous:=true``.
+"""
+
+import math
+import sys
+
+from vehicle_sim.core.autoware_car import (
+    AutowareCar,
+    car_report,
+    DRIVE,
+    INDICATOR_LEFT,
+    INDICATOR_OFF,
+    INDICATOR_RIGHT,
+    NEUTRAL,
+    PARK,
+    REVERSE,
+    set_car_indicator,
+)
+from vehicle_sim.core.diff_drive import equivalent_steering_rad
+from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
+from vehicle_sim.core.watchdog import TIMEOUT_ACTIONS
+from vehicle_sim.ros import bridge_interfaces as bi
+from vehicle_sim.ros import bridge_node
+from vehicle_sim.ros.automobile_node import AutomobileNode
+from vehicle_sim.ros.bridge_node import (
+    DISABLE,
+    ENABLE_LEFT,
+    ENABLE_RIGHT,
+    GEAR_DRIVE,
+    GEAR_NEUTRAL,
+    GEAR_NONE,
+    GEAR_PARK,
+    GEAR_REVERSE,
+    HAZARD_ENABLE,
+    MODE_AUTONOMOUS,
+    MODE_MANUAL,
+    NO_COMMAND,
+    REVERSE_GEARS,
+    ThrottledWarning,
+    VALID_GEARS,
+)
+from vehicle_sim.transport import create_node, run_node, TransportError
+from vehicle_sim.transport.port import Time
+
+NODE_NAME = 'autoware_automobile'
+# The bridge's input_type -> message -> (speed [m/s], steering [rad] or yaw rate [rad/s]) table,
+# reused from the bridge rather than copied.
+COMMAND_READERS = bridge_node.COMMAND_READERS
+
+# GearCommand -> gear action; every other defined gear (DRIVE_2.., LOW, LOW_2) drives forward.
+_GEAR_ACTION = {GEAR_NEUTRAL: NEUTRAL, GEAR_PARK: PARK}
+_GEAR_ACTION.update({gear: REVERSE for gear in REVERSE_GEARS})
+_GEAR_REPORT = {DRIVE: GEAR_DRIVE, REVERSE: GEAR_REVERSE, PARK: GEAR_PARK, NEUTRAL: GEAR_NEUTRAL}
+_INDICATOR_COMMAND = {DISABLE: INDICATOR_OFF, ENABLE_LEFT: INDICATOR_LEFT,
+                      ENABLE_RIGHT: INDICATOR_RIGHT}
+_INDICATOR_REPORT = {side: value for value, side in _INDICATOR_COMMAND.items()}
+
+
+def _input_type(value):
+    return None if value in bi.BRIDGE_INPUTS else \
+        f'must be one of {", ".join(bi.BRIDGE_INPUTS)}'
+
+
+def _non_negative(value):
+    return None if math.isfinite(value) and value >= 0.0 else 'must be a finite number >= 0'
+
+
+def _positive(value):
+    return None if math.isfinite(value) and value > 0.0 else 'must be a finite number > 0'
+
+
+# name, default, description, validator (the car and world parameters are the automobile node's)
+AUTOWARE_PARAMETERS = (
+    ('input_type', bi.DEFAULT_INPUT_TYPE, 'command type read: ' + ', '.join(bi.BRIDGE_INPUTS),
+     _input_type),
+    ('vehicle_namespace', '', "namespace of the world's vehicle to drive ('' = the default car)",
+     None),
+    ('command_timeout_s', 0.5, 'age of the last accepted command (receipt, sim time) after '
+                               'which timeout_action applies [s] (0 disables)', _non_negative),
+    ('timeout_action', 'brake', 'brake: cruising speed 0 and full brake; coast: neutral; hold: '
+                                'keep the last command',
+     lambda v: None if v in TIMEOUT_ACTIONS else f'must be one of {", ".join(TIMEOUT_ACTIONS)}'),
+    ('status_rate_hz', 30.0, 'rate of the /vehicle/status reports [Hz] (simulated time)',
+     _positive),
+    ('frame_id', 'base_link', 'frame_id of VelocityReport', None),
+)
+
+
+class _StepHook:
+    """World hook: runs after the car's own pre_step (registered later), once per basic step."""
+
+    def __init__(self, callback):
+        self.pre_step = callback
+
+
+class AutowareAutomobileNode:
+    """
+    Autoware's vehicle interface on a simulated car.
+
+    In-process API (tests, runners): :meth:`handle_command` (a message of ``input_type``),
+    :meth:`handle_gear`, :meth:`handle_turn_indicators`, :meth:`handle_hazard_lights`,
+    :meth:`request_control_mode`, :meth:`status_messages`, :attr:`automobile` (the composed
+    AutomobileNode: ``step_once()``, ``step(n)``, ``world``), :attr:`car` (SimulatedCar),
+    :attr:`state` (core AutowareCar), :meth:`close`.
+
+    :param args: command line (``--ros-args`` part applied).
+    :param transport: 'auto', 'rclpy' or 'dds'.
+    :param parameter_overrides: parameter values that win over the command line.
+    """
+
+    def __init__(self, args=None, *, transport=None, parameter_overrides=None):
+        self.node = create_node(NODE_NAME, args=args, transport=transport,
+                                parameter_overrides=parameter_overrides)
+        self.automobile = None
+        try:
+            self.automobile = AutomobileNode(node=self.node)
+            self._setup()
+        except BaseException:
+            self.close()
+            raise
+
+    def _setup(self):
+        node = self.node
+        values = {name: node.declare_parameter(name, default, description=doc,
+                                               validator=validator, read_only=True)
+                  for name, default, doc, validator in AUTOWARE_PARAMETERS}
+        vehicles = self.automobile.vehicles
+        namespace = values['vehicle_namespace'].strip('/')
+        if namespace not in vehicles:
+            raise InvalidParameterError(
+                f'vehicle_namespace = {namespace!r}: no such vehicle; known: '
+                f'{sorted(vehicles)}')
+        self.car = vehicles[namespace]
+        self.world = self.automobile.world
+        self.state = AutowareCar(self.car.logic, values['command_timeout_s'],
+                                 values['timeout_action'])
+        self.input_type = values['input_type']
+        self._read_command = COMMAND_READERS[self.input_type]
+        self._frame_id = values['frame_id']
+        step_s = self.world.time_step_s
+        self._status_every = max(1, int(round(1.0 / (values['status_rate_hz'] * step_s))))
+        self._warn = ThrottledWarning(node.get_logger())
+        self.rejected = 0
+        self.control_mode = MODE_AUTONOMOUS
+        self._types = {name: node.msg(name) for name in (
+            'autoware_vehicle_msgs/msg/VelocityReport', 'autoware_vehicle_msgs/msg/SteeringReport',
+            'autoware_vehicle_msgs/msg/GearReport',
+            'autoware_vehicle_msgs/msg/TurnIndicatorsReport',
+            'autoware_vehicle_msgs/msg/HazardLightsReport',
+            'autoware_vehicle_msgs/msg/ControlModeReport')}
+        self._status = {spec: node.create_publisher(spec.ros_type, spec.name, spec.qos)
+                        for spec in bi.STATUS_TOPICS}
+        self._input = bi.BRIDGE_INPUTS[self.input_type]
+        self._subs = [node.create_subscription(self._input.ros_type, self._input.name,
+                                               self.handle_command, self._input.qos)]
+        for spec, callback in ((bi.GEAR_COMMAND, self.handle_gear),
+                               (bi.TURN_INDICATORS_COMMAND, self.handle_turn_indicators),
+                               (bi.HAZARD_LIGHTS_COMMAND, self.handle_hazard_lights)):
+            self._subs.append(node.create_subscription(spec.ros_type, spec.name, callback,
+                                                       spec.qos))
+        self._control_mode_srv = node.create_service(
+            bi.CONTROL_MODE_REQUEST.ros_type, bi.CONTROL_MODE_REQUEST.name,
+            self._handle_control_mode_request)
+        self.world.add_body(_StepHook(self._on_step))
+        limits = self.state.limits
+        low, high = limits.autoware_steering_range_rad
+        node.get_logger().info(
+            f'autoware_automobile ready: {self.input_type} on {self._input.name} drives '
+            f'{self.car.params.model} (wheel_base {limits.wheelbase_m:g} m, steering tire angle '
+            f'[{low:g}, {high:g}] rad, top speed {limits.max_speed_kmh / 3.6:g} m/s); timeout '
+            f'{values["command_timeout_s"]:g} s ({values["timeout_action"]})')
+
+    # ---------------------------------------------------------------- time
+    def now_s(self):
+        """Return the simulated time [s] (the world's)."""
+        return self.world.time_s
+
+    def _on_step(self):
+        # Runs inside World.step() after the car's logic step: the car's measured state is the
+        # one at now_s; watchdog actions take effect from the next step (one basic step later).
+        now_s = self.world.time_s
+        self.state.tick(now_s)
+        if self.world.step_count % self._status_every == 0:
+            self.publish_status()
+
+    # ---------------------------------------------------------------- commands
+    def handle_command(self, msg, now_s=None):
+        """
+        Apply one command message of ``input_type`` (receipt time: sim time when None).
+
+        :return: the CarCommand applied; None when rejected or in MANUAL.
+        """
+        now_s = self.now_s() if now_s is None else now_s
+        speed, second = self._read_command(msg)
+        try:
+            if self.input_type == bi.TWIST_STAMPED:
+                # (v, yaw rate) -> the bicycle steering that gives that yaw rate on this car
+                if not (math.isfinite(speed) and math.isfinite(second)):
+                    raise InvalidCommandError(f'twist ({speed!r} m/s, {second!r} rad/s): '
+                                              'must be finite numbers')
+                second = equivalent_steering_rad(speed, second, self.state.limits.wheelbase_m)
+            return self.state.command(speed, second, now_s)
+        except InvalidCommandError as error:
+            self.rejected += 1
+            self._warn.warn(f'{self.input_type} rejected, the car is unchanged: {error}')
+            return None
+
+    def handle_gear(self, msg):
+        """Apply a GearCommand (NONE keeps the gear; undefined values are rejected)."""
+        gear = msg.command
+        if gear not in VALID_GEARS:
+            self.rejected += 1
+            self._warn.warn(f'gear_cmd {gear!r} rejected: not a GearCommand constant')
+            return
+        if gear != GEAR_NONE:
+            self.state.set_gear_action(_GEAR_ACTION.get(gear, DRIVE))
+
+    def handle_turn_indicators(self, msg):
+        """Apply a TurnIndicatorsCommand to the car's indicator (NO_COMMAND keeps it)."""
+        command = msg.command
+        if command == NO_COMMAND:
+            return
+        if command not in _INDICATOR_COMMAND:
+            self.rejected += 1
+            self._warn.warn(f'turn_indicators_cmd {command!r} rejected: undefined')
+            return
+        set_car_indicator(self.car.logic, _INDICATOR_COMMAND[command])
+
+    def handle_hazard_lights(self, msg):
+        """Apply a HazardLightsCommand to the car's hazard flashers (NO_COMMAND keeps them)."""
+        command = msg.command
+        if command == NO_COMMAND:
+            return
+        if command not in (DISABLE, HAZARD_ENABLE):
+            self.rejected += 1
+            self._warn.warn(f'hazard_lights_cmd {command!r} rejected: undefined')
+            return
+        self.car.logic.set_hazard_flashers(command == HAZARD_ENABLE)
+
+    def request_control_mode(self, mode):
+        """AUTONOMOUS or MANUAL: True (applied); other modes: False, nothing changes."""
+        if mode not in (MODE_AUTONOMOUS, MODE_MANUAL):
+            return False
+        self.state.set_autonomous(mode == MODE_AUTONOMOUS)
+        self.control_mode = mode
+        return True
+
+    def _handle_control_mode_request(self, request, response):
+        response.success = self.request_control_mode(request.mode)
+        if not response.success:
+            self.node.get_logger().warn(
+                f'control_mode_request mode={request.mode} refused: only AUTONOMOUS (1) and '
+                'MANUAL (4) are supported')
+        return response
+
+    # ---------------------------------------------------------------- reports
+    def status_messages(self):
+        """Return {status Endpoint: message} built from the car's current state."""
+        t = self._types
+        stamp = self.node.time_msg(Time(int(round(self.now_s() * 1e9))))
+        report = car_report(self.car.logic)
+        velocity = t['autoware_vehicle_msgs/msg/VelocityReport']()
+        velocity.header.stamp = stamp
+        velocity.header.frame_id = self._frame_id
+        velocity.longitudinal_velocity = report.speed_mps
+        velocity.lateral_velocity = 0.0
+        velocity.heading_rate = report.heading_rate_radps
+        return {
+            bi.VELOCITY_STATUS: velocity,
+            bi.STEERING_STATUS: t['autoware_vehicle_msgs/msg/SteeringReport'](
+                stamp=stamp, steering_tire_angle=report.steering_tire_rad),
+            bi.GEAR_STATUS: t['autoware_vehicle_msgs/msg/GearReport'](
+                stamp=stamp, report=_GEAR_REPORT[report.gear_action]),
+            bi.TURN_INDICATORS_STATUS: t['autoware_vehicle_msgs/msg/TurnIndicatorsReport'](
+                stamp=stamp, report=_INDICATOR_REPORT[report.indicator]),
+            bi.HAZARD_LIGHTS_STATUS: t['autoware_vehicle_msgs/msg/HazardLightsReport'](
+                stamp=stamp, report=HAZARD_ENABLE if report.hazard else DISABLE),
+            bi.CONTROL_MODE_STATUS: t['autoware_vehicle_msgs/msg/ControlModeReport'](
+                stamp=stamp, mode=self.control_mode),
+        }
+
+    def publish_status(self):
+        """Publish the six /vehicle/status reports."""
+        for spec, msg in self.status_messages().items():
+            self._status[spec].publish(msg)
+
+    def close(self):
+        """Leave the graph and free the physics (idempotent)."""
+        if self.automobile is not None:
+            self.automobile.close()
+        elif self.node is not None:
+            self.node.shutdown()
+
+
+def main(args=None):
+    """Entry point ``autoware_automobile``: build the node and spin it (Jazzy main shape)."""
+    try:
+        return run_node(AutowareAutomobileNode, sys.argv if args is None else args)
+    except (InvalidParameterError, TransportError) as error:
+        print(f'autoware_automobile: {error}', file=sys.stderr)
+        return 2
+
+
+if __name__ == '__main__':
+    sys.exit(main())
