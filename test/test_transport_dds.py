@@ -20,8 +20,8 @@ its own DdsNode and, where the wire itself is checked, with raw cyclonedds reade
 Waits have generous bounds and the assertions are on outcomes, never on durations.
 """
 
-import time
 
+from automobile_helpers import wait_for
 from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsParticipant
 from cyclonedds.core import InstanceState
 from cyclonedds.domain import DomainParticipant
@@ -39,19 +39,6 @@ pytestmark = pytest.mark.transport
 
 WAIT_S = 30.0
 NS = '/tp'
-
-
-def wait_for(predicate, timeout_s=WAIT_S, spin=None):
-    """Poll ``predicate`` (spinning ``spin`` if given) until true; return its last value."""
-    deadline = time.monotonic() + timeout_s
-    while True:
-        value = predicate()
-        if value or time.monotonic() >= deadline:
-            return value
-        if spin is not None:
-            spin.spin_once(0.02)
-        else:
-            time.sleep(0.01)
 
 
 @pytest.fixture(scope='module')

@@ -223,15 +223,7 @@ class CarBody:
 
         :return: ((vx, vy, vz) [m/s], (wx, wy, wz) [rad/s]).
         """
-        cid = self._cid
-        com_pos, _ = pybullet.getBasePositionAndOrientation(self.body_id, physicsClientId=cid)
-        linear, angular = pybullet.getBaseVelocity(self.body_id, physicsClientId=cid)
-        pose = self.pose()
-        # v_link = v_com + w x (p_link - p_com)
-        rx, ry, rz = (pose[0] - com_pos[0], pose[1] - com_pos[1], pose[2] - com_pos[2])
-        wx, wy, wz = angular
-        return ((linear[0] + wy * rz - wz * ry, linear[1] + wz * rx - wx * rz,
-                 linear[2] + wx * ry - wy * rx), tuple(angular))
+        return self.world.base_link_velocity(self.body_id, self.pose()[:3])
 
     def _axes(self, pose):
         matrix = pybullet.getMatrixFromQuaternion(pose[3:], physicsClientId=self._cid)

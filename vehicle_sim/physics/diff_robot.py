@@ -323,14 +323,7 @@ class DiffRobotBody:
 
         :return: ((vx, vy, vz) [m/s], (wx, wy, wz) [rad/s]).
         """
-        cid = self._cid
-        com_pos, _ = pybullet.getBasePositionAndOrientation(self.body_id, physicsClientId=cid)
-        linear, angular = pybullet.getBaseVelocity(self.body_id, physicsClientId=cid)
-        pose = self.pose()
-        rx, ry, rz = (pose[0] - com_pos[0], pose[1] - com_pos[1], pose[2] - com_pos[2])
-        wx, wy, wz = angular
-        return ((linear[0] + wy * rz - wz * ry, linear[1] + wz * rx - wx * rz,
-                 linear[2] + wx * ry - wy * rx), tuple(angular))
+        return self.world.base_link_velocity(self.body_id, self.pose()[:3])
 
     def body_twist(self):
         """

@@ -199,6 +199,26 @@ class World:
             joints[info[1].decode()] = index
         return body_id, joints
 
+    def base_link_velocity(self, body_id, link_position):
+        """
+        Velocity of a body's base link origin in the world frame.
+
+        PyBullet reports the base velocity at the centre of mass; v_link = v_com + w x (p_link -
+        p_com).
+
+        :param body_id: the body.
+        :param link_position: (x, y, z) of the base link origin in the world [m].
+        :return: ((vx, vy, vz) [m/s], (wx, wy, wz) [rad/s]).
+        """
+        cid = self.client_id
+        com_pos, _ = pybullet.getBasePositionAndOrientation(body_id, physicsClientId=cid)
+        linear, angular = pybullet.getBaseVelocity(body_id, physicsClientId=cid)
+        rx, ry, rz = (link_position[0] - com_pos[0], link_position[1] - com_pos[1],
+                      link_position[2] - com_pos[2])
+        wx, wy, wz = angular
+        return ((linear[0] + wy * rz - wz * ry, linear[1] + wz * rx - wx * rz,
+                 linear[2] + wx * ry - wy * rx), tuple(angular))
+
     def _rebuild_hooks(self):
         self._pre_step = [b.pre_step for b in self._bodies if hasattr(b, 'pre_step')]
         self._pre_substep = [b.pre_substep for b in self._bodies if hasattr(b, 'pre_substep')]
