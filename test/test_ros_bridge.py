@@ -445,7 +445,7 @@ def test_bridge_node_on_rclpy_gives_closed_form_outputs():
                                  'max_accel_mps2': 0.0, 'max_decel_mps2': 0.0})
         try:
             msg = bridge.node.msg(bi.CONTROL)()
-            msg.longitudinal.velocity, msg.lateral.steering_tire_angle = 0.3, 0.2
+            msg.longitudinal.velocity, msg.lateral.steering_tire_angle = f32(0.3), f32(0.2)
             out = bridge.handle_command(msg, now_s=1.0)
             assert (out.left_mps, out.right_mps) == pytest.approx(
                 closed_form(f32(0.3), f32(0.2)), rel=1e-9)

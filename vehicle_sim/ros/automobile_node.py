@@ -145,8 +145,9 @@ class AutomobileNode:
             self._timer = node.create_timer(period, self._on_step_timer)
         mode = ('synchronous (robot/time_step)' if settings.synchronous else
                 f'real_time_factor {settings.real_time_factor:g}')
+        node_ns = node.get_namespace().rstrip('/')   # a `-r __ns:=/x` remap moves everything
         names = ', '.join(f'{v.spec.name} ({v.spec.model}) under '
-                          f'/{itf.vehicle_name("automobile", v.spec.namespace)}'
+                          f'{node_ns}/{itf.vehicle_name("automobile", v.spec.namespace)}'
                           for v in self._vehicles)
         self._logger.info(f'automobile ready: {names}; step {settings.time_step_ms} ms, {mode}')
 

@@ -76,13 +76,23 @@ def to_rclpy_qos(qos) -> QoSProfile:
 
 
 class _Logger(port.Logger):
-    _METHODS = {10: 'debug', 20: 'info', 30: 'warning', 40: 'error', 50: 'fatal'}
-
     def __init__(self, logger):
         self._logger = logger
 
     def log(self, level: int, message: str) -> None:
-        getattr(self._logger, self._METHODS.get(level, 'info'))(str(message))
+        # rclpy keys its logging context on the calling line and refuses another severity
+        # from the same line (ValueError): one call site per severity.
+        message = str(message)
+        if level <= 10:
+            self._logger.debug(message)
+        elif level <= 20:
+            self._logger.info(message)
+        elif level <= 30:
+            self._logger.warning(message)
+        elif level <= 40:
+            self._logger.error(message)
+        else:
+            self._logger.fatal(message)
 
 
 class _Subscription(port.Subscription):
@@ -143,6 +153,9 @@ class RclpyNode(port.NodePort):
             name, namespace=namespace or None, context=context, cli_args=cli_args,
             parameter_overrides=[RclpyParameter(k, value=v)
                                  for k, v in (parameter_overrides or {}).items()])
+        self._name = self.node.get_name()
+        self._namespace = self.node.get_namespace()
+        self._declaring = False
         self._validators: Dict[str, Any] = {}
         self._user_callbacks: List[Any] = []
         self.node.add_on_set_parameters_callback(self._on_set_parameters)
@@ -153,10 +166,10 @@ class RclpyNode(port.NodePort):
         self.executor.add_node(self.node)
 
     def get_name(self) -> str:
-        return self.node.get_name()
+        return self._name
 
     def get_namespace(self) -> str:
-        return self.node.get_namespace()
+        return self._namespace
 
     def msg(self, ros_type: str):
         return import_type(ros_type)
@@ -178,7 +191,7 @@ class RclpyNode(port.NodePort):
     def create_client(self, srv_type: str, name: str, qos=port.QOS_SERVICES):
         client = self.node.create_client(import_type(srv_type), name,
                                          qos_profile=to_rclpy_qos(qos))
-        return _Client(self, client, client.srv_name)
+        return _Client(self, client, self.node.resolve_service_name(name))
 
     def create_timer(self, period_s: float, callback):
         return self.node.create_timer(period_s, callback, clock=self._steady)
@@ -196,6 +209,8 @@ class RclpyNode(port.NodePort):
     # Parameters: validators and port callbacks run inside one rclpy on-set callback.
 
     def _on_set_parameters(self, params) -> RclSetParametersResult:
+        if self._declaring:  # checked in declare_parameter (like the embedded transport)
+            return RclSetParametersResult(successful=True)
         for param in params:
             reason = port.run_validator(self._validators.get(param.name), param.value)
             if reason:
@@ -210,14 +225,30 @@ class RclpyNode(port.NodePort):
     def declare_parameter(self, name: str, default: Any, *, description: str = '',
                           validator=None, read_only: bool = False,
                           additional_constraints: str = '') -> Any:
-        if validator is not None:
-            self._validators[name] = validator
         descriptor = ParameterDescriptor(description=description, read_only=read_only,
                                          additional_constraints=additional_constraints)
+        # Only an override (-p, params file, parameter_overrides) is validated, not the default;
+        # rclpy keeps the overrides in Node._parameter_overrides (Foxy..Jazzy).
+        override = self.node._parameter_overrides.get(name)
+        if override is not None:
+            if isinstance(default, float) and override.type_ == RclpyParameter.Type.INTEGER:
+                # '-p gain:=2' for a double, as on the embedded transport
+                override = RclpyParameter(name, value=float(override.value))
+                self.node._parameter_overrides[name] = override
+            reason = port.run_validator(validator, override.value)
+            if reason:
+                raise TransportError(
+                    f'parameter {name!r} override {override.value!r} rejected: {reason}')
+        self._declaring = True
         try:
-            return self.node.declare_parameter(name, default, descriptor).value
+            value = self.node.declare_parameter(name, default, descriptor).value
         except ParameterException as exc:
             raise TransportError(f'parameter {name!r}: {exc}') from None
+        finally:
+            self._declaring = False
+        if validator is not None:
+            self._validators[name] = validator
+        return value
 
     def get_parameter(self, name: str) -> Any:
         try:
@@ -229,9 +260,14 @@ class RclpyNode(port.NodePort):
         return self.node.has_parameter(name)
 
     def set_parameters(self, parameters: List[Parameter]) -> List[SetParametersResult]:
-        results = self.node.set_parameters(
-            [RclpyParameter(p.name, value=p.value) for p in parameters])
-        return [SetParametersResult(r.successful, r.reason) for r in results]
+        results = []
+        for p in parameters:
+            if not self.node.has_parameter(p.name):
+                results.append(SetParametersResult(False, f'parameter {p.name!r} is not declared'))
+                continue
+            (r,) = self.node.set_parameters([RclpyParameter(p.name, value=p.value)])
+            results.append(SetParametersResult(r.successful, r.reason))
+        return results
 
     def add_on_set_parameters_callback(self, callback) -> None:
         self._user_callbacks.append(callback)
@@ -240,10 +276,11 @@ class RclpyNode(port.NodePort):
         self.executor.spin_once(timeout_sec=timeout_s)
 
     def spin(self) -> None:
-        self.executor.spin()
+        while self.ok():  # returns once shutdown() was called, like the embedded transport
+            self.executor.spin_once(timeout_sec=0.1)
 
     def ok(self) -> bool:
-        return rclpy.ok(context=self._context)
+        return self.node is not None and rclpy.ok(context=self._context)
 
     def shutdown(self) -> None:
         if self.node is not None:
