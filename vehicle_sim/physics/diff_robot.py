@@ -43,7 +43,7 @@ import pybullet
 from vehicle_sim.config import find_config, read_yaml
 from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
 from vehicle_sim.core.robot_params import robot_params_from_dict, RobotParams
-from vehicle_sim.physics.urdf import wheel_inertia_kgm2
+from vehicle_sim.physics.urdf import geometry_block, inertial, num, vec, wheel_inertia_kgm2
 
 CASTER_MASS_KG = 0.2
 # Spawn height of base_link above the ground [m]: the wheels touch down within a few steps.
@@ -85,26 +85,6 @@ def wheel_anchor_m(params, index):
     return (x, y, params.wheel_radius_m)
 
 
-def _f(value):
-    return f'{float(value):.9g}'
-
-
-def _xyz(values):
-    return ' '.join(_f(v) for v in values)
-
-
-def _inertial(mass, ixx, iyy, izz, xyz=(0.0, 0.0, 0.0)):
-    return (f'    <inertial>\n      <origin xyz="{_xyz(xyz)}" rpy="0 0 0"/>\n'
-            f'      <mass value="{_f(mass)}"/>\n'
-            f'      <inertia ixx="{_f(ixx)}" ixy="0" ixz="0" iyy="{_f(iyy)}" iyz="0" '
-            f'izz="{_f(izz)}"/>\n    </inertial>\n')
-
-
-def _shape(tag, xyz, rpy, geometry):
-    return (f'    <{tag}>\n      <origin xyz="{_xyz(xyz)}" rpy="{_xyz(rpy)}"/>\n'
-            f'      <geometry>{geometry}</geometry>\n    </{tag}>\n')
-
-
 def robot_urdf(params, name=None, prefix=''):
     """
     Generate the URDF of a differential-drive robot.
@@ -120,43 +100,43 @@ def robot_urdf(params, name=None, prefix=''):
     body_xyz = (params.body_offset_m, 0.0, radius)
     parts = [f'<?xml version="1.0"?>\n<robot name="{escape(name or params.model)}">\n',
              f'  <link name="{base}">\n',
-             _inertial(params.mass_kg, params.mass_kg * (width ** 2 + height ** 2) / 12.0,
+             inertial(params.mass_kg, params.mass_kg * (width ** 2 + height ** 2) / 12.0,
                        params.mass_kg * (length ** 2 + height ** 2) / 12.0,
-                       params.mass_kg * (length ** 2 + width ** 2) / 12.0, body_xyz)]
-    box = f'<box size="{_xyz(params.body_size_m)}"/>'
-    parts.append(_shape('visual', body_xyz, (0.0, 0.0, 0.0), box))
-    parts.append(_shape('collision', body_xyz, (0.0, 0.0, 0.0), box))
+                       params.mass_kg * (length ** 2 + width ** 2) / 12.0, xyz=body_xyz)]
+    box = f'<box size="{vec(params.body_size_m)}"/>'
+    parts.append(geometry_block('visual', body_xyz, (0.0, 0.0, 0.0), box))
+    parts.append(geometry_block('collision', body_xyz, (0.0, 0.0, 0.0), box))
     parts.append('  </link>\n')
     ixx, iyy, izz = wheel_inertia_kgm2(params.wheel_mass_kg, radius, params.wheel_width_m)
-    cylinder = f'<cylinder radius="{_f(radius)}" length="{_f(params.wheel_width_m)}"/>'
+    cylinder = f'<cylinder radius="{num(radius)}" length="{num(params.wheel_width_m)}"/>'
     for index, (stem, joint) in enumerate(zip(params.wheel_names, params.wheel_joints)):
         link = f'{prefix}{stem}_wheel_link'
         parts.append(f'  <link name="{link}">\n'
-                     + _inertial(params.wheel_mass_kg, ixx, iyy, izz)
-                     + _shape('visual', (0.0, 0.0, 0.0), (math.pi / 2, 0.0, 0.0), cylinder)
-                     + _shape('collision', (0.0, 0.0, 0.0), (0.0, 0.0, 0.0),
-                              f'<sphere radius="{_f(radius)}"/>')
+                     + inertial(params.wheel_mass_kg, ixx, iyy, izz)
+                     + geometry_block('visual', (0.0, 0.0, 0.0), (math.pi / 2, 0.0, 0.0), cylinder)
+                     + geometry_block('collision', (0.0, 0.0, 0.0), (0.0, 0.0, 0.0),
+                              f'<sphere radius="{num(radius)}"/>')
                      + '  </link>\n')
         parts.append(
             f'  <joint name="{prefix}{joint}" type="continuous">\n'
             f'    <parent link="{base}"/>\n    <child link="{link}"/>\n'
-            f'    <origin xyz="{_xyz(wheel_anchor_m(params, index))}" rpy="0 0 0"/>\n'
+            f'    <origin xyz="{vec(wheel_anchor_m(params, index))}" rpy="0 0 0"/>\n'
             f'    <axis xyz="0 1 0"/>\n'
-            f'    <limit effort="{_f(params.wheel_motor_torque_nm)}" '
-            f'velocity="{_f(params.max_wheel_speed_radps)}"/>\n  </joint>\n')
+            f'    <limit effort="{num(params.wheel_motor_torque_nm)}" '
+            f'velocity="{num(params.max_wheel_speed_radps)}"/>\n  </joint>\n')
     if params.drive == 'caster':
         r_c = params.caster_radius_m
         i_c = 0.4 * CASTER_MASS_KG * r_c * r_c
-        sphere = f'<sphere radius="{_f(r_c)}"/>'
+        sphere = f'<sphere radius="{num(r_c)}"/>'
         parts.append(f'  <link name="{prefix}caster_link">\n'
-                     + _inertial(CASTER_MASS_KG, i_c, i_c, i_c)
-                     + _shape('visual', (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), sphere)
-                     + _shape('collision', (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), sphere)
+                     + inertial(CASTER_MASS_KG, i_c, i_c, i_c)
+                     + geometry_block('visual', (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), sphere)
+                     + geometry_block('collision', (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), sphere)
                      + '  </link>\n')
         parts.append(
             f'  <joint name="{prefix}caster_joint" type="fixed">\n'
             f'    <parent link="{base}"/>\n    <child link="{prefix}caster_link"/>\n'
-            f'    <origin xyz="{_xyz((params.caster_offset_m, 0.0, r_c))}" rpy="0 0 0"/>\n'
+            f'    <origin xyz="{vec((params.caster_offset_m, 0.0, r_c))}" rpy="0 0 0"/>\n'
             f'  </joint>\n')
     parts.append('</robot>\n')
     return ''.join(parts)

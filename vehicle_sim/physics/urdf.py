@@ -112,35 +112,37 @@ def wheel_inertia_kgm2(mass_kg, radius_m, width_m):
     return (radial, 0.5 * mass_kg * radius_m ** 2, radial)
 
 
-def _f(value):
+def num(value):
+    """Format a number for a URDF attribute."""
     return f'{float(value):.9g}'
 
 
-def _xyz(values):
-    return ' '.join(_f(v) for v in values)
+def vec(values):
+    """Format a vector for a URDF attribute."""
+    return ' '.join(num(v) for v in values)
 
 
-def _inertial(mass, ixx, iyy, izz, ixy=0.0, ixz=0.0, iyz=0.0, xyz=(0.0, 0.0, 0.0)):
-    return (f'    <inertial>\n      <origin xyz="{_xyz(xyz)}" rpy="0 0 0"/>\n'
-            f'      <mass value="{_f(mass)}"/>\n'
-            f'      <inertia ixx="{_f(ixx)}" ixy="{_f(ixy)}" ixz="{_f(ixz)}" iyy="{_f(iyy)}" '
-            f'iyz="{_f(iyz)}" izz="{_f(izz)}"/>\n    </inertial>\n')
+def inertial(mass, ixx, iyy, izz, ixy=0.0, ixz=0.0, iyz=0.0, xyz=(0.0, 0.0, 0.0)):
+    return (f'    <inertial>\n      <origin xyz="{vec(xyz)}" rpy="0 0 0"/>\n'
+            f'      <mass value="{num(mass)}"/>\n'
+            f'      <inertia ixx="{num(ixx)}" ixy="{num(ixy)}" ixz="{num(ixz)}" iyy="{num(iyy)}" '
+            f'iyz="{num(iyz)}" izz="{num(izz)}"/>\n    </inertial>\n')
 
 
-def _geometry_block(tag, xyz, rpy, geometry):
-    return (f'    <{tag}>\n      <origin xyz="{_xyz(xyz)}" rpy="{_xyz(rpy)}"/>\n'
+def geometry_block(tag, xyz, rpy, geometry):
+    return (f'    <{tag}>\n      <origin xyz="{vec(xyz)}" rpy="{vec(rpy)}"/>\n'
             f'      <geometry>{geometry}</geometry>\n    </{tag}>\n')
 
 
 def _knuckle(name):
     i = KNUCKLE_INERTIA_KGM2
-    return f'  <link name="{name}">\n' + _inertial(KNUCKLE_MASS_KG, i, i, i) + '  </link>\n'
+    return f'  <link name="{name}">\n' + inertial(KNUCKLE_MASS_KG, i, i, i) + '  </link>\n'
 
 
 def _joint(name, kind, parent, child, xyz, axis, limit='', dynamics=''):
     return (f'  <joint name="{name}" type="{kind}">\n    <parent link="{parent}"/>\n'
-            f'    <child link="{child}"/>\n    <origin xyz="{_xyz(xyz)}" rpy="0 0 0"/>\n'
-            f'    <axis xyz="{_xyz(axis)}"/>\n{limit}{dynamics}  </joint>\n')
+            f'    <child link="{child}"/>\n    <origin xyz="{vec(xyz)}" rpy="0 0 0"/>\n'
+            f'    <axis xyz="{vec(axis)}"/>\n{limit}{dynamics}  </joint>\n')
 
 
 def car_urdf(params, name=None, prefix='', wheel_shape='sphere'):
@@ -165,13 +167,13 @@ def car_urdf(params, name=None, prefix='', wheel_shape='sphere'):
     parts = [f'<?xml version="1.0"?>\n<robot name="{escape(name or params.model)}">\n',
              f'  <link name="{base}">\n']
     com = params.center_of_mass_m
-    parts.append(_inertial(params.mass_kg, *box_inertia_kgm2(params),
+    parts.append(inertial(params.mass_kg, *box_inertia_kgm2(params),
                            xyz=(com[0], com[1], com[2] + lift)))
     for box in params.collision_boxes:
         x, y, z = box.position_m
-        geometry = f'<box size="{_xyz(box.size_m)}"/>'
+        geometry = f'<box size="{vec(box.size_m)}"/>'
         for tag in ('visual', 'collision'):
-            parts.append(_geometry_block(tag, (x, y, z + lift), (0.0, box.pitch_rad, 0.0),
+            parts.append(geometry_block(tag, (x, y, z + lift), (0.0, box.pitch_rad, 0.0),
                                          geometry))
     parts.append('  </link>\n')
     names = joint_names(prefix)
@@ -188,12 +190,12 @@ def car_urdf(params, name=None, prefix='', wheel_shape='sphere'):
         parts.append(_joint(
             names['suspension'][index], 'prismatic', base, susp_link,
             (anchor[0], anchor[1], anchor[2] + lift), (0.0, 0.0, 1.0),
-            f'    <limit lower="{_f(-travel)}" upper="{_f(travel)}" effort="1e6" '
+            f'    <limit lower="{num(-travel)}" upper="{num(travel)}" effort="1e6" '
             f'velocity="100"/>\n',
-            f'    <dynamics damping="{_f(damper)}" friction="0"/>\n'))
+            f'    <dynamics damping="{num(damper)}" friction="0"/>\n'))
         # The spring has no URDF field; it is realised by the body's joint motor
         # (docs/physics.md). spring [N/m] kept in a comment for readers of the description.
-        parts.append(f'  <!-- {names["suspension"][index]}: spring {_f(spring)} N/m -->\n')
+        parts.append(f'  <!-- {names["suspension"][index]}: spring {num(spring)} N/m -->\n')
         carrier = susp_link
         if front:
             steer_link = f'{prefix}{wheel}_steer_link'
@@ -201,26 +203,26 @@ def car_urdf(params, name=None, prefix='', wheel_shape='sphere'):
             parts.append(_joint(
                 names['steer'][index], 'revolute', susp_link, steer_link, (0.0, 0.0, 0.0),
                 (0.0, 0.0, -1.0),
-                f'    <limit lower="{_f(params.min_steering_angle_rad)}" '
-                f'upper="{_f(params.max_steering_angle_rad)}" '
-                f'effort="{_f(params.max_steering_torque_nm)}" '
-                f'velocity="{_f(STEER_MAX_VELOCITY_RADPS)}"/>\n'))
+                f'    <limit lower="{num(params.min_steering_angle_rad)}" '
+                f'upper="{num(params.max_steering_angle_rad)}" '
+                f'effort="{num(params.max_steering_torque_nm)}" '
+                f'velocity="{num(STEER_MAX_VELOCITY_RADPS)}"/>\n'))
             carrier = steer_link
         radius = params.front_tire_radius_m if front else params.rear_tire_radius_m
         width = params.front_tire_width_m if front else params.rear_tire_width_m
         mass = params.wheel_mass_kg(front)
         wheel_link = f'{prefix}{wheel}_wheel_link'
         ixx, iyy, izz = wheel_inertia_kgm2(mass, radius, width)
-        cylinder = f'<cylinder radius="{_f(radius)}" length="{_f(width)}"/>'
-        collision = cylinder if wheel_shape == 'cylinder' else f'<sphere radius="{_f(radius)}"/>'
-        parts.append(f'  <link name="{wheel_link}">\n' + _inertial(mass, ixx, iyy, izz))
+        cylinder = f'<cylinder radius="{num(radius)}" length="{num(width)}"/>'
+        collision = cylinder if wheel_shape == 'cylinder' else f'<sphere radius="{num(radius)}"/>'
+        parts.append(f'  <link name="{wheel_link}">\n' + inertial(mass, ixx, iyy, izz))
         for tag, geometry in (('visual', cylinder), ('collision', collision)):
-            parts.append(_geometry_block(tag, (0.0, 0.0, 0.0), (math.pi / 2, 0.0, 0.0),
+            parts.append(geometry_block(tag, (0.0, 0.0, 0.0), (math.pi / 2, 0.0, 0.0),
                                          geometry))
         parts.append('  </link>\n')
         parts.append(_joint(
             names['wheel'][index], 'continuous', carrier, wheel_link, (0.0, 0.0, 0.0),
             (0.0, 1.0, 0.0), '',
-            f'    <dynamics damping="{_f(params.wheels_damping_nms_per_rad)}"/>\n'))
+            f'    <dynamics damping="{num(params.wheels_damping_nms_per_rad)}"/>\n'))
     parts.append('</robot>\n')
     return ''.join(parts)
