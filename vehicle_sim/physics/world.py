@@ -41,6 +41,14 @@ GROUND_SIZE_M = 1000.0
 # Constraint force mixing of every constraint row; a small value keeps the direct solver's
 # matrix regular (redundant contact rows) without visible softness.
 GLOBAL_CFM = 1.0e-6
+# Bullet clamps every velocity coordinate of a multibody (each joint [rad/s or m/s] and the six
+# base coordinates) to one per-body limit, 100 by default (btMultiBody m_maxCoordinateVelocity,
+# PyBullet's maxJointVelocity): wheels then stopped at 100 rad/s, below the top speed of most
+# presets (TeslaModel3: 139 rad/s at 180 km/h). Webots (ODE) has no such clamp. 1e4 is over ten
+# times any speed a preset can reach: the top-speed wheel speeds (at most 176 rad/s) and the
+# wheel speed at the rpm cut in the highest gear (at most 863 rad/s, RangeRoverSportSVR). It
+# remains a guard against a numerical blow-up.
+MAX_COORDINATE_VELOCITY = 1.0e4
 
 
 
@@ -180,6 +188,8 @@ class World:
         """
         Load a URDF string into this world (the only place bodies are loaded).
 
+        Every body gets Bullet's velocity clamp raised to MAX_COORDINATE_VELOCITY.
+
         :param urdf: the URDF text (loadURDF needs a file: a temporary one is used).
         :param position: base pose, see :func:`pose_from`.
         :param clearance_m: spawn height of base_link for an (x, y, yaw) position [m].
@@ -193,6 +203,9 @@ class World:
             body_id = pybullet.loadURDF(
                 path, base_position, base_orientation, useFixedBase=False,
                 flags=pybullet.URDF_USE_INERTIA_FROM_FILE, physicsClientId=self.client_id)
+        # One limit for the whole body, whatever the link index given (see the constant).
+        pybullet.changeDynamics(body_id, -1, maxJointVelocity=MAX_COORDINATE_VELOCITY,
+                                physicsClientId=self.client_id)
         joints = {}
         for index in range(pybullet.getNumJoints(body_id, physicsClientId=self.client_id)):
             info = pybullet.getJointInfo(body_id, index, physicsClientId=self.client_id)
