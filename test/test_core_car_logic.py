@@ -114,6 +114,34 @@ def test_speed_mode_targets_saturate_at_motor_max_velocity():
     assert actuation.wheel_velocity_radps[Wheel.FRONT_LEFT] < limit
 
 
+@pytest.mark.parametrize('speed_kmh', [300.0, -250.0, 1.7e308])
+def test_cruising_speed_beyond_top_is_stored_and_the_motors_use_the_top_speed(speed_kmh):
+    # driver.c stores the argument as given; the wheel motors saturate at maxVelocity / r.
+    # Car: 50 m/s = 180 km/h, r = 0.4 m → 125 rad/s on the driven front wheels.
+    car = CarLogic(DEFAULT_CAR)
+    car.set_cruising_speed_kmh(speed_kmh)
+    top_kmh = math.copysign(180.0, speed_kmh)
+    assert car.target_cruising_speed_kmh == speed_kmh
+    assert car.status().target_cruising_speed_kmh == speed_kmh
+    assert car.effective_cruising_speed_kmh == top_kmh
+    assert car.status().effective_cruising_speed_kmh == top_kmh
+    actuation = _spinning(car, 0.0, 2000)   # 20 s: the ramp (6.94 rad/s² here) is done
+    np.testing.assert_allclose(actuation.wheel_velocity_radps,
+                               [math.copysign(125.0, speed_kmh)] * 2 + [0.0, 0.0], rtol=1e-12)
+    assert car.target_cruising_speed_kmh == speed_kmh
+    assert car.backwards_lights is (speed_kmh < 0)
+
+
+def test_cruising_speed_beyond_top_in_a_turn_saturates_each_wheel_like_webots():
+    # Each wheel target is computed from the stored speed, then clamped alone (WbMotor): at
+    # 300 km/h both front wheels of the Car saturate even in a turn, as in Webots.
+    car = CarLogic(DEFAULT_CAR)
+    car.set_steering_angle(0.2)
+    car.set_cruising_speed_kmh(300.0)
+    actuation = _spinning(car, 0.0, 2000)
+    np.testing.assert_allclose(actuation.wheel_velocity_radps[:2], [125.0, 125.0], rtol=1e-12)
+
+
 def test_torque_mode_distributes_engine_torque_on_driven_wheels():
     # Car (traction, combustion a=150, b=0.1): all wheels at 10 rad/s, gear 1 (ratio 10):
     # rpm = 10·60/(2π)·10 = 954.9 < 1000 → engine at idle: 150 + 0.1·1000 = 250 N·m;
@@ -283,10 +311,11 @@ STRICT_CASES = [
     ('set_steering_angle', BAD_NUMBERS + [1.0 + 1e-9, -1.5]),
     ('set_right_steering_angle', BAD_NUMBERS + [1.01, -1.01]),
     ('set_left_steering_angle', BAD_NUMBERS + [1.01, -1.01]),
-    ('set_cruising_speed_kmh', BAD_NUMBERS + [180.001, -181.0]),
+    ('set_cruising_speed_kmh', BAD_NUMBERS),
+    ('set_cruising_speed_within_top_kmh', BAD_NUMBERS + [180.001, -181.0, 1e300]),
     ('set_throttle', BAD_NUMBERS + [-0.01, 1.01]),
     ('set_brake_intensity', BAD_NUMBERS + [-0.01, 1.01]),
-    ('set_indicator_period_s', BAD_NUMBERS + [0.0, -0.34]),
+    ('set_indicator_period_s', BAD_NUMBERS + [0.0, -0.34, 5e-324, 1e-300, 9.99e-4]),
     ('set_gear', [NAN, None, True, 1.0, 6, -2, np.float64(2.0)]),
     ('set_indicator', [NAN, None, True, 1.0, 3, -1]),
     ('set_wiper_mode', [NAN, None, False, 2.0, 4, -1]),
@@ -341,6 +370,10 @@ def test_strict_setter_rejects_bad_value_and_changes_nothing(setter, value):
     ('set_steering_angle', -2.0, r'-2\.0 rad is outside the valid range \[-1\.0, 1\.0\]'),
     ('set_gear', 7, r'gear = 7 is outside the valid range -1\.\.5'),
     ('set_cruising_speed_kmh', NAN, r'cruising speed = nan is not a finite number'),
+    ('set_cruising_speed_within_top_kmh', 300.0,
+     r'cruising speed = 300\.0 km/h is outside the valid range \[-180\.0, 180\.0\] km/h'),
+    ('set_indicator_period_s', 5e-324,
+     r'indicator period = 5e-324 s is outside the valid range \[0\.001, inf\) s'),
     ('set_wiper_mode', 9, r'wiper mode = 9 .*0\.\.3 \(0 DOWN, 1 SLOW, 2 NORMAL, 3 FAST\)'),
 ])
 def test_strict_setter_error_names_value_and_range(setter, value, message):
@@ -353,6 +386,9 @@ def test_strict_setter_error_names_value_and_range(setter, value, message):
     ('set_throttle', np.float64(0.0), 'throttle', 0.0),
     ('set_brake_intensity', 1.0, 'brake_intensity', 1.0),
     ('set_cruising_speed_kmh', -180.0, 'target_cruising_speed_kmh', -180.0),
+    ('set_cruising_speed_kmh', 300.0, 'target_cruising_speed_kmh', 300.0),
+    ('set_cruising_speed_kmh', -1e300, 'target_cruising_speed_kmh', -1e300),
+    ('set_cruising_speed_within_top_kmh', 180.0, 'target_cruising_speed_kmh', 180.0),
     ('set_gear', -1, 'selected_gear', -1),
     ('set_gear', np.int64(5), 'selected_gear', 5),
     ('set_indicator', Indicator.RIGHT, 'indicator', Indicator.RIGHT),

@@ -14,10 +14,13 @@
 
 """Indicators, hazard flashers, wipers and automatic lights (webots_spec.md §3.8-3.10)."""
 
+import math
+
 import pytest
 
 from vehicle_sim.core.car_logic import CarLogic
 from vehicle_sim.core.drivetrain import ControlMode
+from vehicle_sim.core.errors import InvalidCommandError
 from vehicle_sim.core.params import DEFAULT_CAR
 from vehicle_sim.core.signals import (
     auto_disable_indicator,
@@ -25,6 +28,7 @@ from vehicle_sim.core.signals import (
     Indicator,
     indicator_lamps,
     indicator_phase_on,
+    MIN_INDICATOR_PERIOD_S,
     Wiper,
     WIPER_MAX_ANGLE_RAD,
     WiperMode,
@@ -42,6 +46,41 @@ DT_S = 0.01
 ])
 def test_indicator_phase_toggles_every_period(time_s, on):
     assert indicator_phase_on(time_s, 0.34) is on
+
+
+@pytest.mark.parametrize('period_s', [0.34, 0.5, 0.3, 0.07, DT_S, MIN_INDICATOR_PERIOD_S])
+def test_indicator_phase_equals_driver_c_formula_at_every_step(period_s):
+    # driver.c: (int)(t / period) % 2 == 0, bit for bit, including the steps where t / period
+    # rounds onto an integer (a remainder-based phase differs there); 2e5 steps of 10 ms.
+    times = [k * DT_S for k in range(200_000)]
+    assert [indicator_phase_on(t, period_s) for t in times] == \
+        [int(t / period_s) % 2 == 0 for t in times]
+
+
+@pytest.mark.parametrize('period_s', [5e-324, 1e-300, 1e-3, 0.34, 1e300, 1.7e308])
+@pytest.mark.parametrize('time_s', [0.0, 0.01, 1.0, 1.8e8, 1e9, 1e300, 1.7e308])
+def test_indicator_phase_is_defined_for_any_finite_positive_period_at_any_time(time_s,
+                                                                            period_s):
+    # Regression: 5e-324 made t / period overflow and int(inf) raised OverflowError.
+    on = indicator_phase_on(time_s, period_s)
+    assert on is True or on is False
+    # Whatever branch is taken, the answer is the exact phase where that is representable.
+    if time_s / period_s < 2.0 ** 53:
+        assert on == (int(time_s / period_s) % 2 == 0)
+    else:
+        assert on == (math.fmod(time_s, 2.0 * period_s) < period_s)
+
+
+@pytest.mark.parametrize('time_s, period_s, on', [
+    (3.0, 5e-324, True),               # 3 s is an even number of 5e-324 s phases
+    (3 * 5e-324, 5e-324, False),       # third phase: OFF
+    (2.0 ** 60 + 2.0 ** 8, 2.0 ** 7, True),   # quotient 2^53 + 2: even
+    (1.0, 1.7e308, True),              # 2·period overflows to inf: still the first phase
+    (-0.35, 0.34, False),              # C truncation toward zero: symmetric in t
+])
+def test_indicator_phase_beyond_the_exact_quotient_uses_the_exact_remainder(time_s, period_s,
+                                                                             on):
+    assert indicator_phase_on(time_s, period_s) is on
 
 
 def test_indicator_lamps_blink_only_the_selected_side():
@@ -111,6 +150,32 @@ def test_car_indicator_lamps_use_time_before_the_step():
     car.set_indicator(Indicator.RIGHT)
     car.step(Measurement(), 0.35, DT_S)
     assert (car.right_indicator_light, car.left_indicator_light) == (True, False)
+
+
+@pytest.mark.parametrize('period_s', [5e-324, 1e-300, 9.99e-4, 0.0])
+def test_car_refuses_an_indicator_period_below_one_millisecond(period_s):
+    car = CarLogic(DEFAULT_CAR)
+    car.set_hazard_flashers(True)
+    with pytest.raises(InvalidCommandError, match=r'indicator period = .* s is outside the '
+                                                  r'valid range \[0\.001, inf\) s'):
+        car.set_indicator_period_s(period_s)
+    assert car.indicator_period_s == 0.34
+    car.step(Measurement(), 0.0, DT_S)
+    car.step(Measurement(), DT_S, DT_S)
+    assert (car.right_indicator_light, car.left_indicator_light) == (True, True)
+
+
+def test_car_blinks_with_the_shortest_period_at_any_time():
+    car = CarLogic(DEFAULT_CAR)
+    car.set_hazard_flashers(True)
+    car.set_indicator_period_s(MIN_INDICATOR_PERIOD_S)
+    times = (0.0, 0.001, 1e9, 1e15, 1e300, 1.7e308)
+    lamps = []
+    for time_s in times:
+        car.step(Measurement(), time_s, DT_S)
+        lamps.append((car.right_indicator_light, car.left_indicator_light))
+    assert lamps[:2] == [(True, True), (False, False)]
+    assert lamps == [(on, on) for on in (indicator_phase_on(t, 1e-3) for t in times)]
 
 
 def _run_wiper(mode, duration_s, wiper=None):

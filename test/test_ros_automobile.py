@@ -367,6 +367,38 @@ class _Value:
         self.success = None
 
 
+def test_setter_refusals_of_the_strict_ros_policy_in_process():
+    # DESIGN §4, ROS column: a tiny indicator period (it used to answer true, then crash the
+    # next step) and a cruising speed beyond the top speed (the core stores it; a service must
+    # not) answer success=false and change nothing.
+    app = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/in_process_setters'],
+                         transport='dds', parameter_overrides={'real_time_factor': 0.0})
+    try:
+        vehicle = app._vehicles[0]
+        logic = vehicle.logic
+
+        def call(name, value):
+            return app._handle_setter(itf.service(name), vehicle, name, _Value(value),
+                                      _Value(None)).success
+
+        assert call('automobile/set_hazard_flashers', True) is True
+        for period in (5e-324, 1e-300, 9.99e-4):
+            assert call('automobile/set_indicator_period', period) is False
+        assert logic.indicator_period_s == 0.34
+        app.step(2)
+        assert math.isclose(app.world.time_s, 0.02)
+        top_kmh = logic.max_cruising_speed_kmh
+        for speed in (top_kmh + 1e-6, -top_kmh - 1.0, 300.0):
+            assert call('automobile/set_cruising_speed', speed) is False
+        assert logic.target_cruising_speed_kmh == 0.0
+        assert call('automobile/set_cruising_speed', top_kmh) is True
+        assert call('automobile/set_indicator_period', 1e-3) is True
+        app.step(2)
+        assert (logic.target_cruising_speed_kmh, logic.indicator_period_s) == (top_kmh, 1e-3)
+    finally:
+        app.close()
+
+
 def test_ros_interface_doc_contains_the_generated_tables():
     with open(os.path.join(REPO_ROOT, 'docs', 'ros_interface.md'), encoding='utf-8') as stream:
         text = stream.read()

@@ -171,6 +171,53 @@ def test_facade_out_of_range_value_warns_and_is_clamped(car, row):
                                                                                  value)
 
 
+@pytest.mark.parametrize('row', [r for r in API if r.limits and r.out_of_range == 'store'],
+                         ids=lambda row: row.setter)
+def test_facade_out_of_range_value_warns_and_is_stored_as_given(car, row):
+    low, high = row.limits(car.logic)
+    for value in (high + 120.0, low - 120.0, 1e300):
+        with pytest.warns(WebotsWarning, match='outside the valid range .* stored as given'):
+            getattr(car, row.setter)(value)
+        car.step()
+        assert _read(car, row) == value
+
+
+def test_facade_cruising_speed_above_top_speed_is_returned_and_driven_at_top_speed():
+    # Webots' driver.c stores the speed; only the wheel motors clamp (BmwX5: 180 km/h).
+    with Car('BmwX5') as car:
+        with pytest.warns(WebotsWarning, match='motors saturate at 180'):
+            car.setCruisingSpeed(300.0)
+        assert car.getTargetCruisingSpeed() == 300.0
+        assert car.cruising_speed == 300.0
+        assert car.logic.effective_cruising_speed_kmh == 180.0
+        car.step(1000)
+        assert car.getTargetCruisingSpeed() == 300.0
+
+
+@pytest.mark.parametrize('row', [r for r in API if r.limits and r.out_of_range == 'ignore'],
+                         ids=lambda row: row.setter)
+def test_facade_out_of_range_value_warns_and_is_ignored(car, row):
+    low, high = row.limits(car.logic)
+    values = [low / 2.0, 5e-324, 0.0, -1.0] + ([high * 2.0] if math.isfinite(high) else [])
+    for value in values:
+        before = _snapshot(car)
+        with pytest.warns(WebotsWarning, match='outside the valid range .*; ignored'):
+            getattr(car, row.setter)(value)
+        assert _snapshot(car) == before
+
+
+def test_facade_tiny_indicator_period_with_hazard_flashers_keeps_stepping():
+    # Regression: setIndicatorPeriod(5e-324) was stored and the next step raised OverflowError.
+    with Car() as car:
+        car.setHazardFlashers(True)
+        with pytest.warns(WebotsWarning, match=r'setIndicatorPeriod\(5e-324\)'):
+            car.setIndicatorPeriod(5e-324)
+        assert car.step() == 0
+        assert car.step() == 0
+        assert car.getIndicatorPeriod() == 0.34
+        assert car.logic.right_indicator_light and car.logic.left_indicator_light
+
+
 @pytest.mark.parametrize('row, value', [
     (next(r for r in API if r.setter == 'setIndicator'), 7),
     (next(r for r in API if r.setter == 'setIndicator'), -1),

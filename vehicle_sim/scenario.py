@@ -408,7 +408,7 @@ def run_car(stream, car_model=DEFAULT_CAR, transport='dds', record_every=5):
             automobile.step_once()
             # as applied: the cruising speed the node set, ramped like the car's wheel motors;
             # the commanded steering (the steering motors reach it within a few steps)
-            speed = ramp.limit(kmh_to_mps(logic.target_cruising_speed_kmh), speed, DT_S)
+            speed = ramp.limit(kmh_to_mps(logic.effective_cruising_speed_kmh), speed, DT_S)
             steer = -logic.commanded_steering_angle_rad   # Webots + right -> + left
             track.applied.append((speed, steer))
             _record_pose(track, automobile.world.time_s, car.body.pose())

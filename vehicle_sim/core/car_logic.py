@@ -60,6 +60,7 @@ from vehicle_sim.core.signals import (
     Indicator,
     indicator_lamps,
     Lights,
+    MIN_INDICATOR_PERIOD_S,
     Wiper,
     WiperMode,
 )
@@ -130,6 +131,7 @@ class CarStatus:
     right_steering_angle_rad: float
     left_steering_angle_rad: float
     target_cruising_speed_kmh: float
+    effective_cruising_speed_kmh: float
     current_speed_kmh: float
     throttle: float
     brake_intensity: float
@@ -260,18 +262,34 @@ class CarLogic:
         Switch to SPEED mode and drive the wheels toward a speed (wbu_driver_set_cruising_speed).
 
         The wheels' velocity set-points ramp at the acceleration implied by time0To100. Coming
-        from TORQUE mode the ramp starts at the wheels' estimated speeds.
+        from TORQUE mode the ramp starts at the wheels' estimated speeds. The speed is stored as
+        given (``target_cruising_speed_kmh`` returns it, as driver.c does); above the top speed
+        the wheel motors saturate at maxVelocity / r, so the car drives at
+        ``effective_cruising_speed_kmh``.
 
-        :param speed_kmh: target speed [km/h], negative = reverse, |v| <= maxVelocity·3.6.
-        :raises InvalidCommandError: non-finite or too fast.
+        :param speed_kmh: target speed [km/h], negative = reverse; any finite value.
+        :raises InvalidCommandError: non-finite.
         """
-        speed_kmh = _number_in('cruising speed', speed_kmh, -self._max_cruising_kmh,
-                               self._max_cruising_kmh, ' km/h')
+        speed_kmh = _number('cruising speed', speed_kmh)
         if self._mode == ControlMode.TORQUE:
             self._ramp[:] = self._speed
         self._cruising_kmh = speed_kmh
         self._mode = ControlMode.SPEED
         self._update_cruise_target()
+
+    def set_cruising_speed_within_top_kmh(self, speed_kmh):
+        """
+        Set the cruising speed, refusing speeds beyond the top speed (the ROS services' policy).
+
+        DESIGN §4, ROS column: a service answers success=false rather than store a speed the
+        car cannot reach; otherwise the same as ``set_cruising_speed_kmh``.
+
+        :param speed_kmh: target speed [km/h], |v| <= maxVelocity·3.6.
+        :raises InvalidCommandError: non-finite or beyond the top speed.
+        """
+        self.set_cruising_speed_kmh(_number_in('cruising speed', speed_kmh,
+                                               -self._max_cruising_kmh, self._max_cruising_kmh,
+                                               ' km/h'))
 
     def set_throttle(self, throttle):
         """
@@ -342,12 +360,16 @@ class CarLogic:
         """
         Set the length of one ON (or OFF) phase of the indicators (wbu_car_set_indicator_period).
 
-        :param period_s: period [s] > 0 (Webots accepts any value; we reject <= 0).
-        :raises InvalidCommandError: non-finite or <= 0.
+        :param period_s: period [s] >= MIN_INDICATOR_PERIOD_S (1 ms); Webots accepts any value,
+            we reject what no basic step could show (see signals.MIN_INDICATOR_PERIOD_S).
+        :raises InvalidCommandError: non-finite or below 1 ms.
         """
         period_s = _number('indicator period', period_s)
-        if period_s <= 0.0:
-            raise InvalidCommandError(f'indicator period = {period_s!r} s must be > 0 s')
+        if not period_s >= MIN_INDICATOR_PERIOD_S:
+            raise InvalidCommandError(
+                f'indicator period = {period_s!r} s is outside the valid range '
+                f'[{MIN_INDICATOR_PERIOD_S!r}, inf) s (one phase must last at least the '
+                'shortest basic time step, 1 ms)')
         self._indicator_period_s = period_s
 
     def set_right_steering_angle(self, angle_rad):
@@ -450,7 +472,10 @@ class CarLogic:
         cruise_wheel_targets(kmh_to_mps(self._cruising_kmh), self._car_type, *self._ratios(),
                              params.front_tire_radius_m, params.rear_tire_radius_m,
                              out=self._cruise_target)
-        # The wheel motors saturate at maxVelocity / r (WbMotor; Webots warns).
+        # The wheel motors saturate at maxVelocity / r (WbMotor; Webots warns). A stored speed
+        # near the float limit overflows to ±inf (saturated too), and inf·0 = NaN on a wheel
+        # the differential gives no share: that wheel's target is 0.
+        np.nan_to_num(self._cruise_target, copy=False, nan=0.0)
         np.clip(self._cruise_target, -self._max_wheel_radps, self._max_wheel_radps,
                 out=self._cruise_target)
 
@@ -524,7 +549,19 @@ class CarLogic:
 
     @property
     def target_cruising_speed_kmh(self):
+        """The cruising speed as last set [km/h], even beyond the top speed (driver.c)."""
         return self._cruising_kmh
+
+    @property
+    def effective_cruising_speed_kmh(self):
+        """
+        The cruising speed the wheel motors drive at [km/h]: the target within ±top speed.
+
+        Straight ahead this is the car's steady speed in SPEED mode; in a turn each wheel's
+        target follows the differential and saturates at maxVelocity / r on its own.
+        """
+        top = self._max_cruising_kmh
+        return min(max(self._cruising_kmh, -top), top)
 
     @property
     def current_speed_kmh(self):
@@ -711,6 +748,7 @@ class CarLogic:
             right_steering_angle_rad=self._measured_right_rad,
             left_steering_angle_rad=self._measured_left_rad,
             target_cruising_speed_kmh=self._cruising_kmh,
+            effective_cruising_speed_kmh=self.effective_cruising_speed_kmh,
             current_speed_kmh=self.current_speed_kmh,
             throttle=self._throttle,
             brake_intensity=self._brake,

@@ -19,11 +19,19 @@ Pure functions of explicit inputs plus one small Wiper state machine; time is al
 """
 
 from enum import IntEnum
+import math
 
 from vehicle_sim.core.drivetrain import ControlMode
 
 # car.c default indicator_period: time of one ON (or OFF) phase, so a full cycle is 2×period.
 DEFAULT_INDICATOR_PERIOD_S = 0.34
+# Shortest accepted indicator period (ours; Webots accepts anything). A phase shorter than one
+# basic step cannot be seen (the lamps are evaluated once per step), and 1 ms is the shortest
+# basic step any vehicle_sim node runs (time_step_ms is an integer >= 1). The lamp phase itself
+# is computed without overflow for any finite positive period (indicator_phase_on).
+MIN_INDICATOR_PERIOD_S = 1.0e-3
+# Every float at or above 2**53 is an even integer: a quotient that large carries no phase.
+_EXACT_PARITY_LIMIT = 2.0 ** 53
 # driver.c INDICATOR_AUTO_DISABLING_THRESHOLD.
 INDICATOR_AUTO_DISABLING_THRESHOLD_RAD = 0.1
 
@@ -61,11 +69,22 @@ def indicator_phase_on(time_s, period_s):
     """
     Return whether the blinking lamps are in their ON phase (driver.c wbu_driver_step).
 
-    :param time_s: simulation time [s] (before the step being computed).
-    :param period_s: indicator period [s] > 0, the length of one ON or OFF phase.
-    :return: ``int(t / period) % 2 == 0`` (C truncation toward zero).
+    driver.c evaluates ``(int)(t / period) % 2 == 0``, which is reproduced exactly while the
+    quotient is below 2**53. Beyond that (a tiny period or a huge time) the quotient has no
+    parity left, and overflows to inf for tiny periods, so the exact remainder is used instead:
+    ON while ``fmod(|t|, 2·period) < period``. The result is defined for every finite time and
+    every finite positive period.
+
+    :param time_s: simulation time [s] (before the step being computed), finite.
+    :param period_s: indicator period [s] > 0, the length of one ON or OFF phase, finite.
+    :return: True in the ON phase (C truncation toward zero: the phase is symmetric in t).
     """
-    return int(time_s / period_s) % 2 == 0
+    time_s = abs(time_s)
+    quotient = time_s / period_s
+    if quotient < _EXACT_PARITY_LIMIT:
+        return int(quotient) % 2 == 0
+    # 2·period overflows to inf only for periods above 8.9e307 s, where fmod(t, inf) = t.
+    return math.fmod(time_s, 2.0 * period_s) < period_s
 
 
 def indicator_lamps(indicator, hazard_flashers, time_s, period_s):

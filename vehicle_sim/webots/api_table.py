@@ -25,6 +25,8 @@ iterate them, so a name cannot diverge (the lesson of the Webots wrapper slips).
 from dataclasses import dataclass
 from typing import Callable, Optional, Tuple
 
+from vehicle_sim.core.signals import MIN_INDICATOR_PERIOD_S
+
 
 @dataclass(frozen=True)
 class ApiRow:
@@ -37,9 +39,10 @@ class ApiRow:
     kind: str                      # 'float', 'int', 'bool', 'enum'
     owner: str = 'driver'          # 'driver' (Driver and Car) or 'car' (Car only)
     prop: Optional[str] = None     # snake_case property of the 2023 Python wrapper
-    limits: Optional[Callable] = None  # logic -> (low, high) accepted by the core
-    out_of_range: str = 'clamp'    # 'clamp' (Webots clamps) or 'ignore'
-    low_exclusive: bool = False    # the lower limit itself is invalid (period > 0)
+    limits: Optional[Callable] = None  # logic -> (low, high) of the sensible values
+    # Outside the limits, with a warning: 'clamp' (Webots clamps), 'ignore' (nothing changes) or
+    # 'store' (passed on as given: Webots stores it and only its motors saturate).
+    out_of_range: str = 'clamp'
     enum_values: Tuple[int, ...] = ()
     samples: Tuple = ()            # valid values for the round-trip test
     settle_steps: int = 0          # steps before the getter reports a set value
@@ -67,8 +70,8 @@ def _unit_interval(logic):
     return 0.0, 1.0
 
 
-def _positive(logic):
-    return 0.0, float('inf')
+def _indicator_periods(logic):
+    return MIN_INDICATOR_PERIOD_S, float('inf')
 
 
 DRIVER_API = (
@@ -79,9 +82,12 @@ DRIVER_API = (
            'float', prop='steering_angle', limits=_steering_limits, samples=(0.3, -0.2, 0.0),
            settle_steps=150, tolerance=0.01, unit='rad',
            doc='steering angle, positive = right'),
+    # Beyond the top speed Webots stores the value (the getter returns it) and the wheel motors
+    # saturate at maxVelocity / r with a warning (WbMotor); so do we.
     ApiRow('setCruisingSpeed', 'getTargetCruisingSpeed', 'set_cruising_speed_kmh',
            'target_cruising_speed_kmh', 'float', prop='cruising_speed', limits=_cruise_limits,
-           samples=(30.0, -10.0, 0.0), unit='km/h', doc='cruise control target speed'),
+           out_of_range='store', samples=(30.0, -10.0, 0.0), unit='km/h',
+           doc='cruise control target speed'),
     ApiRow('setThrottle', 'getThrottle', 'set_throttle', 'throttle', 'float', prop='throttle',
            limits=_unit_interval, samples=(0.5, 1.0, 0.0), doc='throttle in [0, 1]'),
     ApiRow('setBrakeIntensity', 'getBrakeIntensity', 'set_brake_intensity', 'brake_intensity',
@@ -116,7 +122,7 @@ DRIVER_API = (
 CAR_API = (
     ApiRow('setIndicatorPeriod', 'getIndicatorPeriod', 'set_indicator_period_s',
            'indicator_period_s', 'float', owner='car', prop='indicator_period',
-           limits=_positive, out_of_range='ignore', low_exclusive=True, samples=(0.5, 0.34),
+           limits=_indicator_periods, out_of_range='ignore', samples=(0.5, 0.34, 1e-3),
            unit='s',
            doc='duration of one on (or off) phase of the indicators'),
     ApiRow('setRightSteeringAngle', 'getRightSteeringAngle', 'set_right_steering_angle',

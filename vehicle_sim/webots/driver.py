@@ -20,9 +20,10 @@ A Webots Python controller runs unchanged apart from its import::
     from vehicle_sim.webots import Driver   # Webots: from vehicle import Driver
 
 Odd input follows the facade column of the DESIGN §4 table: Webots semantics, each case
-reported with a ``WebotsWarning``: NaN/inf ignored, throttle/brake/steering/cruising speed/gear
-clamped, undefined enums and non-positive indicator periods ignored, wheel index outside 0..3
-returns 0, rpm and gear read in SPEED mode return 0. A value of the wrong type (a string for a
+reported with a ``WebotsWarning``: NaN/inf ignored, throttle/brake/steering/gear clamped, a
+cruising speed beyond the top speed stored as given (the wheel motors saturate),
+undefined enums and indicator periods below 1 ms ignored, wheel index outside 0..3 returns 0,
+rpm and gear read in SPEED mode return 0. A value of the wrong type (a string for a
 number, a float for a gear) raises TypeError, as Webots' own wrapper fails on it.
 """
 
@@ -256,15 +257,18 @@ def _make_setter(row):
             return
         if row.limits is not None:
             low, high = row.limits(self.logic)
-            if not (low < value if row.low_exclusive else low <= value) or value > high:
+            if not low <= value <= high:
+                valid = f'outside the valid range ({low:g} .. {high:g})'
                 if row.out_of_range == 'ignore':
-                    _warn(f'{row.setter}({value}): outside the valid range ({low:g} .. '
-                          f'{high:g}); ignored')
+                    _warn(f'{row.setter}({value!r}): {valid}; ignored')
                     return
-                clamped = min(max(value, low), high)
-                _warn(f'{row.setter}({value}): outside the valid range ({low:g} .. {high:g}); '
-                      f'used {clamped:g} instead')
-                value = type(value)(clamped)
+                if row.out_of_range == 'store':
+                    _warn(f'{row.setter}({value!r}): {valid}; stored as given, the motors '
+                          f'saturate at {min(max(value, low), high):g}')
+                else:
+                    clamped = min(max(value, low), high)
+                    _warn(f'{row.setter}({value!r}): {valid}; used {clamped:g} instead')
+                    value = type(value)(clamped)
         getattr(self.logic, core_setter)(value)
 
     setter.__name__ = row.setter
