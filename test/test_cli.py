@@ -19,6 +19,7 @@ Peers: test/transport_peer.py (node /tp_cli/peer: service set_int, parameter gai
 the automobile node started by ``vehicle-sim run`` (real time, endpoints under /automobile).
 """
 
+import re
 import subprocess
 import sys
 
@@ -146,6 +147,15 @@ def test_demo_writes_a_png_where_asked(tmp_path):
     assert result.returncode == 0, result.stderr
     assert 'wrote' in result.stdout
     assert out.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'
+
+
+def test_run_help_example_sets_a_parameter_the_node_declares(capsys):
+    from vehicle_sim.cli import build_parser
+    from vehicle_sim.ros import sim_params
+    with pytest.raises(SystemExit):
+        build_parser().parse_args(['run', '--help'])
+    examples = re.findall(r'-p (\w+):=', capsys.readouterr().out)
+    assert examples and set(examples) <= set(sim_params.defaults())
 
 
 def test_status_line_shows_time_speed_rpm_gear_mode_and_indicator():

@@ -361,6 +361,23 @@ def test_time_step_is_refused_when_not_synchronous():
         app.close()
 
 
+def test_misspelt_publish_period_is_warned_naming_publish_period_ms(capsys):
+    # The case: `vehicle-sim run -- --ros-args -p publish_period:=0.02`.
+    app = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/misspelt', '-p',
+                          'publish_period:=0.02'], transport='dds',
+                         parameter_overrides={'synchronous': True})
+    try:
+        app.node.spin_once(0.0)
+        app.node.spin_once(0.0)
+        warnings = [line for line in capsys.readouterr().err.splitlines() if '[WARN]' in line]
+        assert len(warnings) == 1
+        assert 'ignored parameter override publish_period (did you mean publish_period_ms?)' \
+            in warnings[0]
+        assert ', '.join(sorted(sim_params.defaults())) in warnings[0]
+    finally:
+        app.close()
+
+
 class _Value:
     def __init__(self, value):
         self.value = value

@@ -673,7 +673,7 @@ def build_parser() -> argparse.ArgumentParser:
     run = sub.add_parser('run', help='start the automobile node with a live status line',
                          description='Start the automobile node on the embedded transport. '
                                      'Arguments after -- are ROS arguments '
-                                     '(e.g. -- --ros-args -p publish_period:=0.02).')
+                                     '(e.g. -- --ros-args -p publish_period_ms:=20).')
     run.add_argument('--car', metavar='MODEL', help='car preset (e.g. BmwX5, TeslaModel3)')
     run.add_argument('--world', metavar='FILE', help='world file (config/worlds/*.yaml)')
     run.add_argument('--real-time-factor', type=float, metavar='F',

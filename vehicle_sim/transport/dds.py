@@ -54,7 +54,11 @@ from cyclonedds.topic import Topic
 
 from vehicle_msgs_py import types as msg_types
 from vehicle_sim.transport import dds_config, port
-from vehicle_sim.transport.params import parse_ros_args
+from vehicle_sim.transport.params import (
+    parse_ros_args,
+    read_only_reason,
+    unknown_overrides_warning,
+)
 from vehicle_sim.transport.port import (
     as_qos,
     Parameter,
@@ -544,6 +548,7 @@ class DdsNode(port.NodePort):
         self._overrides = ros_args.parameter_overrides(self._name, self._namespace)
         self._overrides.update(parameter_overrides or {})
         self._params: Dict[str, _ParamEntry] = {}
+        self._overrides_checked = False
         self._on_set_callbacks: List[Callable] = []
         self._reader_gids: Dict[int, bytes] = {}
         self._writer_gids: Dict[int, bytes] = {}
@@ -775,7 +780,7 @@ class DdsNode(port.NodePort):
             if entry is None:
                 return SetParametersResult(False, f'parameter {param.name!r} is not declared')
             if entry.read_only:
-                return SetParametersResult(False, f'parameter {param.name!r} is read-only')
+                return SetParametersResult(False, read_only_reason(param.name))
             reason = self._check_value(param.name, entry, param.value)
             if reason:
                 return SetParametersResult(False, reason)
@@ -883,6 +888,11 @@ class DdsNode(port.NodePort):
     def spin_once(self, timeout_s: Optional[float] = None) -> None:
         if self._shutdown:
             return
+        if not self._overrides_checked:  # the node's parameters are declared by its first spin
+            self._overrides_checked = True
+            warning = unknown_overrides_warning(self._overrides, self._params)
+            if warning:
+                self._logger.warning(warning)
         now = time.monotonic()
         wait_s = SPIN_SLICE_S * 10 if timeout_s is None else max(0.0, timeout_s)
         for timer in self._timers:
