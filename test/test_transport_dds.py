@@ -345,3 +345,12 @@ def test_declared_overrides_give_no_warning(capsys):
         assert _warnings(capsys.readouterr().err) == []
     finally:
         node.shutdown()
+
+
+def test_endpoint_user_data_puts_tokens_before_the_type_hash_like_rmw_cyclonedds():
+    # rmw_cyclonedds (rmw_node.cpp): 'serviceid=<id>;typehash=RIHS01_<hex>;' on a service.
+    assert dds.endpoint_user_data('std_srvs/srv/SetBool_Request', serviceid=7) == (
+        b'serviceid=7;typehash=RIHS01_'
+        b'c62fbb99d94e1b25e8ef9e109f9581956bb1b3361a45a4e5810c36a90d29932e;')
+    assert dds.endpoint_user_data('std_msgs/msg/String') == (
+        b'typehash=RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18;')
