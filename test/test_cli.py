@@ -25,7 +25,7 @@ import re
 import subprocess
 import sys
 
-from conftest import peer_env, PEER_START_TIMEOUT_S
+from conftest import peer_env, PEER_START_TIMEOUT_S, stop_processes
 import pytest
 
 NS = '/tp_cli'
@@ -52,11 +52,15 @@ def automobile():
     proc = subprocess.Popen(
         [sys.executable, '-m', 'vehicle_sim.cli', 'run', '--no-status', '--duration', '300'],
         env=peer_env(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    result = vehicle_sim('call', '/automobile/get_gear', '--wait', str(PEER_START_TIMEOUT_S))
-    assert result.returncode == 0, result.stderr
-    yield proc
-    proc.terminate()
-    assert proc.wait(PEER_START_TIMEOUT_S) == 0
+    try:
+        result = vehicle_sim('call', '/automobile/get_gear', '--wait',
+                             str(PEER_START_TIMEOUT_S))
+        assert result.returncode == 0, result.stderr
+        yield proc
+        proc.terminate()
+        assert proc.wait(PEER_START_TIMEOUT_S) == 0
+    finally:
+        stop_processes([proc])
 
 
 def test_list_shows_the_peer_node_topics_and_services_with_types(peer):

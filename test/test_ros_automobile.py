@@ -76,22 +76,28 @@ def sim(tmp_path_factory):
     path.write_text('/**:\n  ros__parameters:\n    synchronous: true\n    time_step_ms: 10\n')
     process = NodeProcess('--ros-args', '--params-file', str(path), '-p',
                           'car_model:=ToyotaPrius')
-    yield process
-    process.stop()
+    try:
+        yield process
+    finally:
+        process.stop()
 
 
 @pytest.fixture(scope='module')
 def two_cars():
     process = NodeProcess('--ros-args', '-p', 'world:=two_cars', '-p', 'synchronous:=true')
-    yield process
-    process.stop()
+    try:
+        yield process
+    finally:
+        process.stop()
 
 
 @pytest.fixture(scope='module')
 def tester():
     node = make_client_node('automobile_tester')
-    yield node
-    node.shutdown()
+    try:
+        yield node
+    finally:
+        node.shutdown()
 
 
 @pytest.fixture(scope='module')

@@ -51,8 +51,10 @@ def peer(spawn_peer):
 @pytest.fixture(scope='module')
 def node(peer):
     test_node = DdsNode('tester', '/tp_test')
-    yield test_node
-    test_node.shutdown()
+    try:
+        yield test_node
+    finally:
+        test_node.shutdown()
 
 
 @pytest.fixture(scope='module')
