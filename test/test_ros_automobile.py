@@ -384,6 +384,21 @@ def test_misspelt_publish_period_is_warned_naming_publish_period_ms(capsys):
         app.close()
 
 
+def test_parameters_are_read_only_at_run_time_except_use_sim_time():
+    app = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/param_rules'], transport='dds',
+                         parameter_overrides={'synchronous': True})
+    try:
+        node = app.node
+        (refused,) = node.set_parameters([port.Parameter('car_model', 'BmwX5')])
+        assert (refused.successful, refused.reason) == (
+            False, 'Trying to set a read-only parameter: car_model.')
+        assert node.get_parameter('car_model') == 'Car'
+        (accepted,) = node.set_parameters([port.Parameter('use_sim_time', True)])
+        assert accepted.successful and node.get_parameter('use_sim_time') is True
+    finally:
+        app.close()
+
+
 class _Value:
     def __init__(self, value):
         self.value = value
