@@ -15,7 +15,7 @@
 from glob import glob
 import os
 
-from setuptools import find_packages, setup
+from setuptools import find_namespace_packages, setup
 
 package_name = 'vehicle_sim'
 
@@ -27,9 +27,13 @@ def _data(pattern):
 setup(
     name=package_name,
     version='0.1.0',
-    packages=find_packages(exclude=['test', 'test.*', 'benchmarks', 'examples']),
-    package_data={'vehicle_msgs_py': ['msg/**/*', 'srv/**/*', 'definitions/**/*']},
-    include_package_data=True,
+    # The interface definitions (vehicle_msgs_py/definitions/<package>/<msg|srv>/) are data
+    # directories with importable names; listing them as namespace packages is how setuptools
+    # wants such data shipped (no SetuptoolsDeprecationWarning 'Installing ... as data').
+    packages=find_namespace_packages(
+        include=['vehicle_sim', 'vehicle_sim.*', 'vehicle_msgs_py', 'vehicle_msgs_py.*'],
+        exclude=['*.__pycache__']),
+    package_data={'vehicle_msgs_py.definitions': ['*/msg/*.msg', '*/srv/*.srv']},
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),

@@ -49,7 +49,7 @@ def generate_launch_description():
                               description='bridge parameters file'),
         Node(
             package='vehicle_sim', executable='diff_robot', name='diff_robot',
-            namespace='diff_robot', output='screen', condition=IfCondition(sim_robot),
+            output='screen', condition=IfCondition(sim_robot),
             parameters=[os.path.join(config, 'diff_robot.yaml'), {'robot': robot}]),
         Node(
             package='vehicle_sim', executable='ackermann_to_differential',

@@ -91,6 +91,25 @@ class PeerProcess:
             self.proc.wait()
 
 
+def stop_processes(procs, timeout_s=PEER_START_TIMEOUT_S):
+    """SIGTERM every process still running, then SIGKILL any that outlives ``timeout_s``."""
+    for proc in procs:
+        if proc.poll() is None:
+            proc.terminate()
+    for proc in procs:
+        try:
+            proc.wait(timeout_s)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+
+
+def sleeper_process(*_args, **_kwargs):
+    """Start a stand-in for a node process (a fixture test checks that it gets stopped)."""
+    return subprocess.Popen([sys.executable, '-c', 'import time; time.sleep(600)'],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+
+
 @pytest.fixture(scope='module')
 def spawn_peer():
     """Return a function starting peer subprocesses; they are stopped after the module."""
@@ -101,6 +120,7 @@ def spawn_peer():
         peers.append(peer)
         return peer
 
-    yield spawn
-    for peer in peers:
-        peer.stop()
+    try:
+        yield spawn
+    finally:
+        stop_processes([peer.proc for peer in peers])

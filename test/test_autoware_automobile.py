@@ -20,11 +20,12 @@ world themselves (sim time, deterministic); one cross-process test runs the node
 subprocess and talks to it over DDS like Autoware would. Signs: Autoware + left, Webots + right.
 """
 
+import contextlib
 import math
-import os
 import subprocess
 import sys
 
+from conftest import peer_env, sleeper_process, stop_processes
 import pytest
 
 from vehicle_sim.core.autoware_car import (
@@ -50,7 +51,6 @@ from vehicle_sim.ros.bridge_node import (
     MODE_MANUAL,
 )
 
-REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WAIT_S = 30.0
 CAR = 'ToyotaPrius'          # wheelbase 2.8 m, steering limits ±1 rad (docs/end_to_end.md)
 LIMITS = CarLimits(-0.5, 0.6, 180.0, 2.8)
@@ -96,8 +96,10 @@ def aw():
     from vehicle_sim.ros.autoware_automobile_node import AutowareAutomobileNode
     node = AutowareAutomobileNode([], transport='dds', parameter_overrides={
         'car_model': CAR, 'synchronous': True, 'publish_period_ms': 100})
-    yield node
-    node.close()
+    try:
+        yield node
+    finally:
+        node.close()
 
 
 def control(node, speed, steering):
@@ -215,16 +217,50 @@ def test_node_lights_and_control_mode_are_reported_from_the_car(aw):
 # cross-process over DDS
 
 
-def test_node_subprocess_control_over_dds_drives_the_car_and_reports_velocity():
-    from vehicle_sim.transport.dds import DdsNode
-    env = dict(os.environ)
-    env['PYTHONPATH'] = REPO_ROOT + os.pathsep + env.get('PYTHONPATH', '')
-    proc = subprocess.Popen(
+def _start_node():
+    return subprocess.Popen(
         [sys.executable, '-m', 'vehicle_sim.ros.autoware_automobile_node', '--ros-args',
          '-p', f'car_model:={CAR}', '-p', 'synchronous:=true', '-p', 'publish_period_ms:=100'],
-        env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    node = DdsNode('autoware_tester', '/aw_test')
+        env=peer_env(), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+
+
+@contextlib.contextmanager
+def node_and_tester():
+    """Start the node in a subprocess, then this test's node; stop both on exit."""
+    from vehicle_sim.transport.dds import DdsNode
+    proc = _start_node()
+    node = None
     try:
+        node = DdsNode('autoware_tester', '/aw_test')
+        yield proc, node
+    finally:
+        if node is not None:
+            node.shutdown()
+        stop_processes([proc], WAIT_S)
+
+
+def test_node_and_tester_stop_the_subprocess_when_the_test_node_fails(monkeypatch):
+    from vehicle_sim.transport import dds
+    started = []
+
+    def start():
+        started.append(sleeper_process())
+        return started[-1]
+
+    def failing_node(*_args, **_kwargs):
+        raise dds.TransportError('the test node could not start')
+
+    monkeypatch.setitem(globals(), '_start_node', start)
+    monkeypatch.setattr(dds, 'DdsNode', failing_node)
+    with pytest.raises(dds.TransportError, match='could not start'):
+        with node_and_tester():
+            pass
+    (proc,) = started
+    assert proc.poll() is not None
+
+
+def test_node_subprocess_control_over_dds_drives_the_car_and_reports_velocity():
+    with node_and_tester() as (proc, node):
         reports = []
         node.create_subscription(bi.VELOCITY_STATUS.ros_type, bi.VELOCITY_STATUS.name,
                                  reports.append, bi.VELOCITY_STATUS.qos)
@@ -248,10 +284,3 @@ def test_node_subprocess_control_over_dds_drives_the_car_and_reports_velocity():
               f'{last.heading_rate:.4f} rad/s')
         assert last.longitudinal_velocity == pytest.approx(5.0, rel=0.01)
         assert last.heading_rate > 0.0
-    finally:
-        node.shutdown()
-        proc.terminate()
-        try:
-            proc.wait(WAIT_S)
-        except subprocess.TimeoutExpired:
-            proc.kill()

@@ -19,10 +19,13 @@ Peers: test/transport_peer.py (node /tp_cli/peer: service set_int, parameter gai
 the automobile node started by ``vehicle-sim run`` (real time, endpoints under /automobile).
 """
 
+import dataclasses
+import io
+import re
 import subprocess
 import sys
 
-from conftest import peer_env, PEER_START_TIMEOUT_S
+from conftest import peer_env, PEER_START_TIMEOUT_S, stop_processes
 import pytest
 
 NS = '/tp_cli'
@@ -49,11 +52,15 @@ def automobile():
     proc = subprocess.Popen(
         [sys.executable, '-m', 'vehicle_sim.cli', 'run', '--no-status', '--duration', '300'],
         env=peer_env(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    result = vehicle_sim('call', '/automobile/get_gear', '--wait', str(PEER_START_TIMEOUT_S))
-    assert result.returncode == 0, result.stderr
-    yield proc
-    proc.terminate()
-    assert proc.wait(PEER_START_TIMEOUT_S) == 0
+    try:
+        result = vehicle_sim('call', '/automobile/get_gear', '--wait',
+                             str(PEER_START_TIMEOUT_S))
+        assert result.returncode == 0, result.stderr
+        yield proc
+        proc.terminate()
+        assert proc.wait(PEER_START_TIMEOUT_S) == 0
+    finally:
+        stop_processes([proc])
 
 
 def test_list_shows_the_peer_node_topics_and_services_with_types(peer):
@@ -148,6 +155,15 @@ def test_demo_writes_a_png_where_asked(tmp_path):
     assert out.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'
 
 
+def test_run_help_example_sets_a_parameter_the_node_declares(capsys):
+    from vehicle_sim.cli import build_parser
+    from vehicle_sim.ros import sim_params
+    with pytest.raises(SystemExit):
+        build_parser().parse_args(['run', '--help'])
+    examples = re.findall(r'-p (\w+):=', capsys.readouterr().out)
+    assert examples and set(examples) <= set(sim_params.defaults())
+
+
 def test_status_line_shows_time_speed_rpm_gear_mode_and_indicator():
     from vehicle_sim.cli import status_line
     from vehicle_sim.config import load_car
@@ -156,6 +172,68 @@ def test_status_line_shows_time_speed_rpm_gear_mode_and_indicator():
     line = status_line(1.5, status)
     assert line.startswith('t      1.50 s |    0.00 km/h | rpm      - | gear  0 | UNDEFINED')
     assert line.endswith('indicator off')
+    # a car at rest jitters around 0: never shown as -0.00
+    resting = status_line(1.5, dataclasses.replace(status, current_speed_kmh=-0.004))
+    assert '|    0.00 km/h |' in resting
+
+
+class _Terminal(io.StringIO):
+    """Both output streams of a terminal, recorded."""
+
+    def isatty(self):
+        return True
+
+
+def _screen(text):
+    """Return the lines a terminal shows for ``text`` (CR: back to column 0, LF: next line)."""
+    lines, line, column = [], [], 0
+    for char in text:
+        if char == '\n':
+            lines.append(''.join(line).rstrip())
+            line, column = [], 0
+        elif char == '\r':
+            column = 0
+        else:
+            line[column:column + 1] = [char]
+            column += 1
+    lines.append(''.join(line).rstrip())
+    return lines
+
+
+def test_run_log_lines_start_at_column_0_and_the_status_is_redrawn_below_them():
+    from vehicle_sim.cli import _StatusOutput
+    from vehicle_sim.transport.dds import DdsNode
+    terminal = _Terminal()
+    output = _StatusOutput(True, stdout=terminal, stderr=terminal)
+    node = DdsNode('status_logger', '/status_test', args=['--ros-args', '--disable-rosout-logs'])
+    output.install()
+    try:
+        output.maybe_show(0.0, lambda: 't      1.00 s | indicator off')
+        node.get_logger().warning('set_indicator_period refused')   # the node's log line
+        print('plain', 'output')                                     # written in two parts
+        output.maybe_show(10.0, lambda: 't      2.00 s | indicator left')
+    finally:
+        output.finish()
+        node.shutdown()
+    screen = _screen(terminal.getvalue())
+    assert re.fullmatch(r'\[WARN\] \[[0-9.]+\] \[status_test\.status_logger\]: '
+                        r'set_indicator_period refused', screen[0])
+    assert screen[1:] == ['plain output', 't      2.00 s | indicator left', '']
+
+
+def test_run_status_without_a_terminal_is_plain_lines_and_streams_are_left_alone():
+    from vehicle_sim.cli import _StatusOutput
+    stream = io.StringIO()
+    before = (sys.stdout, sys.stderr)
+    output = _StatusOutput(True, stdout=stream, stderr=stream)
+    output.install()
+    try:
+        assert (sys.stdout, sys.stderr) == before
+        output.maybe_show(0.0, lambda: 'status 1')
+        output.maybe_show(10.0, lambda: 'status 2')
+    finally:
+        output.finish()
+    assert stream.getvalue() == 'status 1\nstatus 2\n'
 
 
 def test_format_message_prints_nested_fields_in_definition_order():

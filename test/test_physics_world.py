@@ -15,7 +15,11 @@
 """World: fixed step, explicit stepping, sub-steps, several worlds, determinism, lifecycle."""
 
 import math
+import os
+import subprocess
+import sys
 
+from conftest import peer_env
 import pytest
 
 from vehicle_sim.config import load_car
@@ -136,3 +140,41 @@ def test_world_torques_act_on_every_substep():
             speeds.append(car.forward_speed_mps())
     assert speeds[0] > 0.5
     assert speeds[1] == pytest.approx(speeds[0], rel=0.02)
+
+
+# Generous bound for an interpreter importing numpy and pybullet.
+IMPORT_TIMEOUT_S = 120.0
+
+
+@pytest.mark.parametrize('module', ['vehicle_sim.physics', 'vehicle_sim.physics.world'])
+def test_importing_the_physics_prints_nothing_not_even_the_pybullet_banner(module):
+    # Piped output is fully buffered in C: the banner would appear at exit if left in the buffer.
+    code = f'import {module}; import sys; sys.stdout.write("after import\\n")'
+    env = peer_env()
+    env.pop('PYTHONUNBUFFERED')   # as a node started by ros2 run (C's stdout buffered)
+    result = subprocess.run([sys.executable, '-c', code], env=env, capture_output=True,
+                            text=True, timeout=IMPORT_TIMEOUT_S)
+    assert result.returncode == 0, result.stderr
+    assert (result.stdout, result.stderr) == ('after import\n', '')
+
+
+def test_output_written_before_the_quiet_import_is_kept_and_in_order():
+    code = ('import sys; sys.stdout.write("before\\n"); sys.stderr.write("err before\\n"); '
+            'import vehicle_sim.physics; print("after")')
+    result = subprocess.run([sys.executable, '-c', code], env=peer_env(), capture_output=True,
+                            text=True, timeout=IMPORT_TIMEOUT_S)
+    assert (result.stdout, result.stderr) == ('before\nafter\n', 'err before\n')
+
+
+def test_quiet_import_drops_a_banner_left_in_the_c_stdout_buffer(tmp_path):
+    # Builds of pybullet that printf the banner to stdout: piped, it waits in C's buffer.
+    (tmp_path / 'noisy_extension.py').write_text(
+        'import ctypes\nctypes.CDLL(None).printf(b"banner on C stdout\\n")\n')
+    code = ('from vehicle_sim.physics._pybullet import import_quietly; '
+            'import_quietly("noisy_extension"); print("after")')
+    env = peer_env()
+    env['PYTHONPATH'] = str(tmp_path) + os.pathsep + env['PYTHONPATH']
+    env.pop('PYTHONUNBUFFERED')   # python -u makes C's stdout unbuffered too
+    result = subprocess.run([sys.executable, '-c', code], env=env, capture_output=True,
+                            text=True, timeout=IMPORT_TIMEOUT_S)
+    assert (result.stdout, result.stderr) == ('after\n', '')

@@ -76,22 +76,28 @@ def sim(tmp_path_factory):
     path.write_text('/**:\n  ros__parameters:\n    synchronous: true\n    time_step_ms: 10\n')
     process = NodeProcess('--ros-args', '--params-file', str(path), '-p',
                           'car_model:=ToyotaPrius')
-    yield process
-    process.stop()
+    try:
+        yield process
+    finally:
+        process.stop()
 
 
 @pytest.fixture(scope='module')
 def two_cars():
     process = NodeProcess('--ros-args', '-p', 'world:=two_cars', '-p', 'synchronous:=true')
-    yield process
-    process.stop()
+    try:
+        yield process
+    finally:
+        process.stop()
 
 
 @pytest.fixture(scope='module')
 def tester():
     node = make_client_node('automobile_tester')
-    yield node
-    node.shutdown()
+    try:
+        yield node
+    finally:
+        node.shutdown()
 
 
 @pytest.fixture(scope='module')
@@ -357,6 +363,38 @@ def test_time_step_is_refused_when_not_synchronous():
                                          _Value(10), _Value(None))
         assert response.success is False
         assert math.isclose(app.world.time_s, 0.0)
+    finally:
+        app.close()
+
+
+def test_misspelt_publish_period_is_warned_naming_publish_period_ms(capsys):
+    # The case: `vehicle-sim run -- --ros-args -p publish_period:=0.02`.
+    app = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/misspelt', '-p',
+                          'publish_period:=0.02'], transport='dds',
+                         parameter_overrides={'synchronous': True})
+    try:
+        app.node.spin_once(0.0)
+        app.node.spin_once(0.0)
+        warnings = [line for line in capsys.readouterr().err.splitlines() if '[WARN]' in line]
+        assert len(warnings) == 1
+        assert 'ignored parameter override publish_period (did you mean publish_period_ms?)' \
+            in warnings[0]
+        assert ', '.join(sorted(sim_params.defaults())) in warnings[0]
+    finally:
+        app.close()
+
+
+def test_parameters_are_read_only_at_run_time_except_use_sim_time():
+    app = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/param_rules'], transport='dds',
+                         parameter_overrides={'synchronous': True})
+    try:
+        node = app.node
+        (refused,) = node.set_parameters([port.Parameter('car_model', 'BmwX5')])
+        assert (refused.successful, refused.reason) == (
+            False, 'Trying to set a read-only parameter: car_model.')
+        assert node.get_parameter('car_model') == 'Car'
+        (accepted,) = node.set_parameters([port.Parameter('use_sim_time', True)])
+        assert accepted.successful and node.get_parameter('use_sim_time') is True
     finally:
         app.close()
 

@@ -22,11 +22,13 @@ synchronous mode and the bridge on sim time, so the watchdog assertions are on s
 Waits have generous wall-clock bounds; assertions are on outcomes, never durations.
 """
 
+import contextlib
 import math
 import os
 import subprocess
 import sys
 
+from conftest import sleeper_process, stop_processes
 import numpy as np
 import pytest
 
@@ -191,26 +193,28 @@ class Collector:
                                             spec.qos)
 
 
-@pytest.fixture(scope='module')
-def system():
+@contextlib.contextmanager
+def running_system():
+    """Start the robot and the bridges, then this test's node; stop all of them on exit."""
     from vehicle_sim.transport.dds import DdsNode
-    procs = [
-        _spawn('vehicle_sim.ros.diff_robot_node', '-p', 'synchronous:=true'),
-        _spawn('vehicle_sim.ros.bridge_node', *BRIDGE_ARGS, '-p', 'use_sim_time:=true',
-               '-p', 'publish_twist:=true',
-               '-r', f'{bi.DIFFERENTIAL_COMMAND_OUT.name}:=/diff_robot/differential_command',
-               '-r', f'{bi.JOINT_STATES_IN.name}:=/diff_robot/joint_states'),
-    ]
-    for i, input_type in enumerate(OTHER_INPUTS):
-        procs.append(_spawn(
-            'vehicle_sim.ros.bridge_node', *BRIDGE_ARGS, '-r', f'__node:=bridge_in{i}',
-            '-p', f'input_type:={input_type}', '-p', 'vehicle_status:=false',
-            '-r', f'{bi.BRIDGE_INPUTS[input_type].name}:=/in{i}/command',
-            '-r', f'{bi.DIFFERENTIAL_COMMAND_OUT.name}:=/in{i}/differential_command',
-            '-r', f'{bi.WHEEL_VELOCITIES_OUT.name}:=/in{i}/wheel_velocities'))
-    node = DdsNode('bridge_tester', '/bridge_test')
-    env = {'node': node, 'procs': procs}
+    procs = []
+    node = None
     try:
+        procs.append(_spawn('vehicle_sim.ros.diff_robot_node', '-p', 'synchronous:=true'))
+        procs.append(_spawn(
+            'vehicle_sim.ros.bridge_node', *BRIDGE_ARGS, '-p', 'use_sim_time:=true',
+            '-p', 'publish_twist:=true',
+            '-r', f'{bi.DIFFERENTIAL_COMMAND_OUT.name}:=/diff_robot/differential_command',
+            '-r', f'{bi.JOINT_STATES_IN.name}:=/diff_robot/joint_states'))
+        for i, input_type in enumerate(OTHER_INPUTS):
+            procs.append(_spawn(
+                'vehicle_sim.ros.bridge_node', *BRIDGE_ARGS, '-r', f'__node:=bridge_in{i}',
+                '-p', f'input_type:={input_type}', '-p', 'vehicle_status:=false',
+                '-r', f'{bi.BRIDGE_INPUTS[input_type].name}:=/in{i}/command',
+                '-r', f'{bi.DIFFERENTIAL_COMMAND_OUT.name}:=/in{i}/differential_command',
+                '-r', f'{bi.WHEEL_VELOCITIES_OUT.name}:=/in{i}/wheel_velocities'))
+        node = DdsNode('bridge_tester', '/bridge_test')
+        env = {'node': node, 'procs': procs}
         env['diff'] = Collector(node, bi.ROBOT_DIFFERENTIAL_COMMAND,
                                 '/diff_robot/differential_command')
         env['array'] = Collector(node, bi.WHEEL_VELOCITIES_OUT)
@@ -241,14 +245,35 @@ def system():
                 for p in procs))
         yield env
     finally:
-        node.shutdown()
-        for proc in procs:
-            proc.terminate()
-        for proc in procs:
-            try:
-                proc.wait(WAIT_S)
-            except subprocess.TimeoutExpired:
-                proc.kill()
+        if node is not None:
+            node.shutdown()
+        stop_processes(procs, WAIT_S)
+
+
+@pytest.fixture(scope='module')
+def system():
+    with running_system() as env:
+        yield env
+
+
+def test_system_fixture_stops_its_processes_when_its_own_node_fails(monkeypatch):
+    from vehicle_sim.transport import dds
+    started = []
+
+    def spawn(*_args):
+        started.append(sleeper_process())
+        return started[-1]
+
+    def failing_node(*_args, **_kwargs):
+        raise dds.TransportError('the test node could not start')
+
+    monkeypatch.setitem(globals(), '_spawn', spawn)
+    monkeypatch.setattr(dds, 'DdsNode', failing_node)
+    with pytest.raises(dds.TransportError, match='could not start'):
+        with running_system():
+            pass
+    assert len(started) == 2 + len(OTHER_INPUTS)
+    assert [proc.poll() is not None for proc in started] == [True] * len(started)
 
 
 def send_control(env, speed, steering):

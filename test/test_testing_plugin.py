@@ -23,7 +23,7 @@ import os
 import subprocess
 import sys
 
-from conftest import peer_env, REPO_ROOT
+from conftest import peer_env, REPO_ROOT, sleeper_process
 import pytest
 
 EXAMPLE = os.path.join(REPO_ROOT, 'examples', 'test_user_example.py')
@@ -53,3 +53,26 @@ def test_stamp_helpers_read_header_and_clock_stamps():
     value.header.stamp.sec = 3
     assert stamp_ns(clock) == 2_500_000_000
     assert stamp_s(value) == 3.0
+
+
+def test_automobile_sim_stops_its_node_process_when_its_client_node_fails(monkeypatch):
+    import types
+
+    from vehicle_sim import testing
+    started = []
+
+    def popen(*_args, **_kwargs):
+        started.append(sleeper_process())
+        return started[-1]
+
+    class FailingClient:
+        def __init__(self, *_args, **_kwargs):
+            raise OSError('the client node could not start')
+
+    monkeypatch.setattr(testing, 'subprocess', types.SimpleNamespace(
+        Popen=popen, STDOUT=subprocess.STDOUT, TimeoutExpired=subprocess.TimeoutExpired))
+    monkeypatch.setattr(testing, 'AutomobileClient', FailingClient)
+    with pytest.raises(RuntimeError, match='did not start'):
+        testing.AutomobileSim()
+    (proc,) = started
+    assert proc.poll() is not None

@@ -51,8 +51,10 @@ def peer(spawn_peer):
 @pytest.fixture(scope='module')
 def node(peer):
     test_node = DdsNode('tester', '/tp_test')
-    yield test_node
-    test_node.shutdown()
+    try:
+        yield test_node
+    finally:
+        test_node.shutdown()
 
 
 @pytest.fixture(scope='module')
@@ -285,3 +287,72 @@ def test_use_sim_time_node_clock_follows_clock_topic(node):
         assert wait_for(ticked)
     finally:
         sim.shutdown()
+
+
+# -------------------------------------------------------------------- parameters in-process
+
+def test_read_only_parameter_set_is_refused_with_rclpy_wording_and_keeps_its_value():
+    node = DdsNode('read_only_user', '/tp_test')
+    try:
+        node.declare_parameter('model', 'Car', read_only=True)
+        (result,) = node.set_parameters([port.Parameter('model', 'BmwX5')])
+        assert (result.successful, result.reason) == (
+            False, 'Trying to set a read-only parameter: model.')
+        assert node.get_parameter('model') == 'Car'
+    finally:
+        node.shutdown()
+
+
+def _warnings(text):
+    return [line for line in text.splitlines() if line.startswith('[WARN]')]
+
+
+def test_misspelt_override_is_warned_once_at_the_first_spin_naming_the_parameters(capsys):
+    node = DdsNode('misspelt', '/tp_test',
+                   args=['x', '--ros-args', '-p', 'publish_period:=0.02', '-p', 'period_ms:=20'])
+    try:
+        node.declare_parameter('period_ms', 0)
+        assert _warnings(capsys.readouterr().err) == []     # declarations are not over yet
+        node.spin_once(0.0)
+        node.spin_once(0.0)
+        (warning,) = _warnings(capsys.readouterr().err)
+        assert warning.endswith(
+            '[tp_test.misspelt]: ignored parameter override publish_period: not declared by '
+            'this node; its parameters: period_ms, use_sim_time')
+        assert node.get_parameter('period_ms') == 20
+    finally:
+        node.shutdown()
+
+
+def test_params_file_entry_for_an_undeclared_parameter_is_warned(tmp_path, capsys):
+    path = tmp_path / 'params.yaml'
+    path.write_text('/tp_test/from_file:\n  ros__parameters:\n    gain: 2.0\n    gian: 3.0\n')
+    node = DdsNode('from_file', '/tp_test', args=['--ros-args', '--params-file', str(path)])
+    try:
+        node.declare_parameter('gain', 1.0)
+        node.spin_once(0.0)
+        (warning,) = _warnings(capsys.readouterr().err)
+        assert 'ignored parameter override gian (did you mean gain?)' in warning
+        assert node.get_parameter('gain') == 2.0
+    finally:
+        node.shutdown()
+
+
+def test_declared_overrides_give_no_warning(capsys):
+    node = DdsNode('all_known', '/tp_test', args=['--ros-args', '-p', 'gain:=2.0'],
+                   parameter_overrides={'use_sim_time': False})
+    try:
+        node.declare_parameter('gain', 1.0)
+        node.spin_once(0.0)
+        assert _warnings(capsys.readouterr().err) == []
+    finally:
+        node.shutdown()
+
+
+def test_endpoint_user_data_puts_tokens_before_the_type_hash_like_rmw_cyclonedds():
+    # rmw_cyclonedds (rmw_node.cpp): 'serviceid=<id>;typehash=RIHS01_<hex>;' on a service.
+    assert dds.endpoint_user_data('std_srvs/srv/SetBool_Request', serviceid=7) == (
+        b'serviceid=7;typehash=RIHS01_'
+        b'c62fbb99d94e1b25e8ef9e109f9581956bb1b3361a45a4e5810c36a90d29932e;')
+    assert dds.endpoint_user_data('std_msgs/msg/String') == (
+        b'typehash=RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18;')

@@ -16,7 +16,7 @@
 
 import pytest
 
-from vehicle_sim.transport import dds_config, port, selection
+from vehicle_sim.transport import dds_config, params, port, selection
 from vehicle_sim.transport.params import params_file_overrides, parse_ros_args
 from vehicle_sim.transport.port import resolve_name, TransportError
 
@@ -163,3 +163,22 @@ def test_parameter_validator_reasons():
         raise ValueError('bad value')
 
     assert port.run_validator(raises, 1.0) == 'bad value'
+
+
+def test_read_only_reason_is_worded_like_rclpy():
+    # rclpy Jazzy, Node._apply_descriptor
+    assert params.read_only_reason('car_model') == \
+        'Trying to set a read-only parameter: car_model.'
+
+
+def test_unknown_overrides_warning_names_the_stranger_a_close_match_and_every_parameter():
+    warning = params.unknown_overrides_warning(
+        ['publish_period', 'car_model'], ['car_model', 'publish_period_ms', 'use_sim_time'])
+    assert warning == (
+        'ignored parameter override publish_period (did you mean publish_period_ms?): '
+        'not declared by this node; its parameters: car_model, publish_period_ms, use_sim_time')
+
+
+def test_unknown_overrides_warning_is_none_when_every_override_is_declared():
+    assert params.unknown_overrides_warning(['a'], ['a', 'b']) is None
+    assert params.unknown_overrides_warning([], ['a']) is None

@@ -76,3 +76,29 @@ def test_rclpy_node_service_round_trip_in_process(context):
     finally:
         client_node.shutdown()
         server.shutdown()
+
+
+def test_rclpy_node_warns_once_about_an_override_it_does_not_declare(context, capfd):
+    node = RclpyNode('override_user', context=context,
+                     parameter_overrides={'gian': 2.0, 'gain': 3.0})
+    try:
+        node.declare_parameter('gain', 1.0)
+        node.spin_once(0.0)
+        node.spin_once(0.0)
+        err = capfd.readouterr().err
+        assert err.count('ignored parameter override gian (did you mean gain?): not declared by '
+                         'this node; its parameters: gain, ') == 1
+        assert node.get_parameter('gain') == 3.0
+    finally:
+        node.shutdown()
+
+
+def test_rclpy_node_read_only_refusal_matches_the_embedded_transport(context):
+    from vehicle_sim.transport.params import read_only_reason
+    node = RclpyNode('read_only_user', context=context)
+    try:
+        node.declare_parameter('model', 'Car', read_only=True)
+        (result,) = node.set_parameters([port.Parameter('model', 'BmwX5')])
+        assert (result.successful, result.reason) == (False, read_only_reason('model'))
+    finally:
+        node.shutdown()

@@ -569,24 +569,50 @@ def status_line(time_s: float, status) -> str:
     if lit:
         indicator += ' [' + ''.join(lit) + ']'
     rpm = f'{status.rpm:6.0f}' if int(status.control_mode) == 1 else '     -'
-    return (f't {time_s:9.2f} s | {status.current_speed_kmh + 0.0:7.2f} km/h | rpm {rpm} | '
+    speed = round(status.current_speed_kmh, 2) + 0.0   # no '-0.00' for a car at rest
+    return (f't {time_s:9.2f} s | {speed:7.2f} km/h | rpm {rpm} | '
             f'gear {status.gear:2d} | {mode:<9} | indicator {indicator}')
 
 
 class _StatusOutput:
-    """Live status: one refreshed line on a terminal, periodic plain lines otherwise."""
+    """
+    Live status: one refreshed line on a terminal, periodic plain lines otherwise.
 
-    def __init__(self, enabled: bool):
+    On a terminal the status line stays the last line: while it is installed, whatever is
+    written to ``sys.stdout`` or ``sys.stderr`` (log lines) first erases it, starts at column 0,
+    and the status is drawn again below once the line is complete.
+
+    :param enabled: False for ``--no-status``.
+    :param stdout: the output stream (default ``sys.stdout``).
+    :param stderr: the error stream (default ``sys.stderr``).
+    """
+
+    def __init__(self, enabled: bool, stdout=None, stderr=None):
         self.enabled = enabled
-        if sys.stderr.isatty():
-            self.stream, self.live = sys.stderr, True
-        elif sys.stdout.isatty():
-            self.stream, self.live = sys.stdout, True
+        self._stdout = sys.stdout if stdout is None else stdout
+        self._stderr = sys.stderr if stderr is None else stderr
+        if self._stderr.isatty():
+            self.stream, self.live = self._stderr, True
+        elif self._stdout.isatty():
+            self.stream, self.live = self._stdout, True
         else:
-            self.stream, self.live = sys.stdout, False
+            self.stream, self.live = self._stdout, False
         self.period_s = STATUS_PERIOD_S if self.live else PLAIN_STATUS_PERIOD_S
         self._next = 0.0
-        self._width = 0
+        self._line = ''          # the status line last rendered
+        self._shown = False      # it is on the screen now
+        self._open_line = False  # another writer left a line without its newline
+        self._saved = None
+
+    def install(self) -> None:
+        """Route ``sys.stdout`` and ``sys.stderr`` around the live status line."""
+        if self.enabled and self.live and self._saved is None:
+            # Only streams on the terminal share its line; a redirected one is left alone.
+            self._saved = (sys.stdout, sys.stderr)
+            if self._stdout.isatty():
+                sys.stdout = _AroundStatus(self._stdout, self)
+            if self._stderr.isatty():
+                sys.stderr = _AroundStatus(self._stderr, self)
 
     def maybe_show(self, now_s: float, render) -> None:
         if not self.enabled or now_s < self._next:
@@ -594,17 +620,66 @@ class _StatusOutput:
         self._next = now_s + self.period_s
         line = render()
         if self.live:
-            pad = max(0, self._width - len(line))
-            self._width = len(line)
-            self.stream.write('\r' + line + ' ' * pad)
+            if self._open_line:
+                self.stream.write('\n')
+                self._open_line = False
+            self._erase()
+            self._line = line
+            self._draw()
         else:
             self.stream.write(line + '\n')
         self.stream.flush()
 
+    def _draw(self) -> None:
+        self.stream.write('\r' + self._line)
+        self._shown = True
+
+    def _erase(self) -> None:
+        if self._shown:
+            self.stream.write('\r' + ' ' * len(self._line) + '\r')
+            self._shown = False
+
+    def before_write(self) -> None:
+        """Clear the status line so that another writer starts at column 0."""
+        if self._shown:
+            self._erase()
+            self.stream.flush()
+
+    def after_write(self, text: str) -> None:
+        """Draw the status line again below a completed line."""
+        if not text:
+            return
+        self._open_line = not text.endswith('\n')
+        if not self._open_line and self._line:
+            self._draw()
+            self.stream.flush()
+
     def finish(self) -> None:
-        if self.enabled and self.live and self._width:
+        if self._saved is not None:
+            sys.stdout, sys.stderr = self._saved
+            self._saved = None
+        if self.enabled and self.live and (self._shown or self._open_line):
             self.stream.write('\n')
             self.stream.flush()
+            self._shown = self._open_line = False
+
+
+class _AroundStatus:
+    """A text stream that writes around the live status line of a :class:`_StatusOutput`."""
+
+    def __init__(self, stream, status: _StatusOutput):
+        self._stream = stream
+        self._status = status
+
+    def write(self, text: str) -> int:
+        self._status.before_write()
+        count = self._stream.write(text)
+        self._stream.flush()
+        self._status.after_write(text)
+        return count
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
 
 
 def cmd_run(args) -> int:
@@ -647,6 +722,7 @@ def cmd_run(args) -> int:
     stop = _install_stop_handlers()
     start = time.monotonic()
     try:
+        output.install()
         while not stop.is_set() and node.ok():
             now = time.monotonic()
             if args.duration is not None and now - start >= args.duration:
@@ -673,7 +749,7 @@ def build_parser() -> argparse.ArgumentParser:
     run = sub.add_parser('run', help='start the automobile node with a live status line',
                          description='Start the automobile node on the embedded transport. '
                                      'Arguments after -- are ROS arguments '
-                                     '(e.g. -- --ros-args -p publish_period:=0.02).')
+                                     '(e.g. -- --ros-args -p publish_period_ms:=20).')
     run.add_argument('--car', metavar='MODEL', help='car preset (e.g. BmwX5, TeslaModel3)')
     run.add_argument('--world', metavar='FILE', help='world file (config/worlds/*.yaml)')
     run.add_argument('--real-time-factor', type=float, metavar='F',

@@ -151,12 +151,11 @@ class GraphView:
             BuiltinTopicDcpsSubscription,
         )
         from cyclonedds.domain import DomainParticipant
-        from cyclonedds.qos import Policy, Qos
         from cyclonedds.sub import DataReader
         from cyclonedds.topic import Topic
 
         from vehicle_msgs_py import types as msg_types
-        from vehicle_sim.transport import dds, dds_config
+        from vehicle_sim.transport import dds, dds_config, port
 
         self.domain_id = dds_config.domain_id() if domain_id is None else domain_id
         dds.ensure_domain(self.domain_id)
@@ -169,11 +168,12 @@ class GraphView:
             (BuiltinDataReader(self._participant, BuiltinTopicDcpsSubscription), False),
         ]
         info_type = msg_types.message_type('rmw_dds_common/msg/ParticipantEntitiesInfo')
+        # The QoS and USER_DATA (typehash=) of rmw_cyclonedds' own ros_discovery_info reader:
+        # an rmw_cyclonedds node logs an error for a discovered reader without a type hash.
         self._info_reader = DataReader(
             self._participant, Topic(self._participant, DISCOVERY_TOPIC, info_type),
-            qos=Qos(Policy.Reliability.Reliable(max_blocking_time=0),
-                    Policy.Durability.TransientLocal, Policy.History.KeepAll,
-                    Policy.DataRepresentation(use_cdrv0_representation=True)))
+            qos=dds.endpoint_qos(port.QOS_DISCOVERY_INFO_READER, info_type.__ros_type__,
+                                 writer=False))
         self._participants: Set[bytes] = set()
         self._endpoints: Dict[bytes, Endpoint] = {}
         self._nodes_by_participant: Dict[bytes, List[NodeInfo]] = {}

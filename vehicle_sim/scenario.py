@@ -280,7 +280,7 @@ def run_robots(stream, robots=ROBOTS, bridge_overrides=None, transport='dds',
             robot = DiffRobotNode([], world=world, transport=transport,
                                   parameter_overrides={'robot': preset, 'y': y_m,
                                                        'synchronous': True},
-                                  node_name=f'{preset}_e2e', namespace=f'/{preset}')
+                                  node_name=preset)
             params = robot.params
             overrides = {'wheel_base': params.wheel_tread_m, 'wheel_tread': params.wheel_tread_m,
                          'wheel_radius': params.wheel_radius_m,

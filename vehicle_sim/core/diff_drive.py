@@ -447,8 +447,8 @@ BRIDGE_PARAM_SPECS = (
               'largest change rate of |yaw rate|; non-zero trades path fidelity for smoothness '
               '(0 disables)', ge=0.0),
     ParamSpec('mode', 'mode', 'enum', 'kinematic', choices=KINEMATIC_MODES,
-              doc='kinematic: yaw rate v*tan(steer)/wheel_base; literal: the seed snippet '
-                  '(steering angle used as yaw rate), compatibility only'),
+              doc="kinematic: yaw rate v*tan(steer)/wheel_base; literal: the snippet of "
+                  "Autoware's note (steering angle used as yaw rate), compatibility only"),
     ParamSpec('turn_in_place', 'turn_in_place', 'bool', False,
               doc='rotate in place when |v| < turn_in_place_speed_threshold_mps and steer != 0'),
     ParamSpec('turn_in_place_speed_threshold_mps', 'turn_in_place_speed_threshold_mps', 'float',

@@ -14,6 +14,8 @@
 
 """PyBullet physics: World, car bodies, URDF generation (the only place pybullet is imported)."""
 
+# First: pybullet without its start-up banner (the modules below import it too).
+from vehicle_sim.physics import _pybullet  # noqa: F401
 from vehicle_sim.physics.car_body import CarBody
 from vehicle_sim.physics.simulated_car import SimulatedCar
 from vehicle_sim.physics.urdf import car_urdf, joint_names

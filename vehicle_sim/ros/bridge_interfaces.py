@@ -125,9 +125,8 @@ BRIDGE_OUTPUTS = {
 }
 
 # --------------------------------------------------------------------------------------------
-# The simulated differential robot (relative to its namespace, default /diff_robot)
+# The simulated differential robot (private names of its node, default /diff_robot)
 
-ROBOT_NAMESPACE = '/diff_robot'
 ROBOT_NODE_NAME = 'diff_robot'
 BRIDGE_NODE_NAME = 'ackermann_to_differential'
 

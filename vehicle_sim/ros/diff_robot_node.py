@@ -13,10 +13,13 @@
 # limitations under the License.
 
 """
-The simulated differential-drive robot as a ROS 2 node (``diff_robot``, namespace /diff_robot).
+The simulated differential-drive robot as a ROS 2 node (``/diff_robot``).
 
-Owns a World and one DiffRobotBody (or shares a World built in-process). Topics, types and QoS:
-``ros/bridge_interfaces.py``; summary (``<ns>`` = /diff_robot, ``<p>`` = ``diff_robot/``):
+Owns a World and one DiffRobotBody (or shares a World built in-process). Its topics and its
+service are private names of the node (``~/odom``), so they live under the node's own name;
+frames are prefixed with it. Topics, types and QoS: ``ros/bridge_interfaces.py``; summary
+(``<ns>`` = /diff_robot, ``<p>`` = ``diff_robot/``; ``-r __ns:=/fleet`` gives /fleet/diff_robot
+and ``fleet/diff_robot/``):
 
 - in  ``<ns>/differential_command`` vehicle_msgs/DifferentialCommand, tyre speeds [m/s]
 - in  ``<ns>/wheel_velocities`` std_msgs/Float64MultiArray, [rad/s] in ``wheel_joints`` order
@@ -44,6 +47,11 @@ from vehicle_sim.transport.selection import create_node, run_node
 
 def _yaw_quaternion(yaw_rad):
     return 0.0, 0.0, math.sin(yaw_rad / 2.0), math.cos(yaw_rad / 2.0)
+
+
+def _private(name):
+    """Return a relative endpoint name as a private one (under the node's name)."""
+    return name if name.startswith('/') else '~/' + name
 
 
 def _check_string_array(value):
@@ -80,7 +88,7 @@ class DiffRobotNode:
     """
 
     def __init__(self, args=None, world=None, parameter_overrides=None, transport=None,
-                 node_name=bi.ROBOT_NODE_NAME, namespace=bi.ROBOT_NAMESPACE):
+                 node_name=bi.ROBOT_NODE_NAME, namespace=''):
         node = self.node = create_node(node_name, namespace, args=args,
                                        parameter_overrides=parameter_overrides,
                                        transport=transport)
@@ -110,8 +118,7 @@ class DiffRobotNode:
         self.wheel_joints = tuple(joints)
         self.synchronous = values['synchronous']
         self._publish_tf = values['publish_tf']
-        ns = node.get_namespace().strip('/')
-        prefix = f'{ns}/' if ns else ''
+        prefix = node.get_fully_qualified_name().strip('/') + '/'
         self.odom_frame = f'{prefix}odom'
         self.base_frame = f'{prefix}base_link'
         self._odom_pose = (0.0, 0.0, 0.0)
@@ -123,18 +130,21 @@ class DiffRobotNode:
         self._pub = {}
         for spec in (bi.CLOCK, bi.ROBOT_JOINT_STATES, bi.ROBOT_ODOM, bi.ROBOT_GROUND_TRUTH_ODOM,
                      bi.TF, bi.TF_STATIC, bi.ROBOT_ROBOT_DESCRIPTION):
-            self._pub[spec] = node.create_publisher(spec.ros_type, spec.name, spec.qos)
+            self._pub[spec] = node.create_publisher(spec.ros_type, _private(spec.name),
+                                                    spec.qos)
         self._subs = [
             node.create_subscription(bi.ROBOT_DIFFERENTIAL_COMMAND.ros_type,
-                                     bi.ROBOT_DIFFERENTIAL_COMMAND.name,
+                                     _private(bi.ROBOT_DIFFERENTIAL_COMMAND.name),
                                      self._on_differential_command,
                                      bi.ROBOT_DIFFERENTIAL_COMMAND.qos),
             node.create_subscription(bi.ROBOT_WHEEL_VELOCITIES.ros_type,
-                                     bi.ROBOT_WHEEL_VELOCITIES.name, self._on_wheel_velocities,
+                                     _private(bi.ROBOT_WHEEL_VELOCITIES.name),
+                                     self._on_wheel_velocities,
                                      bi.ROBOT_WHEEL_VELOCITIES.qos),
         ]
         self._time_step_srv = node.create_service(
-            bi.ROBOT_TIME_STEP.ros_type, bi.ROBOT_TIME_STEP.name, self._handle_time_step)
+            bi.ROBOT_TIME_STEP.ros_type, _private(bi.ROBOT_TIME_STEP.name),
+            self._handle_time_step)
         self._pub[bi.ROBOT_ROBOT_DESCRIPTION].publish(
             self._m['std_msgs/msg/String'](data=self.robot.urdf))
         self._publish_static_tf()

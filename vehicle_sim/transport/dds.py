@@ -54,7 +54,11 @@ from cyclonedds.topic import Topic
 
 from vehicle_msgs_py import types as msg_types
 from vehicle_sim.transport import dds_config, port
-from vehicle_sim.transport.params import parse_ros_args
+from vehicle_sim.transport.params import (
+    parse_ros_args,
+    read_only_reason,
+    unknown_overrides_warning,
+)
 from vehicle_sim.transport.port import (
     as_qos,
     Parameter,
@@ -124,6 +128,18 @@ def _type_hash(ros_type: str) -> str:
         return ZERO_HASH
 
 
+def endpoint_user_data(ros_type: str, **tokens: Any) -> bytes:
+    """
+    Return the USER_DATA of a reader or writer as rmw_cyclonedds writes it (rmw_node.cpp).
+
+    ``endpoint_user_data('std_srvs/srv/SetBool_Request', serviceid=3)`` gives
+    ``b'serviceid=3;typehash=RIHS01_<64 hex>;'``; rmw_cyclonedds parses ``typehash=`` of every
+    endpoint it discovers and logs an error when it is missing.
+    """
+    text = ''.join(f'{key}={value};' for key, value in tokens.items())
+    return f'{text}typehash={_type_hash(ros_type)};'.encode()
+
+
 def _dds_qos(profile: QosProfile, user_data: bytes, writer: bool) -> Qos:
     """Map a ROS QoS profile to DDS QoS like rmw_cyclonedds ``create_readwrite_qos`` (A6)."""
     if profile.history == port.KEEP_ALL:
@@ -154,6 +170,11 @@ def _dds_qos(profile: QosProfile, user_data: bytes, writer: bool) -> Qos:
     return Qos(*policies)
 
 
+def endpoint_qos(profile: QosProfile, ros_type: str, writer: bool, **tokens: Any) -> Qos:
+    """Return the DDS QoS of a ROS reader or writer of ``ros_type``, USER_DATA included."""
+    return _dds_qos(profile, endpoint_user_data(ros_type, **tokens), writer)
+
+
 class _Context:
     """
     The process-wide DDS state: the participant, topics, the graph message, the node registry.
@@ -182,7 +203,7 @@ class _Context:
         self._discovery_writer = DataWriter(
             self.participant, self.topic(DISCOVERY_TOPIC, info_type),
             qos=_dds_qos(port.QOS_DISCOVERY_INFO_WRITER,
-                         f'typehash={_type_hash(info_type.__ros_type__)};'.encode(), True))
+                         endpoint_user_data(info_type.__ros_type__), True))
 
     @classmethod
     def acquire(cls, node: 'DdsNode') -> '_Context':
@@ -303,14 +324,13 @@ class DdsService(port.Service):
         self._callback = callback
         ctx = node._ctx
         self.token = ctx.next_token()
-        req_hash = _type_hash(f'{self._types.srv_type}_Request')
-        rep_hash = _type_hash(f'{self._types.srv_type}_Response')
+        request, reply = f'{self._types.srv_type}_Request', f'{self._types.srv_type}_Response'
         self._writer = DataWriter(
             ctx.participant, ctx.topic(f'rr{name}Reply', self._types.response_wire),
-            qos=_dds_qos(qos, f'serviceid={self.token};typehash={rep_hash};'.encode(), True))
+            qos=_dds_qos(qos, endpoint_user_data(reply, serviceid=self.token), True))
         self._reader = DataReader(
             ctx.participant, ctx.topic(f'rq{name}Request', self._types.request_wire),
-            qos=_dds_qos(qos, f'serviceid={self.token};typehash={req_hash};'.encode(), False))
+            qos=_dds_qos(qos, endpoint_user_data(request, serviceid=self.token), False))
         # publication handle of a request writer -> its clientid token ('' when it has none)
         self._client_tokens: Dict[int, Optional[str]] = {}
         # subscription handle of a matched reply reader -> its clientid token
@@ -394,14 +414,13 @@ class DdsClient(port.Client):
         self._types = msg_types.service_types(srv_type)
         ctx = node._ctx
         self.token = ctx.next_token()
-        req_hash = _type_hash(f'{self._types.srv_type}_Request')
-        rep_hash = _type_hash(f'{self._types.srv_type}_Response')
+        request, reply = f'{self._types.srv_type}_Request', f'{self._types.srv_type}_Response'
         self._reader = DataReader(
             ctx.participant, ctx.topic(f'rr{name}Reply', self._types.response_wire),
-            qos=_dds_qos(qos, f'clientid={self.token};typehash={rep_hash};'.encode(), False))
+            qos=_dds_qos(qos, endpoint_user_data(reply, clientid=self.token), False))
         self._writer = DataWriter(
             ctx.participant, ctx.topic(f'rq{name}Request', self._types.request_wire),
-            qos=_dds_qos(qos, f'clientid={self.token};typehash={req_hash};'.encode(), True))
+            qos=_dds_qos(qos, endpoint_user_data(request, clientid=self.token), True))
         self.client_id = self._writer.get_instance_handle() & UINT64_MASK
         self._pending: Dict[int, port.Future] = {}
         self._endpoint_tokens: Dict[int, str] = {}
@@ -544,6 +563,7 @@ class DdsNode(port.NodePort):
         self._overrides = ros_args.parameter_overrides(self._name, self._namespace)
         self._overrides.update(parameter_overrides or {})
         self._params: Dict[str, _ParamEntry] = {}
+        self._overrides_checked = False
         self._on_set_callbacks: List[Callable] = []
         self._reader_gids: Dict[int, bytes] = {}
         self._writer_gids: Dict[int, bytes] = {}
@@ -641,8 +661,7 @@ class DdsNode(port.NodePort):
         dds_name = fqn if profile.avoid_ros_namespace_conventions else 'rt' + fqn
         writer = DataWriter(
             self._ctx.participant, self._ctx.topic(dds_name, msg_type),
-            qos=_dds_qos(profile, f'typehash={_type_hash(msg_type.__ros_type__)};'.encode(),
-                         True))
+            qos=_dds_qos(profile, endpoint_user_data(msg_type.__ros_type__), True))
         self._add_writer(writer)
         self._graph_changed()
         return DdsPublisher(self, writer, msg_type, fqn)
@@ -656,8 +675,7 @@ class DdsNode(port.NodePort):
         dds_name = fqn if profile.avoid_ros_namespace_conventions else 'rt' + fqn
         reader = DataReader(
             self._ctx.participant, self._ctx.topic(dds_name, msg_type),
-            qos=_dds_qos(profile, f'typehash={_type_hash(msg_type.__ros_type__)};'.encode(),
-                         False))
+            qos=_dds_qos(profile, endpoint_user_data(msg_type.__ros_type__), False))
 
         def on_data():
             for sample in reader.take(N=TAKE_BATCH):
@@ -775,7 +793,7 @@ class DdsNode(port.NodePort):
             if entry is None:
                 return SetParametersResult(False, f'parameter {param.name!r} is not declared')
             if entry.read_only:
-                return SetParametersResult(False, f'parameter {param.name!r} is read-only')
+                return SetParametersResult(False, read_only_reason(param.name))
             reason = self._check_value(param.name, entry, param.value)
             if reason:
                 return SetParametersResult(False, reason)
@@ -883,6 +901,11 @@ class DdsNode(port.NodePort):
     def spin_once(self, timeout_s: Optional[float] = None) -> None:
         if self._shutdown:
             return
+        if not self._overrides_checked:  # the node's parameters are declared by its first spin
+            self._overrides_checked = True
+            warning = unknown_overrides_warning(self._overrides, self._params)
+            if warning:
+                self._logger.warning(warning)
         now = time.monotonic()
         wait_s = SPIN_SLICE_S * 10 if timeout_s is None else max(0.0, timeout_s)
         for timer in self._timers:
@@ -1075,5 +1098,5 @@ def get_participant() -> Optional[DomainParticipant]:
     return ctx.participant if ctx is not None else None
 
 
-__all__ = ['DdsNode', 'create_dds_node', 'ensure_domain', 'get_participant', 'participant_guid',
-           'run_dds_node']
+__all__ = ['DdsNode', 'create_dds_node', 'endpoint_qos', 'endpoint_user_data', 'ensure_domain',
+           'get_participant', 'participant_guid', 'run_dds_node']

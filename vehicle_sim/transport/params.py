@@ -20,11 +20,15 @@ YAML, like rcl), ``--params-file file.yaml`` (``<node>: ros__parameters:`` with 
 nested-namespace keys), ``-r``/``--remap [node:]from:=to`` including ``__ns`` and ``__node``
 (``__name``), ``--log-level [name:=]level`` and ``-e``/``--enclave``. Everything outside is
 returned as ``non_ros_args``.
+
+Also the parameter texts both adapters share: rclpy's read-only refusal and the one warning for
+overrides that name no declared parameter.
 """
 
 from dataclasses import dataclass, field
+import difflib
 import re
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
 
 import yaml
 
@@ -256,3 +260,32 @@ def params_file_overrides(data: Dict[str, Any], node_fqn: str) -> Dict[str, Any]
                 raise TransportError(f'ros__parameters of {key!r} must be a mapping')
             _flatten('', params, result)
     return result
+
+
+def read_only_reason(name: str) -> str:
+    """Return the reason a set of a read-only parameter fails, worded like rclpy (Jazzy)."""
+    # rclpy Node._apply_descriptor: SetParametersResult.reason for a read-only descriptor.
+    return f'Trying to set a read-only parameter: {name}.'
+
+
+def unknown_overrides_warning(override_names: Iterable[str],
+                              declared_names: Iterable[str]) -> Optional[str]:
+    """
+    Return the warning for parameter overrides that name no declared parameter, or None.
+
+    rcl keeps such an override without a word, so a misspelt ``-p`` does nothing; both adapters
+    log this once, at the node's first spin (its parameters are declared by then).
+
+    :param override_names: names given by ``-p``, params files and ``parameter_overrides``.
+    :param declared_names: the parameters the node declared.
+    """
+    declared = sorted(set(declared_names))
+    unknown = sorted(set(override_names) - set(declared))
+    if not unknown:
+        return None
+    hints = []
+    for name in unknown:
+        close = difflib.get_close_matches(name, declared, n=1, cutoff=0.6)
+        hints.append(f'{name} (did you mean {close[0]}?)' if close else name)
+    return (f'ignored parameter override{"s" if len(unknown) > 1 else ""} {", ".join(hints)}: '
+            f'not declared by this node; its parameters: {", ".join(declared)}')

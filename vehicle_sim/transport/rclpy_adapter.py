@@ -37,6 +37,7 @@ from rclpy.parameter import Parameter as RclpyParameter
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 from vehicle_sim.transport import port
+from vehicle_sim.transport.params import unknown_overrides_warning
 from vehicle_sim.transport.port import (
     as_qos,
     Parameter,
@@ -156,6 +157,7 @@ class RclpyNode(port.NodePort):
         self._name = self.node.get_name()
         self._namespace = self.node.get_namespace()
         self._declaring = False
+        self._overrides_checked = False
         self._validators: Dict[str, Any] = {}
         self._user_callbacks: List[Any] = []
         self.node.add_on_set_parameters_callback(self._on_set_parameters)
@@ -273,11 +275,19 @@ class RclpyNode(port.NodePort):
         self._user_callbacks.append(callback)
 
     def spin_once(self, timeout_s: Optional[float] = None) -> None:
+        if not self._overrides_checked and self.node is not None:
+            # The node's parameters are declared by its first spin; rclpy keeps the overrides
+            # (-p, params files, parameter_overrides) in Node._parameter_overrides (Jazzy).
+            self._overrides_checked = True
+            warning = unknown_overrides_warning(self.node._parameter_overrides,
+                                                self.node.get_parameters_by_prefix(''))
+            if warning:
+                self._logger.warning(warning)
         self.executor.spin_once(timeout_sec=timeout_s)
 
     def spin(self) -> None:
         while self.ok():  # returns once shutdown() was called, like the embedded transport
-            self.executor.spin_once(timeout_sec=0.1)
+            self.spin_once(0.1)
 
     def ok(self) -> bool:
         return self.node is not None and rclpy.ok(context=self._context)

@@ -1,0 +1,94 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+What users read stands on its own: no pointer outside the repository, docs that match the code.
+
+The project's working notes live beside the repository, not in it; README, docs/ and code
+say what users need themselves and cite other projects' sources by their own names.
+"""
+
+import argparse
+from pathlib import Path
+import re
+import subprocess
+
+import pytest
+
+from vehicle_sim.cli import build_parser
+
+REPO = Path(__file__).resolve().parent.parent
+SKIP_DIRS = {'.venv', 'build', 'install', 'log', '.git', '.pytest_cache', '.ruff_cache',
+             '__pycache__'}
+# The CI entry point is run by the project's CI next to its working notes; users never run it.
+NOT_USER_FACING = {'.ci/run'}
+OUTSIDE = '..' + '/shared'    # spelt in two parts so that this file does not match itself
+# Names of the working notes (a design file, reference notes, source documents).
+WORKING_NOTES = re.compile(r'DESIGN §|DESIGN\.md|STYLE\.md|ros2_wire|webots_spec|reference/|'
+                           r'seeds/|\bthe seed\b', re.IGNORECASE)
+
+
+def _tracked_files():
+    try:
+        listed = subprocess.run(['git', 'ls-files'], cwd=REPO, capture_output=True, text=True,
+                                check=True).stdout.split()
+        paths = [REPO / name for name in listed]
+    except (OSError, subprocess.CalledProcessError):   # not a git checkout: walk the tree
+        paths = [p for p in REPO.rglob('*')
+                 if not SKIP_DIRS.intersection(p.relative_to(REPO).parts)]
+    return sorted(p for p in paths if p.is_file()
+                  and p.relative_to(REPO).as_posix() not in NOT_USER_FACING)
+
+
+def _text(path):
+    try:
+        return path.read_text(encoding='utf-8')
+    except UnicodeDecodeError:
+        return ''
+
+
+def test_no_tracked_file_points_outside_the_repository():
+    offenders = [f'{p.relative_to(REPO)}:{n}' for p in _tracked_files()
+                 for n, line in enumerate(_text(p).splitlines(), 1) if OUTSIDE in line]
+    assert offenders == []
+
+
+def _user_docs():
+    return [REPO / 'README.md', *sorted((REPO / 'docs').glob('*.md'))]
+
+
+@pytest.mark.parametrize('path', _user_docs(), ids=lambda p: p.relative_to(REPO).as_posix())
+def test_user_docs_cite_no_working_note(path):
+    offenders = [f'{n}: {line.strip()}' for n, line in enumerate(_text(path).splitlines(), 1)
+                 if WORKING_NOTES.search(line)]
+    assert offenders == []
+
+
+def _subcommands():
+    (action,) = [a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)]
+    return action.choices
+
+
+@pytest.mark.parametrize('name', sorted(_subcommands()))
+def test_cli_doc_row_lists_the_subcommand_and_every_option(name):
+    text = (REPO / 'docs' / 'cli.md').read_text(encoding='utf-8')
+    rows = [line for line in text.splitlines() if line.startswith(f'| `{name}')]
+    assert len(rows) == 1, f'docs/cli.md has no single row for {name}'
+    row = rows[0]
+    assert 'reserved' not in row
+    for action in _subcommands()[name]._actions:
+        options = [o for o in action.option_strings if o not in ('-h', '--help')]
+        if options:
+            assert any(re.search(re.escape(o) + r'\b', row) for o in options), \
+                f'{name} {options} missing from docs/cli.md'
