@@ -27,6 +27,17 @@ import sys
 
 import pytest
 
+from vehicle_sim.core.autoware import (
+    DISABLE,
+    ENABLE_LEFT,
+    GEAR_DRIVE,
+    GEAR_NEUTRAL,
+    GEAR_PARK,
+    GEAR_REVERSE,
+    HAZARD_ENABLE,
+    MODE_AUTONOMOUS,
+    MODE_MANUAL,
+)
 from vehicle_sim.core.autoware_car import (
     car_command,
     CarLimits,
@@ -38,17 +49,6 @@ from vehicle_sim.core.autoware_car import (
 from vehicle_sim.core.errors import InvalidCommandError
 from vehicle_sim.core.units import mps_to_kmh
 from vehicle_sim.ros import bridge_interfaces as bi
-from vehicle_sim.ros.bridge_node import (
-    DISABLE,
-    ENABLE_LEFT,
-    GEAR_DRIVE,
-    GEAR_NEUTRAL,
-    GEAR_PARK,
-    GEAR_REVERSE,
-    HAZARD_ENABLE,
-    MODE_AUTONOMOUS,
-    MODE_MANUAL,
-)
 
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WAIT_S = 30.0
