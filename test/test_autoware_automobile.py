@@ -28,6 +28,17 @@ import sys
 from conftest import peer_env, sleeper_process, stop_processes
 import pytest
 
+from vehicle_sim.core.autoware import (
+    DISABLE,
+    ENABLE_LEFT,
+    GEAR_DRIVE,
+    GEAR_NEUTRAL,
+    GEAR_PARK,
+    GEAR_REVERSE,
+    HAZARD_ENABLE,
+    MODE_AUTONOMOUS,
+    MODE_MANUAL,
+)
 from vehicle_sim.core.autoware_car import (
     car_command,
     CarLimits,
@@ -39,17 +50,6 @@ from vehicle_sim.core.autoware_car import (
 from vehicle_sim.core.errors import InvalidCommandError
 from vehicle_sim.core.units import mps_to_kmh
 from vehicle_sim.ros import bridge_interfaces as bi
-from vehicle_sim.ros.bridge_node import (
-    DISABLE,
-    ENABLE_LEFT,
-    GEAR_DRIVE,
-    GEAR_NEUTRAL,
-    GEAR_PARK,
-    GEAR_REVERSE,
-    HAZARD_ENABLE,
-    MODE_AUTONOMOUS,
-    MODE_MANUAL,
-)
 
 WAIT_S = 30.0
 CAR = 'ToyotaPrius'          # wheelbase 2.8 m, steering limits ±1 rad (docs/end_to_end.md)
@@ -211,6 +211,38 @@ def test_node_lights_and_control_mode_are_reported_from_the_car(aw):
     assert aw.request_control_mode(MODE_AUTONOMOUS)
     aw.handle_command(control(aw, 3.0, 0.0))
     assert aw.car.logic.target_cruising_speed_kmh == pytest.approx(mps_to_kmh(3.0))
+
+
+def _bridge_refuses(setter_name, value):
+    from vehicle_sim.core.bridge_controller import BridgeController
+    from vehicle_sim.core.diff_drive import DEFAULT_BRIDGE_PARAMS
+    try:
+        getattr(BridgeController(DEFAULT_BRIDGE_PARAMS), setter_name)(value)
+    except InvalidCommandError:
+        return True
+    return False
+
+
+@pytest.mark.parametrize('endpoint, handler, bridge_setter', [
+    (bi.GEAR_COMMAND, 'handle_gear', 'set_gear'),
+    (bi.TURN_INDICATORS_COMMAND, 'handle_turn_indicators', 'set_turn_indicators'),
+    (bi.HAZARD_LIGHTS_COMMAND, 'handle_hazard_lights', 'set_hazard_lights'),
+])
+def test_node_refuses_exactly_the_commands_the_bridge_refuses(aw, endpoint, handler,
+                                                               bridge_setter):
+    # One validation (core/autoware.py) for both vehicle interfaces; a refusal changes nothing.
+    msg = aw.node.msg(endpoint.ros_type)
+    refused = []
+    for value in list(range(0, 30)) + [255]:
+        before = (aw.rejected, aw.status_messages()[bi.GEAR_STATUS].report,
+                  aw.car.logic.indicator, aw.car.logic.hazard_flashers)
+        getattr(aw, handler)(msg(command=value))
+        if aw.rejected != before[0]:
+            refused.append(value)
+            assert (aw.status_messages()[bi.GEAR_STATUS].report, aw.car.logic.indicator,
+                    aw.car.logic.hazard_flashers) == before[1:]
+        assert (value in refused) == _bridge_refuses(bridge_setter, value), value
+    assert refused and refused[-1] == 255
 
 
 # --------------------------------------------------------------------------------------------

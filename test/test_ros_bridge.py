@@ -32,17 +32,17 @@ from conftest import sleeper_process, stop_processes
 import numpy as np
 import pytest
 
-from vehicle_sim.core.diff_drive import bridge_params_from_dict, STOP_COMMAND
-from vehicle_sim.core.errors import InvalidCommandError
-from vehicle_sim.ros import bridge_interfaces as bi
-from vehicle_sim.ros.bridge_node import (
-    BridgeController,
+from vehicle_sim.core.autoware import (
     GEAR_DRIVE,
     GEAR_PARK,
     GEAR_REVERSE,
     MODE_AUTONOMOUS,
     MODE_MANUAL,
 )
+from vehicle_sim.core.bridge_controller import BridgeController
+from vehicle_sim.core.diff_drive import bridge_params_from_dict, STOP_COMMAND
+from vehicle_sim.core.errors import InvalidCommandError
+from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.transport.port import QOS_ROSOUT
 
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -160,7 +160,7 @@ def test_bridge_config_and_docs_list_every_parameter():
         values = yaml.safe_load(stream)['ackermann_to_differential']['ros__parameters']
     with open(os.path.join(REPO_ROOT, 'docs', 'autoware.md'), encoding='utf-8') as stream:
         doc = stream.read()
-    names = [spec.key for spec in BRIDGE_PARAM_SPECS] + [row[0] for row in NODE_PARAMETERS]
+    names = [spec.key for spec in BRIDGE_PARAM_SPECS + NODE_PARAMETERS]
     assert set(values) == set(names) | {'use_sim_time'}
     assert all(f'`{name}`' in doc for name in names)
     bridge_params_from_dict({k: values[k] for k in values if k in

@@ -62,4 +62,4 @@ def test_diff_robot_node_name_prefixes_its_topics_service_and_frames(args, fqn):
 def test_shipped_params_file_configures_the_plain_diff_robot_node():
     data = load_params_file(os.path.join(REPO_ROOT, 'config', 'diff_robot.yaml'))
     assert set(params_file_overrides(data, '/diff_robot')) == {
-        name for name, *_ in ROBOT_NODE_PARAMETERS}
+        spec.key for spec in ROBOT_NODE_PARAMETERS}

@@ -35,6 +35,16 @@ steering angle with + = right.
 from dataclasses import dataclass
 import math
 
+from vehicle_sim.core.autoware import (
+    DISABLE,
+    ENABLE_LEFT,
+    ENABLE_RIGHT,
+    GEAR_DRIVE,
+    GEAR_NEUTRAL,
+    GEAR_PARK,
+    GEAR_REVERSE,
+    REVERSE_GEARS,
+)
 from vehicle_sim.core.errors import InvalidCommandError
 from vehicle_sim.core.signals import Indicator
 from vehicle_sim.core.units import (
@@ -56,6 +66,22 @@ INDICATOR_OFF, INDICATOR_LEFT, INDICATOR_RIGHT = 'off', 'left', 'right'
 _TO_WEBOTS_INDICATOR = {INDICATOR_OFF: Indicator.OFF, INDICATOR_LEFT: Indicator.LEFT,
                         INDICATOR_RIGHT: Indicator.RIGHT}
 _FROM_WEBOTS_INDICATOR = {int(v): k for k, v in _TO_WEBOTS_INDICATOR.items()}
+
+# Autoware GearCommand -> gear action; every other defined gear (DRIVE_2.., LOW, LOW_2) drives
+# forward. GearReport of each action (read back from the car).
+_GEAR_ACTION = {GEAR_NEUTRAL: NEUTRAL, GEAR_PARK: PARK}
+_GEAR_ACTION.update({gear: REVERSE for gear in REVERSE_GEARS})
+GEAR_REPORT = {DRIVE: GEAR_DRIVE, REVERSE: GEAR_REVERSE, PARK: GEAR_PARK, NEUTRAL: GEAR_NEUTRAL}
+# Autoware TurnIndicatorsCommand (NO_COMMAND excepted) <-> indicator side; the report uses the
+# same values.
+INDICATOR_OF_COMMAND = {DISABLE: INDICATOR_OFF, ENABLE_LEFT: INDICATOR_LEFT,
+                        ENABLE_RIGHT: INDICATOR_RIGHT}
+INDICATOR_REPORT = {side: value for value, side in INDICATOR_OF_COMMAND.items()}
+
+
+def gear_action_of_command(gear):
+    """Return the gear action of a defined GearCommand value other than NONE."""
+    return _GEAR_ACTION.get(gear, DRIVE)
 
 
 @dataclass(frozen=True)

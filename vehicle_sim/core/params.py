@@ -13,9 +13,14 @@
 # limitations under the License.
 
 """
-Car parameters: one table of ParamSpec rows, the CarParams value object, and validation.
+Parameter tables: the one ParamSpec kind, its validator, and the car's table and CarParams.
 
-Field names in presets are the Webots PROTO field names (Car.proto, AckermannVehicle.proto,
+Every parameter table of the project is a tuple of :class:`ParamSpec` rows validated by
+:func:`validate_table`: the car presets (here), the robot presets (``robot_params.py``), the
+bridge kinematics (``diff_drive.py``) and every ROS node's parameters (declared on the node by
+``ros/node_support.py``). Docs tables come from :func:`parameter_table_markdown`.
+
+Field names in car presets are the Webots PROTO field names (Car.proto, AckermannVehicle.proto,
 VehicleWheel.proto); defaults are the Car.proto R2022b defaults (webots_spec.md §4.1-4.3). Body
 physics fields (mass, centre of mass, inertia, collision boxes) are ours: Webots' abstract Car has
 no body physics, see docs/physics.md.
@@ -33,20 +38,44 @@ ENGINE_TYPES = ('combustion', 'electric', 'parallel hybrid', 'power-split hybrid
 # Webots VehicleWheel: Physics {} with density 1000 kg/m^3 when no mass is given.
 WHEEL_DENSITY_KG_M3 = 1000.0
 
+# kind -> the type column of the generated docs tables (ROS parameter types for node kinds).
+PARAM_KINDS = {
+    'float': 'float', 'int': 'int', 'bool': 'bool', 'str': 'str', 'enum': 'str',
+    'str_list': 'string[]', 'floats': 'float[]', 'float_list': 'float[]', 'vec3': 'float[3]',
+    'inertia': 'float[6]', 'boxes': 'boxes',
+}
+
 
 @dataclass(frozen=True)
 class ParamSpec:
     """
-    One parameter: its preset key, attribute name, type, default, unit, constraint and doc.
+    One parameter of a preset or a node: key, attribute, kind, default, unit, range and doc.
 
-    ``kind`` is one of 'float', 'str', 'enum', 'floats' (fixed-length list), 'float_list'
-    (variable-length list), 'vec3', 'inertia', 'boxes'.
+    :param key: the name in preset files, ROS parameter files and on the node.
+    :param attr: the attribute of the validated value object; '' = ``key``.
+    :param kind: one of :data:`PARAM_KINDS`: 'float', 'int', 'bool', 'str', 'enum' (one of
+        ``choices``), 'str_list' (list of strings), 'floats' (``length`` numbers), 'float_list'
+        (any number of numbers), 'vec3', 'inertia', 'boxes'.
+    :param default: the default; for node parameters its Python type is the ROS type.
+    :param unit: unit, '' when none.
+    :param doc: one-line description (docs tables, ``ros2 param describe``).
+    :param gt: exclusive lower bound (numbers; for 'vec3' every entry).
+    :param ge: inclusive lower bound.
+    :param le: inclusive upper bound.
+    :param choices: the valid values of an 'enum'.
+    :param length: the number of entries of a 'floats'.
+    :param optional: None is valid (means "derive it").
+    :param empty: '' is a valid 'str' (or 'str_list' entry).
+    :param check: an extra rule, ``check(value)`` -> None or the reason the value is refused
+        (a preset lookup, a naming rule; a ValueError it raises is a refusal too); it runs
+        after the kind and range checks.
+    :param read_only: node parameters: fixed once the node runs.
     """
 
     key: str
-    attr: str
-    kind: str
-    default: Any
+    attr: str = ''
+    kind: str = 'float'
+    default: Any = None
     unit: str = ''
     doc: str = ''
     gt: Optional[float] = None
@@ -55,6 +84,84 @@ class ParamSpec:
     choices: Tuple[str, ...] = ()
     length: Optional[int] = None
     optional: bool = False
+    empty: bool = False
+    check: Optional[Callable[[Any], Optional[str]]] = None
+    read_only: bool = True
+
+    def __post_init__(self):
+        """Fill ``attr`` from ``key`` and refuse an unknown kind."""
+        if not self.attr:
+            object.__setattr__(self, 'attr', self.key)
+        if self.kind not in PARAM_KINDS:
+            raise InvalidParameterError(f'ParamSpec {self.key!r}: unknown kind {self.kind!r}; '
+                                        f'valid: {", ".join(PARAM_KINDS)}')
+
+    @property
+    def range_text(self) -> str:
+        """The valid range in words ('> 0', '1 .. 1000', 'one of a, b'); '' when unbounded."""
+        if self.kind == 'enum':
+            return 'one of ' + ', '.join(self.choices)
+        if self.kind == 'int' and self.ge is not None and self.le is not None:
+            return f'{self.ge:g} .. {self.le:g}'
+        parts = [f'{text} {bound:g}' for bound, text in
+                 ((self.gt, '>'), (self.ge, '>='), (self.le, '<=')) if bound is not None]
+        return ' and '.join(parts)
+
+    @property
+    def description(self) -> str:
+        """``doc`` with the unit in brackets (the ROS parameter description)."""
+        return f'{self.doc} [{self.unit}]' if self.unit else self.doc
+
+    def parse(self, value):
+        """
+        Return the validated value (floats as float, lists as tuples).
+
+        :raises ParamRefused: naming the reason (and the offending part of ``value``).
+        """
+        if value is None:
+            if self.optional:
+                return None
+            raise ParamRefused('must not be null')
+        result = _CHECKERS[self.kind](self, value)
+        if self.check is not None:
+            try:
+                reason = self.check(value)
+            except ValueError as error:       # a rule may raise instead of returning a reason
+                reason = str(error)
+            if reason:
+                raise ParamRefused(reason)
+        return result
+
+    def refusal(self, value) -> Optional[str]:
+        """
+        Return None when ``value`` is valid, else ``'<key> = <value>: <reason>'``.
+
+        The form a transport validator returns (the node refuses the value with this text).
+        """
+        try:
+            self.parse(value)
+        except ParamRefused as refused:
+            return f'{self.key} = {_shown(refused, value)!r}: {refused.reason}'
+        return None
+
+
+class ParamRefused(ValueError):
+    """A value a ParamSpec refuses: the reason, and the part of the value it is about."""
+
+    def __init__(self, reason, shown=None):
+        """
+        Create the refusal.
+
+        :param reason: why ('must be > 0', ...).
+        :param shown: the offending part of the value (a box of a list); None = the value.
+        """
+        super().__init__(reason)
+        self.reason = reason
+        self.shown = shown
+
+
+def _shown(refused, value):
+    return value if refused.shown is None else refused.shown
 
 
 CAR_PARAM_SPECS = (
@@ -225,7 +332,7 @@ def _to_plain(value):
 
 def default_car_dict():
     """Return the Car defaults as a preset dictionary (Webots field names)."""
-    return {spec.key: spec.default for spec in CAR_PARAM_SPECS}
+    return table_defaults(CAR_PARAM_SPECS)
 
 
 def _is_number(value):
@@ -236,85 +343,134 @@ def _fail(source, key, value, reason, what='field'):
     raise InvalidParameterError(f'{source}: {what} {key!r} = {value!r}: {reason}')
 
 
-def _check_float(source, spec, value):
-    if not _is_number(value):
-        _fail(source, spec.key, value, 'must be a number')
-    value = float(value)
+def _range_reason(spec, value):
     if not math.isfinite(value):
-        _fail(source, spec.key, value, 'must be finite')
-    bounds = [(spec.gt, lambda v, b: v > b, '>'), (spec.ge, lambda v, b: v >= b, '>='),
-              (spec.le, lambda v, b: v <= b, '<=')]
-    for bound, ok, text in bounds:
-        if bound is not None and not ok(value, bound):
-            _fail(source, spec.key, value, f'must be {text} {bound:g}')
+        rng = spec.range_text
+        return 'must be finite' + (f' and {rng}' if rng else '')
+    ok = ((spec.gt is None or value > spec.gt) and (spec.ge is None or value >= spec.ge)
+          and (spec.le is None or value <= spec.le))
+    return None if ok else _must_be(spec)
+
+
+def _must_be(spec):
+    rng = spec.range_text
+    return f'must be {rng}' if rng[:1] in '<>' or rng.startswith('one of') else \
+        f'must be in {rng}'
+
+
+def _check_float(spec, value):
+    if not _is_number(value):
+        raise ParamRefused('must be a number')
+    value = float(value)
+    reason = _range_reason(spec, value)
+    if reason:
+        raise ParamRefused(reason, value)
     return value
 
 
-def _check_floats(source, spec, value, length=None):
+def _check_int(spec, value):
+    if not isinstance(value, int) or isinstance(value, bool):
+        raise ParamRefused('must be an integer' + (f' in {spec.range_text}'
+                                                   if spec.range_text else ''))
+    reason = _range_reason(spec, value)
+    if reason:
+        raise ParamRefused(reason)
+    return value
+
+
+def _check_bool(spec, value):
+    if not isinstance(value, bool):
+        raise ParamRefused('must be true or false')
+    return value
+
+
+def _check_str(spec, value):
+    if not isinstance(value, str) or not (value or spec.empty):
+        raise ParamRefused('must be a string' if spec.empty else 'must be a non-empty string')
+    if spec.kind == 'enum' and value not in spec.choices:
+        raise ParamRefused(_must_be(spec))
+    return value
+
+
+def _check_str_list(spec, value):
+    if not isinstance(value, (list, tuple)) or not value or \
+            not all(isinstance(v, str) and (v or spec.empty) for v in value):
+        raise ParamRefused('must be a non-empty list of strings' if spec.empty else
+                           'must be a non-empty list of non-empty strings')
+    return tuple(value)
+
+
+def _check_floats(spec, value, length=None):
     if not isinstance(value, (list, tuple)) or (length is not None and len(value) != length):
         size = f'{length} numbers' if length else 'numbers'
-        _fail(source, spec.key, value, f'must be a list of {size}')
+        raise ParamRefused(f'must be a list of {size}')
     result = []
     for item in value:
         if not _is_number(item) or not math.isfinite(float(item)):
-            _fail(source, spec.key, value, 'every entry must be a finite number')
+            raise ParamRefused('every entry must be a finite number')
         result.append(float(item))
     return tuple(result)
 
 
-def _check_vec3(source, spec, value):
-    vector = _check_floats(source, spec, value, 3)
+def _check_vec3(spec, value):
+    vector = _check_floats(spec, value, 3)
     if spec.gt is not None and min(vector) <= spec.gt:
-        _fail(source, spec.key, value, f'every entry must be > {spec.gt:g}')
+        raise ParamRefused(f'every entry must be > {spec.gt:g}')
     return vector
 
 
-def _check_boxes(source, spec, value):
+def _check_boxes(spec, value):
     if not isinstance(value, (list, tuple)) or not value:
-        _fail(source, spec.key, value, 'must be a non-empty list of boxes')
+        raise ParamRefused('must be a non-empty list of boxes')
     boxes = []
     for box in value:
         if not isinstance(box, dict) or not set(box) <= {'size', 'position', 'pitch'} or \
                 'size' not in box or 'position' not in box:
-            _fail(source, spec.key, box, 'each box needs size and position (and optional pitch)')
-        size = _check_floats(source, spec, box['size'], 3)
+            raise ParamRefused('each box needs size and position (and optional pitch)', box)
+        try:
+            size = _check_floats(spec, box['size'], 3)
+            position = _check_floats(spec, box['position'], 3)
+        except ParamRefused as refused:
+            raise ParamRefused(refused.reason, box) from None
         if min(size) <= 0.0:
-            _fail(source, spec.key, box, 'box sizes must be > 0')
+            raise ParamRefused('box sizes must be > 0', box)
         pitch = box.get('pitch', 0.0)
         if not _is_number(pitch) or not math.isfinite(pitch):
-            _fail(source, spec.key, box, 'pitch must be a finite number')
-        boxes.append(CollisionBox(size, _check_floats(source, spec, box['position'], 3),
-                                  float(pitch)))
+            raise ParamRefused('pitch must be a finite number', box)
+        boxes.append(CollisionBox(size, position, float(pitch)))
     return tuple(boxes)
 
 
 _CHECKERS: dict = {
     'float': _check_float,
-    'floats': lambda source, spec, value: _check_floats(source, spec, value, spec.length),
-    'float_list': lambda source, spec, value: _check_floats(source, spec, value),
-    'vec3': lambda source, spec, value: _check_vec3(source, spec, value),
-    'inertia': lambda source, spec, value: _check_floats(source, spec, value, 6),
+    'int': _check_int,
+    'bool': _check_bool,
+    'str': _check_str,
+    'enum': _check_str,
+    'str_list': _check_str_list,
+    'floats': lambda spec, value: _check_floats(spec, value, spec.length),
+    'float_list': lambda spec, value: _check_floats(spec, value),
+    'vec3': _check_vec3,
+    'inertia': lambda spec, value: _check_floats(spec, value, 6),
     'boxes': _check_boxes,
 }
 
 
-def _check_value(source, spec, value):
-    if value is None:
-        if spec.optional:
-            return None
-        _fail(source, spec.key, value, 'must not be null')
-    if spec.kind == 'bool':
-        if not isinstance(value, bool):
-            _fail(source, spec.key, value, 'must be true or false')
-        return value
-    if spec.kind in ('str', 'enum'):
-        if not isinstance(value, str) or not value:
-            _fail(source, spec.key, value, 'must be a non-empty string')
-        if spec.kind == 'enum' and value not in spec.choices:
-            _fail(source, spec.key, value, f'must be one of {", ".join(spec.choices)}')
-        return value
-    checker: Callable = _CHECKERS[spec.kind]
-    return checker(source, spec, value)
+def check_value(spec, value, source, key_word='field'):
+    """
+    Validate one value against its ParamSpec.
+
+    :param spec: the ParamSpec.
+    :param value: the candidate value.
+    :param source: file or node name quoted in the error.
+    :param key_word: how the error names the key ('field', 'parameter').
+    :return: the validated value.
+    :raises InvalidParameterError: ``'<source>: <key_word> '<key>' = <value>: <reason>'``.
+    """
+    try:
+        return spec.parse(value)
+    except ParamRefused as refused:
+        _fail(source, spec.key, _shown(refused, value), refused.reason, key_word)
 
 
 def _check_relations(source, values):
@@ -341,14 +497,19 @@ def _check_relations(source, values):
             _fail(source, 'inertiaMatrix', list(inertia), 'must be positive definite')
 
 
-def validate_table(specs, data, source, defaults, what='parameters', key_word='field'):
+def table_defaults(specs):
+    """Return {key: default} of a ParamSpec table."""
+    return {spec.key: spec.default for spec in specs}
+
+
+def validate_table(specs, data, source, defaults=None, what='parameters', key_word='field'):
     """
     Validate a mapping against a ParamSpec table: the one validator of every parameter table.
 
     :param specs: the ParamSpec rows.
     :param data: mapping of keys to values; missing keys take ``defaults``.
     :param source: file or node name quoted in error messages.
-    :param defaults: mapping of every key to its default.
+    :param defaults: mapping of every key to its default; None = the table's defaults.
     :param what: what ``data`` is, for the error on a non-mapping ('a car preset', ...).
     :param key_word: how errors name a key ('field', 'parameter').
     :return: {attribute name: validated value} for every row.
@@ -363,14 +524,49 @@ def validate_table(specs, data, source, defaults, what='parameters', key_word='f
             raise InvalidParameterError(
                 f'{source}: unknown {key_word} {key!r} (value {value!r}); valid {key_word}s: '
                 + ', '.join(sorted(by_key)))
-    merged = dict(defaults)
+    merged = table_defaults(specs) if defaults is None else dict(defaults)
     merged.update(data)
-    try:
-        return {spec.attr: _check_value(source, spec, merged[spec.key]) for spec in specs}
-    except InvalidParameterError as error:
-        if key_word == 'field':
-            raise
-        raise InvalidParameterError(str(error).replace(': field ', f': {key_word} ', 1)) from None
+    return {spec.attr: check_value(spec, merged[spec.key], source, key_word) for spec in specs}
+
+
+def yaml_text(value) -> str:
+    """Return a value the way a YAML file (and the docs tables) write it."""
+    if value is None:
+        return 'null'
+    if isinstance(value, bool):
+        return 'true' if value else 'false'
+    if isinstance(value, str):
+        return f"'{value}'"
+    if isinstance(value, dict):
+        return '{' + ', '.join(f'{k}: {yaml_text(v)}' for k, v in value.items()) + '}'
+    if isinstance(value, (list, tuple)):
+        return '[' + ', '.join(yaml_text(v) for v in value) + ']'
+    return repr(value)
+
+
+def _cell(text):
+    return str(text).replace('|', '\\|')
+
+
+def parameter_table_markdown(specs, key_word='parameter', extra_rows=()):
+    """
+    Return the Markdown table of a ParamSpec table (the docs tables are generated by this).
+
+    Columns: key, type, default, unit, valid range (every float must be finite), description.
+
+    :param specs: the ParamSpec rows.
+    :param key_word: header of the first column ('parameter', 'field').
+    :param extra_rows: further rows, each a tuple of the six cells (plain text).
+    """
+    lines = [f'| {key_word} | type | default | unit | range | description |',
+             '|---|---|---|---|---|---|']
+    for spec in specs:
+        valid = spec.range_text or ('finite' if spec.kind == 'float' else '')
+        lines.append(f'| `{spec.key}` | {PARAM_KINDS[spec.kind]} | `{yaml_text(spec.default)}` | '
+                     f'{_cell(spec.unit)} | {_cell(valid)} | {_cell(spec.doc)} |')
+    for row in extra_rows:
+        lines.append('| ' + ' | '.join(_cell(cell) for cell in row) + ' |')
+    return '\n'.join(lines) + '\n'
 
 
 def car_params_from_dict(data, source='<dict>', base=None):

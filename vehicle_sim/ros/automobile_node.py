@@ -35,7 +35,7 @@ from typing import Dict, List, Optional
 
 from vehicle_sim.config import load_car
 from vehicle_sim.core.drivetrain import ControlMode
-from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
+from vehicle_sim.core.errors import InvalidCommandError
 from vehicle_sim.physics import SimulatedCar, World
 from vehicle_sim.physics.urdf import car_urdf
 from vehicle_sim.ros import interfaces as itf
@@ -45,8 +45,9 @@ from vehicle_sim.ros.conversions import (
     RosMessages,
     twist_in_body,
 )
+from vehicle_sim.ros.node_support import run_main
 from vehicle_sim.ros.sim_params import declare_parameters, world_vehicles
-from vehicle_sim.transport import create_node, run_node, TransportError
+from vehicle_sim.transport import create_node
 
 NODE_NAME = 'automobile'
 # Timer period standing for "as fast as possible" (the port's timers need a period > 0).
@@ -328,11 +329,7 @@ class AutomobileNode:
 
 def main(args=None):
     """Entry point ``automobile``: build the node and spin it (Jazzy main shape)."""
-    try:
-        return run_node(AutomobileNode, args)
-    except (InvalidParameterError, TransportError) as error:
-        print(f'automobile: {error}', file=sys.stderr)
-        return 2
+    return run_main(NODE_NAME, AutomobileNode, args)
 
 
 if __name__ == '__main__':

@@ -30,85 +30,54 @@ Run: ``ros2 run vehicle_sim autoware_automobile --ros-args -p car_model:=ToyotaP
 import math
 import sys
 
+from vehicle_sim.core.autoware import (
+    check_gear,
+    check_hazard_lights,
+    check_turn_indicators,
+    control_mode_refusal,
+    DISABLE,
+    GEAR_NONE,
+    HAZARD_ENABLE,
+    is_supported_control_mode,
+    MODE_AUTONOMOUS,
+    NO_COMMAND,
+)
 from vehicle_sim.core.autoware_car import (
     AutowareCar,
     car_report,
-    DRIVE,
-    INDICATOR_LEFT,
-    INDICATOR_OFF,
-    INDICATOR_RIGHT,
-    NEUTRAL,
-    PARK,
-    REVERSE,
+    gear_action_of_command,
+    GEAR_REPORT,
+    INDICATOR_OF_COMMAND,
+    INDICATOR_REPORT,
     set_car_indicator,
 )
 from vehicle_sim.core.diff_drive import equivalent_steering_rad
 from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
-from vehicle_sim.core.watchdog import TIMEOUT_ACTIONS
+from vehicle_sim.core.params import ParamSpec
+from vehicle_sim.core.watchdog import DEFAULT_TIMEOUT_ACTION, DEFAULT_TIMEOUT_S, TIMEOUT_ACTIONS
 from vehicle_sim.ros import bridge_interfaces as bi
-from vehicle_sim.ros import bridge_node
-from vehicle_sim.ros.automobile_node import AutomobileNode
-from vehicle_sim.ros.bridge_node import (
-    DISABLE,
-    ENABLE_LEFT,
-    ENABLE_RIGHT,
-    GEAR_DRIVE,
-    GEAR_NEUTRAL,
-    GEAR_NONE,
-    GEAR_PARK,
-    GEAR_REVERSE,
-    HAZARD_ENABLE,
-    MODE_AUTONOMOUS,
-    MODE_MANUAL,
-    NO_COMMAND,
-    REVERSE_GEARS,
-    ThrottledWarning,
-    VALID_GEARS,
-)
-from vehicle_sim.transport import create_node, run_node, TransportError
+from vehicle_sim.ros.automobile_node import AutomobileNode  # composed: see the layering test
+from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning
+from vehicle_sim.transport import create_node
 from vehicle_sim.transport.port import Time
 
 NODE_NAME = 'autoware_automobile'
-# The bridge's input_type -> message -> (speed [m/s], steering [rad] or yaw rate [rad/s]) table,
-# reused from the bridge rather than copied.
-COMMAND_READERS = bridge_node.COMMAND_READERS
 
-# GearCommand -> gear action; every other defined gear (DRIVE_2.., LOW, LOW_2) drives forward.
-_GEAR_ACTION = {GEAR_NEUTRAL: NEUTRAL, GEAR_PARK: PARK}
-_GEAR_ACTION.update({gear: REVERSE for gear in REVERSE_GEARS})
-_GEAR_REPORT = {DRIVE: GEAR_DRIVE, REVERSE: GEAR_REVERSE, PARK: GEAR_PARK, NEUTRAL: GEAR_NEUTRAL}
-_INDICATOR_COMMAND = {DISABLE: INDICATOR_OFF, ENABLE_LEFT: INDICATOR_LEFT,
-                      ENABLE_RIGHT: INDICATOR_RIGHT}
-_INDICATOR_REPORT = {side: value for value, side in _INDICATOR_COMMAND.items()}
-
-
-def _input_type(value):
-    return None if value in bi.BRIDGE_INPUTS else \
-        f'must be one of {", ".join(bi.BRIDGE_INPUTS)}'
-
-
-def _non_negative(value):
-    return None if math.isfinite(value) and value >= 0.0 else 'must be a finite number >= 0'
-
-
-def _positive(value):
-    return None if math.isfinite(value) and value > 0.0 else 'must be a finite number > 0'
-
-
-# name, default, description, validator (the car and world parameters are the automobile node's)
+# The node's own parameters (the car and world ones are the automobile node's).
 AUTOWARE_PARAMETERS = (
-    ('input_type', bi.DEFAULT_INPUT_TYPE, 'command type read: ' + ', '.join(bi.BRIDGE_INPUTS),
-     _input_type),
-    ('vehicle_namespace', '', "namespace of the world's vehicle to drive ('' = the default car)",
-     None),
-    ('command_timeout_s', 0.5, 'age of the last accepted command (receipt, sim time) after '
-                               'which timeout_action applies [s] (0 disables)', _non_negative),
-    ('timeout_action', 'brake', 'brake: cruising speed 0 and full brake; coast: neutral; hold: '
-                                'keep the last command',
-     lambda v: None if v in TIMEOUT_ACTIONS else f'must be one of {", ".join(TIMEOUT_ACTIONS)}'),
-    ('status_rate_hz', 30.0, 'rate of the /vehicle/status reports [Hz] (simulated time)',
-     _positive),
-    ('frame_id', 'base_link', 'frame_id of VelocityReport', None),
+    bi.INPUT_TYPE_PARAMETER,
+    ParamSpec('vehicle_namespace', kind='str', default='', empty=True,
+              doc="namespace of the world's vehicle to drive ('' = the default car)"),
+    ParamSpec('command_timeout_s', kind='float', default=DEFAULT_TIMEOUT_S, unit='s', ge=0.0,
+              doc='age of the last accepted command (receipt, sim time) after which '
+                  'timeout_action applies (0 disables)'),
+    ParamSpec('timeout_action', kind='enum', default=DEFAULT_TIMEOUT_ACTION,
+              choices=TIMEOUT_ACTIONS,
+              doc='brake: cruising speed 0 and full brake; coast: neutral; hold: keep the last '
+                  'command'),
+    ParamSpec('status_rate_hz', kind='float', default=30.0, unit='Hz', gt=0.0,
+              doc='rate of the /vehicle/status reports (simulated time)'),
+    ParamSpec('frame_id', kind='str', default='base_link', doc='frame_id of VelocityReport'),
 )
 
 
@@ -147,9 +116,7 @@ class AutowareAutomobileNode:
 
     def _setup(self):
         node = self.node
-        values = {name: node.declare_parameter(name, default, description=doc,
-                                               validator=validator, read_only=True)
-                  for name, default, doc, validator in AUTOWARE_PARAMETERS}
+        values = declare_parameters(node, AUTOWARE_PARAMETERS)
         vehicles = self.automobile.vehicles
         namespace = values['vehicle_namespace'].strip('/')
         if namespace not in vehicles:
@@ -161,7 +128,7 @@ class AutowareAutomobileNode:
         self.state = AutowareCar(self.car.logic, values['command_timeout_s'],
                                  values['timeout_action'])
         self.input_type = values['input_type']
-        self._read_command = COMMAND_READERS[self.input_type]
+        self._read_command = bi.COMMAND_READERS[self.input_type]
         self._frame_id = values['frame_id']
         step_s = self.world.time_step_s
         self._status_every = max(1, int(round(1.0 / (values['status_rate_hz'] * step_s))))
@@ -233,39 +200,34 @@ class AutowareAutomobileNode:
 
     def handle_gear(self, msg):
         """Apply a GearCommand (NONE keeps the gear; undefined values are rejected)."""
-        gear = msg.command
-        if gear not in VALID_GEARS:
-            self.rejected += 1
-            self._warn.warn(f'gear_cmd {gear!r} rejected: not a GearCommand constant')
-            return
-        if gear != GEAR_NONE:
-            self.state.set_gear_action(_GEAR_ACTION.get(gear, DRIVE))
+        gear = self._checked(check_gear, msg.command, 'gear_cmd')
+        if gear is not None and gear != GEAR_NONE:
+            self.state.set_gear_action(gear_action_of_command(gear))
 
     def handle_turn_indicators(self, msg):
         """Apply a TurnIndicatorsCommand to the car's indicator (NO_COMMAND keeps it)."""
-        command = msg.command
-        if command == NO_COMMAND:
-            return
-        if command not in _INDICATOR_COMMAND:
-            self.rejected += 1
-            self._warn.warn(f'turn_indicators_cmd {command!r} rejected: undefined')
-            return
-        set_car_indicator(self.car.logic, _INDICATOR_COMMAND[command])
+        command = self._checked(check_turn_indicators, msg.command, 'turn_indicators_cmd')
+        if command is not None and command != NO_COMMAND:
+            set_car_indicator(self.car.logic, INDICATOR_OF_COMMAND[command])
 
     def handle_hazard_lights(self, msg):
         """Apply a HazardLightsCommand to the car's hazard flashers (NO_COMMAND keeps them)."""
-        command = msg.command
-        if command == NO_COMMAND:
-            return
-        if command not in (DISABLE, HAZARD_ENABLE):
+        command = self._checked(check_hazard_lights, msg.command, 'hazard_lights_cmd')
+        if command is not None and command != NO_COMMAND:
+            self.car.logic.set_hazard_flashers(command == HAZARD_ENABLE)
+
+    def _checked(self, check, value, name):
+        # The bridge's validation (core/autoware.py); a refused value changes nothing.
+        try:
+            return check(value)
+        except InvalidCommandError as error:
             self.rejected += 1
-            self._warn.warn(f'hazard_lights_cmd {command!r} rejected: undefined')
-            return
-        self.car.logic.set_hazard_flashers(command == HAZARD_ENABLE)
+            self._warn.warn(f'{name} rejected: {error}')
+            return None
 
     def request_control_mode(self, mode):
         """AUTONOMOUS or MANUAL: True (applied); other modes: False, nothing changes."""
-        if mode not in (MODE_AUTONOMOUS, MODE_MANUAL):
+        if not is_supported_control_mode(mode):
             return False
         self.state.set_autonomous(mode == MODE_AUTONOMOUS)
         self.control_mode = mode
@@ -275,8 +237,7 @@ class AutowareAutomobileNode:
         response.success = self.request_control_mode(request.mode)
         if not response.success:
             self.node.get_logger().warn(
-                f'control_mode_request mode={request.mode} refused: only AUTONOMOUS (1) and '
-                'MANUAL (4) are supported')
+                f'control_mode_request {control_mode_refusal(request.mode)}')
         return response
 
     # ---------------------------------------------------------------- reports
@@ -296,9 +257,9 @@ class AutowareAutomobileNode:
             bi.STEERING_STATUS: t['autoware_vehicle_msgs/msg/SteeringReport'](
                 stamp=stamp, steering_tire_angle=report.steering_tire_rad),
             bi.GEAR_STATUS: t['autoware_vehicle_msgs/msg/GearReport'](
-                stamp=stamp, report=_GEAR_REPORT[report.gear_action]),
+                stamp=stamp, report=GEAR_REPORT[report.gear_action]),
             bi.TURN_INDICATORS_STATUS: t['autoware_vehicle_msgs/msg/TurnIndicatorsReport'](
-                stamp=stamp, report=_INDICATOR_REPORT[report.indicator]),
+                stamp=stamp, report=INDICATOR_REPORT[report.indicator]),
             bi.HAZARD_LIGHTS_STATUS: t['autoware_vehicle_msgs/msg/HazardLightsReport'](
                 stamp=stamp, report=HAZARD_ENABLE if report.hazard else DISABLE),
             bi.CONTROL_MODE_STATUS: t['autoware_vehicle_msgs/msg/ControlModeReport'](
@@ -320,11 +281,7 @@ class AutowareAutomobileNode:
 
 def main(args=None):
     """Entry point ``autoware_automobile``: build the node and spin it (Jazzy main shape)."""
-    try:
-        return run_node(AutowareAutomobileNode, sys.argv if args is None else args)
-    except (InvalidParameterError, TransportError) as error:
-        print(f'autoware_automobile: {error}', file=sys.stderr)
-        return 2
+    return run_main(NODE_NAME, AutowareAutomobileNode, args)
 
 
 if __name__ == '__main__':

@@ -23,6 +23,7 @@ best effort depth 1; /tf reliable depth 100; /tf_static transient local depth 1)
 
 from dataclasses import dataclass
 
+from vehicle_sim.core.params import ParamSpec
 from vehicle_sim.transport.port import (
     QOS_CLOCK,
     QOS_DEFAULT,
@@ -67,6 +68,21 @@ BRIDGE_INPUTS = {
                                 'passed through the limits without the bicycle model'),
 }
 DEFAULT_INPUT_TYPE = CONTROL
+
+# input_type -> message -> (speed [m/s], steering tire angle [rad, + left] or yaw rate [rad/s]);
+# the bridge and autoware_automobile read their commands through it.
+COMMAND_READERS = {
+    CONTROL: lambda m: (m.longitudinal.velocity, m.lateral.steering_tire_angle),
+    AUTO_ACKERMANN: lambda m: (m.longitudinal.speed, m.lateral.steering_tire_angle),
+    ACKERMANN_DRIVE: lambda m: (m.drive.speed, m.drive.steering_angle),
+    TWIST_STAMPED: lambda m: (m.twist.linear.x, m.twist.angular.z),
+}
+
+# The input_type parameter of the bridge and of autoware_automobile (one row for both).
+INPUT_TYPE_PARAMETER = ParamSpec(
+    'input_type', kind='enum', default=DEFAULT_INPUT_TYPE, choices=tuple(BRIDGE_INPUTS),
+    doc='message type of the command read; it decides the topic (BRIDGE_INPUTS: '
+        '/control/command/control_cmd for the Autoware types)')
 
 GEAR_COMMAND = Endpoint('/control/command/gear_cmd', 'autoware_vehicle_msgs/msg/GearCommand',
                         doc='DRIVE/LOW: pass; REVERSE: v = -|v|; PARK/NEUTRAL: zero wheels')

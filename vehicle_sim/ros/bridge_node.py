@@ -16,9 +16,9 @@
 Autoware Ackermann command → differential drive: the ``ackermann_to_differential`` node.
 
 Wiring only; the kinematics, limits and watchdog are core's (``core/diff_drive.py``,
-``core/watchdog.py``), the vehicle-interface state (gear, control mode, lights) is
-:class:`BridgeController` below (ROS-free, time injected). Names, types and QoS:
-``ros/bridge_interfaces.py``; behaviour and parameters: ``docs/autoware.md``.
+``core/watchdog.py``), the vehicle-interface state (gear, control mode, lights) is core's
+:class:`~vehicle_sim.core.bridge_controller.BridgeController` (ROS-free, time injected). Names,
+types and QoS: ``ros/bridge_interfaces.py``; behaviour and parameters: ``docs/autoware.md``.
 
 Output is published on receipt of every accepted command (lowest latency) and on the control
 tick (ramps, watchdog): a wall timer at ``control_rate_hz``, or, with ``use_sim_time``, every
@@ -27,87 +27,22 @@ tick (ramps, watchdog): a wall timer at ``control_rate_hz``, or, with ``use_sim_
 
 import math
 import sys
-import time
 
+from vehicle_sim.core.autoware import control_mode_refusal
+from vehicle_sim.core.bridge_controller import BridgeController
 from vehicle_sim.core.diff_drive import (
-    AckermannToDifferential,
     BRIDGE_PARAM_SPECS,
     bridge_params_from_dict,
-    check_speed_mps,
-    check_steering_rad,
-    DiffDriveCommand,
     equivalent_steering_rad,
-    limit_wheel_speeds,
-    SpeedLimiter,
-    STOP_COMMAND,
     twist_from_wheel_speeds,
-    wheel_speeds_from_twist,
 )
 from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
+from vehicle_sim.core.params import ParamSpec
 from vehicle_sim.core.units import stamp_to_seconds
-from vehicle_sim.core.watchdog import CommandWatchdog
 from vehicle_sim.ros import bridge_interfaces as bi
+from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning
 from vehicle_sim.transport.port import Time
-from vehicle_sim.transport.selection import create_node, run_node
-
-# Throttle period of repeated warnings [s] (wall time).
-WARN_THROTTLE_S = 1.0
-
-
-class ThrottledWarning:
-    """Log a warning at most once per ``period_s`` of wall time, counting what was suppressed."""
-
-    def __init__(self, logger, period_s=WARN_THROTTLE_S):
-        """
-        Create the throttle.
-
-        :param logger: a port Logger.
-        :param period_s: minimum wall time between two warnings [s].
-        """
-        self._logger = logger
-        self._period_s = period_s
-        self._last_s = None
-        self.suppressed = 0
-        self.count = 0
-
-    def warn(self, message):
-        """Count the event and log it unless one was logged less than period_s ago."""
-        self.count += 1
-        now_s = time.monotonic()
-        if self._last_s is not None and now_s - self._last_s < self._period_s:
-            self.suppressed += 1
-            return
-        if self.suppressed:
-            message += f' ({self.suppressed} similar warnings suppressed)'
-        self.suppressed = 0
-        self._last_s = now_s
-        self._logger.warn(message)
-
-
-# autoware_vehicle_msgs constants (GearCommand/GearReport share their values; likewise the
-# turn-indicator, hazard-light and control-mode commands and reports).
-GEAR_NONE, GEAR_NEUTRAL, GEAR_DRIVE = 0, 1, 2
-GEAR_REVERSE, GEAR_REVERSE_2, GEAR_PARK, GEAR_LOW, GEAR_LOW_2 = 20, 21, 22, 23, 24
-REVERSE_GEARS = (GEAR_REVERSE, GEAR_REVERSE_2)
-STOP_GEARS = (GEAR_NEUTRAL, GEAR_PARK)
-VALID_GEARS = frozenset(range(0, 25))
-NO_COMMAND, DISABLE, ENABLE_LEFT, ENABLE_RIGHT = 0, 1, 2, 3
-HAZARD_ENABLE = 2
-MODE_AUTONOMOUS, MODE_MANUAL = 1, 4
-MIN_DT_S = 1e-9
-
-# name, default, description, validator — the bridge's own parameters (the kinematic ones come
-# from BRIDGE_PARAM_SPECS).
-
-
-def _positive(value):
-    return None if math.isfinite(value) and value > 0.0 else 'must be a finite number > 0'
-
-
-def _input_type(value):
-    if value not in bi.BRIDGE_INPUTS:
-        return f'must be one of {", ".join(bi.BRIDGE_INPUTS)}'
-    return None
+from vehicle_sim.transport.selection import create_node
 
 
 def _joint_sides(joints):
@@ -126,197 +61,36 @@ def _joint_sides(joints):
 
 
 def _wheel_joints(value):
-    if not isinstance(value, list) or not all(isinstance(v, str) and v for v in value):
-        return 'must be a list of joint names'
     _joint_sides(value)
     return None
 
 
+# The node's own parameters; the kinematic ones are core's BRIDGE_PARAM_SPECS.
 NODE_PARAMETERS = (
-    ('input_type', bi.DEFAULT_INPUT_TYPE, 'command type read: ' + ', '.join(bi.BRIDGE_INPUTS),
-     _input_type),
-    ('publish_differential_command', True,
-     f'publish {bi.DIFFERENTIAL_COMMAND_OUT.ros_type} on {bi.DIFFERENTIAL_COMMAND_OUT.name}',
-     None),
-    ('publish_wheel_velocities', True,
-     f'publish {bi.WHEEL_VELOCITIES_OUT.ros_type} [rad/s] on {bi.WHEEL_VELOCITIES_OUT.name}',
-     None),
-    ('publish_twist', False, f'publish geometry_msgs/Twist on {bi.TWIST_OUT.name}', None),
-    ('publish_twist_stamped', False,
-     f'publish geometry_msgs/TwistStamped on {bi.TWIST_STAMPED_OUT.name}', None),
-    ('wheel_joints', ['left_wheel_joint', 'right_wheel_joint'],
-     'driven joints, in Float64MultiArray order; "left"/"right" in a name gives its side',
-     _wheel_joints),
-    ('control_rate_hz', 50.0, 'control tick rate [Hz] (ramps, watchdog; node clock)',
-     _positive),
-    ('status_rate_hz', 30.0, 'feedback report rate [Hz] (wall time)', _positive),
-    ('vehicle_status', True,
-     'publish the /vehicle/status reports and serve /control/control_mode_request', None),
-    ('frame_id', 'base_link', 'frame_id of stamped outputs and VelocityReport', None),
+    bi.INPUT_TYPE_PARAMETER,
+    ParamSpec('publish_differential_command', kind='bool', default=True,
+              doc=f'publish {bi.DIFFERENTIAL_COMMAND_OUT.ros_type} on '
+                  f'{bi.DIFFERENTIAL_COMMAND_OUT.name}'),
+    ParamSpec('publish_wheel_velocities', kind='bool', default=True,
+              doc=f'publish {bi.WHEEL_VELOCITIES_OUT.ros_type} [rad/s] on '
+                  f'{bi.WHEEL_VELOCITIES_OUT.name}'),
+    ParamSpec('publish_twist', kind='bool', default=False,
+              doc=f'publish {bi.TWIST_OUT.ros_type} on {bi.TWIST_OUT.name}'),
+    ParamSpec('publish_twist_stamped', kind='bool', default=False,
+              doc=f'publish {bi.TWIST_STAMPED_OUT.ros_type} on {bi.TWIST_STAMPED_OUT.name}'),
+    ParamSpec('wheel_joints', kind='str_list', default=('left_wheel_joint', 'right_wheel_joint'),
+              doc='driven joints, in Float64MultiArray order; "left"/"right" in a name gives '
+                  'its side', check=_wheel_joints),
+    ParamSpec('control_rate_hz', kind='float', default=50.0, unit='Hz', gt=0.0,
+              doc='control tick rate (ramps, watchdog; node clock)'),
+    ParamSpec('status_rate_hz', kind='float', default=30.0, unit='Hz', gt=0.0,
+              doc='feedback report rate (wall time)'),
+    ParamSpec('vehicle_status', kind='bool', default=True,
+              doc='publish the /vehicle/status reports and serve /control/control_mode_request'),
+    ParamSpec('frame_id', kind='str', default='base_link',
+              doc='frame_id of stamped outputs and VelocityReport'),
 )
-
-
-class BridgeController:
-    """
-    The bridge's state machine, ROS-free: gear, control mode, lights, watchdog, kinematics.
-
-    Every method takes ``now_s`` (node clock [s], sim time included). Outputs are
-    DiffDriveCommand (publish it) or None (publish nothing).
-
-    - gear DRIVE/LOW/NONE: the command's sign is kept; REVERSE: v = −|v| (Autoware sends a
-      negative velocity in reverse; an unsigned magnitude works too), the steering angle is kept,
-      so the robot backs along the commanded curvature like a car; PARK/NEUTRAL: zero wheels.
-    - control mode AUTONOMOUS (start): commands drive the wheels; MANUAL: one zero command,
-      then nothing (another source owns the wheels).
-    - watchdog (CommandWatchdog, receipt time): brake = zero wheels and the ramps restart from
-      standstill; coast = nothing; hold = the last command. Rejected commands do not feed it.
-    """
-
-    def __init__(self, params, twist_input=False):
-        """
-        Create the controller.
-
-        :param params: BridgeParams.
-        :param twist_input: True when commands are (v, yaw rate) instead of (v, steering).
-        """
-        self.params = params
-        self.kinematics = AckermannToDifferential(params)
-        self.watchdog = CommandWatchdog(params.command_timeout_s, params.timeout_action)
-        self.twist_input = twist_input
-        self._linear = SpeedLimiter(params.max_accel_mps2, params.max_decel_mps2, 'linear')
-        self._angular = SpeedLimiter(params.max_angular_accel_radps2,
-                                     params.max_angular_accel_radps2, 'angular')
-        self._twist = (0.0, 0.0)
-        self.gear = GEAR_DRIVE
-        self.control_mode = MODE_AUTONOMOUS
-        self.turn_indicators = DISABLE
-        self.hazard_lights = DISABLE
-        self._target = None          # (v, steering or yaw rate) as commanded
-        self._last_step_s = None
-        self._stop_pending = False
-        self.last_output = None
-
-    # ---------------------------------------------------------------- commands
-    def command(self, speed_mps, second, now_s):
-        """
-        Accept one command and return what to publish now.
-
-        :param speed_mps: v [m/s].
-        :param second: steering tire angle [rad, + left], or the yaw rate [rad/s] for twist
-            input.
-        :param now_s: receipt time on the node clock [s].
-        :return: DiffDriveCommand or None.
-        :raises InvalidCommandError: NaN/±inf, or |steering| >= pi/2; nothing changes then.
-        """
-        speed_mps = check_speed_mps(speed_mps)
-        if self.twist_input:
-            second = check_speed_mps(second, 'yaw_rate')
-        else:
-            second = check_steering_rad(second)
-        self.watchdog.feed(now_s)
-        self._target = (speed_mps, second)
-        return self._output(now_s)
-
-    def tick(self, now_s):
-        """Return what to publish on a control tick at ``now_s`` (ramps, watchdog)."""
-        return self._output(now_s)
-
-    def set_gear(self, gear):
-        """Set the gear (GearCommand value); raise InvalidCommandError for an undefined one."""
-        if gear not in VALID_GEARS:
-            raise InvalidCommandError(f'gear command {gear!r}: not a GearCommand constant')
-        if gear != GEAR_NONE:
-            self.gear = gear
-
-    def set_turn_indicators(self, command):
-        """Set the turn indicators (TurnIndicatorsCommand); NO_COMMAND keeps the state."""
-        if command not in (NO_COMMAND, DISABLE, ENABLE_LEFT, ENABLE_RIGHT):
-            raise InvalidCommandError(f'turn indicators command {command!r}: undefined')
-        if command != NO_COMMAND:
-            self.turn_indicators = command
-
-    def set_hazard_lights(self, command):
-        """Set the hazard lights (HazardLightsCommand); NO_COMMAND keeps the state."""
-        if command not in (NO_COMMAND, DISABLE, HAZARD_ENABLE):
-            raise InvalidCommandError(f'hazard lights command {command!r}: undefined')
-        if command != NO_COMMAND:
-            self.hazard_lights = command
-
-    def request_control_mode(self, mode):
-        """
-        Handle a ControlModeCommand request.
-
-        :return: True for AUTONOMOUS or MANUAL (applied); False otherwise (nothing changes).
-        """
-        if mode not in (MODE_AUTONOMOUS, MODE_MANUAL):
-            return False
-        if mode == MODE_MANUAL and self.control_mode != MODE_MANUAL:
-            self._stop_pending = True
-        self.control_mode = mode
-        return True
-
-    # ---------------------------------------------------------------- output
-    def _stop(self):
-        self.kinematics.reset()
-        self._twist = (0.0, 0.0)
-        return STOP_COMMAND
-
-    def _output(self, now_s):
-        dt_s = 0.0 if self._last_step_s is None else max(0.0, now_s - self._last_step_s)
-        # SpeedLimiter computes inf * 0 = NaN for a disabled limit at dt = 0 (core issue,
-        # reported); 1 ns moves an enabled ramp by a negligible amount.
-        dt_s = max(dt_s, MIN_DT_S)
-        self._last_step_s = now_s
-        output = self._decide(now_s, dt_s)
-        self.last_output = output
-        return output
-
-    def _decide(self, now_s, dt_s):
-        if self.control_mode == MODE_MANUAL:
-            if self._stop_pending:
-                self._stop_pending = False
-                return self._stop()
-            return None
-        if self.watchdog.is_stale(now_s):
-            action = self.watchdog.action
-            if action == 'brake':
-                return self._stop()
-            if action == 'coast' or self._target is None:
-                return None
-        if self._target is None:
-            return None
-        if self.gear in STOP_GEARS:
-            return self._stop()
-        speed_mps, second = self._target
-        reverse = self.gear in REVERSE_GEARS
-        if self.twist_input:
-            return self._twist_step(speed_mps, second, reverse, dt_s)
-        if reverse:
-            speed_mps = -abs(speed_mps)
-        return self.kinematics.step(speed_mps, second, dt_s)
-
-    def _twist_step(self, speed_mps, yaw_rate_radps, reverse, dt_s):
-        if reverse and speed_mps > 0.0:
-            # keep the curvature: drive the same circle backwards
-            speed_mps, yaw_rate_radps = -speed_mps, -yaw_rate_radps
-        params = self.params
-        v = self._linear.limit(speed_mps, self._twist[0], dt_s)
-        w = self._angular.limit(yaw_rate_radps, self._twist[1], dt_s)
-        wheels = wheel_speeds_from_twist(v, w, params.wheel_tread_m)
-        wheels = limit_wheel_speeds(wheels.left_mps, wheels.right_mps,
-                                    params.max_wheel_speed_mps)
-        twist = twist_from_wheel_speeds(wheels.left_mps, wheels.right_mps, params.wheel_tread_m)
-        self._twist = (twist.speed_mps, twist.yaw_rate_radps)
-        return DiffDriveCommand(twist.speed_mps, twist.yaw_rate_radps, wheels.left_mps,
-                                wheels.right_mps, wheels.left_mps / params.wheel_radius_m,
-                                wheels.right_mps / params.wheel_radius_m)
-
-
-def _bridge_validator(key):
-    def validate(value):
-        bridge_params_from_dict({key: value}, source='parameter')
-        return None
-    return validate
+BRIDGE_NODE_PARAMETERS = BRIDGE_PARAM_SPECS + NODE_PARAMETERS
 
 
 class AckermannToDifferentialNode:
@@ -345,14 +119,10 @@ class AckermannToDifferentialNode:
 
     def _setup(self):
         node = self.node
-        kinematic = {spec.key: node.declare_parameter(
-            spec.key, spec.default, read_only=True, validator=_bridge_validator(spec.key),
-            description=f'{spec.doc} [{spec.unit}]' if spec.unit else spec.doc)
-            for spec in BRIDGE_PARAM_SPECS}
-        values = {name: node.declare_parameter(name, default, description=doc,
-                                               validator=validator, read_only=True)
-                  for name, default, doc, validator in NODE_PARAMETERS}
-        self.params = bridge_params_from_dict(kinematic, source=node.get_fully_qualified_name())
+        values = declare_parameters(node, BRIDGE_NODE_PARAMETERS)
+        self.params = bridge_params_from_dict(
+            {spec.key: values[spec.attr] for spec in BRIDGE_PARAM_SPECS},
+            source=node.get_fully_qualified_name())
         self.input_type = values['input_type']
         twist_input = self.input_type == bi.TWIST_STAMPED
         self.controller = BridgeController(self.params, twist_input=twist_input)
@@ -380,7 +150,7 @@ class AckermannToDifferentialNode:
             if values[switch]:
                 self._outputs[spec] = node.create_publisher(spec.ros_type, spec.name, spec.qos)
         self._input = bi.BRIDGE_INPUTS[self.input_type]
-        self._read_command = COMMAND_READERS[self.input_type]
+        self._read_command = bi.COMMAND_READERS[self.input_type]
         self._subs = [node.create_subscription(self._input.ros_type, self._input.name,
                                                self._on_command, self._input.qos)]
         self._status = {}
@@ -516,8 +286,7 @@ class AckermannToDifferentialNode:
         response.success = self.controller.request_control_mode(request.mode)
         if not response.success:
             self.node.get_logger().warn(
-                f'control_mode_request mode={request.mode} refused: only AUTONOMOUS (1) and '
-                'MANUAL (4) are supported')
+                f'control_mode_request {control_mode_refusal(request.mode)}')
         return response
 
     def handle_joint_states(self, msg):
@@ -581,19 +350,10 @@ class AckermannToDifferentialNode:
         self.node.shutdown()
 
 
-# input_type -> message -> (speed [m/s], steering [rad] or yaw rate [rad/s])
-COMMAND_READERS = {
-    bi.CONTROL: lambda m: (m.longitudinal.velocity, m.lateral.steering_tire_angle),
-    bi.AUTO_ACKERMANN: lambda m: (m.longitudinal.speed, m.lateral.steering_tire_angle),
-    bi.ACKERMANN_DRIVE: lambda m: (m.drive.speed, m.drive.steering_angle),
-    bi.TWIST_STAMPED: lambda m: (m.twist.linear.x, m.twist.angular.z),
-}
-
-
 def main(args=None):
     """Run the bridge until SIGINT/SIGTERM (``ros2 run vehicle_sim ackermann_to_differential``)."""
-    return run_node(lambda argv: AckermannToDifferentialNode(argv).node,
-                    sys.argv if args is None else args)
+    return run_main(bi.BRIDGE_NODE_NAME, lambda argv: AckermannToDifferentialNode(argv).node,
+                    args)
 
 
 if __name__ == '__main__':

@@ -37,12 +37,13 @@ import sys
 
 from vehicle_sim.core.diff_drive import integrate_pose, twist_from_wheel_speeds
 from vehicle_sim.core.errors import InvalidCommandError, VehicleSimError
+from vehicle_sim.core.params import ParamSpec
 from vehicle_sim.core.units import seconds_to_stamp
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
 from vehicle_sim.physics.world import World
 from vehicle_sim.ros import bridge_interfaces as bi
-from vehicle_sim.ros.bridge_node import ThrottledWarning
-from vehicle_sim.transport.selection import create_node, run_node
+from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning
+from vehicle_sim.transport.selection import create_node
 
 
 def _yaw_quaternion(yaw_rad):
@@ -54,25 +55,19 @@ def _private(name):
     return name if name.startswith('/') else '~/' + name
 
 
-def _check_string_array(value):
-    if not isinstance(value, list) or not all(isinstance(v, str) and v for v in value):
-        return 'must be a list of joint names'
-    return None
-
-
-# name, default, description, validator (None or value -> reason)
 ROBOT_NODE_PARAMETERS = (
-    ('robot', 'caster_robot', 'robot preset in config/robots (name or YAML path)', None),
-    ('x', 0.0, 'spawn x of base_link in the world [m]', None),
-    ('y', 0.0, 'spawn y of base_link in the world [m]', None),
-    ('yaw', 0.0, 'spawn heading [rad], positive = left', None),
-    ('synchronous', False, 'true: the world advances only through robot/time_step; '
-                           'false: in real time', None),
-    ('time_step_ms', 10, 'basic time step [ms]',
-     lambda v: None if v > 0 else 'must be > 0 ms'),
-    ('wheel_joints', [''], "wheel_velocities order (default: the preset's joints, left first)",
-     _check_string_array),
-    ('publish_tf', True, 'publish <p>odom -> <p>base_link on /tf (wheel odometry)', None),
+    ParamSpec('robot', kind='str', default='caster_robot',
+              doc='robot preset in config/robots (name or YAML path)'),
+    ParamSpec('x', kind='float', default=0.0, unit='m', doc='spawn x of base_link in the world'),
+    ParamSpec('y', kind='float', default=0.0, unit='m', doc='spawn y of base_link in the world'),
+    ParamSpec('yaw', kind='float', default=0.0, unit='rad', doc='spawn heading, positive = left'),
+    ParamSpec('synchronous', kind='bool', default=False,
+              doc='true: the world advances only through robot/time_step; false: in real time'),
+    ParamSpec('time_step_ms', kind='int', default=10, unit='ms', ge=1, doc='basic time step'),
+    ParamSpec('wheel_joints', kind='str_list', default=('',), empty=True,
+              doc="wheel_velocities order; [''] = the preset's joints, left first"),
+    ParamSpec('publish_tf', kind='bool', default=True,
+              doc='publish <p>odom -> <p>base_link on /tf (wheel odometry)'),
 )
 
 
@@ -100,9 +95,7 @@ class DiffRobotNode:
 
     def _setup(self, world):
         node = self.node
-        values = {name: node.declare_parameter(name, default, description=doc,
-                                               validator=validator)
-                  for name, default, doc, validator in ROBOT_NODE_PARAMETERS}
+        values = declare_parameters(node, ROBOT_NODE_PARAMETERS)
         self.params = load_robot(values['robot'])
         self._owns_world = world is None
         self.world = World(time_step_s=values['time_step_ms'] / 1000.0) if world is None \
@@ -299,7 +292,7 @@ def main(args=None):
         return app['robot'].node
 
     try:
-        return run_node(factory, sys.argv if args is None else args)
+        return run_main(bi.ROBOT_NODE_NAME, factory, args)
     finally:
         if 'robot' in app and app['robot']._owns_world:
             app['robot'].world.close()

@@ -15,72 +15,22 @@
 """
 The automobile node's parameters, declared once (STYLE rule 6).
 
-``config/automobile.yaml``, the node's declarations and ``docs/ros_interface.md`` derive from
-:data:`AUTOMOBILE_PARAMETERS`. Bad values are rejected with a reason naming the parameter, its
-value and the valid range; nothing is clamped.
+:data:`AUTOMOBILE_PARAMETERS` is a core ParamSpec table; the node declares it through
+``ros/node_support.py``, and ``config/automobile.yaml`` and the table in
+``docs/ros_interface.md`` are generated from it (tests check both). Bad values are rejected with a
+reason naming the parameter, its value and the valid range; nothing is clamped.
 """
 
 from dataclasses import dataclass
 import math
 from pathlib import Path
-from typing import Any, Callable, Optional, Tuple
+from typing import Tuple
 
 from vehicle_sim.config import car_names, find_config
 from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.params import ParamSpec, table_defaults
 from vehicle_sim.physics import DEFAULT_FRICTION
-
-
-@dataclass(frozen=True)
-class ParamSpec:
-    """
-    One node parameter.
-
-    :param name: parameter name.
-    :param default: default value (its Python type is the ROS parameter type).
-    :param unit: unit, '' when none.
-    :param doc: description shown by ``ros2 param describe``.
-    :param check: ``check(value)`` returns None or the reason the value is refused.
-    :param read_only: fixed once the node runs (the world is built from it).
-    """
-
-    name: str
-    default: Any
-    unit: str
-    doc: str
-    check: Optional[Callable[[Any], Optional[str]]] = None
-    read_only: bool = True
-
-    def validator(self, value):
-        """Return None when ``value`` is valid, else a reason naming parameter and value."""
-        if self.check is None:
-            return None
-        reason = self.check(value)
-        return None if reason is None else f'{self.name} = {value!r}: {reason}'
-
-    @property
-    def description(self) -> str:
-        unit = f' [{self.unit}]' if self.unit else ''
-        return self.doc + unit
-
-
-def _finite(value):
-    return None if math.isfinite(value) else 'must be a finite number'
-
-
-def _at_least(low, strict=False):
-    def check(value):
-        if not math.isfinite(value):
-            return 'must be a finite number'
-        if value < low or (strict and value == low):
-            return f'must be {">" if strict else ">="} {low}'
-        return None
-    return check
-
-
-def _int_range(low, high):
-    def check(value):
-        return None if low <= value <= high else f'must be in {low}..{high}'
-    return check
+from vehicle_sim.ros import node_support
 
 
 def _car_model(value):
@@ -102,38 +52,36 @@ def _world(value):
 
 
 AUTOMOBILE_PARAMETERS: Tuple[ParamSpec, ...] = (
-    ParamSpec('car_model', 'Car', '',
-              'car preset name (config/cars) or path to a preset .yaml; model of the default '
-              'vehicle and of world entries that give none', _car_model),
-    ParamSpec('world', '', '',
-              "world name (config/worlds) or path to a world .yaml; '' = one car 'Car' "
-              'with no namespace at the initial pose', _world),
-    ParamSpec('initial_x', 0.0, 'm', 'initial x of the default vehicle in the world frame',
-              _finite),
-    ParamSpec('initial_y', 0.0, 'm', 'initial y of the default vehicle in the world frame',
-              _finite),
-    ParamSpec('initial_yaw', 0.0, 'rad', 'initial yaw of the default vehicle (REP 103, + = left)',
-              _finite),
-    ParamSpec('time_step_ms', 10, 'ms', 'basic time step of the world (Webots basicTimeStep)',
-              _int_range(1, 1000)),
-    ParamSpec('publish_period_ms', 0, 'ms',
-              'period of the topics (/clock excepted); 0 = each basic step; a multiple of '
-              'time_step_ms', _int_range(0, 60000)),
-    ParamSpec('real_time_factor', 1.0, '1',
-              'simulated time per wall time: 1 = real time, 0 = as fast as possible '
-              '(ignored when synchronous)', _at_least(0.0)),
-    ParamSpec('synchronous', False, '',
-              'advance the world only on robot/time_step calls (Webots --synchronize)'),
-    ParamSpec('friction', DEFAULT_FRICTION, '1', 'tyre-road friction coefficient of the ground',
-              _at_least(0.0, strict=True)),
+    ParamSpec('car_model', kind='str', default='Car',
+              doc='car preset name (config/cars) or path to a preset .yaml; model of the default '
+                  'vehicle and of world entries that give none', check=_car_model),
+    ParamSpec('world', kind='str', default='', empty=True,
+              doc="world name (config/worlds) or path to a world .yaml; '' = one car 'Car' "
+                  'with no namespace at the initial pose', check=_world),
+    ParamSpec('initial_x', kind='float', default=0.0, unit='m',
+              doc='initial x of the default vehicle in the world frame'),
+    ParamSpec('initial_y', kind='float', default=0.0, unit='m',
+              doc='initial y of the default vehicle in the world frame'),
+    ParamSpec('initial_yaw', kind='float', default=0.0, unit='rad',
+              doc='initial yaw of the default vehicle (REP 103, + = left)'),
+    ParamSpec('time_step_ms', kind='int', default=10, unit='ms', ge=1, le=1000,
+              doc='basic time step of the world (Webots basicTimeStep)'),
+    ParamSpec('publish_period_ms', kind='int', default=0, unit='ms', ge=0, le=60000,
+              doc='period of the topics (/clock excepted); 0 = each basic step; a multiple of '
+                  'time_step_ms'),
+    ParamSpec('real_time_factor', kind='float', default=1.0, unit='1', ge=0.0,
+              doc='simulated time per wall time: 1 = real time, 0 = as fast as possible '
+                  '(ignored when synchronous)'),
+    ParamSpec('synchronous', kind='bool', default=False,
+              doc='advance the world only on robot/time_step calls (Webots --synchronize)'),
+    ParamSpec('friction', kind='float', default=DEFAULT_FRICTION, unit='1', gt=0.0,
+              doc='tyre-road friction coefficient of the ground'),
 )
 
 
 def defaults():
     """Return {name: default} of every parameter (plus use_sim_time, declared by the port)."""
-    values = {spec.name: spec.default for spec in AUTOMOBILE_PARAMETERS}
-    values['use_sim_time'] = False
-    return values
+    return table_defaults(AUTOMOBILE_PARAMETERS + (node_support.USE_SIM_TIME,))
 
 
 @dataclass(frozen=True)
@@ -170,13 +118,9 @@ def declare_parameters(node) -> SimSettings:
     :param node: a transport NodePort.
     :raises InvalidParameterError: a value is refused (also for the cross-parameter rule
         publish_period_ms % time_step_ms == 0).
+    :raises TransportError: an override is refused (naming parameter, value and range).
     """
-    values = {}
-    for spec in AUTOMOBILE_PARAMETERS:
-        values[spec.name] = node.declare_parameter(
-            spec.name, spec.default, description=spec.description, validator=spec.validator,
-            read_only=spec.read_only)
-    settings = SimSettings(**values)
+    settings = SimSettings(**node_support.declare_parameters(node, AUTOMOBILE_PARAMETERS))
     if settings.publish_period_ms % settings.time_step_ms:
         raise InvalidParameterError(
             f'publish_period_ms = {settings.publish_period_ms} must be 0 or a multiple of '
@@ -186,31 +130,12 @@ def declare_parameters(node) -> SimSettings:
 
 def params_file_text(node_name='automobile') -> str:
     """Return config/automobile.yaml: every parameter with its default and description."""
-    lines = [f'{node_name}:', '  ros__parameters:']
-    for spec in AUTOMOBILE_PARAMETERS:
-        lines.append(f'    # {spec.description}')
-        lines.append(f'    {spec.name}: {_yaml_value(spec.default)}')
-    lines.append('    # use /clock as the node clock (ROS standard)')
-    lines.append('    use_sim_time: false')
-    return '\n'.join(lines) + '\n'
-
-
-def _yaml_value(value):
-    if isinstance(value, bool):
-        return 'true' if value else 'false'
-    if isinstance(value, str):
-        return f"'{value}'"
-    return repr(value)
+    return node_support.params_file_text(node_name, AUTOMOBILE_PARAMETERS)
 
 
 def parameter_table_markdown() -> str:
     """Return the Markdown table of the parameters (docs/ros_interface.md)."""
-    lines = ['| parameter | default | unit | description |', '|---|---|---|---|']
-    for spec in AUTOMOBILE_PARAMETERS:
-        lines.append(f'| `{spec.name}` | `{_yaml_value(spec.default)}` | {spec.unit} | '
-                     f'{spec.doc} |')
-    lines.append('| `use_sim_time` | `false` |  | use /clock as the node clock (ROS standard) |')
-    return '\n'.join(lines) + '\n'
+    return node_support.node_parameter_table(AUTOMOBILE_PARAMETERS)
 
 
 def world_path(name: str) -> Path:

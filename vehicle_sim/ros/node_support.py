@@ -1,0 +1,126 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+What every node module shares: parameter declaration, the throttled warning, the main wrapper.
+
+Node modules (``*_node.py``) import core, this module and the interface tables, never each
+other (a test scans the imports). Parameters: every node declares its core
+:class:`~vehicle_sim.core.params.ParamSpec` table through :func:`declare_parameters`, so every
+parameter is declared on the transport port and validated the same way; a refused value stops
+the node with an error naming the parameter, its value and the valid range.
+"""
+
+import sys
+import time
+
+from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.params import parameter_table_markdown, ParamSpec, validate_table, yaml_text
+from vehicle_sim.transport import run_node, TransportError
+
+# Throttle period of repeated warnings [s] (wall time).
+WARN_THROTTLE_S = 1.0
+
+# Declared by the transport port on every node (ROS standard); listed in the docs and yaml.
+USE_SIM_TIME = ParamSpec('use_sim_time', kind='bool', default=False,
+                         doc='use /clock as the node clock (ROS standard)', read_only=False)
+
+
+def _ros_value(value):
+    return list(value) if isinstance(value, tuple) else value
+
+
+def declare_parameters(node, specs):
+    """
+    Declare every ParamSpec on a node and return the validated values.
+
+    Each parameter is declared with its default, description (unit included), valid range
+    (``additional_constraints``), read-only flag and the spec as validator, so a command-line
+    override, a parameter file or a later set request is refused with the spec's reason.
+
+    :param node: a transport NodePort.
+    :param specs: the node's ParamSpec rows.
+    :return: {attribute name: validated value} (lists as tuples).
+    :raises TransportError: an override is refused (the message names parameter, value and
+        valid range).
+    :raises InvalidParameterError: a value is refused by the table (the same message form).
+    """
+    values = {}
+    for spec in specs:
+        values[spec.key] = node.declare_parameter(
+            spec.key, _ros_value(spec.default), description=spec.description,
+            validator=spec.refusal, read_only=spec.read_only,
+            additional_constraints=spec.range_text)
+    return validate_table(specs, values, node.get_fully_qualified_name(), key_word='parameter')
+
+
+def node_parameter_table(specs, extra_rows=()):
+    """Return the docs table of a node's parameters (``use_sim_time`` included)."""
+    return parameter_table_markdown(tuple(specs) + (USE_SIM_TIME,), 'parameter', extra_rows)
+
+
+def params_file_text(node_name, specs):
+    """Return a ROS parameter file listing every parameter with its default and description."""
+    lines = [f'{node_name}:', '  ros__parameters:']
+    for spec in tuple(specs) + (USE_SIM_TIME,):
+        lines.append(f'    # {spec.description}')
+        lines.append(f'    {spec.key}: {yaml_text(_ros_value(spec.default))}')
+    return '\n'.join(lines) + '\n'
+
+
+def run_main(name, node_factory, args=None):
+    """
+    Run a node main (Jazzy shape, through the port) and turn a refused start into exit 2.
+
+    :param name: the executable name printed before the error.
+    :param node_factory: ``node_factory(args)`` returning a NodePort or an object with ``.node``.
+    :param args: the command line (default ``sys.argv``).
+    :return: the process exit status: 0, or 2 when a parameter (or a file it names) is refused.
+    """
+    try:
+        return run_node(node_factory, sys.argv if args is None else args)
+    except (InvalidParameterError, TransportError) as error:
+        print(f'{name}: {error}', file=sys.stderr)
+        return 2
+
+
+class ThrottledWarning:
+    """Log a warning at most once per ``period_s`` of wall time, counting what was suppressed."""
+
+    def __init__(self, logger, period_s=WARN_THROTTLE_S):
+        """
+        Create the throttle.
+
+        :param logger: a port Logger.
+        :param period_s: minimum wall time between two warnings [s].
+        """
+        self._logger = logger
+        self._period_s = period_s
+        self._last_s = None
+        self.suppressed = 0
+        self.count = 0
+
+    def warn(self, message):
+        """Count the event and log it unless one was logged less than period_s ago."""
+        self.count += 1
+        now_s = time.monotonic()
+        if self._last_s is not None and now_s - self._last_s < self._period_s:
+            self.suppressed += 1
+            return
+        if self.suppressed:
+            message += f' ({self.suppressed} similar warnings suppressed)'
+        self.suppressed = 0
+        self._last_s = now_s
+        self._logger.warn(message)
