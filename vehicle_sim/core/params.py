@@ -23,6 +23,7 @@ no body physics, see docs/physics.md.
 
 from dataclasses import dataclass, field
 import math
+import re
 from typing import Any, Callable, Optional, Tuple
 
 from vehicle_sim.core.errors import InvalidParameterError
@@ -34,13 +35,27 @@ ENGINE_TYPES = ('combustion', 'electric', 'parallel hybrid', 'power-split hybrid
 WHEEL_DENSITY_KG_M3 = 1000.0
 
 
+class _Required:
+    """Default of a key that has none: leaving it out is an error."""
+
+    def __repr__(self):
+        return 'REQUIRED'
+
+
+REQUIRED = _Required()
+
+
 @dataclass(frozen=True)
 class ParamSpec:
     """
     One parameter: its preset key, attribute name, type, default, unit, constraint and doc.
 
-    ``kind`` is one of 'float', 'str', 'enum', 'floats' (fixed-length list), 'float_list'
-    (variable-length list), 'vec3', 'inertia', 'boxes'.
+    ``kind`` is one of 'float', 'int', 'bool', 'str', 'enum', 'floats' (fixed-length list),
+    'float_list' (variable-length list), 'vec3', 'inertia', 'boxes', 'pose' (mapping of x, y, z,
+    roll, pitch, yaw; ``choices`` restricts the keys), 'rgba', 'rows' (a table of rows of
+    ``length`` numbers), 'ros_name', 'topic', 'namespace', 'sensors' (a list of sensor
+    mappings, see core/sensor_sets.py) and 'raw' (passed on; its caller validates it). A
+    default of :data:`REQUIRED` makes a key mandatory.
     """
 
     key: str
@@ -52,6 +67,7 @@ class ParamSpec:
     gt: Optional[float] = None
     ge: Optional[float] = None
     le: Optional[float] = None
+    lt: Optional[float] = None
     choices: Tuple[str, ...] = ()
     length: Optional[int] = None
     optional: bool = False
@@ -131,6 +147,9 @@ CAR_PARAM_SPECS = (
     ParamSpec('collisionBoxes', 'collision_boxes', 'boxes',
               ({'size': (5.0, 1.7, 1.0), 'position': (2.0, 0.0, 0.5), 'pitch': 0.0},), 'm',
               'chassis collision boxes: size [l, w, h], position [x, y, z], pitch [rad]'),
+    ParamSpec('sensors', 'sensors', 'sensors', None, '',
+              'sensors of the car, each off unless "enabled: true" (docs/sensors.md); null = '
+              'the default set (lidar, camera, gnss, imu)', optional=True),
 )
 
 SPEC_BY_KEY = {spec.key: spec for spec in CAR_PARAM_SPECS}
@@ -185,6 +204,15 @@ class CarParams:
     center_of_mass_m: Tuple[float, float, float]
     inertia_kgm2: Optional[Tuple[float, ...]]
     collision_boxes: Tuple[CollisionBox, ...] = field(default=())
+    sensors: Optional[Tuple] = None
+
+    @property
+    def sensor_set(self):
+        """The car's sensors: the preset's ``sensors``, or the default set (all unmounted)."""
+        if self.sensors is not None:
+            return self.sensors
+        from vehicle_sim.core.sensor_defaults import default_car_sensors
+        return default_car_sensors(self)
 
     @property
     def gear_number(self):
@@ -242,12 +270,100 @@ def _check_float(source, spec, value):
     value = float(value)
     if not math.isfinite(value):
         _fail(source, spec.key, value, 'must be finite')
+    _check_bounds(source, spec, value)
+    return value
+
+
+def _check_bounds(source, spec, value):
     bounds = [(spec.gt, lambda v, b: v > b, '>'), (spec.ge, lambda v, b: v >= b, '>='),
-              (spec.le, lambda v, b: v <= b, '<=')]
+              (spec.le, lambda v, b: v <= b, '<='), (spec.lt, lambda v, b: v < b, '<')]
     for bound, ok, text in bounds:
         if bound is not None and not ok(value, bound):
             _fail(source, spec.key, value, f'must be {text} {bound:g}')
+
+
+def _check_int(source, spec, value):
+    if isinstance(value, bool) or not isinstance(value, int):
+        _fail(source, spec.key, value, 'must be an integer')
+    _check_bounds(source, spec, value)
+    return int(value)
+
+
+POSE_KEYS = ('x', 'y', 'z', 'roll', 'pitch', 'yaw')
+
+
+def _check_pose(source, spec, value):
+    from vehicle_sim.core.frames import Pose
+    if isinstance(value, Pose):
+        return value
+    keys = spec.choices or POSE_KEYS
+    if not isinstance(value, dict):
+        _fail(source, spec.key, value, f'must be a mapping of {", ".join(keys)}')
+    unknown = sorted(set(value) - set(keys))
+    if unknown:
+        _fail(source, spec.key, value, f'unknown key(s) {unknown}; valid: {", ".join(keys)}')
+    numbers = {}
+    for key in POSE_KEYS:
+        item = value.get(key, 0.0)
+        if not _is_number(item) or not math.isfinite(float(item)):
+            _fail(source, f'{spec.key}.{key}', item, 'must be a finite number')
+        numbers[key] = float(item)
+    return Pose(numbers['x'], numbers['y'], numbers['z'], numbers['roll'], numbers['pitch'],
+                numbers['yaw'])
+
+
+def _check_rgba(source, spec, value):
+    color = _check_floats(source, spec, value, 4)
+    if min(color) < 0.0 or max(color) > 1.0:
+        _fail(source, spec.key, value, 'every entry must be in [0, 1] (red, green, blue, alpha)')
+    return color
+
+
+def _check_rows(source, spec, value):
+    if not isinstance(value, (list, tuple)) or len(value) < 2:
+        _fail(source, spec.key, value, f'must be a list of at least 2 rows of {spec.length} '
+              'numbers')
+    return tuple(_check_floats(source, spec, row, spec.length) for row in value)
+
+
+# ROS 2 name rules (rcl validate_topic_name): tokens of letters, digits and underscores that do
+# not start with a digit; no double underscore.
+_TOKEN = re.compile(r'[A-Za-z_][A-Za-z0-9_]*$')
+
+
+def _valid_token(token):
+    return bool(_TOKEN.match(token)) and '__' not in token
+
+
+def _check_ros_name(source, spec, value):
+    if not isinstance(value, str) or not _valid_token(value):
+        _fail(source, spec.key, value, 'must be a ROS name: letters, digits and underscores, '
+              'not starting with a digit')
     return value
+
+
+def _check_topic(source, spec, value):
+    body = value[1:] if isinstance(value, str) and value.startswith('/') else value
+    if not isinstance(value, str) or not body or \
+            not all(_valid_token(token) for token in body.split('/')):
+        _fail(source, spec.key, value, "must be a ROS topic name: tokens of letters, digits and "
+              "underscores separated by '/'")
+    return value
+
+
+def _check_namespace(source, spec, value):
+    if value is None:
+        return ''
+    text = value.strip('/') if isinstance(value, str) else None
+    if text is None or (text and not all(_valid_token(t) for t in text.split('/'))):
+        _fail(source, spec.key, value, 'is not a valid ROS namespace')
+    return text
+
+
+def _check_sensors(source, spec, value):
+    # sensor_sets builds on this module: imported here, where it is needed, to avoid a cycle
+    from vehicle_sim.core.sensor_sets import sensors_from_list
+    return sensors_from_list(value, f'{source}: field {spec.key!r}', enabled_default=False)
 
 
 def _check_floats(source, spec, value, length=None):
@@ -295,10 +411,21 @@ _CHECKERS: dict = {
     'vec3': lambda source, spec, value: _check_vec3(source, spec, value),
     'inertia': lambda source, spec, value: _check_floats(source, spec, value, 6),
     'boxes': _check_boxes,
+    'int': _check_int,
+    'pose': _check_pose,
+    'rgba': _check_rgba,
+    'rows': _check_rows,
+    'ros_name': _check_ros_name,
+    'topic': _check_topic,
+    'namespace': _check_namespace,
+    'sensors': _check_sensors,
+    'raw': lambda source, spec, value: value,    # checked by the caller (e.g. world sensors)
 }
 
 
 def _check_value(source, spec, value):
+    if value is REQUIRED:
+        raise InvalidParameterError(f'{source}: field {spec.key!r} is required')
     if value is None:
         if spec.optional:
             return None
