@@ -59,8 +59,9 @@ class GaussianNoise:
         """
         Return ``value`` with noise of standard deviation ``relative_sigma * |value|``.
 
-        Webots' lookup-table noise: the third column is a fraction of the response value.
+        Webots' lookup-table noise: the third column is a fraction of the response value. Uses
+        this generator whatever ``sigma`` is.
         """
         if relative_sigma == 0.0:
             return value
-        return value + self._rng.normal(0.0, abs(relative_sigma * value))
+        return float(value + self._rng.normal(0.0, abs(relative_sigma * value)))
