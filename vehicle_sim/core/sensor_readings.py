@@ -146,9 +146,10 @@ class RangeReading:
     """
     One distance sample (sensor_msgs/Range) and Webots' response value.
 
-    ``range_m`` follows REP 117; ``distance_m`` is the nearest hit (``max_range_m`` when none,
-    as a Webots ray that hits nothing); ``value`` is the lookup-table response to
-    ``distance_m`` (Webots DistanceSensor.getValue()).
+    ``range_m`` follows REP 117; ``variance_m2`` is the range noise's sigma^2 (Jazzy's Range
+    ``variance``; 0 = unknown, the noise is off); ``distance_m`` is the nearest hit
+    (``max_range_m`` when none, as a Webots ray that hits nothing); ``value`` is the
+    lookup-table response to ``distance_m`` (Webots DistanceSensor.getValue()).
     """
 
     name: str
@@ -160,6 +161,7 @@ class RangeReading:
     radiation_type: int
     distance_m: float
     value: float
+    variance_m2: float = 0.0
 
 
 @dataclass(frozen=True, eq=False)

@@ -84,4 +84,4 @@ class DistanceSensor:
                                                self.table.relative_noise(distance))
         return RangeReading(spec.name, time_s, range_m, spec.min_range_m, spec.max_range_m,
                             spec.aperture_rad, RADIATION_TYPE[spec.radiation_type], distance,
-                            value)
+                            value, spec.noise_m ** 2)
