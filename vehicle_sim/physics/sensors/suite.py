@@ -18,11 +18,14 @@ The sensors of one vehicle: built from its mounted SensorSpecs, sampled after wo
 
 The suite registers a ``post_step`` hook with the World only while a sensor is scheduled, so a
 vehicle without sensors costs nothing. After each basic step n it samples the sensors due at n
-(core/sampling.py: the first step at or after each k / rate) and keeps the readings:
-``fresh`` (those of the last step) and ``latest(name)``.
+(core/sampling.py: the first step at or after each k / rate) and keeps the readings: ``fresh``
+(those sampled at the last step, one per sensor) and ``latest(key)``.
 
-Two ways to schedule: ``start()`` at each sensor's ``rate_hz`` (the ROS nodes), or
-``set_period_ms(name, ms)`` (Webots ``enable(samplingPeriod)``), counted from the current step.
+Schedules have keys: ``start()`` schedules each sensor under its own name at its ``rate_hz``
+(the ROS nodes); ``set_period_ms(name, ms, key)`` schedules it under another key, counted from
+the current step (each Webots device: an IMU serves an InertialUnit, a Gyro and an
+Accelerometer, each with its own sampling period). A sensor due under several keys at one step
+is sampled once.
 """
 
 from typing import Dict, List
@@ -64,46 +67,54 @@ class SensorSuite:
             cls = SENSOR_CLASSES[spec.sensor_type]
             self.sensors[name] = (cls(world, body, spec, plane) if cls is GnssSensor
                                   else cls(world, body, spec))
-        self._trackers = {name: s for name, s in self.sensors.items() if hasattr(s, 'track')}
+        self._trackers = {name for name, sensor in self.sensors.items()
+                          if hasattr(sensor, 'track')}
         self._scheduler = Scheduler()
-        self._latest: Dict[str, object] = {}
+        self._sensor_of: Dict[str, str] = {}      # schedule key -> sensor name
+        self._latest: Dict[str, object] = {}      # schedule key or sensor name -> reading
         self.fresh: List = []
         self._registered = False
 
     # ---------------------------------------------------------------- scheduling
     def start(self, names=None):
         """
-        Sample sensors at their ``rate_hz`` from now on (ROS).
+        Sample sensors at their ``rate_hz`` from now on, each under its name (ROS).
 
         :param names: sensor names; all mounted sensors when None.
+        :raises KeyError: for a sensor that is not mounted.
         """
-        for name in self._names(names):
-            self._schedule(name, SampleSchedule.from_rate(
+        for name in self._check(names):
+            self._schedule(name, name, SampleSchedule.from_rate(
                 self.specs[name].rate_hz, self.world.time_step_s, self.world.step_count))
 
-    def set_period_ms(self, name, period_ms):
+    def set_period_ms(self, name, period_ms, key=None):
         """
         Sample a sensor every ``period_ms`` from now on (Webots ``enable``); 0 stops it.
 
-        :raises KeyError: for an unknown sensor.
+        :param name: the sensor.
+        :param period_ms: sampling period [ms], > 0; 0 or None stops this key.
+        :param key: the schedule's key (a Webots device name); the sensor's name when None.
+        :raises KeyError: for a sensor that is not mounted.
         """
-        self._names([name])
+        self._check([name])
+        key = name if key is None else key
         if not period_ms:
-            self.stop(name)
+            self.stop(key)
             return
-        self._schedule(name, SampleSchedule.from_period_ms(
+        self._schedule(key, name, SampleSchedule.from_period_ms(
             period_ms, self.world.time_step_s * 1000.0, self.world.step_count))
 
-    def stop(self, name):
-        """Stop sampling a sensor (its latest reading is kept)."""
-        self._scheduler.set(name, None)
+    def stop(self, key):
+        """Stop a schedule (a sensor name or a key); its latest reading is kept."""
+        self._scheduler.set(key, None)
+        self._sensor_of.pop(key, None)
         self._update_registration()
 
-    def scheduled(self, name):
-        """Tell whether a sensor is being sampled."""
-        return self._scheduler.get(name) is not None
+    def scheduled(self, key):
+        """Tell whether a schedule (a sensor name or a key) is running."""
+        return self._scheduler.get(key) is not None
 
-    def _names(self, names):
+    def _check(self, names):
         names = list(self.specs) if names is None else list(names)
         for name in names:
             if name not in self.specs:
@@ -111,10 +122,11 @@ class SensorSuite:
                                f'{", ".join(self.specs) or "none"}')
         return names
 
-    def _schedule(self, name, schedule):
-        self._scheduler.set(name, schedule)
-        self._track_if_due_next(name, schedule, self.world.step_count)
+    def _schedule(self, key, name, schedule):
+        self._scheduler.set(key, schedule)
+        self._sensor_of[key] = name
         self._update_registration()
+        self._track(self.world.step_count)
 
     def _update_registration(self):
         active = bool(self._scheduler)
@@ -124,10 +136,16 @@ class SensorSuite:
             self.world.remove(self)
         self._registered = active
 
-    def _track_if_due_next(self, name, schedule, step):
-        tracker = self._trackers.get(name)
-        if tracker is not None and schedule.next_step == step + 1:
-            tracker.track()
+    def _track(self, step):
+        # an IMU differentiates the velocity over the step before its sample: record it now
+        if not self._trackers:
+            return
+        tracked = set()
+        for key, name in self._sensor_of.items():
+            if name in self._trackers and name not in tracked and \
+                    self._scheduler.get(key).next_step == step + 1:
+                self.sensors[name].track()
+                tracked.add(name)
 
     # ---------------------------------------------------------------- sampling
     def post_step(self):
@@ -135,33 +153,34 @@ class SensorSuite:
         world = self.world
         step = world.step_count
         due = self._scheduler.due(step)
+        fresh = []
         if due:
             time_s = world.time_s
-            fresh = [self._take(name, time_s) for name in due]
-        else:
-            fresh = []
+            sampled = {}
+            for key in due:
+                name = self._sensor_of[key]
+                if name not in sampled:
+                    sampled[name] = self.sensors[name].sample(time_s)
+                    self._latest[name] = sampled[name]
+                    fresh.append(sampled[name])
+                self._latest[key] = sampled[name]
         self.fresh = fresh
-        for name in self._trackers:
-            schedule = self._scheduler.get(name)
-            if schedule is not None:
-                self._track_if_due_next(name, schedule, step)
+        self._track(step)
 
-    def _take(self, name, time_s):
-        reading = self.sensors[name].sample(time_s)
+    def sample(self, name):
+        """Sample a sensor now, whatever its schedules; return the reading (also ``latest``)."""
+        self._check([name])
+        reading = self.sensors[name].sample(self.world.time_s)
         self._latest[name] = reading
         return reading
 
-    def sample(self, name):
-        """Sample a sensor now, whatever its schedule; return the reading (also ``latest``)."""
-        self._names([name])
-        return self._take(name, self.world.time_s)
-
-    def latest(self, name):
-        """Return the last reading of a sensor, or None before its first sample."""
-        return self._latest.get(name)
+    def latest(self, key):
+        """Return the last reading under a key (or sensor name), None before the first."""
+        return self._latest.get(key)
 
     def close(self):
-        """Stop every sensor and leave the world's hooks."""
-        for name in list(self.specs):
-            self._scheduler.set(name, None)
+        """Stop every schedule and leave the world's hooks."""
+        for key in list(self._sensor_of):
+            self._scheduler.set(key, None)
+        self._sensor_of.clear()
         self._update_registration()
