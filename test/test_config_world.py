@@ -19,6 +19,7 @@ Every refusal must name the file and the field (and change nothing: parsing is p
 """
 
 import math
+from pathlib import Path
 import re
 
 import pytest
@@ -27,10 +28,17 @@ import yaml
 from vehicle_sim.config import load_car, load_robot, load_world, parse_world, world_from_data
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.frames import Pose
-from vehicle_sim.core.params import car_params_from_dict, DEFAULT_CAR
+from vehicle_sim.core.params import car_params_from_dict, DEFAULT_CAR, table_markdown
 from vehicle_sim.core.robot_params import DEFAULT_ROBOT
-from vehicle_sim.core.sensor_params import CameraSpec, LidarSpec, sensor_from_dict, SENSOR_TYPES
+from vehicle_sim.core.sensor_params import (
+    CameraSpec,
+    LidarSpec,
+    sensor_from_dict,
+    SENSOR_TYPES,
+    sensors_markdown,
+)
 from vehicle_sim.core.sensor_sets import enable_sensors, merge_sensors, mounted, static_transforms
+from vehicle_sim.core.world_params import obstacles_markdown, ORIGIN_SPECS, VEHICLE_SPECS
 from vehicle_sim.physics import diff_robot
 from vehicle_sim.ros import sim_params
 
@@ -301,3 +309,12 @@ def test_every_sensor_type_has_a_table_and_a_spec_class():
         assert isinstance(spec, row.spec_class) and spec.sensor_type == name
         assert spec.enabled and spec.device == 'x' and spec.topics
     assert isinstance(sensor_from_dict({'type': 'camera', 'name': 'c'}, 't'), CameraSpec)
+
+
+def test_sensors_doc_contains_the_generated_key_tables():
+    text = (Path(__file__).resolve().parent.parent / 'docs' / 'sensors.md').read_text(
+        encoding='utf-8')
+    assert sensors_markdown() in text
+    assert obstacles_markdown() in text
+    assert table_markdown(ORIGIN_SPECS) in text and table_markdown(VEHICLE_SPECS) in text
+    assert ISSUE_WORLD.strip().split('obstacles:')[0].strip() in text

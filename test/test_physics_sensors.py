@@ -466,3 +466,14 @@ def test_robot_default_lidar_sees_an_obstacle():
         assert ahead == pytest.approx(2.0 - 0.1 - lidar.pose.x_m, abs=0.01)
     finally:
         world.close()
+
+
+def test_lidar_with_more_rays_than_one_pybullet_batch_reads_every_ray(scene):
+    # 17 layers x 1024 rays = 17408 > PyBullet's 16383 rays per batch
+    course = scene([{'name': 'lidar', 'fov': 1.0, 'horizontal_resolution': 1024, 'layers': 17,
+                     'vertical_fov': 0.02, 'max_range': 50.0, 'pose': {'x': 1.0, 'z': 1.5}}])
+    course.settle(1)
+    scan = course.suite.sample('lidar')
+    assert scan.ranges_m.shape == (17, 1024)
+    # the last layer's middle rays hit the wall too: a ray past the first batch was cast
+    assert scan.ranges_m[16, 512] == pytest.approx(18.5 / math.cos(0.01), abs=0.01)

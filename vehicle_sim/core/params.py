@@ -500,6 +500,43 @@ def validate_table(specs, data, source, defaults, what='parameters', key_word='f
         raise InvalidParameterError(str(error).replace(': field ', f': {key_word} ', 1)) from None
 
 
+def _markdown_value(value, keys=None):
+    if value is None:
+        return 'null'
+    if value == '':
+        return "''"
+    if value is REQUIRED:
+        return 'required'
+    if isinstance(value, bool):
+        return 'true' if value else 'false'
+    if hasattr(value, 'as_dict'):
+        value = value.as_dict()
+        return '{' + ', '.join(f'{k}: {v:g}' for k, v in value.items()
+                               if keys is None or k in keys) + '}'
+    if isinstance(value, float):
+        return f'{value:g}'
+    if isinstance(value, tuple):
+        return '[' + ', '.join(_markdown_value(v) for v in value) + ']'
+    return str(value)
+
+
+def table_markdown(specs, skip=()):
+    """
+    Return the Markdown table of a ParamSpec table (docs; a test checks docs against it).
+
+    :param specs: the ParamSpec rows.
+    :param skip: keys to leave out (documented elsewhere, e.g. the common sensor keys).
+    """
+    lines = ['| key | default | unit | meaning |', '|---|---|---|---|']
+    for spec in specs:
+        if spec.key in skip:
+            continue
+        keys = (spec.choices or None) if spec.kind == 'pose' else None
+        default = _markdown_value(spec.default, keys)
+        lines.append(f'| `{spec.key}` | `{default}` | {spec.unit} | {spec.doc} |')
+    return '\n'.join(lines) + '\n'
+
+
 def car_params_from_dict(data, source='<dict>', base=None):
     """
     Validate a preset dictionary and build CarParams.

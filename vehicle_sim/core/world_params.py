@@ -29,13 +29,13 @@ type, a NaN or an impossible value is refused with the file, the entry and the f
 the file and resolving car models are config.py's (this module touches no file).
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable, Optional, Sequence, Tuple
 
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.frames import Pose
 from vehicle_sim.core.geodesy import GeodeticOrigin
-from vehicle_sim.core.params import ParamSpec, REQUIRED, validate_table
+from vehicle_sim.core.params import ParamSpec, REQUIRED, table_markdown, validate_table
 from vehicle_sim.core.sensor_params import SensorSpec
 from vehicle_sim.core.sensor_sets import merge_sensors
 
@@ -90,6 +90,19 @@ OBSTACLE_SPECS = {
         ParamSpec('radius', 'radius_m', 'float', REQUIRED, 'm', 'radius', gt=0.0),
     ),
 }
+
+
+def obstacles_markdown():
+    """Return the key tables of the obstacles in docs/sensors.md: common keys, then per shape."""
+    shown = {'color': 'per shape', 'shape': REQUIRED}
+    common = tuple(replace(spec, default=shown[spec.key]) if spec.key in shown else spec
+                   for spec in _obstacle_common('box'))
+    parts = ['#### Keys of every obstacle\n\n', table_markdown(common)]
+    for shape, specs in OBSTACLE_SPECS.items():
+        color = DEFAULT_COLORS[shape]
+        parts.append(f'\n#### `{shape}` (default `color`: {list(color)})\n\n'
+                     + table_markdown(specs, skip=tuple(s.key for s in common)))
+    return ''.join(parts)
 
 
 @dataclass(frozen=True)

@@ -75,6 +75,8 @@ class ImuSensor:
 
     def track(self):
         """Record the mount point's velocity now (the step before a sample)."""
+        if self._previous is not None and self._previous[0] == self.world.step_count:
+            return          # a sample at this step has recorded it already
         position, _, _ = self.mount.world_frame()
         velocity, _ = self.mount.point_velocity(position)
         self._previous = (self.world.step_count, velocity)

@@ -23,8 +23,9 @@ sensor mounted inside or behind the body sees past it.
 import numpy as np
 import pybullet
 
-# PyBullet's limit of rays per rayTestBatch call (MAX_RAY_INTERSECTION_BATCH_SIZE).
-MAX_BATCH = 16384
+# Rays per rayTestBatch call: PyBullet refuses more than 16384 and silently answers only 16383
+# of exactly 16384 (pybullet 3.2.7), so batches stay below that.
+MAX_BATCH = 16383
 
 
 def cast_rays(world, origin, ends, mask):
