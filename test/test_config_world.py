@@ -318,3 +318,29 @@ def test_sensors_doc_contains_the_generated_key_tables():
     assert obstacles_markdown() in text
     assert table_markdown(ORIGIN_SPECS) in text and table_markdown(VEHICLE_SPECS) in text
     assert ISSUE_WORLD.strip().split('obstacles:')[0].strip() in text
+
+
+@pytest.mark.parametrize('entry, fragment', [
+    ('{type: lidar, name: lidar, max_range: -1.0}', "field 'max_range' = -1.0"),
+    ('{type: sonar, name: s}', "field 'type' = 'sonar'"),
+])
+def test_automobile_node_refuses_a_bad_sensor_at_start_naming_file_and_field(
+        tmp_path, entry, fragment):
+    from vehicle_sim.ros.automobile_node import AutomobileNode
+    path = tmp_path / 'bad_world.yaml'
+    path.write_text(f'vehicles: [{{name: Car, sensors: [{entry}]}}]\n')
+    with pytest.raises(InvalidParameterError) as info:
+        AutomobileNode(['x', '--ros-args', '-r', '__ns:=/bad_sensor', '-p', f'world:={path}'],
+                       transport='dds')
+    assert str(path) in str(info.value) and fragment in str(info.value)
+
+
+def test_automobile_node_refuses_a_bad_obstacle_at_start_naming_file_and_field(tmp_path):
+    from vehicle_sim.ros.automobile_node import AutomobileNode
+    path = tmp_path / 'bad_world.yaml'
+    path.write_text('vehicles: [{name: Car}]\nobstacles: [{name: a, shape: box, '
+                    'size: [1, .nan, 1], position: [5, 0, 0.5]}]\n')
+    with pytest.raises(InvalidParameterError) as info:
+        AutomobileNode(['x', '--ros-args', '-r', '__ns:=/bad_obstacle', '-p',
+                        f'world:={path}'], transport='dds')
+    assert str(path) in str(info.value) and "obstacles[0]: field 'size'" in str(info.value)
