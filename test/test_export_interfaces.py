@@ -29,6 +29,7 @@ CATKIN_EMAIL = re.compile(
 
 EXPECTED_FILES = {
     'msg/Float64Stamped.msg', 'msg/WheelCommand.msg', 'msg/DifferentialCommand.msg',
+    'msg/Collision.msg',
     'srv/SetFloat.srv', 'srv/GetFloat.srv', 'srv/SetInt.srv', 'srv/GetInt.srv',
     'srv/SetBool.srv', 'srv/GetBool.srv', 'srv/GetDimensions.srv',
 }
@@ -59,7 +60,7 @@ def test_exported_files_parse_and_name_every_type(package_dir):
             names.update(get_types_from_msg(text, f'vehicle_msgs/msg/{path.stem}{suffix}'))
     assert names == {
         'vehicle_msgs/msg/Float64Stamped', 'vehicle_msgs/msg/WheelCommand',
-        'vehicle_msgs/msg/DifferentialCommand',
+        'vehicle_msgs/msg/DifferentialCommand', 'vehicle_msgs/msg/Collision',
         *(f'vehicle_msgs/msg/{srv}_{part}'
           for srv in ('SetFloat', 'GetFloat', 'SetInt', 'GetInt', 'SetBool', 'GetBool',
                       'GetDimensions')

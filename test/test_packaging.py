@@ -23,6 +23,7 @@ checks that nothing prints a warning and that every data file lands where the no
 import os
 from pathlib import Path
 import shutil
+import re
 import subprocess
 import sys
 
@@ -67,7 +68,7 @@ def built(tmp_path_factory):
 
 def test_build_prints_no_warning(built):
     output, _, _ = built
-    warnings = [line for line in output.splitlines() if 'warning' in line.lower()]
+    warnings = [line for line in output.splitlines() if re.search(r'(?i)\bwarning\b', line)]
     assert warnings == []
 
 

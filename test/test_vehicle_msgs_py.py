@@ -112,6 +112,14 @@ STANDARD_TYPES = [
     'rmw_dds_common/msg/Gid',
     'rmw_dds_common/msg/NodeEntitiesInfo',
     'rmw_dds_common/msg/ParticipantEntitiesInfo',
+    # the sensors' types (docs/sensors.md)
+    'sensor_msgs/msg/LaserScan',
+    'sensor_msgs/msg/PointCloud2',
+    'sensor_msgs/msg/Imu',
+    'sensor_msgs/msg/NavSatFix',
+    'sensor_msgs/msg/Range',
+    'sensor_msgs/msg/Image',
+    'sensor_msgs/msg/CameraInfo',
 ]
 OWN_MESSAGES = [d.ros_type for d in definitions() if d.kind == 'msg']
 OWN_SERVICES = [d.ros_type for d in definitions() if d.kind == 'srv']
@@ -261,6 +269,21 @@ def test_message_class_carries_the_mangled_dds_type_name(ros_type):
     ('rosgraph_msgs/msg/Clock',
      '692f7a66e93a3c83e71765d033b60349ba68023a8c689a79e48078bcb5c58564'),
     ('tf2_msgs/msg/TFMessage', 'e369d0f05a23ae52508854b66f6aa0437f3449d652e8cbf22d5abe85d020f087'),
+    # the sensors' types, as Jazzy's rosidl generates them (Range with Iron's variance field)
+    ('sensor_msgs/msg/LaserScan',
+     '64c191398013af96509d518dac71d5164f9382553fce5c1f8cca5be7924bd828'),
+    ('sensor_msgs/msg/PointCloud2',
+     '9198cabf7da3796ae6fe19c4cb3bdd3525492988c70522628af5daa124bae2b5'),
+    ('sensor_msgs/msg/Imu', '7d9a00ff131080897a5ec7e26e315954b8eae3353c3f995c55faf71574000b5b'),
+    ('sensor_msgs/msg/NavSatFix',
+     '62223ab3fe210a15976021da7afddc9e200dc9ec75231c1b6a557fc598a65404'),
+    ('sensor_msgs/msg/Range', 'b42b62562e93cbfe9d42b82fe5994dfa3d63d7d5c90a317981703f7388adff3a'),
+    ('sensor_msgs/msg/Image', 'd31d41a9a4c4bc8eae9be757b0beed306564f7526c88ea6a4588fb9582527d47'),
+    ('sensor_msgs/msg/CameraInfo',
+     'b3dfd68ff46c9d56c80fd3bd4ed22c7a4ddce8c8348f2f59c299e73118e7e275'),
+    # our own: a regression value (REP 2011 over the definition in vehicle_msgs_py)
+    ('vehicle_msgs/msg/Collision',
+     '5c9d44765ea447598239f00bcf08b6efe0bf454d3a34926b2c7d1260ecdae1b5'),
 ])
 def test_type_hash_equals_known_jazzy_value(ros_type, digest):
     assert type_hash(ros_type) == 'RIHS01_' + digest
@@ -305,6 +328,7 @@ def test_message_constants_are_class_attributes(ros_type, constants):
     ('vehicle_msgs/msg/Float64Stamped', ['header', 'data']),
     ('vehicle_msgs/msg/WheelCommand', ['velocity']),
     ('vehicle_msgs/msg/DifferentialCommand', ['header', 'left_wheel', 'right_wheel']),
+    ('vehicle_msgs/msg/Collision', ['header', 'other', 'normal_force']),
     ('vehicle_msgs/srv/GetDimensions_Response',
      ['track_front', 'track_rear', 'wheel_base', 'front_wheel_radius', 'rear_wheel_radius']),
     ('autoware_control_msgs/msg/Control', ['stamp', 'control_time', 'lateral', 'longitudinal']),
@@ -351,3 +375,17 @@ def test_message_type_of_unknown_or_service_name_raises(bad):
 def test_service_types_of_unknown_service_raises():
     with pytest.raises(ValueError, match='unknown ROS service'):
         service_types('vehicle_msgs/srv/Nope')
+
+
+def test_collision_example_matches_hand_computed_bytes():
+    # header (stamp 12 s 5e8 ns, frame 'base_link'), other 'wall', normal_force 1234.5 N
+    collision = message_type('vehicle_msgs/msg/Collision')(
+        header=message_type('std_msgs/msg/Header')(
+            stamp=message_type('builtin_interfaces/msg/Time')(sec=12, nanosec=500_000_000),
+            frame_id='base_link'),
+        other='wall', normal_force=1234.5)
+    expected = (LE_HEADER + struct.pack('<iI', 12, 500_000_000)
+                + struct.pack('<I', 10) + b'base_link\x00' + bytes(2)   # 22 -> pad to 24
+                + struct.pack('<I', 5) + b'wall\x00' + bytes(7)         # 33 -> pad to 40
+                + struct.pack('<d', 1234.5))
+    assert collision.serialize() == expected == rosbags_bytes(collision)

@@ -13,18 +13,27 @@
 # limitations under the License.
 
 """
-Finding and loading the YAML configuration files (car presets, robots, worlds).
+Finding and loading the YAML configuration files: car presets, robot presets and worlds.
 
-Kept outside ``core`` because it reads files with PyYAML; validation itself is core's.
+The one place where presets and worlds are read (the ROS nodes, the Webots facade and the CLI
+all come here). Kept outside ``core`` because it reads files with PyYAML; validation itself is
+core's (core/params.py, core/robot_params.py, core/world_params.py).
 """
 
 import os
 from pathlib import Path
+from typing import Tuple
 
 import yaml
 
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.params import car_params_from_dict, CarParams
+from vehicle_sim.core.robot_params import robot_params_from_dict, RobotParams
+from vehicle_sim.core.world_params import VehicleSpec, world_from_dict, WorldSpec
+
+__all__ = ['available', 'car_names', 'config_dirs', 'find_config', 'load_car', 'load_robot',
+           'load_world', 'parse_world', 'read_yaml', 'robot_names', 'VehicleSpec',
+           'world_names', 'world_path', 'WorldSpec']
 
 PACKAGE_NAME = 'vehicle_sim'
 
@@ -105,3 +114,68 @@ def load_car(name_or_path='Car'):
 def car_names():
     """Names of the car presets shipped in config/cars."""
     return sorted(available('cars'))
+
+
+def load_robot(name_or_path='caster_robot'):
+    """
+    Load and validate a robot preset from ``config/robots``.
+
+    :param name_or_path: preset name (``'caster_robot'``), a path to a YAML file, or
+        RobotParams (returned as is).
+    :return: RobotParams.
+    :raises InvalidParameterError: naming file, field and value on any invalid content.
+    """
+    if isinstance(name_or_path, RobotParams):
+        return name_or_path
+    path = find_config('robots', str(name_or_path))
+    data = read_yaml(path)
+    return robot_params_from_dict({} if data is None else data, source=str(path))
+
+
+def robot_names():
+    """Names of the robot presets shipped in config/robots."""
+    return sorted(available('robots'))
+
+
+def world_path(name):
+    """Resolve a world name (config/worlds) or a path to a world .yaml."""
+    return find_config('worlds', str(name))
+
+
+def world_names():
+    """Names of the worlds shipped in config/worlds."""
+    return sorted(available('worlds'))
+
+
+def _car_sensors(model):
+    return load_car(model).sensor_set
+
+
+def world_from_data(data, source, default_model='Car') -> WorldSpec:
+    """
+    Validate a world mapping; car models are resolved in config/cars.
+
+    :param data: the YAML content.
+    :param source: file name quoted in errors.
+    :param default_model: model of the vehicles that give none.
+    :raises InvalidParameterError: naming file, entry and field.
+    """
+    return world_from_dict(data, source, default_model, _car_sensors)
+
+
+def load_world(name_or_path, default_model='Car') -> WorldSpec:
+    """
+    Load and validate a world: origin, vehicles with their sensors, obstacles.
+
+    :param name_or_path: world name (config/worlds) or a path to a world .yaml.
+    :param default_model: model of the vehicles that give none.
+    :return: WorldSpec.
+    :raises InvalidParameterError: naming file, entry and field.
+    """
+    path = world_path(name_or_path)
+    return world_from_data(read_yaml(path), str(path), default_model)
+
+
+def parse_world(data, source, default_model) -> Tuple[VehicleSpec, ...]:
+    """Validate a world mapping and return its vehicles (see :func:`world_from_data`)."""
+    return world_from_data(data, source, default_model).vehicles

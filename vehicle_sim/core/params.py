@@ -28,6 +28,7 @@ no body physics, see docs/physics.md.
 
 from dataclasses import dataclass, field
 import math
+import re
 from typing import Any, Callable, Optional, Tuple
 
 from vehicle_sim.core.errors import InvalidParameterError
@@ -42,8 +43,19 @@ WHEEL_DENSITY_KG_M3 = 1000.0
 PARAM_KINDS = {
     'float': 'float', 'int': 'int', 'bool': 'bool', 'str': 'str', 'enum': 'str',
     'str_list': 'string[]', 'floats': 'float[]', 'float_list': 'float[]', 'vec3': 'float[3]',
-    'inertia': 'float[6]', 'boxes': 'boxes',
+    'inertia': 'float[6]', 'boxes': 'boxes', 'pose': 'pose', 'rgba': 'float[4]', 'rows': 'rows',
+    'ros_name': 'str', 'topic': 'str', 'namespace': 'str', 'sensors': 'sensors', 'raw': 'any',
 }
+
+
+class _Required:
+    """Default of a key that has none: leaving it out is an error."""
+
+    def __repr__(self):
+        return 'REQUIRED'
+
+
+REQUIRED = _Required()
 
 
 @dataclass(frozen=True)
@@ -55,13 +67,18 @@ class ParamSpec:
     :param attr: the attribute of the validated value object; '' = ``key``.
     :param kind: one of :data:`PARAM_KINDS`: 'float', 'int', 'bool', 'str', 'enum' (one of
         ``choices``), 'str_list' (list of strings), 'floats' (``length`` numbers), 'float_list'
-        (any number of numbers), 'vec3', 'inertia', 'boxes'.
-    :param default: the default; for node parameters its Python type is the ROS type.
+        (any number of numbers), 'vec3', 'inertia', 'boxes', 'pose' (mapping of x, y, z, roll,
+        pitch, yaw; ``choices`` restricts the keys), 'rgba', 'rows' (a table of rows of
+        ``length`` numbers), 'ros_name', 'topic', 'namespace', 'sensors' (a list of sensor
+        mappings, see core/sensor_sets.py) and 'raw' (passed on; its caller validates it).
+    :param default: the default; for node parameters its Python type is the ROS type;
+        :data:`REQUIRED` makes a key mandatory.
     :param unit: unit, '' when none.
     :param doc: one-line description (docs tables, ``ros2 param describe``).
     :param gt: exclusive lower bound (numbers; for 'vec3' every entry).
     :param ge: inclusive lower bound.
     :param le: inclusive upper bound.
+    :param lt: exclusive upper bound.
     :param choices: the valid values of an 'enum'.
     :param length: the number of entries of a 'floats'.
     :param optional: None is valid (means "derive it").
@@ -81,6 +98,7 @@ class ParamSpec:
     gt: Optional[float] = None
     ge: Optional[float] = None
     le: Optional[float] = None
+    lt: Optional[float] = None
     choices: Tuple[str, ...] = ()
     length: Optional[int] = None
     optional: bool = False
@@ -104,7 +122,8 @@ class ParamSpec:
         if self.kind == 'int' and self.ge is not None and self.le is not None:
             return f'{self.ge:g} .. {self.le:g}'
         parts = [f'{text} {bound:g}' for bound, text in
-                 ((self.gt, '>'), (self.ge, '>='), (self.le, '<=')) if bound is not None]
+                 ((self.gt, '>'), (self.ge, '>='), (self.le, '<='), (self.lt, '<'))
+                 if bound is not None]
         return ' and '.join(parts)
 
     @property
@@ -118,6 +137,8 @@ class ParamSpec:
 
         :raises ParamRefused: naming the reason (and the offending part of ``value``).
         """
+        if value is REQUIRED:
+            raise ParamRefused('is required')
         if value is None:
             if self.optional:
                 return None
@@ -148,16 +169,18 @@ class ParamSpec:
 class ParamRefused(ValueError):
     """A value a ParamSpec refuses: the reason, and the part of the value it is about."""
 
-    def __init__(self, reason, shown=None):
+    def __init__(self, reason, shown=None, sub_key=''):
         """
         Create the refusal.
 
         :param reason: why ('must be > 0', ...).
         :param shown: the offending part of the value (a box of a list); None = the value.
+        :param sub_key: the entry of a mapping value it is about ('z' of a pose); '' = none.
         """
         super().__init__(reason)
         self.reason = reason
         self.shown = shown
+        self.sub_key = sub_key
 
 
 def _shown(refused, value):
@@ -238,6 +261,9 @@ CAR_PARAM_SPECS = (
     ParamSpec('collisionBoxes', 'collision_boxes', 'boxes',
               ({'size': (5.0, 1.7, 1.0), 'position': (2.0, 0.0, 0.5), 'pitch': 0.0},), 'm',
               'chassis collision boxes: size [l, w, h], position [x, y, z], pitch [rad]'),
+    ParamSpec('sensors', 'sensors', 'sensors', None, '',
+              'sensors of the car, each off unless "enabled: true" (docs/sensors.md); null = '
+              'the default set (lidar, camera, gnss, imu)', optional=True),
 )
 
 SPEC_BY_KEY = {spec.key: spec for spec in CAR_PARAM_SPECS}
@@ -292,6 +318,15 @@ class CarParams:
     center_of_mass_m: Tuple[float, float, float]
     inertia_kgm2: Optional[Tuple[float, ...]]
     collision_boxes: Tuple[CollisionBox, ...] = field(default=())
+    sensors: Optional[Tuple] = None
+
+    @property
+    def sensor_set(self):
+        """The car's sensors: the preset's ``sensors``, or the default set (all unmounted)."""
+        if self.sensors is not None:
+            return self.sensors
+        from vehicle_sim.core.sensor_defaults import default_car_sensors
+        return default_car_sensors(self)
 
     @property
     def gear_number(self):
@@ -348,7 +383,7 @@ def _range_reason(spec, value):
         rng = spec.range_text
         return 'must be finite' + (f' and {rng}' if rng else '')
     ok = ((spec.gt is None or value > spec.gt) and (spec.ge is None or value >= spec.ge)
-          and (spec.le is None or value <= spec.le))
+          and (spec.le is None or value <= spec.le) and (spec.lt is None or value < spec.lt))
     return None if ok else _must_be(spec)
 
 
@@ -441,6 +476,83 @@ def _check_boxes(spec, value):
     return tuple(boxes)
 
 
+POSE_KEYS = ('x', 'y', 'z', 'roll', 'pitch', 'yaw')
+
+
+def _check_pose(spec, value):
+    from vehicle_sim.core.frames import Pose
+    if isinstance(value, Pose):
+        return value
+    keys = spec.choices or POSE_KEYS
+    if not isinstance(value, dict):
+        raise ParamRefused(f'must be a mapping of {", ".join(keys)}')
+    unknown = sorted(set(value) - set(keys))
+    if unknown:
+        raise ParamRefused(f'unknown key(s) {unknown}; valid: {", ".join(keys)}')
+    numbers = {}
+    for key in POSE_KEYS:
+        item = value.get(key, 0.0)
+        if not _is_number(item) or not math.isfinite(float(item)):
+            raise ParamRefused('must be a finite number', item, key)
+        numbers[key] = float(item)
+    return Pose(numbers['x'], numbers['y'], numbers['z'], numbers['roll'], numbers['pitch'],
+                numbers['yaw'])
+
+
+def _check_rgba(spec, value):
+    color = _check_floats(spec, value, 4)
+    if min(color) < 0.0 or max(color) > 1.0:
+        raise ParamRefused('every entry must be in [0, 1] (red, green, blue, alpha)')
+    return color
+
+
+def _check_rows(spec, value):
+    if not isinstance(value, (list, tuple)) or len(value) < 2:
+        raise ParamRefused(f'must be a list of at least 2 rows of {spec.length} numbers')
+    return tuple(_check_floats(spec, row, spec.length) for row in value)
+
+
+# ROS 2 name rules (rcl validate_topic_name): tokens of letters, digits and underscores that do
+# not start with a digit; no double underscore.
+_TOKEN = re.compile(r'[A-Za-z_][A-Za-z0-9_]*$')
+
+
+def _valid_token(token):
+    return bool(_TOKEN.match(token)) and '__' not in token
+
+
+def _check_ros_name(spec, value):
+    if not isinstance(value, str) or not _valid_token(value):
+        raise ParamRefused('must be a ROS name: letters, digits and underscores, not starting '
+                           'with a digit')
+    return value
+
+
+def _check_topic(spec, value):
+    body = value[1:] if isinstance(value, str) and value.startswith('/') else value
+    if not isinstance(value, str) or not body or \
+            not all(_valid_token(token) for token in body.split('/')):
+        raise ParamRefused("must be a ROS topic name: tokens of letters, digits and underscores "
+                           "separated by '/'")
+    return value
+
+
+def _check_namespace(spec, value):
+    if value is None:
+        return ''
+    text = value.strip('/') if isinstance(value, str) else None
+    if text is None or (text and not all(_valid_token(t) for t in text.split('/'))):
+        raise ParamRefused('is not a valid ROS namespace')
+    return text
+
+
+def _check_sensors(spec, value):
+    # sensor_sets builds on this module: imported here, where it is needed, to avoid a cycle.
+    # It raises InvalidParameterError naming the sensor and its field itself.
+    from vehicle_sim.core.sensor_sets import sensors_from_list
+    return sensors_from_list(value, f'field {spec.key!r}', enabled_default=False)
+
+
 _CHECKERS: dict = {
     'float': _check_float,
     'int': _check_int,
@@ -453,6 +565,14 @@ _CHECKERS: dict = {
     'vec3': _check_vec3,
     'inertia': lambda spec, value: _check_floats(spec, value, 6),
     'boxes': _check_boxes,
+    'pose': _check_pose,
+    'rgba': _check_rgba,
+    'rows': _check_rows,
+    'ros_name': _check_ros_name,
+    'topic': _check_topic,
+    'namespace': _check_namespace,
+    'sensors': _check_sensors,
+    'raw': lambda spec, value: value,    # checked by the caller (e.g. world sensors)
 }
 
 
@@ -470,7 +590,10 @@ def check_value(spec, value, source, key_word='field'):
     try:
         return spec.parse(value)
     except ParamRefused as refused:
-        _fail(source, spec.key, _shown(refused, value), refused.reason, key_word)
+        key = f'{spec.key}.{refused.sub_key}' if refused.sub_key else spec.key
+        _fail(source, key, _shown(refused, value), refused.reason, key_word)
+    except InvalidParameterError as error:    # a nested table (e.g. sensors) names its field
+        raise InvalidParameterError(f'{source}: {error}') from None
 
 
 def _check_relations(source, values):
@@ -566,6 +689,63 @@ def parameter_table_markdown(specs, key_word='parameter', extra_rows=()):
                      f'{_cell(spec.unit)} | {_cell(valid)} | {_cell(spec.doc)} |')
     for row in extra_rows:
         lines.append('| ' + ' | '.join(_cell(cell) for cell in row) + ' |')
+    return '\n'.join(lines) + '\n'
+
+
+def car_params_from_dict(data, source='<dict>', base=None):
+    """
+    Validate a preset dictionary and build CarParams.
+
+    :param data: mapping of Webots field names to values; missing fields take ``base``.
+    :param source: file name (or other origin) quoted in error messages.
+    :param base: defaults to complete ``data`` with; the Car defaults when None.
+    :return: CarParams.
+    :raises InvalidParameterError: naming the source, field and value, for an unknown field, a
+        wrong type or an impossible value.
+    """
+    values = validate_table(CAR_PARAM_SPECS, data, source,
+                            default_car_dict() if base is None else base, 'a car preset')
+    _check_relations(source, values)
+    return CarParams(**values)
+
+
+DEFAULT_CAR = car_params_from_dict({}, source='Car defaults')
+
+
+def _markdown_value(value, keys=None):
+    if value is None:
+        return 'null'
+    if value == '':
+        return "''"
+    if value is REQUIRED:
+        return 'required'
+    if isinstance(value, bool):
+        return 'true' if value else 'false'
+    if hasattr(value, 'as_dict'):
+        value = value.as_dict()
+        return '{' + ', '.join(f'{k}: {v:g}' for k, v in value.items()
+                               if keys is None or k in keys) + '}'
+    if isinstance(value, float):
+        return f'{value:g}'
+    if isinstance(value, tuple):
+        return '[' + ', '.join(_markdown_value(v) for v in value) + ']'
+    return str(value)
+
+
+def table_markdown(specs, skip=()):
+    """
+    Return the Markdown table of a ParamSpec table (docs; a test checks docs against it).
+
+    :param specs: the ParamSpec rows.
+    :param skip: keys to leave out (documented elsewhere, e.g. the common sensor keys).
+    """
+    lines = ['| key | default | unit | meaning |', '|---|---|---|---|']
+    for spec in specs:
+        if spec.key in skip:
+            continue
+        keys = (spec.choices or None) if spec.kind == 'pose' else None
+        default = _markdown_value(spec.default, keys)
+        lines.append(f'| `{spec.key}` | `{default}` | {spec.unit} | {spec.doc} |')
     return '\n'.join(lines) + '\n'
 
 

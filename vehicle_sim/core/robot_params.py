@@ -23,7 +23,7 @@ driven axle (caster) or of the wheel rectangle (skid steer).
 """
 
 from dataclasses import dataclass
-from typing import Tuple
+from typing import Optional, Tuple
 
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.params import ParamSpec, validate_table
@@ -58,6 +58,9 @@ ROBOT_PARAM_SPECS = (
               'ball caster radius (caster drive only)', gt=0.0),
     ParamSpec('caster_offset', 'caster_offset_m', 'float', -0.3, 'm',
               'x of the caster contact relative to base_link (caster drive only; != 0)'),
+    ParamSpec('sensors', 'sensors', 'sensors', None, '',
+              'sensors of the robot, each off unless "enabled: true" (docs/sensors.md); null = '
+              'the default set (lidar, imu)', optional=True),
 )
 
 
@@ -81,6 +84,15 @@ class RobotParams:
     wheel_friction: float
     caster_radius_m: float
     caster_offset_m: float
+    sensors: Optional[Tuple] = None
+
+    @property
+    def sensor_set(self):
+        """The robot's sensors: the preset's ``sensors``, or the default set (all unmounted)."""
+        if self.sensors is not None:
+            return self.sensors
+        from vehicle_sim.core.sensor_defaults import default_robot_sensors
+        return default_robot_sensors(self)
 
     @property
     def wheel_names(self):

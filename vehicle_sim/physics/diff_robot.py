@@ -40,31 +40,14 @@ from xml.sax.saxutils import escape
 
 import pybullet
 
-from vehicle_sim.config import find_config, read_yaml
+from vehicle_sim.config import load_robot  # noqa: F401  (loaded there; kept importable here)
 from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
-from vehicle_sim.core.robot_params import robot_params_from_dict, RobotParams
 from vehicle_sim.physics.urdf import geometry_block, inertial, num, vec, wheel_inertia_kgm2
 
 CASTER_MASS_KG = 0.2
 # Spawn height of base_link above the ground [m]: the wheels touch down within a few steps.
 SPAWN_CLEARANCE_M = 0.001
 BODY_FRICTION = 0.5
-
-
-def load_robot(name_or_path='caster_robot'):
-    """
-    Load and validate a robot preset from ``config/robots``.
-
-    :param name_or_path: preset name (``'caster_robot'``), a path to a YAML file, or
-        RobotParams (returned as is).
-    :return: RobotParams.
-    :raises InvalidParameterError: naming file, field and value on any invalid content.
-    """
-    if isinstance(name_or_path, RobotParams):
-        return name_or_path
-    path = find_config('robots', str(name_or_path))
-    data = read_yaml(path)
-    return robot_params_from_dict({} if data is None else data, source=str(path))
 
 
 def wheel_anchor_m(params, index):

@@ -21,6 +21,11 @@ sub-steps. PyBullet clears applied joint torques (TORQUE_CONTROL and URDF joint 
 the first internal sub-step of ``stepSimulation``, so sub-steps are looped here, one
 ``stepSimulation`` per sub-step, and bodies re-apply their torques in ``pre_substep()``; see
 docs/physics.md.
+
+After the physics, with the time advanced, ``step()`` calls every ``post_step()`` hook: sensors
+sample the new state there. The world also holds the obstacles (``add_obstacle``), names bodies
+for collision reports (``body_name``) and gives ray sensors a mask that skips their own vehicle
+(``ray_mask_excluding``).
 """
 
 from contextlib import contextmanager
@@ -49,6 +54,13 @@ GLOBAL_CFM = 1.0e-6
 # wheel speed at the rpm cut in the highest gear (at most 863 rad/s, RangeRoverSportSVR). It
 # remains a guard against a numerical blow-up.
 MAX_COORDINATE_VELOCITY = 1.0e4
+GROUND_COLOR = (0.45, 0.45, 0.45, 1.0)
+# Collision filter groups (Bullet): dynamic bodies are in group 1, static ones in group 2, and
+# every body's mask accepts all groups. A body whose own rays must not see it gets a group bit of
+# its own instead (same collisions: every mask accepts it); its rays use a mask without it.
+_FIRST_RAY_GROUP_BIT = 4
+_LAST_RAY_GROUP_BIT = 30
+ALL_GROUPS = -1
 
 
 
@@ -126,6 +138,12 @@ class World:
         self._bodies = []
         self._pre_step = []
         self._pre_substep = []
+        self._post_step = []
+        self._names = {}              # body id -> name (obstacles)
+        self.obstacles = {}           # obstacle name -> body id
+        self._ray_masks = {}          # body id -> ray mask excluding that body
+        self._ground_visual = False
+        self._broadphase_stale = True   # bodies added since the last step: rays miss them
         self._step_count = 0
         cid = self.client_id
         pybullet.setPhysicsEngineParameter(fixedTimeStep=self.substep_s, numSubSteps=0,
@@ -139,9 +157,7 @@ class World:
                 constraintSolverType=pybullet.CONSTRAINT_SOLVER_LCP_DANTZIG, physicsClientId=cid)
         pybullet.setGravity(0.0, 0.0, -self.gravity, physicsClientId=cid)
         plane = pybullet.createCollisionShape(pybullet.GEOM_PLANE, physicsClientId=cid)
-        visual = pybullet.createVisualShape(
-            pybullet.GEOM_BOX, halfExtents=[GROUND_SIZE_M / 2, GROUND_SIZE_M / 2, 0.001],
-            rgbaColor=[0.45, 0.45, 0.45, 1.0], physicsClientId=cid) if gui else -1
+        visual = self._ground_visual_shape() if gui else -1
         self.ground_id = pybullet.createMultiBody(0.0, plane, visual, physicsClientId=cid)
         pybullet.changeDynamics(self.ground_id, -1, lateralFriction=self.friction,
                                 restitution=0.0, physicsClientId=cid)
@@ -166,8 +182,9 @@ class World:
         """
         Register a body so that ``step()`` calls its hooks.
 
-        The body may define ``pre_step()`` (called once per basic step, before the physics) and
-        ``pre_substep()`` (called before every physics sub-step after the first).
+        The body may define ``pre_step()`` (called once per basic step, before the physics),
+        ``pre_substep()`` (called before every physics sub-step after the first) and
+        ``post_step()`` (called once per basic step after the physics, time already advanced).
         """
         if body in self._bodies:
             return body
@@ -210,6 +227,7 @@ class World:
         for index in range(pybullet.getNumJoints(body_id, physicsClientId=self.client_id)):
             info = pybullet.getJointInfo(body_id, index, physicsClientId=self.client_id)
             joints[info[1].decode()] = index
+        self._broadphase_stale = True
         return body_id, joints
 
     def base_link_velocity(self, body_id, link_position):
@@ -232,9 +250,93 @@ class World:
         return ((linear[0] + wy * rz - wz * ry, linear[1] + wz * rx - wx * rz,
                  linear[2] + wx * ry - wy * rx), tuple(angular))
 
+    # ---------------------------------------------------------------- obstacles and names
+    def add_obstacle(self, spec):
+        """
+        Place an obstacle (core ObstacleSpec): static when its mass is 0.
+
+        :return: its body id.
+        :raises ValueError: when an obstacle of that name exists already.
+        """
+        from vehicle_sim.physics.obstacles import create_obstacle
+        if spec.name in self.obstacles:
+            raise ValueError(f'obstacle {spec.name!r} exists already')
+        body_id = create_obstacle(self.client_id, spec)
+        self.obstacles[spec.name] = body_id
+        self._names[body_id] = spec.name
+        self._broadphase_stale = True
+        return body_id
+
+    def update_collision_state(self):
+        """
+        Bring Bullet's collision structures up to date before a query between steps.
+
+        Rays only see bodies whose bounding boxes the last step (or this call) computed; bodies
+        added since are refreshed here, once.
+        """
+        if self._broadphase_stale:
+            pybullet.performCollisionDetection(physicsClientId=self.client_id)
+            self._broadphase_stale = False
+
+    def body_name(self, body_id):
+        """
+        Name of a body: an obstacle's name, a registered vehicle's name, or ``body<id>``.
+
+        Vehicles are the registered bodies with a ``body_id`` (or a ``body`` that has one) and a
+        ``name``.
+        """
+        name = self._names.get(body_id)
+        if name is not None:
+            return name
+        for registered in self._bodies:
+            body = getattr(registered, 'body', registered)
+            if getattr(body, 'body_id', None) == body_id and getattr(body, 'name', None):
+                return body.name
+        return 'ground' if body_id == self.ground_id else f'body{body_id}'
+
+    def show_ground(self):
+        """
+        Make the ground look like a road to cameras: plain grey (idempotent).
+
+        PyBullet's renderer draws the ground plane's collision shape, with a checker texture;
+        the texture goes and the colour becomes GROUND_COLOR. Physics and rays are unchanged.
+        """
+        if not self._ground_visual:
+            pybullet.changeVisualShape(self.ground_id, -1, rgbaColor=list(GROUND_COLOR),
+                                       textureUniqueId=-1, physicsClientId=self.client_id)
+            self._ground_visual = True
+
+    def _ground_visual_shape(self):
+        return pybullet.createVisualShape(
+            pybullet.GEOM_BOX, halfExtents=[GROUND_SIZE_M / 2, GROUND_SIZE_M / 2, 0.001],
+            rgbaColor=list(GROUND_COLOR), physicsClientId=self.client_id)
+
+    def ray_mask_excluding(self, body_id):
+        """
+        Return a ray collision mask that does not see ``body_id`` (a sensor's own vehicle).
+
+        The body (every link) moves from its default collision group to a group bit of its own;
+        every body's mask accepts all groups, so its collisions are unchanged.
+
+        :raises RuntimeError: when more bodies need their own bit than Bullet's mask has.
+        """
+        mask = self._ray_masks.get(body_id)
+        if mask is None:
+            bit = _FIRST_RAY_GROUP_BIT + len(self._ray_masks)
+            if bit > _LAST_RAY_GROUP_BIT:
+                raise RuntimeError(f'at most {_LAST_RAY_GROUP_BIT - _FIRST_RAY_GROUP_BIT + 1} '
+                                   'vehicles can carry ray sensors in one world')
+            cid = self.client_id
+            for link in range(-1, pybullet.getNumJoints(body_id, physicsClientId=cid)):
+                pybullet.setCollisionFilterGroupMask(body_id, link, 1 << bit, ALL_GROUPS,
+                                                     physicsClientId=cid)
+            mask = self._ray_masks[body_id] = ALL_GROUPS & ~(1 << bit)
+        return mask
+
     def _rebuild_hooks(self):
         self._pre_step = [b.pre_step for b in self._bodies if hasattr(b, 'pre_step')]
         self._pre_substep = [b.pre_substep for b in self._bodies if hasattr(b, 'pre_substep')]
+        self._post_step = [b.post_step for b in self._bodies if hasattr(b, 'post_step')]
 
     def step(self):
         """Advance the world by one basic time step; return the new time [s]."""
@@ -249,6 +351,9 @@ class World:
                 hook()
             self._step_simulation(physicsClientId=cid)
         self._step_count += 1
+        self._broadphase_stale = False
+        for hook in self._post_step:
+            hook()
         return self.time_s
 
     def close(self):

@@ -22,11 +22,16 @@ reason naming the parameter, its value and the valid range; nothing is clamped.
 """
 
 from dataclasses import dataclass
-import math
-from pathlib import Path
 from typing import Tuple
 
-from vehicle_sim.config import car_names, find_config
+from vehicle_sim.config import (  # noqa: F401 (re-exported)
+    car_names,
+    find_config,
+    load_world,
+    parse_world,
+    VehicleSpec,
+    world_path,
+)
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.params import ParamSpec, table_defaults
 from vehicle_sim.physics import DEFAULT_FRICTION
@@ -138,80 +143,6 @@ def parameter_table_markdown() -> str:
     return node_support.node_parameter_table(AUTOMOBILE_PARAMETERS)
 
 
-def world_path(name: str) -> Path:
-    """Resolve a world name or path (config/worlds)."""
-    return find_config('worlds', name)
-
-
-@dataclass(frozen=True)
-class VehicleSpec:
-    """One vehicle of a world: its name, namespace, car preset and spawn pose (REP 103)."""
-
-    name: str
-    namespace: str
-    model: str
-    x_m: float = 0.0
-    y_m: float = 0.0
-    yaw_rad: float = 0.0
-
-
-_VEHICLE_KEYS = {'name', 'namespace', 'model', 'pose'}
-_POSE_KEYS = {'x', 'y', 'yaw'}
-
-
-def _number_field(source, where, key, value):
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or \
-            not math.isfinite(value):
-        raise InvalidParameterError(f'{source}: {where}.{key} = {value!r} must be a finite number')
-    return float(value)
-
-
-def parse_world(data, source: str, default_model: str) -> Tuple[VehicleSpec, ...]:
-    """
-    Validate a world mapping (``vehicles: [{name, namespace, model, pose: {x, y, yaw}}]``).
-
-    :param data: the YAML content.
-    :param source: file name for the messages.
-    :param default_model: model of entries that give none (the car_model parameter).
-    :raises InvalidParameterError: naming file, entry and field.
-    """
-    if not isinstance(data, dict) or not isinstance(data.get('vehicles'), list) or \
-            not data['vehicles']:
-        raise InvalidParameterError(f'{source}: needs a non-empty list "vehicles"')
-    vehicles = []
-    for index, entry in enumerate(data['vehicles']):
-        where = f'vehicles[{index}]'
-        if not isinstance(entry, dict):
-            raise InvalidParameterError(f'{source}: {where} must be a mapping')
-        unknown = set(entry) - _VEHICLE_KEYS
-        if unknown:
-            raise InvalidParameterError(f'{source}: {where}: unknown key(s) {sorted(unknown)}; '
-                                        f'valid: {sorted(_VEHICLE_KEYS)}')
-        name = str(entry.get('name', f'vehicle{index}'))
-        namespace = str(entry.get('namespace') or '').strip('/')
-        for token in namespace.split('/') if namespace else ():
-            if not token or not (token[0].isalpha() or token[0] == '_') or \
-                    not token.replace('_', 'a').isalnum():
-                raise InvalidParameterError(
-                    f'{source}: {where}.namespace = {namespace!r} is not a valid ROS namespace')
-        model = str(entry.get('model') or default_model)
-        reason = _car_model(model)
-        if reason:
-            raise InvalidParameterError(f'{source}: {where}.model = {model!r}: {reason}')
-        pose = entry.get('pose') or {}
-        if not isinstance(pose, dict) or set(pose) - _POSE_KEYS:
-            raise InvalidParameterError(f'{source}: {where}.pose must be a mapping of '
-                                        f'{sorted(_POSE_KEYS)}')
-        vehicles.append(VehicleSpec(
-            name, namespace, model,
-            *(_number_field(source, where + '.pose', key, pose.get(key, 0.0))
-              for key in ('x', 'y', 'yaw'))))
-    namespaces = [v.namespace for v in vehicles]
-    if len(set(namespaces)) != len(namespaces):
-        raise InvalidParameterError(f'{source}: two vehicles share a namespace: {namespaces}')
-    return tuple(vehicles)
-
-
 def world_vehicles(settings: SimSettings) -> Tuple[VehicleSpec, ...]:
     """
     Return the vehicles to simulate.
@@ -222,6 +153,4 @@ def world_vehicles(settings: SimSettings) -> Tuple[VehicleSpec, ...]:
     if not settings.world:
         return (VehicleSpec('Car', '', settings.car_model, settings.initial_x,
                             settings.initial_y, settings.initial_yaw),)
-    from vehicle_sim.config import read_yaml
-    path = world_path(settings.world)
-    return parse_world(read_yaml(path), str(path), settings.car_model)
+    return load_world(settings.world, settings.car_model).vehicles

@@ -163,13 +163,55 @@ CAR_WHEEL_API = (
 
 API = DRIVER_API + CAR_API
 
-# Robot / Supervisor functions that exist in Webots but not here (no devices are simulated).
+
+
+@dataclass(frozen=True)
+class DeviceRow:
+    """
+    One Webots device class that a sensor provides (``Driver.getDevice(name)``).
+
+    ``name_attr`` is the SensorSpec attribute holding its device name (an IMU provides three
+    devices); ``robot_getter`` is Webots' deprecated ``Robot.get<Device>(name)``; ``spec_getters``
+    are (Webots getter, SensorSpec attribute, type) rows of the values a device reports from its
+    configuration.
+    """
+
+    device_class: str
+    sensor_type: str
+    name_attr: str
+    robot_getter: str
+    spec_getters: Tuple[Tuple[str, str, type], ...] = ()
+
+
+DEVICE_API = (
+    DeviceRow('Lidar', 'lidar', 'device', 'getLidar', (
+        ('getHorizontalResolution', 'horizontal_resolution', int),
+        ('getNumberOfLayers', 'layers', int),
+        ('getFov', 'fov_rad', float),
+        ('getVerticalFov', 'vertical_fov_rad', float),
+        ('getMinRange', 'min_range_m', float),
+        ('getMaxRange', 'max_range_m', float))),
+    DeviceRow('Camera', 'camera', 'device', 'getCamera', (
+        ('getWidth', 'width', int),
+        ('getHeight', 'height', int),
+        ('getFov', 'fov_rad', float),
+        ('getNear', 'near_m', float))),
+    DeviceRow('GPS', 'gnss', 'device', 'getGPS'),
+    DeviceRow('InertialUnit', 'imu', 'device', 'getInertialUnit'),
+    DeviceRow('Gyro', 'imu', 'gyro_device', 'getGyro'),
+    DeviceRow('Accelerometer', 'imu', 'accelerometer_device', 'getAccelerometer'),
+    DeviceRow('DistanceSensor', 'distance', 'device', 'getDistanceSensor', (
+        ('getAperture', 'aperture_rad', float),)),
+)
+
+# Robot / Supervisor functions that exist in Webots but not here (no other devices are
+# simulated; the sensor devices of DEVICE_API are, through getDevice).
 UNSUPPORTED_ROBOT_API = (
-    'getDevice', 'getDeviceByIndex', 'getNumberOfDevices', 'getKeyboard', 'getJoystick',
+    'getKeyboard', 'getJoystick',
     'getMouse', 'getSelf', 'getRoot', 'getFromDef', 'getFromId', 'getFromDevice',
-    'getCamera', 'getDisplay', 'getGPS', 'getGyro', 'getInertialUnit', 'getLidar',
+    'getDisplay',
     'getRangeFinder', 'getSpeaker', 'getLED', 'getMotor', 'getPositionSensor', 'getBrake',
-    'getAccelerometer', 'getCompass', 'getDistanceSensor', 'getRadar', 'getReceiver',
+    'getCompass', 'getRadar', 'getReceiver',
     'getEmitter', 'simulationSetMode', 'simulationReset', 'simulationQuit', 'worldReload',
     'wwiSendText', 'wwiReceiveText', 'getCustomData', 'setCustomData', 'getUrdf',
     'batterySensorEnable', 'waitForUserInputEvent', 'exportImage',

@@ -25,27 +25,39 @@ cruising speed beyond the top speed stored as given (the wheel motors saturate),
 undefined enums and indicator periods below 1 ms ignored, wheel index outside 0..3 returns 0,
 rpm and gear read in SPEED mode return 0. A value of the wrong type (a string for a
 number, a float for a gear) raises TypeError, as Webots' own wrapper fails on it.
+
+Sensor devices: ``getDevice(name)`` returns the Webots device (Lidar, Camera, GPS,
+InertialUnit, Gyro, Accelerometer, DistanceSensor; webots/devices.py) of a mounted sensor,
+looked up by its device name. Sensors are mounted by a world file (``world_file=`` or
+``VEHICLE_SIM_WORLD``; the Driver drives its first vehicle) or by ``sensors=`` (names of the
+car preset's sensors, which carry the Webots car PROTOs' device names).
 """
 
 import math
 import numbers
 import os
-import warnings
 import weakref
 
-from vehicle_sim.config import load_car
+from vehicle_sim.config import load_car, load_world
 from vehicle_sim.core.drivetrain import ControlMode
+from vehicle_sim.core.geodesy import GeodeticOrigin
+from vehicle_sim.core.sensor_sets import enable_sensors
+from vehicle_sim.physics.sensors import SensorSuite
 from vehicle_sim.physics.simulated_car import SimulatedCar
 from vehicle_sim.physics.world import World
-from vehicle_sim.webots.api_table import CAR_API, CAR_WHEEL_API, DRIVER_API, UNSUPPORTED_ROBOT_API
-
-
-class WebotsWarning(UserWarning):
-    """A Webots library warning (odd input handled the way Webots handles it)."""
+from vehicle_sim.webots.api_table import (
+    CAR_API,
+    CAR_WHEEL_API,
+    DEVICE_API,
+    DRIVER_API,
+    UNSUPPORTED_ROBOT_API,
+)
+from vehicle_sim.webots.devices import devices_of
+from vehicle_sim.webots.webots_warning import warn, WebotsWarning  # noqa: F401 (exported)
 
 
 def _warn(message):
-    warnings.warn(message, WebotsWarning, stacklevel=3)
+    warn(message, stacklevel=3)
 
 
 def _is_number(value):
@@ -54,6 +66,10 @@ def _is_number(value):
 
 def _is_integer(value):
     return isinstance(value, numbers.Integral) and not isinstance(value, bool)
+
+
+# Webots' deprecated Robot.get<Device>(name) -> the device class it returns.
+_ROBOT_GETTERS = {row.robot_getter: row.device_class for row in DEVICE_API}
 
 
 def _coerce(row, value):
@@ -136,6 +152,12 @@ class Driver:
     :param duration_s: ``step()`` returns -1 once the simulation time reaches this [s];
         default: ``VEHICLE_SIM_DURATION`` or never.
     :param name: robot name of the car.
+    :param world_file: a world (config/worlds name or .yaml path) to build the owned world from:
+        its obstacles and vehicles, this Driver driving the first one (its model, pose and
+        sensors); default: ``VEHICLE_SIM_WORLD`` (ignored when ``world`` is given). The other
+        vehicles stand held where the file puts them.
+    :param sensors: names of the car preset's sensors to mount (or 'all'), in addition to those
+        the world file mounts; their Webots devices are then available (``getDevice``).
     """
 
     INDICATOR_OFF = 0
@@ -150,12 +172,22 @@ class Driver:
 
     _API = DRIVER_API
 
-    def __init__(self, car=None, world=None, position=(0.0, 0.0, 0.0), gui=False,
-                 time_step_ms=None, duration_s=None, name=None):
+    def __init__(self, car=None, world=None, position=None, gui=False,
+                 time_step_ms=None, duration_s=None, name=None, world_file=None, sensors=None):
         car = car if car is not None else os.environ.get('VEHICLE_SIM_CAR', 'Car')
-        params = load_car(car)
+        if world is None and world_file is None:
+            world_file = os.environ.get('VEHICLE_SIM_WORLD') or None
+        scene = load_world(world_file, car) if world is None and world_file else None
+        vehicle = scene.vehicles[0] if scene is not None else None
+        params = load_car(vehicle.model if vehicle is not None else car)
+        if position is None:
+            position = ((vehicle.x_m, vehicle.y_m, vehicle.yaw_rad) if vehicle is not None
+                        else (0.0, 0.0, 0.0))
         if duration_s is None and os.environ.get('VEHICLE_SIM_DURATION'):
             duration_s = float(os.environ['VEHICLE_SIM_DURATION'])
+        specs = vehicle.sensors if vehicle is not None else params.sensor_set
+        if sensors is not None:
+            specs = enable_sensors(specs, sensors, 'Driver(sensors=...)')
         self._owns_world = world is None
         if world is None:
             step_s = 0.010 if time_step_ms is None else time_step_ms / 1000.0
@@ -164,8 +196,19 @@ class Driver:
             raise ValueError(f"time_step_ms={time_step_ms} differs from the shared world's "
                              f'{world.time_step_s * 1000.0:g} ms')
         self.world = world
+        self._others = []
+        if scene is not None:
+            for obstacle in scene.obstacles:
+                world.add_obstacle(obstacle)
+            name = name or vehicle.name
+            self._others = [SimulatedCar(world, load_car(other.model),
+                                         (other.x_m, other.y_m, other.yaw_rad), name=other.name)
+                            for other in scene.vehicles[1:]]
         self.simulated_car = SimulatedCar(world, params, position, name=name)
         self.logic = self.simulated_car.logic
+        self.sensors = SensorSuite(world, self.simulated_car.body, specs,
+                                   scene.origin if scene is not None else GeodeticOrigin())
+        self._devices = devices_of(self.sensors)
         self._duration_s = duration_s
         self._sync = _WorldSync.of(world)
         self._sync.join(self)
@@ -218,6 +261,7 @@ class Driver:
 
     def close(self):
         """Leave the simulation; an owned world is closed, a shared one loses this car."""
+        self.sensors.close()
         if self._owns_world:
             self.world.close()
         elif not self.world.closed:
@@ -235,11 +279,59 @@ class Driver:
         if name in UNSUPPORTED_ROBOT_API:
             def unsupported(*args, **kwargs):
                 raise NotImplementedError(
-                    f'{name}() is not available: vehicle_sim simulates no Webots devices. '
-                    'Supported: the driver and car library functions (see '
-                    'vehicle_sim.webots.api_table), step(), getBasicTimeStep(), getTime().')
+                    f'{name}() is not available: vehicle_sim simulates only the sensor '
+                    'devices of mounted sensors. Supported: the driver and car library '
+                    'functions (see vehicle_sim.webots.api_table), step(), getBasicTimeStep(), '
+                    'getTime(), getDevice().')
             return unsupported
+        getter = _ROBOT_GETTERS.get(name)
+        if getter is not None:
+            def deprecated(device_name):
+                _warn(f'Deprecated {name}() use getDevice() instead.')
+                device = self.getDevice(device_name)
+                if type(device).__name__ != getter:
+                    raise TypeError(f'{name}({device_name!r}): the device is a '
+                                    f'{type(device).__name__}, not a {getter}')
+                return device
+            return deprecated
         raise AttributeError(f'{type(self).__name__!r} object has no attribute {name!r}')
+
+    # ---------------------------------------------------------------- devices
+    def getDevice(self, name):
+        """
+        Return the Webots device of a mounted sensor by its device name.
+
+        :raises NotImplementedError: for a name that no mounted sensor carries (the message
+            lists the mounted devices and how to mount more).
+        """
+        device = self._devices.get(name)
+        if device is None:
+            mounted_names = ', '.join(repr(n) for n in self._devices) or 'none'
+            unmounted = [spec.name for spec in self.logic.params.sensor_set
+                         if name in spec.device_names]
+            hint = (f" (the preset's sensor {unmounted[0]!r} carries it: mount it with "
+                    f"Driver(sensors=[{unmounted[0]!r}]) or a world file's sensors)"
+                    if unmounted else '')
+            raise NotImplementedError(
+                f'getDevice({name!r}): no such device on this car{hint}. Mounted devices: '
+                f'{mounted_names}. vehicle_sim simulates the devices of mounted sensors '
+                '(lidar, camera, GPS, inertial unit, gyro, accelerometer, distance sensors); '
+                'the driver and car library functions need no devices.')
+        return device
+
+    def getNumberOfDevices(self):
+        """Return the number of devices (those of the mounted sensors)."""
+        return len(self._devices)
+
+    def getDeviceByIndex(self, index):
+        """Return the device at an index (0 .. getNumberOfDevices() - 1), None outside."""
+        if not _is_integer(index):
+            raise TypeError(f'getDeviceByIndex() expects an int, got {index!r}')
+        devices = list(self._devices.values())
+        if not 0 <= index < len(devices):
+            _warn(f'getDeviceByIndex({index}): index outside 0..{len(devices) - 1}')
+            return None
+        return devices[index]
 
     # ---------------------------------------------------------------- special getters
     def getControlMode(self):

@@ -1,0 +1,284 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+Webots sensor devices: Driver.getDevice returns Webots' device classes with Webots' semantics.
+
+The table DEVICE_API (webots/api_table.py) drives the class and configuration-getter checks.
+"""
+
+import math
+import os
+from pathlib import Path
+import subprocess
+import sys
+import warnings
+
+import numpy as np
+import pytest
+
+from vehicle_sim.webots import Driver, WebotsWarning
+from vehicle_sim.webots.api_table import DEVICE_API
+from vehicle_sim.webots.devices import DEVICE_CLASSES
+
+REPO = Path(__file__).resolve().parent.parent
+# Devices of the issue world: the Car preset's names ('Sick LMS 291', 'gps', ...)
+COURSE_DEVICES = ['Sick LMS 291', 'camera', 'gps', 'inertial unit', 'gyro', 'accelerometer']
+
+WORLD_WITH_EVERY_DEVICE = """
+origin: {latitude: 48.0, longitude: 11.0, altitude: 500.0}
+vehicles:
+  - name: ego
+    pose: {x: 0.0, y: 0.0, yaw: 0.0}
+    sensors:
+      - {name: lidar, pose: {x: 1.0, z: 1.5}, fov: 3.14159, horizontal_resolution: 181,
+         max_range: 50.0}
+      - {name: camera, pose: {x: 1.5, z: 1.3}, width: 64, height: 48}
+      - {name: gnss, pose: {z: 1.5}}
+      - {name: imu, pose: {z: 0.5}}
+      - {type: distance, name: front, device: distance sensor front, pose: {x: 4.6, z: 0.9},
+         lookup_table: [[0.0, 0.0, 0.0], [20.0, 20.0, 0.0]]}
+  - name: parked
+    namespace: parked
+    pose: {x: 10.0, y: -6.0, yaw: 1.0}
+obstacles:
+  - {name: wall, shape: box, size: [1.0, 6.0, 2.0], position: [20.0, 0.0, 1.0]}
+  - {name: pole, shape: cylinder, radius: 0.2, height: 2.0, position: [10.0, 5.0, 1.0]}
+"""
+
+
+@pytest.fixture
+def world_file(tmp_path):
+    path = tmp_path / 'every_device.yaml'
+    path.write_text(WORLD_WITH_EVERY_DEVICE)
+    return str(path)
+
+
+@pytest.fixture
+def driver(world_file):
+    with Driver(world_file=world_file) as instance:
+        yield instance
+
+
+def _quiet(function, *args):
+    with warnings.catch_warnings():
+        warnings.simplefilter('ignore', WebotsWarning)
+        return function(*args)
+
+
+# ------------------------------------------------------------------------------- devices
+
+@pytest.mark.parametrize('row', DEVICE_API, ids=lambda row: row.device_class)
+def test_get_device_returns_the_webots_class_and_its_configuration(driver, row):
+    spec = [s for s in driver.sensors.specs.values() if s.sensor_type == row.sensor_type][0]
+    name = getattr(spec, row.name_attr)
+    device = driver.getDevice(name)
+    assert type(device) is DEVICE_CLASSES[row.device_class]
+    assert type(device).__name__ == row.device_class
+    assert device.getName() == name and device.getSamplingPeriod() == 0
+    for getter, attr, kind in row.spec_getters:
+        value = getattr(device, getter)()
+        assert value == getattr(spec, attr) and type(value) is kind
+
+
+def test_devices_are_listed_by_index_in_sensor_order(driver):
+    names = [driver.getDeviceByIndex(i).getName() for i in range(driver.getNumberOfDevices())]
+    assert names == ['Sick LMS 291', 'camera', 'gps', 'inertial unit', 'gyro', 'accelerometer',
+                     'distance sensor front']
+    with pytest.warns(WebotsWarning, match='outside'):
+        assert driver.getDeviceByIndex(7) is None
+
+
+def test_unknown_device_keeps_a_clear_error_listing_the_mounted_ones(driver):
+    with pytest.raises(NotImplementedError, match="getDevice\\('display'\\).*'Sick LMS 291'"):
+        driver.getDevice('display')
+
+
+def test_preset_device_not_mounted_says_how_to_mount_it():
+    with Driver() as driver:
+        with pytest.raises(NotImplementedError, match="Driver\\(sensors=\\['camera'\\]\\)"):
+            driver.getDevice('camera')
+    with Driver(sensors=['camera', 'gnss']) as driver:
+        assert [driver.getDeviceByIndex(i).getName() for i in range(2)] == ['camera', 'gps']
+
+
+def test_deprecated_robot_getters_return_the_device_with_a_warning(driver):
+    with pytest.warns(WebotsWarning, match='Deprecated getGPS'):
+        assert driver.getGPS('gps') is driver.getDevice('gps')
+    with pytest.raises(TypeError, match='not a Lidar'):
+        _quiet(driver.getLidar, 'gps')
+
+
+# ------------------------------------------------------------------------------- sampling
+
+def test_values_are_nan_until_one_period_after_enable(driver):
+    gps = driver.getDevice('gps')
+    gps.enable(50)
+    assert gps.getSamplingPeriod() == 50
+    for _ in range(4):
+        driver.step()
+        assert all(math.isnan(v) for v in gps.getValues())      # Webots: NaN before a sample
+    driver.step()                                                # 50 ms: the first sample
+    assert not any(math.isnan(v) for v in gps.getValues())
+
+
+def test_each_device_of_an_imu_has_its_own_period(driver):
+    gyro, unit = driver.getDevice('gyro'), driver.getDevice('inertial unit')
+    gyro.enable(10)
+    unit.enable(50)
+    driver.step()
+    assert not math.isnan(gyro.getValues()[0]) and math.isnan(unit.getRollPitchYaw()[0])
+
+
+def test_disabled_device_warns_and_reads_nan(driver):
+    gps = driver.getDevice('gps')
+    gps.enable(10)
+    driver.step()
+    gps.disable()
+    assert gps.getSamplingPeriod() == 0
+    with pytest.warns(WebotsWarning, match='disabled device'):
+        assert all(math.isnan(v) for v in gps.getValues())
+
+
+def test_enable_zero_disables_negative_warns_and_wrong_type_raises(driver):
+    gps = driver.getDevice('gps')
+    gps.enable(20)
+    with pytest.warns(WebotsWarning, match='negative sampling period'):
+        gps.enable(-10)
+    assert gps.getSamplingPeriod() == 20
+    with pytest.raises(TypeError):
+        gps.enable(12.5)
+    gps.enable(0)
+    assert gps.getSamplingPeriod() == 0
+
+
+# ------------------------------------------------------------------------------- values
+
+def _settle(driver, devices, period_ms=10, steps=100):
+    for device in devices:
+        device.enable(period_ms)
+    for _ in range(steps):
+        driver.step()
+
+
+def test_lidar_range_image_runs_left_to_right_as_in_webots(driver):
+    lidar = driver.getDevice('Sick LMS 291')
+    _settle(driver, [lidar], steps=2)
+    image = lidar.getRangeImage()
+    scan = driver.sensors.latest('Sick LMS 291')
+    # Webots: index 0 = leftmost (+fov/2); ROS LaserScan: index 0 = rightmost (-fov/2)
+    assert image == pytest.approx(scan.scan[::-1].astype(float).tolist())
+    assert image[90] == pytest.approx(18.5, abs=1e-3)              # straight ahead
+    pole = int(np.argmin(image[:90]))           # the pole is on the left: the first half
+    assert image[pole] == pytest.approx(10.096, abs=0.01)
+    assert lidar.getRangeImageArray() == [image]
+    assert lidar.getLayerRangeImage(0) == image
+    assert lidar.getNumberOfPoints() == 181
+
+
+def test_lidar_returns_closer_than_min_range_read_inf_as_in_webots(world_file, tmp_path):
+    text = Path(world_file).read_text().replace('max_range: 50.0}', 'max_range: 50.0, '
+                                                'min_range: 19.0}')
+    path = tmp_path / 'close.yaml'
+    path.write_text(text)
+    with Driver(world_file=str(path)) as driver:
+        lidar = driver.getDevice('Sick LMS 291')
+        _settle(driver, [lidar], steps=1)
+        assert np.isneginf(driver.sensors.latest('Sick LMS 291').scan[90])  # REP 117
+        assert lidar.getRangeImage()[90] == math.inf                          # Webots
+
+
+def test_lidar_point_cloud_is_in_the_lidar_frame(driver):
+    lidar = driver.getDevice('Sick LMS 291')
+    lidar.enablePointCloud()
+    _settle(driver, [lidar], steps=1)
+    points = lidar.getPointCloud()
+    assert len(points) == 181 and lidar.isPointCloudEnabled()
+    ahead = points[90]
+    assert (ahead.x, ahead.y, ahead.layer_id) == pytest.approx((18.5, 0.0, 0), abs=1e-3)
+    assert points[-1].x == math.inf                     # the rightmost ray misses
+
+
+def test_gps_values_are_the_antenna_position_in_the_world(driver):
+    gps = driver.getDevice('gps')
+    _settle(driver, [gps])
+    assert gps.getValues() == pytest.approx([0.0, 0.0, 1.5], abs=0.01)
+    assert gps.getSpeed() == pytest.approx(0.0, abs=1e-3)
+    assert gps.getCoordinateSystem() == gps.LOCAL
+    assert gps.convertToDegreesMinutesSeconds(48.125) == '48°7' + "'" + '30.00"'
+
+
+def test_inertial_unit_gyro_and_accelerometer_at_rest(driver):
+    devices = [driver.getDevice(n) for n in ('inertial unit', 'gyro', 'accelerometer')]
+    _settle(driver, devices, steps=300)
+    unit, gyro, accelerometer = devices
+    assert unit.getRollPitchYaw() == pytest.approx([0.0, 0.0, 0.0], abs=1e-4)
+    assert unit.getQuaternion() == pytest.approx([0.0, 0.0, 0.0, 1.0], abs=1e-4)
+    assert gyro.getValues() == pytest.approx([0.0, 0.0, 0.0], abs=1e-6)
+    assert accelerometer.getValues() == pytest.approx([0.0, 0.0, 9.81], abs=1e-3)
+
+
+def test_distance_sensor_value_and_range_come_from_its_lookup_table(driver):
+    front = driver.getDevice('distance sensor front')
+    _settle(driver, [front], steps=1)
+    # the wall is 19.5 - 4.6 = 14.9 m ahead; table [0 0 0, 20 20 0]: value = distance
+    assert front.getValue() == pytest.approx(14.9, abs=1e-3)
+    assert (front.getMinValue(), front.getMaxValue()) == (0.0, 20.0)
+    assert front.getLookupTable() == [0.0, 0.0, 0.0, 20.0, 20.0, 0.0]
+    assert front.getType() == front.SONAR
+
+
+def test_camera_image_is_bgra_and_the_array_is_x_y_rgb(driver):
+    camera = driver.getDevice('camera')
+    _settle(driver, [camera], steps=1)
+    image = camera.getImage()
+    width, height = camera.getWidth(), camera.getHeight()
+    assert len(image) == width * height * 4
+    rgb = driver.sensors.latest('camera').rgb
+    x, y = width // 2, height // 2
+    assert [camera.imageGetRed(image, width, x, y), camera.imageGetGreen(image, width, x, y),
+            camera.imageGetBlue(image, width, x, y)] == rgb[y, x].tolist()
+    assert camera.getImageArray()[x][y] == rgb[y, x].tolist()
+    assert camera.imageGetGray(image, width, x, y) == sum(rgb[y, x].tolist()) // 3
+
+
+# ------------------------------------------------------------------------------- worlds
+
+def test_world_file_from_the_environment_drives_its_first_vehicle(world_file, monkeypatch):
+    monkeypatch.setenv('VEHICLE_SIM_WORLD', world_file)
+    with Driver() as driver:
+        assert driver.simulated_car.body.name == 'ego'
+        assert set(driver.world.obstacles) == {'wall', 'pole'}
+        names = [b.body.name for b in driver.world.bodies if hasattr(b, 'body')]
+        assert names == ['parked', 'ego']
+        assert driver.getNumberOfDevices() == 7
+
+
+def test_shipped_obstacle_course_mounts_the_webots_car_devices(monkeypatch):
+    monkeypatch.setenv('VEHICLE_SIM_WORLD', 'obstacle_course')
+    with Driver() as driver:
+        assert [driver.getDeviceByIndex(i).getName()
+                for i in range(driver.getNumberOfDevices())] == COURSE_DEVICES
+
+
+def test_lidar_example_controller_stops_before_the_wall():
+    env = dict(os.environ, VEHICLE_SIM_WORLD='obstacle_course')
+    result = subprocess.run([sys.executable, str(REPO / 'examples' / 'lidar_stop_controller.py')],
+                            capture_output=True, text=True, env=env, timeout=300)
+    assert result.returncode == 0, result.stderr
+    last = result.stdout.strip().splitlines()[-1]
+    assert 'stopped' in last, result.stdout
+    gap_m = float(last.split('m ahead of the lidar, ')[1].split(' m')[0])
+    assert 0.5 < gap_m < 5.0          # stopped before the wall, without touching it

@@ -1,0 +1,114 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Rigid-body frames: mount poses, quaternions (x, y, z, w) and rotation matrices.
+
+Conventions (REP 103): right-handed, x forward, y left, z up; roll, pitch and yaw are the URDF
+``rpy`` (fixed axes x, y, z: R = Rz(yaw) · Ry(pitch) · Rx(roll)). A camera's optical frame
+(REP 103 ``_optical`` suffix) has z forward, x right and y down.
+"""
+
+from dataclasses import dataclass
+import math
+from typing import Tuple
+
+import numpy as np
+
+Quaternion = Tuple[float, float, float, float]
+Vector = Tuple[float, float, float]
+
+
+def quaternion_from_rpy(roll_rad, pitch_rad, yaw_rad):
+    """
+    Return the quaternion of URDF-style roll, pitch, yaw angles.
+
+    :param roll_rad: rotation about the fixed x axis [rad].
+    :param pitch_rad: rotation about the fixed y axis [rad].
+    :param yaw_rad: rotation about the fixed z axis [rad].
+    :return: (x, y, z, w), unit norm.
+    """
+    cr, sr = math.cos(roll_rad / 2.0), math.sin(roll_rad / 2.0)
+    cp, sp = math.cos(pitch_rad / 2.0), math.sin(pitch_rad / 2.0)
+    cy, sy = math.cos(yaw_rad / 2.0), math.sin(yaw_rad / 2.0)
+    return (sr * cp * cy - cr * sp * sy,
+            cr * sp * cy + sr * cp * sy,
+            cr * cp * sy - sr * sp * cy,
+            cr * cp * cy + sr * sp * sy)
+
+
+def rpy_from_quaternion(q):
+    """
+    Return the roll, pitch, yaw angles of a quaternion (inverse of quaternion_from_rpy).
+
+    :param q: (x, y, z, w).
+    :return: (roll, pitch, yaw) [rad]; pitch in [-pi/2, pi/2].
+    """
+    x, y, z, w = q
+    roll = math.atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y))
+    sin_pitch = max(-1.0, min(1.0, 2.0 * (w * y - z * x)))
+    pitch = math.asin(sin_pitch)
+    yaw = math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+    return roll, pitch, yaw
+
+
+def rotation_matrix(q):
+    """
+    Return the 3x3 rotation matrix of a unit quaternion.
+
+    Its columns are the rotated frame's axes expressed in the reference frame.
+
+    :param q: (x, y, z, w).
+    :return: numpy array of shape (3, 3).
+    """
+    x, y, z, w = q
+    return np.array([
+        [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - z * w), 2.0 * (x * z + y * w)],
+        [2.0 * (x * y + z * w), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - x * w)],
+        [2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y)],
+    ])
+
+
+# base frame -> optical frame of a camera: rpy (-pi/2, 0, -pi/2), as in REP 103's examples.
+OPTICAL_RPY = (-math.pi / 2.0, 0.0, -math.pi / 2.0)
+OPTICAL_QUATERNION = quaternion_from_rpy(*OPTICAL_RPY)
+
+
+@dataclass(frozen=True)
+class Pose:
+    """A mount pose relative to a parent frame: translation [m] and URDF rpy angles [rad]."""
+
+    x_m: float = 0.0
+    y_m: float = 0.0
+    z_m: float = 0.0
+    roll_rad: float = 0.0
+    pitch_rad: float = 0.0
+    yaw_rad: float = 0.0
+
+    @property
+    def xyz(self) -> Vector:
+        return (self.x_m, self.y_m, self.z_m)
+
+    @property
+    def rpy(self) -> Vector:
+        return (self.roll_rad, self.pitch_rad, self.yaw_rad)
+
+    @property
+    def quaternion(self) -> Quaternion:
+        return quaternion_from_rpy(self.roll_rad, self.pitch_rad, self.yaw_rad)
+
+    def as_dict(self):
+        """Return the pose as its configuration mapping (keys x, y, z, roll, pitch, yaw)."""
+        return {'x': self.x_m, 'y': self.y_m, 'z': self.z_m, 'roll': self.roll_rad,
+                'pitch': self.pitch_rad, 'yaw': self.yaw_rad}

@@ -1,0 +1,74 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+The camera: PyBullet's CPU renderer (ER_TINY_RENDERER) from the mount pose.
+
+The mount's x axis is the viewing direction and its z axis is up in the picture. PyBullet's
+projection takes the VERTICAL field of view in degrees; the spec gives the horizontal one in
+radians, so fov_v = 2 atan(tan(fov_h / 2) * height / width) (square pixels). The image rows run
+top to bottom, the columns left to right; its frame is the optical one (z forward, x right, y
+down) and the intrinsics are those of CameraSpec.intrinsics. The ground gets a visual as soon as
+a camera exists (World.show_ground). A 320 x 240 frame costs several milliseconds, so cameras
+are off unless mounted.
+"""
+
+import math
+
+import numpy as np
+import pybullet
+
+from vehicle_sim.core.sensor_readings import camera_matrices, CameraReading
+from vehicle_sim.physics.sensors.mount import Mount
+
+# A fixed sun: from above, slightly from the front-left of the world x axis, so that vertical
+# faces that look at -x (towards a car driving along +x) are lit.
+LIGHT_DIRECTION = (-0.4, 0.3, 1.0)
+
+
+class CameraSensor:
+    """
+    An RGB camera on a vehicle body.
+
+    :param world: the World.
+    :param body: the vehicle body.
+    :param spec: core CameraSpec.
+    """
+
+    def __init__(self, world, body, spec):
+        self.world = world
+        self.spec = spec
+        self.mount = Mount(body, spec.pose)
+        world.show_ground()
+        self._projection = pybullet.computeProjectionMatrixFOV(
+            math.degrees(spec.vertical_fov_rad), spec.width / spec.height, spec.near_m,
+            spec.far_m, physicsClientId=world.client_id)
+        self._k, self._p = camera_matrices(*spec.intrinsics)
+
+    def sample(self, time_s):
+        """Render a frame now; return a CameraReading stamped ``time_s``."""
+        spec = self.spec
+        cid = self.world.client_id
+        position, rotation, _ = self.mount.world_frame()
+        target = position + rotation[:, 0]
+        view = pybullet.computeViewMatrix(position.tolist(), target.tolist(),
+                                          rotation[:, 2].tolist(), physicsClientId=cid)
+        _, _, rgba, _, _ = pybullet.getCameraImage(
+            spec.width, spec.height, view, self._projection, lightDirection=LIGHT_DIRECTION,
+            renderer=pybullet.ER_TINY_RENDERER,
+            flags=pybullet.ER_NO_SEGMENTATION_MASK, physicsClientId=cid)
+        rgb = np.asarray(rgba, dtype=np.uint8).reshape(spec.height, spec.width, 4)[:, :, :3]
+        return CameraReading(spec.name, time_s, spec.width, spec.height,
+                             np.ascontiguousarray(rgb), self._k, self._p)

@@ -1,0 +1,68 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+Collision events of a vehicle: contacts with any body but the ground, debounced (core).
+
+After each basic step the vehicle's contact points are read (getContactPoints); the points
+touching another body (distance <= 0 or a normal force) are grouped by body, their normal forces
+summed, and core's CollisionDebouncer turns "started touching" into one event per pair (again
+only after the pair was apart for 0.1 s). The other body is named by World.body_name: an
+obstacle's or a vehicle's name.
+"""
+
+import pybullet
+
+from vehicle_sim.core.collision import CollisionDebouncer, DEFAULT_MIN_APART_S
+
+_BODY_B, _DISTANCE, _NORMAL_FORCE = 2, 8, 9
+
+
+class CollisionMonitor:
+    """
+    Collision events of one vehicle body.
+
+    :param world: the World (the monitor registers its ``post_step``).
+    :param body: the vehicle body (``body_id``).
+    :param min_apart_s: see CollisionDebouncer.
+    """
+
+    def __init__(self, world, body, min_apart_s=DEFAULT_MIN_APART_S):
+        self.world = world
+        self.body = body
+        self._debouncer = CollisionDebouncer(min_apart_s)
+        self.fresh = []                # events of the last step
+        world.add_body(self)
+
+    def contacts(self):
+        """Return {other body's name: sum of normal forces [N]} of the bodies touching now."""
+        world = self.world
+        own, ground = self.body.body_id, world.ground_id
+        forces = {}
+        for point in pybullet.getContactPoints(bodyA=own, physicsClientId=world.client_id):
+            other = point[_BODY_B]
+            if other in (own, ground) or (point[_DISTANCE] > 0.0 and point[_NORMAL_FORCE] <= 0.0):
+                continue
+            forces[other] = forces.get(other, 0.0) + point[_NORMAL_FORCE]
+        return {world.body_name(other): force for other, force in forces.items()}
+
+    def post_step(self):
+        """World hook: turn this step's contacts into events (``fresh``)."""
+        self.fresh = self._debouncer.update(self.world.time_s, self.contacts())
+
+    def close(self):
+        """Stop monitoring."""
+        if not self.world.closed:
+            self.world.remove(self)

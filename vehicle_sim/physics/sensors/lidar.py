@@ -1,0 +1,84 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+The lidar: a fan of rays (one or several layers) cast with rayTestBatch from the mount pose.
+
+Ray directions in the sensor frame: azimuth a_i = angle_min + i * angle_increment,
+counter-clockwise from x (angle_min = -fov / 2, angle_increment = fov / (rays - 1)); elevation
+e_j from +vertical_fov / 2 (layer 0, the top) down to -vertical_fov / 2; unit vector
+(cos e cos a, cos e sin a, sin e). A ray hitting nothing within max_range reads +inf, a hit
+closer than min_range reads -inf (REP 117); Gaussian noise, if any, is added to the other hits.
+"""
+
+import numpy as np
+
+from vehicle_sim.core.noise import GaussianNoise
+from vehicle_sim.core.sensor_readings import LidarReading
+from vehicle_sim.physics.sensors.mount import Mount
+from vehicle_sim.physics.sensors.rays import cast_rays
+
+
+def ray_directions(azimuths_rad, elevations_rad):
+    """
+    Return unit ray vectors in the sensor frame.
+
+    :param azimuths_rad: (n,) angles counter-clockwise from x [rad].
+    :param elevations_rad: (m,) angles above the xy plane [rad].
+    :return: (m, n, 3) array.
+    """
+    azimuth = np.asarray(azimuths_rad, dtype=float)[None, :]
+    elevation = np.asarray(elevations_rad, dtype=float)[:, None]
+    return np.stack(np.broadcast_arrays(np.cos(elevation) * np.cos(azimuth),
+                                        np.cos(elevation) * np.sin(azimuth),
+                                        np.sin(elevation) + 0.0 * azimuth), axis=-1)
+
+
+class LidarSensor:
+    """
+    A lidar on a vehicle body.
+
+    :param world: the World.
+    :param body: the vehicle body (CarBody, DiffRobotBody).
+    :param spec: core LidarSpec.
+    """
+
+    def __init__(self, world, body, spec):
+        self.world = world
+        self.spec = spec
+        self.mount = Mount(body, spec.pose)
+        self._mask = world.ray_mask_excluding(body.body_id)
+        azimuths = spec.angle_min_rad + spec.angle_increment_rad * np.arange(
+            spec.horizontal_resolution)
+        self.directions = ray_directions(azimuths, spec.layer_elevations_rad)
+        self._shape = self.directions.shape[:2]
+        self._ray_vectors = self.directions.reshape(-1, 3) * spec.max_range_m
+        self._noise = GaussianNoise(spec.noise_m, spec.seed, spec.name)
+
+    def sample(self, time_s):
+        """Cast the rays now; return a LidarReading stamped ``time_s``."""
+        spec = self.spec
+        origin, rotation, _ = self.mount.world_frame()
+        fractions = cast_rays(self.world, origin, origin + self._ray_vectors @ rotation.T,
+                              self._mask)
+        hit = fractions < 1.0
+        ranges = np.where(hit, fractions * spec.max_range_m, np.inf)
+        if self._noise:
+            ranges[hit] = self._noise.add(ranges[hit])
+        ranges[hit & (ranges < spec.min_range_m)] = -np.inf
+        return LidarReading(
+            spec.name, time_s, spec.angle_min_rad, spec.angle_max_rad, spec.angle_increment_rad,
+            spec.min_range_m, spec.max_range_m, spec.period_s, spec.layer_elevations_rad,
+            ranges.reshape(self._shape).astype(np.float32), self.directions)

@@ -1,0 +1,27 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""The one warning class of the Webots facade (odd input handled the way Webots handles it)."""
+
+import warnings
+
+
+class WebotsWarning(UserWarning):
+    """A Webots library warning (odd input handled the way Webots handles it)."""
+
+
+def warn(message, stacklevel=3):
+    """Issue a WebotsWarning attributed to the facade's caller."""
+    warnings.warn(message, WebotsWarning, stacklevel=stacklevel + 1)
