@@ -22,8 +22,8 @@ checks that nothing prints a warning and that every data file lands where the no
 
 import os
 from pathlib import Path
-import shutil
 import re
+import shutil
 import subprocess
 import sys
 
