@@ -60,7 +60,7 @@ EACH_STATUS = 'each status period'
 EACH_COMMAND = 'each accepted command and control tick'
 EACH_SAMPLE = "each sensor sample (the sensor's rate)"
 ON_EVENT = 'when it happens'
-RECEIVED = 'in'       # input rows
+RECEIVED = 'on receipt'    # input rows: the node's callback runs on each message
 
 
 @dataclass(frozen=True)
@@ -299,11 +299,15 @@ def value_text(value) -> str:
     return repr(value)
 
 
+def _cell(text: str) -> str:
+    return text.replace('|', '\\|')
+
+
 _COLUMNS = {
     'type': lambda row: row.ros_type,
     'direction': lambda row: row.direction,
     'QoS': lambda row: qos_text(row.qos),
-    'published': lambda row: row.cadence,
+    'published': lambda row: row.cadence if row.direction == OUT else '',
     'switch': lambda row: f'`{row.switch}`' if row.switch else '',
     'unit': lambda row: row.unit,
     'notes': lambda row: row.doc,
@@ -325,7 +329,7 @@ def topic_table_markdown(rows: Iterable[Topic], columns=('type', 'QoS', 'publish
     lines = ['| ' + ' | '.join((first,) + tuple(columns)) + ' |',
              '|' + '---|' * (len(columns) + 1)]
     for row in rows:
-        cells = [f'`{display_name(row)}`'] + [_COLUMNS[column](row) for column in columns]
+        cells = [f'`{display_name(row)}`'] + [_cell(_COLUMNS[column](row)) for column in columns]
         lines.append('| ' + ' | '.join(cells) + ' |')
     return '\n'.join(lines) + '\n'
 
@@ -336,5 +340,5 @@ def service_table_markdown(rows: Iterable[Service],
     lines = ['| service | type | switch | notes |', '|---|---|---|---|']
     for row in rows:
         switch = f'`{row.switch}`' if row.switch else ''
-        lines.append(f'| `{display_name(row)}` | {row.ros_type} | {switch} | {row.doc} |')
+        lines.append(f'| `{display_name(row)}` | {row.ros_type} | {switch} | {_cell(row.doc)} |')
     return '\n'.join(lines) + '\n'
