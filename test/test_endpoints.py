@@ -236,6 +236,10 @@ def _msg(ros_type):
     return msg_types.message_type(ros_type)
 
 
+def _kit():
+    return endpoints.MessageKit(_msg)
+
+
 def _vehicle_context():
     wiring = SimpleNamespace(base_frame='car1/base_link', odom_frame='car1/odom',
                              joint_names=('car1/a', 'car1/b'))
@@ -248,7 +252,7 @@ def _vehicle_context():
 
 def test_joint_state_converter_fixes_the_name_list_once_and_fills_the_values_per_call():
     wiring, call = _vehicle_context()
-    convert = itf.JOINT_STATES.converter(_msg, wiring)
+    convert = itf.JOINT_STATES.converter(_kit(), wiring)
     first, second = convert(call), convert(call)
     assert first.name == ['car1/a', 'car1/b'] and first.name is second.name
     assert (first.position, first.velocity, first.effort) == ([0.5, 1.5], [2.0, -2.0], [])
@@ -257,16 +261,31 @@ def test_joint_state_converter_fixes_the_name_list_once_and_fills_the_values_per
 
 def test_odometry_converter_gives_the_vehicle_frames_and_the_values_of_the_call():
     wiring, call = _vehicle_context()
-    odom = itf.ODOM.converter(_msg, wiring)(call)
+    odom = itf.ODOM.converter(_kit(), wiring)(call)
     assert (odom.header.frame_id, odom.child_frame_id) == ('car1/odom', 'car1/base_link')
     position = odom.pose.pose.position
     assert (position.x, position.y, odom.twist.twist.linear.x,
             odom.twist.twist.angular.z) == (1.0, 2.0, 3.0, 0.25)
 
 
+def test_float_rows_of_one_vehicle_share_one_header_per_stamp():
+    kit, wiring = _kit(), SimpleNamespace(base_frame='car1/base_link')
+    speed, throttle = (itf.topic(f'automobile/{name}').converter(kit, wiring)
+                       for name in ('current_speed', 'throttle'))
+    time_type = _msg('builtin_interfaces/msg/Time')
+    status = SimpleNamespace(current_speed_kmh=36.0, throttle=0.5)
+    call = SimpleNamespace(stamp=time_type(sec=1, nanosec=0), status=status)
+    first, second = speed(call), throttle(call)
+    assert (first.data, second.data) == (36.0, 0.5)
+    assert first.header is second.header and first.header.frame_id == 'car1/base_link'
+    later = speed(SimpleNamespace(stamp=time_type(sec=2, nanosec=0), status=status))
+    assert later.header is not first.header and later.header.stamp.sec == 2
+    assert first.header.stamp.sec == 1
+
+
 def test_rpm_converter_gives_nothing_outside_torque_mode():
     status = SimpleNamespace(rpm=1500.0)
-    convert = itf.RPM.converter(_msg, SimpleNamespace(base_frame='base_link'))
+    convert = itf.RPM.converter(_kit(), SimpleNamespace(base_frame='base_link'))
     stamp = _msg('builtin_interfaces/msg/Time')(sec=1, nanosec=0)
     assert convert(SimpleNamespace(stamp=stamp, status=status, torque_mode=False)) is None
     message = convert(SimpleNamespace(stamp=stamp, status=status, torque_mode=True))
@@ -275,7 +294,7 @@ def test_rpm_converter_gives_nothing_outside_torque_mode():
 
 def test_status_rows_skip_velocity_and_steering_until_measured():
     stamp = _msg('builtin_interfaces/msg/Time')(sec=2, nanosec=0)
-    outputs = {row: row.converter(_msg, SimpleNamespace(frame_id='base_link'))
+    outputs = {row: row.converter(_kit(), SimpleNamespace(frame_id='base_link'))
                for row in bi.STATUS_TOPICS}
     unmeasured = bi.VehicleReport(stamp, None, None, None, 2, 1, 1, 1)
     assert [row for row, convert in outputs.items() if convert(unmeasured) is not None] == \
@@ -293,7 +312,7 @@ def test_status_rows_skip_velocity_and_steering_until_measured():
 def test_wheel_velocities_follow_the_wheel_joints_sides():
     command = SimpleNamespace(left_radps=-1.0, right_radps=2.0)
     convert = bi.WHEEL_VELOCITIES_OUT.converter(
-        _msg, SimpleNamespace(frame_id='base_link', wheel_sides=('right', 'left', 'left')))
+        _kit(), SimpleNamespace(frame_id='base_link', wheel_sides=('right', 'left', 'left')))
     assert convert(SimpleNamespace(stamp=None, command=command)).data == [2.0, -1.0, -1.0]
 
 

@@ -179,9 +179,9 @@ def _output(name, ros_type, builder, values, switch, doc, constants=None):
                  doc=doc, switch=switch)
 
 
-def _wheel_velocities(msg, w):
+def _wheel_velocities(kit, w):
     # One entry per wheel_joints entry, in that order: the speed of its side [rad/s].
-    build = m.float64_multi_array_builder(msg)
+    build = kit.builder(m.float64_multi_array_builder)
     left = tuple(side == 'left' for side in w.wheel_sides)
 
     def convert(ctx):

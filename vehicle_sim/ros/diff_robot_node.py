@@ -141,7 +141,7 @@ class DiffRobotNode:
         x, y, yaw = self._spawn
         self._stamp = stamp_builder(node.msg)
         self._ctx = ctx = SimpleNamespace(
-            joint_names=self.robot.wheel_joints, odom_frame=self.odom_frame,
+            joint_names=tuple(self.robot.wheel_joints), odom_frame=self.odom_frame,
             base_frame=self.base_frame, urdf=self.robot.urdf,
             tf_frames=[(self.odom_frame, self.base_frame)],
             static_transforms=[('world', self.odom_frame, (x, y, 0.0), _yaw_quaternion(yaw))],

@@ -24,9 +24,10 @@ wire rows with :class:`Outputs`, :func:`subscribe` and :func:`serve` (the only c
 publishers, subscriptions and services in the ROS layer; a test checks it), and the docs' tables
 are generated from the rows (:func:`topic_table_markdown`).
 
-Converters. An output row's ``converter`` is a factory ``converter(msg, w)``, called once when
-a node wires the row, with the transport's class lookup ``msg`` and the wiring context ``w`` (a
-vehicle: its frames, joint names, spawn pose). It returns ``convert(ctx)``, which the node calls
+Converters. An output row's ``converter`` is a factory ``converter(kit, w)``, called once when
+a node wires the row, with a :class:`MessageKit` (the transport's message classes, builders
+shared by the rows of one context) and the wiring context ``w`` (a vehicle: its frames, joint
+names, spawn pose). It returns ``convert(ctx)``, which the node calls
 at the row's cadence with the call context ``ctx`` (that vehicle's state at this step, with its
 ``stamp``) and which returns the message to publish, or None for "nothing now" (a topic of one
 control mode, a report not measured yet, a sensor without a fresh sample). Rows build their
@@ -74,7 +75,7 @@ class Topic:
     :param qos: QoS profile of the publisher (OUT) or subscription (IN).
     :param cadence: when it is published (EACH_STEP, EACH_PUBLISH, ONCE_LATCHED, ...);
         RECEIVED for inputs.
-    :param converter: OUT: ``converter(msg, w)`` -> ``convert(ctx)`` -> message or None (see the
+    :param converter: OUT: ``converter(kit, w)`` -> ``convert(ctx)`` -> message or None (see the
         module docstring); IN: ``converter(message)`` -> the node's command.
     :param direction: OUT or IN.
     :param unit: units of the values.
@@ -147,18 +148,42 @@ class Service:
         return self.name.rsplit('/', 1)[-1]
 
 
+class MessageKit:
+    """
+    What a converter factory gets at wiring besides the context: message classes and builders.
+
+    One kit per wiring context (:class:`Outputs` makes it), so rows of that context share one
+    builder per (builder, constants): the Float64Stamped rows of a vehicle build one header per
+    stamp, not one each.
+
+    :param msg: the transport's ``node.msg`` class lookup.
+    """
+
+    def __init__(self, msg):
+        self.msg = msg
+        self._builders = {}
+
+    def builder(self, builder, *constants):
+        """Return ``builder(msg, *constants)``, the same one for equal (hashable) arguments."""
+        key = (builder, constants)
+        found = self._builders.get(key)
+        if found is None:
+            found = self._builders[key] = builder(self.msg, *constants)
+        return found
+
+
 def converter(builder, values, constants=None):
     """
     Make an output row's converter from a message builder and a value reader.
 
     :param builder: ``builder(msg, *constants(w))`` -> ``build(*args)`` (see :mod:`.messages`).
     :param values: ``values(ctx)`` -> the tuple ``args`` of ``build``, or None (nothing now).
-    :param constants: ``constants(w)`` -> the builder's constant arguments (frame ids, names),
-        read once at wiring; None: the builder takes none.
-    :return: the factory ``converter(msg, w)`` -> ``convert(ctx)``.
+    :param constants: ``constants(w)`` -> the builder's constant arguments (frame ids, names; a
+        hashable tuple), read once at wiring; None: the builder takes none.
+    :return: the factory ``converter(kit, w)`` -> ``convert(ctx)`` (``kit`` a MessageKit).
     """
-    def factory(msg, w):
-        build = builder(msg, *constants(w)) if constants is not None else builder(msg)
+    def factory(kit, w):
+        build = kit.builder(builder, *(constants(w) if constants is not None else ()))
 
         def convert(ctx):
             args = values(ctx)
@@ -183,13 +208,14 @@ TF = Topic(
     '/tf', m.TF_MESSAGE, QOS_TF, EACH_PUBLISH,
     converter(m.tf_message_builder,
               lambda ctx: None if ctx.tf_poses is None else (ctx.stamp, ctx.tf_poses),
-              lambda w: (w.tf_frames,)),
+              lambda w: (tuple(w.tf_frames),)),
     doc='<p>odom -> <p>base_link of every vehicle, one message')
 
 
-def _static_transforms(msg, w):
+def _static_transforms(kit, w):
     transforms = tuple(w.static_transforms)
-    build = m.tf_message_builder(msg, [(parent, child) for parent, child, _, _ in transforms])
+    build = kit.builder(m.tf_message_builder,
+                        tuple((parent, child) for parent, child, _, _ in transforms))
     poses = [(xyz, q) for _, _, xyz, q in transforms]
     return lambda ctx: build(ctx.stamp, poses)
 
@@ -223,6 +249,7 @@ class Outputs:
                  resolve: Optional[Callable[[str], str]] = None, switches=None):
         self.publishers: Dict[Topic, object] = {}
         self._groups: Dict[str, list] = {}
+        kit = MessageKit(node.msg)
         for row in rows:
             if row.direction != OUT:
                 raise ValueError(f'{row.name}: an input row cannot be published')
@@ -232,7 +259,7 @@ class Outputs:
                 row.ros_type, resolve(row.name) if resolve else row.name, row.qos)
             self.publishers[row] = publisher
             self._groups.setdefault(row.cadence, []).append(
-                (row, row.converter(node.msg, context), publisher.publish))
+                (row, row.converter(kit, context), publisher.publish))
 
     @property
     def rows(self) -> Tuple[Topic, ...]:

@@ -76,11 +76,18 @@ def string_builder(msg):
 
 
 def float64_stamped_builder(msg, frame_id: str):
-    """Return ``build(stamp, value)``: vehicle_msgs/Float64Stamped in ``frame_id``."""
+    """
+    Return ``build(stamp, value)``: vehicle_msgs/Float64Stamped in ``frame_id``.
+
+    Messages of one stamp share one header (the rows of a vehicle share this builder).
+    """
     header_type, value_type = msg(HEADER), msg(FLOAT64_STAMPED)
+    last = [None, None]      # the last stamp and its header (kept: its id cannot be reused)
 
     def build(stamp, value):
-        return value_type(header=header_type(stamp=stamp, frame_id=frame_id), data=float(value))
+        if stamp is not last[0]:
+            last[0], last[1] = stamp, header_type(stamp=stamp, frame_id=frame_id)
+        return value_type(header=last[1], data=float(value))
     return build
 
 
