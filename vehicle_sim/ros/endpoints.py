@@ -27,13 +27,14 @@ are generated from the rows (:func:`topic_table_markdown`).
 Converters. An output row's ``converter`` is a factory ``converter(kit, w)``, called once when
 a node wires the row, with a :class:`MessageKit` (the transport's message classes, builders
 shared by the rows of one context) and the wiring context ``w`` (a vehicle: its frames, joint
-names, spawn pose). It returns ``convert(ctx)``, which the node calls
-at the row's cadence with the call context ``ctx`` (that vehicle's state at this step, with its
-``stamp``) and which returns the message to publish, or None for "nothing now" (a topic of one
-control mode, a report not measured yet, a sensor without a fresh sample). Rows build their
-converters with :func:`converter`: a value reader (``ctx`` -> the builder's arguments, the
-only per-call computation) joined to a message builder of :mod:`.messages` (constant parts fixed
-at wiring). An input row's ``converter`` maps a received message to the node's command.
+names, spawn pose). It returns ``convert(ctx)``, which the node calls at the row's cadence with
+the call context ``ctx`` (that vehicle's state at this step, with its ``stamp``) and which
+returns the message to publish, or None for "nothing now" (a topic of one control mode, a report
+not measured yet, a sensor without a fresh sample: cadence EACH_SAMPLE). Rows build their
+converters with :func:`converter`: a value reader (``ctx`` -> the builder's arguments, the only
+per-call computation) joined to a message builder of :mod:`.messages` (constant parts fixed at
+wiring; a serializer can stand in for it). An input row's ``converter`` maps a received message
+to the node's command.
 """
 
 from dataclasses import dataclass
