@@ -59,7 +59,7 @@ pytestmark = pytest.mark.transport
 SETTERS = [s for s in itf.SERVICES if s.kind == itf.SETTER]
 GETTERS = [s for s in itf.SERVICES if s.kind == itf.GETTER]
 INVALID = [(s, v) for s in SETTERS for v in s.invalid]
-FLOAT_TOPICS = [t.name for t in itf.AUTOMOBILE_TOPICS if not t.torque_only]
+FLOAT_TOPICS = [t.name for t in itf.AUTOMOBILE_TOPICS if t not in itf.TORQUE_ONLY_TOPICS]
 # Topic observations step the world long enough for the steering motors to settle.
 SETTLE_MS = 500
 

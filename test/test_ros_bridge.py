@@ -43,6 +43,7 @@ from vehicle_sim.core.bridge_controller import BridgeController
 from vehicle_sim.core.diff_drive import bridge_params_from_dict, STOP_COMMAND
 from vehicle_sim.core.errors import InvalidCommandError
 from vehicle_sim.ros import bridge_interfaces as bi
+from vehicle_sim.ros.endpoints import Topic
 from vehicle_sim.transport.port import QOS_ROSOUT
 
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -219,8 +220,7 @@ def running_system():
                                 '/diff_robot/differential_command')
         env['array'] = Collector(node, bi.WHEEL_VELOCITIES_OUT)
         env['twist'] = Collector(node, bi.TWIST_OUT)
-        env['rosout'] = Collector(node, bi.Endpoint('/rosout', 'rcl_interfaces/msg/Log',
-                                                    QOS_ROSOUT))
+        env['rosout'] = Collector(node, Topic('/rosout', 'rcl_interfaces/msg/Log', QOS_ROSOUT))
         env['clock'] = Collector(node, bi.CLOCK)
         for spec in bi.STATUS_TOPICS:
             env[spec.name] = Collector(node, spec)

@@ -12,4 +12,4 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""ROS 2 nodes: the interface table, message conversions and the automobile node."""
+"""ROS 2 nodes and their interface tables (one row kind, ``endpoints.py``) with converters."""

@@ -29,8 +29,8 @@ Run: ``ros2 run vehicle_sim automobile --ros-args -p car_model:=ToyotaPrius`` or
 ``python -m vehicle_sim.ros.automobile_node --ros-args --params-file config/automobile.yaml``.
 """
 
-from operator import attrgetter
 import sys
+from types import SimpleNamespace
 from typing import Dict, List, Optional
 
 from vehicle_sim.config import load_car
@@ -39,12 +39,9 @@ from vehicle_sim.core.errors import InvalidCommandError
 from vehicle_sim.physics import SimulatedCar, World
 from vehicle_sim.physics.urdf import car_urdf
 from vehicle_sim.ros import interfaces as itf
-from vehicle_sim.ros.conversions import (
-    pose_in_frame,
-    quaternion_from_yaw,
-    RosMessages,
-    twist_in_body,
-)
+from vehicle_sim.ros.conversions import pose_in_frame, quaternion_from_yaw, twist_in_body
+from vehicle_sim.ros.endpoints import EACH_PUBLISH, EACH_STEP, ONCE_LATCHED, Outputs, serve
+from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.node_support import run_main
 from vehicle_sim.ros.sim_params import declare_parameters, world_vehicles
 from vehicle_sim.transport import create_node
@@ -67,7 +64,11 @@ def _to_core(kind, value):
 
 
 class _Vehicle:
-    """One car and its endpoints (wiring data only)."""
+    """
+    One car: the wiring context of its rows and, after :meth:`sample`, their call context.
+
+    The attributes the rows' converters read are listed in ``ros/interfaces.py``.
+    """
 
     def __init__(self, spec, car):
         self.spec = spec
@@ -79,12 +80,34 @@ class _Vehicle:
         self.odom_frame = self.prefix + 'odom'
         self.spawn_xyz = (spec.x_m, spec.y_m, 0.0)
         self.spawn_q = quaternion_from_yaw(spec.yaw_rad)
-        self.float_topics = []   # (getter of CarStatus, index, torque_only, publisher)
-        self.joint_names = None
-        self.odom_pub = None
-        self.joint_pub = None
-        self.description_pub = None
+        names, _, _ = car.body.joint_states()
+        self.joint_names = tuple(self.prefix + name for name in names)
+        self.outputs = None
         self.services = []
+        # Call context, set by sample().
+        self.stamp = None
+        self.status = None
+        self.torque_mode = False
+        self.odom = None
+        self.joints = None
+
+    def sample(self, stamp):
+        """Read the car's state once for every row published at ``stamp``."""
+        self.stamp = stamp
+        self.status = status = self.logic.status()
+        self.torque_mode = status.control_mode == ControlMode.TORQUE
+        body = self.body
+        pose = body.pose()
+        linear, angular = body.velocity()
+        xyz, q = pose_in_frame(self.spawn_xyz, self.spawn_q, pose[:3], pose[3:])
+        linear_b, angular_b = twist_in_body(pose[3:], linear, angular)
+        self.odom = (xyz, q, linear_b, angular_b)
+        _, positions, velocities = body.joint_states()
+        self.joints = (positions, velocities)
+
+    def description(self):
+        """Return the URDF published on robot_description (names prefixed ``<p>``)."""
+        return car_urdf(self.car.params, name=self.spec.name, prefix=self.prefix)
 
 
 class AutomobileNode:
@@ -125,7 +148,7 @@ class AutomobileNode:
         specs = world_vehicles(settings)
         self.world = World(time_step_s=settings.time_step_s, friction=settings.friction)
         self._publish_every = settings.publish_every_steps
-        self._msgs = RosMessages(node)
+        self._stamp = stamp_builder(node.msg)
         self._vehicles: List[_Vehicle] = []
         for spec in specs:
             car = SimulatedCar(self.world, load_car(spec.model), (spec.x_m, spec.y_m,
@@ -133,11 +156,7 @@ class AutomobileNode:
             vehicle = _Vehicle(spec, car)
             self._wire_vehicle(vehicle)
             self._vehicles.append(vehicle)
-        self._clock_pub = node.create_publisher(itf.CLOCK.ros_type, itf.CLOCK.name,
-                                                itf.CLOCK.qos)
-        self._tf_pub = node.create_publisher(itf.TF.ros_type, itf.TF.name, itf.TF.qos)
-        self._tf_static_pub = node.create_publisher(itf.TF_STATIC.ros_type, itf.TF_STATIC.name,
-                                                    itf.TF_STATIC.qos)
+        self._wire_world()
         self._publish_latched()
         self._publish_step(self.world.time_s)
         if not settings.synchronous:
@@ -157,21 +176,11 @@ class AutomobileNode:
     def _wire_vehicle(self, vehicle):
         node = self.node
         ns = vehicle.spec.namespace
-        for spec in itf.AUTOMOBILE_TOPICS:
-            publisher = node.create_publisher(spec.ros_type, itf.vehicle_name(spec.name, ns),
-                                              spec.qos)
-            vehicle.float_topics.append(
-                (attrgetter(spec.status_field), spec.index, spec.torque_only, publisher))
-        vehicle.odom_pub = node.create_publisher(
-            itf.ODOM.ros_type, itf.vehicle_name(itf.ODOM.name, ns), itf.ODOM.qos)
-        vehicle.joint_pub = node.create_publisher(
-            itf.JOINT_STATES.ros_type, itf.vehicle_name(itf.JOINT_STATES.name, ns),
-            itf.JOINT_STATES.qos)
-        vehicle.description_pub = node.create_publisher(
-            itf.ROBOT_DESCRIPTION.ros_type, itf.vehicle_name(itf.ROBOT_DESCRIPTION.name, ns),
-            itf.ROBOT_DESCRIPTION.qos)
-        names, _, _ = vehicle.body.joint_states()
-        vehicle.joint_names = [vehicle.prefix + name for name in names]
+
+        def resolve(name):
+            return itf.vehicle_name(name, ns)
+
+        vehicle.outputs = Outputs(node, itf.VEHICLE_TOPICS, vehicle, resolve)
         handlers = {
             itf.SETTER: self._handle_setter,
             itf.GETTER: self._handle_getter,
@@ -180,11 +189,20 @@ class AutomobileNode:
             itf.WORLD_TIME: self._handle_get_time,
             itf.BASIC_TIME_STEP: self._handle_get_basic_time_step,
         }
-        for spec in itf.SERVICES:
-            name = itf.vehicle_name(spec.name, ns)
-            handler = handlers[spec.kind]
-            vehicle.services.append(node.create_service(
-                spec.srv_type, name, self._bind(handler, spec, vehicle, name)))
+        vehicle.services = list(serve(node, {
+            spec: self._bind(handlers[spec.kind], spec, vehicle, resolve(spec.name))
+            for spec in itf.SERVICES}, resolve).values())
+
+    def _wire_world(self):
+        # The global rows (/clock, /tf, /tf_static): once for the node, all vehicles in one
+        # message.
+        vehicles = self._vehicles
+        self._fleet = SimpleNamespace(
+            tf_frames=[(v.odom_frame, v.base_frame) for v in vehicles],
+            static_transforms=[('world', v.odom_frame, v.spawn_xyz, v.spawn_q)
+                               for v in vehicles],
+            stamp=None, tf_poses=None)
+        self._fleet_outputs = Outputs(self.node, itf.WORLD_TOPICS, self._fleet)
 
     @staticmethod
     def _bind(handler, spec, vehicle, name):
@@ -268,46 +286,25 @@ class AutomobileNode:
     # ------------------------------------------------------------------------------ publishing
 
     def _publish_step(self, time_s):
-        msgs = self._msgs
-        stamp = msgs.stamp(time_s)
-        self._clock_pub.publish(msgs.clock(stamp))
+        fleet = self._fleet
+        fleet.stamp = stamp = self._stamp(time_s)
+        outputs = self._fleet_outputs
+        outputs.publish(EACH_STEP, fleet)
         if self.world.step_count % self._publish_every == 0:
-            transforms = [self._publish_vehicle(vehicle, stamp) for vehicle in self._vehicles]
-            self._tf_pub.publish(msgs.tf_message(transforms))
-
-    def _publish_vehicle(self, vehicle, stamp):
-        msgs = self._msgs
-        status = vehicle.logic.status()
-        header = msgs.header(stamp, vehicle.base_frame)
-        torque_mode = status.control_mode == ControlMode.TORQUE
-        for getter, index, torque_only, publisher in vehicle.float_topics:
-            if torque_only and not torque_mode:
-                continue   # Webots publishes rpm in TORQUE mode only
-            value = getter(status)
-            if index is not None:
-                value = value[index]
-            publisher.publish(msgs.float64_stamped(header, value))
-        body = vehicle.body
-        pose = body.pose()
-        linear, angular = body.velocity()
-        xyz, q = pose_in_frame(vehicle.spawn_xyz, vehicle.spawn_q, pose[:3], pose[3:])
-        linear_b, angular_b = twist_in_body(pose[3:], linear, angular)
-        vehicle.odom_pub.publish(msgs.odometry(msgs.header(stamp, vehicle.odom_frame),
-                                               vehicle.base_frame, xyz, q, linear_b, angular_b))
-        _, positions, velocities = body.joint_states()
-        vehicle.joint_pub.publish(msgs.joint_state(msgs.header(stamp, ''), vehicle.joint_names,
-                                                   positions, velocities))
-        return msgs.transform_stamped(stamp, vehicle.odom_frame, vehicle.base_frame, xyz, q)
+            vehicles = self._vehicles
+            for vehicle in vehicles:
+                vehicle.sample(stamp)
+                vehicle.outputs.publish(EACH_PUBLISH, vehicle)
+            fleet.tf_poses = [vehicle.odom[:2] for vehicle in vehicles]
+            outputs.publish(EACH_PUBLISH, fleet)
 
     def _publish_latched(self):
-        msgs = self._msgs
-        stamp = msgs.stamp(self.world.time_s)
-        statics = [msgs.transform_stamped(stamp, 'world', v.odom_frame, v.spawn_xyz, v.spawn_q)
-                   for v in self._vehicles]
-        self._tf_static_pub.publish(msgs.tf_message(statics))
+        fleet = self._fleet
+        fleet.stamp = self._stamp(self.world.time_s)
+        self._fleet_outputs.publish(ONCE_LATCHED, fleet)
         for vehicle in self._vehicles:
-            urdf = car_urdf(vehicle.car.params, name=vehicle.spec.name, prefix=vehicle.prefix)
-            vehicle.description_pub.publish(msgs.string(urdf))
+            vehicle.stamp = fleet.stamp
+            vehicle.outputs.publish(ONCE_LATCHED, vehicle)
 
     # ------------------------------------------------------------------------------ access
 

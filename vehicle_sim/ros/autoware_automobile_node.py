@@ -29,6 +29,7 @@ Run: ``ros2 run vehicle_sim autoware_automobile --ros-args -p car_model:=ToyotaP
 
 import math
 import sys
+from types import SimpleNamespace
 
 from vehicle_sim.core.autoware import (
     check_gear,
@@ -57,9 +58,10 @@ from vehicle_sim.core.params import ParamSpec
 from vehicle_sim.core.watchdog import DEFAULT_TIMEOUT_ACTION, DEFAULT_TIMEOUT_S, TIMEOUT_ACTIONS
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros.automobile_node import AutomobileNode  # composed: see the layering test
+from vehicle_sim.ros.endpoints import EACH_STATUS, Outputs, serve, subscribe
+from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning
 from vehicle_sim.transport import create_node
-from vehicle_sim.transport.port import Time
 
 NODE_NAME = 'autoware_automobile'
 
@@ -128,32 +130,13 @@ class AutowareAutomobileNode:
         self.state = AutowareCar(self.car.logic, values['command_timeout_s'],
                                  values['timeout_action'])
         self.input_type = values['input_type']
-        self._read_command = bi.COMMAND_READERS[self.input_type]
         self._frame_id = values['frame_id']
         step_s = self.world.time_step_s
         self._status_every = max(1, int(round(1.0 / (values['status_rate_hz'] * step_s))))
         self._warn = ThrottledWarning(node.get_logger())
         self.rejected = 0
         self.control_mode = MODE_AUTONOMOUS
-        self._types = {name: node.msg(name) for name in (
-            'autoware_vehicle_msgs/msg/VelocityReport', 'autoware_vehicle_msgs/msg/SteeringReport',
-            'autoware_vehicle_msgs/msg/GearReport',
-            'autoware_vehicle_msgs/msg/TurnIndicatorsReport',
-            'autoware_vehicle_msgs/msg/HazardLightsReport',
-            'autoware_vehicle_msgs/msg/ControlModeReport')}
-        self._status = {spec: node.create_publisher(spec.ros_type, spec.name, spec.qos)
-                        for spec in bi.STATUS_TOPICS}
-        self._input = bi.BRIDGE_INPUTS[self.input_type]
-        self._subs = [node.create_subscription(self._input.ros_type, self._input.name,
-                                               self.handle_command, self._input.qos)]
-        for spec, callback in ((bi.GEAR_COMMAND, self.handle_gear),
-                               (bi.TURN_INDICATORS_COMMAND, self.handle_turn_indicators),
-                               (bi.HAZARD_LIGHTS_COMMAND, self.handle_hazard_lights)):
-            self._subs.append(node.create_subscription(spec.ros_type, spec.name, callback,
-                                                       spec.qos))
-        self._control_mode_srv = node.create_service(
-            bi.CONTROL_MODE_REQUEST.ros_type, bi.CONTROL_MODE_REQUEST.name,
-            self._handle_control_mode_request)
+        self._wire()
         self.world.add_body(_StepHook(self._on_step))
         limits = self.state.limits
         low, high = limits.autoware_steering_range_rad
@@ -162,6 +145,21 @@ class AutowareAutomobileNode:
             f'{self.car.params.model} (wheel_base {limits.wheelbase_m:g} m, steering tire angle '
             f'[{low:g}, {high:g}] rad, top speed {limits.max_speed_kmh / 3.6:g} m/s); timeout '
             f'{values["command_timeout_s"]:g} s ({values["timeout_action"]})')
+
+    def _wire(self):
+        # The Autoware-side rows of bridge_interfaces (the same as the bridge's).
+        node = self.node
+        self._stamp = stamp_builder(node.msg)
+        self._status = Outputs(node, bi.STATUS_TOPICS, SimpleNamespace(frame_id=self._frame_id))
+        self._input = bi.BRIDGE_INPUTS[self.input_type]
+        self._read_command = self._input.converter
+        self._subs = subscribe(node, {
+            self._input: self.handle_command,
+            bi.GEAR_COMMAND: self.handle_gear,
+            bi.TURN_INDICATORS_COMMAND: self.handle_turn_indicators,
+            bi.HAZARD_LIGHTS_COMMAND: self.handle_hazard_lights})
+        self._services = serve(node, {
+            bi.CONTROL_MODE_REQUEST: self._handle_control_mode_request})
 
     # ---------------------------------------------------------------- time
     def now_s(self):
@@ -200,19 +198,21 @@ class AutowareAutomobileNode:
 
     def handle_gear(self, msg):
         """Apply a GearCommand (NONE keeps the gear; undefined values are rejected)."""
-        gear = self._checked(check_gear, msg.command, 'gear_cmd')
+        gear = self._checked(check_gear, bi.GEAR_COMMAND.converter(msg), 'gear_cmd')
         if gear is not None and gear != GEAR_NONE:
             self.state.set_gear_action(gear_action_of_command(gear))
 
     def handle_turn_indicators(self, msg):
         """Apply a TurnIndicatorsCommand to the car's indicator (NO_COMMAND keeps it)."""
-        command = self._checked(check_turn_indicators, msg.command, 'turn_indicators_cmd')
+        command = self._checked(check_turn_indicators,
+                                bi.TURN_INDICATORS_COMMAND.converter(msg), 'turn_indicators_cmd')
         if command is not None and command != NO_COMMAND:
             set_car_indicator(self.car.logic, INDICATOR_OF_COMMAND[command])
 
     def handle_hazard_lights(self, msg):
         """Apply a HazardLightsCommand to the car's hazard flashers (NO_COMMAND keeps them)."""
-        command = self._checked(check_hazard_lights, msg.command, 'hazard_lights_cmd')
+        command = self._checked(check_hazard_lights, bi.HAZARD_LIGHTS_COMMAND.converter(msg),
+                                'hazard_lights_cmd')
         if command is not None and command != NO_COMMAND:
             self.car.logic.set_hazard_flashers(command == HAZARD_ENABLE)
 
@@ -241,35 +241,22 @@ class AutowareAutomobileNode:
         return response
 
     # ---------------------------------------------------------------- reports
-    def status_messages(self):
-        """Return {status Endpoint: message} built from the car's current state."""
-        t = self._types
-        stamp = self.node.time_msg(Time(int(round(self.now_s() * 1e9))))
+    def status_report(self):
+        """Return the VehicleReport of the status rows, from the car's own data."""
         report = car_report(self.car.logic)
-        velocity = t['autoware_vehicle_msgs/msg/VelocityReport']()
-        velocity.header.stamp = stamp
-        velocity.header.frame_id = self._frame_id
-        velocity.longitudinal_velocity = report.speed_mps
-        velocity.lateral_velocity = 0.0
-        velocity.heading_rate = report.heading_rate_radps
-        return {
-            bi.VELOCITY_STATUS: velocity,
-            bi.STEERING_STATUS: t['autoware_vehicle_msgs/msg/SteeringReport'](
-                stamp=stamp, steering_tire_angle=report.steering_tire_rad),
-            bi.GEAR_STATUS: t['autoware_vehicle_msgs/msg/GearReport'](
-                stamp=stamp, report=GEAR_REPORT[report.gear_action]),
-            bi.TURN_INDICATORS_STATUS: t['autoware_vehicle_msgs/msg/TurnIndicatorsReport'](
-                stamp=stamp, report=INDICATOR_REPORT[report.indicator]),
-            bi.HAZARD_LIGHTS_STATUS: t['autoware_vehicle_msgs/msg/HazardLightsReport'](
-                stamp=stamp, report=HAZARD_ENABLE if report.hazard else DISABLE),
-            bi.CONTROL_MODE_STATUS: t['autoware_vehicle_msgs/msg/ControlModeReport'](
-                stamp=stamp, mode=self.control_mode),
-        }
+        return bi.VehicleReport(
+            self._stamp(self.now_s()), report.speed_mps, report.heading_rate_radps,
+            report.steering_tire_rad, GEAR_REPORT[report.gear_action],
+            INDICATOR_REPORT[report.indicator], HAZARD_ENABLE if report.hazard else DISABLE,
+            self.control_mode)
+
+    def status_messages(self):
+        """Return {status row: message} built from the car's current state."""
+        return self._status.messages(EACH_STATUS, self.status_report())
 
     def publish_status(self):
         """Publish the six /vehicle/status reports."""
-        for spec, msg in self.status_messages().items():
-            self._status[spec].publish(msg)
+        self._status.publish(EACH_STATUS, self.status_report())
 
     def close(self):
         """Leave the graph and free the physics (idempotent)."""

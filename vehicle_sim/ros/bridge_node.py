@@ -27,6 +27,7 @@ tick (ramps, watchdog): a wall timer at ``control_rate_hz``, or, with ``use_sim_
 
 import math
 import sys
+from types import SimpleNamespace
 
 from vehicle_sim.core.autoware import control_mode_refusal
 from vehicle_sim.core.bridge_controller import BridgeController
@@ -38,8 +39,8 @@ from vehicle_sim.core.diff_drive import (
 )
 from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
 from vehicle_sim.core.params import ParamSpec
-from vehicle_sim.core.units import stamp_to_seconds
 from vehicle_sim.ros import bridge_interfaces as bi
+from vehicle_sim.ros.endpoints import EACH_COMMAND, EACH_STATUS, Outputs, serve, subscribe
 from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning
 from vehicle_sim.transport.port import Time
 from vehicle_sim.transport.selection import create_node
@@ -68,6 +69,7 @@ def _wheel_joints(value):
 # The node's own parameters; the kinematic ones are core's BRIDGE_PARAM_SPECS.
 NODE_PARAMETERS = (
     bi.INPUT_TYPE_PARAMETER,
+    # The output switches are the rows' ``switch`` (bridge_interfaces.BRIDGE_OUTPUTS).
     ParamSpec('publish_differential_command', kind='bool', default=True,
               doc=f'publish {bi.DIFFERENTIAL_COMMAND_OUT.ros_type} on '
                   f'{bi.DIFFERENTIAL_COMMAND_OUT.name}'),
@@ -136,53 +138,44 @@ class AckermannToDifferentialNode:
         self._warn = ThrottledWarning(node.get_logger())
         self.rejected = 0
         self._measured = None        # (v [m/s], yaw rate [rad/s]) from joint_states
-        msg = node.msg
-        self._types = {name: msg(name) for name in (
-            'vehicle_msgs/msg/DifferentialCommand', 'std_msgs/msg/Float64MultiArray',
-            'geometry_msgs/msg/Twist', 'geometry_msgs/msg/TwistStamped',
-            'autoware_vehicle_msgs/msg/VelocityReport', 'autoware_vehicle_msgs/msg/SteeringReport',
-            'autoware_vehicle_msgs/msg/GearReport',
-            'autoware_vehicle_msgs/msg/TurnIndicatorsReport',
-            'autoware_vehicle_msgs/msg/HazardLightsReport',
-            'autoware_vehicle_msgs/msg/ControlModeReport')}
-        self._outputs = {}
-        for switch, spec in bi.BRIDGE_OUTPUTS.items():
-            if values[switch]:
-                self._outputs[spec] = node.create_publisher(spec.ros_type, spec.name, spec.qos)
-        self._input = bi.BRIDGE_INPUTS[self.input_type]
-        self._read_command = bi.COMMAND_READERS[self.input_type]
-        self._subs = [node.create_subscription(self._input.ros_type, self._input.name,
-                                               self._on_command, self._input.qos)]
-        self._status = {}
-        if values['vehicle_status']:
-            for spec in bi.STATUS_TOPICS:
-                self._status[spec] = node.create_publisher(spec.ros_type, spec.name, spec.qos)
-            for spec, callback in ((bi.GEAR_COMMAND, self._on_gear_cmd),
-                                   (bi.TURN_INDICATORS_COMMAND, self._on_turn_indicators_cmd),
-                                   (bi.HAZARD_LIGHTS_COMMAND, self._on_hazard_lights_cmd),
-                                   (bi.JOINT_STATES_IN, self.handle_joint_states)):
-                self._subs.append(node.create_subscription(spec.ros_type, spec.name, callback,
-                                                           spec.qos))
-            self._control_mode_srv = node.create_service(
-                bi.CONTROL_MODE_REQUEST.ros_type, bi.CONTROL_MODE_REQUEST.name,
-                self._handle_control_mode_request)
-            self._status_timer = node.create_timer(1.0 / values['status_rate_hz'],
-                                                   self.publish_status)
-        if self._use_sim_time:
-            self._subs.append(node.create_subscription(bi.CLOCK.ros_type, bi.CLOCK.name,
-                                                       self._on_clock, bi.CLOCK.qos))
-            self._control_timer = None
-        else:
-            self._control_timer = node.create_timer(self._control_period_s, self._on_timer)
+        self._wire(values)
         warning = self.controller.kinematics.plausibility_warning()
         if warning:
             node.get_logger().warn(warning)
+        outputs = ', '.join(p.topic_name for p in self._outputs.publishers.values())
         node.get_logger().info(
             f'bridge ready: {self.input_type} on {self._input.name} -> '
-            f'{", ".join(p.topic_name for p in self._outputs.values()) or "no outputs"}; mode '
-            f'{self.params.mode}, wheel_base {self.params.wheel_base_m:g} m, tread '
+            f'{outputs or "no outputs"}; mode {self.params.mode}, wheel_base '
+            f'{self.params.wheel_base_m:g} m, tread '
             f'{self.params.wheel_tread_m:g} m, timeout {self.params.command_timeout_s:g} s '
             f'({self.params.timeout_action}){", sim time" if self._use_sim_time else ""}')
+
+    def _wire(self, values):
+        # Rows of bridge_interfaces, switched by the node's parameters; the wiring context of
+        # the output and status rows is self._wiring.
+        node = self.node
+        switches = dict(values, use_sim_time=self._use_sim_time)
+        self._wiring = SimpleNamespace(frame_id=self._frame_id, wheel_sides=self._sides)
+        self._outputs = Outputs(node, bi.BRIDGE_OUTPUTS, self._wiring, switches=switches)
+        self._status = Outputs(node, bi.STATUS_TOPICS, self._wiring, switches=switches)
+        self._input = bi.BRIDGE_INPUTS[self.input_type]
+        self._read_command = self._input.converter
+        self._subs = subscribe(node, {
+            self._input: self._on_command,
+            bi.GEAR_COMMAND: self._on_gear_cmd,
+            bi.TURN_INDICATORS_COMMAND: self._on_turn_indicators_cmd,
+            bi.HAZARD_LIGHTS_COMMAND: self._on_hazard_lights_cmd,
+            bi.JOINT_STATES_IN: self.handle_joint_states,
+            bi.CLOCK_IN: self._on_clock}, switches=switches)
+        self._services = serve(node, {
+            bi.CONTROL_MODE_REQUEST: self._handle_control_mode_request}, switches=switches)
+        self._status_timer = None
+        if values['vehicle_status']:
+            self._status_timer = node.create_timer(1.0 / values['status_rate_hz'],
+                                                   self.publish_status)
+        self._control_timer = None
+        if not self._use_sim_time:
+            self._control_timer = node.create_timer(self._control_period_s, self._on_timer)
 
     # ---------------------------------------------------------------- time
     def now_s(self):
@@ -193,7 +186,7 @@ class AckermannToDifferentialNode:
         return now
 
     def _on_clock(self, msg):
-        now_s = stamp_to_seconds(msg.clock.sec, msg.clock.nanosec)
+        now_s = bi.CLOCK_IN.converter(msg)
         self._last_clock_s = now_s
         if self._last_tick_s is not None and now_s < self._last_tick_s:
             self._last_tick_s = None            # sim time went back (reset): restart ticks
@@ -242,29 +235,9 @@ class AckermannToDifferentialNode:
         return self.node.time_msg(Time(ns))
 
     def _publish(self, command, now_s):
-        stamp = None
-        for spec, publisher in self._outputs.items():
-            if spec is bi.DIFFERENTIAL_COMMAND_OUT:
-                msg = self._types['vehicle_msgs/msg/DifferentialCommand']()
-                msg.header.stamp = stamp = stamp or self._stamp(now_s)
-                msg.header.frame_id = self._frame_id
-                msg.left_wheel.velocity = command.left_mps
-                msg.right_wheel.velocity = command.right_mps
-            elif spec is bi.WHEEL_VELOCITIES_OUT:
-                msg = self._types['std_msgs/msg/Float64MultiArray'](data=[
-                    command.left_radps if side == 'left' else command.right_radps
-                    for side in self._sides])
-            elif spec is bi.TWIST_OUT:
-                msg = self._types['geometry_msgs/msg/Twist']()
-                msg.linear.x = command.speed_mps
-                msg.angular.z = command.yaw_rate_radps
-            else:
-                msg = self._types['geometry_msgs/msg/TwistStamped']()
-                msg.header.stamp = stamp = stamp or self._stamp(now_s)
-                msg.header.frame_id = self._frame_id
-                msg.twist.linear.x = command.speed_mps
-                msg.twist.angular.z = command.yaw_rate_radps
-            publisher.publish(msg)
+        if self._outputs.publishers:
+            self._outputs.publish(EACH_COMMAND, SimpleNamespace(stamp=self._stamp(now_s),
+                                                                command=command))
 
     # ---------------------------------------------------------------- vehicle interface
     def _on_gear_cmd(self, msg):
@@ -291,14 +264,15 @@ class AckermannToDifferentialNode:
 
     def handle_joint_states(self, msg):
         """Take the measured wheel speeds [rad/s] of ``wheel_joints`` from a JointState."""
-        if not msg.velocity:
+        names, velocities = bi.JOINT_STATES_IN.converter(msg)
+        if not velocities:
             return
-        index = {name: i for i, name in enumerate(msg.name)}
+        index = {name: i for i, name in enumerate(names)}
         sums = {'left': [0.0, 0], 'right': [0.0, 0]}
         for joint, side in zip(self.wheel_joints, self._sides):
             i = index.get(joint)
-            if i is not None and i < len(msg.velocity) and math.isfinite(msg.velocity[i]):
-                sums[side][0] += msg.velocity[i]
+            if i is not None and i < len(velocities) and math.isfinite(velocities[i]):
+                sums[side][0] += velocities[i]
                 sums[side][1] += 1
         if not sums['left'][1] or not sums['right'][1]:
             return
@@ -313,37 +287,21 @@ class AckermannToDifferentialNode:
         """(v [m/s], yaw rate [rad/s]) from the last usable joint_states, or None."""
         return self._measured
 
-    def publish_status(self):
-        """Publish the six /vehicle/status reports (velocity/steering only once measured)."""
-        if not self._status:
-            return
-        stamp = self._stamp(self.now_s())
-        t = self._types
+    def status_report(self):
+        """Return the VehicleReport of the status rows (velocity/steering once measured)."""
         controller = self.controller
+        speed = yaw_rate = steering = None
         if self._measured is not None:
             speed, yaw_rate = self._measured
-            velocity = t['autoware_vehicle_msgs/msg/VelocityReport']()
-            velocity.header.stamp = stamp
-            velocity.header.frame_id = self._frame_id
-            velocity.longitudinal_velocity = speed
-            velocity.lateral_velocity = 0.0
-            velocity.heading_rate = yaw_rate
-            self._status[bi.VELOCITY_STATUS].publish(velocity)
-            self._status[bi.STEERING_STATUS].publish(
-                t['autoware_vehicle_msgs/msg/SteeringReport'](
-                    stamp=stamp, steering_tire_angle=equivalent_steering_rad(
-                        speed, yaw_rate, self.params.wheel_base_m)))
-        self._status[bi.GEAR_STATUS].publish(t['autoware_vehicle_msgs/msg/GearReport'](
-            stamp=stamp, report=controller.gear))
-        self._status[bi.TURN_INDICATORS_STATUS].publish(
-            t['autoware_vehicle_msgs/msg/TurnIndicatorsReport'](
-                stamp=stamp, report=controller.turn_indicators))
-        self._status[bi.HAZARD_LIGHTS_STATUS].publish(
-            t['autoware_vehicle_msgs/msg/HazardLightsReport'](
-                stamp=stamp, report=controller.hazard_lights))
-        self._status[bi.CONTROL_MODE_STATUS].publish(
-            t['autoware_vehicle_msgs/msg/ControlModeReport'](
-                stamp=stamp, mode=controller.control_mode))
+            steering = equivalent_steering_rad(speed, yaw_rate, self.params.wheel_base_m)
+        return bi.VehicleReport(self._stamp(self.now_s()), speed, yaw_rate, steering,
+                                controller.gear, controller.turn_indicators,
+                                controller.hazard_lights, controller.control_mode)
+
+    def publish_status(self):
+        """Publish the six /vehicle/status reports (velocity/steering only once measured)."""
+        if self._status.publishers:
+            self._status.publish(EACH_STATUS, self.status_report())
 
     def destroy(self):
         """Leave the graph."""

@@ -34,14 +34,23 @@ warning; the command in force stays.
 
 import math
 import sys
+from types import SimpleNamespace
 
 from vehicle_sim.core.diff_drive import integrate_pose, twist_from_wheel_speeds
 from vehicle_sim.core.errors import InvalidCommandError, VehicleSimError
 from vehicle_sim.core.params import ParamSpec
-from vehicle_sim.core.units import seconds_to_stamp
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
 from vehicle_sim.physics.world import World
 from vehicle_sim.ros import bridge_interfaces as bi
+from vehicle_sim.ros.endpoints import (
+    EACH_PUBLISH,
+    EACH_STEP,
+    ONCE_LATCHED,
+    Outputs,
+    serve,
+    subscribe,
+)
+from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning
 from vehicle_sim.transport.selection import create_node
 
@@ -116,31 +125,7 @@ class DiffRobotNode:
         self.base_frame = f'{prefix}base_link'
         self._odom_pose = (0.0, 0.0, 0.0)
         self._warn = ThrottledWarning(node.get_logger())
-        self._m = {name: node.msg(name) for name in (
-            'rosgraph_msgs/msg/Clock', 'sensor_msgs/msg/JointState', 'nav_msgs/msg/Odometry',
-            'tf2_msgs/msg/TFMessage', 'geometry_msgs/msg/TransformStamped',
-            'std_msgs/msg/Header', 'std_msgs/msg/String', 'builtin_interfaces/msg/Time')}
-        self._pub = {}
-        for spec in (bi.CLOCK, bi.ROBOT_JOINT_STATES, bi.ROBOT_ODOM, bi.ROBOT_GROUND_TRUTH_ODOM,
-                     bi.TF, bi.TF_STATIC, bi.ROBOT_ROBOT_DESCRIPTION):
-            self._pub[spec] = node.create_publisher(spec.ros_type, _private(spec.name),
-                                                    spec.qos)
-        self._subs = [
-            node.create_subscription(bi.ROBOT_DIFFERENTIAL_COMMAND.ros_type,
-                                     _private(bi.ROBOT_DIFFERENTIAL_COMMAND.name),
-                                     self._on_differential_command,
-                                     bi.ROBOT_DIFFERENTIAL_COMMAND.qos),
-            node.create_subscription(bi.ROBOT_WHEEL_VELOCITIES.ros_type,
-                                     _private(bi.ROBOT_WHEEL_VELOCITIES.name),
-                                     self._on_wheel_velocities,
-                                     bi.ROBOT_WHEEL_VELOCITIES.qos),
-        ]
-        self._time_step_srv = node.create_service(
-            bi.ROBOT_TIME_STEP.ros_type, _private(bi.ROBOT_TIME_STEP.name),
-            self._handle_time_step)
-        self._pub[bi.ROBOT_ROBOT_DESCRIPTION].publish(
-            self._m['std_msgs/msg/String'](data=self.robot.urdf))
-        self._publish_static_tf()
+        self._wire()
         self._timer = None
         if self._owns_world and not self.synchronous:
             self._timer = node.create_timer(self.world.time_step_s, self._on_timer)
@@ -150,17 +135,38 @@ class DiffRobotNode:
             f'{"synchronous" if self.synchronous else "real time"}, step '
             f'{self.world.time_step_s * 1000:g} ms, wheel_joints {list(self.wheel_joints)}')
 
+    def _wire(self):
+        # Rows of bridge_interfaces; self._ctx is their wiring and call context.
+        node = self.node
+        x, y, yaw = self._spawn
+        self._stamp = stamp_builder(node.msg)
+        self._ctx = ctx = SimpleNamespace(
+            joint_names=tuple(self.robot.wheel_joints), odom_frame=self.odom_frame,
+            base_frame=self.base_frame, urdf=self.robot.urdf,
+            tf_frames=[(self.odom_frame, self.base_frame)],
+            static_transforms=[('world', self.odom_frame, (x, y, 0.0), _yaw_quaternion(yaw))],
+            stamp=self._stamp(self.world.time_s), joints=None, odom=None, ground_truth=None,
+            tf_poses=None)
+        self._outputs = Outputs(node, bi.ROBOT_OUTPUTS, ctx, _private)
+        self._pub = self._outputs.publishers
+        self._subs = subscribe(node, {
+            bi.ROBOT_DIFFERENTIAL_COMMAND: self._on_differential_command,
+            bi.ROBOT_WHEEL_VELOCITIES: self._on_wheel_velocities}, _private)
+        self._time_step_srv = serve(node, {bi.ROBOT_TIME_STEP: self._handle_time_step},
+                                    _private)[bi.ROBOT_TIME_STEP]
+        self._outputs.publish(ONCE_LATCHED, ctx)
+
     # ---------------------------------------------------------------- commands
     def _on_differential_command(self, msg):
         radius = self.params.wheel_radius_m
         try:
-            left, right = msg.left_wheel.velocity, msg.right_wheel.velocity
+            left, right = bi.ROBOT_DIFFERENTIAL_COMMAND.converter(msg)
             self.robot.set_wheel_velocities(left / radius, right / radius)
         except (InvalidCommandError, TypeError, ZeroDivisionError) as error:
             self._warn.warn(f'differential_command rejected: {error}')
 
     def _on_wheel_velocities(self, msg):
-        values = list(msg.data)
+        values = bi.ROBOT_WHEEL_VELOCITIES.converter(msg)
         if len(values) != len(self.wheel_joints):
             self._warn.warn(
                 f'wheel_velocities rejected: {len(values)} entries, {len(self.wheel_joints)} '
@@ -204,72 +210,29 @@ class DiffRobotNode:
         self.publish_state()
 
     # ---------------------------------------------------------------- outputs
-    def _stamp(self):
-        sec, nanosec = seconds_to_stamp(self.world.time_s)
-        return self._m['builtin_interfaces/msg/Time'](sec=sec, nanosec=nanosec)
-
-    def _odometry(self, stamp, frame, x, y, z, quat, speed, lateral, yaw_rate):
-        msg = self._m['nav_msgs/msg/Odometry']()
-        msg.header.stamp = stamp
-        msg.header.frame_id = frame
-        msg.child_frame_id = self.base_frame
-        position = msg.pose.pose.position
-        position.x, position.y, position.z = x, y, z
-        orientation = msg.pose.pose.orientation
-        orientation.x, orientation.y, orientation.z, orientation.w = quat
-        msg.twist.twist.linear.x = speed
-        msg.twist.twist.linear.y = lateral
-        msg.twist.twist.angular.z = yaw_rate
-        return msg
-
-    def _transform(self, stamp, parent, child, x, y, z, quat):
-        msg = self._m['geometry_msgs/msg/TransformStamped']()
-        msg.header.stamp = stamp
-        msg.header.frame_id = parent
-        msg.child_frame_id = child
-        t = msg.transform.translation
-        t.x, t.y, t.z = x, y, z
-        r = msg.transform.rotation
-        r.x, r.y, r.z, r.w = quat
-        return msg
-
-    def _publish_static_tf(self):
-        x, y, yaw = self._spawn
-        self._pub[bi.TF_STATIC].publish(self._m['tf2_msgs/msg/TFMessage'](transforms=[
-            self._transform(self._stamp(), 'world', self.odom_frame, x, y, 0.0,
-                            _yaw_quaternion(yaw))]))
-
     def publish_state(self):
         """Publish /clock (owned world), joint states, wheel odometry, ground truth and /tf."""
-        stamp = self._stamp()
+        ctx = self._ctx
+        ctx.stamp = self._stamp(self.world.time_s)
+        outputs = self._outputs
         if self._owns_world:
-            self._pub[bi.CLOCK].publish(self._m['rosgraph_msgs/msg/Clock'](clock=stamp))
-        names, positions, velocities = self.robot.joint_states()
-        joint_state = self._m['sensor_msgs/msg/JointState']()
-        joint_state.header.stamp = stamp
-        joint_state.name = list(names)
-        joint_state.position = list(positions)
-        joint_state.velocity = list(velocities)
-        self._pub[bi.ROBOT_JOINT_STATES].publish(joint_state)
-        # Wheel odometry: the ideal differential law on the measured wheel speeds.
+            outputs.publish(EACH_STEP, ctx)
         reading = self.robot.read()
+        ctx.joints = (reading.wheel_position_rad, reading.wheel_velocity_radps)
+        # Wheel odometry: the ideal differential law on the measured wheel speeds.
         radius = self.params.wheel_radius_m
         twist = twist_from_wheel_speeds(reading.left_radps * radius,
                                         reading.right_radps * radius, self.params.wheel_tread_m)
         x, y, yaw = self._odom_pose = integrate_pose(
             *self._odom_pose, twist.speed_mps, twist.yaw_rate_radps, self.world.time_step_s)
-        quat = _yaw_quaternion(yaw)
-        self._pub[bi.ROBOT_ODOM].publish(self._odometry(
-            stamp, self.odom_frame, x, y, 0.0, quat, twist.speed_mps, 0.0,
-            twist.yaw_rate_radps))
+        xyz, quat = (x, y, 0.0), _yaw_quaternion(yaw)
+        ctx.odom = (xyz, quat, (twist.speed_mps, 0.0, 0.0), (0.0, 0.0, twist.yaw_rate_radps))
         pose = self.robot.pose()
         linear, angular = self.robot.body_twist()
-        self._pub[bi.ROBOT_GROUND_TRUTH_ODOM].publish(self._odometry(
-            stamp, 'world', pose[0], pose[1], pose[2], pose[3:], linear[0], linear[1],
-            angular[2]))
-        if self._publish_tf:
-            self._pub[bi.TF].publish(self._m['tf2_msgs/msg/TFMessage'](transforms=[
-                self._transform(stamp, self.odom_frame, self.base_frame, x, y, 0.0, quat)]))
+        ctx.ground_truth = (pose[:3], pose[3:], (linear[0], linear[1], 0.0),
+                            (0.0, 0.0, angular[2]))
+        ctx.tf_poses = [(xyz, quat)] if self._publish_tf else None
+        outputs.publish(EACH_PUBLISH, ctx)
 
     @property
     def odom_pose(self):

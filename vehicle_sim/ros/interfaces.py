@@ -13,30 +13,44 @@
 # limitations under the License.
 
 """
-The one table of every ROS endpoint of a simulated car (DESIGN §5.2, webots_spec.md §5.3).
+The automobile node's interface table: every topic and service of a simulated car (DESIGN §5.2).
 
-Names are relative to the vehicle namespace ``ns`` (empty for the default car): ``automobile/x``
-becomes ``/<ns>/automobile/x``; names with a leading ``/`` are global. The automobile node, its
-tests and ``docs/ros_interface.md`` (via :func:`interface_table_markdown`) iterate these tables,
-so a name cannot diverge between them (STYLE rule 9).
+Rows are :mod:`.endpoints` rows. Names are relative to the vehicle namespace ``ns`` (empty for
+the default car): ``automobile/x`` becomes ``/<ns>/automobile/x``; names with a leading ``/``
+are global and published once for all vehicles (``/clock``, ``/tf``, ``/tf_static``, defined in
+:mod:`.endpoints`). The automobile node wires and publishes these rows, its tests iterate them,
+and ``docs/ros_interface.md`` embeds :func:`interface_table_markdown`, so a name cannot diverge
+between them (STYLE rule 9).
+
+Converter contexts of the per-vehicle rows: wiring ``w`` = the vehicle (``base_frame``,
+``odom_frame``, ``joint_names``); call ``ctx`` = the same vehicle after ``sample(stamp)``
+(``stamp``, ``status`` (CarStatus), ``torque_mode``, ``odom`` = (xyz, q, linear, angular) of
+base_link in odom with the twist in base_link, ``joints`` = (positions, velocities)) and, for
+the latched row, ``description()`` (the URDF).
 
 Values keep Webots semantics on every ``automobile/*`` endpoint: km/h, steering angle in rad with
 positive = right, throttle and brake in [0, 1]. Standard ROS outputs are SI / REP 103.
 """
 
-from dataclasses import dataclass
-import math
-from typing import Optional, Tuple
+from operator import attrgetter
 
-from vehicle_sim.transport.port import (
-    QOS_DEFAULT,
-    QOS_LATCHED,
-    QOS_TF,
-    QOS_TF_STATIC,
-    QosProfile,
+from vehicle_sim.ros import messages as m
+from vehicle_sim.ros.endpoints import (  # noqa: F401 - the cadences are part of this table
+    CLOCK,
+    converter,
+    EACH_PUBLISH,
+    EACH_STEP,
+    ONCE_LATCHED,
+    Service,
+    TF,
+    TF_STATIC,
+    Topic,
+    topic_table_markdown,
+    value_text,
 )
+from vehicle_sim.transport.port import QOS_DEFAULT, QOS_LATCHED
 
-FLOAT64_STAMPED = 'vehicle_msgs/msg/Float64Stamped'
+FLOAT64_STAMPED = m.FLOAT64_STAMPED
 SET_FLOAT = 'vehicle_msgs/srv/SetFloat'
 GET_FLOAT = 'vehicle_msgs/srv/GetFloat'
 SET_INT = 'vehicle_msgs/srv/SetInt'
@@ -44,15 +58,6 @@ GET_INT = 'vehicle_msgs/srv/GetInt'
 SET_BOOL = 'vehicle_msgs/srv/SetBool'
 GET_BOOL = 'vehicle_msgs/srv/GetBool'
 GET_DIMENSIONS = 'vehicle_msgs/srv/GetDimensions'
-
-# /clock is published reliable with depth 1: it matches rclpy's best-effort TimeSource reader
-# and reliable readers alike (ros2_wire A6).
-QOS_CLOCK_PUBLISHER = QosProfile(depth=1)
-
-# Topic publishing cadence.
-EACH_STEP = 'each basic step'
-EACH_PUBLISH = 'each publish period'
-ONCE_LATCHED = 'once, latched'
 
 # Service kinds: how the node serves them.
 SETTER = 'setter'          # request.value -> CarLogic setter; success = accepted
@@ -66,94 +71,39 @@ NAN = float('nan')
 INF = float('inf')
 
 
-@dataclass(frozen=True)
-class TopicSpec:
-    """
-    One published topic.
-
-    :param name: name relative to the vehicle namespace (``/...`` = global).
-    :param ros_type: ROS type name.
-    :param qos: the publisher's QoS profile.
-    :param cadence: when it is published.
-    :param status_field: for Float64Stamped topics, the CarStatus field holding the value.
-    :param index: element of a tuple field (wheel index 0 FR, 1 FL, 2 RR, 3 RL).
-    :param torque_only: published only while the control mode is TORQUE (Webots' rpm).
-    :param unit: unit of ``data``.
-    :param doc: one-line description.
-    """
-
-    name: str
-    ros_type: str
-    qos: QosProfile
-    cadence: str
-    status_field: Optional[str] = None
-    index: Optional[int] = None
-    torque_only: bool = False
-    unit: str = ''
-    doc: str = ''
-
-    @property
-    def is_global(self) -> bool:
-        return self.name.startswith('/')
-
-    @property
-    def short_name(self) -> str:
-        return self.name.rsplit('/', 1)[-1]
+def _status_value(field, index=None, torque_only=False):
+    # ctx -> (stamp, value) of a CarStatus field (one element of a tuple field); None outside
+    # TORQUE mode for a torque-only value (Webots publishes rpm in TORQUE mode only).
+    get = attrgetter(field)
+    if index is not None:
+        return lambda v: (v.stamp, get(v.status)[index])
+    if torque_only:
+        return lambda v: (v.stamp, get(v.status)) if v.torque_mode else None
+    return lambda v: (v.stamp, get(v.status))
 
 
-@dataclass(frozen=True)
-class ServiceSpec:
-    """
-    One service and what it maps to.
-
-    :param name: name relative to the vehicle namespace.
-    :param srv_type: ROS service type.
-    :param kind: SETTER, GETTER, DIMENSIONS, TIME_STEP, WORLD_TIME or BASIC_TIME_STEP.
-    :param core: CarLogic setter method (SETTER) or getter property (GETTER).
-    :param value: conversion of the value: 'float', 'int' or 'bool' (request for setters,
-        response for getters); the Webots units are the core units, so no scaling is needed.
-    :param unit: unit of the value.
-    :param legacy: kept for old Webots clients (same callback as its modern twin).
-    :param webots: True for the names of webots_spec §5.3, False for our additions.
-    :param observed_by: the getter service or Float64Stamped topic that reports what a setter
-        changed (None: Webots offers no getter for it).
-    :param example: a valid, non-default value (tests).
-    :param invalid: values the node must refuse with success=false (DESIGN §4 ROS column).
-    :param doc: one-line description.
-    """
-
-    name: str
-    srv_type: str
-    kind: str
-    core: Optional[str] = None
-    value: str = 'float'
-    unit: str = ''
-    legacy: bool = False
-    webots: bool = True
-    observed_by: Optional[str] = None
-    example: Optional[float] = None
-    invalid: Tuple = ()
-    doc: str = ''
-
-    @property
-    def short_name(self) -> str:
-        return self.name.rsplit('/', 1)[-1]
+def _base_frame(v):
+    return (v.base_frame,)
 
 
 def _f64(name, field, unit, doc, index=None, torque_only=False):
-    return TopicSpec('automobile/' + name, FLOAT64_STAMPED, QOS_DEFAULT, EACH_PUBLISH,
-                     status_field=field, index=index, torque_only=torque_only, unit=unit,
-                     doc=doc)
+    return Topic('automobile/' + name, FLOAT64_STAMPED, QOS_DEFAULT, EACH_PUBLISH,
+                 converter(m.float64_stamped_builder, _status_value(field, index, torque_only),
+                           _base_frame), unit=unit, doc=doc)
 
 
 _WHEELS = ('front_right', 'front_left', 'rear_right', 'rear_left')
+
+RPM = _f64('rpm', 'rpm', 'rpm', 'engine speed; published in TORQUE mode only (Webots)',
+           torque_only=True)
+# Published in TORQUE mode only; the other Float64Stamped topics every publish period.
+TORQUE_ONLY_TOPICS = (RPM,)
 
 AUTOMOBILE_TOPICS = (
     _f64('brake_intensity', 'brake_intensity', '1', 'brake intensity in [0, 1]'),
     _f64('current_speed', 'current_speed_kmh', 'km/h',
          'speed estimated from the driven wheels (Webots getCurrentSpeed)'),
-    _f64('rpm', 'rpm', 'rpm', 'engine speed; published in TORQUE mode only (Webots)',
-         torque_only=True),
+    RPM,
     _f64('steering_angle', 'steering_angle_rad', 'rad',
          'mean of the measured front wheel angles, positive = right'),
     _f64('right_steering_angle', 'right_steering_angle_rad', 'rad',
@@ -169,23 +119,25 @@ AUTOMOBILE_TOPICS = (
          index=i) for i, wheel in enumerate(_WHEELS)
 )
 
-ODOM = TopicSpec('odom', 'nav_msgs/msg/Odometry', QOS_DEFAULT, EACH_PUBLISH,
-                 unit='m, rad, m/s, rad/s',
-                 doc='ground truth; frame <p>odom, child <p>base_link, twist in the child frame')
-TF = TopicSpec('/tf', 'tf2_msgs/msg/TFMessage', QOS_TF, EACH_PUBLISH,
-               doc='<p>odom -> <p>base_link of every vehicle, one message')
-TF_STATIC = TopicSpec('/tf_static', 'tf2_msgs/msg/TFMessage', QOS_TF_STATIC, ONCE_LATCHED,
-                      doc='world -> <p>odom at each spawn pose, one message holding all')
-JOINT_STATES = TopicSpec('joint_states', 'sensor_msgs/msg/JointState', QOS_DEFAULT,
-                         EACH_PUBLISH, unit='rad, m, rad/s, m/s',
-                         doc='wheel spin, steering and suspension joints, names prefixed <p>')
-ROBOT_DESCRIPTION = TopicSpec('robot_description', 'std_msgs/msg/String', QOS_LATCHED,
-                              ONCE_LATCHED, doc='URDF, link and joint names prefixed <p>')
-CLOCK = TopicSpec('/clock', 'rosgraph_msgs/msg/Clock', QOS_CLOCK_PUBLISHER, EACH_STEP,
-                  unit='s', doc='simulated time')
+ODOM = Topic('odom', m.ODOMETRY, QOS_DEFAULT, EACH_PUBLISH,
+             converter(m.odometry_builder, lambda v: (v.stamp,) + v.odom,
+                       lambda v: (v.odom_frame, v.base_frame)),
+             unit='m, rad, m/s, rad/s',
+             doc='ground truth; frame <p>odom, child <p>base_link, twist in the child frame')
+JOINT_STATES = Topic('joint_states', m.JOINT_STATE, QOS_DEFAULT, EACH_PUBLISH,
+                     converter(m.joint_state_builder, lambda v: (v.stamp,) + v.joints,
+                               lambda v: (v.joint_names,)),
+                     unit='rad, m, rad/s, m/s',
+                     doc='wheel spin, steering and suspension joints, names prefixed <p>')
+ROBOT_DESCRIPTION = Topic('robot_description', m.STRING, QOS_LATCHED, ONCE_LATCHED,
+                          converter(m.string_builder, lambda v: (v.description(),)),
+                          doc='URDF, link and joint names prefixed <p>')
 
 STANDARD_TOPICS = (CLOCK, ODOM, TF, TF_STATIC, JOINT_STATES, ROBOT_DESCRIPTION)
 TOPICS = AUTOMOBILE_TOPICS + STANDARD_TOPICS
+# Wired once per vehicle (relative names) and once for the node (global names).
+VEHICLE_TOPICS = tuple(row for row in TOPICS if not row.is_global)
+WORLD_TOPICS = tuple(row for row in TOPICS if row.is_global)
 
 _NON_FINITE = (NAN, INF, -INF)
 
@@ -194,13 +146,12 @@ def _set(name, srv_type, core, value, observed_by, example, invalid=(), unit='',
          legacy=False, webots=True):
     if value == 'float':
         invalid = _NON_FINITE + tuple(invalid)
-    return ServiceSpec('automobile/' + name, srv_type, SETTER, core, value, unit, legacy, webots,
-                       observed_by, example, tuple(invalid), doc)
+    return Service('automobile/' + name, srv_type, SETTER, core, value, unit, legacy, webots,
+                   observed_by, example, tuple(invalid), doc)
 
 
 def _get(name, srv_type, core, value, unit='', doc='', legacy=False):
-    return ServiceSpec('automobile/' + name, srv_type, GETTER, core, value, unit, legacy,
-                       doc=doc)
+    return Service('automobile/' + name, srv_type, GETTER, core, value, unit, legacy, doc=doc)
 
 
 AUTOMOBILE_SERVICES = (
@@ -253,8 +204,8 @@ AUTOMOBILE_SERVICES = (
          doc='-1 UNDEFINED, 0 SPEED, 1 TORQUE'),
     _get('get_cruising_speed', GET_FLOAT, 'target_cruising_speed_kmh', 'float', unit='km/h',
          doc='target cruising speed'),
-    ServiceSpec('automobile/get_dimensions', GET_DIMENSIONS, DIMENSIONS, 'dimensions',
-                value='float', unit='m', doc='track front/rear, wheel base, wheel radii'),
+    Service('automobile/get_dimensions', GET_DIMENSIONS, DIMENSIONS, 'dimensions',
+            value='float', unit='m', doc='track front/rear, wheel base, wheel radii'),
     _get('get_dipped_beam', GET_BOOL, 'dipped_beams', 'bool'),
     _get('get_engine_type', GET_INT, 'engine_type', 'int',
          doc='0 combustion, 1 electric, 2 parallel hybrid, 3 power-split hybrid'),
@@ -271,14 +222,14 @@ AUTOMOBILE_SERVICES = (
 )
 
 ROBOT_SERVICES = (
-    ServiceSpec('robot/time_step', SET_INT, TIME_STEP, value='int', unit='ms',
-                invalid=(7, -10), example=10,
-                doc='synchronous mode: advance the shared world by value ms (a multiple of the '
-                    'basic step; 0 = one step); success=false otherwise'),
-    ServiceSpec('robot/get_time', GET_FLOAT, WORLD_TIME, value='float', unit='s',
-                doc='simulated time'),
-    ServiceSpec('robot/get_basic_time_step', GET_FLOAT, BASIC_TIME_STEP, value='float',
-                unit='ms', doc='basic time step'),
+    Service('robot/time_step', SET_INT, TIME_STEP, value='int', unit='ms',
+            invalid=(7, -10), example=10,
+            doc='synchronous mode: advance the shared world by value ms (a multiple of the '
+                'basic step; 0 = one step); success=false otherwise'),
+    Service('robot/get_time', GET_FLOAT, WORLD_TIME, value='float', unit='s',
+            doc='simulated time'),
+    Service('robot/get_basic_time_step', GET_FLOAT, BASIC_TIME_STEP, value='float',
+            unit='ms', doc='basic time step'),
 )
 
 SERVICES = AUTOMOBILE_SERVICES + ROBOT_SERVICES
@@ -288,16 +239,16 @@ NOT_SERVED = ('automobile/get_throttle', 'automobile/get_brake_intensity', 'auto
               'automobile/set_brake')
 
 
-def topic(name: str) -> TopicSpec:
-    """Return the TopicSpec called ``name`` (relative name as in the table)."""
+def topic(name: str) -> Topic:
+    """Return the Topic row called ``name`` (relative name as in the table)."""
     for spec in TOPICS:
         if spec.name == name:
             return spec
     raise KeyError(name)
 
 
-def service(name: str) -> ServiceSpec:
-    """Return the ServiceSpec called ``name`` (relative name as in the table)."""
+def service(name: str) -> Service:
+    """Return the Service row called ``name`` (relative name as in the table)."""
     for spec in SERVICES:
         if spec.name == name:
             return spec
@@ -324,14 +275,8 @@ def frame_prefix(namespace: str) -> str:
     return namespace + '/' if namespace else ''
 
 
-def _qos_text(qos: QosProfile) -> str:
-    return f'{qos.reliability}, {qos.durability}, depth {qos.depth}'
-
-
-def _value_text(value) -> str:
-    if isinstance(value, float) and not math.isfinite(value):
-        return str(value)
-    return repr(value)
+def _docs_name(row) -> str:
+    return row.name if row.is_global else '/<ns>/' + row.name
 
 
 def interface_table_markdown() -> str:
@@ -340,13 +285,9 @@ def interface_table_markdown() -> str:
 
     :return: two Markdown tables, topics then services.
     """
-    lines = ['| topic | type | QoS | published | unit | notes |', '|---|---|---|---|---|---|']
-    for spec in TOPICS:
-        name = spec.name if spec.is_global else '/<ns>/' + spec.name
-        lines.append(f'| `{name}` | {spec.ros_type} | {_qos_text(spec.qos)} | {spec.cadence} | '
-                     f'{spec.unit} | {spec.doc} |')
-    lines += ['', '| service | type | maps to | value | unit | refused (success=false) | notes |',
-              '|---|---|---|---|---|---|---|']
+    lines = [topic_table_markdown(TOPICS, display_name=_docs_name).rstrip('\n'), '',
+             '| service | type | maps to | value | unit | refused (success=false) | notes |',
+             '|---|---|---|---|---|---|---|']
     for spec in SERVICES:
         if spec.kind in (SETTER, GETTER):
             target = f'CarLogic.{spec.core}'
@@ -354,7 +295,7 @@ def interface_table_markdown() -> str:
             target = 'CarLogic.dimensions()'
         else:
             target = f'world ({spec.kind})'
-        refused = ', '.join(_value_text(v) for v in spec.invalid)
+        refused = ', '.join(value_text(v) for v in spec.invalid)
         notes = spec.doc
         if spec.legacy:
             notes += ' (legacy)'

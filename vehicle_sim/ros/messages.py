@@ -1,0 +1,243 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Message builders: one per published ROS type, constant parts fixed once, values per call.
+
+``<type>_builder(msg, *constants)`` runs when a node wires a row (``msg`` is the transport's
+``node.msg`` class lookup): it resolves the message classes and keeps the parts that never change
+for that row (frame ids, the joint-name list, the frame pairs of a TF message). The ``build``
+function it returns makes one message from the values that change (stamp, readings), so the
+per-step path allocates nothing constant. Row converters (:func:`.endpoints.converter`) join a
+value reader to a builder; a faster serializer for a type can later stand in for its builder with
+the same arguments, without changing a row. The messages are the same on rclpy and on the
+embedded transport.
+"""
+
+from typing import Sequence, Tuple
+
+from vehicle_sim.core.units import seconds_to_stamp
+
+TIME = 'builtin_interfaces/msg/Time'
+HEADER = 'std_msgs/msg/Header'
+STRING = 'std_msgs/msg/String'
+FLOAT64_MULTI_ARRAY = 'std_msgs/msg/Float64MultiArray'
+CLOCK = 'rosgraph_msgs/msg/Clock'
+FLOAT64_STAMPED = 'vehicle_msgs/msg/Float64Stamped'
+DIFFERENTIAL_COMMAND = 'vehicle_msgs/msg/DifferentialCommand'
+ODOMETRY = 'nav_msgs/msg/Odometry'
+JOINT_STATE = 'sensor_msgs/msg/JointState'
+TF_MESSAGE = 'tf2_msgs/msg/TFMessage'
+TRANSFORM_STAMPED = 'geometry_msgs/msg/TransformStamped'
+TWIST = 'geometry_msgs/msg/Twist'
+TWIST_STAMPED = 'geometry_msgs/msg/TwistStamped'
+VELOCITY_REPORT = 'autoware_vehicle_msgs/msg/VelocityReport'
+STEERING_REPORT = 'autoware_vehicle_msgs/msg/SteeringReport'
+GEAR_REPORT = 'autoware_vehicle_msgs/msg/GearReport'
+TURN_INDICATORS_REPORT = 'autoware_vehicle_msgs/msg/TurnIndicatorsReport'
+HAZARD_LIGHTS_REPORT = 'autoware_vehicle_msgs/msg/HazardLightsReport'
+CONTROL_MODE_REPORT = 'autoware_vehicle_msgs/msg/ControlModeReport'
+
+Vector = Tuple[float, float, float]
+Quaternion = Tuple[float, float, float, float]
+
+
+def stamp_builder(msg):
+    """Return ``stamp(time_s)``: builtin_interfaces/Time of a simulated time [s]."""
+    time_type = msg(TIME)
+
+    def stamp(time_s):
+        sec, nanosec = seconds_to_stamp(time_s)
+        return time_type(sec=sec, nanosec=nanosec)
+    return stamp
+
+
+def clock_builder(msg):
+    """Return ``build(stamp)``: rosgraph_msgs/Clock."""
+    clock_type = msg(CLOCK)
+    return lambda stamp: clock_type(clock=stamp)
+
+
+def string_builder(msg):
+    """Return ``build(text)``: std_msgs/String."""
+    string_type = msg(STRING)
+    return lambda text: string_type(data=text)
+
+
+def float64_stamped_builder(msg, frame_id: str):
+    """
+    Return ``build(stamp, value)``: vehicle_msgs/Float64Stamped in ``frame_id``.
+
+    Messages of one stamp share one header (the rows of a vehicle share this builder).
+    """
+    header_type, value_type = msg(HEADER), msg(FLOAT64_STAMPED)
+    last = [None, None]      # the last stamp and its header (kept: its id cannot be reused)
+
+    def build(stamp, value):
+        if stamp is not last[0]:
+            last[0], last[1] = stamp, header_type(stamp=stamp, frame_id=frame_id)
+        return value_type(header=last[1], data=float(value))
+    return build
+
+
+def odometry_builder(msg, frame_id: str, child_frame_id: str):
+    """
+    Return ``build(stamp, xyz, q, linear, angular)``: nav_msgs/Odometry, zero covariances.
+
+    The pose is the child frame's in ``frame_id``; the twist is expressed in ``child_frame_id``.
+    """
+    odometry_type = msg(ODOMETRY)
+
+    def build(stamp, xyz, q, linear, angular):
+        odometry = odometry_type()
+        odometry.header.stamp = stamp
+        odometry.header.frame_id = frame_id
+        odometry.child_frame_id = child_frame_id
+        pose = odometry.pose.pose
+        position, orientation = pose.position, pose.orientation
+        position.x, position.y, position.z = float(xyz[0]), float(xyz[1]), float(xyz[2])
+        orientation.x, orientation.y = float(q[0]), float(q[1])
+        orientation.z, orientation.w = float(q[2]), float(q[3])
+        twist = odometry.twist.twist
+        twist.linear.x, twist.linear.y, twist.linear.z = (
+            float(linear[0]), float(linear[1]), float(linear[2]))
+        twist.angular.x, twist.angular.y, twist.angular.z = (
+            float(angular[0]), float(angular[1]), float(angular[2]))
+        return odometry
+    return build
+
+
+def joint_state_builder(msg, names: Sequence[str], frame_id: str = ''):
+    """
+    Return ``build(stamp, positions, velocities)``: sensor_msgs/JointState, no efforts.
+
+    The name list is made once here and shared by every message (nothing writes to it).
+    """
+    header_type, state_type = msg(HEADER), msg(JOINT_STATE)
+    names = list(names)
+
+    def build(stamp, positions, velocities):
+        return state_type(header=header_type(stamp=stamp, frame_id=frame_id), name=names,
+                          position=[float(p) for p in positions],
+                          velocity=[float(v) for v in velocities], effort=[])
+    return build
+
+
+def tf_message_builder(msg, frames: Sequence[Tuple[str, str]]):
+    """
+    Return ``build(stamp, poses)``: tf2_msgs/TFMessage, one transform per (parent, child) frame.
+
+    :param frames: (parent, child) frame ids, in the order of the poses.
+    :return: ``build(stamp, poses)``, ``poses`` one (xyz, q) of each child in its parent.
+    """
+    tf_type, transform_type = msg(TF_MESSAGE), msg(TRANSFORM_STAMPED)
+    frames = tuple(frames)
+
+    def transform(stamp, parent, child, xyz, q):
+        stamped = transform_type()
+        stamped.header.stamp = stamp
+        stamped.header.frame_id = parent
+        stamped.child_frame_id = child
+        translation, rotation = stamped.transform.translation, stamped.transform.rotation
+        translation.x, translation.y, translation.z = float(xyz[0]), float(xyz[1]), float(xyz[2])
+        rotation.x, rotation.y = float(q[0]), float(q[1])
+        rotation.z, rotation.w = float(q[2]), float(q[3])
+        return stamped
+
+    def build(stamp, poses):
+        return tf_type(transforms=[transform(stamp, parent, child, xyz, q)
+                                   for (parent, child), (xyz, q) in zip(frames, poses)])
+    return build
+
+
+def differential_command_builder(msg, frame_id: str):
+    """Return ``build(stamp, left_mps, right_mps)``: vehicle_msgs/DifferentialCommand."""
+    command_type = msg(DIFFERENTIAL_COMMAND)
+
+    def build(stamp, left_mps, right_mps):
+        command = command_type()
+        command.header.stamp = stamp
+        command.header.frame_id = frame_id
+        command.left_wheel.velocity = left_mps
+        command.right_wheel.velocity = right_mps
+        return command
+    return build
+
+
+def float64_multi_array_builder(msg):
+    """Return ``build(values)``: std_msgs/Float64MultiArray without a layout."""
+    array_type = msg(FLOAT64_MULTI_ARRAY)
+    return lambda values: array_type(data=values)
+
+
+def twist_builder(msg):
+    """Return ``build(speed_mps, yaw_rate_radps)``: geometry_msgs/Twist (x and yaw only)."""
+    twist_type = msg(TWIST)
+
+    def build(speed_mps, yaw_rate_radps):
+        twist = twist_type()
+        twist.linear.x = speed_mps
+        twist.angular.z = yaw_rate_radps
+        return twist
+    return build
+
+
+def twist_stamped_builder(msg, frame_id: str):
+    """Return ``build(stamp, speed_mps, yaw_rate_radps)``: geometry_msgs/TwistStamped."""
+    stamped_type = msg(TWIST_STAMPED)
+
+    def build(stamp, speed_mps, yaw_rate_radps):
+        stamped = stamped_type()
+        stamped.header.stamp = stamp
+        stamped.header.frame_id = frame_id
+        stamped.twist.linear.x = speed_mps
+        stamped.twist.angular.z = yaw_rate_radps
+        return stamped
+    return build
+
+
+def velocity_report_builder(msg, frame_id: str):
+    """Return ``build(stamp, speed_mps, heading_rate_radps)``: Autoware VelocityReport."""
+    report_type = msg(VELOCITY_REPORT)
+
+    def build(stamp, speed_mps, heading_rate_radps):
+        report = report_type()
+        report.header.stamp = stamp
+        report.header.frame_id = frame_id
+        report.longitudinal_velocity = speed_mps
+        report.lateral_velocity = 0.0
+        report.heading_rate = heading_rate_radps
+        return report
+    return build
+
+
+def stamped_field_builder(ros_type: str, field: str):
+    """
+    Return a builder of an Autoware report made of ``stamp`` and one value field.
+
+    :param ros_type: e.g. GEAR_REPORT.
+    :param field: the value field (``report``, ``mode``, ``steering_tire_angle``).
+    :return: ``builder(msg)`` returning ``build(stamp, value)``.
+    """
+    def builder(msg):
+        report_type = msg(ros_type)
+        return lambda stamp, value: report_type(**{'stamp': stamp, field: value})
+    return builder
+
+
+steering_report_builder = stamped_field_builder(STEERING_REPORT, 'steering_tire_angle')
+gear_report_builder = stamped_field_builder(GEAR_REPORT, 'report')
+turn_indicators_report_builder = stamped_field_builder(TURN_INDICATORS_REPORT, 'report')
+hazard_lights_report_builder = stamped_field_builder(HAZARD_LIGHTS_REPORT, 'report')
+control_mode_report_builder = stamped_field_builder(CONTROL_MODE_REPORT, 'mode')
