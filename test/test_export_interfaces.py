@@ -14,7 +14,10 @@
 
 """The exported vehicle_msgs ament package is complete and parses as ROS interfaces."""
 
+from pathlib import Path
 import re
+import subprocess
+import sys
 import xml.etree.ElementTree as ElementTree
 
 import pytest
@@ -24,6 +27,8 @@ from vehicle_msgs_py.catalog import definitions, split_service
 from vehicle_msgs_py.export import export_interfaces, main
 
 # catkin_pkg's maintainer e-mail check (package.py), which rejects the package otherwise.
+REPO_ROOT = Path(__file__).resolve().parent.parent
+
 CATKIN_EMAIL = re.compile(
     r'^[-a-zA-Z0-9_%+]+(\.[-a-zA-Z0-9_%+]+)*@[-a-zA-Z0-9%]+(\.[-a-zA-Z0-9%]+)*\.[a-zA-Z]{2,}$')
 
@@ -101,3 +106,27 @@ def test_main_exports_into_given_directory(tmp_path, capsys):
     assert main([str(tmp_path)]) == 0
     assert _interface_files(tmp_path / 'vehicle_msgs') == EXPECTED_FILES
     assert 'colcon build' in capsys.readouterr().out
+
+
+def test_cli_export_needs_only_what_a_ros_machine_has(tmp_path):
+    # The README's Jazzy path runs the exporter from the checkout before anything else is
+    # installed: none of the embedded-transport or physics packages may be imported.
+    blocked = ('cyclonedds', 'rosbags', 'pybullet')
+    code = (
+        'import sys\n'
+        f'for name in {blocked!r}:\n'
+        '    sys.modules[name] = None\n'
+        'from vehicle_sim.cli import main\n'
+        'sys.exit(main(["export-interfaces", sys.argv[1]]))\n')
+    result = subprocess.run([sys.executable, '-c', code, str(tmp_path / 'cli')], cwd=REPO_ROOT,
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    produced = tmp_path / 'cli' / 'vehicle_msgs'
+    expected = export_interfaces(tmp_path / 'direct')
+    def files(root):
+        return sorted(str(p.relative_to(root)) for p in root.rglob('*') if p.is_file())
+
+    names = files(expected)
+    assert files(produced) == names
+    for name in names:
+        assert (produced / name).read_bytes() == (expected / name).read_bytes(), name

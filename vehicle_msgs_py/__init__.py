@@ -19,20 +19,13 @@ The ``.msg`` / ``.srv`` files under ``definitions/`` are the single source of ev
 (DESIGN §5.1); :mod:`vehicle_msgs_py.types` builds cyclonedds-python types from them for the
 embedded transport, and :mod:`vehicle_msgs_py.export` writes the ``vehicle_msgs`` ament package
 for ROS machines.
+
+The names below are imported from :mod:`vehicle_msgs_py.types` on first use, so that the
+exporter (``vehicle_msgs_py.export``) runs with the standard library only: on a ROS machine it
+runs before cyclonedds or rosbags are installed, if they ever are.
 """
 
-from vehicle_msgs_py.types import (
-    dds_type_name,
-    from_rosbags,
-    known_services,
-    known_types,
-    message_type,
-    service_types,
-    ServiceTypes,
-    to_rosbags,
-    type_hash,
-    typestore,
-)
+import importlib
 
 __all__ = [
     'dds_type_name',
@@ -46,3 +39,13 @@ __all__ = [
     'type_hash',
     'typestore',
 ]
+
+
+def __getattr__(name):
+    if name in __all__:
+        return getattr(importlib.import_module('vehicle_msgs_py.types'), name)
+    raise AttributeError(f'module {__name__!r} has no attribute {name!r}')
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))
