@@ -27,7 +27,6 @@ tick (ramps, watchdog): a wall timer at ``control_rate_hz``, or, with ``use_sim_
 
 import math
 import sys
-import time
 
 from vehicle_sim.core.diff_drive import (
     AckermannToDifferential,
@@ -47,42 +46,8 @@ from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
 from vehicle_sim.core.units import stamp_to_seconds
 from vehicle_sim.core.watchdog import CommandWatchdog
 from vehicle_sim.ros import bridge_interfaces as bi
-from vehicle_sim.transport.port import Time
+from vehicle_sim.transport.port import ThrottledWarning, Time  # noqa: F401 - re-exported
 from vehicle_sim.transport.selection import create_node, run_node
-
-# Throttle period of repeated warnings [s] (wall time).
-WARN_THROTTLE_S = 1.0
-
-
-class ThrottledWarning:
-    """Log a warning at most once per ``period_s`` of wall time, counting what was suppressed."""
-
-    def __init__(self, logger, period_s=WARN_THROTTLE_S):
-        """
-        Create the throttle.
-
-        :param logger: a port Logger.
-        :param period_s: minimum wall time between two warnings [s].
-        """
-        self._logger = logger
-        self._period_s = period_s
-        self._last_s = None
-        self.suppressed = 0
-        self.count = 0
-
-    def warn(self, message):
-        """Count the event and log it unless one was logged less than period_s ago."""
-        self.count += 1
-        now_s = time.monotonic()
-        if self._last_s is not None and now_s - self._last_s < self._period_s:
-            self.suppressed += 1
-            return
-        if self.suppressed:
-            message += f' ({self.suppressed} similar warnings suppressed)'
-        self.suppressed = 0
-        self._last_s = now_s
-        self._logger.warn(message)
-
 
 # autoware_vehicle_msgs constants (GearCommand/GearReport share their values; likewise the
 # turn-indicator, hazard-light and control-mode commands and reports).

@@ -38,7 +38,7 @@ from vehicle_sim.core.units import seconds_to_stamp
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
 from vehicle_sim.physics.world import World
 from vehicle_sim.ros import bridge_interfaces as bi
-from vehicle_sim.ros.bridge_node import ThrottledWarning
+from vehicle_sim.transport.port import ThrottledWarning
 from vehicle_sim.transport.selection import create_node, run_node
 
 

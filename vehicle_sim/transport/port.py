@@ -24,6 +24,7 @@ conventions, reference/ros2_wire.md). This module holds the adapter-neutral part
 import abc
 from dataclasses import dataclass
 import re
+import time
 from typing import Any, Callable, List, Optional, Union
 
 from vehicle_sim.core.errors import VehicleSimError
@@ -347,6 +348,40 @@ class Logger(abc.ABC):
         self.log(50, message)
 
 
+# Throttle period of repeated warnings [s] (wall time).
+WARN_THROTTLE_S = 1.0
+
+
+class ThrottledWarning:
+    """Log a warning at most once per ``period_s`` of wall time, counting what was suppressed."""
+
+    def __init__(self, logger: 'Logger', period_s: float = WARN_THROTTLE_S):
+        """
+        Create the throttle.
+
+        :param logger: a port Logger.
+        :param period_s: minimum wall time between two warnings [s].
+        """
+        self._logger = logger
+        self._period_s = period_s
+        self._last_s = None
+        self.suppressed = 0
+        self.count = 0
+
+    def warn(self, message: str) -> None:
+        """Count the event and log it unless one was logged less than period_s ago."""
+        self.count += 1
+        now_s = time.monotonic()
+        if self._last_s is not None and now_s - self._last_s < self._period_s:
+            self.suppressed += 1
+            return
+        if self.suppressed:
+            message += f' ({self.suppressed} similar warnings suppressed)'
+        self.suppressed = 0
+        self._last_s = now_s
+        self._logger.warn(message)
+
+
 class Future:
     """
     The pending result of an asynchronous service call, completed while the node spins.
@@ -542,7 +577,6 @@ class NodePort(abc.ABC):
 
     def spin_until(self, predicate: Callable[[], bool], timeout_s: float) -> bool:
         """Spin until ``predicate()`` is true; return False if ``timeout_s`` passed first."""
-        import time
         deadline = time.monotonic() + timeout_s
         while not predicate():
             remaining = deadline - time.monotonic()
