@@ -1103,27 +1103,43 @@ def run_dds_node(node_factory, args=None) -> int:
     """
     Build a node and spin it until SIGINT/SIGTERM, then leave the graph (E1).
 
+    The signal handlers are installed before anything is created, as ``rclpy.init`` does: a
+    signal during start-up abandons the construction (a KeyboardInterrupt raised where it
+    stands, whose clean-up paths delete what was built) and ends the process cleanly, without
+    leaving a half-built node on the graph; a signal while spinning makes ``spin()`` return.
+
     :param node_factory: ``node_factory(args)`` returning a DdsNode or an object with ``.node``.
     :param args: the command line (default ``sys.argv``).
-    :return: the process exit status.
+    :return: the process exit status (0 after a signal, as an rclpy node).
     """
     args = sys.argv if args is None else args
-    app = node_factory(args)
-    node = app if isinstance(app, port.NodePort) else app.node
-    previous = {}
+    state = {'node': None, 'interrupted': False}
 
     def on_signal(signum, frame):
-        node.request_shutdown()
+        node = state['node']
+        if node is not None:
+            node.request_shutdown()
+        elif not state['interrupted']:
+            state['interrupted'] = True
+            raise KeyboardInterrupt(f'signal {signum} during start-up')
 
+    previous = {}
     if threading.current_thread() is threading.main_thread():
         for signum in (signal.SIGINT, signal.SIGTERM):
             previous[signum] = signal.signal(signum, on_signal)
+    node = None
     try:
+        app = node_factory(args)
+        node = app if isinstance(app, port.NodePort) else app.node
+        state['node'] = node   # from here on a signal only asks spin() to return
         node.spin()
     except KeyboardInterrupt:
         pass
     finally:
-        node.shutdown()
+        state['interrupted'] = True
+        if node is not None:
+            node.shutdown()
+        _Context.close_process()   # whatever a start-up left half-built
         for signum, handler in previous.items():
             signal.signal(signum, handler)
     return 0
