@@ -23,7 +23,8 @@ Owns a World and one DiffRobotBody (or shares a World built in-process). Topics,
 - out ``<ns>/joint_states``, ``<ns>/odom`` (wheel odometry, ``<p>odom`` -> ``<p>base_link``),
   ``<ns>/ground_truth/odom`` (frame ``world``), ``/tf``, ``/tf_static``, ``/clock``,
   ``<ns>/robot_description``
-- service ``<ns>/robot/time_step`` vehicle_msgs/SetInt (synchronous mode)
+- service ``<ns>/robot/time_step`` vehicle_msgs/SetInt (synchronous mode; queued requests
+  run in chunks from the node's loop, see :mod:`.time_step`)
 
 Bad commands (NaN, ±inf, beyond max_wheel_speed, wrong length) are rejected with a throttled
 warning; the command in force stays.
@@ -38,6 +39,7 @@ from vehicle_sim.core.units import seconds_to_stamp
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
 from vehicle_sim.physics.world import World
 from vehicle_sim.ros import bridge_interfaces as bi
+from vehicle_sim.ros.time_step import TimeStepService
 from vehicle_sim.transport.port import ThrottledWarning
 from vehicle_sim.transport.selection import create_node, run_node
 
@@ -133,6 +135,9 @@ class DiffRobotNode:
                                      bi.ROBOT_WHEEL_VELOCITIES.name, self._on_wheel_velocities,
                                      bi.ROBOT_WHEEL_VELOCITIES.qos),
         ]
+        self._time_step = TimeStepService(node, self.world.time_step_s * 1000.0, self.step,
+                                          self.synchronous)
+        self._time_step_name = f'{node.get_namespace().rstrip("/")}/{bi.ROBOT_TIME_STEP.name}'
         self._time_step_srv = node.create_service(
             bi.ROBOT_TIME_STEP.ros_type, bi.ROBOT_TIME_STEP.name, self._handle_time_step)
         self._pub[bi.ROBOT_ROBOT_DESCRIPTION].publish(
@@ -173,23 +178,8 @@ class DiffRobotNode:
 
     # ---------------------------------------------------------------- stepping
     def _handle_time_step(self, request, response):
-        step_ms = self.world.time_step_s * 1000.0
-        value = request.value
-        steps = 1 if value == 0 else value / step_ms
-        if not self.synchronous:
-            self.node.get_logger().warn('robot/time_step refused: the node runs in real time '
-                                        '(set synchronous:=true)')
-            response.success = False
-        elif value < 0 or abs(steps - round(steps)) > 1e-9:
-            self.node.get_logger().warn(
-                f'robot/time_step refused: {value} ms is not a non-negative multiple of the '
-                f'{step_ms:g} ms step')
-            response.success = False
-        else:
-            for _ in range(int(round(steps))):
-                self.step()
-            response.success = True
-        return response
+        # A deferred reply: answered once this request's own steps are done.
+        return self._time_step.handle(self._time_step_name, request, response)
 
     def _on_timer(self):
         self.step()
@@ -275,6 +265,7 @@ class DiffRobotNode:
 
     def destroy(self):
         """Leave the graph and close an owned world."""
+        self._time_step.close()
         self.node.shutdown()
         if self._owns_world:
             self.world.close()

@@ -384,7 +384,7 @@ class ThrottledWarning:
 
 class Future:
     """
-    The pending result of an asynchronous service call, completed while the node spins.
+    A result completed later, while the node spins: a service call's reply, or a deferred reply.
 
     Single-threaded: ``done()``/``result()`` are read by the thread that spins the node.
     """
@@ -484,6 +484,10 @@ class Timer(abc.ABC):
     def cancel(self) -> None:
         """Stop the timer."""
 
+    @abc.abstractmethod
+    def reset(self) -> None:
+        """Restart the timer (a cancelled one too): the next call is one period from now."""
+
 
 class NodePort(abc.ABC):
     """
@@ -491,7 +495,10 @@ class NodePort(abc.ABC):
 
     Types are named by their ROS names (``'std_msgs/msg/String'``, ``'vehicle_msgs/srv/SetInt'``);
     ``msg()``/``srv()`` return the adapter's classes. Names resolve like rcl. Service callbacks
-    are ``callback(request, response) -> response``.
+    are ``callback(request, response) -> response``; a callback that cannot answer at once
+    returns a :class:`Future` instead and completes it later with the response, from the node's
+    own thread while it spins (a deferred reply): the node serves other requests meanwhile and
+    the reply is sent when the future is done.
     """
 
     @abc.abstractmethod
@@ -519,7 +526,13 @@ class NodePort(abc.ABC):
         ...
 
     @abc.abstractmethod
-    def create_service(self, srv_type: str, name: str, callback) -> Service: ...
+    def create_service(self, srv_type: str, name: str, callback) -> Service:
+        """
+        Serve ``name``: ``callback(request, response)`` returns the response or a Future of it.
+
+        Requests are served in arrival order; with a deferred reply, later requests (to this
+        service too) are served before the reply is sent.
+        """
 
     @abc.abstractmethod
     def create_client(self, srv_type: str, name: str) -> Client: ...
