@@ -153,6 +153,10 @@ class _Node:
     def __init__(self):
         self.logger = _Logger()
         self.timers = []
+        self.stopping = False
+
+    def ok(self):
+        return not self.stopping
 
     def get_logger(self):
         return self.logger
@@ -216,3 +220,12 @@ def test_time_step_service_runs_requests_in_order_one_chunk_at_a_time():
     # A later request re-arms the same timer.
     service.handle('/robot/time_step', _Request(10), _Response())
     assert node.timers == [timer] and not timer.cancelled
+
+
+def test_time_step_service_stops_stepping_once_the_node_is_stopping():
+    node, steps = _Node(), []
+    service = TimeStepService(node, 10, lambda: steps.append(1), synchronous=True)
+    request = service.handle('/robot/time_step', _Request(HUGE_MS), _Response())
+    node.stopping = True   # a signal arrived
+    node.timers[0].callback()
+    assert steps == [] and not request.done()

@@ -124,6 +124,8 @@ class TimeStepService:
         while self._queue:
             current = self._queue[0]
             while current.remaining > 0:
+                if not self._node.ok():
+                    return   # SIGINT/SIGTERM: stop at once, the node is going down
                 self._step_once()
                 current.remaining -= 1
                 if current.remaining and time.monotonic() >= deadline:

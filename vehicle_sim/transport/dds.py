@@ -1002,7 +1002,7 @@ class DdsNode(port.NodePort):
                     return
 
     def spin(self) -> None:
-        while self.ok() and not self._shutdown_requested:
+        while self.ok():
             self.spin_once(SPIN_SLICE_S)
 
     def request_shutdown(self) -> None:
@@ -1014,7 +1014,8 @@ class DdsNode(port.NodePort):
             pass
 
     def ok(self) -> bool:
-        return not self._shutdown
+        """Return False once a shutdown was requested (a signal) or done, like ``rclpy.ok``."""
+        return not (self._shutdown or self._shutdown_requested)
 
     def shutdown(self) -> None:
         if self._shutdown:

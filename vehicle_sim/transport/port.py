@@ -600,7 +600,7 @@ class NodePort(abc.ABC):
 
     @abc.abstractmethod
     def ok(self) -> bool:
-        """Return False once shutdown() was called."""
+        """Return False once a shutdown was requested (SIGINT/SIGTERM) or shutdown() called."""
 
     @abc.abstractmethod
     def shutdown(self) -> None:

@@ -298,7 +298,13 @@ class RclpyNode(port.NodePort):
 
     def spin(self) -> None:
         while self.ok():  # returns once shutdown() was called, like the embedded transport
-            self.executor.spin_once(timeout_sec=0.1)
+            try:
+                self.executor.spin_once(timeout_sec=0.1)
+            except Exception:
+                # A signal shuts the context down while a callback runs (rclpy's handler acts
+                # at once), so the callback's next publish raises: the shutdown, not an error.
+                if self.ok():
+                    raise
 
     def ok(self) -> bool:
         return self.node is not None and rclpy.ok(context=self._context)
@@ -333,7 +339,7 @@ def run_rclpy_node(node_factory, args=None) -> int:
     :param args: the command line.
     :return: the process exit status.
     """
-    rclpy.init(args=args)
+    rclpy.init(args=args)   # installs rclpy's SIGINT/SIGTERM handling before anything is built
     node = None
     try:
         app = node_factory(args)
@@ -341,6 +347,11 @@ def run_rclpy_node(node_factory, args=None) -> int:
         node.spin()
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
+    except Exception:
+        # A signal during start-up shuts the context down under the node being built, which
+        # then fails to create its next entity: that is the requested shutdown, not an error.
+        if rclpy.ok():
+            raise
     finally:
         if node is not None:
             node.shutdown()
