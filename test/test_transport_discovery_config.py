@@ -173,18 +173,23 @@ def test_node_starts_and_serves_with_a_user_uri_selecting_loopback(user_uri):
         process.stop()
 
 
-def test_node_refused_by_cyclone_exits_with_one_line_and_no_traceback():
+@pytest.mark.parametrize('module, program', [
+    ('vehicle_sim.ros.automobile_node', 'automobile'),
+    ('vehicle_sim.ros.diff_robot_node', 'diff_robot'),
+    ('vehicle_sim.ros.bridge_node', 'ackermann_to_differential'),
+])
+def test_node_refused_by_cyclone_exits_with_one_line_and_no_traceback(module, program):
     env = peer_env()
     env['CYCLONEDDS_URI'] = USER_LO_NAME + ',' + USER_LO_NAME   # the user selects lo twice
-    process = NodeProcess('--ros-args', '-r', '__ns:=/refused', env=env)
+    process = NodeProcess('--ros-args', '-r', '__ns:=/refused', module=module, env=env)
     try:
-        assert process.wait() == 2
+        assert process.wait() == 2, process.text()
     finally:
         process.stop()
     lines = [line for line in process.output if line.strip()
              and not line.startswith('pybullet build time')]
     assert len(lines) == 1, lines
-    assert lines[0].startswith('automobile: Cyclone DDS refused domain ')
+    assert lines[0].startswith(f'{program}: Cyclone DDS refused domain ')
     assert 'lo: the same interface may not be selected twice' in lines[0]
     assert f'CYCLONEDDS_URI={env["CYCLONEDDS_URI"]!r}' in lines[0]
     assert os.environ['ROS_DOMAIN_ID'] in lines[0]

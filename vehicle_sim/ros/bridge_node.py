@@ -42,7 +42,11 @@ from vehicle_sim.core.diff_drive import (
     twist_from_wheel_speeds,
     wheel_speeds_from_twist,
 )
-from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
+from vehicle_sim.core.errors import (
+    InvalidCommandError,
+    InvalidParameterError,
+    VehicleSimError,
+)
 from vehicle_sim.core.units import stamp_to_seconds
 from vehicle_sim.core.watchdog import CommandWatchdog
 from vehicle_sim.ros import bridge_interfaces as bi
@@ -557,8 +561,12 @@ COMMAND_READERS = {
 
 def main(args=None):
     """Run the bridge until SIGINT/SIGTERM (``ros2 run vehicle_sim ackermann_to_differential``)."""
-    return run_node(lambda argv: AckermannToDifferentialNode(argv).node,
-                    sys.argv if args is None else args)
+    try:
+        return run_node(lambda argv: AckermannToDifferentialNode(argv).node,
+                        sys.argv if args is None else args)
+    except VehicleSimError as error:   # a refused parameter, or DDS refused by Cyclone
+        print(f'ackermann_to_differential: {error}', file=sys.stderr)
+        return 2
 
 
 if __name__ == '__main__':

@@ -281,6 +281,9 @@ def main(args=None):
 
     try:
         return run_node(factory, sys.argv if args is None else args)
+    except VehicleSimError as error:   # a refused parameter, or DDS refused by Cyclone
+        print(f'diff_robot: {error}', file=sys.stderr)
+        return 2
     finally:
         if 'robot' in app and app['robot']._owns_world:
             app['robot'].world.close()
