@@ -1140,7 +1140,8 @@ def run_dds_node(node_factory, args=None) -> int:
         state['interrupted'] = True
         if node is not None:
             node.shutdown()
-        _Context.close_process()   # whatever a start-up left half-built
+        else:
+            _Context.close_process()   # whatever an interrupted start-up left half-built
         for signum, handler in previous.items():
             signal.signal(signum, handler)
     return 0

@@ -341,7 +341,13 @@ def _cyclone_lines(text: str) -> List[str]:
 
 
 class _StderrCapture:
-    """Redirect file descriptor 2 (where Cyclone's C code logs) to a temporary file."""
+    """
+    Redirect file descriptor 2 (where Cyclone's C code logs) to a temporary file.
+
+    Process-wide while it lasts (domain creation, once per domain): what other threads write to
+    stderr meanwhile is passed on afterwards, or, when the domain is refused, replaced by the
+    one-line error.
+    """
 
     def __enter__(self):
         self.text = ''
