@@ -111,25 +111,6 @@ def test_qos_presets_match_ros2_wire_a6():
         port.as_qos('fast')
 
 
-def test_localhost_range_gives_loopback_no_multicast_peer_and_auto_index():
-    xml = dds_config.cyclone_config({'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST'})
-    for part in ('<NetworkInterface address="127.0.0.1"/>', '<AllowMulticast>false',
-                 '<Peer address="127.0.0.1"/>', '<ParticipantIndex>auto'):
-        assert part in xml
-
-
-def test_deprecated_localhost_only_is_honoured_when_range_is_unset():
-    assert dds_config.discovery_range({'ROS_LOCALHOST_ONLY': '1'}) == 'LOCALHOST'
-    assert dds_config.discovery_range({}) == 'SUBNET'
-
-
-def test_subnet_default_leaves_cyclone_and_user_config_alone():
-    assert dds_config.cyclone_config({'CYCLONEDDS_URI': 'file:///x.xml'}) is None
-    localhost = dds_config.cyclone_config({'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST',
-                                           'CYCLONEDDS_URI': 'file:///x.xml'})
-    assert localhost.endswith(',file:///x.xml')
-
-
 @pytest.mark.parametrize('read, env', [
     (dds_config.domain_id, {'ROS_DOMAIN_ID': 'x'}),
     (dds_config.domain_id, {'ROS_DOMAIN_ID': '300'}),

@@ -102,3 +102,80 @@ def test_rclpy_node_read_only_refusal_matches_the_embedded_transport(context):
         assert (result.successful, result.reason) == (False, read_only_reason('model'))
     finally:
         node.shutdown()
+
+
+def _spin_both(a, b, done, spins=2000):
+    while not done() and spins:
+        a.spin_once(0.01)
+        b.spin_once(0.01)
+        spins -= 1
+    return done()
+
+
+def test_rclpy_node_deferred_reply_is_sent_when_its_future_completes(context):
+    server = RclpyNode('deferred_server', '/rt', context=context)
+    client_node = RclpyNode('deferred_client', '/rt', context=context)
+    try:
+        pending = []
+
+        def handle_later(request, response):
+            response.success = request.data
+            future = port.Future()
+            pending.append((future, response))
+            return future
+
+        def handle_now(request, response):
+            response.success = True
+            return response
+
+        release = []
+
+        def complete():   # a timer of the server completes the deferred reply when told to
+            if pending and release:
+                future, response = pending.pop()
+                future.set_result(response)
+
+        server.create_service('std_srvs/srv/SetBool', 'later', handle_later)
+        server.create_service('std_srvs/srv/SetBool', 'now', handle_now)
+        server.create_timer(0.005, complete)
+        later = client_node.create_client('std_srvs/srv/SetBool', '/rt/later')
+        now = client_node.create_client('std_srvs/srv/SetBool', '/rt/now')
+        assert later.wait_for_service(10.0) and now.wait_for_service(10.0)
+        request = client_node.srv('std_srvs/srv/SetBool').Request
+        waiting = later.call_async(request(data=True))
+        assert _spin_both(server, client_node, lambda: bool(pending))
+        # While the first reply is deferred, the server answers another service.
+        answered = now.call_async(request(data=True))
+        assert _spin_both(server, client_node, answered.done)
+        assert answered.result().success is True and not waiting.done()
+        release.append(True)
+        assert _spin_both(server, client_node, waiting.done)
+        assert waiting.result().success is True
+    finally:
+        client_node.shutdown()
+        server.shutdown()
+
+
+def test_rclpy_automobile_time_step_is_answered_after_its_steps(context):
+    pytest.importorskip('vehicle_msgs', reason='vehicle_msgs not built (export-interfaces)')
+    from vehicle_sim.ros.automobile_node import AutomobileNode
+    app = AutomobileNode(transport='rclpy', node=RclpyNode('automobile', '/rt_sync',
+                                                             context=context,
+                                                             parameter_overrides={
+                                                                 'synchronous': True}))
+    client_node = RclpyNode('time_step_client', '/rt', context=context)
+    try:
+        step = client_node.create_client('vehicle_msgs/srv/SetInt', '/rt_sync/robot/time_step')
+        get_time = client_node.create_client('vehicle_msgs/srv/GetFloat',
+                                             '/rt_sync/robot/get_time')
+        assert step.wait_for_service(10.0) and get_time.wait_for_service(10.0)
+        first = step.call_async(client_node.srv('vehicle_msgs/srv/SetInt').Request(value=2000))
+        second = step.call_async(client_node.srv('vehicle_msgs/srv/SetInt').Request(value=30))
+        assert _spin_both(app.node, client_node, lambda: first.done() and second.done(), 20000)
+        assert first.result().success and second.result().success
+        asked = get_time.call_async(client_node.srv('vehicle_msgs/srv/GetFloat').Request())
+        assert _spin_both(app.node, client_node, asked.done)
+        assert asked.result().value == pytest.approx(2.03, abs=1e-9)
+    finally:
+        client_node.shutdown()
+        app.close()

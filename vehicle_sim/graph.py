@@ -177,6 +177,8 @@ class GraphView:
         self._participants: Set[bytes] = set()
         self._endpoints: Dict[bytes, Endpoint] = {}
         self._nodes_by_participant: Dict[bytes, List[NodeInfo]] = {}
+        # ros_discovery_info samples that could not be decoded (dropped, the rest is kept).
+        self.dropped_samples = 0
         self._closed = False
 
     # ------------------------------------------------------------------------- life cycle
@@ -227,9 +229,10 @@ class GraphView:
                     self._endpoints.pop(key, None)
                     continue
                 self._endpoints[key] = _endpoint(sample, is_writer)
-        for sample in self._info_reader.take(N=1000):
-            if not sample.sample_info.valid_data:
-                continue
+        from vehicle_sim.transport import cyclone_private
+        samples, errors = cyclone_private.take(self._info_reader, 1000)
+        self.dropped_samples += len(errors)
+        for sample in samples:
             gid = bytes(sample.gid.data)
             self._nodes_by_participant[gid] = [
                 NodeInfo(n.node_namespace, n.node_name, gid,

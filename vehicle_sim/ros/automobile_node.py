@@ -23,7 +23,9 @@ Cyclone DDS transport.
 
 Time: in real-time mode a wall-clock timer of period ``time_step / real_time_factor`` steps the
 world while the node spins between steps (services stay responsive); ``real_time_factor`` 0
-steps on every non-blocking spin; ``synchronous`` steps only on ``robot/time_step`` calls.
+steps on every non-blocking spin; ``synchronous`` steps only on ``robot/time_step`` calls, which
+are queued and run in chunks from the node's loop (:mod:`.time_step`), so the node keeps
+serving and honours signals however long a request is.
 
 Run: ``ros2 run vehicle_sim automobile --ros-args -p car_model:=ToyotaPrius`` or
 ``python -m vehicle_sim.ros.automobile_node --ros-args --params-file config/automobile.yaml``.
@@ -44,6 +46,7 @@ from vehicle_sim.ros.endpoints import EACH_PUBLISH, EACH_STEP, ONCE_LATCHED, Out
 from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.node_support import run_main
 from vehicle_sim.ros.sim_params import declare_parameters, world_vehicles
+from vehicle_sim.ros.time_step import TimeStepService
 from vehicle_sim.transport import create_node
 
 NODE_NAME = 'automobile'
@@ -135,6 +138,7 @@ class AutomobileNode:
             parameter_overrides=parameter_overrides)
         self.world = None
         self._timer = None
+        self._time_step = None
         try:
             self._build()
         except BaseException:
@@ -149,6 +153,9 @@ class AutomobileNode:
         self.world = World(time_step_s=settings.time_step_s, friction=settings.friction)
         self._publish_every = settings.publish_every_steps
         self._stamp = stamp_builder(node.msg)
+        # One queue for every vehicle's robot/time_step: they all advance the one world.
+        self._time_step = TimeStepService(node, settings.time_step_ms, self.step_once,
+                                          settings.synchronous)
         self._vehicles: List[_Vehicle] = []
         for spec in specs:
             car = SimulatedCar(self.world, load_car(spec.model), (spec.x_m, spec.y_m,
@@ -238,20 +245,8 @@ class AutomobileNode:
         return response
 
     def _handle_time_step(self, spec, vehicle, name, request, response):
-        duration_ms = request.value
-        step_ms = self.settings.time_step_ms
-        if not self.settings.synchronous:
-            self._logger.warn(f'{name}: refused: the node is not synchronous '
-                              '(set the parameter synchronous:=true)')
-            response.success = False
-        elif duration_ms < 0 or duration_ms % step_ms:
-            self._logger.warn(f'{name}: refused {duration_ms} ms: must be 0 (one step) or a '
-                              f'positive multiple of the basic time step {step_ms} ms')
-            response.success = False
-        else:
-            self.step(max(1, duration_ms // step_ms))
-            response.success = True
-        return response
+        # A deferred reply: answered once this request's own steps are done.
+        return self._time_step.handle(name, request, response)
 
     def _handle_get_time(self, spec, vehicle, name, request, response):
         response.value = float(self.world.time_s)
@@ -318,6 +313,8 @@ class AutomobileNode:
         if self._timer is not None:
             self._timer.cancel()
             self._timer = None
+        if self._time_step is not None:
+            self._time_step.close()
         if self.node is not None:
             self.node.shutdown()
         if self.world is not None:

@@ -26,7 +26,8 @@ and ``fleet/diff_robot/``):
 - out ``<ns>/joint_states``, ``<ns>/odom`` (wheel odometry, ``<p>odom`` -> ``<p>base_link``),
   ``<ns>/ground_truth/odom`` (frame ``world``), ``/tf``, ``/tf_static``, ``/clock``,
   ``<ns>/robot_description``
-- service ``<ns>/robot/time_step`` vehicle_msgs/SetInt (synchronous mode)
+- service ``<ns>/robot/time_step`` vehicle_msgs/SetInt (synchronous mode; queued requests
+  run in chunks from the node's loop, see :mod:`.time_step`)
 
 Bad commands (NaN, ±inf, beyond max_wheel_speed, wrong length) are rejected with a throttled
 warning; the command in force stays.
@@ -52,6 +53,7 @@ from vehicle_sim.ros.endpoints import (
 )
 from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning
+from vehicle_sim.ros.time_step import TimeStepService
 from vehicle_sim.transport.selection import create_node
 
 
@@ -125,6 +127,10 @@ class DiffRobotNode:
         self.base_frame = f'{prefix}base_link'
         self._odom_pose = (0.0, 0.0, 0.0)
         self._warn = ThrottledWarning(node.get_logger())
+        self._time_step = TimeStepService(node, self.world.time_step_s * 1000.0, self.step,
+                                          self.synchronous)
+        self._time_step_name = (f'{node.get_fully_qualified_name().rstrip("/")}/'
+                                f'{bi.ROBOT_TIME_STEP.name}')
         self._wire()
         self._timer = None
         if self._owns_world and not self.synchronous:
@@ -182,23 +188,8 @@ class DiffRobotNode:
 
     # ---------------------------------------------------------------- stepping
     def _handle_time_step(self, request, response):
-        step_ms = self.world.time_step_s * 1000.0
-        value = request.value
-        steps = 1 if value == 0 else value / step_ms
-        if not self.synchronous:
-            self.node.get_logger().warn('robot/time_step refused: the node runs in real time '
-                                        '(set synchronous:=true)')
-            response.success = False
-        elif value < 0 or abs(steps - round(steps)) > 1e-9:
-            self.node.get_logger().warn(
-                f'robot/time_step refused: {value} ms is not a non-negative multiple of the '
-                f'{step_ms:g} ms step')
-            response.success = False
-        else:
-            for _ in range(int(round(steps))):
-                self.step()
-            response.success = True
-        return response
+        # A deferred reply: answered once this request's own steps are done.
+        return self._time_step.handle(self._time_step_name, request, response)
 
     def _on_timer(self):
         self.step()
@@ -241,6 +232,7 @@ class DiffRobotNode:
 
     def destroy(self):
         """Leave the graph and close an owned world."""
+        self._time_step.close()
         self.node.shutdown()
         if self._owns_world:
             self.world.close()

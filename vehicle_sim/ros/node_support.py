@@ -24,14 +24,11 @@ the node with an error naming the parameter, its value and the valid range.
 """
 
 import sys
-import time
 
-from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.errors import VehicleSimError
 from vehicle_sim.core.params import parameter_table_markdown, ParamSpec, validate_table, yaml_text
-from vehicle_sim.transport import run_node, TransportError
-
-# Throttle period of repeated warnings [s] (wall time).
-WARN_THROTTLE_S = 1.0
+from vehicle_sim.transport import run_node
+from vehicle_sim.transport.port import ThrottledWarning  # noqa: F401 (re-exported for nodes)
 
 # Declared by the transport port on every node (ROS standard); listed in the docs and yaml.
 USE_SIM_TIME = ParamSpec('use_sim_time', kind='bool', default=False,
@@ -91,36 +88,6 @@ def run_main(name, node_factory, args=None):
     """
     try:
         return run_node(node_factory, sys.argv if args is None else args)
-    except (InvalidParameterError, TransportError) as error:
+    except VehicleSimError as error:   # a refused parameter, or DDS refused by Cyclone
         print(f'{name}: {error}', file=sys.stderr)
         return 2
-
-
-class ThrottledWarning:
-    """Log a warning at most once per ``period_s`` of wall time, counting what was suppressed."""
-
-    def __init__(self, logger, period_s=WARN_THROTTLE_S):
-        """
-        Create the throttle.
-
-        :param logger: a port Logger.
-        :param period_s: minimum wall time between two warnings [s].
-        """
-        self._logger = logger
-        self._period_s = period_s
-        self._last_s = None
-        self.suppressed = 0
-        self.count = 0
-
-    def warn(self, message):
-        """Count the event and log it unless one was logged less than period_s ago."""
-        self.count += 1
-        now_s = time.monotonic()
-        if self._last_s is not None and now_s - self._last_s < self._period_s:
-            self.suppressed += 1
-            return
-        if self.suppressed:
-            message += f' ({self.suppressed} similar warnings suppressed)'
-        self.suppressed = 0
-        self._last_s = now_s
-        self._logger.warn(message)

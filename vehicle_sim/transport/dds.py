@@ -36,24 +36,15 @@ import threading
 import time
 from typing import Any, Callable, Dict, List, Optional
 
-from cyclonedds.core import (
-    Entity,
-    GuardCondition,
-    InstanceState,
-    ReadCondition,
-    SampleState,
-    ViewState,
-    WaitSet,
-)
+from cyclonedds.core import DDSException, GuardCondition, ReadCondition
 from cyclonedds.domain import Domain, DomainParticipant
-from cyclonedds.internal import dds_c_t
 from cyclonedds.pub import DataWriter
 from cyclonedds.qos import Policy, Qos
 from cyclonedds.sub import DataReader
 from cyclonedds.topic import Topic
 
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.transport import dds_config, port
+from vehicle_sim.transport import cyclone_private, dds_config, port
 from vehicle_sim.transport.params import (
     parse_ros_args,
     read_only_reason,
@@ -76,7 +67,6 @@ SPIN_SLICE_S = 0.1
 # Polling interval while replies wait for their client's reply reader to match.
 PENDING_REPLY_POLL_S = 0.002
 DISCOVERY_TOPIC = 'ros_discovery_info'
-_ANY_STATE = SampleState.Any | ViewState.Any | InstanceState.Any
 ZERO_HASH = 'RIHS01_' + '0' * 64
 
 
@@ -96,16 +86,8 @@ def ensure_domain(domain: Optional[int] = None) -> Domain:
     domain = dds_config.domain_id() if domain is None else domain
     with _domains_lock:
         if domain not in _domains:
-            _domains[domain] = Domain(domain, dds_config.cyclone_config())
+            _domains[domain] = dds_config.create_domain(domain)
         return _domains[domain]
-
-
-def _delete_entity(entity: Entity) -> None:
-    """Delete a DDS entity now (not at garbage collection), exactly once."""
-    ref = getattr(entity, '_ref', None)
-    if ref is not None and Entity._entities.get(ref) is entity:
-        del Entity._entities[ref]
-        entity._delete(ref)
 
 
 def _userdata_tokens(qos: Optional[Qos]) -> Dict[str, str]:
@@ -188,8 +170,20 @@ class _Context:
     def __init__(self):
         self.domain_id = dds_config.domain_id()
         ensure_domain(self.domain_id)
-        self.participant = DomainParticipant(
-            self.domain_id, qos=Qos(Policy.Userdata(data=b'enclave=/;')))
+        try:
+            self.participant = DomainParticipant(
+                self.domain_id, qos=Qos(Policy.Userdata(data=b'enclave=/;')))
+        except DDSException as exc:
+            raise TransportError(dds_config.describe_domain_error(
+                self.domain_id, str(exc))) from None
+        try:
+            self._set_up()
+        except BaseException:
+            # A signal (KeyboardInterrupt) or an error half-way: no ghost participant.
+            cyclone_private.delete_participant(self.participant)
+            raise
+
+    def _set_up(self):
         self.participant_gid = self.participant.guid.bytes
         self._topics: Dict[str, Topic] = {}
         self._nodes: List['DdsNode'] = []
@@ -220,21 +214,35 @@ class _Context:
                 self._nodes.remove(node)
             last = not self._nodes
             self.publish_graph()
-            if last and not self._closed:
-                self._closed = True
-                for entity in list(Entity._entities.values()):
-                    # Children die with the participant; forget them so that their Python
-                    # finalisers do not delete stale handles.
-                    if entity is not self.participant and self._owned(entity):
-                        del Entity._entities[entity._ref]
-                _delete_entity(self.participant)
-                _Context._instance = None
+            if last:
+                self._close_locked()
 
-    def _owned(self, entity: Entity) -> bool:
-        try:
-            return entity.participant == self.participant
-        except Exception:  # noqa: BLE001 - entities of deleted participants raise
-            return False
+    def _close_locked(self) -> None:
+        if not self._closed:
+            self._closed = True
+            cyclone_private.delete_participant(self.participant)
+        if _Context._instance is self:
+            _Context._instance = None
+
+    @classmethod
+    def close_process(cls) -> None:
+        """
+        Leave the graph with whatever this process built, even half-way through a start-up.
+
+        Publishes an empty node list and deletes the participant (with every entity in it).
+        """
+        with cls._lock:
+            ctx = cls._instance
+            if ctx is None:
+                return
+            for node in list(ctx._nodes):
+                node._graph_visible = False
+                node._shutdown = True
+            ctx._nodes = []
+            try:
+                ctx.publish_graph()
+            finally:
+                ctx._close_locked()
 
     def topic(self, name: str, data_type) -> Topic:
         """Return the one Topic per name of this participant (ros2_wire C4)."""
@@ -270,6 +278,33 @@ class _Context:
             gid=gid(data=self.participant_gid), node_entities_info_seq=nodes))
 
 
+class _Intake:
+    """
+    Takes a reader's samples and decodes each one on its own (cyclone_private.take).
+
+    A sample that cannot be decoded (a string that is not UTF-8, a truncated buffer) is dropped
+    and counted, with a throttled warning naming the endpoint; the rest of the batch is kept.
+    """
+
+    def __init__(self, node: 'DdsNode', reader: DataReader, what: str):
+        self._node = node
+        self.reader = reader
+        self.what = what
+        self.dropped = 0
+        self._warning = None
+
+    def take(self) -> list:
+        samples, errors = cyclone_private.take(self.reader, TAKE_BATCH)
+        for exc in errors:
+            self.dropped += 1
+            if self._warning is None:
+                self._warning = port.ThrottledWarning(self._node.get_logger())
+            self._warning.warn(
+                f'{self.what}: dropped a sample that cannot be decoded '
+                f'({type(exc).__name__}: {exc}); {self.dropped} dropped so far')
+        return samples
+
+
 class DdsPublisher(port.Publisher):
     def __init__(self, node: 'DdsNode', writer: DataWriter, msg_type, topic_name: str):
         self._node = node
@@ -292,9 +327,15 @@ class DdsPublisher(port.Publisher):
 
 
 class DdsSubscription(port.Subscription):
-    def __init__(self, reader: DataReader, topic_name: str):
+    def __init__(self, reader: DataReader, topic_name: str, intake: _Intake):
         self._reader = reader
         self.topic_name = topic_name
+        self._intake = intake
+
+    @property
+    def dropped_samples(self) -> int:
+        """How many samples could not be decoded and were dropped."""
+        return self._intake.dropped
 
     def get_publisher_count(self) -> int:
         return len(self._reader.get_matched_publications())
@@ -331,6 +372,7 @@ class DdsService(port.Service):
         self._reader = DataReader(
             ctx.participant, ctx.topic(f'rq{name}Request', self._types.request_wire),
             qos=_dds_qos(qos, endpoint_user_data(request, serviceid=self.token), False))
+        self._intake = _Intake(node, self._reader, f'service {name} ({srv_type}) request')
         # publication handle of a request writer -> its clientid token ('' when it has none)
         self._client_tokens: Dict[int, Optional[str]] = {}
         # subscription handle of a matched reply reader -> its clientid token
@@ -363,32 +405,54 @@ class DdsService(port.Service):
         self._matched_tokens = set(self._reader_tokens.values())
         return token in self._matched_tokens
 
+    @property
+    def dropped_samples(self) -> int:
+        """How many requests could not be decoded and were dropped."""
+        return self._intake.dropped
+
     def _on_data(self) -> None:
-        for sample in self._reader.take(N=TAKE_BATCH):
-            info = sample.sample_info
-            if not info.valid_data:
-                continue
+        for sample in self._intake.take():
+            handle = sample.sample_info.publication_handle
             client_id, sequence, request = self._types.request_from_wire(sample)
             try:
-                response = self._callback(request, self._types.response())
+                result = self._callback(request, self._types.response())
             except Exception as exc:  # noqa: BLE001 - a bad request must not kill the node
                 self._node.get_logger().error(
                     f'service {self.service_name} callback raised {type(exc).__name__}: {exc}')
                 continue
-            if not isinstance(response, self._types.response):
-                self._node.get_logger().error(
-                    f'service {self.service_name} callback returned {type(response).__name__}')
-                continue
-            wire = self._types.response_to_wire(response, client_id, sequence)
-            token = self._request_writer_token(info.publication_handle)
-            if token is None:
-                continue  # the client went away: drop silently, as rmw does
-            if not token or self._reply_reader_matched(token):
-                self._writer.write(wire)
+            if isinstance(result, port.Future):
+                # A deferred reply (port.NodePort.create_service): sent once the future is done.
+                result.add_done_callback(
+                    lambda done, c=client_id, s=sequence, h=handle: self._on_deferred(
+                        done, c, s, h))
             else:
-                self._pending.append(_PendingReply(
-                    wire, info.publication_handle, token,
-                    time.monotonic() + self._node.reply_match_timeout_s))
+                self._reply(result, client_id, sequence, handle)
+
+    def _on_deferred(self, done: port.Future, client_id: int, sequence: int,
+                     handle: int) -> None:
+        if self._node._shutdown:
+            return
+        if done.exception() is not None:
+            exc = done.exception()
+            self._node.get_logger().error(
+                f'service {self.service_name} deferred reply failed {type(exc).__name__}: {exc}')
+            return
+        self._reply(done.result(), client_id, sequence, handle)
+
+    def _reply(self, response, client_id: int, sequence: int, handle: int) -> None:
+        if not isinstance(response, self._types.response):
+            self._node.get_logger().error(
+                f'service {self.service_name} callback returned {type(response).__name__}')
+            return
+        wire = self._types.response_to_wire(response, client_id, sequence)
+        token = self._request_writer_token(handle)
+        if token is None:
+            return  # the client went away: drop silently, as rmw does
+        if not token or self._reply_reader_matched(token):
+            self._writer.write(wire)
+        else:
+            self._pending.append(_PendingReply(
+                wire, handle, token, time.monotonic() + self._node.reply_match_timeout_s))
 
     def _flush_pending(self, now: float) -> None:
         keep = []
@@ -418,6 +482,7 @@ class DdsClient(port.Client):
         self._reader = DataReader(
             ctx.participant, ctx.topic(f'rr{name}Reply', self._types.response_wire),
             qos=_dds_qos(qos, endpoint_user_data(reply, clientid=self.token), False))
+        self._intake = _Intake(node, self._reader, f'client {name} ({srv_type}) reply')
         self._writer = DataWriter(
             ctx.participant, ctx.topic(f'rq{name}Request', self._types.request_wire),
             qos=_dds_qos(qos, endpoint_user_data(request, clientid=self.token), True))
@@ -474,10 +539,13 @@ class DdsClient(port.Client):
                 f'no reply from {self.service_name} within {timeout_s} s')
         return future.result()
 
+    @property
+    def dropped_samples(self) -> int:
+        """How many replies could not be decoded and were dropped."""
+        return self._intake.dropped
+
     def _on_data(self) -> None:
-        for sample in self._reader.take(N=TAKE_BATCH):
-            if not sample.sample_info.valid_data:
-                continue
+        for sample in self._intake.take():
             client_id, sequence, response = self._types.response_from_wire(sample)
             if client_id != self.client_id:
                 continue  # a reply to another client on the same service
@@ -487,9 +555,10 @@ class DdsClient(port.Client):
 
 
 class DdsTimer(port.Timer):
-    def __init__(self, period_s: float, callback):
+    def __init__(self, node: 'DdsNode', period_s: float, callback):
         if not period_s > 0.0:
             raise TransportError(f'timer period must be > 0 s, got {period_s}')
+        self._node = node
         self.period_s = period_s
         self.callback = callback
         self.next_due = time.monotonic() + period_s
@@ -497,6 +566,12 @@ class DdsTimer(port.Timer):
 
     def cancel(self) -> None:
         self.cancelled = True
+
+    def reset(self) -> None:
+        self.cancelled = False
+        self.next_due = time.monotonic() + self.period_s
+        if not self._node._shutdown:
+            self._node._schedule(self)
 
 
 class DdsLogger(port.Logger):
@@ -565,8 +640,10 @@ class DdsNode(port.NodePort):
         self._params: Dict[str, _ParamEntry] = {}
         self._overrides_checked = False
         self._on_set_callbacks: List[Callable] = []
+        # id(entity) -> GUID bytes, for ros_discovery_info; the entities, to delete them.
         self._reader_gids: Dict[int, bytes] = {}
         self._writer_gids: Dict[int, bytes] = {}
+        self._endpoints: List[Any] = []
         self._handlers: List[Optional[Callable[[], None]]] = []
         self._conditions = []
         self._services: List[DdsService] = []
@@ -579,8 +656,7 @@ class DdsNode(port.NodePort):
         self._time_type = msg_types.message_type('builtin_interfaces/msg/Time')
         self._ctx = _Context.acquire(self)
         try:
-            self._waitset = WaitSet(self._ctx.participant)
-            self._xs = (dds_c_t.attach * 1)()
+            self._waitset = cyclone_private.IndexedWaitSet(self._ctx.participant)
             self._guard = GuardCondition(self._ctx.participant)
             self._attach(self._guard, None)
             self._logger = DdsLogger(self, ros_args.log_level or 20, ros_args.rosout_logs,
@@ -637,17 +713,19 @@ class DdsNode(port.NodePort):
         index = len(self._handlers) + 1
         self._handlers.append(handler)
         self._conditions.append(condition)
-        ret = self._waitset._waitset_attach(self._waitset._ref, condition._ref, index)
-        if ret < 0:
-            raise TransportError(f'cannot attach {condition!r} to the waitset ({ret})')
-        self._xs = (dds_c_t.attach * len(self._handlers))()
+        try:
+            self._waitset.attach(condition, index)
+        except DDSException as exc:
+            raise TransportError(f'cannot attach {condition!r} to the waitset: {exc}') from None
 
     def _add_reader(self, reader: DataReader, handler) -> None:
-        self._reader_gids[reader._ref] = reader.guid.bytes
-        self._attach(ReadCondition(reader, _ANY_STATE), handler)
+        self._reader_gids[id(reader)] = reader.guid.bytes
+        self._endpoints.append(reader)
+        self._attach(ReadCondition(reader, cyclone_private.ANY_STATE), handler)
 
     def _add_writer(self, writer: DataWriter) -> None:
-        self._writer_gids[writer._ref] = writer.guid.bytes
+        self._writer_gids[id(writer)] = writer.guid.bytes
+        self._endpoints.append(writer)
 
     def _graph_changed(self) -> None:
         if self._graph_visible:
@@ -677,14 +755,15 @@ class DdsNode(port.NodePort):
             self._ctx.participant, self._ctx.topic(dds_name, msg_type),
             qos=_dds_qos(profile, endpoint_user_data(msg_type.__ros_type__), False))
 
+        intake = _Intake(self, reader, f'subscription {fqn} ({msg_type.__ros_type__})')
+
         def on_data():
-            for sample in reader.take(N=TAKE_BATCH):
-                if sample.sample_info.valid_data:
-                    callback(sample)
+            for sample in intake.take():
+                callback(sample)
 
         self._add_reader(reader, on_data)
         self._graph_changed()
-        return DdsSubscription(reader, fqn)
+        return DdsSubscription(reader, fqn, intake)
 
     def create_service(self, srv_type: str, name: str, callback,
                        qos=port.QOS_SERVICES) -> DdsService:
@@ -712,10 +791,14 @@ class DdsNode(port.NodePort):
 
     def create_timer(self, period_s: float, callback) -> DdsTimer:
         self._check_ok()
-        timer = DdsTimer(period_s, callback)
-        self._timers.append(timer)
-        self._guard.set(True)  # re-plan the current wait
+        timer = DdsTimer(self, period_s, callback)
+        self._schedule(timer)
         return timer
+
+    def _schedule(self, timer: 'DdsTimer') -> None:
+        if timer not in self._timers:
+            self._timers.append(timer)
+        self._guard.set(True)  # re-plan the current wait
 
     # ---------------------------------------------------------------- clock and logging
 
@@ -913,18 +996,12 @@ class DdsNode(port.NodePort):
                 wait_s = min(wait_s, max(0.0, timer.next_due - now))
         if any(s._pending for s in self._services):
             wait_s = min(wait_s, PENDING_REPLY_POLL_S)
-        count = len(self._handlers)
-        xs = self._xs
-        triggered = self._waitset._waitset_wait(
-            self._waitset._ref, xs, count, int(wait_s * 1e9))
-        if triggered < 0:
+        triggered = self._waitset.wait(int(wait_s * 1e9))
+        if triggered is None:
             if self._shutdown:
                 return
-            raise TransportError(f'waitset wait failed ({triggered})')
-        for i in range(min(triggered, count)):
-            index = xs[i]
-            if not index:
-                continue
+            raise TransportError('waitset wait failed')
+        for index in triggered:
             handler = self._handlers[index - 1]
             if handler is None:
                 self._guard.set(False)
@@ -948,7 +1025,7 @@ class DdsNode(port.NodePort):
                     return
 
     def spin(self) -> None:
-        while self.ok() and not self._shutdown_requested:
+        while self.ok():
             self.spin_once(SPIN_SLICE_S)
 
     def request_shutdown(self) -> None:
@@ -960,7 +1037,8 @@ class DdsNode(port.NodePort):
             pass
 
     def ok(self) -> bool:
-        return not self._shutdown
+        """Return False once a shutdown was requested (a signal) or done, like ``rclpy.ok``."""
+        return not (self._shutdown or self._shutdown_requested)
 
     def shutdown(self) -> None:
         if self._shutdown:
@@ -972,13 +1050,9 @@ class DdsNode(port.NodePort):
         # node, the whole participant) so that the node leaves the graph at once (E1).
         if len(ctx._nodes) > 1:
             ctx.release(self)
-            for condition in self._conditions:
-                _delete_entity(condition)
-            for entity_ref in list(self._reader_gids) + list(self._writer_gids):
-                entity = Entity._entities.get(entity_ref)
-                if entity is not None:
-                    _delete_entity(entity)
-            _delete_entity(self._waitset)
+            for entity in self._conditions + self._endpoints:
+                cyclone_private.delete_entity(entity)
+            self._waitset.delete()
         else:
             ctx.release(self)
         self._handlers = []
@@ -1053,27 +1127,44 @@ def run_dds_node(node_factory, args=None) -> int:
     """
     Build a node and spin it until SIGINT/SIGTERM, then leave the graph (E1).
 
+    The signal handlers are installed before anything is created, as ``rclpy.init`` does: a
+    signal during start-up abandons the construction (a KeyboardInterrupt raised where it
+    stands, whose clean-up paths delete what was built) and ends the process cleanly, without
+    leaving a half-built node on the graph; a signal while spinning makes ``spin()`` return.
+
     :param node_factory: ``node_factory(args)`` returning a DdsNode or an object with ``.node``.
     :param args: the command line (default ``sys.argv``).
-    :return: the process exit status.
+    :return: the process exit status (0 after a signal, as an rclpy node).
     """
     args = sys.argv if args is None else args
-    app = node_factory(args)
-    node = app if isinstance(app, port.NodePort) else app.node
-    previous = {}
+    state = {'node': None, 'interrupted': False}
 
     def on_signal(signum, frame):
-        node.request_shutdown()
+        node = state['node']
+        if node is not None:
+            node.request_shutdown()
+        elif not state['interrupted']:
+            state['interrupted'] = True
+            raise KeyboardInterrupt(f'signal {signum} during start-up')
 
+    previous = {}
     if threading.current_thread() is threading.main_thread():
         for signum in (signal.SIGINT, signal.SIGTERM):
             previous[signum] = signal.signal(signum, on_signal)
+    node = None
     try:
+        app = node_factory(args)
+        node = app if isinstance(app, port.NodePort) else app.node
+        state['node'] = node   # from here on a signal only asks spin() to return
         node.spin()
     except KeyboardInterrupt:
         pass
     finally:
-        node.shutdown()
+        state['interrupted'] = True
+        if node is not None:
+            node.shutdown()
+        else:
+            _Context.close_process()   # whatever an interrupted start-up left half-built
         for signum, handler in previous.items():
             signal.signal(signum, handler)
     return 0

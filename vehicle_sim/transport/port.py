@@ -24,6 +24,7 @@ conventions, reference/ros2_wire.md). This module holds the adapter-neutral part
 import abc
 from dataclasses import dataclass
 import re
+import time
 from typing import Any, Callable, List, Optional, Union
 
 from vehicle_sim.core.errors import VehicleSimError
@@ -347,9 +348,43 @@ class Logger(abc.ABC):
         self.log(50, message)
 
 
+# Throttle period of repeated warnings [s] (wall time).
+WARN_THROTTLE_S = 1.0
+
+
+class ThrottledWarning:
+    """Log a warning at most once per ``period_s`` of wall time, counting what was suppressed."""
+
+    def __init__(self, logger: 'Logger', period_s: float = WARN_THROTTLE_S):
+        """
+        Create the throttle.
+
+        :param logger: a port Logger.
+        :param period_s: minimum wall time between two warnings [s].
+        """
+        self._logger = logger
+        self._period_s = period_s
+        self._last_s = None
+        self.suppressed = 0
+        self.count = 0
+
+    def warn(self, message: str) -> None:
+        """Count the event and log it unless one was logged less than period_s ago."""
+        self.count += 1
+        now_s = time.monotonic()
+        if self._last_s is not None and now_s - self._last_s < self._period_s:
+            self.suppressed += 1
+            return
+        if self.suppressed:
+            message += f' ({self.suppressed} similar warnings suppressed)'
+        self.suppressed = 0
+        self._last_s = now_s
+        self._logger.warn(message)
+
+
 class Future:
     """
-    The pending result of an asynchronous service call, completed while the node spins.
+    A result completed later, while the node spins: a service call's reply, or a deferred reply.
 
     Single-threaded: ``done()``/``result()`` are read by the thread that spins the node.
     """
@@ -449,6 +484,10 @@ class Timer(abc.ABC):
     def cancel(self) -> None:
         """Stop the timer."""
 
+    @abc.abstractmethod
+    def reset(self) -> None:
+        """Restart the timer (a cancelled one too): the next call is one period from now."""
+
 
 class NodePort(abc.ABC):
     """
@@ -456,7 +495,10 @@ class NodePort(abc.ABC):
 
     Types are named by their ROS names (``'std_msgs/msg/String'``, ``'vehicle_msgs/srv/SetInt'``);
     ``msg()``/``srv()`` return the adapter's classes. Names resolve like rcl. Service callbacks
-    are ``callback(request, response) -> response``.
+    are ``callback(request, response) -> response``; a callback that cannot answer at once
+    returns a :class:`Future` instead and completes it later with the response, from the node's
+    own thread while it spins (a deferred reply): the node serves other requests meanwhile and
+    the reply is sent when the future is done.
     """
 
     @abc.abstractmethod
@@ -484,7 +526,13 @@ class NodePort(abc.ABC):
         ...
 
     @abc.abstractmethod
-    def create_service(self, srv_type: str, name: str, callback) -> Service: ...
+    def create_service(self, srv_type: str, name: str, callback) -> Service:
+        """
+        Serve ``name``: ``callback(request, response)`` returns the response or a Future of it.
+
+        Requests are served in arrival order; with a deferred reply, later requests (to this
+        service too) are served before the reply is sent.
+        """
 
     @abc.abstractmethod
     def create_client(self, srv_type: str, name: str) -> Client: ...
@@ -542,7 +590,6 @@ class NodePort(abc.ABC):
 
     def spin_until(self, predicate: Callable[[], bool], timeout_s: float) -> bool:
         """Spin until ``predicate()`` is true; return False if ``timeout_s`` passed first."""
-        import time
         deadline = time.monotonic() + timeout_s
         while not predicate():
             remaining = deadline - time.monotonic()
@@ -553,7 +600,7 @@ class NodePort(abc.ABC):
 
     @abc.abstractmethod
     def ok(self) -> bool:
-        """Return False once shutdown() was called."""
+        """Return False once a shutdown was requested (SIGINT/SIGTERM) or shutdown() called."""
 
     @abc.abstractmethod
     def shutdown(self) -> None:

@@ -19,6 +19,13 @@ Written against ROS 2 Jazzy's rclpy: ``rclpy.init`` / ``Node`` / ``create_publis
 topic, QoSProfile)`` / ``create_service`` / ``create_client`` / ``call_async`` / ``spin_once`` /
 ``try_shutdown``; message classes come from the generated ``pkg.msg`` / ``pkg.srv`` modules.
 Only imported when rclpy is importable.
+
+Deferred service replies (a port callback returning a port Future) use rclpy's own mechanism:
+the service callback is a coroutine, which rclpy's executor awaits (Jazzy ``executors.py``,
+``_take_service``/``await_or_execute``) before it sends the response; it awaits an rclpy Future
+that the port Future completes. Services are in a reentrant callback group: the executor holds
+a service's group for as long as its callback runs, so in the node's default mutually exclusive
+group a waiting callback would stop the timer that completes it (and every other callback).
 """
 
 import importlib
@@ -28,6 +35,7 @@ from builtin_interfaces.msg import Time as TimeMsg
 from rcl_interfaces.msg import ParameterDescriptor
 from rcl_interfaces.msg import SetParametersResult as RclSetParametersResult
 import rclpy
+from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.clock import Clock, ClockType
 from rclpy.duration import Duration
 from rclpy.exceptions import ParameterException
@@ -35,6 +43,7 @@ from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter as RclpyParameter
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from rclpy.task import Future as RclpyFuture
 
 from vehicle_sim.transport import port
 from vehicle_sim.transport.params import unknown_overrides_warning
@@ -163,6 +172,7 @@ class RclpyNode(port.NodePort):
         self.node.add_on_set_parameters_callback(self._on_set_parameters)
         self._logger = _Logger(self.node.get_logger())
         self._steady = Clock(clock_type=ClockType.STEADY_TIME)
+        self._services_group = ReentrantCallbackGroup()
         # One executor per node, so that nodes of a private Context (tests) spin too.
         self.executor = SingleThreadedExecutor(context=context)
         self.executor.add_node(self.node)
@@ -187,8 +197,19 @@ class RclpyNode(port.NodePort):
             import_type(ros_type), topic, callback, to_rclpy_qos(qos)))
 
     def create_service(self, srv_type: str, name: str, callback, qos=port.QOS_SERVICES):
-        return self.node.create_service(import_type(srv_type), name, callback,
-                                        qos_profile=to_rclpy_qos(qos))
+        executor = self.executor
+
+        async def serve(request, response):
+            result = callback(request, response)
+            if isinstance(result, port.Future):
+                waiting = RclpyFuture(executor=executor)
+                result.add_done_callback(lambda done: _complete(waiting, done))
+                result = await waiting
+            return result
+
+        return self.node.create_service(import_type(srv_type), name, serve,
+                                        qos_profile=to_rclpy_qos(qos),
+                                        callback_group=self._services_group)
 
     def create_client(self, srv_type: str, name: str, qos=port.QOS_SERVICES):
         client = self.node.create_client(import_type(srv_type), name,
@@ -287,7 +308,13 @@ class RclpyNode(port.NodePort):
 
     def spin(self) -> None:
         while self.ok():  # returns once shutdown() was called, like the embedded transport
-            self.spin_once(0.1)
+            try:
+                self.spin_once(0.1)
+            except Exception:
+                # A signal shuts the context down while a callback runs (rclpy's handler acts
+                # at once), so the callback's next publish raises: the shutdown, not an error.
+                if self.ok():
+                    raise
 
     def ok(self) -> bool:
         return self.node is not None and rclpy.ok(context=self._context)
@@ -297,6 +324,14 @@ class RclpyNode(port.NodePort):
             self.executor.remove_node(self.node)
             self.node.destroy_node()
             self.node = None
+
+
+def _complete(waiting: RclpyFuture, done: port.Future) -> None:
+    """Pass a port Future's outcome to the rclpy Future a service coroutine awaits."""
+    if done.exception() is not None:
+        waiting.set_exception(done.exception())
+    else:
+        waiting.set_result(done.result())
 
 
 def create_rclpy_node(name: str, namespace: str = '', args=None, parameter_overrides=None,
@@ -314,7 +349,7 @@ def run_rclpy_node(node_factory, args=None) -> int:
     :param args: the command line.
     :return: the process exit status.
     """
-    rclpy.init(args=args)
+    rclpy.init(args=args)   # installs rclpy's SIGINT/SIGTERM handling before anything is built
     node = None
     try:
         app = node_factory(args)
@@ -322,6 +357,11 @@ def run_rclpy_node(node_factory, args=None) -> int:
         node.spin()
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
+    except Exception:
+        # A signal during start-up shuts the context down under the node being built, which
+        # then fails to create its next entity: that is the requested shutdown, not an error.
+        if rclpy.ok():
+            raise
     finally:
         if node is not None:
             node.shutdown()

@@ -1,0 +1,167 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Every use of cyclonedds-python internals by the embedded transport, in one place.
+
+Written against cyclonedds 11.0.1 (the version setup.py pins); test/test_cyclone_private.py pins
+the behaviour each function relies on, so an upgrade that changes it fails there first. Why
+each internal is needed:
+
+* :func:`take_serialized` / :func:`take` (``cyclonedds._clayer.ddspy_take``): the public
+  ``DataReader.take()`` deserializes the whole batch inside the call, so one sample that cannot
+  be decoded (a string that is not UTF-8, a truncated buffer) raises out of ``take()`` and the
+  rest of the batch, already removed from the reader, is lost. ``ddspy_take`` returns each
+  sample's CDR bytes and SampleInfo, so each one is deserialized on its own.
+* :func:`write_serialized` (``_clayer.ddspy_write``): writes bytes that are already CDR, e.g.
+  a malformed sample in a test, or recorded bytes re-published unchanged.
+* :func:`delete_entity` / :func:`delete_participant` (``Entity._entities``, ``Entity._delete``,
+  ``Entity._ref``): the public API deletes an entity only when Python collects it (and not at
+  all at interpreter exit); a node must leave the graph at once (ros2_wire E1), so entities are
+  deleted explicitly, and the children a participant takes with it are forgotten so that their
+  finalisers do not delete stale handles.
+* :class:`IndexedWaitSet` (``WaitSet._waitset_attach``, ``WaitSet._waitset_wait``,
+  ``cyclonedds.internal.dds_c_t.attach``): ``WaitSet.wait()`` only returns how many conditions
+  fired; the executor needs which ones, i.e. ``dds_waitset_wait``'s array of attach values.
+"""
+
+from typing import Any, List, Optional, Sequence, Tuple
+
+from cyclonedds._clayer import ddspy_take, ddspy_write
+from cyclonedds.core import (
+    DDSException,
+    Entity,
+    InstanceState,
+    SampleState,
+    ViewState,
+    WaitSet,
+)
+from cyclonedds.internal import dds_c_t
+
+ANY_STATE = SampleState.Any | ViewState.Any | InstanceState.Any
+
+
+def take_serialized(reader, count: int) -> List[Tuple[bytes, Any]]:
+    """
+    Take up to ``count`` samples of ``reader`` without deserializing them.
+
+    :return: ``(cdr_bytes, sample_info)`` pairs; the bytes start with the 4-byte encapsulation
+        header; for ``sample_info.valid_data == False`` they hold the key only.
+    :raises DDSException: when Cyclone refuses the take.
+    """
+    found = ddspy_take(reader._ref, ANY_STATE, count)
+    if isinstance(found, int):
+        raise DDSException(found, f'Occurred while taking data in {reader!r}')
+    return found
+
+
+def take(reader, count: int) -> Tuple[List[Any], List[Exception]]:
+    """
+    Take up to ``count`` samples and deserialize each one on its own.
+
+    Invalid samples (``valid_data`` false: a writer disposed or went away) are skipped. A sample
+    whose bytes cannot be decoded costs only itself.
+
+    :return: ``(samples, errors)``: the decoded samples, each with its ``sample_info``
+        attribute set like ``DataReader.take()`` does, and one exception per sample that could
+        not be decoded.
+    """
+    data_type = reader.topic.data_type
+    samples, errors = [], []
+    for data, info in take_serialized(reader, count):
+        if not info.valid_data:
+            continue
+        try:
+            sample = data_type.deserialize(data)
+        except Exception as exc:  # noqa: BLE001 - any malformed input, whatever it trips
+            errors.append(exc)
+            continue
+        sample.sample_info = info
+        samples.append(sample)
+    return samples, errors
+
+
+def write_serialized(writer, data: bytes) -> None:
+    """
+    Write ``data`` (CDR with its 4-byte encapsulation header) as one sample of ``writer``.
+
+    :raises DDSException: when Cyclone refuses the write.
+    """
+    ret = ddspy_write(writer._ref, bytes(data))
+    if ret < 0:
+        raise DDSException(ret, f'Occurred while writing serialized data in {writer!r}')
+
+
+def delete_entity(entity: Entity) -> None:
+    """Delete a DDS entity now (not at garbage collection), exactly once."""
+    ref = getattr(entity, '_ref', None)
+    if ref is not None and Entity._entities.get(ref) is entity:
+        del Entity._entities[ref]
+        entity._delete(ref)
+
+
+def delete_participant(participant: Entity) -> None:
+    """Delete a participant with everything it owns, now, and forget its children."""
+    for entity in list(Entity._entities.values()):
+        if entity is not participant and _owned_by(entity, participant):
+            del Entity._entities[entity._ref]
+    delete_entity(participant)
+
+
+def _owned_by(entity: Entity, participant: Entity) -> bool:
+    try:
+        return entity.participant == participant
+    except Exception:  # noqa: BLE001 - entities of deleted participants raise
+        return False
+
+
+class IndexedWaitSet:
+    """
+    A WaitSet whose ``wait`` says which conditions fired, by the index given at attach time.
+
+    :param participant: the participant owning the waitset.
+    """
+
+    def __init__(self, participant):
+        self.waitset = WaitSet(participant)
+        self._xs = (dds_c_t.attach * 1)()
+        self._count = 0
+
+    def attach(self, condition: Entity, index: int) -> None:
+        """
+        Attach ``condition`` with ``index`` (> 0) as the value :meth:`wait` reports.
+
+        :raises DDSException: when Cyclone refuses it.
+        """
+        ret = self.waitset._waitset_attach(self.waitset._ref, condition._ref, index)
+        if ret < 0:
+            raise DDSException(ret, f'Occurred while attaching {condition!r} to a waitset')
+        self._count += 1
+        self._xs = (dds_c_t.attach * self._count)()
+
+    def wait(self, timeout_ns: int) -> Optional[Sequence[int]]:
+        """
+        Block up to ``timeout_ns`` until conditions trigger.
+
+        :return: the indices of the triggered conditions (empty on timeout), or None when the
+            wait failed (e.g. the waitset was deleted meanwhile).
+        """
+        xs = self._xs
+        triggered = self.waitset._waitset_wait(self.waitset._ref, xs, self._count, timeout_ns)
+        if triggered < 0:
+            return None
+        return [xs[i] for i in range(min(triggered, self._count)) if xs[i]]
+
+    def delete(self) -> None:
+        delete_entity(self.waitset)
