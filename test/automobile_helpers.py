@@ -50,11 +50,11 @@ def wait_for(predicate, timeout_s=WAIT_S, spin=None):
 
 
 class NodeProcess:
-    """The automobile node in a subprocess; stderr is collected for the assertions."""
+    """The automobile node (or ``module``) in a subprocess; its output is kept for assertions."""
 
-    def __init__(self, *args):
+    def __init__(self, *args, module=NODE_MODULE):
         self.proc = subprocess.Popen(
-            [sys.executable, '-m', NODE_MODULE, *args], env=peer_env(),
+            [sys.executable, '-m', module, *args], env=peer_env(),
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         self.output = []
         for stream in (self.proc.stdout, self.proc.stderr):
