@@ -441,6 +441,7 @@ def test_ros_interface_doc_contains_the_generated_tables():
     with open(os.path.join(REPO_ROOT, 'docs', 'ros_interface.md'), encoding='utf-8') as stream:
         text = stream.read()
     assert itf.interface_table_markdown() in text
+    assert itf.sensor_table_markdown() in text
     assert sim_params.parameter_table_markdown() in text
 
 

@@ -38,16 +38,29 @@ from typing import Dict, List, Optional
 from vehicle_sim.config import load_car
 from vehicle_sim.core.drivetrain import ControlMode
 from vehicle_sim.core.errors import InvalidCommandError
+from vehicle_sim.core.sensor_sets import enable_sensors, static_transforms
 from vehicle_sim.physics import SimulatedCar, World
+from vehicle_sim.physics.sensor_urdf import with_sensor_links
+from vehicle_sim.physics.sensors import SensorFeed
 from vehicle_sim.physics.urdf import car_urdf
 from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.ros.conversions import pose_in_frame, quaternion_from_yaw, twist_in_body
-from vehicle_sim.ros.endpoints import EACH_PUBLISH, EACH_STEP, ONCE_LATCHED, Outputs, serve
+from vehicle_sim.ros.endpoints import (
+    EACH_PUBLISH,
+    EACH_SAMPLE,
+    EACH_STEP,
+    ON_EVENT,
+    ONCE_LATCHED,
+    Outputs,
+    serve,
+)
 from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.node_support import run_main
-from vehicle_sim.ros.sim_params import declare_parameters, world_vehicles
+from vehicle_sim.ros.sensor_interfaces import check_names, selected_sensors, sensor_rows
+from vehicle_sim.ros.sim_params import declare_parameters, world_spec
 from vehicle_sim.ros.time_step import TimeStepService
 from vehicle_sim.transport import create_node
+from vehicle_sim.transport.port import resolve_name
 
 NODE_NAME = 'automobile'
 # Timer period standing for "as fast as possible" (the port's timers need a period > 0).
@@ -73,12 +86,13 @@ class _Vehicle:
     The attributes the rows' converters read are listed in ``ros/interfaces.py``.
     """
 
-    def __init__(self, spec, car):
+    def __init__(self, spec, car, sensors):
         self.spec = spec
         self.car = car
         self.logic = car.logic
         self.body = car.body
-        self.prefix = itf.frame_prefix(spec.namespace)
+        self.sensors = sensors            # its SensorSpecs (the mounted ones are published)
+        self.prefix = self.frame_prefix = itf.frame_prefix(spec.namespace)
         self.base_frame = self.prefix + 'base_link'
         self.odom_frame = self.prefix + 'odom'
         self.spawn_xyz = (spec.x_m, spec.y_m, 0.0)
@@ -87,12 +101,18 @@ class _Vehicle:
         self.joint_names = tuple(self.prefix + name for name in names)
         self.outputs = None
         self.services = []
+        self.feed = None                  # SensorFeed: its sensors and collisions
         # Call context, set by sample().
         self.stamp = None
         self.status = None
         self.torque_mode = False
         self.odom = None
         self.joints = None
+        # Call context of the sensor and collision rows (ros/sensor_interfaces.py).
+        self.readings = {}
+        self.sample_stamp = None
+        self.event = None
+        self.event_stamp = None
 
     def sample(self, stamp):
         """Read the car's state once for every row published at ``stamp``."""
@@ -110,7 +130,14 @@ class _Vehicle:
 
     def description(self):
         """Return the URDF published on robot_description (names prefixed ``<p>``)."""
-        return car_urdf(self.car.params, name=self.spec.name, prefix=self.prefix)
+        return with_sensor_links(car_urdf(self.car.params, name=self.spec.name,
+                                          prefix=self.prefix), self.sensors, self.prefix)
+
+    def static_transforms(self):
+        """Return the vehicle's /tf_static entries: world -> <p>odom, then its sensor mounts."""
+        return [('world', self.odom_frame, self.spawn_xyz, self.spawn_q)] + [
+            (t.parent, t.child, t.xyz, t.quaternion)
+            for t in static_transforms(self.sensors, self.prefix)]
 
 
 class AutomobileNode:
@@ -139,6 +166,7 @@ class AutomobileNode:
         self.world = None
         self._timer = None
         self._time_step = None
+        self._sensing = []
         try:
             self._build()
         except BaseException:
@@ -149,20 +177,25 @@ class AutomobileNode:
         node = self.node
         self._logger = node.get_logger()
         self.settings = settings = declare_parameters(node)
-        specs = world_vehicles(settings)
+        scene = world_spec(settings)
         self.world = World(time_step_s=settings.time_step_s, friction=settings.friction)
+        for obstacle in scene.obstacles:
+            self.world.add_obstacle(obstacle)
         self._publish_every = settings.publish_every_steps
         self._stamp = stamp_builder(node.msg)
         # One queue for every vehicle's robot/time_step: they all advance the one world.
         self._time_step = TimeStepService(node, settings.time_step_ms, self.step_once,
                                           settings.synchronous)
         self._vehicles: List[_Vehicle] = []
-        for spec in specs:
+        self._taken_names = self._interface_names(scene)
+        self._scene_source = scene.source or node.get_fully_qualified_name()
+        for spec in scene.vehicles:
             car = SimulatedCar(self.world, load_car(spec.model), (spec.x_m, spec.y_m,
                                                                   spec.yaw_rad), name=spec.name)
-            vehicle = _Vehicle(spec, car)
+            vehicle = _Vehicle(spec, car, self._vehicle_sensors(spec))
             self._wire_vehicle(vehicle)
             self._vehicles.append(vehicle)
+        self._start_sensors(scene)
         self._wire_world()
         self._publish_latched()
         self._publish_step(self.world.time_s)
@@ -180,6 +213,47 @@ class AutomobileNode:
 
     # ------------------------------------------------------------------------------ wiring
 
+    def _vehicle_sensors(self, spec):
+        # The vehicle's sensors: the world's, plus the presets' the sensors parameter mounts.
+        names = selected_sensors(self.settings.sensors)
+        if names is None:
+            return spec.sensors
+        source = f'{self.node.get_fully_qualified_name()}: parameter sensors, vehicle ' \
+                 f'{spec.name!r}'
+        return enable_sensors(spec.sensors, names, source)
+
+    def _full_name(self, vehicle_namespace):
+        # row name -> its fully-qualified name on this node (remaps aside).
+        namespace, name = self.node.get_namespace(), self.node.get_name()
+        return lambda row_name: resolve_name(itf.vehicle_name(row_name, vehicle_namespace),
+                                             namespace, name)
+
+    def _interface_names(self, scene):
+        # {fully-qualified name: what has it} of every table row of the node.
+        global_name = self._full_name('')
+        taken = {global_name(row.name): 'a topic of the node' for row in itf.WORLD_TOPICS}
+        for spec in scene.vehicles:
+            full_name = self._full_name(spec.namespace)
+            for row in itf.VEHICLE_TOPICS + itf.SERVICES:
+                taken[full_name(row.name)] = f'{row.name!r} of vehicle {spec.name!r}'
+        return taken
+
+    def _sensor_rows(self, vehicle):
+        # The vehicle's sensor rows, refused when a name is taken in the node's interface.
+        rows = sensor_rows(vehicle.sensors)
+        where = f'{self._scene_source}: vehicle {vehicle.spec.name!r}'
+        check_names(rows, self._taken_names, self._full_name(vehicle.spec.namespace), where)
+        return rows
+
+    def _start_sensors(self, scene):
+        # After every body is in the world: each vehicle's sensors at their rates, and its
+        # collisions when there is something besides the ground to hit.
+        collisions = bool(scene.obstacles) or len(self._vehicles) > 1
+        for vehicle in self._vehicles:
+            vehicle.feed = SensorFeed(self.world, vehicle.body, vehicle.sensors, scene.origin,
+                                      collisions)
+        self._sensing = [v for v in self._vehicles if v.feed.active]
+
     def _wire_vehicle(self, vehicle):
         node = self.node
         ns = vehicle.spec.namespace
@@ -187,7 +261,8 @@ class AutomobileNode:
         def resolve(name):
             return itf.vehicle_name(name, ns)
 
-        vehicle.outputs = Outputs(node, itf.VEHICLE_TOPICS, vehicle, resolve)
+        vehicle.outputs = Outputs(node, itf.VEHICLE_TOPICS + self._sensor_rows(vehicle),
+                                  vehicle, resolve)
         handlers = {
             itf.SETTER: self._handle_setter,
             itf.GETTER: self._handle_getter,
@@ -206,8 +281,7 @@ class AutomobileNode:
         vehicles = self._vehicles
         self._fleet = SimpleNamespace(
             tf_frames=[(v.odom_frame, v.base_frame) for v in vehicles],
-            static_transforms=[('world', v.odom_frame, v.spawn_xyz, v.spawn_q)
-                               for v in vehicles],
+            static_transforms=[t for v in vehicles for t in v.static_transforms()],
             stamp=None, tf_poses=None)
         self._fleet_outputs = Outputs(self.node, itf.WORLD_TOPICS, self._fleet)
 
@@ -292,6 +366,20 @@ class AutomobileNode:
                 vehicle.outputs.publish(EACH_PUBLISH, vehicle)
             fleet.tf_poses = [vehicle.odom[:2] for vehicle in vehicles]
             outputs.publish(EACH_PUBLISH, fleet)
+        for vehicle in self._sensing:
+            self._publish_sensors(vehicle)
+
+    def _publish_sensors(self, vehicle):
+        # Every reading and collision event since the last call, stamped with its own
+        # simulated time (the feed keeps them across steps published together).
+        samples, events = vehicle.feed.take()
+        outputs, stamp = vehicle.outputs, self._stamp
+        for time_s, readings in samples:
+            vehicle.sample_stamp, vehicle.readings = stamp(time_s), readings
+            outputs.publish(EACH_SAMPLE, vehicle)
+        for event in events:
+            vehicle.event_stamp, vehicle.event = stamp(event.time_s), event
+            outputs.publish(ON_EVENT, vehicle)
 
     def _publish_latched(self):
         fleet = self._fleet

@@ -27,9 +27,10 @@ rows of :mod:`.endpoints`; the bridge reads ``/clock`` best effort, as rclpy's T
 Converter contexts. Status rows: wiring ``w.frame_id``; call: a :class:`VehicleReport`. Bridge
 outputs: wiring ``w.frame_id`` and ``w.wheel_sides`` ('left'/'right' per ``wheel_joints``
 entry); call ``ctx.stamp`` and ``ctx.command`` (core DiffDriveCommand). Robot rows: wiring
-``w.joint_names``, ``w.odom_frame``, ``w.base_frame``, ``w.urdf``; call ``ctx.stamp``,
-``ctx.joints`` (positions, velocities), ``ctx.odom`` and ``ctx.ground_truth`` (xyz, q, linear,
-angular). Input rows convert a message to the node's command.
+``w.joint_names``, ``w.odom_frame``, ``w.base_frame``, ``w.urdf``, ``w.frame_prefix``; call
+``ctx.stamp``, ``ctx.joints`` (positions, velocities), ``ctx.odom`` and ``ctx.ground_truth``
+(xyz, q, linear, angular), and for the collision and sensor rows the attributes listed in
+``ros/sensor_interfaces.py``. Input rows convert a message to the node's command.
 """
 
 from dataclasses import dataclass
@@ -54,6 +55,7 @@ from vehicle_sim.ros.endpoints import (
     Topic,
     topic_table_markdown,
 )
+from vehicle_sim.ros.sensor_interfaces import COLLISION
 from vehicle_sim.transport.port import QOS_CLOCK, QOS_DEFAULT, QOS_LATCHED
 
 
@@ -254,10 +256,11 @@ ROBOT_TIME_STEP = Service('robot/time_step', 'vehicle_msgs/srv/SetInt', kind='ti
                           doc='synchronous mode: advance value ms (a multiple of the step, '
                               '0 = one step)')
 # The robot's rows: inputs, then outputs in publishing order. Its publish period is the basic
-# step; /clock is published only while the node owns its world, /tf while publish_tf.
+# step; /clock is published only while the node owns its world, /tf while publish_tf. Its
+# mounted sensors add their rows (ros/sensor_interfaces.py).
 ROBOT_INPUTS = (ROBOT_DIFFERENTIAL_COMMAND, ROBOT_WHEEL_VELOCITIES)
 ROBOT_OUTPUTS = (CLOCK, ROBOT_JOINT_STATES, ROBOT_ODOM, ROBOT_GROUND_TRUTH_ODOM, TF, TF_STATIC,
-                 ROBOT_ROBOT_DESCRIPTION)
+                 ROBOT_ROBOT_DESCRIPTION, COLLISION)
 ROBOT_SERVICES = (ROBOT_TIME_STEP,)
 
 # --------------------------------------------------------------------------------------------

@@ -25,7 +25,9 @@ and ``fleet/diff_robot/``):
 - in  ``<ns>/wheel_velocities`` std_msgs/Float64MultiArray, [rad/s] in ``wheel_joints`` order
 - out ``<ns>/joint_states``, ``<ns>/odom`` (wheel odometry, ``<p>odom`` -> ``<p>base_link``),
   ``<ns>/ground_truth/odom`` (frame ``world``), ``/tf``, ``/tf_static``, ``/clock``,
-  ``<ns>/robot_description``
+  ``<ns>/robot_description``, ``<ns>/collision``, and a topic per mounted sensor (the
+  ``sensors`` parameter mounts the preset's lidar and IMU: ``<ns>/scan``, ``<ns>/imu``, frames
+  ``<p>lidar``, ``<p>imu``; ``ros/sensor_interfaces.py``)
 - service ``<ns>/robot/time_step`` vehicle_msgs/SetInt (synchronous mode; queued requests
   run in chunks from the node's loop, see :mod:`.time_step`)
 
@@ -40,12 +42,17 @@ from types import SimpleNamespace
 from vehicle_sim.core.diff_drive import integrate_pose, twist_from_wheel_speeds
 from vehicle_sim.core.errors import InvalidCommandError, VehicleSimError
 from vehicle_sim.core.params import ParamSpec
+from vehicle_sim.core.sensor_sets import enable_sensors, static_transforms
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
+from vehicle_sim.physics.sensor_urdf import with_sensor_links
+from vehicle_sim.physics.sensors import SensorFeed
 from vehicle_sim.physics.world import World
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros.endpoints import (
     EACH_PUBLISH,
+    EACH_SAMPLE,
     EACH_STEP,
+    ON_EVENT,
     ONCE_LATCHED,
     Outputs,
     serve,
@@ -53,7 +60,14 @@ from vehicle_sim.ros.endpoints import (
 )
 from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning
+from vehicle_sim.ros.sensor_interfaces import (
+    check_names,
+    selected_sensors,
+    sensor_rows,
+    SENSORS_PARAMETER,
+)
 from vehicle_sim.ros.time_step import TimeStepService
+from vehicle_sim.transport.port import resolve_name
 from vehicle_sim.transport.selection import create_node
 
 
@@ -79,6 +93,7 @@ ROBOT_NODE_PARAMETERS = (
               doc="wheel_velocities order; [''] = the preset's joints, left first"),
     ParamSpec('publish_tf', kind='bool', default=True,
               doc='publish <p>odom -> <p>base_link on /tf (wheel odometry)'),
+    SENSORS_PARAMETER,
 )
 
 
@@ -131,7 +146,13 @@ class DiffRobotNode:
                                           self.synchronous)
         self._time_step_name = (f'{node.get_fully_qualified_name().rstrip("/")}/'
                                 f'{bi.ROBOT_TIME_STEP.name}')
+        self.frame_prefix = prefix
+        self.sensors = self._sensors(values['sensors'])
         self._wire()
+        # Its sensors at their rates; collisions only in a shared world (its own holds nothing
+        # but the ground and the robot).
+        self._feed = SensorFeed(self.world, self.robot, self.sensors,
+                                collisions=not self._owns_world)
         self._timer = None
         if self._owns_world and not self.synchronous:
             self._timer = node.create_timer(self.world.time_step_s, self._on_timer)
@@ -141,19 +162,43 @@ class DiffRobotNode:
             f'{"synchronous" if self.synchronous else "real time"}, step '
             f'{self.world.time_step_s * 1000:g} ms, wheel_joints {list(self.wheel_joints)}')
 
+    def _sensors(self, value):
+        # The preset's sensors, those the sensors parameter names mounted.
+        specs = self.params.sensor_set
+        names = selected_sensors(value)
+        if names is not None:
+            specs = enable_sensors(specs, names, f'{self.node.get_fully_qualified_name()}: '
+                                                 'parameter sensors')
+        self._sensor_rows = sensor_rows(specs)
+        node = self.node
+
+        def full_name(row_name):
+            return resolve_name(_private(row_name), node.get_namespace(), node.get_name())
+
+        taken = {full_name(row.name): f"the robot's {row.name!r}" for row in
+                 bi.ROBOT_INPUTS + bi.ROBOT_OUTPUTS + bi.ROBOT_SERVICES}
+        check_names(self._sensor_rows, taken, full_name,
+                    f'{node.get_fully_qualified_name()}: robot {self.params.model!r}')
+        return specs
+
     def _wire(self):
-        # Rows of bridge_interfaces; self._ctx is their wiring and call context.
+        # Rows of bridge_interfaces and the sensor rows; self._ctx is their wiring and call
+        # context.
         node = self.node
         x, y, yaw = self._spawn
+        prefix = self.frame_prefix
         self._stamp = stamp_builder(node.msg)
         self._ctx = ctx = SimpleNamespace(
             joint_names=tuple(self.robot.wheel_joints), odom_frame=self.odom_frame,
-            base_frame=self.base_frame, urdf=self.robot.urdf,
+            base_frame=self.base_frame, frame_prefix=prefix,
+            urdf=with_sensor_links(self.robot.urdf, self.sensors),
             tf_frames=[(self.odom_frame, self.base_frame)],
-            static_transforms=[('world', self.odom_frame, (x, y, 0.0), _yaw_quaternion(yaw))],
+            static_transforms=[('world', self.odom_frame, (x, y, 0.0), _yaw_quaternion(yaw))] + [
+                (t.parent, t.child, t.xyz, t.quaternion)
+                for t in static_transforms(self.sensors, prefix)],
             stamp=self._stamp(self.world.time_s), joints=None, odom=None, ground_truth=None,
-            tf_poses=None)
-        self._outputs = Outputs(node, bi.ROBOT_OUTPUTS, ctx, _private)
+            tf_poses=None, readings={}, sample_stamp=None, event=None, event_stamp=None)
+        self._outputs = Outputs(node, bi.ROBOT_OUTPUTS + self._sensor_rows, ctx, _private)
         self._pub = self._outputs.publishers
         self._subs = subscribe(node, {
             bi.ROBOT_DIFFERENTIAL_COMMAND: self._on_differential_command,
@@ -224,6 +269,19 @@ class DiffRobotNode:
                             (0.0, 0.0, angular[2]))
         ctx.tf_poses = [(xyz, quat)] if self._publish_tf else None
         outputs.publish(EACH_PUBLISH, ctx)
+        if self._feed.active:
+            self._publish_sensors()
+
+    def _publish_sensors(self):
+        # Every reading and collision event since the last call, stamped with its own time.
+        samples, events = self._feed.take()
+        ctx, outputs, stamp = self._ctx, self._outputs, self._stamp
+        for time_s, readings in samples:
+            ctx.sample_stamp, ctx.readings = stamp(time_s), readings
+            outputs.publish(EACH_SAMPLE, ctx)
+        for event in events:
+            ctx.event_stamp, ctx.event = stamp(event.time_s), event
+            outputs.publish(ON_EVENT, ctx)
 
     @property
     def odom_pose(self):
@@ -231,9 +289,10 @@ class DiffRobotNode:
         return self._odom_pose
 
     def destroy(self):
-        """Leave the graph and close an owned world."""
+        """Leave the graph, stop its sensors (a shared world steps on) and close an owned world."""
         self._time_step.close()
         self.node.shutdown()
+        self._feed.close()
         if self._owns_world:
             self.world.close()
 

@@ -222,7 +222,8 @@ def _static_transforms(kit, w):
 
 
 TF_STATIC = Topic('/tf_static', m.TF_MESSAGE, QOS_TF_STATIC, ONCE_LATCHED, _static_transforms,
-                  doc='world -> <p>odom at each spawn pose, one message holding all')
+                  doc='world -> <p>odom at each spawn pose and <p>base_link -> <p><name> at each '
+                      'sensor mount, one message holding all')
 
 
 # ---------------------------------------------------------------------------------------------

@@ -23,10 +23,13 @@ and ``docs/ros_interface.md`` embeds :func:`interface_table_markdown`, so a name
 between them (STYLE rule 9).
 
 Converter contexts of the per-vehicle rows: wiring ``w`` = the vehicle (``base_frame``,
-``odom_frame``, ``joint_names``); call ``ctx`` = the same vehicle after ``sample(stamp)``
-(``stamp``, ``status`` (CarStatus), ``torque_mode``, ``odom`` = (xyz, q, linear, angular) of
-base_link in odom with the twist in base_link, ``joints`` = (positions, velocities)) and, for
-the latched row, ``description()`` (the URDF).
+``odom_frame``, ``joint_names``, ``frame_prefix``); call ``ctx`` = the same vehicle after
+``sample(stamp)`` (``stamp``, ``status`` (CarStatus), ``torque_mode``, ``odom`` = (xyz, q,
+linear, angular) of base_link in odom with the twist in base_link, ``joints`` = (positions,
+velocities)), for the latched row ``description()`` (the URDF), and for ``collision`` and the
+sensor rows the attributes listed in :mod:`.sensor_interfaces`. A vehicle's sensor rows are made
+from its mounted sensors (:func:`.sensor_interfaces.sensor_rows`); the docs list one of each type
+(:func:`sensor_table_markdown`).
 
 Values keep Webots semantics on every ``automobile/*`` endpoint: km/h, steering angle in rad with
 positive = right, throttle and brake in [0, 1]. Standard ROS outputs are SI / REP 103.
@@ -48,6 +51,7 @@ from vehicle_sim.ros.endpoints import (  # noqa: F401 - the cadences are part of
     topic_table_markdown,
     value_text,
 )
+from vehicle_sim.ros.sensor_interfaces import COLLISION, sensor_topic_rows
 from vehicle_sim.transport.port import QOS_DEFAULT, QOS_LATCHED
 
 FLOAT64_STAMPED = m.FLOAT64_STAMPED
@@ -133,7 +137,7 @@ ROBOT_DESCRIPTION = Topic('robot_description', m.STRING, QOS_LATCHED, ONCE_LATCH
                           converter(m.string_builder, lambda v: (v.description(),)),
                           doc='URDF, link and joint names prefixed <p>')
 
-STANDARD_TOPICS = (CLOCK, ODOM, TF, TF_STATIC, JOINT_STATES, ROBOT_DESCRIPTION)
+STANDARD_TOPICS = (CLOCK, ODOM, TF, TF_STATIC, JOINT_STATES, ROBOT_DESCRIPTION, COLLISION)
 TOPICS = AUTOMOBILE_TOPICS + STANDARD_TOPICS
 # Wired once per vehicle (relative names) and once for the node (global names).
 VEHICLE_TOPICS = tuple(row for row in TOPICS if not row.is_global)
@@ -277,6 +281,11 @@ def frame_prefix(namespace: str) -> str:
 
 def _docs_name(row) -> str:
     return row.name if row.is_global else '/<ns>/' + row.name
+
+
+def sensor_table_markdown() -> str:
+    """Return the Markdown table of the sensor topics, one sensor of each type (the docs)."""
+    return topic_table_markdown(sensor_topic_rows(), display_name=_docs_name)
 
 
 def interface_table_markdown() -> str:

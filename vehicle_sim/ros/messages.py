@@ -25,7 +25,10 @@ the same arguments, without changing a row. The messages are the same on rclpy a
 embedded transport.
 """
 
+from array import array
 from typing import Sequence, Tuple
+
+import numpy as np
 
 from vehicle_sim.core.units import seconds_to_stamp
 
@@ -48,6 +51,15 @@ GEAR_REPORT = 'autoware_vehicle_msgs/msg/GearReport'
 TURN_INDICATORS_REPORT = 'autoware_vehicle_msgs/msg/TurnIndicatorsReport'
 HAZARD_LIGHTS_REPORT = 'autoware_vehicle_msgs/msg/HazardLightsReport'
 CONTROL_MODE_REPORT = 'autoware_vehicle_msgs/msg/ControlModeReport'
+LASER_SCAN = 'sensor_msgs/msg/LaserScan'
+POINT_CLOUD2 = 'sensor_msgs/msg/PointCloud2'
+POINT_FIELD = 'sensor_msgs/msg/PointField'
+IMU = 'sensor_msgs/msg/Imu'
+NAV_SAT_FIX = 'sensor_msgs/msg/NavSatFix'
+RANGE = 'sensor_msgs/msg/Range'
+IMAGE = 'sensor_msgs/msg/Image'
+CAMERA_INFO = 'sensor_msgs/msg/CameraInfo'
+COLLISION = 'vehicle_msgs/msg/Collision'
 
 Vector = Tuple[float, float, float]
 Quaternion = Tuple[float, float, float, float]
@@ -241,3 +253,149 @@ gear_report_builder = stamped_field_builder(GEAR_REPORT, 'report')
 turn_indicators_report_builder = stamped_field_builder(TURN_INDICATORS_REPORT, 'report')
 hazard_lights_report_builder = stamped_field_builder(HAZARD_LIGHTS_REPORT, 'report')
 control_mode_report_builder = stamped_field_builder(CONTROL_MODE_REPORT, 'mode')
+
+
+# ---------------------------------------------------------------------------------------------
+# Sensors: ``build(stamp, reading)`` from a core reading (core/sensor_readings.py). Array fields
+# get ``array.array`` values: rclpy takes them without a per-element check, the embedded
+# transport packs them as it packs lists.
+
+
+def _float32s(values):
+    return array('f', np.ascontiguousarray(values, dtype=np.float32).tobytes())
+
+
+def _set_vector(vector, values):
+    vector.x, vector.y, vector.z = float(values[0]), float(values[1]), float(values[2])
+
+
+def laser_scan_builder(msg, frame_id: str):
+    """Return ``build(stamp, reading)``: sensor_msgs/LaserScan of a one-layer LidarReading."""
+    header_type, scan_type = msg(HEADER), msg(LASER_SCAN)
+
+    def build(stamp, reading):
+        return scan_type(
+            header=header_type(stamp=stamp, frame_id=frame_id),
+            angle_min=float(reading.angle_min_rad), angle_max=float(reading.angle_max_rad),
+            angle_increment=float(reading.angle_increment_rad),
+            time_increment=float(reading.time_increment_s),
+            scan_time=float(reading.scan_time_s), range_min=float(reading.range_min_m),
+            range_max=float(reading.range_max_m), ranges=_float32s(reading.scan),
+            intensities=array('f'))
+    return build
+
+
+def point_cloud2_builder(msg, frame_id: str):
+    """
+    Return ``build(stamp, reading)``: sensor_msgs/PointCloud2 of a LidarReading.
+
+    Organized (height = layers, width = rays), fields x, y, z FLOAT32 at offsets 0, 4, 8,
+    little-endian, NaN points for rays without a return (is_dense false).
+    """
+    header_type, cloud_type, field_type = msg(HEADER), msg(POINT_CLOUD2), msg(POINT_FIELD)
+    fields = [field_type(name=axis, offset=4 * index, datatype=field_type.FLOAT32, count=1)
+              for index, axis in enumerate('xyz')]
+    point_step = 12
+
+    def build(stamp, reading):
+        points = reading.points()
+        layers, rays = points.shape[0], points.shape[1]
+        return cloud_type(
+            header=header_type(stamp=stamp, frame_id=frame_id), height=layers, width=rays,
+            fields=fields, is_bigendian=False, point_step=point_step,
+            row_step=point_step * rays,
+            data=array('B', np.ascontiguousarray(points, dtype='<f4').tobytes()),
+            is_dense=False)
+    return build
+
+
+def imu_builder(msg, frame_id: str):
+    """Return ``build(stamp, reading)``: sensor_msgs/Imu of an ImuReading (sensor frame)."""
+    imu_type = msg(IMU)
+
+    def build(stamp, reading):
+        imu = imu_type()
+        imu.header.stamp = stamp
+        imu.header.frame_id = frame_id
+        q = reading.orientation_xyzw
+        orientation = imu.orientation
+        orientation.x, orientation.y = float(q[0]), float(q[1])
+        orientation.z, orientation.w = float(q[2]), float(q[3])
+        _set_vector(imu.angular_velocity, reading.angular_velocity_radps)
+        _set_vector(imu.linear_acceleration, reading.linear_acceleration_mps2)
+        imu.orientation_covariance = list(reading.orientation_covariance)
+        imu.angular_velocity_covariance = list(reading.angular_velocity_covariance)
+        imu.linear_acceleration_covariance = list(reading.linear_acceleration_covariance)
+        return imu
+    return build
+
+
+def nav_sat_fix_builder(msg, frame_id: str):
+    """Return ``build(stamp, reading)``: sensor_msgs/NavSatFix of a GnssReading."""
+    fix_type = msg(NAV_SAT_FIX)
+
+    def build(stamp, reading):
+        fix = fix_type()
+        fix.header.stamp = stamp
+        fix.header.frame_id = frame_id
+        fix.status.status = int(reading.status)
+        fix.status.service = int(reading.service)
+        fix.latitude = float(reading.latitude_deg)
+        fix.longitude = float(reading.longitude_deg)
+        fix.altitude = float(reading.altitude_m)
+        fix.position_covariance = list(reading.position_covariance)
+        fix.position_covariance_type = int(reading.covariance_type)
+        return fix
+    return build
+
+
+def range_builder(msg, frame_id: str):
+    """Return ``build(stamp, reading)``: sensor_msgs/Range (Jazzy, with variance)."""
+    header_type, range_type = msg(HEADER), msg(RANGE)
+
+    def build(stamp, reading):
+        return range_type(
+            header=header_type(stamp=stamp, frame_id=frame_id),
+            radiation_type=int(reading.radiation_type),
+            field_of_view=float(reading.field_of_view_rad),
+            min_range=float(reading.min_range_m), max_range=float(reading.max_range_m),
+            range=float(reading.range_m), variance=float(reading.variance_m2))
+    return build
+
+
+def image_builder(msg, frame_id: str):
+    """Return ``build(stamp, reading)``: sensor_msgs/Image (rgb8) of a CameraReading."""
+    header_type, image_type = msg(HEADER), msg(IMAGE)
+
+    def build(stamp, reading):
+        return image_type(
+            header=header_type(stamp=stamp, frame_id=frame_id), height=int(reading.height),
+            width=int(reading.width), encoding=reading.encoding, is_bigendian=0,
+            step=int(reading.step), data=array('B', reading.data))
+    return build
+
+
+def camera_info_builder(msg, frame_id: str):
+    """Return ``build(stamp, reading)``: sensor_msgs/CameraInfo of a CameraReading."""
+    info_type = msg(CAMERA_INFO)
+
+    def build(stamp, reading):
+        info = info_type()
+        info.header.stamp = stamp
+        info.header.frame_id = frame_id
+        info.height, info.width = int(reading.height), int(reading.width)
+        info.distortion_model = reading.distortion_model
+        info.d = array('d', reading.d)
+        info.k, info.r, info.p = list(reading.k), list(reading.r), list(reading.p)
+        return info
+    return build
+
+
+def collision_builder(msg, frame_id: str):
+    """Return ``build(stamp, event)``: vehicle_msgs/Collision of a core CollisionEvent."""
+    header_type, collision_type = msg(HEADER), msg(COLLISION)
+
+    def build(stamp, event):
+        return collision_type(header=header_type(stamp=stamp, frame_id=frame_id),
+                              other=event.other, normal_force=float(event.normal_force_n))
+    return build

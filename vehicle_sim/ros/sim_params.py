@@ -27,15 +27,19 @@ from typing import Tuple
 from vehicle_sim.config import (  # noqa: F401 (re-exported)
     car_names,
     find_config,
+    load_car,
     load_world,
     parse_world,
     VehicleSpec,
     world_path,
+    WorldSpec,
 )
 from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.geodesy import GeodeticOrigin
 from vehicle_sim.core.params import ParamSpec, table_defaults
 from vehicle_sim.physics import DEFAULT_FRICTION
 from vehicle_sim.ros import node_support
+from vehicle_sim.ros.sensor_interfaces import SENSORS_PARAMETER
 
 
 def _car_model(value):
@@ -81,12 +85,18 @@ AUTOMOBILE_PARAMETERS: Tuple[ParamSpec, ...] = (
               doc='advance the world only on robot/time_step calls (Webots --synchronize)'),
     ParamSpec('friction', kind='float', default=DEFAULT_FRICTION, unit='1', gt=0.0,
               doc='tyre-road friction coefficient of the ground'),
+    SENSORS_PARAMETER,
 )
 
 
 def defaults():
-    """Return {name: default} of every parameter (plus use_sim_time, declared by the port)."""
-    return table_defaults(AUTOMOBILE_PARAMETERS + (node_support.USE_SIM_TIME,))
+    """
+    Return {name: default} of every parameter (plus use_sim_time, declared by the port).
+
+    Values as a parameter file holds them (lists for the string arrays).
+    """
+    return {key: list(value) if isinstance(value, tuple) else value for key, value in
+            table_defaults(AUTOMOBILE_PARAMETERS + (node_support.USE_SIM_TIME,)).items()}
 
 
 @dataclass(frozen=True)
@@ -103,6 +113,7 @@ class SimSettings:
     real_time_factor: float
     synchronous: bool
     friction: float
+    sensors: Tuple[str, ...] = ('',)
 
     @property
     def time_step_s(self) -> float:
@@ -143,14 +154,22 @@ def parameter_table_markdown() -> str:
     return node_support.node_parameter_table(AUTOMOBILE_PARAMETERS)
 
 
-def world_vehicles(settings: SimSettings) -> Tuple[VehicleSpec, ...]:
+def world_spec(settings: SimSettings) -> WorldSpec:
     """
-    Return the vehicles to simulate.
+    Return the world to simulate: origin, vehicles (with their sensors) and obstacles.
 
-    :param settings: the node settings; ``world == ''`` gives the default car.
-    :raises InvalidParameterError: for an invalid world file.
+    :param settings: the node settings; ``world == ''`` gives the default car (its preset's
+        sensors, none mounted) at the initial pose, no obstacles, origin at 0 deg, 0 deg, 0 m.
+    :raises InvalidParameterError: for an invalid world file (naming file, entry and field).
     """
     if not settings.world:
-        return (VehicleSpec('Car', '', settings.car_model, settings.initial_x,
-                            settings.initial_y, settings.initial_yaw),)
-    return load_world(settings.world, settings.car_model).vehicles
+        model = settings.car_model
+        car = VehicleSpec('Car', '', model, settings.initial_x, settings.initial_y,
+                          settings.initial_yaw, load_car(model).sensor_set)
+        return WorldSpec(GeodeticOrigin(), (car,), ())
+    return load_world(settings.world, settings.car_model)
+
+
+def world_vehicles(settings: SimSettings) -> Tuple[VehicleSpec, ...]:
+    """Return the vehicles to simulate (see :func:`world_spec`)."""
+    return world_spec(settings).vehicles
