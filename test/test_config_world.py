@@ -28,7 +28,7 @@ import yaml
 from vehicle_sim.config import load_car, load_robot, load_world, parse_world, world_from_data
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.frames import Pose
-from vehicle_sim.core.params import car_params_from_dict, DEFAULT_CAR, table_markdown
+from vehicle_sim.core.params import car_params_from_dict, DEFAULT_CAR, parameter_table_markdown
 from vehicle_sim.core.robot_params import DEFAULT_ROBOT
 from vehicle_sim.core.sensor_params import (
     CameraSpec,
@@ -316,7 +316,8 @@ def test_sensors_doc_contains_the_generated_key_tables():
         encoding='utf-8')
     assert sensors_markdown() in text
     assert obstacles_markdown() in text
-    assert table_markdown(ORIGIN_SPECS) in text and table_markdown(VEHICLE_SPECS) in text
+    assert parameter_table_markdown(ORIGIN_SPECS, 'key') in text
+    assert parameter_table_markdown(VEHICLE_SPECS, 'key') in text
     assert ISSUE_WORLD.strip().split('obstacles:')[0].strip() in text
 
 

@@ -37,7 +37,7 @@ from typing import Dict, Optional, Tuple
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.frames import Pose
 from vehicle_sim.core.lookup_table import LookupTable
-from vehicle_sim.core.params import ParamSpec, REQUIRED, table_markdown, validate_table
+from vehicle_sim.core.params import parameter_table_markdown, ParamSpec, REQUIRED, validate_table
 
 SENSOR_TYPE_NAMES = ('lidar', 'imu', 'gnss', 'distance', 'camera')
 RADIATION_TYPES = ('ultrasound', 'infrared')
@@ -398,11 +398,11 @@ COMMON_KEYS = tuple(spec.key for spec in _common('lidar', 1.0))
 def sensors_markdown():
     """Return the key tables of docs/sensors.md: the common keys, then each type's own."""
     parts = ['#### Keys of every sensor\n\n',
-             table_markdown(_common('required', 'see the type'))]
+             parameter_table_markdown(_common('required', 'see the type'), 'key')]
     for name, row in SENSOR_TYPES.items():
         rate = next(spec.default for spec in row.specs if spec.key == 'rate_hz')
         parts.append(f'\n#### `{name}` (default `rate_hz`: {rate:g} Hz)\n\n'
-                     + table_markdown(row.specs, skip=COMMON_KEYS))
+                     + parameter_table_markdown(row.specs, 'key', skip=COMMON_KEYS))
     return ''.join(parts)
 
 

@@ -35,7 +35,7 @@ from typing import Callable, Optional, Sequence, Tuple
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.frames import Pose
 from vehicle_sim.core.geodesy import GeodeticOrigin
-from vehicle_sim.core.params import ParamSpec, REQUIRED, table_markdown, validate_table
+from vehicle_sim.core.params import parameter_table_markdown, ParamSpec, REQUIRED, validate_table
 from vehicle_sim.core.sensor_params import SensorSpec
 from vehicle_sim.core.sensor_sets import merge_sensors
 
@@ -97,11 +97,11 @@ def obstacles_markdown():
     shown = {'color': 'per shape', 'shape': REQUIRED}
     common = tuple(replace(spec, default=shown[spec.key]) if spec.key in shown else spec
                    for spec in _obstacle_common('box'))
-    parts = ['#### Keys of every obstacle\n\n', table_markdown(common)]
+    parts = ['#### Keys of every obstacle\n\n', parameter_table_markdown(common, 'key')]
     for shape, specs in OBSTACLE_SPECS.items():
         color = DEFAULT_COLORS[shape]
         parts.append(f'\n#### `{shape}` (default `color`: {list(color)})\n\n'
-                     + table_markdown(specs, skip=tuple(s.key for s in common)))
+                     + parameter_table_markdown(specs, 'key', skip=tuple(s.key for s in common)))
     return ''.join(parts)
 
 
