@@ -112,3 +112,67 @@ class Pose:
         """Return the pose as its configuration mapping (keys x, y, z, roll, pitch, yaw)."""
         return {'x': self.x_m, 'y': self.y_m, 'z': self.z_m, 'roll': self.roll_rad,
                 'pitch': self.pitch_rad, 'yaw': self.yaw_rad}
+
+
+def quaternion_from_yaw(yaw_rad: float) -> Quaternion:
+    """Return the quaternion (x, y, z, w) of a rotation by ``yaw_rad`` about +z (+ = left)."""
+    half = 0.5 * yaw_rad
+    return (0.0, 0.0, math.sin(half), math.cos(half))
+
+
+def quaternion_multiply(a: Quaternion, b: Quaternion) -> Quaternion:
+    """Return the Hamilton product a·b (apply b, then a)."""
+    ax, ay, az, aw = a
+    bx, by, bz, bw = b
+    return (aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw,
+            aw * bw - ax * bx - ay * by - az * bz)
+
+
+def quaternion_conjugate(q: Quaternion) -> Quaternion:
+    """Return the inverse of a unit quaternion."""
+    return (-q[0], -q[1], -q[2], q[3])
+
+
+def rotate(q: Quaternion, v: Vector) -> Vector:
+    """Return vector ``v`` rotated by the unit quaternion ``q``."""
+    qx, qy, qz, qw = q
+    vx, vy, vz = v
+    # t = 2 q_vec x v; v' = v + w t + q_vec x t
+    tx = 2.0 * (qy * vz - qz * vy)
+    ty = 2.0 * (qz * vx - qx * vz)
+    tz = 2.0 * (qx * vy - qy * vx)
+    return (vx + qw * tx + qy * tz - qz * ty,
+            vy + qw * ty + qz * tx - qx * tz,
+            vz + qw * tz + qx * ty - qy * tx)
+
+
+def pose_in_frame(frame_xyz: Vector, frame_q: Quaternion, xyz: Vector,
+                  q: Quaternion) -> Tuple[Vector, Quaternion]:
+    """
+    Express a world pose in another frame given by its world pose.
+
+    :param frame_xyz: frame origin in the world [m].
+    :param frame_q: frame orientation in the world.
+    :param xyz: pose position in the world [m].
+    :param q: pose orientation in the world.
+    :return: (position, orientation) in the frame.
+    """
+    inverse = quaternion_conjugate(frame_q)
+    delta = (xyz[0] - frame_xyz[0], xyz[1] - frame_xyz[1], xyz[2] - frame_xyz[2])
+    return rotate(inverse, delta), quaternion_multiply(inverse, q)
+
+
+def twist_in_body(q: Quaternion, linear_world: Vector,
+                  angular_world: Vector) -> Tuple[Vector, Vector]:
+    """
+    Express a world-frame twist in the body frame (nav_msgs/Odometry: twist in child_frame_id).
+
+    :param q: body orientation in the world.
+    :param linear_world: linear velocity [m/s] in the world frame.
+    :param angular_world: angular velocity [rad/s] in the world frame.
+    :return: (linear, angular) in the body frame.
+    """
+    inverse = quaternion_conjugate(q)
+    return rotate(inverse, linear_world), rotate(inverse, angular_world)

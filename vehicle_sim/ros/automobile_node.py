@@ -38,13 +38,13 @@ from typing import Dict, List, Optional
 from vehicle_sim.config import load_car
 from vehicle_sim.core.drivetrain import ControlMode
 from vehicle_sim.core.errors import InvalidCommandError
+from vehicle_sim.core.frames import pose_in_frame, quaternion_from_yaw, twist_in_body
 from vehicle_sim.core.sensor_sets import enable_sensors, static_transforms
 from vehicle_sim.physics import SimulatedCar, World
 from vehicle_sim.physics.sensor_urdf import with_sensor_links
 from vehicle_sim.physics.sensors import SensorFeed
 from vehicle_sim.physics.urdf import car_urdf
 from vehicle_sim.ros import interfaces as itf
-from vehicle_sim.ros.conversions import pose_in_frame, quaternion_from_yaw, twist_in_body
 from vehicle_sim.ros.endpoints import (
     EACH_PUBLISH,
     EACH_SAMPLE,

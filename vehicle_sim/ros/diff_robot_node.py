@@ -35,12 +35,12 @@ Bad commands (NaN, ±inf, beyond max_wheel_speed, wrong length) are rejected wit
 warning; the command in force stays.
 """
 
-import math
 import sys
 from types import SimpleNamespace
 
 from vehicle_sim.core.diff_drive import integrate_pose, twist_from_wheel_speeds
 from vehicle_sim.core.errors import InvalidCommandError, VehicleSimError
+from vehicle_sim.core.frames import quaternion_from_yaw
 from vehicle_sim.core.params import ParamSpec
 from vehicle_sim.core.sensor_sets import enable_sensors, static_transforms
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
@@ -69,10 +69,6 @@ from vehicle_sim.ros.sensor_interfaces import (
 from vehicle_sim.ros.time_step import TimeStepService
 from vehicle_sim.transport.port import resolve_name
 from vehicle_sim.transport.selection import create_node
-
-
-def _yaw_quaternion(yaw_rad):
-    return 0.0, 0.0, math.sin(yaw_rad / 2.0), math.cos(yaw_rad / 2.0)
 
 
 def _private(name):
@@ -193,7 +189,8 @@ class DiffRobotNode:
             base_frame=self.base_frame, frame_prefix=prefix,
             urdf=with_sensor_links(self.robot.urdf, self.sensors),
             tf_frames=[(self.odom_frame, self.base_frame)],
-            static_transforms=[('world', self.odom_frame, (x, y, 0.0), _yaw_quaternion(yaw))] + [
+            static_transforms=[
+                ('world', self.odom_frame, (x, y, 0.0), quaternion_from_yaw(yaw))] + [
                 (t.parent, t.child, t.xyz, t.quaternion)
                 for t in static_transforms(self.sensors, prefix)],
             stamp=self._stamp(self.world.time_s), joints=None, odom=None, ground_truth=None,
@@ -261,7 +258,7 @@ class DiffRobotNode:
                                         reading.right_radps * radius, self.params.wheel_tread_m)
         x, y, yaw = self._odom_pose = integrate_pose(
             *self._odom_pose, twist.speed_mps, twist.yaw_rate_radps, self.world.time_step_s)
-        xyz, quat = (x, y, 0.0), _yaw_quaternion(yaw)
+        xyz, quat = (x, y, 0.0), quaternion_from_yaw(yaw)
         ctx.odom = (xyz, quat, (twist.speed_mps, 0.0, 0.0), (0.0, 0.0, twist.yaw_rate_radps))
         pose = self.robot.pose()
         linear, angular = self.robot.body_twist()
