@@ -176,7 +176,7 @@ def cmd_run(args) -> int:
         raise CliError('--duration must be >= 0', EXIT_USAGE)
     # The CLI runs on the embedded transport unless the user asked for another one.
     transport = os.environ.get('VEHICLE_SIM_TRANSPORT') or 'dds'
-    from vehicle_sim.ros.automobile_node import AutomobileNode
+    from vehicle_sim.ros.car_sim import AutomobileNode
     try:
         app = AutomobileNode(['vehicle-sim', *ros_args], transport=transport,
                              parameter_overrides=overrides)

@@ -1,0 +1,319 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Simulated cars behind Webots' ``ros_automobile`` interface: the class of the ``automobile`` node.
+
+:class:`AutomobileNode` owns one PyBullet :class:`~vehicle_sim.physics.World` and one or more
+:class:`~vehicle_sim.physics.SimulatedCar` (a world file, or one default car), and serves each
+car's ``/<ns>/automobile/*`` and ``/<ns>/robot/*`` endpoints from :mod:`.interfaces`. It is
+written once against the transport port, so the same code runs on rclpy and on the embedded
+Cyclone DDS transport. It is shared, not a node module: the ``automobile`` executable
+(:mod:`.automobile_node`) runs it, ``autoware_automobile`` composes it on its own ROS node, and
+node modules never import each other.
+
+Time: in real-time mode a wall-clock timer of period ``time_step / real_time_factor`` steps the
+world while the node spins between steps (services stay responsive); ``real_time_factor`` 0
+steps on every non-blocking spin; ``synchronous`` steps only on ``robot/time_step`` calls, which
+are queued and run in chunks from the node's loop (:mod:`.time_step`), so the node keeps
+serving and honours signals however long a request is.
+"""
+
+from types import SimpleNamespace
+from typing import Dict, List, Optional
+
+from vehicle_sim.config import load_car
+from vehicle_sim.core.drivetrain import ControlMode
+from vehicle_sim.core.errors import InvalidCommandError
+from vehicle_sim.physics import SimulatedCar, World
+from vehicle_sim.physics.urdf import car_urdf
+from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros.conversions import pose_in_frame, quaternion_from_yaw, twist_in_body
+from vehicle_sim.ros.endpoints import EACH_PUBLISH, EACH_STEP, ONCE_LATCHED, Outputs, serve
+from vehicle_sim.ros.messages import stamp_builder
+from vehicle_sim.ros.sim_params import declare_parameters, world_vehicles
+from vehicle_sim.ros.time_step import TimeStepService
+from vehicle_sim.transport import create_node
+
+NODE_NAME = 'automobile'
+# Timer period standing for "as fast as possible" (the port's timers need a period > 0).
+AS_FAST_AS_POSSIBLE_PERIOD_S = 1e-6
+
+_FROM_CORE = {'float': float, 'int': int, 'bool': bool}
+
+
+def _to_core(kind, value):
+    # The Webots-shaped services carry the core's own units (km/h, rad + = right), so only the
+    # Python type is normalised; CarLogic does the validation.
+    if kind == 'float':
+        return float(value)
+    if kind == 'bool':
+        return bool(value)
+    return int(value)
+
+
+class _Vehicle:
+    """
+    One car: the wiring context of its rows and, after :meth:`sample`, their call context.
+
+    The attributes the rows' converters read are listed in ``ros/interfaces.py``.
+    """
+
+    def __init__(self, spec, car):
+        self.spec = spec
+        self.car = car
+        self.logic = car.logic
+        self.body = car.body
+        self.prefix = itf.frame_prefix(spec.namespace)
+        self.base_frame = self.prefix + 'base_link'
+        self.odom_frame = self.prefix + 'odom'
+        self.spawn_xyz = (spec.x_m, spec.y_m, 0.0)
+        self.spawn_q = quaternion_from_yaw(spec.yaw_rad)
+        names, _, _ = car.body.joint_states()
+        self.joint_names = tuple(self.prefix + name for name in names)
+        self.outputs = None
+        self.services = []
+        # Call context, set by sample().
+        self.stamp = None
+        self.status = None
+        self.torque_mode = False
+        self.odom = None
+        self.joints = None
+
+    def sample(self, stamp):
+        """Read the car's state once for every row published at ``stamp``."""
+        self.stamp = stamp
+        self.status = status = self.logic.status()
+        self.torque_mode = status.control_mode == ControlMode.TORQUE
+        body = self.body
+        pose = body.pose()
+        linear, angular = body.velocity()
+        xyz, q = pose_in_frame(self.spawn_xyz, self.spawn_q, pose[:3], pose[3:])
+        linear_b, angular_b = twist_in_body(pose[3:], linear, angular)
+        self.odom = (xyz, q, linear_b, angular_b)
+        _, positions, velocities = body.joint_states()
+        self.joints = (positions, velocities)
+
+    def description(self):
+        """Return the URDF published on robot_description (names prefixed ``<p>``)."""
+        return car_urdf(self.car.params, name=self.spec.name, prefix=self.prefix)
+
+
+class AutomobileNode:
+    """
+    Simulated cars behind Webots' ros_automobile interface.
+
+    In-process API (tests, benchmarks): :meth:`step_once`, :meth:`step`, :attr:`world`,
+    :attr:`vehicles` (namespace -> SimulatedCar), :attr:`settings`, :meth:`close`.
+    """
+
+    def __init__(self, args=None, *, transport: Optional[str] = None,
+                 parameter_overrides: Optional[Dict] = None, node=None):
+        """
+        Build the world, the cars and every endpoint.
+
+        :param args: command line (its ``--ros-args`` part: parameters, remaps).
+        :param transport: 'auto', 'rclpy' or 'dds' (default: VEHICLE_SIM_TRANSPORT).
+        :param parameter_overrides: parameter values winning over the command line.
+        :param node: an existing NodePort to use instead of creating one.
+        :raises InvalidParameterError: for a refused parameter or an invalid world file.
+        :raises TransportError: for a refused parameter override.
+        """
+        self.node = node if node is not None else create_node(
+            NODE_NAME, args=args, transport=transport,
+            parameter_overrides=parameter_overrides)
+        self.world = None
+        self._timer = None
+        self._time_step = None
+        try:
+            self._build()
+        except BaseException:
+            self.close()
+            raise
+
+    def _build(self):
+        node = self.node
+        self._logger = node.get_logger()
+        self.settings = settings = declare_parameters(node)
+        specs = world_vehicles(settings)
+        self.world = World(time_step_s=settings.time_step_s, friction=settings.friction)
+        self._publish_every = settings.publish_every_steps
+        self._stamp = stamp_builder(node.msg)
+        # One queue for every vehicle's robot/time_step: they all advance the one world.
+        self._time_step = TimeStepService(node, settings.time_step_ms, self.step_once,
+                                          settings.synchronous)
+        self._vehicles: List[_Vehicle] = []
+        for spec in specs:
+            car = SimulatedCar(self.world, load_car(spec.model), (spec.x_m, spec.y_m,
+                                                                  spec.yaw_rad), name=spec.name)
+            vehicle = _Vehicle(spec, car)
+            self._wire_vehicle(vehicle)
+            self._vehicles.append(vehicle)
+        self._wire_world()
+        self._publish_latched()
+        self._publish_step(self.world.time_s)
+        if not settings.synchronous:
+            period = (settings.time_step_s / settings.real_time_factor
+                      if settings.real_time_factor > 0.0 else AS_FAST_AS_POSSIBLE_PERIOD_S)
+            self._timer = node.create_timer(period, self._on_step_timer)
+        mode = ('synchronous (robot/time_step)' if settings.synchronous else
+                f'real_time_factor {settings.real_time_factor:g}')
+        node_ns = node.get_namespace().rstrip('/')   # a `-r __ns:=/x` remap moves everything
+        names = ', '.join(f'{v.spec.name} ({v.spec.model}) under '
+                          f'{node_ns}/{itf.vehicle_name("automobile", v.spec.namespace)}'
+                          for v in self._vehicles)
+        self._logger.info(f'automobile ready: {names}; step {settings.time_step_ms} ms, {mode}')
+
+    # ------------------------------------------------------------------------------ wiring
+
+    def _wire_vehicle(self, vehicle):
+        node = self.node
+        ns = vehicle.spec.namespace
+
+        def resolve(name):
+            return itf.vehicle_name(name, ns)
+
+        vehicle.outputs = Outputs(node, itf.VEHICLE_TOPICS, vehicle, resolve)
+        handlers = {
+            itf.SETTER: self._handle_setter,
+            itf.GETTER: self._handle_getter,
+            itf.DIMENSIONS: self._handle_get_dimensions,
+            itf.TIME_STEP: self._handle_time_step,
+            itf.WORLD_TIME: self._handle_get_time,
+            itf.BASIC_TIME_STEP: self._handle_get_basic_time_step,
+        }
+        vehicle.services = list(serve(node, {
+            spec: self._bind(handlers[spec.kind], spec, vehicle, resolve(spec.name))
+            for spec in itf.SERVICES}, resolve).values())
+
+    def _wire_world(self):
+        # The global rows (/clock, /tf, /tf_static): once for the node, all vehicles in one
+        # message.
+        vehicles = self._vehicles
+        self._fleet = SimpleNamespace(
+            tf_frames=[(v.odom_frame, v.base_frame) for v in vehicles],
+            static_transforms=[('world', v.odom_frame, v.spawn_xyz, v.spawn_q)
+                               for v in vehicles],
+            stamp=None, tf_poses=None)
+        self._fleet_outputs = Outputs(self.node, itf.WORLD_TOPICS, self._fleet)
+
+    @staticmethod
+    def _bind(handler, spec, vehicle, name):
+        def callback(request, response):
+            return handler(spec, vehicle, name, request, response)
+        return callback
+
+    # ------------------------------------------------------------------------------ services
+
+    def _handle_setter(self, spec, vehicle, name, request, response):
+        value = request.value
+        try:
+            getattr(vehicle.logic, spec.core)(_to_core(spec.value, value))
+        except InvalidCommandError as error:
+            # DESIGN §4, ROS column: success=false, nothing changed, the reason logged.
+            self._logger.warn(f'{name}: refused {value!r}: {error}; nothing changed')
+            response.success = False
+        else:
+            response.success = True
+        return response
+
+    def _handle_getter(self, spec, vehicle, name, request, response):
+        response.value = _FROM_CORE[spec.value](getattr(vehicle.logic, spec.core))
+        return response
+
+    def _handle_get_dimensions(self, spec, vehicle, name, request, response):
+        dims = vehicle.logic.dimensions()
+        response.track_front = float(dims.track_front_m)
+        response.track_rear = float(dims.track_rear_m)
+        response.wheel_base = float(dims.wheelbase_m)
+        response.front_wheel_radius = float(dims.front_wheel_radius_m)
+        response.rear_wheel_radius = float(dims.rear_wheel_radius_m)
+        return response
+
+    def _handle_time_step(self, spec, vehicle, name, request, response):
+        # A deferred reply: answered once this request's own steps are done.
+        return self._time_step.handle(name, request, response)
+
+    def _handle_get_time(self, spec, vehicle, name, request, response):
+        response.value = float(self.world.time_s)
+        return response
+
+    def _handle_get_basic_time_step(self, spec, vehicle, name, request, response):
+        response.value = float(self.settings.time_step_ms)
+        return response
+
+    # ------------------------------------------------------------------------------ stepping
+
+    def _on_step_timer(self):
+        self.step_once()
+
+    def step_once(self) -> float:
+        """
+        Advance the world by one basic step and publish; return the simulated time [s].
+
+        /clock is published every step, the other topics every publish period.
+        """
+        time_s = self.world.step()
+        self._publish_step(time_s)
+        return time_s
+
+    def step(self, count: int = 1) -> float:
+        """Advance the world by ``count`` basic steps; return the simulated time [s]."""
+        time_s = self.world.time_s
+        for _ in range(count):
+            time_s = self.step_once()
+        return time_s
+
+    # ------------------------------------------------------------------------------ publishing
+
+    def _publish_step(self, time_s):
+        fleet = self._fleet
+        fleet.stamp = stamp = self._stamp(time_s)
+        outputs = self._fleet_outputs
+        outputs.publish(EACH_STEP, fleet)
+        if self.world.step_count % self._publish_every == 0:
+            vehicles = self._vehicles
+            for vehicle in vehicles:
+                vehicle.sample(stamp)
+                vehicle.outputs.publish(EACH_PUBLISH, vehicle)
+            fleet.tf_poses = [vehicle.odom[:2] for vehicle in vehicles]
+            outputs.publish(EACH_PUBLISH, fleet)
+
+    def _publish_latched(self):
+        fleet = self._fleet
+        fleet.stamp = self._stamp(self.world.time_s)
+        self._fleet_outputs.publish(ONCE_LATCHED, fleet)
+        for vehicle in self._vehicles:
+            vehicle.stamp = fleet.stamp
+            vehicle.outputs.publish(ONCE_LATCHED, vehicle)
+
+    # ------------------------------------------------------------------------------ access
+
+    @property
+    def vehicles(self) -> Dict[str, SimulatedCar]:
+        """Namespace ('' for the default car) -> SimulatedCar."""
+        return {v.spec.namespace: v.car for v in self._vehicles}
+
+    def close(self):
+        """Stop stepping, leave the graph and free the physics (idempotent)."""
+        if self._timer is not None:
+            self._timer.cancel()
+            self._timer = None
+        if self._time_step is not None:
+            self._time_step.close()
+        if self.node is not None:
+            self.node.shutdown()
+        if self.world is not None:
+            self.world.close()
+
