@@ -147,6 +147,16 @@ def test_run_for_one_second_without_status_exits_0():
     assert result.stdout == ''
 
 
+def test_run_prints_plain_status_lines_with_advancing_time_when_not_on_a_terminal():
+    result = vehicle_sim('run', '--duration', '2.5')
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert lines, result.stderr
+    assert all(re.match(r't +[0-9.]+ s \| +[-0-9.]+ km/h \| rpm', line) for line in lines), lines
+    times = [float(line.split()[1]) for line in lines]
+    assert times == sorted(times)
+
+
 def test_demo_writes_a_png_where_asked(tmp_path):
     out = tmp_path / 'demo.png'
     result = vehicle_sim('demo', '--short', '--out', str(out))

@@ -19,10 +19,12 @@ import sys
 import time
 from typing import Any, Dict
 
-from vehicle_sim.tools.command import CliError, EXIT_OK, EXIT_USAGE, install_stop_handlers
+from vehicle_sim.tools.command import CliError, EXIT_OK, EXIT_USAGE
 
 STATUS_PERIOD_S = 0.2
 PLAIN_STATUS_PERIOD_S = 1.0
+# How often the node checks whether the status line is due [s] (wall clock).
+STATUS_POLL_S = 0.05
 
 _MODES = {-1: 'UNDEFINED', 0: 'SPEED', 1: 'TORQUE'}
 _INDICATORS = {0: 'off', 1: 'right', 2: 'left'}
@@ -159,7 +161,16 @@ class _AroundStatus:
 
 
 def cmd_run(args) -> int:
+    """
+    Run the automobile node through the transport's ``run_node``, as the node mains do.
+
+    So SIGINT/SIGTERM are handled from before anything is built: a signal during start-up
+    abandons it and leaves nothing on the graph; a signal while running ends the spin and the
+    node leaves the graph (exit 0). The status line and ``--duration`` are timers of the node.
+    """
     from vehicle_sim.core.errors import VehicleSimError
+    from vehicle_sim.ros.car_sim import AutomobileNode
+    from vehicle_sim.transport import run_node
     ros_args = list(args.ros_args or [])
     if ros_args and ros_args[0] == '--':
         ros_args = ros_args[1:]
@@ -176,16 +187,10 @@ def cmd_run(args) -> int:
         raise CliError('--duration must be >= 0', EXIT_USAGE)
     # The CLI runs on the embedded transport unless the user asked for another one.
     transport = os.environ.get('VEHICLE_SIM_TRANSPORT') or 'dds'
-    from vehicle_sim.ros.car_sim import AutomobileNode
-    try:
-        app = AutomobileNode(['vehicle-sim', *ros_args], transport=transport,
-                             parameter_overrides=overrides)
-    except (VehicleSimError, ValueError) as exc:
-        raise CliError(str(exc), EXIT_USAGE) from None
-    node = app.node
     output = _StatusOutput(not args.no_status)
+    built = []
 
-    def render():
+    def render(app):
         vehicles = app.vehicles
         if not vehicles:
             return f't {app.world.time_s:9.2f} s | no vehicle'
@@ -195,17 +200,31 @@ def cmd_run(args) -> int:
             line = f'[{namespace or "/"} +{len(vehicles) - 1}] ' + line
         return line
 
-    stop = install_stop_handlers()
-    start = time.monotonic()
+    def build(node_args):
+        try:
+            app = AutomobileNode(node_args, transport=transport, parameter_overrides=overrides)
+        except (VehicleSimError, ValueError) as exc:
+            raise CliError(str(exc), EXIT_USAGE) from None
+        built.append(app)
+        node = app.node
+        if output.enabled:
+            output.install()
+            node.create_timer(STATUS_POLL_S,
+                              lambda: output.maybe_show(time.monotonic(), lambda: render(app)))
+        if args.duration is not None:
+            if args.duration == 0.0:
+                node.request_shutdown()
+            else:
+                def stop():
+                    timer.cancel()
+                    node.request_shutdown()
+                timer = node.create_timer(args.duration, stop)
+        return app
+
     try:
-        output.install()
-        while not stop.is_set() and node.ok():
-            now = time.monotonic()
-            if args.duration is not None and now - start >= args.duration:
-                break
-            node.spin_once(0.05)
-            output.maybe_show(time.monotonic(), render)
+        run_node(build, ['vehicle-sim', *ros_args], transport=transport)
     finally:
         output.finish()
-        app.close()
+        for app in built:
+            app.close()
     return EXIT_OK

@@ -154,6 +154,7 @@ class RclpyNode(port.NodePort):
     def __init__(self, name: str, namespace: str = '', args=None,
                  parameter_overrides: Optional[Dict[str, Any]] = None, context=None):
         cli_args = None
+        self._shutdown_requested = False
         if not rclpy.ok(context=context):
             rclpy.init(args=args, context=context)
         elif args:
@@ -316,8 +317,12 @@ class RclpyNode(port.NodePort):
                 if self.ok():
                     raise
 
+    def request_shutdown(self) -> None:
+        self._shutdown_requested = True
+
     def ok(self) -> bool:
-        return self.node is not None and rclpy.ok(context=self._context)
+        return (self.node is not None and not self._shutdown_requested
+                and rclpy.ok(context=self._context))
 
     def shutdown(self) -> None:
         if self.node is not None:
