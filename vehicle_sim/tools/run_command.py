@@ -188,7 +188,6 @@ def cmd_run(args) -> int:
     # The CLI runs on the embedded transport unless the user asked for another one.
     transport = os.environ.get('VEHICLE_SIM_TRANSPORT') or 'dds'
     output = _StatusOutput(not args.no_status)
-    built = []
 
     def render(app):
         vehicles = app.vehicles
@@ -205,7 +204,6 @@ def cmd_run(args) -> int:
             app = AutomobileNode(node_args, transport=transport, parameter_overrides=overrides)
         except (VehicleSimError, ValueError) as exc:
             raise CliError(str(exc), EXIT_USAGE) from None
-        built.append(app)
         node = app.node
         if output.enabled:
             output.install()
@@ -221,10 +219,10 @@ def cmd_run(args) -> int:
                 timer = node.create_timer(args.duration, stop)
         return app
 
+    # As for the node mains, run_node shuts the node down (it leaves the graph); the world goes
+    # with the process (closing the app after that would touch the destroyed node's timers).
     try:
         run_node(build, ['vehicle-sim', *ros_args], transport=transport)
     finally:
         output.finish()
-        for app in built:
-            app.close()
     return EXIT_OK
