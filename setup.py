@@ -54,7 +54,7 @@ setup(
     tests_require=['pytest'],
     entry_points={
         'console_scripts': [
-            'vehicle-sim = vehicle_sim.cli:main',
+            'vehicle-sim = vehicle_sim.tools.cli:main',
             'automobile = vehicle_sim.ros.automobile_node:main',
             'ackermann_to_differential = vehicle_sim.ros.bridge_node:main',
             'diff_robot = vehicle_sim.ros.diff_robot_node:main',

@@ -37,7 +37,7 @@ pytestmark = pytest.mark.transport
 
 def vehicle_sim(*args, timeout_s=CLI_TIMEOUT_S):
     """Run ``vehicle-sim ARGS`` and return the CompletedProcess (text output)."""
-    return subprocess.run([sys.executable, '-m', 'vehicle_sim.cli', *args], env=peer_env(),
+    return subprocess.run([sys.executable, '-m', 'vehicle_sim', *args], env=peer_env(),
                           capture_output=True, text=True, timeout=timeout_s)
 
 
@@ -50,7 +50,7 @@ def peer(spawn_peer):
 def automobile():
     """``vehicle-sim run`` in the background; stopped with SIGTERM, which must exit 0."""
     proc = subprocess.Popen(
-        [sys.executable, '-m', 'vehicle_sim.cli', 'run', '--no-status', '--duration', '300'],
+        [sys.executable, '-m', 'vehicle_sim', 'run', '--no-status', '--duration', '300'],
         env=peer_env(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
         result = vehicle_sim('call', '/automobile/get_gear', '--wait',
@@ -147,6 +147,16 @@ def test_run_for_one_second_without_status_exits_0():
     assert result.stdout == ''
 
 
+def test_run_prints_plain_status_lines_with_advancing_time_when_not_on_a_terminal():
+    result = vehicle_sim('run', '--duration', '2.5')
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert lines, result.stderr
+    assert all(re.match(r't +[0-9.]+ s \| +[-0-9.]+ km/h \| rpm', line) for line in lines), lines
+    times = [float(line.split()[1]) for line in lines]
+    assert times == sorted(times)
+
+
 def test_demo_writes_a_png_where_asked(tmp_path):
     out = tmp_path / 'demo.png'
     result = vehicle_sim('demo', '--short', '--out', str(out))
@@ -156,8 +166,8 @@ def test_demo_writes_a_png_where_asked(tmp_path):
 
 
 def test_run_help_example_sets_a_parameter_the_node_declares(capsys):
-    from vehicle_sim.cli import build_parser
     from vehicle_sim.ros import sim_params
+    from vehicle_sim.tools.cli import build_parser
     with pytest.raises(SystemExit):
         build_parser().parse_args(['run', '--help'])
     examples = re.findall(r'-p (\w+):=', capsys.readouterr().out)
@@ -165,9 +175,9 @@ def test_run_help_example_sets_a_parameter_the_node_declares(capsys):
 
 
 def test_status_line_shows_time_speed_rpm_gear_mode_and_indicator():
-    from vehicle_sim.cli import status_line
     from vehicle_sim.config import load_car
     from vehicle_sim.core.car_logic import CarLogic
+    from vehicle_sim.tools.run_command import status_line
     status = CarLogic(load_car('Car')).status()
     line = status_line(1.5, status)
     assert line.startswith('t      1.50 s |    0.00 km/h | rpm      - | gear  0 | UNDEFINED')
@@ -201,7 +211,7 @@ def _screen(text):
 
 
 def test_run_log_lines_start_at_column_0_and_the_status_is_redrawn_below_them():
-    from vehicle_sim.cli import _StatusOutput
+    from vehicle_sim.tools.run_command import _StatusOutput
     from vehicle_sim.transport.dds import DdsNode
     terminal = _Terminal()
     output = _StatusOutput(True, stdout=terminal, stderr=terminal)
@@ -222,7 +232,7 @@ def test_run_log_lines_start_at_column_0_and_the_status_is_redrawn_below_them():
 
 
 def test_run_status_without_a_terminal_is_plain_lines_and_streams_are_left_alone():
-    from vehicle_sim.cli import _StatusOutput
+    from vehicle_sim.tools.run_command import _StatusOutput
     stream = io.StringIO()
     before = (sys.stdout, sys.stderr)
     output = _StatusOutput(True, stdout=stream, stderr=stream)
@@ -238,7 +248,7 @@ def test_run_status_without_a_terminal_is_plain_lines_and_streams_are_left_alone
 
 def test_format_message_prints_nested_fields_in_definition_order():
     from vehicle_msgs_py import message_type
-    from vehicle_sim.cli import format_message
+    from vehicle_sim.tools.message_yaml import format_message
     msg = message_type('vehicle_msgs/msg/Float64Stamped')(data=27.5)
     msg.header.frame_id = 'base_link'
     assert format_message(msg) == ('header:\n  stamp:\n    sec: 0\n    nanosec: 0\n'

@@ -15,11 +15,11 @@
 """
 End to end on simulated time: one Autoware command stream drives the robots and the car.
 
-The scenario (vehicle_sim/scenario.py, docs/end_to_end.md): straight, left arc, S-curve, silence,
-stop. The caster and skid-steer robots go through the Ackermann -> differential bridge in ONE
-shared World; the car goes through the autoware_automobile node. Paths are compared with the
-kinematic bicycle integrated from the commands as applied. Everything is driven in-process with
-sim time as receipt time, so the run is deterministic.
+The scenario (vehicle_sim/tools/scenario.py, docs/end_to_end.md): straight, left arc, S-curve,
+silence, stop. The caster and skid-steer robots go through the Ackermann -> differential bridge in
+ONE shared World; the car goes through the autoware_automobile node. Paths are compared with the
+kinematic bicycle integrated from the commands as applied. Everything is driven in-process with sim
+time as receipt time, so the run is deterministic.
 """
 
 import math
@@ -27,8 +27,8 @@ import struct
 
 import pytest
 
-from vehicle_sim import scenario
-from vehicle_sim.scenario import (
+from vehicle_sim.tools import scenario
+from vehicle_sim.tools.scenario import (
     BRIDGE_CONTROL_RATE_HZ,
     COMMAND_TIMEOUT_S,
     constant_stream,
@@ -137,7 +137,7 @@ def test_saturated_wheels_still_follow_the_commanded_curvature():
 def test_demo_writes_a_readable_png(tmp_path):
     from matplotlib import image
 
-    from vehicle_sim import demo
+    from vehicle_sim.tools import demo
     out = tmp_path / 'demo.png'
     demo.run_demo(str(out), short=True)
     data = out.read_bytes()

@@ -116,8 +116,9 @@ def test_cli_export_needs_only_what_a_ros_machine_has(tmp_path):
         'import sys\n'
         f'for name in {blocked!r}:\n'
         '    sys.modules[name] = None\n'
-        'from vehicle_sim.cli import main\n'
-        'sys.exit(main(["export-interfaces", sys.argv[1]]))\n')
+        'import runpy\n'
+        'sys.argv = ["vehicle_sim", "export-interfaces", sys.argv[1]]\n'
+        'runpy.run_module("vehicle_sim", run_name="__main__")\n')
     result = subprocess.run([sys.executable, '-c', code, str(tmp_path / 'cli')], cwd=REPO_ROOT,
                             capture_output=True, text=True, timeout=120)
     assert result.returncode == 0, result.stderr

@@ -16,7 +16,7 @@
 Start-up and shutdown of node processes on the embedded transport (issue 7, items 4 and 5).
 
 * A SIGTERM while the node is being built ends the process cleanly (exit 0) and leaves no node
-  on the graph.
+  on the graph, for the node mains and for ``vehicle-sim run``.
 * With services whose last clients died (their replies never acknowledged), SIGTERM still ends
   the process and the node leaves the graph; Cyclone's own configuration trace shows why it
   cannot take a second per writer any more (no writer linger). The time it takes is measured
@@ -71,14 +71,18 @@ class ParticipantWatch:
         cyclone_private.delete_participant(self.participant)
 
 
-@pytest.mark.parametrize('module, node_fqn', [
-    ('vehicle_sim.ros.automobile_node', '/startup_a/automobile'),
-    ('vehicle_sim.ros.diff_robot_node', '/startup_d/diff_robot'),
+@pytest.mark.parametrize('module, leading_args, node_fqn', [
+    ('vehicle_sim.ros.automobile_node', (), '/startup_a/automobile'),
+    ('vehicle_sim.ros.diff_robot_node', (), '/startup_d/diff_robot'),
+    # `vehicle-sim run`: the same node, built and spun by the command line tool
+    ('vehicle_sim', ('run', '--no-status', '--'), '/startup_c/automobile'),
 ])
-def test_sigterm_during_start_up_exits_cleanly_and_leaves_no_node(module, node_fqn):
+def test_sigterm_during_start_up_exits_cleanly_and_leaves_no_node(module, leading_args,
+                                                                  node_fqn):
     watch = ParticipantWatch()
     namespace = node_fqn.rsplit('/', 1)[0]
-    process = NodeProcess('--ros-args', '-r', f'__ns:={namespace}', module=module)
+    process = NodeProcess(*leading_args, '--ros-args', '-r', f'__ns:={namespace}',
+                          module=module)
     try:
         # The node's participant exists: its node is being built (parameter services, the
         # world, the endpoints). Stop it right there.

@@ -18,6 +18,13 @@ rclpy adapter tests: the same node behaviour on a real rclpy Node.
 Run where ROS 2 Jazzy is sourced; elsewhere the module is skipped with the reason printed.
 """
 
+import signal
+import subprocess
+import sys
+import textwrap
+import threading
+
+from conftest import peer_env
 import pytest
 
 rclpy = pytest.importorskip(
@@ -179,3 +186,66 @@ def test_rclpy_automobile_time_step_is_answered_after_its_steps(context):
     finally:
         client_node.shutdown()
         app.close()
+
+
+# A node main whose destroy_node takes a second, so that a second SIGINT lands inside it; after
+# run_node returned it waits a second more (standing for the process's exit) before a last line.
+SLOW_SHUTDOWN_MAIN = textwrap.dedent("""
+    import time
+    from vehicle_sim.transport.rclpy_adapter import RclpyNode, run_rclpy_node
+
+    def factory(args):
+        node = RclpyNode('slow_shutdown', '/rt_sigint')
+        destroy = node.shutdown
+
+        def slow_shutdown():
+            print('shutting down', flush=True)
+            time.sleep(1.0)
+            destroy()
+            print('destroyed', flush=True)
+        node.shutdown = slow_shutdown
+        print('ready', flush=True)
+        return node
+
+    status = run_rclpy_node(factory, ['slow_shutdown'])
+    print('returned', status, flush=True)
+    time.sleep(1.0)
+    print('exiting', flush=True)
+""")
+
+
+def _wait_for_line(lines, text, event, timeout_s=30.0):
+    assert event.wait(timeout_s), f'no {text!r} line: {lines}'
+
+
+def test_sigint_during_and_after_shutdown_is_ignored_and_the_node_exits_0():
+    # Under `ros2 launch`, Ctrl-C reaches a node twice: from the terminal and from launch.
+    proc = subprocess.Popen([sys.executable, '-c', SLOW_SHUTDOWN_MAIN], env=peer_env(),
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    lines = []
+    seen = {text: threading.Event() for text in ('ready', 'shutting down', 'returned 0')}
+
+    def read():
+        for line in proc.stdout:
+            lines.append(line)
+            for text, event in seen.items():
+                if line.startswith(text):
+                    event.set()
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    try:
+        _wait_for_line(lines, 'ready', seen['ready'])
+        proc.send_signal(signal.SIGINT)
+        _wait_for_line(lines, 'shutting down', seen['shutting down'])
+        proc.send_signal(signal.SIGINT)       # inside destroy_node
+        _wait_for_line(lines, 'returned 0', seen['returned 0'])
+        proc.send_signal(signal.SIGINT)       # while the process ends
+        assert proc.wait(30) == 0, ''.join(lines)
+        reader.join(10)
+        text = ''.join(lines)
+        assert 'Traceback' not in text and 'KeyboardInterrupt' not in text, text
+        assert [line.strip() for line in lines[-3:]] == ['destroyed', 'returned 0', 'exiting']
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()

@@ -26,7 +26,7 @@ import subprocess
 
 import pytest
 
-from vehicle_sim.cli import build_parser
+from vehicle_sim.tools.cli import build_parser
 
 REPO = Path(__file__).resolve().parent.parent
 SKIP_DIRS = {'.venv', 'build', 'install', 'log', '.git', '.pytest_cache', '.ruff_cache',

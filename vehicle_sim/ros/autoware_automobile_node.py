@@ -57,7 +57,7 @@ from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
 from vehicle_sim.core.params import ParamSpec
 from vehicle_sim.core.watchdog import DEFAULT_TIMEOUT_ACTION, DEFAULT_TIMEOUT_S, TIMEOUT_ACTIONS
 from vehicle_sim.ros import bridge_interfaces as bi
-from vehicle_sim.ros.automobile_node import AutomobileNode  # composed: see the layering test
+from vehicle_sim.ros.car_sim import AutomobileNode  # composed on this node
 from vehicle_sim.ros.endpoints import EACH_STATUS, Outputs, serve, subscribe
 from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning

@@ -599,6 +599,10 @@ class NodePort(abc.ABC):
         return True
 
     @abc.abstractmethod
+    def request_shutdown(self) -> None:
+        """Ask spin() to return (safe from a signal handler or a callback); then shutdown()."""
+
+    @abc.abstractmethod
     def ok(self) -> bool:
         """Return False once a shutdown was requested (SIGINT/SIGTERM) or shutdown() called."""
 

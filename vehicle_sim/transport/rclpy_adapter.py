@@ -29,6 +29,8 @@ group a waiting callback would stop the timer that completes it (and every other
 """
 
 import importlib
+import signal
+import threading
 from typing import Any, Dict, List, Optional
 
 from builtin_interfaces.msg import Time as TimeMsg
@@ -154,6 +156,7 @@ class RclpyNode(port.NodePort):
     def __init__(self, name: str, namespace: str = '', args=None,
                  parameter_overrides: Optional[Dict[str, Any]] = None, context=None):
         cli_args = None
+        self._shutdown_requested = False
         if not rclpy.ok(context=context):
             rclpy.init(args=args, context=context)
         elif args:
@@ -316,8 +319,12 @@ class RclpyNode(port.NodePort):
                 if self.ok():
                     raise
 
+    def request_shutdown(self) -> None:
+        self._shutdown_requested = True
+
     def ok(self) -> bool:
-        return self.node is not None and rclpy.ok(context=self._context)
+        return (self.node is not None and not self._shutdown_requested
+                and rclpy.ok(context=self._context))
 
     def shutdown(self) -> None:
         if self.node is not None:
@@ -345,11 +352,40 @@ def run_rclpy_node(node_factory, args=None) -> int:
     """
     Jazzy main shape: init, build, try spin, finally destroy_node and try_shutdown.
 
+    The first SIGINT ends the run (a KeyboardInterrupt, as Python's default handler raises);
+    every later one is ignored, so that it cannot interrupt the shutdown: under ``ros2 launch``
+    a Ctrl-C reaches the node twice (from the terminal, then forwarded by launch), and a second
+    KeyboardInterrupt inside ``destroy_node`` would print a traceback and end the process with
+    -2. The handler is installed before ``rclpy.init``, which chains rclpy's own SIGINT handling
+    (context shutdown) in front of it. This is a process's main: when it returns, SIGINT stays
+    ignored while the process ends (Python's finalization would otherwise reset it to the
+    default action, and a late second SIGINT would still kill the process with -2). SIGTERM
+    needs nothing: rclpy's handler only shuts the context down, however often it comes.
+
     :param node_factory: ``node_factory(args)`` returning a NodePort or an object with ``.node``.
     :param args: the command line.
-    :return: the process exit status.
+    :return: the process exit status (0 after a signal).
     """
-    rclpy.init(args=args)   # installs rclpy's SIGINT/SIGTERM handling before anything is built
+    stopping = []
+
+    def on_sigint(signum, frame):
+        if not stopping:
+            stopping.append(signum)
+            raise KeyboardInterrupt
+
+    previous = None
+    if threading.current_thread() is threading.main_thread():
+        previous = signal.signal(signal.SIGINT, on_sigint)
+
+    def restore():
+        if previous is not None:
+            signal.signal(signal.SIGINT, previous)
+
+    try:
+        rclpy.init(args=args)   # rclpy's SIGINT/SIGTERM handling, before anything is built
+    except BaseException:
+        restore()
+        raise
     node = None
     try:
         app = node_factory(args)
@@ -363,7 +399,10 @@ def run_rclpy_node(node_factory, args=None) -> int:
         if rclpy.ok():
             raise
     finally:
+        stopping.append(None)   # from here on a SIGINT is ignored
         if node is not None:
             node.shutdown()
         rclpy.try_shutdown()
+        if previous is not None:
+            signal.signal(signal.SIGINT, signal.SIG_IGN)   # the process is ending
     return 0

@@ -109,7 +109,7 @@ def run_demo(out_path=DEFAULT_OUT, car_model=None, short=False, stream=sys.stdou
     :return: (ScenarioResult, out_path).
     """
     os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'OFF')
-    from vehicle_sim import scenario
+    from vehicle_sim.tools import scenario
     result = scenario.run_scenario(car_model=car_model or scenario.DEFAULT_CAR,
                                    scale=0.5 if short else 1.0)
     plot(result, out_path)
@@ -120,7 +120,7 @@ def run_demo(out_path=DEFAULT_OUT, car_model=None, short=False, stream=sys.stdou
 
 
 def main(argv=None):
-    """Command line: ``python -m vehicle_sim.demo [--out FILE.png] [--car MODEL] [--short]``."""
+    """Command line: ``vehicle-sim demo [--out FILE.png] [--car MODEL] [--short]``."""
     parser = argparse.ArgumentParser(prog='vehicle-sim demo', description=__doc__.split('\n')[1])
     add_arguments(parser)
     args = parser.parse_args(argv)

@@ -1,0 +1,407 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Simulated cars behind Webots' ``ros_automobile`` interface: the class of the ``automobile`` node.
+
+:class:`AutomobileNode` owns one PyBullet :class:`~vehicle_sim.physics.World` and one or more
+:class:`~vehicle_sim.physics.SimulatedCar` (a world file, or one default car), and serves each
+car's ``/<ns>/automobile/*`` and ``/<ns>/robot/*`` endpoints from :mod:`.interfaces`. It is
+written once against the transport port, so the same code runs on rclpy and on the embedded
+Cyclone DDS transport. It is shared, not a node module: the ``automobile`` executable
+(:mod:`.automobile_node`) runs it, ``autoware_automobile`` composes it on its own ROS node, and
+node modules never import each other.
+
+Time: in real-time mode a wall-clock timer of period ``time_step / real_time_factor`` steps the
+world while the node spins between steps (services stay responsive); ``real_time_factor`` 0
+steps on every non-blocking spin; ``synchronous`` steps only on ``robot/time_step`` calls, which
+are queued and run in chunks from the node's loop (:mod:`.time_step`), so the node keeps
+serving and honours signals however long a request is.
+"""
+
+from types import SimpleNamespace
+from typing import Dict, List, Optional
+
+from vehicle_sim.config import load_car
+from vehicle_sim.core.drivetrain import ControlMode
+from vehicle_sim.core.errors import InvalidCommandError
+from vehicle_sim.core.frames import pose_in_frame, quaternion_from_yaw, twist_in_body
+from vehicle_sim.core.sensor_sets import enable_sensors, static_transforms
+from vehicle_sim.physics import SimulatedCar, World
+from vehicle_sim.physics.sensor_urdf import with_sensor_links
+from vehicle_sim.physics.sensors import SensorFeed
+from vehicle_sim.physics.urdf import car_urdf
+from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros.endpoints import (
+    EACH_PUBLISH,
+    EACH_SAMPLE,
+    EACH_STEP,
+    ON_EVENT,
+    ONCE_LATCHED,
+    Outputs,
+    serve,
+)
+from vehicle_sim.ros.messages import stamp_builder
+from vehicle_sim.ros.sensor_interfaces import check_names, selected_sensors, sensor_rows
+from vehicle_sim.ros.sim_params import declare_parameters, world_spec
+from vehicle_sim.ros.time_step import TimeStepService
+from vehicle_sim.transport import create_node
+from vehicle_sim.transport.port import resolve_name
+
+NODE_NAME = 'automobile'
+# Timer period standing for "as fast as possible" (the port's timers need a period > 0).
+AS_FAST_AS_POSSIBLE_PERIOD_S = 1e-6
+
+_FROM_CORE = {'float': float, 'int': int, 'bool': bool}
+
+
+def _to_core(kind, value):
+    # The Webots-shaped services carry the core's own units (km/h, rad + = right), so only the
+    # Python type is normalised; CarLogic does the validation.
+    if kind == 'float':
+        return float(value)
+    if kind == 'bool':
+        return bool(value)
+    return int(value)
+
+
+class _Vehicle:
+    """
+    One car: the wiring context of its rows and, after :meth:`sample`, their call context.
+
+    The attributes the rows' converters read are listed in ``ros/interfaces.py``.
+    """
+
+    def __init__(self, spec, car, sensors):
+        self.spec = spec
+        self.car = car
+        self.logic = car.logic
+        self.body = car.body
+        self.sensors = sensors            # its SensorSpecs (the mounted ones are published)
+        self.prefix = self.frame_prefix = itf.frame_prefix(spec.namespace)
+        self.base_frame = self.prefix + 'base_link'
+        self.odom_frame = self.prefix + 'odom'
+        self.spawn_xyz = (spec.x_m, spec.y_m, 0.0)
+        self.spawn_q = quaternion_from_yaw(spec.yaw_rad)
+        names, _, _ = car.body.joint_states()
+        self.joint_names = tuple(self.prefix + name for name in names)
+        self.outputs = None
+        self.services = []
+        self.feed = None                  # SensorFeed: its sensors and collisions
+        # Call context, set by sample().
+        self.stamp = None
+        self.status = None
+        self.torque_mode = False
+        self.odom = None
+        self.joints = None
+        # Call context of the sensor and collision rows (ros/sensor_interfaces.py).
+        self.readings = {}
+        self.sample_stamp = None
+        self.event = None
+        self.event_stamp = None
+
+    def sample(self, stamp):
+        """Read the car's state once for every row published at ``stamp``."""
+        self.stamp = stamp
+        self.status = status = self.logic.status()
+        self.torque_mode = status.control_mode == ControlMode.TORQUE
+        body = self.body
+        pose = body.pose()
+        linear, angular = body.velocity()
+        xyz, q = pose_in_frame(self.spawn_xyz, self.spawn_q, pose[:3], pose[3:])
+        linear_b, angular_b = twist_in_body(pose[3:], linear, angular)
+        self.odom = (xyz, q, linear_b, angular_b)
+        _, positions, velocities = body.joint_states()
+        self.joints = (positions, velocities)
+
+    def description(self):
+        """Return the URDF published on robot_description (names prefixed ``<p>``)."""
+        return with_sensor_links(car_urdf(self.car.params, name=self.spec.name,
+                                          prefix=self.prefix), self.sensors, self.prefix)
+
+    def static_transforms(self):
+        """Return the vehicle's /tf_static entries: world -> <p>odom, then its sensor mounts."""
+        return [('world', self.odom_frame, self.spawn_xyz, self.spawn_q)] + [
+            (t.parent, t.child, t.xyz, t.quaternion)
+            for t in static_transforms(self.sensors, self.prefix)]
+
+
+class AutomobileNode:
+    """
+    Simulated cars behind Webots' ros_automobile interface.
+
+    In-process API (tests, benchmarks): :meth:`step_once`, :meth:`step`, :attr:`world`,
+    :attr:`vehicles` (namespace -> SimulatedCar), :attr:`settings`, :meth:`close`.
+    """
+
+    def __init__(self, args=None, *, transport: Optional[str] = None,
+                 parameter_overrides: Optional[Dict] = None, node=None):
+        """
+        Build the world, the cars and every endpoint.
+
+        :param args: command line (its ``--ros-args`` part: parameters, remaps).
+        :param transport: 'auto', 'rclpy' or 'dds' (default: VEHICLE_SIM_TRANSPORT).
+        :param parameter_overrides: parameter values winning over the command line.
+        :param node: an existing NodePort to use instead of creating one.
+        :raises InvalidParameterError: for a refused parameter or an invalid world file.
+        :raises TransportError: for a refused parameter override.
+        """
+        self.node = node if node is not None else create_node(
+            NODE_NAME, args=args, transport=transport,
+            parameter_overrides=parameter_overrides)
+        self.world = None
+        self._timer = None
+        self._time_step = None
+        self._sensing = []
+        try:
+            self._build()
+        except BaseException:
+            self.close()
+            raise
+
+    def _build(self):
+        node = self.node
+        self._logger = node.get_logger()
+        self.settings = settings = declare_parameters(node)
+        scene = world_spec(settings)
+        self.world = World(time_step_s=settings.time_step_s, friction=settings.friction)
+        for obstacle in scene.obstacles:
+            self.world.add_obstacle(obstacle)
+        self._publish_every = settings.publish_every_steps
+        self._stamp = stamp_builder(node.msg)
+        # One queue for every vehicle's robot/time_step: they all advance the one world.
+        self._time_step = TimeStepService(node, settings.time_step_ms, self.step_once,
+                                          settings.synchronous)
+        self._vehicles: List[_Vehicle] = []
+        self._taken_names = self._interface_names(scene)
+        self._scene_source = scene.source or node.get_fully_qualified_name()
+        for spec in scene.vehicles:
+            car = SimulatedCar(self.world, load_car(spec.model), (spec.x_m, spec.y_m,
+                                                                  spec.yaw_rad), name=spec.name)
+            vehicle = _Vehicle(spec, car, self._vehicle_sensors(spec))
+            self._wire_vehicle(vehicle)
+            self._vehicles.append(vehicle)
+        self._start_sensors(scene)
+        self._wire_world()
+        self._publish_latched()
+        self._publish_step(self.world.time_s)
+        if not settings.synchronous:
+            period = (settings.time_step_s / settings.real_time_factor
+                      if settings.real_time_factor > 0.0 else AS_FAST_AS_POSSIBLE_PERIOD_S)
+            self._timer = node.create_timer(period, self._on_step_timer)
+        mode = ('synchronous (robot/time_step)' if settings.synchronous else
+                f'real_time_factor {settings.real_time_factor:g}')
+        node_ns = node.get_namespace().rstrip('/')   # a `-r __ns:=/x` remap moves everything
+        names = ', '.join(f'{v.spec.name} ({v.spec.model}) under '
+                          f'{node_ns}/{itf.vehicle_name("automobile", v.spec.namespace)}'
+                          for v in self._vehicles)
+        self._logger.info(f'automobile ready: {names}; step {settings.time_step_ms} ms, {mode}')
+
+    # ------------------------------------------------------------------------------ wiring
+
+    def _vehicle_sensors(self, spec):
+        # The vehicle's sensors: the world's, plus the presets' the sensors parameter mounts.
+        names = selected_sensors(self.settings.sensors)
+        if names is None:
+            return spec.sensors
+        source = f'{self.node.get_fully_qualified_name()}: parameter sensors, vehicle ' \
+                 f'{spec.name!r}'
+        return enable_sensors(spec.sensors, names, source)
+
+    def _full_name(self, vehicle_namespace):
+        # row name -> its fully-qualified name on this node (remaps aside).
+        namespace, name = self.node.get_namespace(), self.node.get_name()
+        return lambda row_name: resolve_name(itf.vehicle_name(row_name, vehicle_namespace),
+                                             namespace, name)
+
+    def _interface_names(self, scene):
+        # {fully-qualified name: what has it} of every table row of the node.
+        global_name = self._full_name('')
+        taken = {global_name(row.name): 'a topic of the node' for row in itf.WORLD_TOPICS}
+        for spec in scene.vehicles:
+            full_name = self._full_name(spec.namespace)
+            for row in itf.VEHICLE_TOPICS + itf.SERVICES:
+                taken[full_name(row.name)] = f'{row.name!r} of vehicle {spec.name!r}'
+        return taken
+
+    def _sensor_rows(self, vehicle):
+        # The vehicle's sensor rows, refused when a name is taken in the node's interface.
+        rows = sensor_rows(vehicle.sensors)
+        where = f'{self._scene_source}: vehicle {vehicle.spec.name!r}'
+        check_names(rows, self._taken_names, self._full_name(vehicle.spec.namespace), where)
+        return rows
+
+    def _start_sensors(self, scene):
+        # After every body is in the world: each vehicle's sensors at their rates, and its
+        # collisions when there is something besides the ground to hit.
+        collisions = bool(scene.obstacles) or len(self._vehicles) > 1
+        for vehicle in self._vehicles:
+            vehicle.feed = SensorFeed(self.world, vehicle.body, vehicle.sensors, scene.origin,
+                                      collisions)
+        self._sensing = [v for v in self._vehicles if v.feed.active]
+
+    def _wire_vehicle(self, vehicle):
+        node = self.node
+        ns = vehicle.spec.namespace
+
+        def resolve(name):
+            return itf.vehicle_name(name, ns)
+
+        vehicle.outputs = Outputs(node, itf.VEHICLE_TOPICS + self._sensor_rows(vehicle),
+                                  vehicle, resolve)
+        handlers = {
+            itf.SETTER: self._handle_setter,
+            itf.GETTER: self._handle_getter,
+            itf.DIMENSIONS: self._handle_get_dimensions,
+            itf.TIME_STEP: self._handle_time_step,
+            itf.WORLD_TIME: self._handle_get_time,
+            itf.BASIC_TIME_STEP: self._handle_get_basic_time_step,
+        }
+        vehicle.services = list(serve(node, {
+            spec: self._bind(handlers[spec.kind], spec, vehicle, resolve(spec.name))
+            for spec in itf.SERVICES}, resolve).values())
+
+    def _wire_world(self):
+        # The global rows (/clock, /tf, /tf_static): once for the node, all vehicles in one
+        # message.
+        vehicles = self._vehicles
+        self._fleet = SimpleNamespace(
+            tf_frames=[(v.odom_frame, v.base_frame) for v in vehicles],
+            static_transforms=[t for v in vehicles for t in v.static_transforms()],
+            stamp=None, tf_poses=None)
+        self._fleet_outputs = Outputs(self.node, itf.WORLD_TOPICS, self._fleet)
+
+    @staticmethod
+    def _bind(handler, spec, vehicle, name):
+        def callback(request, response):
+            return handler(spec, vehicle, name, request, response)
+        return callback
+
+    # ------------------------------------------------------------------------------ services
+
+    def _handle_setter(self, spec, vehicle, name, request, response):
+        value = request.value
+        try:
+            getattr(vehicle.logic, spec.core)(_to_core(spec.value, value))
+        except InvalidCommandError as error:
+            # DESIGN §4, ROS column: success=false, nothing changed, the reason logged.
+            self._logger.warn(f'{name}: refused {value!r}: {error}; nothing changed')
+            response.success = False
+        else:
+            response.success = True
+        return response
+
+    def _handle_getter(self, spec, vehicle, name, request, response):
+        response.value = _FROM_CORE[spec.value](getattr(vehicle.logic, spec.core))
+        return response
+
+    def _handle_get_dimensions(self, spec, vehicle, name, request, response):
+        dims = vehicle.logic.dimensions()
+        response.track_front = float(dims.track_front_m)
+        response.track_rear = float(dims.track_rear_m)
+        response.wheel_base = float(dims.wheelbase_m)
+        response.front_wheel_radius = float(dims.front_wheel_radius_m)
+        response.rear_wheel_radius = float(dims.rear_wheel_radius_m)
+        return response
+
+    def _handle_time_step(self, spec, vehicle, name, request, response):
+        # A deferred reply: answered once this request's own steps are done.
+        return self._time_step.handle(name, request, response)
+
+    def _handle_get_time(self, spec, vehicle, name, request, response):
+        response.value = float(self.world.time_s)
+        return response
+
+    def _handle_get_basic_time_step(self, spec, vehicle, name, request, response):
+        response.value = float(self.settings.time_step_ms)
+        return response
+
+    # ------------------------------------------------------------------------------ stepping
+
+    def _on_step_timer(self):
+        self.step_once()
+
+    def step_once(self) -> float:
+        """
+        Advance the world by one basic step and publish; return the simulated time [s].
+
+        /clock is published every step, the other topics every publish period.
+        """
+        time_s = self.world.step()
+        self._publish_step(time_s)
+        return time_s
+
+    def step(self, count: int = 1) -> float:
+        """Advance the world by ``count`` basic steps; return the simulated time [s]."""
+        time_s = self.world.time_s
+        for _ in range(count):
+            time_s = self.step_once()
+        return time_s
+
+    # ------------------------------------------------------------------------------ publishing
+
+    def _publish_step(self, time_s):
+        fleet = self._fleet
+        fleet.stamp = stamp = self._stamp(time_s)
+        outputs = self._fleet_outputs
+        outputs.publish(EACH_STEP, fleet)
+        if self.world.step_count % self._publish_every == 0:
+            vehicles = self._vehicles
+            for vehicle in vehicles:
+                vehicle.sample(stamp)
+                vehicle.outputs.publish(EACH_PUBLISH, vehicle)
+            fleet.tf_poses = [vehicle.odom[:2] for vehicle in vehicles]
+            outputs.publish(EACH_PUBLISH, fleet)
+        for vehicle in self._sensing:
+            self._publish_sensors(vehicle)
+
+    def _publish_sensors(self, vehicle):
+        # Every reading and collision event since the last call, stamped with its own
+        # simulated time (the feed keeps them across steps published together).
+        samples, events = vehicle.feed.take()
+        outputs, stamp = vehicle.outputs, self._stamp
+        for time_s, readings in samples:
+            vehicle.sample_stamp, vehicle.readings = stamp(time_s), readings
+            outputs.publish(EACH_SAMPLE, vehicle)
+        for event in events:
+            vehicle.event_stamp, vehicle.event = stamp(event.time_s), event
+            outputs.publish(ON_EVENT, vehicle)
+
+    def _publish_latched(self):
+        fleet = self._fleet
+        fleet.stamp = self._stamp(self.world.time_s)
+        self._fleet_outputs.publish(ONCE_LATCHED, fleet)
+        for vehicle in self._vehicles:
+            vehicle.stamp = fleet.stamp
+            vehicle.outputs.publish(ONCE_LATCHED, vehicle)
+
+    # ------------------------------------------------------------------------------ access
+
+    @property
+    def vehicles(self) -> Dict[str, SimulatedCar]:
+        """Namespace ('' for the default car) -> SimulatedCar."""
+        return {v.spec.namespace: v.car for v in self._vehicles}
+
+    def close(self):
+        """Stop stepping, leave the graph and free the physics (idempotent)."""
+        if self._timer is not None:
+            self._timer.cancel()
+            self._timer = None
+        if self._time_step is not None:
+            self._time_step.close()
+        if self.node is not None:
+            self.node.shutdown()
+        if self.world is not None:
+            self.world.close()
+

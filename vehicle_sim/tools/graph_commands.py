@@ -1,0 +1,330 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The graph commands of ``vehicle-sim``: ``list``, ``echo``, ``call`` and ``param``.
+
+They read the graph through :class:`~vehicle_sim.graph.GraphView` and talk to it through a
+hidden helper node (``_vehicle_sim_cli_<pid>``) on the embedded transport, created only when a
+command needs one.
+"""
+
+import os
+import sys
+import time
+from typing import Any, Optional
+
+from vehicle_sim.tools.command import CliError, EXIT_OK, EXIT_USAGE, install_stop_handlers
+from vehicle_sim.tools.message_yaml import build_request, format_message
+
+DEFAULT_DISCOVERY_WAIT_S = 3.0
+DEFAULT_LIST_WAIT_S = 1.5
+DEFAULT_CALL_TIMEOUT_S = 5.0
+
+
+# --------------------------------------------------------------------------------------------
+# Shared helpers of the graph commands
+
+def _absolute(name: str) -> str:
+    return name if name.startswith('/') else '/' + name
+
+
+def _hidden(name: str) -> bool:
+    return any(token.startswith('_') for token in name.split('/') if token)
+
+
+def _not_found(kind: str, name: str, candidates, wait_s: float) -> CliError:
+    from vehicle_sim.graph import close_names
+    close = close_names(name, candidates)
+    hint = f'; did you mean: {", ".join(close)}' if close else ''
+    return CliError(f'{kind} {name!r} not found on the graph after {wait_s:g} s '
+                    f'(ROS_DOMAIN_ID={os.environ.get("ROS_DOMAIN_ID", "0")}){hint}')
+
+
+class _Session:
+    """The CLI's graph view and (created on demand) its hidden helper node."""
+
+    def __init__(self):
+        from vehicle_sim.graph import GraphView
+        self.graph = GraphView()
+        self._node = None
+
+    @property
+    def node(self):
+        if self._node is None:
+            from vehicle_sim.transport import dds
+            from vehicle_sim.transport.selection import create_node
+            self._node = create_node(
+                f'_vehicle_sim_cli_{os.getpid()}', transport='dds',
+                args=['--ros-args', '--disable-rosout-logs', '--log-level', 'warn'])
+            self.graph.ignore_participant(dds.participant_guid())
+        return self._node
+
+    def close(self):
+        if self._node is not None:
+            self._node.shutdown()
+        self.graph.close()
+
+    def service_type(self, service: str, given: Optional[str], wait_s: float) -> str:
+        if given:
+            return _check_service_type(given)
+        found = self.graph.wait_until(lambda: service in self.graph.services(), wait_s)
+        if not found:
+            raise _not_found('service', service, self.graph.services(), wait_s)
+        types = sorted(self.graph.services()[service])
+        if len(types) > 1:
+            raise CliError(f'service {service} has several types ({", ".join(types)}); '
+                           'pick one with --type')
+        return _check_service_type(types[0])
+
+
+def _check_service_type(srv_type: str) -> str:
+    from vehicle_msgs_py import known_services
+    from vehicle_msgs_py.types import normalize_type_name
+    try:
+        srv_type = normalize_type_name(srv_type)
+    except ValueError as exc:
+        raise CliError(str(exc)) from None
+    srv_type = srv_type.replace('/msg/', '/srv/')
+    if srv_type not in known_services():
+        raise CliError(f'service type {srv_type} is not known to vehicle_sim '
+                       f'(known: {", ".join(known_services())})')
+    return srv_type
+
+
+def _check_message_type(ros_type: str) -> str:
+    from vehicle_msgs_py import known_types
+    from vehicle_msgs_py.types import normalize_type_name
+    try:
+        ros_type = normalize_type_name(ros_type)
+    except ValueError as exc:
+        raise CliError(str(exc)) from None
+    if ros_type not in known_types():
+        from vehicle_sim.graph import close_names
+        close = close_names(ros_type, known_types())
+        hint = f'; did you mean: {", ".join(close)}' if close else ''
+        raise CliError(f'message type {ros_type} is not known to vehicle_sim{hint}')
+    return ros_type
+
+
+def _call(node, srv_type: str, service: str, request, timeout_s: float):
+    from vehicle_sim.transport.port import ServiceTimeoutError
+    client = node.create_client(srv_type, service)
+    if not client.wait_for_service(timeout_s):
+        raise CliError(f'service {service} is not available (no matched server within '
+                       f'{timeout_s:g} s)')
+    try:
+        return client.call(request, timeout_s)
+    except ServiceTimeoutError:
+        raise CliError(f'no reply from {service} within {timeout_s:g} s') from None
+
+
+# --------------------------------------------------------------------------------------------
+# list
+
+def cmd_list(args) -> int:
+    session = _Session()
+    try:
+        session.graph.wait(args.wait)
+        graph = session.graph
+        nodes = [n for n in graph.node_names() if args.all or not _hidden(n)]
+        topics = {k: v for k, v in graph.topics().items() if args.all or not _hidden(k)}
+        services = {k: v for k, v in graph.services().items() if args.all or not _hidden(k)}
+        print('nodes:')
+        for name in nodes:
+            print(f'  {name}')
+        print('topics:')
+        for name in sorted(topics):
+            print(f'  {name} [{", ".join(sorted(topics[name]))}]')
+        print('services:')
+        for name in sorted(services):
+            print(f'  {name} [{", ".join(sorted(services[name]))}]')
+    finally:
+        session.close()
+    return EXIT_OK
+
+
+# --------------------------------------------------------------------------------------------
+# echo
+
+def cmd_echo(args) -> int:
+    from vehicle_sim.transport.port import (
+        BEST_EFFORT,
+        QosProfile,
+        RELIABLE,
+        TRANSIENT_LOCAL,
+        VOLATILE,
+    )
+    topic = _absolute(args.topic)
+    count = 1 if args.once else args.count
+    if count is not None and count < 1:
+        raise CliError('--count must be >= 1', EXIT_USAGE)
+    session = _Session()
+    try:
+        graph = session.graph
+        if args.type:
+            ros_type = _check_message_type(args.type)
+            graph.wait_until(lambda: bool(graph.publishers(topic)), min(args.wait, 1.0))
+        else:
+            if not graph.wait_until(lambda: topic in graph.topics(), args.wait):
+                raise _not_found('topic', topic, graph.topics(), args.wait)
+            types = sorted(graph.topics()[topic])
+            if len(types) > 1:
+                raise CliError(f'topic {topic} has several types ({", ".join(types)}); '
+                               'pick one with --type')
+            ros_type = _check_message_type(types[0])
+        # ros2 topic echo: reliable / transient local only when every publisher offers it.
+        publishers = graph.publishers(topic)
+        qos = QosProfile(
+            depth=10,
+            reliability=RELIABLE if all(p.reliable for p in publishers) else BEST_EFFORT,
+            durability=(TRANSIENT_LOCAL if publishers and all(p.transient_local
+                                                              for p in publishers)
+                        else VOLATILE))
+        received = []
+
+        def on_message(msg):
+            if count is not None and len(received) >= count:
+                return
+            received.append(msg)
+            sys.stdout.write(format_message(msg) + '---\n')
+            sys.stdout.flush()
+
+        node = session.node
+        node.create_subscription(ros_type, topic, on_message, qos)
+        stop = install_stop_handlers()
+        deadline = None if args.timeout is None else time.monotonic() + args.timeout
+        while not stop.is_set() and (count is None or len(received) < count):
+            if deadline is not None and time.monotonic() >= deadline:
+                raise CliError(f'no message on {topic} within {args.timeout:g} s'
+                               if not received else
+                               f'got {len(received)} of {count} messages on {topic} within '
+                               f'{args.timeout:g} s')
+            node.spin_once(0.05)
+    finally:
+        session.close()
+    return EXIT_OK
+
+
+
+# --------------------------------------------------------------------------------------------
+# call
+
+def cmd_call(args) -> int:
+    from vehicle_msgs_py import service_types
+    service = _absolute(args.service)
+    session = _Session()
+    try:
+        srv_type = session.service_type(service, args.type, args.wait)
+        request = build_request(service_types(srv_type).request, args.value)
+        response = _call(session.node, srv_type, service, request, args.timeout)
+        sys.stdout.write(format_message(response))
+    finally:
+        session.close()
+    return EXIT_OK
+
+
+# --------------------------------------------------------------------------------------------
+# param
+
+_PARAM_FIELDS = {
+    1: ('bool_value', 'Boolean value is'), 2: ('integer_value', 'Integer value is'),
+    3: ('double_value', 'Double value is'), 4: ('string_value', 'String value is'),
+    5: ('byte_array_value', 'Byte values are'), 6: ('bool_array_value', 'Boolean values are'),
+    7: ('integer_array_value', 'Integer values are'),
+    8: ('double_array_value', 'Double values are'),
+    9: ('string_array_value', 'String values are'),
+}
+
+
+def _value_to_msg(value: Any):
+    from vehicle_msgs_py import message_type
+    from vehicle_sim.transport.port import parameter_type_of, TransportError
+    value_type = message_type('rcl_interfaces/msg/ParameterValue')
+    try:
+        kind = parameter_type_of(value)
+    except TransportError as exc:
+        raise CliError(str(exc)) from None
+    if kind == 0:
+        return value_type(type=0)
+    field_name = _PARAM_FIELDS[kind][0]
+    if kind == 5:
+        value = bytes(value)
+    elif kind == 8:
+        value = [float(v) for v in value]
+    elif kind > 5:
+        value = list(value)
+    return value_type(type=kind, **{field_name: value})
+
+
+def _value_from_msg(msg) -> Any:
+    if msg.type not in _PARAM_FIELDS:
+        return None
+    value = getattr(msg, _PARAM_FIELDS[msg.type][0])
+    return list(value) if msg.type >= 5 else value
+
+
+def _param_node(session: _Session, name: str, wait_s: float) -> str:
+    fqn = _absolute(name)
+    graph = session.graph
+    if not graph.wait_until(lambda: graph.find_node(fqn) is not None, wait_s):
+        raise _not_found('node', fqn, graph.node_names(), wait_s)
+    return fqn
+
+
+def cmd_param(args) -> int:
+    from vehicle_msgs_py import service_types
+    from vehicle_sim.transport.params import parse_parameter_value
+    session = _Session()
+    try:
+        fqn = _param_node(session, args.node, args.wait)
+        node = session.node
+        if args.param_command == 'list':
+            srv = 'rcl_interfaces/srv/ListParameters'
+            response = _call(node, srv, f'{fqn}/list_parameters',
+                             service_types(srv).request(), args.timeout)
+            for name in sorted(response.result.names):
+                print(f'  {name}')
+            return EXIT_OK
+        srv = 'rcl_interfaces/srv/GetParameters'
+        response = _call(node, srv, f'{fqn}/get_parameters',
+                         service_types(srv).request(names=[args.name]), args.timeout)
+        current = response.values[0] if response.values else None
+        if args.param_command == 'get':
+            if current is None or current.type not in _PARAM_FIELDS:
+                raise CliError(f'parameter {args.name!r} is not set on {fqn}')
+            value = _value_from_msg(current)
+            if current.type == 1:
+                value = 'True' if value else 'False'
+            print(f'{_PARAM_FIELDS[current.type][1]}: {value}')
+            return EXIT_OK
+        value = parse_parameter_value(args.value)
+        if current is not None and current.type == 3 and isinstance(value, int) and \
+                not isinstance(value, bool):
+            value = float(value)  # '2' for a double parameter: what the user means
+        srv = 'rcl_interfaces/srv/SetParameters'
+        types = service_types(srv)
+        from vehicle_msgs_py import message_type
+        parameter = message_type('rcl_interfaces/msg/Parameter')(
+            name=args.name, value=_value_to_msg(value))
+        response = _call(node, srv, f'{fqn}/set_parameters',
+                         types.request(parameters=[parameter]), args.timeout)
+        result = response.results[0] if response.results else None
+        if result is None or not result.successful:
+            reason = result.reason if result is not None else 'no result'
+            raise CliError(f'Setting parameter failed: {reason}')
+        print('Set parameter successful')
+    finally:
+        session.close()
+    return EXIT_OK

@@ -1,0 +1,194 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Messages as plain data for the graph commands: YAML out (``echo``, ``call`` replies), typed in.
+
+:func:`format_message` prints a message like ``ros2 topic echo``; :func:`from_plain` and
+:func:`build_request` build a message or a service request from the user's YAML, checking every
+field's type and integer range.
+"""
+
+import dataclasses
+import math
+import typing
+from typing import Any, Optional, Sequence
+
+import yaml
+
+from vehicle_sim.tools.command import CliError
+
+# Fields generated for empty messages (ros2_wire A2); never shown, never set.
+_HIDDEN_FIELDS = ('structure_needs_at_least_one_member',)
+_INT_RANGES = {
+    'int8': (-2 ** 7, 2 ** 7 - 1), 'uint8': (0, 2 ** 8 - 1),
+    'int16': (-2 ** 15, 2 ** 15 - 1), 'uint16': (0, 2 ** 16 - 1),
+    'int32': (-2 ** 31, 2 ** 31 - 1), 'uint32': (0, 2 ** 32 - 1),
+    'int64': (-2 ** 63, 2 ** 63 - 1), 'uint64': (0, 2 ** 64 - 1),
+}
+
+
+
+def to_plain(msg: Any) -> Any:
+    """Return a message as nested dicts/lists/scalars in field order (for YAML output)."""
+    if dataclasses.is_dataclass(msg) and not isinstance(msg, type):
+        return {f.name: to_plain(getattr(msg, f.name)) for f in dataclasses.fields(msg)
+                if f.name not in _HIDDEN_FIELDS}
+    if isinstance(msg, (bytes, bytearray)):
+        return list(msg)
+    if isinstance(msg, (list, tuple)):
+        return [to_plain(v) for v in msg]
+    if hasattr(msg, 'get_fields_and_field_types'):  # an rclpy message
+        return {name: to_plain(getattr(msg, name)) for name in msg.get_fields_and_field_types()}
+    if hasattr(msg, 'tolist'):  # numpy arrays of rclpy messages
+        return msg.tolist()
+    return msg
+
+
+class _OrderedDumper(yaml.SafeDumper):
+    pass
+
+
+def _represent_dict(dumper, data):
+    return dumper.represent_mapping('tag:yaml.org,2002:map', data.items())
+
+
+def _represent_float(dumper, value):
+    if math.isnan(value):
+        text = '.nan'
+    elif math.isinf(value):
+        text = '.inf' if value > 0 else '-.inf'
+    else:
+        text = repr(float(value))
+    return dumper.represent_scalar('tag:yaml.org,2002:float', text)
+
+
+_OrderedDumper.add_representer(dict, _represent_dict)
+_OrderedDumper.add_representer(float, _represent_float)
+
+
+def format_message(msg: Any) -> str:
+    """Return a message as YAML (fields in definition order), like ``ros2 topic echo``."""
+    plain = to_plain(msg)
+    if not isinstance(plain, dict):
+        plain = {'data': plain}
+    return yaml.dump(plain, Dumper=_OrderedDumper, default_flow_style=False, sort_keys=False,
+                     allow_unicode=True, width=1000)
+
+
+def _field_shape(annotation) -> tuple:
+    """
+    Describe a field annotation of a generated type.
+
+    :return: ``('message', cls)``, ``('list', element_annotation)`` or ``('scalar', py, name)``.
+    """
+    args = typing.get_args(annotation)
+    if typing.get_origin(annotation) is typing.Annotated or (
+            args and not dataclasses.is_dataclass(annotation)):
+        base = args[0] if args else annotation
+        meta = args[1] if len(args) > 1 else None
+        if typing.get_origin(base) in (list, tuple, Sequence, typing.Sequence) or \
+                str(typing.get_origin(base)) == "<class 'collections.abc.Sequence'>":
+            return ('list', typing.get_args(base)[0])
+        if isinstance(meta, str):
+            return ('scalar', base, meta)
+        return _field_shape(base)
+    if dataclasses.is_dataclass(annotation):
+        return ('message', annotation)
+    if annotation in (bool, int, float, str):
+        return ('scalar', annotation, annotation.__name__)
+    return ('scalar', annotation, str(annotation))
+
+
+def _coerce_scalar(value: Any, py_type, type_name: str, where: str) -> Any:
+    if py_type is bool:
+        if isinstance(value, bool):
+            return value
+        raise CliError(f'{where}: expected a boolean (true/false), got {value!r}')
+    if py_type is int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            if isinstance(value, float) and value.is_integer():
+                value = int(value)
+            else:
+                raise CliError(f'{where}: expected an integer ({type_name}), got {value!r}')
+        low, high = _INT_RANGES.get(type_name, (None, None))
+        if low is not None and not low <= value <= high:
+            raise CliError(f'{where}: {value} outside the {type_name} range {low}..{high}')
+        return value
+    if py_type is float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise CliError(f'{where}: expected a number ({type_name}), got {value!r}')
+        return float(value)
+    if py_type is str:
+        return value if isinstance(value, str) else yaml.safe_dump(value).strip()
+    return value
+
+
+def _coerce(value: Any, annotation, where: str) -> Any:
+    shape = _field_shape(annotation)
+    if shape[0] == 'message':
+        return from_plain(shape[1], value, where)
+    if shape[0] == 'list':
+        if not isinstance(value, (list, tuple)):
+            raise CliError(f'{where}: expected a list, got {value!r}')
+        return [_coerce(v, shape[1], f'{where}[{i}]') for i, v in enumerate(value)]
+    return _coerce_scalar(value, shape[1], shape[2], where)
+
+
+def from_plain(cls, data: Any, where: str = 'request'):
+    """
+    Build a generated message from a dict (YAML), checking every field's type.
+
+    :raises CliError: for an unknown field or a value of the wrong type.
+    """
+    if data is None:
+        return cls()
+    if not isinstance(data, dict):
+        raise CliError(f'{where}: expected a mapping of fields, got {data!r}')
+    fields = {f.name: f for f in dataclasses.fields(cls) if f.name not in _HIDDEN_FIELDS}
+    hints = typing.get_type_hints(cls, include_extras=True)
+    values = {}
+    for key, value in data.items():
+        if key not in fields:
+            raise CliError(f'{where}: {cls.__ros_type__} has no field {key!r}; '
+                           f'fields: {", ".join(fields) or "(none)"}')
+        values[key] = _coerce(value, hints[key], f'{where}.{key}')
+    return cls(**values)
+
+
+def build_request(request_cls, value_text: Optional[str]):
+    """
+    Build a service request from the command-line VALUE.
+
+    A YAML mapping (``"{value: 30}"``) sets fields by name; any other value sets the request's
+    single field (``30`` for SetFloat, ``true`` for SetBool); no VALUE gives the defaults.
+    """
+    fields = [f.name for f in dataclasses.fields(request_cls) if f.name not in _HIDDEN_FIELDS]
+    if value_text is None:
+        return request_cls()
+    try:
+        value = yaml.safe_load(value_text)
+    except yaml.YAMLError as exc:
+        raise CliError(f'VALUE {value_text!r} is not valid YAML: {exc}') from None
+    if isinstance(value, dict):
+        return from_plain(request_cls, value)
+    if len(fields) != 1:
+        raise CliError(
+            f'{request_cls.__ros_type__} has {len(fields)} fields ({", ".join(fields)}); '
+            f'give VALUE as YAML, e.g. "{{{fields[0] if fields else "field"}: ...}}"')
+    hints = typing.get_type_hints(request_cls, include_extras=True)
+    shape = _field_shape(hints[fields[0]])
+    if shape[0] == 'scalar' and shape[1] is str:
+        value = value_text  # keep the text verbatim for string fields
+    return from_plain(request_cls, {fields[0]: value})
