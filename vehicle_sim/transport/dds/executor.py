@@ -76,8 +76,8 @@ class Executor:
         self.stopped = stopped
         self._waitset = WaitSet(participant)
         self._guard = GuardCondition(participant)
-        # Every condition this executor created, to delete them; (condition, handler) of the
-        # attached ones, in attach order.
+        # Every condition this executor created, to delete them; (condition.is_triggered,
+        # handler) of the attached ones, in attach order.
         self._conditions: List = [self._guard]
         self._handlers: List = []
         self._timers: List[DdsTimer] = []
@@ -94,7 +94,7 @@ class Executor:
         """Call ``handler()`` from ``spin_once`` whenever ``condition`` is triggered."""
         self._conditions.append(condition)
         self._attach(condition)
-        self._handlers.append((condition, handler))
+        self._handlers.append((condition.is_triggered, handler))
 
     def create_timer(self, period_s: float, callback) -> DdsTimer:
         timer = DdsTimer(self, period_s, callback)
@@ -131,10 +131,10 @@ class Executor:
             raise TransportError('waitset wait failed') from None
         if count:
             found = 1 if self._guard.take() else 0
-            for condition, handler in self._handlers[:]:
+            for triggered, handler in self._handlers[:]:
                 if found >= count:
                     break
-                if condition.triggered:
+                if triggered():
                     found += 1
                     handler()
                     if self.stopped():
