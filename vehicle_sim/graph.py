@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-A passive view of the ROS 2 graph on the embedded transport (ros2_wire A5).
+A passive view of the ROS 2 graph on the embedded transport.
 
 Like ``ros2 node list / topic list -t / service list -t``, it reads only DDS discovery data:
 

@@ -28,9 +28,9 @@ each internal is needed:
   a malformed sample in a test, or recorded bytes re-published unchanged.
 * :func:`delete_entity` / :func:`delete_participant` (``Entity._entities``, ``Entity._delete``,
   ``Entity._ref``): the public API deletes an entity only when Python collects it (and not at
-  all at interpreter exit); a node must leave the graph at once (ros2_wire E1), so entities are
-  deleted explicitly, and the children a participant takes with it are forgotten so that their
-  finalisers do not delete stale handles.
+  all at interpreter exit); a node must leave the graph at once, as an rclpy node does, so
+  entities are deleted explicitly, and the children a participant takes with it are forgotten so
+  that their finalisers do not delete stale handles.
 
 Everything else in the transport uses the public API: the executor, for one, attaches its
 conditions with ``WaitSet.attach`` and, since ``WaitSet.wait`` says only how many fired, asks

@@ -13,7 +13,10 @@
 # limitations under the License.
 
 """
-The embedded Cyclone DDS adapter: a ROS 2 Jazzy graph citizen without ROS (ros2_wire Parts A, E).
+The embedded Cyclone DDS adapter: a ROS 2 Jazzy graph citizen without ROS.
+
+On the wire it does what rmw_cyclonedds (Jazzy, ``rmw_node.cpp``) does, so that ROS 2 nodes and
+the ``ros2`` tools see its nodes, topics, services and parameters.
 
 One concern per module:
 

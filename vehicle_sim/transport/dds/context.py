@@ -17,8 +17,8 @@ The process-wide DDS state of the embedded transport: domain, participant, topic
 
 One DomainParticipant per process (USER_DATA ``enclave=/;``) shared by all nodes of the process,
 one Topic per name, ``serviceid``/``clientid`` tokens, and the process's
-``ros_discovery_info`` (``rmw_dds_common/msg/ParticipantEntitiesInfo``) republished on every
-change (ros2_wire A4, A5.3, C4).
+``ros_discovery_info`` (``rmw_dds_common/msg/ParticipantEntitiesInfo``, read by rmw_dds_common's
+graph cache) republished on every change.
 """
 
 import itertools
@@ -159,7 +159,7 @@ class Context:
                 ctx._close_locked()
 
     def topic(self, name: str, data_type) -> Topic:
-        """Return the one Topic per name of this participant (ros2_wire C4)."""
+        """Return the one Topic per name of this participant (Cyclone refuses a second sertype)."""
         found = self._topics.get(name)
         if found is None:
             found = Topic(self.participant, name, data_type)
@@ -170,7 +170,7 @@ class Context:
         return found
 
     def next_token(self) -> str:
-        """Return a new ``serviceid``/``clientid`` token formatted like rmw_cyclonedds (A4)."""
+        """Return a new ``serviceid``/``clientid`` token formatted like rmw_cyclonedds."""
         raw = self.participant_gid[:12] + next(self._token_counter).to_bytes(4, 'big')
         return f'{raw[0]:2x}.' + '.'.join(f'{b:x}' for b in raw[1:])
 
@@ -178,7 +178,7 @@ class Context:
         return next(self._sequence)
 
     def publish_graph(self) -> None:
-        """Publish the complete ParticipantEntitiesInfo of this process (A5.3)."""
+        """Publish the complete ParticipantEntitiesInfo of this process."""
         if self._closed:
             return
         gid = self._gid_type

@@ -174,7 +174,7 @@ class Executor:
 
 def run_dds_node(node_factory, args=None) -> int:
     """
-    Build a node and spin it until SIGINT/SIGTERM, then leave the graph (E1).
+    Build a node and spin it until SIGINT/SIGTERM, then leave the graph.
 
     The signal handlers are installed before anything is created, as ``rclpy.init`` does: a
     signal during start-up abandons the construction (a KeyboardInterrupt raised where it

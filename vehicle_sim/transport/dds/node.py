@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-DdsNode: a ROS 2 Jazzy node on the embedded Cyclone DDS transport (ros2_wire Parts A, E).
+DdsNode: a ROS 2 Jazzy node on the embedded Cyclone DDS transport.
 
 It wires the pieces of this package together: the process Context (participant, graph message),
 endpoints and services, an Executor, a ParameterStore, and a logger writing the console and
@@ -341,8 +341,8 @@ class DdsNode(port.NodePort):
         ctx = self._ctx
         last = ctx.node_count <= 1
         self._executor.close()
-        # Leave ros_discovery_info first (A5.3), then delete our endpoints (or, for the last
-        # node, the whole participant) so that the node leaves the graph at once (E1).
+        # Leave ros_discovery_info first, then delete our endpoints (or, for the last node, the
+        # whole participant) so that the node leaves the graph at once.
         ctx.release(self)
         if not last:
             self._executor.delete()

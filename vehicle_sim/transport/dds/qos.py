@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-ROS QoS profiles and endpoint USER_DATA as rmw_cyclonedds writes them (ros2_wire A6, A4).
+ROS QoS profiles and endpoint USER_DATA as rmw_cyclonedds (Jazzy ``rmw_node.cpp``) writes them.
 
 XCDR1 only, autodispose off, ``typehash=`` in every endpoint's USER_DATA.
 """
@@ -63,7 +63,7 @@ def endpoint_user_data(ros_type: str, **tokens: Any) -> bytes:
 
 
 def dds_qos(profile: QosProfile, user_data: bytes, writer: bool) -> Qos:
-    """Map a ROS QoS profile to DDS QoS like rmw_cyclonedds ``create_readwrite_qos`` (A6)."""
+    """Map a ROS QoS profile to DDS QoS like rmw_cyclonedds ``create_readwrite_qos``."""
     if profile.history == port.KEEP_ALL:
         history = Policy.History.KeepAll
     else:

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Services and clients of the embedded transport, paired like rmw_cyclonedds (ros2_wire A4, C10).
+Services and clients of the embedded transport, paired like rmw_cyclonedds (``rmw_node.cpp``).
 
 A service is a request reader and a reply writer sharing one ``serviceid`` token, a client a
 reply reader (created first) and a request writer sharing one ``clientid``; every request and
@@ -173,7 +173,7 @@ class DdsService(port.Service):
 
 class DdsClient(port.Client):
     """
-    A service client: reply reader (created first, C10) + request writer, one ``clientid``.
+    A service client: reply reader (created first) + request writer, one ``clientid``.
 
     :param node: the DdsNode (its ``spin_until`` waits for replies).
     :param ctx: the node's Context.
