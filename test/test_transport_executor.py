@@ -63,6 +63,24 @@ def test_one_spin_serves_every_reader_that_has_data(pair):
     assert sorted(got) == [('a', 'aa'), ('b', 'bb'), ('c', 'cc')]
 
 
+def test_readers_that_fired_together_run_in_creation_order_whatever_fired_last(pair):
+    writer, reader = pair
+    got = []
+    topics = ['a', 'b', 'c']
+    for topic in topics:
+        reader.create_subscription(STRING, topic, lambda m, t=topic: got.append(t))
+    publishers = dict(zip(topics, (writer.create_publisher(STRING, t) for t in topics)))
+    assert _matched(publishers.values())
+    for alone in ('c', 'b'):   # the executor now looks at c and b first
+        publishers[alone].publish(writer.msg(STRING)(data=alone))
+        reader.spin_once(SPIN_S)
+    assert got == ['c', 'b']
+    for topic in ('c', 'a', 'b'):
+        publishers[topic].publish(writer.msg(STRING)(data=topic))
+    reader.spin_once(SPIN_S)
+    assert got == ['c', 'b', 'a', 'b', 'c']
+
+
 def test_samples_beyond_one_take_batch_are_served_by_the_next_spin(pair):
     writer, reader = pair
     got = []

@@ -18,10 +18,14 @@ The embedded transport's executor: one WaitSet per node, timers, and the process
 Single-threaded like an rclpy SingleThreadedExecutor: everything (subscription and service
 callbacks, replies, timers) runs inside ``spin_once`` on the calling thread. Each reader has a
 ReadCondition (any sample state) attached to the node's WaitSet with its handler; a
-GuardCondition wakes the wait when a timer is (re)scheduled or a shutdown is requested. The
-public ``WaitSet.wait`` says how many conditions fired, not which: the executor then asks each
-condition, in attach order, whether it is triggered (conditions are level-triggered, so one
-that fires after the scan wakes the next wait at once).
+GuardCondition wakes the wait when a timer is (re)scheduled or a shutdown is requested.
+
+The public ``WaitSet.wait`` says how many conditions fired, not which, so the executor asks the
+conditions whether they are triggered until it has found that many, most recently fired first
+(one call per condition asked, so a node whose traffic comes from a few readers finds them
+at once whatever its number of readers), then runs their handlers in attach order. The
+conditions are level-triggered: a reader that still holds samples, or that received some after
+the wait, wakes the next wait at once.
 """
 
 import signal
@@ -63,6 +67,17 @@ class DdsTimer(port.Timer):
             self._executor.schedule(self)
 
 
+class _Entry:
+    """An attached condition: its attach index, its ``is_triggered`` and its handler."""
+
+    __slots__ = ('index', 'triggered', 'handler')
+
+    def __init__(self, index: int, condition, handler: Callable[[], None]):
+        self.index = index
+        self.triggered = condition.is_triggered
+        self.handler = handler
+
+
 class Executor:
     """
     The WaitSet, conditions, timers and services of one node.
@@ -76,10 +91,10 @@ class Executor:
         self.stopped = stopped
         self._waitset = WaitSet(participant)
         self._guard = GuardCondition(participant)
-        # Every condition this executor created, to delete them; (condition.is_triggered,
-        # handler) of the attached ones, in attach order.
+        # Every condition this executor created, to delete them.
         self._conditions: List = [self._guard]
-        self._handlers: List = []
+        # The attached reader conditions, most recently triggered first.
+        self._recent: List[_Entry] = []
         self._timers: List[DdsTimer] = []
         self.services: List = []
         self._attach(self._guard)
@@ -94,7 +109,7 @@ class Executor:
         """Call ``handler()`` from ``spin_once`` whenever ``condition`` is triggered."""
         self._conditions.append(condition)
         self._attach(condition)
-        self._handlers.append((condition.is_triggered, handler))
+        self._recent.append(_Entry(len(self._conditions), condition, handler))
 
     def create_timer(self, period_s: float, callback) -> DdsTimer:
         timer = DdsTimer(self, period_s, callback)
@@ -130,15 +145,10 @@ class Executor:
                 return
             raise TransportError('waitset wait failed') from None
         if count:
-            found = 1 if self._guard.take() else 0
-            for triggered, handler in self._handlers[:]:
-                if found >= count:
-                    break
-                if triggered():
-                    found += 1
-                    handler()
-                    if self.stopped():
-                        return
+            for entry in self._fired(count):
+                entry.handler()
+                if self.stopped():
+                    return
         now = time.monotonic()
         for service in self.services:
             if service.pending:
@@ -154,6 +164,26 @@ class Executor:
                 if self.stopped():
                     return
 
+    def _fired(self, count: int) -> List[_Entry]:
+        """Return the ``count`` triggered entries (fewer if some went quiet), in attach order."""
+        found = 1 if self._guard.take() else 0
+        fired = []
+        if found < count:
+            recent = self._recent
+            for entry in recent:
+                if entry.triggered():
+                    fired.append(entry)
+                    found += 1
+                    if found >= count:
+                        break
+            for entry in reversed(fired):
+                if recent[0] is not entry:
+                    recent.remove(entry)
+                    recent.insert(0, entry)
+            if len(fired) > 1:
+                fired.sort(key=lambda e: e.index)
+        return fired
+
     def close(self) -> None:
         """Detach every condition from the waitset and forget the callbacks."""
         for condition in self._conditions:
@@ -161,7 +191,7 @@ class Executor:
                 self._waitset.detach(condition)
             except DDSException:
                 pass
-        self._handlers = []
+        self._recent = []
         self._timers = []
         self.services = []
 
