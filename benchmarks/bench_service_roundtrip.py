@@ -71,10 +71,10 @@ def _bare_endpoints(participant, service_name, writer_prefix, reader_prefix, typ
     rsuffix = 'Request' if reader_prefix == 'rq' else 'Reply'
     writer = DataWriter(participant, Topic(participant, writer_prefix + service_name + wsuffix,
                                            wtype),
-                        qos=dds._dds_qos(port.QOS_SERVICES, b'', writer=True))
+                        qos=dds.dds_qos(port.QOS_SERVICES, b'', writer=True))
     reader = DataReader(participant, Topic(participant, reader_prefix + service_name + rsuffix,
                                            rtype),
-                        qos=dds._dds_qos(port.QOS_SERVICES, b'', writer=False))
+                        qos=dds.dds_qos(port.QOS_SERVICES, b'', writer=False))
     return writer, reader
 
 

@@ -22,7 +22,7 @@ internal is used. One participant in this process; samples go through Cyclone's 
 from importlib.metadata import version
 
 from automobile_helpers import wait_for
-from cyclonedds.core import GuardCondition, ReadCondition
+from cyclonedds.core import ReadCondition
 from cyclonedds.domain import DomainParticipant
 from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
@@ -53,9 +53,9 @@ def participant():
 @pytest.fixture
 def endpoints(participant, request):
     topic = Topic(participant, f'rt/cyclone_private_{request.node.name[:40]}', STRING)
-    qos = dds._dds_qos(port.QOS_DEFAULT, b'', writer=False)
+    qos = dds.dds_qos(port.QOS_DEFAULT, b'', writer=False)
     reader = DataReader(participant, topic, qos=qos)
-    writer = DataWriter(participant, topic, qos=dds._dds_qos(port.QOS_DEFAULT, b'', True))
+    writer = DataWriter(participant, topic, qos=dds.dds_qos(port.QOS_DEFAULT, b'', True))
     assert wait_for(lambda: writer.get_matched_subscriptions())
     return reader, writer
 
@@ -115,18 +115,6 @@ def test_write_serialized_delivers_the_exact_bytes(endpoints):
     cyclone_private.write_serialized(writer, GOOD)
     _wait_readable(reader)
     assert [data for data, _ in cyclone_private.take_serialized(reader, 16)] == [GOOD]
-
-
-def test_indexed_waitset_reports_the_index_of_the_triggered_condition(participant):
-    waitset = cyclone_private.IndexedWaitSet(participant)
-    quiet, fired = GuardCondition(participant), GuardCondition(participant)
-    waitset.attach(quiet, 1)
-    waitset.attach(fired, 2)
-    assert waitset.wait(0) == []
-    fired.set(True)
-    assert waitset.wait(10**9) == [2]
-    waitset.delete()
-    assert waitset.wait(0) is None   # deleted: the wait fails instead of blocking
 
 
 def test_delete_participant_deletes_it_and_its_children_now():

@@ -115,7 +115,7 @@ def raw():
 
 def _reader(raw, topic_name, data_type, qos=port.QOS_DEFAULT):
     return DataReader(raw, Topic(raw, topic_name, data_type),
-                      qos=dds._dds_qos(qos, b'', writer=False))
+                      qos=dds.dds_qos(qos, b'', writer=False))
 
 
 # ------------------------------------------------------------------------------- services

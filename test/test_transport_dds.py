@@ -67,7 +67,7 @@ def raw():
 def discovery_reader(raw_participant):
     info_type = msg_types.message_type('rmw_dds_common/msg/ParticipantEntitiesInfo')
     topic = Topic(raw_participant, 'ros_discovery_info', info_type)
-    return DataReader(raw_participant, topic, qos=dds._dds_qos(
+    return DataReader(raw_participant, topic, qos=dds.dds_qos(
         port.QOS_DISCOVERY_INFO_READER, b'', writer=False))
 
 
@@ -90,7 +90,7 @@ def test_topic_string_round_trips_both_directions(node, peer):
 def test_service_set_int_round_trip_echoes_request_header(node, peer, raw):
     types = msg_types.service_types('vehicle_msgs/srv/SetInt')
     tap = DataReader(raw, Topic(raw, 'rr' + NS + '/set_intReply', types.response_wire),
-                     qos=dds._dds_qos(port.QOS_SERVICES, b'', writer=False))
+                     qos=dds.dds_qos(port.QOS_SERVICES, b'', writer=False))
     client = node.create_client('vehicle_msgs/srv/SetInt', NS + '/set_int')
     assert client.wait_for_service(WAIT_S)
     request = node.srv('vehicle_msgs/srv/SetInt').Request
@@ -111,7 +111,7 @@ def test_client_ignores_replies_for_other_clients_and_sequences(node, peer, raw)
     client = node.create_client('vehicle_msgs/srv/SetInt', NS + '/set_int')
     assert client.wait_for_service(WAIT_S)
     forger = DataWriter(raw, Topic(raw, 'rr' + NS + '/set_intReply', types.response_wire),
-                        qos=dds._dds_qos(port.QOS_SERVICES, b'', writer=True))
+                        qos=dds.dds_qos(port.QOS_SERVICES, b'', writer=True))
     assert wait_for(lambda: client._reader.get_matched_publications()
                     and len(client._reader.get_matched_publications()) >= 2)
     request = node.srv('vehicle_msgs/srv/SetInt').Request
@@ -129,7 +129,7 @@ def test_late_client_reply_reader_does_not_block_the_server(node, peer, raw):
     token = 'late-client-token'
     late_writer = DataWriter(
         raw, Topic(raw, 'rq' + NS + '/set_intRequest', types.request_wire),
-        qos=dds._dds_qos(port.QOS_SERVICES, f'clientid={token};'.encode(), writer=True))
+        qos=dds.dds_qos(port.QOS_SERVICES, f'clientid={token};'.encode(), writer=True))
     assert wait_for(lambda: late_writer.get_matched_subscriptions())
     late_writer.write(types.request_to_wire(types.request(value=8), 424242, 1))
     # While that reply waits (up to 120 s) for a reply reader that does not exist yet, the
@@ -141,7 +141,7 @@ def test_late_client_reply_reader_does_not_block_the_server(node, peer, raw):
     # The reply reader appears late and still gets its queued reply.
     late_reader = DataReader(
         raw, Topic(raw, 'rr' + NS + '/set_intReply', types.response_wire),
-        qos=dds._dds_qos(port.QOS_SERVICES, f'clientid={token};'.encode(), writer=False))
+        qos=dds.dds_qos(port.QOS_SERVICES, f'clientid={token};'.encode(), writer=False))
     replies = []
     wait_for(lambda: replies.extend(
         s for s in late_reader.take(N=64) if s.sample_info.valid_data and s.client_id == 424242)

@@ -68,9 +68,9 @@ def _raw_client(raw, service):
     types = msg_types.service_types(GET_PARAMETERS)
     user_data = f'clientid={CLIENT_TOKEN};'.encode()
     reader = DataReader(raw, Topic(raw, f'rr{service}Reply', types.response_wire),
-                        qos=dds._dds_qos(port.QOS_PARAMETERS, user_data, writer=False))
+                        qos=dds.dds_qos(port.QOS_PARAMETERS, user_data, writer=False))
     writer = DataWriter(raw, Topic(raw, f'rq{service}Request', types.request_wire),
-                        qos=dds._dds_qos(port.QOS_PARAMETERS, user_data, writer=True))
+                        qos=dds.dds_qos(port.QOS_PARAMETERS, user_data, writer=True))
     return types, writer, reader
 
 
@@ -113,7 +113,7 @@ def test_bridge_node_drops_a_joint_state_that_is_not_utf8_and_serves_on(raw, tes
     try:
         joint_state = msg_types.message_type(bi.JOINT_STATES_IN.ros_type)
         writer = DataWriter(raw, Topic(raw, 'rt/undecodable/joint_states', joint_state),
-                            qos=dds._dds_qos(bi.JOINT_STATES_IN.qos, b'', writer=True))
+                            qos=dds.dds_qos(bi.JOINT_STATES_IN.qos, b'', writer=True))
         assert wait_for(lambda: writer.get_matched_subscriptions()), process.text()
         sample = joint_state()
         sample.header.frame_id = 'abc'
@@ -140,7 +140,7 @@ def test_subscription_drops_the_undecodable_sample_and_keeps_the_rest_of_the_bat
         sub = node.create_subscription('std_msgs/msg/String', '/undecodable/strings',
                                        lambda m: received.append(m.data))
         writer = DataWriter(raw, Topic(raw, 'rt/undecodable/strings', string),
-                            qos=dds._dds_qos(port.QOS_DEFAULT, b'', writer=True))
+                            qos=dds.dds_qos(port.QOS_DEFAULT, b'', writer=True))
         assert wait_for(lambda: writer.get_matched_subscriptions())
         writer.write(string(data='before'))
         cyclone_private.write_serialized(writer, _with_bad_string(string(data='abc')))
@@ -158,9 +158,9 @@ def test_client_drops_an_undecodable_reply_and_takes_the_next(raw):
         service = '/undecodable/fake_get_parameters'
         types = msg_types.service_types(GET_PARAMETERS)
         server_requests = DataReader(raw, Topic(raw, f'rq{service}Request', types.request_wire),
-                                     qos=dds._dds_qos(port.QOS_SERVICES, b'', writer=False))
+                                     qos=dds.dds_qos(port.QOS_SERVICES, b'', writer=False))
         server_replies = DataWriter(raw, Topic(raw, f'rr{service}Reply', types.response_wire),
-                                    qos=dds._dds_qos(port.QOS_SERVICES, b'', writer=True))
+                                    qos=dds.dds_qos(port.QOS_SERVICES, b'', writer=True))
         client = node.create_client(GET_PARAMETERS, service)
         assert client.wait_for_service(WAIT_S)
         future = client.call_async(types.request(names=['x']))
@@ -185,7 +185,7 @@ def test_graph_view_drops_an_undecodable_discovery_sample_and_still_lists_nodes(
     node_info = msg_types.message_type('rmw_dds_common/msg/NodeEntitiesInfo')
     gid = msg_types.message_type('rmw_dds_common/msg/Gid')
     writer = DataWriter(raw, Topic(raw, 'ros_discovery_info', info_type),
-                        qos=dds._dds_qos(port.QOS_DISCOVERY_INFO_WRITER, b'', writer=True))
+                        qos=dds.dds_qos(port.QOS_DISCOVERY_INFO_WRITER, b'', writer=True))
     bad = info_type(gid=gid(data=b'\x01' * 16), node_entities_info_seq=[
         node_info(node_namespace='/', node_name='abc')])
     with GraphView() as view:

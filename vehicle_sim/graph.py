@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-A passive view of the ROS 2 graph on the embedded transport (ros2_wire A5).
+A passive view of the ROS 2 graph on the embedded transport.
 
 Like ``ros2 node list / topic list -t / service list -t``, it reads only DDS discovery data:
 
@@ -188,17 +188,8 @@ class GraphView:
         if self._closed:
             return
         self._closed = True
-        from cyclonedds.core import Entity
-        participant = self._participant
-        for entity in list(Entity._entities.values()):
-            # Children die with the participant; forget them so that their finalisers do not
-            # delete stale handles (as vehicle_sim.transport.dds does for its participant).
-            if entity is not participant and _owned_by(entity, participant):
-                del Entity._entities[entity._ref]
-        ref = participant._ref
-        if Entity._entities.get(ref) is participant:
-            del Entity._entities[ref]
-            participant._delete(ref)
+        from vehicle_sim.transport import cyclone_private
+        cyclone_private.delete_participant(self._participant)
 
     def __enter__(self):
         return self
@@ -330,13 +321,6 @@ class GraphView:
         readers = [e for e in endpoints if not e.is_writer and e.gid in node.reader_gids]
         writers = [e for e in endpoints if e.is_writer and e.gid in node.writer_gids]
         return readers, writers
-
-
-def _owned_by(entity, participant) -> bool:
-    try:
-        return entity.participant == participant
-    except Exception:  # noqa: BLE001 - entities of deleted participants raise
-        return False
 
 
 def _endpoint(sample, is_writer: bool) -> Endpoint:

@@ -23,7 +23,7 @@ command needs one.
 import os
 import sys
 import time
-from typing import Any, Optional
+from typing import Optional
 
 from vehicle_sim.tools.command import CliError, EXIT_OK, EXIT_USAGE, install_stop_handlers
 from vehicle_sim.tools.message_yaml import build_request, format_message
@@ -238,41 +238,12 @@ def cmd_call(args) -> int:
 # --------------------------------------------------------------------------------------------
 # param
 
-_PARAM_FIELDS = {
-    1: ('bool_value', 'Boolean value is'), 2: ('integer_value', 'Integer value is'),
-    3: ('double_value', 'Double value is'), 4: ('string_value', 'String value is'),
-    5: ('byte_array_value', 'Byte values are'), 6: ('bool_array_value', 'Boolean values are'),
-    7: ('integer_array_value', 'Integer values are'),
-    8: ('double_array_value', 'Double values are'),
-    9: ('string_array_value', 'String values are'),
+# ParameterType code -> how ``ros2 param get`` introduces the value.
+_PARAM_LABELS = {
+    1: 'Boolean value is', 2: 'Integer value is', 3: 'Double value is', 4: 'String value is',
+    5: 'Byte values are', 6: 'Boolean values are', 7: 'Integer values are',
+    8: 'Double values are', 9: 'String values are',
 }
-
-
-def _value_to_msg(value: Any):
-    from vehicle_msgs_py import message_type
-    from vehicle_sim.transport.port import parameter_type_of, TransportError
-    value_type = message_type('rcl_interfaces/msg/ParameterValue')
-    try:
-        kind = parameter_type_of(value)
-    except TransportError as exc:
-        raise CliError(str(exc)) from None
-    if kind == 0:
-        return value_type(type=0)
-    field_name = _PARAM_FIELDS[kind][0]
-    if kind == 5:
-        value = bytes(value)
-    elif kind == 8:
-        value = [float(v) for v in value]
-    elif kind > 5:
-        value = list(value)
-    return value_type(type=kind, **{field_name: value})
-
-
-def _value_from_msg(msg) -> Any:
-    if msg.type not in _PARAM_FIELDS:
-        return None
-    value = getattr(msg, _PARAM_FIELDS[msg.type][0])
-    return list(value) if msg.type >= 5 else value
 
 
 def _param_node(session: _Session, name: str, wait_s: float) -> str:
@@ -285,7 +256,9 @@ def _param_node(session: _Session, name: str, wait_s: float) -> str:
 
 def cmd_param(args) -> int:
     from vehicle_msgs_py import service_types
+    from vehicle_sim.transport.dds import param_messages
     from vehicle_sim.transport.params import parse_parameter_value
+    from vehicle_sim.transport.port import TransportError
     session = _Session()
     try:
         fqn = _param_node(session, args.node, args.wait)
@@ -302,12 +275,14 @@ def cmd_param(args) -> int:
                          service_types(srv).request(names=[args.name]), args.timeout)
         current = response.values[0] if response.values else None
         if args.param_command == 'get':
-            if current is None or current.type not in _PARAM_FIELDS:
+            if current is None or current.type not in _PARAM_LABELS:
                 raise CliError(f'parameter {args.name!r} is not set on {fqn}')
-            value = _value_from_msg(current)
+            value = param_messages.from_value_msg(current)
             if current.type == 1:
                 value = 'True' if value else 'False'
-            print(f'{_PARAM_FIELDS[current.type][1]}: {value}')
+            elif current.type == 5:
+                value = list(value)   # bytes shown as numbers
+            print(f'{_PARAM_LABELS[current.type]}: {value}')
             return EXIT_OK
         value = parse_parameter_value(args.value)
         if current is not None and current.type == 3 and isinstance(value, int) and \
@@ -315,9 +290,10 @@ def cmd_param(args) -> int:
             value = float(value)  # '2' for a double parameter: what the user means
         srv = 'rcl_interfaces/srv/SetParameters'
         types = service_types(srv)
-        from vehicle_msgs_py import message_type
-        parameter = message_type('rcl_interfaces/msg/Parameter')(
-            name=args.name, value=_value_to_msg(value))
+        try:
+            parameter = param_messages.to_parameter_msg(args.name, value)
+        except TransportError as exc:
+            raise CliError(str(exc)) from None
         response = _call(node, srv, f'{fqn}/set_parameters',
                          types.request(parameters=[parameter]), args.timeout)
         result = response.results[0] if response.results else None

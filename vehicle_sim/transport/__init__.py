@@ -16,7 +16,7 @@
 The transport layer: one small port (``port``), two adapters (``dds``, ``rclpy_adapter``).
 
 Nodes import :func:`create_node` / :func:`run_node` from here and are written against
-:class:`NodePort`; see DESIGN §6 and reference/ros2_wire.md.
+:class:`NodePort`; docs/transport.md describes what users of the embedded one see.
 """
 
 from vehicle_sim.transport.port import (

@@ -28,15 +28,17 @@ each internal is needed:
   a malformed sample in a test, or recorded bytes re-published unchanged.
 * :func:`delete_entity` / :func:`delete_participant` (``Entity._entities``, ``Entity._delete``,
   ``Entity._ref``): the public API deletes an entity only when Python collects it (and not at
-  all at interpreter exit); a node must leave the graph at once (ros2_wire E1), so entities are
-  deleted explicitly, and the children a participant takes with it are forgotten so that their
-  finalisers do not delete stale handles.
-* :class:`IndexedWaitSet` (``WaitSet._waitset_attach``, ``WaitSet._waitset_wait``,
-  ``cyclonedds.internal.dds_c_t.attach``): ``WaitSet.wait()`` only returns how many conditions
-  fired; the executor needs which ones, i.e. ``dds_waitset_wait``'s array of attach values.
+  all at interpreter exit); a node must leave the graph at once, as an rclpy node does, so
+  entities are deleted explicitly, and the children a participant takes with it are forgotten so
+  that their finalisers do not delete stale handles.
+
+Everything else in the transport uses the public API: the executor, for one, attaches its
+conditions with ``WaitSet.attach`` and, since ``WaitSet.wait`` says only how many fired, asks
+each one ``triggered`` (test_transport_private_api checks that no other module touches
+cyclonedds internals).
 """
 
-from typing import Any, List, Optional, Sequence, Tuple
+from typing import Any, List, Tuple
 
 from cyclonedds._clayer import ddspy_take, ddspy_write
 from cyclonedds.core import (
@@ -45,9 +47,7 @@ from cyclonedds.core import (
     InstanceState,
     SampleState,
     ViewState,
-    WaitSet,
 )
-from cyclonedds.internal import dds_c_t
 
 ANY_STATE = SampleState.Any | ViewState.Any | InstanceState.Any
 
@@ -124,44 +124,3 @@ def _owned_by(entity: Entity, participant: Entity) -> bool:
         return entity.participant == participant
     except Exception:  # noqa: BLE001 - entities of deleted participants raise
         return False
-
-
-class IndexedWaitSet:
-    """
-    A WaitSet whose ``wait`` says which conditions fired, by the index given at attach time.
-
-    :param participant: the participant owning the waitset.
-    """
-
-    def __init__(self, participant):
-        self.waitset = WaitSet(participant)
-        self._xs = (dds_c_t.attach * 1)()
-        self._count = 0
-
-    def attach(self, condition: Entity, index: int) -> None:
-        """
-        Attach ``condition`` with ``index`` (> 0) as the value :meth:`wait` reports.
-
-        :raises DDSException: when Cyclone refuses it.
-        """
-        ret = self.waitset._waitset_attach(self.waitset._ref, condition._ref, index)
-        if ret < 0:
-            raise DDSException(ret, f'Occurred while attaching {condition!r} to a waitset')
-        self._count += 1
-        self._xs = (dds_c_t.attach * self._count)()
-
-    def wait(self, timeout_ns: int) -> Optional[Sequence[int]]:
-        """
-        Block up to ``timeout_ns`` until conditions trigger.
-
-        :return: the indices of the triggered conditions (empty on timeout), or None when the
-            wait failed (e.g. the waitset was deleted meanwhile).
-        """
-        xs = self._xs
-        triggered = self.waitset._waitset_wait(self.waitset._ref, xs, self._count, timeout_ns)
-        if triggered < 0:
-            return None
-        return [xs[i] for i in range(min(triggered, self._count)) if xs[i]]
-
-    def delete(self) -> None:
-        delete_entity(self.waitset)

@@ -17,8 +17,8 @@ The transport port: the Node-like interface every vehicle_sim node is written ag
 
 Two adapters implement it with identical behaviour: ``rclpy_adapter.RclpyNode`` (a thin wrapper of
 a real ``rclpy.node.Node``) and ``dds.DdsNode`` (embedded Cyclone DDS speaking ROS 2 Jazzy's wire
-conventions, reference/ros2_wire.md). This module holds the adapter-neutral parts: QoS profiles
-(ros2_wire A6), name resolution (A1, done like rcl), parameter value types and the abstract port.
+conventions, as rmw_cyclonedds does). This module holds the adapter-neutral parts: QoS profiles
+and their presets, name resolution (done like rcl), parameter value types and the abstract port.
 """
 
 import abc
@@ -39,7 +39,7 @@ class ServiceTimeoutError(TransportError, TimeoutError):
 
 
 # --------------------------------------------------------------------------------------------
-# QoS (ros2_wire A6)
+# QoS profiles
 
 KEEP_LAST = 'keep_last'
 KEEP_ALL = 'keep_all'
@@ -134,7 +134,7 @@ def as_qos(qos: Union[QosProfile, int, str, None]) -> QosProfile:
 
 
 # --------------------------------------------------------------------------------------------
-# Names (ros2_wire A1; rcl_expand_topic_name + rmw_validate_full_topic_name)
+# Names (rcl_expand_topic_name + rmw_validate_full_topic_name)
 
 MAX_TOPIC_NAME_LENGTH = 247
 _TOKEN = re.compile(r'^[A-Za-z_][A-Za-z0-9_]*$')
@@ -458,7 +458,7 @@ class Client(abc.ABC):
 
     @abc.abstractmethod
     def service_is_ready(self) -> bool:
-        """Return True when a matching server is reachable (ros2_wire A4 availability rule)."""
+        """Return True when a matching server is reachable (request reader and reply writer)."""
 
     @abc.abstractmethod
     def wait_for_service(self, timeout_s: Optional[float] = None) -> bool:
@@ -491,7 +491,7 @@ class Timer(abc.ABC):
 
 class NodePort(abc.ABC):
     """
-    The Node-like interface shared by both adapters (DESIGN §6).
+    The Node-like interface shared by both adapters.
 
     Types are named by their ROS names (``'std_msgs/msg/String'``, ``'vehicle_msgs/srv/SetInt'``);
     ``msg()``/``srv()`` return the adapter's classes. Names resolve like rcl. Service callbacks

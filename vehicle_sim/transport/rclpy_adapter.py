@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-The rclpy adapter: a thin wrapper of a real ``rclpy.node.Node`` with the port API (DESIGN §6).
+The rclpy adapter: a thin wrapper of a real ``rclpy.node.Node`` with the port API.
 
 Written against ROS 2 Jazzy's rclpy: ``rclpy.init`` / ``Node`` / ``create_publisher(msg_type,
 topic, QoSProfile)`` / ``create_service`` / ``create_client`` / ``call_async`` / ``spin_once`` /

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Transport selection: ``VEHICLE_SIM_TRANSPORT=auto|rclpy|dds`` (DESIGN §6).
+Transport selection: ``VEHICLE_SIM_TRANSPORT=auto|rclpy|dds``.
 
 ``auto`` (the default) uses rclpy when it can be imported, else the embedded Cyclone DDS
 transport. Node code is written once against :mod:`vehicle_sim.transport.port`.

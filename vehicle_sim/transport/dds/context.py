@@ -1,0 +1,208 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The process-wide DDS state of the embedded transport: domain, participant, topics, graph message.
+
+One DomainParticipant per process (USER_DATA ``enclave=/;``) shared by all nodes of the process,
+one Topic per name, ``serviceid``/``clientid`` tokens, and the process's
+``ros_discovery_info`` (``rmw_dds_common/msg/ParticipantEntitiesInfo``, read by rmw_dds_common's
+graph cache) republished on every change.
+"""
+
+import itertools
+import threading
+from typing import Dict, List, Optional
+
+from cyclonedds.core import DDSException
+from cyclonedds.domain import Domain, DomainParticipant
+from cyclonedds.pub import DataWriter
+from cyclonedds.qos import Policy, Qos
+from cyclonedds.topic import Topic
+
+from vehicle_msgs_py import types as msg_types
+from vehicle_sim.transport import cyclone_private, dds_config, port
+from vehicle_sim.transport.dds.qos import dds_qos, endpoint_user_data
+from vehicle_sim.transport.port import TransportError
+
+DISCOVERY_TOPIC = 'ros_discovery_info'
+
+_domains: Dict[int, Domain] = {}
+_domains_lock = threading.Lock()
+
+
+def ensure_domain(domain: Optional[int] = None) -> Domain:
+    """
+    Create (once per process) the Domain with the configuration of the environment.
+
+    Call it before creating raw cyclonedds participants in a process that also runs nodes:
+    the first participant of a domain fixes its configuration.
+
+    :param domain: the domain id; default ``ROS_DOMAIN_ID``.
+    """
+    domain = dds_config.domain_id() if domain is None else domain
+    with _domains_lock:
+        if domain not in _domains:
+            _domains[domain] = dds_config.create_domain(domain)
+        return _domains[domain]
+
+
+class Context:
+    """
+    The participant, topics, the graph message and the node registry of this process.
+
+    Created by the first node (:meth:`acquire`), its participant deleted when the last node
+    leaves (:meth:`release`). A node registered here provides ``get_namespace()``,
+    ``get_name()``, ``graph_gids()`` (its reader and writer GUIDs, or None while it is not
+    announced) and ``abandon()`` (for :meth:`close_process`).
+    """
+
+    _lock = threading.Lock()
+    _instance: Optional['Context'] = None
+
+    def __init__(self):
+        self.domain_id = dds_config.domain_id()
+        ensure_domain(self.domain_id)
+        try:
+            self.participant = DomainParticipant(
+                self.domain_id, qos=Qos(Policy.Userdata(data=b'enclave=/;')))
+        except DDSException as exc:
+            raise TransportError(dds_config.describe_domain_error(
+                self.domain_id, str(exc))) from None
+        try:
+            self._set_up()
+        except BaseException:
+            # A signal (KeyboardInterrupt) or an error half-way: no ghost participant.
+            cyclone_private.delete_participant(self.participant)
+            raise
+
+    def _set_up(self):
+        self.participant_gid = self.participant.guid.bytes
+        self._topics: Dict[str, Topic] = {}
+        self._nodes: List = []
+        self._token_counter = itertools.count(1)
+        self._sequence = itertools.count(1)
+        self._closed = False
+        info_type = msg_types.message_type('rmw_dds_common/msg/ParticipantEntitiesInfo')
+        self._info_type = info_type
+        self._node_info_type = msg_types.message_type('rmw_dds_common/msg/NodeEntitiesInfo')
+        self._gid_type = msg_types.message_type('rmw_dds_common/msg/Gid')
+        self._discovery_writer = DataWriter(
+            self.participant, self.topic(DISCOVERY_TOPIC, info_type),
+            qos=dds_qos(port.QOS_DISCOVERY_INFO_WRITER,
+                        endpoint_user_data(info_type.__ros_type__), True))
+
+    @classmethod
+    def acquire(cls, node) -> 'Context':
+        """Register ``node`` with this process's context, creating the context if needed."""
+        with cls._lock:
+            if cls._instance is None or cls._instance._closed:
+                cls._instance = Context()
+            cls._instance._nodes.append(node)
+            return cls._instance
+
+    @classmethod
+    def current(cls) -> Optional['Context']:
+        """Return this process's context, or None when no node exists."""
+        return cls._instance
+
+    @property
+    def node_count(self) -> int:
+        """How many nodes are registered."""
+        return len(self._nodes)
+
+    def release(self, node) -> None:
+        """Remove ``node`` from the graph; the last node deletes the participant."""
+        with Context._lock:
+            if node in self._nodes:
+                self._nodes.remove(node)
+            last = not self._nodes
+            self.publish_graph()
+            if last:
+                self._close_locked()
+
+    def _close_locked(self) -> None:
+        if not self._closed:
+            self._closed = True
+            cyclone_private.delete_participant(self.participant)
+        if Context._instance is self:
+            Context._instance = None
+
+    @classmethod
+    def close_process(cls) -> None:
+        """
+        Leave the graph with whatever this process built, even half-way through a start-up.
+
+        Publishes an empty node list and deletes the participant (with every entity in it).
+        """
+        with cls._lock:
+            ctx = cls._instance
+            if ctx is None:
+                return
+            for node in list(ctx._nodes):
+                node.abandon()
+            ctx._nodes = []
+            try:
+                ctx.publish_graph()
+            finally:
+                ctx._close_locked()
+
+    def topic(self, name: str, data_type) -> Topic:
+        """Return the one Topic per name of this participant (Cyclone refuses a second sertype)."""
+        found = self._topics.get(name)
+        if found is None:
+            found = Topic(self.participant, name, data_type)
+            self._topics[name] = found
+        elif found.data_type is not data_type:
+            raise TransportError(
+                f'topic {name!r} is already used with type {found.data_type.__ros_type__}')
+        return found
+
+    def next_token(self) -> str:
+        """Return a new ``serviceid``/``clientid`` token formatted like rmw_cyclonedds."""
+        raw = self.participant_gid[:12] + next(self._token_counter).to_bytes(4, 'big')
+        return f'{raw[0]:2x}.' + '.'.join(f'{b:x}' for b in raw[1:])
+
+    def next_sequence(self) -> int:
+        return next(self._sequence)
+
+    def publish_graph(self) -> None:
+        """Publish the complete ParticipantEntitiesInfo of this process."""
+        if self._closed:
+            return
+        gid = self._gid_type
+        nodes = []
+        for node in self._nodes:
+            gids = node.graph_gids()
+            if gids is None:
+                continue
+            readers, writers = gids
+            nodes.append(self._node_info_type(
+                node_namespace=node.get_namespace(), node_name=node.get_name(),
+                reader_gid_seq=[gid(data=g) for g in readers],
+                writer_gid_seq=[gid(data=g) for g in writers]))
+        self._discovery_writer.write(self._info_type(
+            gid=gid(data=self.participant_gid), node_entities_info_seq=nodes))
+
+
+def participant_guid() -> Optional[bytes]:
+    """Return the GUID of this process's participant, or None when no node exists."""
+    ctx = Context.current()
+    return ctx.participant_gid if ctx is not None else None
+
+
+def get_participant() -> Optional[DomainParticipant]:
+    """Return this process's participant (for raw DDS readers in tests), or None."""
+    ctx = Context.current()
+    return ctx.participant if ctx is not None else None

@@ -1,0 +1,95 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""Publishers and subscriptions of the embedded transport, and how every reader takes samples."""
+
+from cyclonedds.pub import DataWriter
+from cyclonedds.sub import DataReader
+
+from vehicle_sim.transport import cyclone_private, port
+from vehicle_sim.transport.port import TransportError
+
+# The most samples one take hands over; the rest stay in the reader for the next wake.
+TAKE_BATCH = 256
+
+
+class Intake:
+    """
+    Takes a reader's samples and decodes each one on its own (cyclone_private.take).
+
+    A sample that cannot be decoded (a string that is not UTF-8, a truncated buffer) is dropped
+    and counted, with a throttled warning naming the endpoint; the rest of the batch is kept.
+
+    :param node: the node whose logger warns.
+    :param reader: the DataReader.
+    :param what: the endpoint, as the warning names it.
+    """
+
+    def __init__(self, node, reader: DataReader, what: str):
+        self._node = node
+        self.reader = reader
+        self.what = what
+        self.dropped = 0
+        self._warning = None
+
+    def take(self) -> list:
+        samples, errors = cyclone_private.take(self.reader, TAKE_BATCH)
+        for exc in errors:
+            self.dropped += 1
+            if self._warning is None:
+                self._warning = port.ThrottledWarning(self._node.get_logger())
+            self._warning.warn(
+                f'{self.what}: dropped a sample that cannot be decoded '
+                f'({type(exc).__name__}: {exc}); {self.dropped} dropped so far')
+        return samples
+
+
+class DdsPublisher(port.Publisher):
+    def __init__(self, node, writer: DataWriter, msg_type, topic_name: str):
+        self._node = node
+        self._writer = writer
+        self._type = msg_type
+        self.topic_name = topic_name
+
+    def publish(self, msg) -> None:
+        if type(msg) is not self._type:
+            raise TransportError(
+                f'{self.topic_name} takes {self._type.__ros_type__}, got {type(msg).__name__}')
+        self._writer.write(msg)
+
+    def get_subscription_count(self) -> int:
+        return len(self._writer.get_matched_subscriptions())
+
+    @property
+    def gid(self) -> bytes:
+        return self._writer.guid.bytes
+
+
+class DdsSubscription(port.Subscription):
+    def __init__(self, reader: DataReader, topic_name: str, intake: Intake):
+        self._reader = reader
+        self.topic_name = topic_name
+        self._intake = intake
+
+    @property
+    def dropped_samples(self) -> int:
+        """How many samples could not be decoded and were dropped."""
+        return self._intake.dropped
+
+    def get_publisher_count(self) -> int:
+        return len(self._reader.get_matched_publications())
+
+    @property
+    def gid(self) -> bytes:
+        return self._reader.guid.bytes

@@ -1,0 +1,262 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Services and clients of the embedded transport, paired like rmw_cyclonedds (``rmw_node.cpp``).
+
+A service is a request reader and a reply writer sharing one ``serviceid`` token, a client a
+reply reader (created first) and a request writer sharing one ``clientid``; every request and
+reply carries the 16-byte rmw_cyclonedds header (client id, sequence number). A reply whose
+client reply reader is not matched yet is queued and retried by the executor for up to the
+node's ``reply_match_timeout_s``: the caller is never blocked (rmw_cyclonedds itself blocks up to
+100 ms). A service callback may return a port ``Future`` instead of the response: the reply is
+sent once it is done (a deferred reply).
+"""
+
+import time
+from typing import Dict, List, Optional
+
+from cyclonedds.pub import DataWriter
+from cyclonedds.sub import DataReader
+
+from vehicle_msgs_py import types as msg_types
+from vehicle_sim.transport import port
+from vehicle_sim.transport.dds.endpoints import Intake
+from vehicle_sim.transport.dds.qos import dds_qos, endpoint_user_data, userdata_tokens
+from vehicle_sim.transport.port import QosProfile, TransportError
+
+UINT64_MASK = 0xFFFFFFFFFFFFFFFF
+# How often the executor wakes while replies wait for their client's reply reader to match [s].
+PENDING_REPLY_POLL_S = 0.002
+
+
+class _PendingReply:
+    __slots__ = ('wire', 'publication_handle', 'token', 'deadline')
+
+    def __init__(self, wire, publication_handle, token, deadline):
+        self.wire = wire
+        self.publication_handle = publication_handle
+        self.token = token
+        self.deadline = deadline
+
+
+class DdsService(port.Service):
+    """
+    A service server: request reader + reply writer sharing one ``serviceid`` token.
+
+    :param node: the DdsNode (logger, ``shut_down``, ``reply_match_timeout_s``).
+    :param ctx: the node's Context.
+    """
+
+    def __init__(self, node, ctx, srv_type: str, name: str, callback, qos: QosProfile):
+        self._node = node
+        self.service_name = name
+        self._types = msg_types.service_types(srv_type)
+        self._callback = callback
+        self.token = ctx.next_token()
+        request, reply = f'{self._types.srv_type}_Request', f'{self._types.srv_type}_Response'
+        self._writer = DataWriter(
+            ctx.participant, ctx.topic(f'rr{name}Reply', self._types.response_wire),
+            qos=dds_qos(qos, endpoint_user_data(reply, serviceid=self.token), True))
+        self._reader = DataReader(
+            ctx.participant, ctx.topic(f'rq{name}Request', self._types.request_wire),
+            qos=dds_qos(qos, endpoint_user_data(request, serviceid=self.token), False))
+        self._intake = Intake(node, self._reader, f'service {name} ({srv_type}) request')
+        # publication handle of a request writer -> its clientid token ('' when it has none)
+        self._client_tokens: Dict[int, Optional[str]] = {}
+        # subscription handle of a matched reply reader -> its clientid token
+        self._reader_tokens: Dict[int, str] = {}
+        self._matched_tokens = set()
+        self.pending: List[_PendingReply] = []
+
+    def _request_writer_token(self, handle: int) -> Optional[str]:
+        """Return the request writer's clientid ('' if none), None when the writer is gone."""
+        token = self._client_tokens.get(handle)
+        if token is None:
+            data = self._reader.get_matched_publication_data(handle)
+            if data is None:
+                return None
+            token = userdata_tokens(data.qos).get('clientid', '')
+            self._client_tokens[handle] = token
+        return token
+
+    def _reply_reader_matched(self, token: str) -> bool:
+        if token in self._matched_tokens:
+            return True
+        handles = set(self._writer.get_matched_subscriptions())
+        for handle in handles - self._reader_tokens.keys():
+            data = self._writer.get_matched_subscription_data(handle)
+            if data is not None:
+                self._reader_tokens[handle] = userdata_tokens(data.qos).get('clientid', '')
+        for handle in list(self._reader_tokens):
+            if handle not in handles:
+                del self._reader_tokens[handle]
+        self._matched_tokens = set(self._reader_tokens.values())
+        return token in self._matched_tokens
+
+    @property
+    def dropped_samples(self) -> int:
+        """How many requests could not be decoded and were dropped."""
+        return self._intake.dropped
+
+    def on_data(self) -> None:
+        """Serve the requests that arrived (the executor's handler of the request reader)."""
+        for sample in self._intake.take():
+            handle = sample.sample_info.publication_handle
+            client_id, sequence, request = self._types.request_from_wire(sample)
+            try:
+                result = self._callback(request, self._types.response())
+            except Exception as exc:  # noqa: BLE001 - a bad request must not kill the node
+                self._node.get_logger().error(
+                    f'service {self.service_name} callback raised {type(exc).__name__}: {exc}')
+                continue
+            if isinstance(result, port.Future):
+                # A deferred reply (port.NodePort.create_service): sent once the future is done.
+                result.add_done_callback(
+                    lambda done, c=client_id, s=sequence, h=handle: self._on_deferred(
+                        done, c, s, h))
+            else:
+                self._reply(result, client_id, sequence, handle)
+
+    def _on_deferred(self, done: port.Future, client_id: int, sequence: int,
+                     handle: int) -> None:
+        if self._node.shut_down:
+            return
+        if done.exception() is not None:
+            exc = done.exception()
+            self._node.get_logger().error(
+                f'service {self.service_name} deferred reply failed {type(exc).__name__}: {exc}')
+            return
+        self._reply(done.result(), client_id, sequence, handle)
+
+    def _reply(self, response, client_id: int, sequence: int, handle: int) -> None:
+        if not isinstance(response, self._types.response):
+            self._node.get_logger().error(
+                f'service {self.service_name} callback returned {type(response).__name__}')
+            return
+        wire = self._types.response_to_wire(response, client_id, sequence)
+        token = self._request_writer_token(handle)
+        if token is None:
+            return  # the client went away: drop silently, as rmw does
+        if not token or self._reply_reader_matched(token):
+            self._writer.write(wire)
+        else:
+            self.pending.append(_PendingReply(
+                wire, handle, token, time.monotonic() + self._node.reply_match_timeout_s))
+
+    def flush_pending(self, now: float) -> None:
+        """Send the queued replies whose client reply reader matched; drop the expired ones."""
+        keep = []
+        for item in self.pending:
+            if self._reply_reader_matched(item.token):
+                self._writer.write(item.wire)
+            elif now >= item.deadline:
+                self._node.get_logger().debug(
+                    f'{self.service_name}: client reply reader never matched; reply dropped')
+            elif self._reader.get_matched_publication_data(item.publication_handle) is None:
+                self._client_tokens.pop(item.publication_handle, None)
+            else:
+                keep.append(item)
+        self.pending = keep
+
+
+class DdsClient(port.Client):
+    """
+    A service client: reply reader (created first) + request writer, one ``clientid``.
+
+    :param node: the DdsNode (its ``spin_until`` waits for replies).
+    :param ctx: the node's Context.
+    """
+
+    def __init__(self, node, ctx, srv_type: str, name: str, qos: QosProfile):
+        self._node = node
+        self._ctx = ctx
+        self.service_name = name
+        self._types = msg_types.service_types(srv_type)
+        self.token = ctx.next_token()
+        request, reply = f'{self._types.srv_type}_Request', f'{self._types.srv_type}_Response'
+        self._reader = DataReader(
+            ctx.participant, ctx.topic(f'rr{name}Reply', self._types.response_wire),
+            qos=dds_qos(qos, endpoint_user_data(reply, clientid=self.token), False))
+        self._intake = Intake(node, self._reader, f'client {name} ({srv_type}) reply')
+        self._writer = DataWriter(
+            ctx.participant, ctx.topic(f'rq{name}Request', self._types.request_wire),
+            qos=dds_qos(qos, endpoint_user_data(request, clientid=self.token), True))
+        self.client_id = self._writer.get_instance_handle() & UINT64_MASK
+        self._pending: Dict[int, port.Future] = {}
+        self._endpoint_tokens: Dict[int, str] = {}
+
+    def _service_token(self, handle: int, lookup) -> str:
+        token = self._endpoint_tokens.get(handle)
+        if token is None:
+            data = lookup(handle)
+            token = userdata_tokens(data.qos).get('serviceid', '') if data is not None else ''
+            self._endpoint_tokens[handle] = token
+        return token
+
+    def service_is_ready(self) -> bool:
+        readers = self._writer.get_matched_subscriptions()
+        writers = self._reader.get_matched_publications()
+        if not readers or not writers:
+            return False
+        reader_ids = {self._service_token(h, self._writer.get_matched_subscription_data)
+                      for h in readers} - {''}
+        if not reader_ids:
+            return True
+        writer_ids = {self._service_token(h, self._reader.get_matched_publication_data)
+                      for h in writers}
+        return bool(reader_ids & writer_ids)
+
+    def wait_for_service(self, timeout_s: Optional[float] = None) -> bool:
+        deadline = None if timeout_s is None else time.monotonic() + timeout_s
+        while not self.service_is_ready():
+            if deadline is not None and time.monotonic() >= deadline:
+                return False
+            time.sleep(0.01)
+        return True
+
+    def call_async(self, request) -> port.Future:
+        if not isinstance(request, self._types.request):
+            raise TransportError(
+                f'{self.service_name} takes {self._types.request.__ros_type__}, '
+                f'got {type(request).__name__}')
+        sequence = self._ctx.next_sequence()
+        future = port.Future()
+        future.sequence = sequence
+        self._pending[sequence] = future
+        self._writer.write(self._types.request_to_wire(request, self.client_id, sequence))
+        return future
+
+    def call(self, request, timeout_s: float = 5.0):
+        future = self.call_async(request)
+        if not self._node.spin_until(future.done, timeout_s):
+            self._pending.pop(future.sequence, None)
+            raise port.ServiceTimeoutError(
+                f'no reply from {self.service_name} within {timeout_s} s')
+        return future.result()
+
+    @property
+    def dropped_samples(self) -> int:
+        """How many replies could not be decoded and were dropped."""
+        return self._intake.dropped
+
+    def on_data(self) -> None:
+        """Complete the futures of the replies that arrived (the reply reader's handler)."""
+        for sample in self._intake.take():
+            client_id, sequence, response = self._types.response_from_wire(sample)
+            if client_id != self.client_id:
+                continue  # a reply to another client on the same service
+            future = self._pending.pop(sequence, None)
+            if future is not None:
+                future.set_result(response)
