@@ -28,7 +28,8 @@ import yaml
 from vehicle_sim.config import load_car, load_robot, load_world, parse_world, world_from_data
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.frames import Pose
-from vehicle_sim.core.params import car_params_from_dict, DEFAULT_CAR, parameter_table_markdown
+from vehicle_sim.core.param_spec import parameter_table_markdown
+from vehicle_sim.core.params import car_params_from_dict, DEFAULT_CAR
 from vehicle_sim.core.robot_params import DEFAULT_ROBOT
 from vehicle_sim.core.sensor_params import (
     CameraSpec,

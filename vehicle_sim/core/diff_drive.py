@@ -26,7 +26,7 @@ import math
 from typing import NamedTuple
 
 from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
-from vehicle_sim.core.params import ParamSpec, validate_table
+from vehicle_sim.core.param_spec import ParamSpec, validate_table
 from vehicle_sim.core.watchdog import DEFAULT_TIMEOUT_ACTION, DEFAULT_TIMEOUT_S, TIMEOUT_ACTIONS
 
 KINEMATIC_MODES = ('kinematic', 'literal')

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 from typing import Optional, Tuple
 
 from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.params import ParamSpec, validate_table
+from vehicle_sim.core.param_spec import ParamSpec, validate_table
 
 DRIVE_TYPES = ('caster', 'skid_steer')
 

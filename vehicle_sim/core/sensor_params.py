@@ -17,7 +17,7 @@ Sensor configuration: one ParamSpec table per sensor type, the validated specs, 
 
 A vehicle's sensors come from its preset (``sensors:`` of a car or robot preset, or the default
 set of core/sensor_defaults.py, all off) and its world entry (``vehicles[i].sensors``). Every
-entry is validated by :func:`vehicle_sim.core.params.validate_table` against the table of its
+entry is validated by :func:`vehicle_sim.core.param_spec.validate_table` against the table of its
 ``type``, so a negative range, a zero resolution, an unknown key or type, a NaN or a bad name is
 refused with the file and the field in the message. Keys and defaults are listed in
 docs/sensors.md, which a test checks against these tables.
@@ -37,7 +37,12 @@ from typing import Dict, Optional, Tuple
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.frames import Pose
 from vehicle_sim.core.lookup_table import LookupTable
-from vehicle_sim.core.params import parameter_table_markdown, ParamSpec, REQUIRED, validate_table
+from vehicle_sim.core.param_spec import (
+    parameter_table_markdown,
+    ParamSpec,
+    REQUIRED,
+    validate_table,
+)
 
 SENSOR_TYPE_NAMES = ('lidar', 'imu', 'gnss', 'distance', 'camera')
 RADIATION_TYPES = ('ultrasound', 'infrared')

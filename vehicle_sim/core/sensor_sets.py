@@ -24,7 +24,7 @@ from typing import Dict, Sequence, Tuple
 
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.frames import OPTICAL_QUATERNION
-from vehicle_sim.core.params import REQUIRED
+from vehicle_sim.core.param_spec import REQUIRED
 from vehicle_sim.core.sensor_params import CameraSpec, sensor_from_dict, SensorSpec
 
 # Topics of the vehicle that sensors may not take (ROS interface sheet, DESIGN §5.2).

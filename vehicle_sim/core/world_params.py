@@ -24,7 +24,7 @@ The form (every key optional except ``vehicles``)::
     obstacles:
       - {name: wall, shape: box, size: [1.0, 6.0, 2.0], position: [20.0, 0.0, 1.0], yaw: 0.0}
 
-Each mapping is checked against a ParamSpec table (core/params.py), so an unknown key, a wrong
+Each mapping is checked against a ParamSpec table (core/param_spec.py), so an unknown key, a wrong
 type, a NaN or an impossible value is refused with the file, the entry and the field. Reading
 the file and resolving car models are config.py's (this module touches no file).
 """
@@ -35,7 +35,12 @@ from typing import Callable, Optional, Sequence, Tuple
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.frames import Pose
 from vehicle_sim.core.geodesy import GeodeticOrigin
-from vehicle_sim.core.params import parameter_table_markdown, ParamSpec, REQUIRED, validate_table
+from vehicle_sim.core.param_spec import (
+    parameter_table_markdown,
+    ParamSpec,
+    REQUIRED,
+    validate_table,
+)
 from vehicle_sim.core.sensor_params import SensorSpec
 from vehicle_sim.core.sensor_sets import merge_sensors
 

@@ -54,7 +54,7 @@ from vehicle_sim.core.autoware_car import (
 )
 from vehicle_sim.core.diff_drive import equivalent_steering_rad
 from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
-from vehicle_sim.core.params import ParamSpec
+from vehicle_sim.core.param_spec import ParamSpec
 from vehicle_sim.core.watchdog import DEFAULT_TIMEOUT_ACTION, DEFAULT_TIMEOUT_S, TIMEOUT_ACTIONS
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros.car_sim import AutomobileNode  # composed on this node

@@ -36,7 +36,7 @@ entry); call ``ctx.stamp`` and ``ctx.command`` (core DiffDriveCommand). Robot ro
 from dataclasses import dataclass
 from typing import Optional
 
-from vehicle_sim.core.params import ParamSpec
+from vehicle_sim.core.param_spec import ParamSpec
 from vehicle_sim.core.units import stamp_to_seconds
 from vehicle_sim.ros import messages as m
 from vehicle_sim.ros.endpoints import (

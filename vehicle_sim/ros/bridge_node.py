@@ -38,7 +38,7 @@ from vehicle_sim.core.diff_drive import (
     twist_from_wheel_speeds,
 )
 from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
-from vehicle_sim.core.params import ParamSpec
+from vehicle_sim.core.param_spec import ParamSpec
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros.endpoints import EACH_COMMAND, EACH_STATUS, Outputs, serve, subscribe
 from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning

@@ -41,7 +41,7 @@ from types import SimpleNamespace
 from vehicle_sim.core.diff_drive import integrate_pose, twist_from_wheel_speeds
 from vehicle_sim.core.errors import InvalidCommandError, VehicleSimError
 from vehicle_sim.core.frames import quaternion_from_yaw
-from vehicle_sim.core.params import ParamSpec
+from vehicle_sim.core.param_spec import ParamSpec
 from vehicle_sim.core.sensor_sets import enable_sensors, static_transforms
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
 from vehicle_sim.physics.sensor_urdf import with_sensor_links

@@ -18,7 +18,7 @@ What every node module shares: parameter declaration, the throttled warning, the
 
 Node modules (``*_node.py``) import core, this module and the interface tables, never each
 other (a test scans the imports). Parameters: every node declares its core
-:class:`~vehicle_sim.core.params.ParamSpec` table through :func:`declare_parameters`, so every
+:class:`~vehicle_sim.core.param_spec.ParamSpec` table through :func:`declare_parameters`, so every
 parameter is declared on the transport port and validated the same way; a refused value stops
 the node with an error naming the parameter, its value and the valid range.
 """
@@ -26,7 +26,12 @@ the node with an error naming the parameter, its value and the valid range.
 import sys
 
 from vehicle_sim.core.errors import VehicleSimError
-from vehicle_sim.core.params import parameter_table_markdown, ParamSpec, validate_table, yaml_text
+from vehicle_sim.core.param_spec import (
+    parameter_table_markdown,
+    ParamSpec,
+    validate_table,
+    yaml_text,
+)
 from vehicle_sim.transport import run_node
 from vehicle_sim.transport.port import ThrottledWarning  # noqa: F401 (re-exported for nodes)
 

@@ -33,7 +33,7 @@ from dataclasses import replace
 from typing import Dict, Iterable, Sequence, Tuple
 
 from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.params import ParamSpec
+from vehicle_sim.core.param_spec import ParamSpec
 from vehicle_sim.core.sensor_params import sensor_from_dict, SensorSpec
 from vehicle_sim.core.sensor_sets import mounted
 from vehicle_sim.ros import messages as m

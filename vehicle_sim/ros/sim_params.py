@@ -36,7 +36,7 @@ from vehicle_sim.config import (  # noqa: F401 (re-exported)
 )
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.geodesy import GeodeticOrigin
-from vehicle_sim.core.params import ParamSpec, table_defaults
+from vehicle_sim.core.param_spec import ParamSpec, table_defaults
 from vehicle_sim.physics import DEFAULT_FRICTION
 from vehicle_sim.ros import node_support
 from vehicle_sim.ros.sensor_interfaces import SENSORS_PARAMETER
