@@ -56,20 +56,22 @@ def _time_step_client(node, name):
     return client, node.srv(SET_INT).Request
 
 
-def test_automobile_serves_setters_and_getters_while_a_huge_time_step_runs(tester):
-    process = NodeProcess('--ros-args', '-r', '__ns:=/ts_huge', '-p', 'synchronous:=true')
+@pytest.mark.parametrize('stop_signal', [signal.SIGTERM, signal.SIGINT], ids=['TERM', 'INT'])
+def test_automobile_serves_setters_and_getters_while_a_huge_time_step_runs(tester, stop_signal):
+    ns = f'ts_huge_{stop_signal.name.lower()}'
+    process = NodeProcess('--ros-args', '-r', f'__ns:=/{ns}', '-p', 'synchronous:=true')
     try:
-        car = AutomobileClient(tester, 'ts_huge')
-        step, request = _time_step_client(tester, '/ts_huge/robot/time_step')
+        car = AutomobileClient(tester, ns)
+        step, request = _time_step_client(tester, f'/{ns}/robot/time_step')
         car.subscribe('automobile/current_speed')
         huge = step.call_async(request(value=HUGE_MS))
         # The steps are running: sim time advances, and the node answers meanwhile.
-        getter = tester.create_client('vehicle_msgs/srv/GetFloat', '/ts_huge/robot/get_time')
+        getter = tester.create_client('vehicle_msgs/srv/GetFloat', f'/{ns}/robot/get_time')
         assert getter.wait_for_service(WAIT_S)
         get_time = tester.srv('vehicle_msgs/srv/GetFloat').Request
         assert wait_for(lambda: getter.call(get_time(), WAIT_S).value > 0.5), process.text()
         setter = tester.create_client('vehicle_msgs/srv/SetFloat',
-                                      '/ts_huge/automobile/set_cruising_speed')
+                                      f'/{ns}/automobile/set_cruising_speed')
         assert setter.wait_for_service(WAIT_S)
         set_speed = tester.srv('vehicle_msgs/srv/SetFloat').Request(value=20.0)
         assert setter.call(set_speed, WAIT_S).success is True
@@ -77,7 +79,7 @@ def test_automobile_serves_setters_and_getters_while_a_huge_time_step_runs(teste
         assert wait_for(lambda: car.latest.get('automobile/current_speed') is not None
                         and car.latest['automobile/current_speed'].data > 1.0, spin=tester)
         assert not huge.done()
-        process.proc.send_signal(signal.SIGTERM)
+        process.proc.send_signal(stop_signal)
         assert process.wait() == 0, process.text()
         assert not huge.done()   # never answered: its steps were not done
     finally:

@@ -71,14 +71,17 @@ class ParticipantWatch:
         cyclone_private.delete_participant(self.participant)
 
 
+@pytest.mark.parametrize('stop_signal', [signal.SIGTERM, signal.SIGINT], ids=['TERM', 'INT'])
 @pytest.mark.parametrize('module, leading_args, node_fqn', [
     ('vehicle_sim.ros.automobile_node', (), '/startup_a/automobile'),
     ('vehicle_sim.ros.diff_robot_node', (), '/startup_d/diff_robot'),
+    ('vehicle_sim.ros.bridge_node', (), '/startup_b/ackermann_to_differential'),
+    ('vehicle_sim.ros.autoware_automobile_node', (), '/startup_w/autoware_automobile'),
     # `vehicle-sim run`: the same node, built and spun by the command line tool
     ('vehicle_sim', ('run', '--no-status', '--'), '/startup_c/automobile'),
 ])
-def test_sigterm_during_start_up_exits_cleanly_and_leaves_no_node(module, leading_args,
-                                                                  node_fqn):
+def test_signal_during_start_up_exits_cleanly_and_leaves_no_node(module, leading_args,
+                                                                 node_fqn, stop_signal):
     watch = ParticipantWatch()
     namespace = node_fqn.rsplit('/', 1)[0]
     process = NodeProcess(*leading_args, '--ros-args', '-r', f'__ns:={namespace}',
@@ -87,7 +90,7 @@ def test_sigterm_during_start_up_exits_cleanly_and_leaves_no_node(module, leadin
         # The node's participant exists: its node is being built (parameter services, the
         # world, the endpoints). Stop it right there.
         assert wait_for(watch.new, timeout_s=WAIT_S), process.text()
-        process.proc.send_signal(signal.SIGTERM)
+        process.proc.send_signal(stop_signal)
         assert process.wait() == 0, process.text()
         (guid,) = watch.new()
         assert wait_for(lambda: guid not in watch.refresh().alive)
