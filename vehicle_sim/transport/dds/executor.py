@@ -207,24 +207,23 @@ def run_dds_node(node_factory, args=None) -> int:
     Build a node and spin it until SIGINT/SIGTERM, then leave the graph.
 
     The signal handlers are installed before anything is created, as ``rclpy.init`` does: a
-    signal during start-up abandons the construction (a KeyboardInterrupt raised where it
-    stands, whose clean-up paths delete what was built) and ends the process cleanly, without
-    leaving a half-built node on the graph; a signal while spinning makes ``spin()`` return.
+    signal during start-up is remembered, the node is shut down (it leaves the graph) as soon
+    as its construction returns, and the process ends cleanly; a signal while spinning makes
+    ``spin()`` return. The handler never raises: an exception thrown into arbitrary start-up
+    code (a lock, a class creation, a redirected descriptor) cannot be cleaned up reliably.
 
     :param node_factory: ``node_factory(args)`` returning a DdsNode or an object with ``.node``.
     :param args: the command line (default ``sys.argv``).
     :return: the process exit status (0 after a signal, as an rclpy node).
     """
     args = sys.argv if args is None else args
-    state = {'node': None, 'interrupted': False}
+    state = {'node': None, 'signalled': False}
 
     def on_signal(signum, frame):
+        state['signalled'] = True
         node = state['node']
         if node is not None:
             node.request_shutdown()
-        elif not state['interrupted']:
-            state['interrupted'] = True
-            raise KeyboardInterrupt(f'signal {signum} during start-up')
 
     previous = {}
     if threading.current_thread() is threading.main_thread():
@@ -234,12 +233,17 @@ def run_dds_node(node_factory, args=None) -> int:
     try:
         app = node_factory(args)
         node = app if isinstance(app, port.NodePort) else app.node
-        state['node'] = node   # from here on a signal only asks spin() to return
-        node.spin()
-    except KeyboardInterrupt:
+        state['node'] = node   # from here on a signal asks spin() to return
+        if not state['signalled']:   # a signal during start-up: leave at once
+            node.spin()
+    except KeyboardInterrupt:   # SIGINT under a handler of the caller's (Python's default)
         pass
+    except BaseException:
+        if not state['signalled']:
+            raise
+        # Start-up failed after a signal asked to stop (e.g. an endpoint refused while the
+        # process was ending): the stop is what the user asked for.
     finally:
-        state['interrupted'] = True
         if node is not None:
             node.shutdown()
         else:
