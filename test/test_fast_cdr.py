@@ -65,7 +65,7 @@ def test_float64_stamped_bytes_equal_rosbags_for_every_frame_id_alignment(frame_
 
 
 def test_serializers_take_the_builders_constants_and_values():
-    assert set(fast_cdr.SERIALIZERS) == {m.CLOCK, m.FLOAT64_STAMPED}
+    assert set(fast_cdr.SERIALIZERS) == {m.CLOCK, m.FLOAT64_STAMPED, m.ODOMETRY, m.JOINT_STATE}
     assert fast_cdr.SERIALIZERS[m.FLOAT64_STAMPED] is fast_cdr.float64_stamped
     assert fast_cdr.SERIALIZERS[m.CLOCK] is fast_cdr.clock
 
@@ -73,3 +73,36 @@ def test_serializers_take_the_builders_constants_and_values():
 def test_frame_id_with_nul_is_refused_at_build_time():
     with pytest.raises(ValueError, match='NUL'):
         fast_cdr.float64_stamped('base\0link')
+
+
+POSES = [((1.0, -2.5, 0.0), (0.0, 0.0, 0.38268343236508984, 0.9238795325112867),
+          (3.0, -0.0, 1e-9), (math.nan, 0.25, -math.inf)),
+         ((1e12, 0.0, -7.0), (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.5))]
+
+
+@pytest.mark.parametrize('frame_id', FRAME_IDS)
+@pytest.mark.parametrize('child', ['', 'c', 'car1/base_link', 'abcdefg'])
+def test_odometry_bytes_equal_rosbags_for_every_pair_of_frame_id_lengths(frame_id, child):
+    serialize = fast_cdr.odometry(frame_id, child)
+    build = m.odometry_builder(message_type, frame_id, child)
+    for (sec, nanosec), pose in zip(STAMPS, POSES):
+        t = stamp(sec, nanosec)
+        assert same_bytes(serialize(t, *pose), build(t, *pose)), (sec, nanosec, pose)
+
+
+NAME_LISTS = [(), ('a',), ('front_left', 'front_right'), ('ab', 'abc', 'abcd', 'abcde', 'x')]
+
+
+@pytest.mark.parametrize('names', NAME_LISTS)
+@pytest.mark.parametrize('frame_id', ['', 'ab', 'abcd', 'base'])
+def test_joint_state_bytes_equal_rosbags_for_names_frames_and_lengths(names, frame_id):
+    serialize = fast_cdr.joint_state(names, frame_id)
+    build = m.joint_state_builder(message_type, names, frame_id)
+    n = len(names)
+    cases = [([0.5 * i for i in range(n)], [-1e300 * i for i in range(n)]),
+             ([math.nan] * n, [math.inf] * n), ([], []), ([1.0], []), ([], [2.0, 3.0])]
+    for (sec, nanosec), (positions, velocities) in zip(STAMPS, cases):
+        t = stamp(sec, nanosec)
+        for _ in range(2):     # the second call takes the cached layout
+            assert same_bytes(serialize(t, positions, velocities),
+                              build(t, positions, velocities)), (positions, velocities)

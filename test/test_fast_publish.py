@@ -97,11 +97,12 @@ def test_a_kit_without_serializers_builds_messages_and_one_with_them_gives_bytes
     assert data == message.serialize()
 
 
-def test_the_embedded_node_has_serializers_for_clock_and_float64_stamped_only(nodes):
+def test_the_embedded_node_has_serializers_for_the_fast_cdr_types_only(nodes):
     node, _ = nodes
-    assert node.serializer('rosgraph_msgs/msg/Clock') is not None
-    assert node.serializer('vehicle_msgs/msg/Float64Stamped') is not None
-    assert node.serializer('nav_msgs/msg/Odometry') is None
+    for ros_type in ('rosgraph_msgs/msg/Clock', 'vehicle_msgs/msg/Float64Stamped',
+                     'nav_msgs/msg/Odometry', 'sensor_msgs/msg/JointState'):
+        assert node.serializer(ros_type) is not None
+    assert node.serializer('tf2_msgs/msg/TFMessage') is None
 
 
 def test_a_transport_without_serializers_refuses_serialized_publishing():
@@ -113,3 +114,31 @@ def test_a_transport_without_serializers_refuses_serialized_publishing():
 
     with pytest.raises(port.TransportError, match='messages only'):
         MessagesOnly().publish_serialized(b'\0\1\0\0')
+
+
+def test_odometry_and_joint_state_rows_are_written_serialized_and_received(nodes):
+    node, reader = nodes
+    rows = (itf.ODOM, itf.JOINT_STATES)
+    wiring = SimpleNamespace(base_frame='car1/base_link', odom_frame='car1/odom',
+                             joint_names=('car1/a', 'car1/b'))
+    outputs = endpoints.Outputs(node, rows, wiring, resolve=lambda name: f'/fast/{name}')
+    received = []
+    for row in rows:
+        reader.create_subscription(row.ros_type, outputs.publishers[row].topic_name,
+                                   received.append, row.qos)
+    assert wait_for(lambda: all(p.get_subscription_count() for p in
+                                outputs.publishers.values()), spin=reader)
+    call = _call(4, 6, 0.0)
+    call.joints = ((0.5, 1.5), (2.0, -2.0))
+    call.odom = ((1.0, 2.0, 0.0), (0.0, 0.0, 0.0, 1.0), (3.0, 0.0, 0.0), (0.0, 0.0, 0.25))
+    outputs.publish(itf.EACH_PUBLISH, call)     # both rows' cadence
+    assert [p.serialized_writes for p in outputs.publishers.values()] == [1, 1]
+    assert wait_for(lambda: len(received) == 2, spin=reader)
+    odom, = [r for r in received if hasattr(r, 'child_frame_id')]
+    state, = [r for r in received if hasattr(r, 'name')]
+    assert (odom.header.frame_id, odom.child_frame_id) == ('car1/odom', 'car1/base_link')
+    assert (odom.pose.pose.position.x, odom.pose.pose.position.y, odom.twist.twist.linear.x,
+            odom.twist.twist.angular.z, odom.header.stamp.nanosec) == (1.0, 2.0, 3.0, 0.25, 6)
+    assert list(odom.pose.covariance) == [0.0] * 36
+    assert (state.name, state.position, state.velocity, state.effort) == \
+        (['car1/a', 'car1/b'], [0.5, 1.5], [2.0, -2.0], [])

@@ -407,4 +407,6 @@ def collision_builder(msg, frame_id: str):
 BUILT_TYPES = {
     clock_builder: CLOCK,
     float64_stamped_builder: FLOAT64_STAMPED,
+    odometry_builder: ODOMETRY,
+    joint_state_builder: JOINT_STATE,
 }

@@ -32,19 +32,25 @@ import struct
 CDR_LE = b'\x00\x01\x00\x00'     # encapsulation header: CDR, little endian, no options
 
 
-def _string_tail(offset: int, text: str, align: int) -> bytes:
-    """
-    Return the bytes of string ``text`` at ``offset`` and the padding after it.
+def _pad(offset: int, align: int) -> int:
+    """Return how many padding bytes align ``offset`` to ``align``."""
+    return -offset % align
 
-    :param offset: where the string's length field starts (a multiple of 4).
-    :param align: the alignment of the field after the string.
+
+def _strings(offset: int, texts, align: int) -> bytes:
     """
-    data = text.encode('utf-8')
-    if b'\0' in data:
-        raise ValueError(f'a CDR string cannot hold a NUL character: {text!r}')
-    body = struct.pack('<I', len(data) + 1) + data + b'\0'
-    end = offset + len(body)
-    return body + bytes(-end % align)
+    Return the bytes of the strings ``texts`` in a row from ``offset``, and the padding after.
+
+    :param offset: where the first string's length field starts (a multiple of 4).
+    :param align: the alignment of the field after the last string.
+    """
+    out = b''
+    for text in texts:
+        data = text.encode('utf-8')
+        if b'\0' in data:
+            raise ValueError(f'a CDR string cannot hold a NUL character: {text!r}')
+        out += bytes(_pad(offset + len(out), 4)) + struct.pack('<I', len(data) + 1) + data + b'\0'
+    return out + bytes(_pad(offset + len(out), align))
 
 
 def clock():
@@ -58,7 +64,7 @@ def clock():
 
 def float64_stamped(frame_id: str):
     """Return ``serialize(stamp, value)``: vehicle_msgs/Float64Stamped in ``frame_id``."""
-    middle = _string_tail(8, frame_id, 8)
+    middle = _strings(8, (frame_id,), 8)
     pack = struct.Struct(f'<4siI{len(middle)}sd').pack
 
     def serialize(stamp, value):
@@ -66,8 +72,59 @@ def float64_stamped(frame_id: str):
     return serialize
 
 
+def odometry(frame_id: str, child_frame_id: str):
+    """
+    Return ``serialize(stamp, xyz, q, linear, angular)``: nav_msgs/Odometry, zero covariances.
+
+    The same constants and values as ``odometry_builder``.
+    """
+    middle = _strings(8, (frame_id, child_frame_id), 8)
+    zeros = bytes(36 * 8)
+    pack = struct.Struct(f'<4siI{len(middle)}s7d{len(zeros)}s6d{len(zeros)}s').pack
+
+    def serialize(stamp, xyz, q, linear, angular):
+        return pack(CDR_LE, stamp.sec, stamp.nanosec, middle, xyz[0], xyz[1], xyz[2],
+                    q[0], q[1], q[2], q[3], zeros, linear[0], linear[1], linear[2],
+                    angular[0], angular[1], angular[2], zeros)
+    return serialize
+
+
+def joint_state(names, frame_id: str = ''):
+    """
+    Return ``serialize(stamp, positions, velocities)``: sensor_msgs/JointState, no efforts.
+
+    The same constants and values as ``joint_state_builder``; the layout of each pair of
+    lengths is computed once.
+    """
+    names = tuple(names)
+    head = _strings(8, (frame_id,), 4) + struct.pack('<I', len(names))
+    head += _strings(8 + len(head), names, 4)
+    packs = {}
+
+    def layout(n_positions, n_velocities):
+        offset = 8 + len(head)                 # the position count (4-aligned)
+        fmt = f'<4siI{len(head)}sI'
+        offset += 4
+        for count, follows in ((n_positions, 'I'), (n_velocities, 'I')):
+            pad = _pad(offset, 8) if count else 0
+            fmt += f'{pad}x{count}d' + follows
+            offset += pad + 8 * count + 4
+        return struct.Struct(fmt).pack
+
+    def serialize(stamp, positions, velocities):
+        key = (len(positions), len(velocities))
+        pack = packs.get(key)
+        if pack is None:
+            pack = packs[key] = layout(*key)
+        return pack(CDR_LE, stamp.sec, stamp.nanosec, head, key[0], *positions, key[1],
+                    *velocities, 0)
+    return serialize
+
+
 # ROS type -> serializer factory (the constants of the type's message builder).
 SERIALIZERS = {
     'rosgraph_msgs/msg/Clock': clock,
     'vehicle_msgs/msg/Float64Stamped': float64_stamped,
+    'nav_msgs/msg/Odometry': odometry,
+    'sensor_msgs/msg/JointState': joint_state,
 }
