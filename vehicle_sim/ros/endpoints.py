@@ -158,10 +158,13 @@ class MessageKit:
     stamp, not one each.
 
     :param msg: the transport's ``node.msg`` class lookup.
+    :param serializer: the transport's ``node.serializer`` lookup (ROS type -> serializer
+        factory or None); None: the transport publishes messages only.
     """
 
-    def __init__(self, msg):
+    def __init__(self, msg, serializer=None):
         self.msg = msg
+        self._serializer = serializer
         self._builders = {}
 
     def builder(self, builder, *constants):
@@ -170,6 +173,24 @@ class MessageKit:
         found = self._builders.get(key)
         if found is None:
             found = self._builders[key] = builder(self.msg, *constants)
+        return found
+
+    def serializer(self, builder, *constants):
+        """
+        Return the transport's serializer standing in for ``builder``, or None.
+
+        It takes the builder's constants and values and returns the message's bytes
+        (``Publisher.publish_serialized``); one per (builder, constants), like builders.
+        """
+        ros_type = m.BUILT_TYPES.get(builder)
+        factory = None if ros_type is None or self._serializer is None else \
+            self._serializer(ros_type)
+        if factory is None:
+            return None
+        key = (factory, constants)
+        found = self._builders.get(key)
+        if found is None:
+            found = self._builders[key] = factory(*constants)
         return found
 
 
@@ -182,13 +203,19 @@ def converter(builder, values, constants=None):
     :param constants: ``constants(w)`` -> the builder's constant arguments (frame ids, names; a
         hashable tuple), read once at wiring; None: the builder takes none.
     :return: the factory ``converter(kit, w)`` -> ``convert(ctx)`` (``kit`` a MessageKit).
+        Where the kit has a serializer for the builder, ``convert`` returns the message's
+        bytes instead and its ``serialized`` attribute is True (:class:`Outputs` then publishes
+        them with ``publish_serialized``).
     """
     def factory(kit, w):
-        build = kit.builder(builder, *(constants(w) if constants is not None else ()))
+        fixed = constants(w) if constants is not None else ()
+        serialize = kit.serializer(builder, *fixed)
+        build = serialize if serialize is not None else kit.builder(builder, *fixed)
 
         def convert(ctx):
             args = values(ctx)
             return None if args is None else build(*args)
+        convert.serialized = serialize is not None
         return convert
     return factory
 
@@ -251,7 +278,8 @@ class Outputs:
                  resolve: Optional[Callable[[str], str]] = None, switches=None):
         self.publishers: Dict[Topic, object] = {}
         self._groups: Dict[str, list] = {}
-        kit = MessageKit(node.msg)
+        self._msg = node.msg
+        kit = MessageKit(node.msg, node.serializer)
         for row in rows:
             if row.direction != OUT:
                 raise ValueError(f'{row.name}: an input row cannot be published')
@@ -260,8 +288,10 @@ class Outputs:
             publisher = node.create_publisher(
                 row.ros_type, resolve(row.name) if resolve else row.name, row.qos)
             self.publishers[row] = publisher
+            convert = row.converter(kit, context)
+            serialized = getattr(convert, 'serialized', False)
             self._groups.setdefault(row.cadence, []).append(
-                (row, row.converter(kit, context), publisher.publish))
+                (row, convert, publisher.publish_serialized if serialized else publisher.publish))
 
     @property
     def rows(self) -> Tuple[Topic, ...]:
@@ -281,7 +311,8 @@ class Outputs:
         for row, convert, _ in self._groups.get(cadence, ()):
             message = convert(ctx)
             if message is not None:
-                found[row] = message
+                found[row] = self._msg(row.ros_type).deserialize(message) \
+                    if getattr(convert, 'serialized', False) else message
         return found
 
 

@@ -20,8 +20,9 @@ Message builders: one per published ROS type, constant parts fixed once, values 
 for that row (frame ids, the joint-name list, the frame pairs of a TF message). The ``build``
 function it returns makes one message from the values that change (stamp, readings), so the
 per-step path allocates nothing constant. Row converters (:func:`.endpoints.converter`) join a
-value reader to a builder; a faster serializer for a type can later stand in for its builder with
-the same arguments, without changing a row. The messages are the same on rclpy and on the
+value reader to a builder; a transport's fast serializer for a type (:data:`BUILT_TYPES` says
+which type a builder builds) stands in for its builder with the same arguments, without changing
+a row, and the row publishes the bytes. The messages are the same on rclpy and on the
 embedded transport.
 """
 
@@ -399,3 +400,13 @@ def collision_builder(msg, frame_id: str):
         return collision_type(header=header_type(stamp=stamp, frame_id=frame_id),
                               other=event.other, normal_force=float(event.normal_force_n))
     return build
+
+
+# The type each builder builds, for the builders a transport's fast serializer may stand in for
+# (``NodePort.serializer``: same constants, same values, the message's bytes).
+BUILT_TYPES = {
+    clock_builder: CLOCK,
+    float64_stamped_builder: FLOAT64_STAMPED,
+    odometry_builder: ODOMETRY,
+    joint_state_builder: JOINT_STATE,
+}

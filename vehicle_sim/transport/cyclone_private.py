@@ -24,8 +24,10 @@ each internal is needed:
   be decoded (a string that is not UTF-8, a truncated buffer) raises out of ``take()`` and the
   rest of the batch, already removed from the reader, is lost. ``ddspy_take`` returns each
   sample's CDR bytes and SampleInfo, so each one is deserialized on its own.
-* :func:`write_serialized` (``_clayer.ddspy_write``): writes bytes that are already CDR, e.g.
-  a malformed sample in a test, or recorded bytes re-published unchanged.
+* :func:`write_serialized` (``_clayer.ddspy_write``): writes bytes that are already CDR: the
+  publishing fast path (``DdsPublisher.publish_serialized``, bytes of ``dds/fast_cdr.py``; the
+  public ``DataWriter.write`` type-checks and serializes a message object itself), a malformed
+  sample in a test, or recorded bytes re-published unchanged.
 * :func:`delete_entity` / :func:`delete_participant` (``Entity._entities``, ``Entity._delete``,
   ``Entity._ref``): the public API deletes an entity only when Python collects it (and not at
   all at interpreter exit); a node must leave the graph at once, as an rclpy node does, so

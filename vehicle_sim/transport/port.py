@@ -436,6 +436,14 @@ class Publisher(abc.ABC):
     def publish(self, msg) -> None:
         """Send one message."""
 
+    def publish_serialized(self, data: bytes) -> None:
+        """
+        Send one message already serialized by the node's ``serializer`` for this topic's type.
+
+        Only a transport whose ``NodePort.serializer`` gives serializers has it.
+        """
+        raise TransportError(f'{self.topic_name}: this transport publishes messages only')
+
     def get_subscription_count(self) -> int:
         return 0
 
@@ -517,6 +525,15 @@ class NodePort(abc.ABC):
     @abc.abstractmethod
     def srv(self, srv_type: str):
         """Return an object with ``.Request``/``.Response`` classes of ``srv_type``."""
+
+    def serializer(self, ros_type: str):
+        """
+        Return a fast serializer factory for ``ros_type``, or None (publish messages).
+
+        The factory takes the constants of the type's message builder (``ros/messages.py``) and
+        returns ``serialize(*values)`` -> the bytes that ``Publisher.publish_serialized`` takes.
+        """
+        return None
 
     @abc.abstractmethod
     def create_publisher(self, ros_type: str, topic: str, qos=None) -> Publisher: ...

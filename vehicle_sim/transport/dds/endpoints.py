@@ -61,12 +61,18 @@ class DdsPublisher(port.Publisher):
         self._writer = writer
         self._type = msg_type
         self.topic_name = topic_name
+        self.serialized_writes = 0    # samples written by publish_serialized
 
     def publish(self, msg) -> None:
         if type(msg) is not self._type:
             raise TransportError(
                 f'{self.topic_name} takes {self._type.__ros_type__}, got {type(msg).__name__}')
         self._writer.write(msg)
+
+    def publish_serialized(self, data: bytes) -> None:
+        """Write CDR bytes (with the encapsulation header) of this topic's type, unchecked."""
+        cyclone_private.write_serialized(self._writer, data)
+        self.serialized_writes += 1
 
     def get_subscription_count(self) -> int:
         return len(self._writer.get_matched_subscriptions())

@@ -30,6 +30,7 @@ from cyclonedds.sub import DataReader
 
 from vehicle_msgs_py import types as msg_types
 from vehicle_sim.transport import cyclone_private, port
+from vehicle_sim.transport.dds import fast_cdr
 from vehicle_sim.transport.dds.context import Context
 from vehicle_sim.transport.dds.endpoints import DdsPublisher, DdsSubscription, Intake
 from vehicle_sim.transport.dds.executor import DdsTimer, Executor, SPIN_SLICE_S
@@ -152,6 +153,9 @@ class DdsNode(port.NodePort):
             return msg_types.message_type(ros_type)
         except ValueError as exc:
             raise TransportError(str(exc)) from None
+
+    def serializer(self, ros_type: str):
+        return fast_cdr.SERIALIZERS.get(ros_type)
 
     def srv(self, srv_type: str):
         try:

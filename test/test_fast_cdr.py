@@ -1,0 +1,108 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""The fast serializers' bytes equal rosbags' CDR and cyclonedds-python's of the same message."""
+
+import math
+
+import pytest
+
+from vehicle_msgs_py import message_type, to_rosbags, typestore
+from vehicle_sim.ros import messages as m
+from vehicle_sim.transport.dds import fast_cdr
+
+STAMPS = [(0, 0), (1, 999_999_999), (-5, 3), (2**31 - 1, 4_000_000_000), (1_700_000_000, 1)]
+VALUES = [0.0, -0.0, 27.5, -1e-3, 1e300, -math.inf, math.inf, math.nan, 5, True]
+FRAME_IDS = ['', 'a', 'ab', 'abc', 'abcd', 'abcde', 'abcdef', 'abcdefg', 'abcdefgh',
+             'vehicle/base_link', 'é']
+
+
+def rosbags_bytes(obj):
+    return bytes(typestore().serialize_cdr(to_rosbags(obj), type(obj).__ros_type__))
+
+
+def stamp(sec, nanosec):
+    return message_type(m.TIME)(sec=sec, nanosec=nanosec)
+
+
+def same_bytes(fast, message):
+    # NaN compares unequal as a value; the bytes compare what goes on the wire.
+    return fast == rosbags_bytes(message) == message.serialize()
+
+
+@pytest.mark.parametrize('sec, nanosec', STAMPS)
+def test_clock_bytes_equal_rosbags_and_cyclonedds(sec, nanosec):
+    t = stamp(sec, nanosec)
+    data = fast_cdr.clock()(t)
+    assert same_bytes(data, m.clock_builder(message_type)(t))
+    assert len(data) == 12
+
+
+@pytest.mark.parametrize('frame_id', FRAME_IDS)
+def test_float64_stamped_bytes_equal_rosbags_for_every_frame_id_alignment(frame_id):
+    serialize = fast_cdr.float64_stamped(frame_id)
+    build = m.float64_stamped_builder(message_type, frame_id)
+    for (sec, nanosec), value in zip(STAMPS * 2, VALUES):
+        t = stamp(sec, nanosec)
+        data = serialize(t, value)
+        assert same_bytes(data, build(t, value)), (sec, nanosec, value)
+        decoded = message_type(m.FLOAT64_STAMPED).deserialize(data)
+        assert decoded.header.frame_id == frame_id
+        assert (decoded.header.stamp.sec, decoded.header.stamp.nanosec) == (sec, nanosec)
+        assert decoded.data == float(value) or (math.isnan(value) and math.isnan(decoded.data))
+
+
+def test_serializers_take_the_builders_constants_and_values():
+    assert set(fast_cdr.SERIALIZERS) == {m.CLOCK, m.FLOAT64_STAMPED, m.ODOMETRY, m.JOINT_STATE}
+    assert fast_cdr.SERIALIZERS[m.FLOAT64_STAMPED] is fast_cdr.float64_stamped
+    assert fast_cdr.SERIALIZERS[m.CLOCK] is fast_cdr.clock
+
+
+def test_frame_id_with_nul_is_refused_at_build_time():
+    with pytest.raises(ValueError, match='NUL'):
+        fast_cdr.float64_stamped('base\0link')
+
+
+POSES = [((1.0, -2.5, 0.0), (0.0, 0.0, 0.38268343236508984, 0.9238795325112867),
+          (3.0, -0.0, 1e-9), (math.nan, 0.25, -math.inf)),
+         ((1e12, 0.0, -7.0), (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.5))]
+
+
+@pytest.mark.parametrize('frame_id', FRAME_IDS)
+@pytest.mark.parametrize('child', ['', 'c', 'car1/base_link', 'abcdefg'])
+def test_odometry_bytes_equal_rosbags_for_every_pair_of_frame_id_lengths(frame_id, child):
+    serialize = fast_cdr.odometry(frame_id, child)
+    build = m.odometry_builder(message_type, frame_id, child)
+    for (sec, nanosec), pose in zip(STAMPS, POSES):
+        t = stamp(sec, nanosec)
+        assert same_bytes(serialize(t, *pose), build(t, *pose)), (sec, nanosec, pose)
+
+
+NAME_LISTS = [(), ('a',), ('front_left', 'front_right'), ('ab', 'abc', 'abcd', 'abcde', 'x')]
+
+
+@pytest.mark.parametrize('names', NAME_LISTS)
+@pytest.mark.parametrize('frame_id', ['', 'ab', 'abcd', 'base'])
+def test_joint_state_bytes_equal_rosbags_for_names_frames_and_lengths(names, frame_id):
+    serialize = fast_cdr.joint_state(names, frame_id)
+    build = m.joint_state_builder(message_type, names, frame_id)
+    n = len(names)
+    cases = [([0.5 * i for i in range(n)], [-1e300 * i for i in range(n)]),
+             ([math.nan] * n, [math.inf] * n), ([], []), ([1.0], []), ([], [2.0, 3.0])]
+    for (sec, nanosec), (positions, velocities) in zip(STAMPS, cases):
+        t = stamp(sec, nanosec)
+        for _ in range(2):     # the second call takes the cached layout
+            assert same_bytes(serialize(t, positions, velocities),
+                              build(t, positions, velocities)), (positions, velocities)
