@@ -87,7 +87,8 @@ def _automobile_rows(namespaces):
     rows = [(row, NAMESPACE) for row in itf.WORLD_TOPICS]
     for ns in namespaces:
         prefix = f'{NAMESPACE}/{ns}' if ns else NAMESPACE
-        rows += [(row, prefix) for row in itf.VEHICLE_TOPICS + itf.SERVICES]
+        rows += [(row, prefix) for row in
+                 itf.VEHICLE_TOPICS + itf.SERVICES + (itf.CMD_VEL, itf.DRIVE)]
     return rows
 
 

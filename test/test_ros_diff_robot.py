@@ -30,7 +30,7 @@ from vehicle_sim.transport.params import load_params_file, params_file_overrides
 
 pytestmark = pytest.mark.transport
 
-ROBOT_TOPICS = ['differential_command', 'wheel_velocities', 'joint_states', 'odom',
+ROBOT_TOPICS = ['differential_command', 'wheel_velocities', 'cmd_vel', 'joint_states', 'odom',
                 'ground_truth/odom', 'robot_description', 'collision']
 
 

@@ -41,6 +41,8 @@ from vehicle_sim.core.units import stamp_to_seconds
 from vehicle_sim.ros import messages as m
 from vehicle_sim.ros.endpoints import (
     CLOCK,
+    CMD_VEL,
+    CMD_VEL_STAMPED,
     converter,
     EACH_COMMAND,
     EACH_PUBLISH,
@@ -258,7 +260,8 @@ ROBOT_TIME_STEP = Service('robot/time_step', 'vehicle_msgs/srv/SetInt', kind='ti
 # The robot's rows: inputs, then outputs in publishing order. Its publish period is the basic
 # step; /clock is published only while the node owns its world, /tf while publish_tf. Its
 # mounted sensors add their rows (ros/sensor_interfaces.py).
-ROBOT_INPUTS = (ROBOT_DIFFERENTIAL_COMMAND, ROBOT_WHEEL_VELOCITIES)
+# cmd_vel is wired as CMD_VEL, or as CMD_VEL_STAMPED with the cmd_vel_stamped parameter.
+ROBOT_INPUTS = (ROBOT_DIFFERENTIAL_COMMAND, ROBOT_WHEEL_VELOCITIES, CMD_VEL)
 ROBOT_OUTPUTS = (CLOCK, ROBOT_JOINT_STATES, ROBOT_ODOM, ROBOT_GROUND_TRUTH_ODOM, TF, TF_STATIC,
                  ROBOT_ROBOT_DESCRIPTION, COLLISION)
 ROBOT_SERVICES = (ROBOT_TIME_STEP,)
@@ -285,6 +288,6 @@ def robot_markdown() -> str:
     """Return the tables of the simulated robot (names under its default node name)."""
     def name(row):
         return row.name if row.name.startswith('/') else f'/{ROBOT_NODE_NAME}/{row.name}'
-    rows = ROBOT_INPUTS + ROBOT_OUTPUTS
+    rows = ROBOT_INPUTS + (CMD_VEL_STAMPED,) + ROBOT_OUTPUTS
     return (topic_table_markdown(rows, _COLUMNS[:-2] + ('unit', 'notes'), name) + '\n' +
             service_table_markdown(ROBOT_SERVICES, name))

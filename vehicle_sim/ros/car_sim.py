@@ -34,6 +34,7 @@ from types import SimpleNamespace
 from typing import Dict, List, Optional
 
 from vehicle_sim.config import load_car
+from vehicle_sim.core.drive_input import CarDriveInput
 from vehicle_sim.core.drivetrain import ControlMode
 from vehicle_sim.core.errors import InvalidCommandError
 from vehicle_sim.core.frames import pose_in_frame, quaternion_from_yaw, twist_in_body
@@ -51,13 +52,14 @@ from vehicle_sim.ros.endpoints import (
     ONCE_LATCHED,
     Outputs,
     serve,
+    subscribe,
 )
 from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.sensor_interfaces import check_names, selected_sensors, sensor_rows
 from vehicle_sim.ros.sim_params import declare_parameters, world_spec
 from vehicle_sim.ros.time_step import TimeStepService
 from vehicle_sim.transport import create_node
-from vehicle_sim.transport.port import resolve_name
+from vehicle_sim.transport.port import resolve_name, ThrottledWarning
 
 NODE_NAME = 'automobile'
 # Timer period standing for "as fast as possible" (the port's timers need a period > 0).
@@ -98,6 +100,8 @@ class _Vehicle:
         self.joint_names = tuple(self.prefix + name for name in names)
         self.outputs = None
         self.services = []
+        self.inputs = []
+        self.drive = None                 # CarDriveInput: cmd_vel and drive (docs/drive.md)
         self.feed = None                  # SensorFeed: its sensors and collisions
         # Call context, set by sample().
         self.stamp = None
@@ -231,7 +235,7 @@ class AutomobileNode:
         taken = {global_name(row.name): 'a topic of the node' for row in itf.WORLD_TOPICS}
         for spec in scene.vehicles:
             full_name = self._full_name(spec.namespace)
-            for row in itf.VEHICLE_TOPICS + itf.SERVICES:
+            for row in itf.VEHICLE_TOPICS + itf.INPUT_TOPICS + itf.SERVICES:
                 taken[full_name(row.name)] = f'{row.name!r} of vehicle {spec.name!r}'
         return taken
 
@@ -271,6 +275,32 @@ class AutomobileNode:
         vehicle.services = list(serve(node, {
             spec: self._bind(handlers[spec.kind], spec, vehicle, resolve(spec.name))
             for spec in itf.SERVICES}, resolve).values())
+        self._wire_inputs(vehicle, resolve)
+
+    def _wire_inputs(self, vehicle, resolve):
+        # cmd_vel and drive (docs/drive.md): commands on receipt, the watchdog in step_once.
+        settings = self.settings
+        vehicle.drive = drive = CarDriveInput(vehicle.logic, settings.cmd_vel_timeout_s)
+        logger = self.node.get_logger()
+        dropped, saturated = ThrottledWarning(logger), ThrottledWarning(logger)
+
+        def callback(row, apply):
+            name, read = resolve(row.name), row.converter
+
+            def on_message(msg):
+                try:
+                    target = apply(*read(msg), self.world.time_s)
+                except InvalidCommandError as error:
+                    dropped.warn(f'{name}: {error}')
+                    return
+                for note in target.notes:
+                    saturated.warn(f'{name}: {note}')
+            return on_message
+
+        cmd_vel = itf.CMD_VEL_INPUTS[settings.cmd_vel_stamped]
+        vehicle.inputs = subscribe(self.node, {
+            cmd_vel: callback(cmd_vel, drive.twist),
+            itf.DRIVE: callback(itf.DRIVE, drive.ackermann)}, resolve)
 
     def _wire_world(self):
         # The global rows (/clock, /tf, /tf_static): once for the node, all vehicles in one
@@ -300,6 +330,10 @@ class AutomobileNode:
             response.success = False
         else:
             response.success = True
+            if spec.name in itf.LONGITUDINAL_SERVICES:
+                # A later service call wins over the last cmd_vel/drive command: the watchdog
+                # lets it stand until the next command arrives (docs/drive.md, precedence).
+                vehicle.drive.service_override()
         return response
 
     def _handle_getter(self, spec, vehicle, name, request, response):
@@ -339,6 +373,12 @@ class AutomobileNode:
         /clock is published every step, the other topics every publish period.
         """
         time_s = self.world.step()
+        for vehicle in self._vehicles:
+            if vehicle.drive.tick(time_s):
+                self._logger.warn(
+                    f'{itf.vehicle_name("cmd_vel", vehicle.spec.namespace)}: no cmd_vel or drive '
+                    f'command for {vehicle.drive.watchdog.timeout_s:g} s: cruising speed 0, '
+                    'brake 1')
         self._publish_step(time_s)
         return time_s
 

@@ -23,6 +23,8 @@ and ``fleet/diff_robot/``):
 
 - in  ``<ns>/differential_command`` vehicle_msgs/DifferentialCommand, tyre speeds [m/s]
 - in  ``<ns>/wheel_velocities`` std_msgs/Float64MultiArray, [rad/s] in ``wheel_joints`` order
+- in  ``<ns>/cmd_vel`` geometry_msgs/Twist (TwistStamped with ``cmd_vel_stamped``): v [m/s] and
+  ω [rad/s] through the differential law, with a watchdog (``cmd_vel_timeout_s``; docs/drive.md)
 - out ``<ns>/joint_states``, ``<ns>/odom`` (wheel odometry, ``<p>odom`` -> ``<p>base_link``),
   ``<ns>/ground_truth/odom`` (frame ``world``), ``/tf``, ``/tf_static``, ``/clock``,
   ``<ns>/robot_description``, ``<ns>/collision``, and a topic per mounted sensor (the
@@ -32,13 +34,17 @@ and ``fleet/diff_robot/``):
   run in chunks from the node's loop, see :mod:`.time_step`)
 
 Bad commands (NaN, ±inf, beyond max_wheel_speed, wrong length) are rejected with a throttled
-warning; the command in force stays.
+warning; the command in force stays. A cmd_vel stream is not refused for its size: wheel speeds
+beyond max_wheel_speed are scaled down together (curvature kept) with a throttled warning. The
+last of the three inputs wins; differential_command and wheel_velocities stand the cmd_vel
+watchdog down until the next cmd_vel.
 """
 
 import sys
 from types import SimpleNamespace
 
 from vehicle_sim.core.diff_drive import integrate_pose, twist_from_wheel_speeds
+from vehicle_sim.core.drive_input import DiffDriveInput
 from vehicle_sim.core.errors import InvalidCommandError, VehicleSimError
 from vehicle_sim.core.frames import quaternion_from_yaw
 from vehicle_sim.core.param_spec import ParamSpec
@@ -49,6 +55,9 @@ from vehicle_sim.physics.sensors import SensorFeed
 from vehicle_sim.physics.world import World
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros.endpoints import (
+    CMD_VEL_INPUTS,
+    CMD_VEL_STAMPED_PARAMETER,
+    CMD_VEL_TIMEOUT_PARAMETER,
     EACH_PUBLISH,
     EACH_SAMPLE,
     EACH_STEP,
@@ -90,6 +99,8 @@ ROBOT_NODE_PARAMETERS = (
     ParamSpec('publish_tf', kind='bool', default=True,
               doc='publish <p>odom -> <p>base_link on /tf (wheel odometry)'),
     SENSORS_PARAMETER,
+    CMD_VEL_STAMPED_PARAMETER,
+    CMD_VEL_TIMEOUT_PARAMETER,
 )
 
 
@@ -138,6 +149,11 @@ class DiffRobotNode:
         self.base_frame = f'{prefix}base_link'
         self._odom_pose = (0.0, 0.0, 0.0)
         self._warn = ThrottledWarning(node.get_logger())
+        self._warn_saturated = ThrottledWarning(node.get_logger())
+        self._drive = DiffDriveInput(self.params.wheel_tread_m, self.params.wheel_radius_m,
+                                     self.params.max_wheel_speed_mps,
+                                     values['cmd_vel_timeout_s'])
+        self._cmd_vel = CMD_VEL_INPUTS[values['cmd_vel_stamped']]
         self._time_step = TimeStepService(node, self.world.time_step_s * 1000.0, self.step,
                                           self.synchronous)
         self._time_step_name = (f'{node.get_fully_qualified_name().rstrip("/")}/'
@@ -199,7 +215,8 @@ class DiffRobotNode:
         self._pub = self._outputs.publishers
         self._subs = subscribe(node, {
             bi.ROBOT_DIFFERENTIAL_COMMAND: self._on_differential_command,
-            bi.ROBOT_WHEEL_VELOCITIES: self._on_wheel_velocities}, _private)
+            bi.ROBOT_WHEEL_VELOCITIES: self._on_wheel_velocities,
+            self._cmd_vel: self._on_cmd_vel}, _private)
         self._time_step_srv = serve(node, {bi.ROBOT_TIME_STEP: self._handle_time_step},
                                     _private)[bi.ROBOT_TIME_STEP]
         self._outputs.publish(ONCE_LATCHED, ctx)
@@ -212,6 +229,8 @@ class DiffRobotNode:
             self.robot.set_wheel_velocities(left / radius, right / radius)
         except (InvalidCommandError, TypeError, ZeroDivisionError) as error:
             self._warn.warn(f'differential_command rejected: {error}')
+        else:
+            self._drive.override()
 
     def _on_wheel_velocities(self, msg):
         values = bi.ROBOT_WHEEL_VELOCITIES.converter(msg)
@@ -227,6 +246,19 @@ class DiffRobotNode:
             self.robot.set_joint_velocities(ordered)
         except InvalidCommandError as error:
             self._warn.warn(f'wheel_velocities rejected: {error}')
+        else:
+            self._drive.override()
+
+    def _on_cmd_vel(self, msg):
+        try:
+            left, right, notes = self._drive.twist(*self._cmd_vel.converter(msg),
+                                                   self.world.time_s)
+            self.robot.set_wheel_velocities(left, right)
+        except InvalidCommandError as error:
+            self._warn.warn(f'cmd_vel rejected: {error}')
+            return
+        for note in notes:
+            self._warn_saturated.warn(note)
 
     # ---------------------------------------------------------------- stepping
     def _handle_time_step(self, request, response):
@@ -246,6 +278,10 @@ class DiffRobotNode:
     def publish_state(self):
         """Publish /clock (owned world), joint states, wheel odometry, ground truth and /tf."""
         ctx = self._ctx
+        if self._drive.tick(self.world.time_s):
+            self.robot.set_wheel_velocities(0.0, 0.0)
+            self.node.get_logger().warn(
+                f'cmd_vel: no command for {self._drive.watchdog.timeout_s:g} s: wheels stopped')
         ctx.stamp = self._stamp(self.world.time_s)
         outputs = self._outputs
         if self._owns_world:

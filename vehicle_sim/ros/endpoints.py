@@ -41,6 +41,8 @@ from dataclasses import dataclass
 import math
 from typing import Callable, Dict, Iterable, Optional, Tuple
 
+from vehicle_sim.core.param_spec import ParamSpec
+from vehicle_sim.core.watchdog import DEFAULT_TIMEOUT_S
 from vehicle_sim.ros import messages as m
 from vehicle_sim.transport.port import (
     QOS_DEFAULT,
@@ -251,6 +253,26 @@ def _static_transforms(kit, w):
 TF_STATIC = Topic('/tf_static', m.TF_MESSAGE, QOS_TF_STATIC, ONCE_LATCHED, _static_transforms,
                   doc='world -> <p>odom at each spawn pose and <p>base_link -> <p><name> at each '
                       'sensor mount, one message holding all')
+
+# cmd_vel, read by the car (automobile node) and the differential robot alike (docs/drive.md):
+# a relative name, resolved under the vehicle namespace (car) or privately (robot). The converter
+# gives (v [m/s], yaw rate [rad/s, + left]). Twist by default, TwistStamped with the
+# cmd_vel_stamped parameter (teleop_twist_keyboard's `stamped`; Jazzy's diff_drive_controller).
+CMD_VEL = Topic('cmd_vel', m.TWIST, QOS_DEFAULT, RECEIVED,
+                lambda msg: (msg.linear.x, msg.angular.z), IN, unit='m/s, rad/s',
+                doc='linear.x [m/s] and angular.z [rad/s, + left] (cmd_vel_stamped false)')
+CMD_VEL_STAMPED = Topic('cmd_vel', m.TWIST_STAMPED, QOS_DEFAULT, RECEIVED,
+                        lambda msg: (msg.twist.linear.x, msg.twist.angular.z), IN,
+                        unit='m/s, rad/s', doc='the same, stamped (cmd_vel_stamped true)')
+# cmd_vel_stamped -> the row read.
+CMD_VEL_INPUTS = {False: CMD_VEL, True: CMD_VEL_STAMPED}
+CMD_VEL_STAMPED_PARAMETER = ParamSpec(
+    'cmd_vel_stamped', kind='bool', default=False,
+    doc='read cmd_vel as geometry_msgs/TwistStamped instead of Twist')
+CMD_VEL_TIMEOUT_PARAMETER = ParamSpec(
+    'cmd_vel_timeout_s', kind='float', default=DEFAULT_TIMEOUT_S, unit='s', ge=0.0, le=3600.0,
+    doc='age (receipt, simulated time) of the last cmd_vel (or drive) command after which the '
+        'vehicle stops (car: cruising speed 0 and full brake; robot: wheels 0); 0 disables')
 
 
 # ---------------------------------------------------------------------------------------------

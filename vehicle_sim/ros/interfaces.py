@@ -38,12 +38,18 @@ positive = right, throttle and brake in [0, 1]. Standard ROS outputs are SI / RE
 from operator import attrgetter
 
 from vehicle_sim.ros import messages as m
+from vehicle_sim.ros.bridge_interfaces import ACKERMANN_DRIVE
 from vehicle_sim.ros.endpoints import (  # noqa: F401 - the cadences are part of this table
     CLOCK,
+    CMD_VEL,
+    CMD_VEL_INPUTS,
+    CMD_VEL_STAMPED,
     converter,
     EACH_PUBLISH,
     EACH_STEP,
+    IN,
     ONCE_LATCHED,
+    RECEIVED,
     Service,
     TF,
     TF_STATIC,
@@ -143,6 +149,14 @@ TOPICS = AUTOMOBILE_TOPICS + STANDARD_TOPICS
 VEHICLE_TOPICS = tuple(row for row in TOPICS if not row.is_global)
 WORLD_TOPICS = tuple(row for row in TOPICS if row.is_global)
 
+# Inputs of each car (docs/drive.md): cmd_vel (one of CMD_VEL_INPUTS, by the cmd_vel_stamped
+# parameter) and drive; the converters give SI values, steering + = left (REP 103).
+DRIVE = Topic('drive', ACKERMANN_DRIVE, QOS_DEFAULT, RECEIVED,
+              lambda msg: (msg.drive.speed, msg.drive.steering_angle), IN, unit='m/s, rad',
+              doc='drive.speed [m/s] and drive.steering_angle [rad, + left (REP 103)]; the '
+                  'other fields are ignored')
+INPUT_TOPICS = (CMD_VEL, CMD_VEL_STAMPED, DRIVE)
+
 _NON_FINITE = (NAN, INF, -INF)
 
 
@@ -238,6 +252,11 @@ ROBOT_SERVICES = (
 
 SERVICES = AUTOMOBILE_SERVICES + ROBOT_SERVICES
 
+# Setters of the car's speed: a call after a cmd_vel/drive command holds until the next command
+# (the watchdog stands down); steering setters win over the last command's steering only.
+LONGITUDINAL_SERVICES = ('automobile/set_cruising_speed', 'automobile/set_throttle',
+                         'automobile/set_brake_intensity')
+
 # Names of webots_spec §5.3 that are deliberately not served (documented in the docs).
 NOT_SERVED = ('automobile/get_throttle', 'automobile/get_brake_intensity', 'automobile/get_rpm',
               'automobile/set_brake')
@@ -292,9 +311,11 @@ def interface_table_markdown() -> str:
     """
     Return the Markdown tables of every topic and service (the body of docs/ros_interface.md).
 
-    :return: two Markdown tables, topics then services.
+    :return: three Markdown tables: topics, inputs, services.
     """
     lines = [topic_table_markdown(TOPICS, display_name=_docs_name).rstrip('\n'), '',
+             topic_table_markdown(INPUT_TOPICS, ('type', 'QoS', 'unit', 'notes'),
+                                  _docs_name, first='input').rstrip('\n'), '',
              '| service | type | maps to | value | unit | refused (success=false) | notes |',
              '|---|---|---|---|---|---|---|']
     for spec in SERVICES:

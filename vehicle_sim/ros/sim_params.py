@@ -39,6 +39,7 @@ from vehicle_sim.core.geodesy import GeodeticOrigin
 from vehicle_sim.core.param_spec import ParamSpec, table_defaults
 from vehicle_sim.physics import DEFAULT_FRICTION
 from vehicle_sim.ros import node_support
+from vehicle_sim.ros.endpoints import CMD_VEL_STAMPED_PARAMETER, CMD_VEL_TIMEOUT_PARAMETER
 from vehicle_sim.ros.sensor_interfaces import SENSORS_PARAMETER
 
 
@@ -86,6 +87,8 @@ AUTOMOBILE_PARAMETERS: Tuple[ParamSpec, ...] = (
     ParamSpec('friction', kind='float', default=DEFAULT_FRICTION, unit='1', gt=0.0,
               doc='tyre-road friction coefficient of the ground'),
     SENSORS_PARAMETER,
+    CMD_VEL_STAMPED_PARAMETER,
+    CMD_VEL_TIMEOUT_PARAMETER,
 )
 
 
@@ -114,6 +117,8 @@ class SimSettings:
     synchronous: bool
     friction: float
     sensors: Tuple[str, ...] = ('',)
+    cmd_vel_stamped: bool = False
+    cmd_vel_timeout_s: float = CMD_VEL_TIMEOUT_PARAMETER.default
 
     @property
     def time_step_s(self) -> float:
