@@ -24,6 +24,7 @@ Subcommands (``vehicle-sim <command> --help`` for details)::
     param get|set|list  the rcl_interfaces parameter services of a node (like ``ros2 param``)
     export-interfaces   write the vehicle_msgs ament package for a ROS workspace
     demo                run the end-to-end scenario and write a PNG of the paths
+    teleop              drive the car (or --robot) from the keyboard through cmd_vel
 
 Everything talks over the embedded Cyclone DDS transport, with ``ROS_DOMAIN_ID`` and
 ``ROS_AUTOMATIC_DISCOVERY_RANGE`` honoured like a ROS 2 node does (docs/transport.md).
@@ -56,6 +57,11 @@ from vehicle_sim.tools.run_command import cmd_run
 def cmd_export(args) -> int:
     from vehicle_msgs_py import export
     return export.main([args.dest_dir])
+
+
+def cmd_teleop(args) -> int:
+    from vehicle_sim.tools.teleop import cmd_teleop as run_teleop
+    return run_teleop(args)
 
 
 def cmd_demo(args) -> int:
@@ -148,6 +154,13 @@ def build_parser() -> argparse.ArgumentParser:
     from vehicle_sim.tools.demo import add_arguments as add_demo_arguments
     add_demo_arguments(demo)
     demo.set_defaults(func=cmd_demo)
+
+    teleop = sub.add_parser('teleop', help='drive the car (or --robot) from the keyboard',
+                            description='Arrows or WASD drive, space stops, q quits; sends '
+                                        'cmd_vel at a fixed rate (docs/drive.md).')
+    from vehicle_sim.tools.teleop import add_arguments as add_teleop_arguments
+    add_teleop_arguments(teleop)
+    teleop.set_defaults(func=cmd_teleop)
     return parser
 
 
