@@ -83,12 +83,11 @@ def _global_or(prefix):
     return lambda name: name if name.startswith('/') else f'{prefix}/{name}'
 
 
-def _automobile_rows(namespaces):
+def _automobile_rows(namespaces, inputs=(itf.CMD_VEL, itf.DRIVE)):
     rows = [(row, NAMESPACE) for row in itf.WORLD_TOPICS]
     for ns in namespaces:
         prefix = f'{NAMESPACE}/{ns}' if ns else NAMESPACE
-        rows += [(row, prefix) for row in
-                 itf.VEHICLE_TOPICS + itf.SERVICES + (itf.CMD_VEL, itf.DRIVE)]
+        rows += [(row, prefix) for row in itf.VEHICLE_TOPICS + itf.SERVICES + inputs]
     return rows
 
 
@@ -121,7 +120,9 @@ def test_autoware_automobile_endpoints_are_the_car_rows_and_the_autoware_side_ro
     try:
         autoware = (bi.STATUS_TOPICS + (bi.BRIDGE_INPUTS[bi.DEFAULT_INPUT_TYPE],) +
                     bi.COMMAND_INPUTS + (bi.CONTROL_MODE_REQUEST,))
-        expected = _expected_of(_automobile_rows([''])) + _expected(autoware, lambda n: n)
+        # Autoware's command drives the car: no cmd_vel or drive of the car.
+        expected = _expected_of(_automobile_rows([''], inputs=())) + _expected(autoware,
+                                                                                lambda n: n)
         assert sorted(created, key=repr) == sorted(expected, key=repr)
     finally:
         app.close()
@@ -326,3 +327,16 @@ def test_autoware_doc_embeds_the_tables_generated_from_the_rows():
         text = stream.read()
     for table in (bi.autoware_side_markdown(), bi.vehicle_side_markdown(), bi.robot_markdown()):
         assert table in text
+
+
+def test_autoware_automobile_with_a_twist_stamped_input_owns_cmd_vel_alone(created):
+    # Its /cmd_vel is Autoware's TwistStamped command; the car's Twist cmd_vel is not wired,
+    # which would be a second type on one topic (refused by DDS in one process).
+    from vehicle_sim.ros.autoware_automobile_node import AutowareAutomobileNode
+    app = AutowareAutomobileNode(transport='dds', parameter_overrides={
+        **SYNCHRONOUS, 'input_type': bi.TWIST_STAMPED})
+    try:
+        cmd_vel = [(kind, ros_type) for kind, name, ros_type, _ in created if name == '/cmd_vel']
+        assert cmd_vel == [('subscription', bi.TWIST_STAMPED)]
+    finally:
+        app.close()

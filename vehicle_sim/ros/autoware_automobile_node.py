@@ -110,7 +110,8 @@ class AutowareAutomobileNode:
                                 parameter_overrides=parameter_overrides)
         self.automobile = None
         try:
-            self.automobile = AutomobileNode(node=self.node)
+            # Autoware's command drives the car: the car's own cmd_vel and drive are not wired.
+            self.automobile = AutomobileNode(node=self.node, drive_inputs=False)
             self._setup()
         except BaseException:
             self.close()

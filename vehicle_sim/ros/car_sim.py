@@ -150,7 +150,7 @@ class AutomobileNode:
     """
 
     def __init__(self, args=None, *, transport: Optional[str] = None,
-                 parameter_overrides: Optional[Dict] = None, node=None):
+                 parameter_overrides: Optional[Dict] = None, node=None, drive_inputs=True):
         """
         Build the world, the cars and every endpoint.
 
@@ -158,6 +158,8 @@ class AutomobileNode:
         :param transport: 'auto', 'rclpy' or 'dds' (default: VEHICLE_SIM_TRANSPORT).
         :param parameter_overrides: parameter values winning over the command line.
         :param node: an existing NodePort to use instead of creating one.
+        :param drive_inputs: wire each car's cmd_vel and drive (False: a composing node drives
+            the cars itself, as autoware_automobile does).
         :raises InvalidParameterError: for a refused parameter or an invalid world file.
         :raises TransportError: for a refused parameter override.
         """
@@ -165,6 +167,7 @@ class AutomobileNode:
             NODE_NAME, args=args, transport=transport,
             parameter_overrides=parameter_overrides)
         self.world = None
+        self._drive_inputs = drive_inputs
         self._timer = None
         self._time_step = None
         self._sensing = []
@@ -275,12 +278,13 @@ class AutomobileNode:
         vehicle.services = list(serve(node, {
             spec: self._bind(handlers[spec.kind], spec, vehicle, resolve(spec.name))
             for spec in itf.SERVICES}, resolve).values())
-        self._wire_inputs(vehicle, resolve)
+        vehicle.drive = CarDriveInput(vehicle.logic, self.settings.cmd_vel_timeout_s)
+        if self._drive_inputs:
+            self._wire_inputs(vehicle, resolve)
 
     def _wire_inputs(self, vehicle, resolve):
         # cmd_vel and drive (docs/drive.md): commands on receipt, the watchdog in step_once.
-        settings = self.settings
-        vehicle.drive = drive = CarDriveInput(vehicle.logic, settings.cmd_vel_timeout_s)
+        settings, drive = self.settings, vehicle.drive
         logger = self.node.get_logger()
         dropped, saturated = ThrottledWarning(logger), ThrottledWarning(logger)
 
