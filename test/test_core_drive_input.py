@@ -194,35 +194,46 @@ def test_car_watchdog_timeout_zero_never_acts():
 # ------------------------------------------------------------------------------ the robot
 
 def test_robot_twist_gives_the_differential_wheel_speeds():
-    robot = DiffDriveInput(tread_m=0.4, wheel_radius_m=0.1, max_wheel_speed_mps=2.0)
+    robot = DiffDriveInput(tread_m=0.4, wheel_radius_m=0.1, max_wheel_speed_radps=20.0)
     left, right, notes = robot.twist(0.5, 1.0, now_s=0.0)
     # v_l = v − ω·b/2 = 0.3 m/s, v_r = 0.7 m/s; divided by r = 0.1 m.
     assert (left, right, notes) == (pytest.approx(3.0), pytest.approx(7.0), ())
 
 
 def test_robot_turns_in_place_at_zero_speed():
-    robot = DiffDriveInput(0.4, 0.1, 2.0)
+    robot = DiffDriveInput(0.4, 0.1, 20.0)
     left, right, _ = robot.twist(0.0, 2.0, now_s=0.0)
     assert left == pytest.approx(-4.0) and right == pytest.approx(4.0)
 
 
 def test_robot_wheel_speeds_beyond_the_limit_scale_together_with_a_note():
-    robot = DiffDriveInput(0.4, 0.1, 1.0)
+    robot = DiffDriveInput(0.4, 0.1, 10.0)                     # 1 m/s
     left, right, notes = robot.twist(1.5, 2.5, now_s=0.0)   # v_l = 1.0, v_r = 2.0 m/s
-    assert right * 0.1 == pytest.approx(1.0)
+    assert right == pytest.approx(10.0) and right <= 10.0
     assert left / right == pytest.approx(0.5)                # curvature kept
     assert 'saturated' in notes[0]
 
 
+@pytest.mark.parametrize('radius, speed, yaw_rate, limit', [
+    (0.267, 18.1, 0.78, 18.9), (0.202, 18.81, 4.09, 12.5), (0.351, -12.87, -0.67, 7.2)])
+def test_robot_saturated_wheel_speed_never_exceeds_the_limit_by_rounding(radius, speed,
+                                                                         yaw_rate, limit):
+    # Cases where scaling in m/s and dividing by r lands one bit above the limit in rad/s,
+    # which the robot body refuses.
+    robot = DiffDriveInput(0.4, radius, limit)
+    left, right, notes = robot.twist(speed, yaw_rate, now_s=0.0)
+    assert max(abs(left), abs(right)) <= limit and notes
+
+
 def test_robot_non_finite_twist_is_refused_without_feeding_the_watchdog():
-    robot = DiffDriveInput(0.4, 0.1, 1.0)
+    robot = DiffDriveInput(0.4, 0.1, 10.0)
     with pytest.raises(InvalidCommandError):
         robot.twist(math.nan, 0.0, now_s=0.0)
     assert robot.watchdog.last_feed_s is None and not robot.armed
 
 
 def test_robot_watchdog_acts_once_and_override_stands_it_down():
-    robot = DiffDriveInput(0.4, 0.1, 1.0, timeout_s=0.5)
+    robot = DiffDriveInput(0.4, 0.1, 10.0, timeout_s=0.5)
     robot.twist(0.2, 0.0, now_s=0.0)
     assert not robot.tick(0.5) and robot.tick(0.51) and not robot.tick(0.6)
     robot.twist(0.2, 0.0, now_s=1.0)

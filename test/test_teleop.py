@@ -158,6 +158,31 @@ def test_topic_names_of_the_car_and_the_robot():
 
 # ------------------------------------------------------------------------------ the command
 
+@pytest.mark.parametrize('stamped', [False, True], ids=['Twist', 'TwistStamped'])
+def test_teleop_node_sends_the_cmd_vel_type_the_vehicle_reads(stamped):
+    from vehicle_sim.tools.teleop import Teleop
+    from vehicle_sim.transport.selection import create_node
+    namespace = f'/teleop_send_{stamped}'.lower()
+    row = itf.CMD_VEL_INPUTS[stamped]
+    teleop = Teleop(namespace, robot=True, stamped=stamped, transport='dds')
+    node = create_node('teleop_listener', transport='dds',
+                       args=['--ros-args', '--disable-rosout-logs'])
+    try:
+        received = []
+        sub = node.create_subscription(row.ros_type, f'{namespace}/diff_robot/cmd_vel',
+                                       received.append)
+        assert node.spin_until(lambda: sub.get_publisher_count() > 0, WAIT_S)
+
+        def sent():
+            teleop.send(0.25, -0.5)
+            return bool(received)
+        assert wait_for(sent, WAIT_S, spin=node)
+        assert row.converter(received[0]) == (0.25, -0.5)
+    finally:
+        node.shutdown()
+        teleop.close()
+
+
 TELEOP = [sys.executable, '-m', 'vehicle_sim.tools.cli', 'teleop']
 
 

@@ -276,19 +276,20 @@ class DiffDriveInput:
     the receipt time on the node clock, passed in.
     """
 
-    def __init__(self, tread_m, wheel_radius_m, max_wheel_speed_mps,
+    def __init__(self, tread_m, wheel_radius_m, max_wheel_speed_radps,
                  timeout_s=DEFAULT_TIMEOUT_S):
         """
         Drive a robot.
 
         :param tread_m: distance between the left and right wheels [m], > 0.
         :param wheel_radius_m: driven wheel radius [m], > 0.
-        :param max_wheel_speed_mps: tyre-surface speed limit [m/s], > 0.
+        :param max_wheel_speed_radps: wheel speed limit [rad/s], > 0.
         :param timeout_s: command timeout [s]; 0 disables the watchdog.
         """
         self.tread_m = tread_m
         self.wheel_radius_m = wheel_radius_m
-        self.max_wheel_speed_mps = max_wheel_speed_mps
+        self.max_wheel_speed_radps = max_wheel_speed_radps
+        self.max_wheel_speed_mps = max_wheel_speed_radps * wheel_radius_m
         self.watchdog = CommandWatchdog(timeout_s, 'brake')
         self.armed = False
         self.timeouts = 0
@@ -313,8 +314,10 @@ class DiffDriveInput:
                      f'{limited.right_mps:g}) m/s, curvature kept',)
         self.watchdog.feed(now_s)
         self.armed = True
-        radius = self.wheel_radius_m
-        return limited.left_mps / radius, limited.right_mps / radius, notes
+        # Clipped to the limit so that the scaling's last-bit rounding is never refused.
+        limit, radius = self.max_wheel_speed_radps, self.wheel_radius_m
+        return (min(max(limited.left_mps / radius, -limit), limit),
+                min(max(limited.right_mps / radius, -limit), limit), notes)
 
     def override(self):
         """Stand the watchdog down: another input commanded the wheels until the next cmd_vel."""

@@ -151,7 +151,7 @@ class DiffRobotNode:
         self._warn = ThrottledWarning(node.get_logger())
         self._warn_saturated = ThrottledWarning(node.get_logger())
         self._drive = DiffDriveInput(self.params.wheel_tread_m, self.params.wheel_radius_m,
-                                     self.params.max_wheel_speed_mps,
+                                     self.params.max_wheel_speed_radps,
                                      values['cmd_vel_timeout_s'])
         self._cmd_vel = CMD_VEL_INPUTS[values['cmd_vel_stamped']]
         self._time_step = TimeStepService(node, self.world.time_step_s * 1000.0, self.step,
