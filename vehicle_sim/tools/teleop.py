@@ -28,9 +28,6 @@ import termios
 import time
 import tty
 
-from vehicle_sim.core.units import webots_steering_to_ros
-from vehicle_sim.ros import bridge_interfaces as bi
-from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.tools.command import CliError, EXIT_OK, EXIT_USAGE, install_stop_handlers
 from vehicle_sim.tools.teleop_keys import KeyDecoder, status_line, TeleopLimits, TeleopState
 
@@ -62,8 +59,14 @@ def add_arguments(parser):
                         help='car: path curvature of left/right [1/m] (default 0.15)')
 
 
+# The interface tables are imported where used: `vehicle-sim` builds this parser for every
+# command, and they pull in numpy and the message definitions.
+
+
 def topic_names(namespace, robot):
     """Return (cmd_vel, odom, steering or None) topic names of the vehicle."""
+    from vehicle_sim.ros import bridge_interfaces as bi
+    from vehicle_sim.ros import interfaces as itf
     prefix = '/' + namespace.strip('/') if namespace.strip('/') else ''
     if robot:
         base = f'{prefix}/{bi.ROBOT_NODE_NAME}'
@@ -76,12 +79,16 @@ class Teleop:
     """The teleop node: a cmd_vel publisher and the measured state it shows."""
 
     def __init__(self, namespace='', robot=False, stamped=False, transport=None):
+        from vehicle_sim.core.units import webots_steering_to_ros
+        from vehicle_sim.ros import interfaces as itf
         from vehicle_sim.transport.selection import create_node
+        self._to_rep103 = webots_steering_to_ros
         self.robot = robot
         self.node = node = create_node(NODE_NAME, args=['--ros-args', '--disable-rosout-logs'],
                                        transport=transport)
         cmd_vel, odom, steering = topic_names(namespace, robot)
         self.row = itf.CMD_VEL_INPUTS[stamped]
+        self._stamped = stamped
         self.publisher = node.create_publisher(self.row.ros_type, cmd_vel, self.row.qos)
         self.cmd_vel_name = cmd_vel
         self.speed_mps = None
@@ -97,13 +104,13 @@ class Teleop:
             self.steering = msg.twist.twist.angular.z
 
     def _on_steering(self, msg):
-        self.steering = webots_steering_to_ros(msg.data)   # Webots sign on automobile/*
+        self.steering = self._to_rep103(msg.data)   # Webots sign on automobile/*
 
     def send(self, speed_mps, yaw_rate_radps):
         """Publish one cmd_vel."""
         msg = self.node.msg(self.row.ros_type)()
         twist = msg
-        if self.row is itf.CMD_VEL_STAMPED:
+        if self._stamped:
             msg.header.stamp = self.node.time_msg()
             twist = msg.twist
         twist.linear.x = float(speed_mps)
