@@ -64,6 +64,13 @@ class Car:
 
     def __init__(self, namespace='', **params):
         self.sim = AutomobileSim(namespace=namespace, params=params)
+        try:
+            self._wire(params)
+        except BaseException:
+            self.sim.close()      # never leave the node process running
+            raise
+
+    def _wire(self, params):
         self.client = client = self.sim.client
         node = client.node
         stamped = params.get('cmd_vel_stamped', False)
@@ -226,6 +233,14 @@ class Robot:
         for param in params:
             args += ['-p', param]
         self.process = NodeProcess(*args, module='vehicle_sim.ros.diff_robot_node')
+        self.node = None
+        try:
+            self._wire(namespace, params, create_node)
+        except BaseException:
+            self.close()          # never leave the node process running
+            raise
+
+    def _wire(self, namespace, params, create_node):
         self.node = node = create_node('drive_input_test', args=['--ros-args',
                                                                   '--disable-rosout-logs'])
         stamped = 'cmd_vel_stamped:=true' in params
@@ -264,7 +279,8 @@ class Robot:
         raise AssertionError('the robot never moved:\n' + self.process.text())
 
     def close(self):
-        self.node.shutdown()
+        if self.node is not None:
+            self.node.shutdown()
         self.process.stop()
 
 
