@@ -54,7 +54,8 @@ from vehicle_sim.ros.endpoints import (
 )
 from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.sensor_interfaces import check_names, selected_sensors, sensor_rows
-from vehicle_sim.ros.sim_params import declare_parameters, world_spec
+from vehicle_sim.ros.sim_control import serve_vehicle, WorldControl
+from vehicle_sim.ros.sim_params import declare_parameters, initialpose_index, world_spec
 from vehicle_sim.ros.time_step import TimeStepService
 from vehicle_sim.transport import create_node
 from vehicle_sim.transport.port import resolve_name
@@ -125,6 +126,30 @@ class _Vehicle:
         _, positions, velocities = body.joint_states()
         self.joints = (positions, velocities)
 
+    @property
+    def label(self):
+        return f'vehicle {self.spec.name!r}'
+
+    def reset(self):
+        """Put the car back at its spawn pose and its logic in its start state (sim_control)."""
+        self.car.reset()
+        self.feed.restart_motion()
+        status = self.logic.status()
+        x, y, _ = self.spawn_xyz
+        return (f'back at its spawn pose (x {x:g} m, y {y:g} m, yaw {self.spec.yaw_rad:g} rad) '
+                f'at rest, joints at 0; car logic reset: control mode '
+                f'{ControlMode(status.control_mode).name}, gear {status.gear}, cruising speed '
+                f'{status.target_cruising_speed_kmh:g} km/h, throttle {status.throttle:g}, '
+                f'brake {status.brake_intensity:g}, steering '
+                f'{status.commanded_steering_angle_rad:g} rad, indicator off, hazard flashers, '
+                f'lights and wipers off; simulated time goes on '
+                f'({self.car.world.time_s:.3f} s)')
+
+    def teleport(self, place):
+        """Put the car at rest at a GroundPose (sim_control); raises InvalidPoseError."""
+        self.car.teleport(place.position)
+        self.feed.restart_motion()
+
     def description(self):
         """Return the URDF published on robot_description (names prefixed ``<p>``)."""
         return with_sensor_links(car_urdf(self.car.params, name=self.spec.name,
@@ -163,6 +188,7 @@ class AutomobileNode:
         self.world = None
         self._timer = None
         self._time_step = None
+        self._control = None
         self._sensing = []
         try:
             self._build()
@@ -194,6 +220,10 @@ class AutomobileNode:
             self._vehicles.append(vehicle)
         self._start_sensors(scene)
         self._wire_world()
+        # /sim/reset, /sim/pause, /initialpose (ros/sim_control.py).
+        self._control = WorldControl(
+            node, self.world, self._vehicles, settings.synchronous,
+            self._vehicles[initialpose_index(settings, scene)])
         self._publish_latched()
         self._publish_step(self.world.time_s)
         if not settings.synchronous:
@@ -229,6 +259,8 @@ class AutomobileNode:
         # {fully-qualified name: what has it} of every table row of the node.
         global_name = self._full_name('')
         taken = {global_name(row.name): 'a topic of the node' for row in itf.WORLD_TOPICS}
+        taken.update({global_name(row.name): 'an endpoint of the node'
+                      for row in itf.WORLD_SERVICES + itf.WORLD_INPUTS})
         for spec in scene.vehicles:
             full_name = self._full_name(spec.namespace)
             for row in itf.VEHICLE_TOPICS + itf.SERVICES:
@@ -270,7 +302,8 @@ class AutomobileNode:
         }
         vehicle.services = list(serve(node, {
             spec: self._bind(handlers[spec.kind], spec, vehicle, resolve(spec.name))
-            for spec in itf.SERVICES}, resolve).values())
+            for spec in itf.SERVICES if spec.kind in handlers}, resolve).values())
+        vehicle.services += serve_vehicle(node, itf.POSE_SERVICES, vehicle, resolve).values()
 
     def _wire_world(self):
         # The global rows (/clock, /tf, /tf_static): once for the node, all vehicles in one
@@ -330,7 +363,8 @@ class AutomobileNode:
     # ------------------------------------------------------------------------------ stepping
 
     def _on_step_timer(self):
-        self.step_once()
+        if not self._control.paused:     # /sim/pause
+            self.step_once()
 
     def step_once(self) -> float:
         """
@@ -387,6 +421,15 @@ class AutomobileNode:
             vehicle.outputs.publish(ONCE_LATCHED, vehicle)
 
     # ------------------------------------------------------------------------------ access
+
+    def reset(self) -> str:
+        """Reset every vehicle and movable obstacle (as /sim/reset); return what was reset."""
+        return self._control.reset()
+
+    @property
+    def paused(self) -> bool:
+        """True while /sim/pause holds simulated time (real-time mode)."""
+        return self._control.paused
 
     @property
     def vehicles(self) -> Dict[str, SimulatedCar]:
