@@ -147,7 +147,9 @@ class WorldControl:
         self._vehicles = tuple(vehicles)
         self._synchronous = synchronous
         self._logger = node.get_logger()
-        self._warn = ThrottledWarning(self._logger)
+        # One throttle per reason, as ROS throttles per call site.
+        self._warn_frame = ThrottledWarning(self._logger)
+        self._warn_pose = ThrottledWarning(self._logger)
         self.paused = False
         self.services = serve(node, {SIM_RESET: self._on_reset, SIM_PAUSE: self._on_pause})
         self._target = initialpose_vehicle
@@ -202,18 +204,20 @@ class WorldControl:
         frame_id, xyz, q = INITIALPOSE.converter(msg)
         target = self._target
         try:
-            try:
-                owner = self._frame(frame_id)
-            except KeyError:
-                known = ', '.join(repr(f) for f in WORLD_FRAMES + tuple(self._frames))
-                raise InvalidPoseError(f'unknown frame_id {frame_id!r}; known: {known}') \
-                    from None
-            frame = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0)) if owner is None else \
-                (owner.spawn_xyz, owner.spawn_q)
+            owner = self._frame(frame_id)
+        except KeyError:
+            known = ', '.join(repr(f) for f in WORLD_FRAMES + tuple(self._frames))
+            self._warn_frame.warn(f'/initialpose for {target.label} refused: unknown frame_id '
+                                  f'{frame_id!r} (known: {known}); nothing moved')
+            return
+        frame = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0)) if owner is None else \
+            (owner.spawn_xyz, owner.spawn_q)
+        try:
             place = ground_pose(xyz, q, *frame)
             target.teleport(place)
         except InvalidPoseError as error:
-            self._warn.warn(f'/initialpose for {target.label} refused: {error}; nothing moved')
+            self._warn_pose.warn(f'/initialpose for {target.label} refused: {error}; '
+                                 'nothing moved')
         else:
             self._logger.info(f'/initialpose: {target.label} at rest at {_place_text(place)} '
                               '(world)')
