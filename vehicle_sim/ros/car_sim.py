@@ -28,6 +28,9 @@ world while the node spins between steps (services stay responsive); ``real_time
 steps on every non-blocking spin; ``synchronous`` steps only on ``robot/time_step`` calls, which
 are queued and run in chunks from the node's loop (:mod:`.time_step`), so the node keeps
 serving and honours signals however long a request is.
+
+Reset, teleport and pause (``automobile/reset``, ``automobile/set_pose``, ``/sim/reset``,
+``/sim/pause``, ``/initialpose``): :mod:`.sim_control`; a paused node skips its step timer.
 """
 
 from types import SimpleNamespace
@@ -166,8 +169,9 @@ class AutomobileNode:
     """
     Simulated cars behind Webots' ros_automobile interface.
 
-    In-process API (tests, benchmarks): :meth:`step_once`, :meth:`step`, :attr:`world`,
-    :attr:`vehicles` (namespace -> SimulatedCar), :attr:`settings`, :meth:`close`.
+    In-process API (tests, benchmarks): :meth:`step_once`, :meth:`step`, :meth:`reset` (as
+    /sim/reset), :attr:`paused`, :attr:`world`, :attr:`vehicles` (namespace -> SimulatedCar),
+    :attr:`settings`, :meth:`close`.
     """
 
     def __init__(self, args=None, *, transport: Optional[str] = None,
