@@ -100,17 +100,29 @@ class AutomobileClient:
         name = itf.vehicle_name(table_name, self.namespace)
         return name if name.startswith('/') else '/' + name
 
-    def call(self, table_name, value=None):
-        """Call a table service; ``value`` goes into ``value`` (setters) or is ignored."""
-        spec = itf.service(table_name)
+    def client(self, table_name):
+        """Return this test's client of a table service (created once, service available)."""
         client = self._clients.get(table_name)
         if client is None:
+            spec = _service_row(table_name)
             client = self.node.create_client(spec.srv_type, self.name(table_name))
             assert client.wait_for_service(WAIT_S), f'{self.name(table_name)} not available'
             self._clients[table_name] = client
+        return client
+
+    def call(self, table_name, value=None, **fields):
+        """
+        Call a table service; ``value`` goes into ``value`` (setters) or is ignored.
+
+        ``fields`` set other request fields (``data`` of a SetBool, ``pose`` of a SetPose).
+        """
+        spec = _service_row(table_name)
+        client = self.client(table_name)
         request = self.node.srv(spec.srv_type).Request()
         if value is not None:
             request.value = value
+        for key, field in fields.items():
+            setattr(request, key, field)
         return client.call(request, WAIT_S)
 
     def subscribe(self, table_name):
@@ -155,6 +167,14 @@ class AutomobileClient:
         if any(s.name == table_name for s in itf.SERVICES):
             return self.call(table_name).value
         return self.step_and_read(table_name, duration_ms).data
+
+
+def _service_row(name):
+    # A row of the automobile table, or a node-wide one (/sim/reset, /sim/pause).
+    for spec in itf.SERVICES + itf.WORLD_SERVICES:
+        if spec.name == name:
+            return spec
+    raise KeyError(name)
 
 
 def stamp_of(msg):

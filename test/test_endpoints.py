@@ -84,7 +84,7 @@ def _global_or(prefix):
 
 
 def _automobile_rows(namespaces, inputs=(itf.CMD_VEL, itf.DRIVE)):
-    rows = [(row, NAMESPACE) for row in itf.WORLD_TOPICS]
+    rows = [(row, NAMESPACE) for row in itf.WORLD_TOPICS + itf.WORLD_SERVICES + itf.WORLD_INPUTS]
     for ns in namespaces:
         prefix = f'{NAMESPACE}/{ns}' if ns else NAMESPACE
         rows += [(row, prefix) for row in itf.VEHICLE_TOPICS + itf.SERVICES + inputs]
@@ -132,7 +132,9 @@ def test_diff_robot_endpoints_are_its_rows_under_its_name(created):
     from vehicle_sim.ros.diff_robot_node import DiffRobotNode
     robot = DiffRobotNode(transport='dds', namespace=NAMESPACE, parameter_overrides=SYNCHRONOUS)
     try:
-        rows = bi.ROBOT_INPUTS + bi.ROBOT_OUTPUTS + bi.ROBOT_SERVICES
+        # It owns its world: /sim/reset, /sim/pause and /initialpose too.
+        rows = (bi.ROBOT_INPUTS + bi.ROBOT_OUTPUTS + bi.ROBOT_SERVICES + itf.WORLD_SERVICES
+                + itf.WORLD_INPUTS)
         assert sorted(created, key=repr) == _expected(
             rows, _global_or(f'{NAMESPACE}/{bi.ROBOT_NODE_NAME}'))
     finally:

@@ -36,7 +36,7 @@ EXPECTED_FILES = {
     'msg/Float64Stamped.msg', 'msg/WheelCommand.msg', 'msg/DifferentialCommand.msg',
     'msg/Collision.msg',
     'srv/SetFloat.srv', 'srv/GetFloat.srv', 'srv/SetInt.srv', 'srv/GetInt.srv',
-    'srv/SetBool.srv', 'srv/GetBool.srv', 'srv/GetDimensions.srv',
+    'srv/SetBool.srv', 'srv/GetBool.srv', 'srv/GetDimensions.srv', 'srv/SetPose.srv',
 }
 
 
@@ -68,7 +68,7 @@ def test_exported_files_parse_and_name_every_type(package_dir):
         'vehicle_msgs/msg/DifferentialCommand', 'vehicle_msgs/msg/Collision',
         *(f'vehicle_msgs/msg/{srv}_{part}'
           for srv in ('SetFloat', 'GetFloat', 'SetInt', 'GetInt', 'SetBool', 'GetBool',
-                      'GetDimensions')
+                      'GetDimensions', 'SetPose')
           for part in ('Request', 'Response')),
     }
 
@@ -77,8 +77,10 @@ def test_cmakelists_generates_every_file_with_dependencies(package_dir):
     text = (package_dir / 'CMakeLists.txt').read_text()
     block = re.search(r'rosidl_generate_interfaces\((.*?)\)', text, re.DOTALL).group(1)
     assert set(re.findall(r'"([^"]+)"', block)) == EXPECTED_FILES
-    assert re.search(r'DEPENDENCIES builtin_interfaces std_msgs\s*$', block)
-    for dep in ('ament_cmake', 'rosidl_default_generators', 'builtin_interfaces', 'std_msgs'):
+    # SetPose's request holds a geometry_msgs/Pose.
+    assert re.search(r'DEPENDENCIES builtin_interfaces geometry_msgs std_msgs\s*$', block)
+    for dep in ('ament_cmake', 'rosidl_default_generators', 'builtin_interfaces', 'std_msgs',
+                'geometry_msgs'):
         assert f'find_package({dep} REQUIRED)' in text
     assert 'ament_package()' in text
 
@@ -90,7 +92,8 @@ def test_package_xml_is_valid_format_3_interface_package(package_dir):
     assert CATKIN_EMAIL.match(root.find('maintainer').get('email'))
     assert [e.text for e in root.findall('buildtool_depend')] == \
         ['ament_cmake', 'rosidl_default_generators']
-    assert {e.text for e in root.findall('depend')} == {'builtin_interfaces', 'std_msgs'}
+    assert {e.text for e in root.findall('depend')} == {'builtin_interfaces', 'geometry_msgs',
+                                                        'std_msgs'}
     assert [e.text for e in root.findall('exec_depend')] == ['rosidl_default_runtime']
     assert root.findtext('member_of_group') == 'rosidl_interface_packages'
     assert root.find('export').findtext('build_type') == 'ament_cmake'

@@ -239,6 +239,7 @@ def test_service_bytes_equal_rosbags_cdr_after_the_16_byte_request_header(car, r
     name = car.name(spec.name)
     requests = _reader(raw, f'rq{name}Request', types.request_wire, port.QOS_SERVICES)
     replies = _reader(raw, f'rr{name}Reply', types.response_wire, port.QOS_SERVICES)
+    car.client(spec.name)        # its request writer, which the raw reader must match
     assert wait_for(lambda: requests.get_matched_publications() and
                     replies.get_matched_publications())
     car.call(spec.name, spec.example if spec.kind == itf.SETTER else None)

@@ -331,6 +331,8 @@ def test_message_constants_are_class_attributes(ros_type, constants):
     ('vehicle_msgs/msg/Collision', ['header', 'other', 'normal_force']),
     ('vehicle_msgs/srv/GetDimensions_Response',
      ['track_front', 'track_rear', 'wheel_base', 'front_wheel_radius', 'rear_wheel_radius']),
+    ('vehicle_msgs/srv/SetPose_Request', ['pose']),
+    ('vehicle_msgs/srv/SetPose_Response', ['success', 'message']),
     ('autoware_control_msgs/msg/Control', ['stamp', 'control_time', 'lateral', 'longitudinal']),
     ('autoware_control_msgs/msg/Longitudinal',
      ['stamp', 'control_time', 'velocity', 'acceleration', 'jerk', 'is_defined_acceleration',

@@ -178,7 +178,6 @@ class CarLogic:
         self._engine = make_engine(params)
         self._car_type = params.car_type
         self._driven = tuple(params.driven_wheels)
-        self._driven_mode = None       # wheel modes last written into the Actuation
         radius = np.array([params.front_tire_radius_m, params.front_tire_radius_m,
                            params.rear_tire_radius_m, params.rear_tire_radius_m])
         # Car.proto driven-wheel motors: acceleration (100/3.6)/time0To100/r, maxVelocity v/r.
@@ -189,7 +188,11 @@ class CarLogic:
         self._min_steer = params.min_steering_angle_rad
         self._max_steer = params.max_steering_angle_rad
         self._max_gear = params.gear_number - 1
+        self._time_s = 0.0
+        self._reset_state()
 
+    def _reset_state(self):
+        # Every command, setting and estimate, as wbu_driver_init / wbu_car_init leave them.
         # Driver library commands (wbu_driver_init).
         self._steering_rad = 0.0
         self._cruising_kmh = 0.0
@@ -211,26 +214,51 @@ class CarLogic:
         self._wiper = Wiper()
 
         # Estimates from the measurements.
-        self._time_s = 0.0
+        self._encoder = np.zeros(WHEEL_COUNT)
+        self._measured_right_rad = 0.0
+        self._measured_left_rad = 0.0
+        self._cruise_target = np.zeros(WHEEL_COUNT)
+        self._actuation = Actuation()
+        self._driven_mode = None       # wheel modes last written into the Actuation
+        self._forget_motion()
+
+    def _forget_motion(self):
+        # The estimates and motor set-points of a car at rest with no previous sample: wheel
+        # speeds, accelerations, rpm, limited-slip state, ramped set-points (the motors'
+        # internal velocity) and distributed torques.
         self._rpm = 0.0
         self._slip = np.zeros(3)
         self._have_sample = False
-        self._encoder = np.zeros(WHEEL_COUNT)
         self._previous_position = np.zeros(WHEEL_COUNT)
         self._speed = np.zeros(WHEEL_COUNT)
         self._previous_speed = np.zeros(WHEEL_COUNT)
         self._max_acceleration = 0.0
-        self._measured_right_rad = 0.0
-        self._measured_left_rad = 0.0
-
-        # Wheel commands: cruise targets, ramped set-points (the motors' internal velocity),
-        # distributed torques, and scratch space for the ramp limit.
-        self._cruise_target = np.zeros(WHEEL_COUNT)
         self._ramp = np.zeros(WHEEL_COUNT)
         self._torque = np.zeros(WHEEL_COUNT)
-
-        self._actuation = Actuation()
         self._write_actuation(0.0)
+
+    def reset(self):
+        """
+        Return to the start state (see the class docstring), as a freshly built CarLogic.
+
+        Every command and setting (steering, cruising speed, throttle, brake, gear, control
+        mode, indicators, lights, wipers, indicator period, differential) and every estimate
+        (wheel speeds, encoders, rpm) goes back to its initial value. Only the time of the last
+        step is kept: simulated time is not reset. The body must be put back at rest too (the
+        next measurement starts a new sample, so no wheel speed spans the reset).
+        """
+        self._reset_state()
+
+    def come_to_rest(self):
+        """
+        Forget the car's motion after its body was put at rest elsewhere (a teleport).
+
+        The commands and settings stay in force (a car cruising at 30 km/h accelerates again
+        from rest); the wheel speed estimates, rpm, limited-slip state and the wheel motors'
+        ramped set-points restart from 0, and the next measurement starts a new sample (no
+        wheel speed spans the jump).
+        """
+        self._forget_motion()
 
     # -----------------------------------------------------------------------------------------
     # Driver library setters.

@@ -25,3 +25,7 @@ class InvalidParameterError(VehicleSimError, ValueError):
 
 class InvalidCommandError(VehicleSimError, ValueError):
     """A command (setter argument) is non-finite, out of range or not a defined enum value."""
+
+
+class InvalidPoseError(InvalidCommandError):
+    """A teleport pose is non-finite, not a unit quaternion, in an unknown frame or blocked."""

@@ -164,6 +164,22 @@ def pose_in_frame(frame_xyz: Vector, frame_q: Quaternion, xyz: Vector,
     return rotate(inverse, delta), quaternion_multiply(inverse, q)
 
 
+def pose_from_frame(frame_xyz: Vector, frame_q: Quaternion, xyz: Vector,
+                    q: Quaternion) -> Tuple[Vector, Quaternion]:
+    """
+    Express in the world a pose given in another frame (the inverse of :func:`pose_in_frame`).
+
+    :param frame_xyz: frame origin in the world [m].
+    :param frame_q: frame orientation in the world.
+    :param xyz: pose position in the frame [m].
+    :param q: pose orientation in the frame.
+    :return: (position, orientation) in the world.
+    """
+    offset = rotate(frame_q, xyz)
+    return ((frame_xyz[0] + offset[0], frame_xyz[1] + offset[1], frame_xyz[2] + offset[2]),
+            quaternion_multiply(frame_q, q))
+
+
 def twist_in_body(q: Quaternion, linear_world: Vector,
                   angular_world: Vector) -> Tuple[Vector, Vector]:
     """

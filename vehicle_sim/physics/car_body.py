@@ -89,6 +89,7 @@ class CarBody:
         self._read_joints = self._wheel + self._steer
         info = pybullet.getDynamicsInfo(self.body_id, -1, physicsClientId=cid)
         # pybullet reports the base at its (principal-axes) inertial frame; keep its inverse.
+        self._link_to_com = (info[3], info[4])
         self._com_to_link = pybullet.invertTransform(info[3], info[4])
         self._last_velocity_cmd = None
         self._last_steer_cmd = None
@@ -208,6 +209,20 @@ class CarBody:
         measurement.steer_right_rad = states[4][0]
         measurement.steer_left_rad = states[5][0]
         return measurement
+
+    def place(self, position, rest_joints=False):
+        """
+        Put the car at a pose, at rest: chassis and joint velocities 0 (reset and teleport).
+
+        :param position: base_link pose, as the constructor takes it; the (x, y, yaw) form puts
+            base_link on the ground, level, as at spawn.
+        :param rest_joints: every joint back at its spawn position 0 (a reset); otherwise the
+            wheels and steering keep their angles and the suspension goes to 0 (a teleport).
+        """
+        moving = self._wheel + self._steer
+        self.world.place_at_rest(self.body_id, self._link_to_com, position,
+                                 zero_joints=self._suspension + (moving if rest_joints else []),
+                                 stop_joints=[] if rest_joints else moving)
 
     # ---------------------------------------------------------------- ground truth
     def pose(self):

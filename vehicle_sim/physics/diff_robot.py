@@ -168,7 +168,9 @@ class DiffRobotBody:
         self._left = [i for i, n in enumerate(self.wheel_joints) if 'left' in n]
         self._right = [i for i, n in enumerate(self.wheel_joints) if 'right' in n]
         info = pybullet.getDynamicsInfo(self.body_id, -1, physicsClientId=cid)
+        self._link_to_com = (info[3], info[4])
         self._com_to_link = pybullet.invertTransform(info[3], info[4])
+        self.spawn = position
         self._command_radps = (0.0,) * len(self._wheels)
         self._configure_dynamics()
         if register:
@@ -248,6 +250,24 @@ class DiffRobotBody:
     def command_radps(self):
         """The wheel speeds in force, in ``wheel_joints`` order [rad/s]."""
         return self._command_radps
+
+    # ---------------------------------------------------------------- reset and teleport
+    def reset(self):
+        """Put the robot back at its spawn pose, at rest, wheel angles 0, wheel commands 0."""
+        self.world.place_at_rest(self.body_id, self._link_to_com, self.spawn, SPAWN_CLEARANCE_M,
+                                 zero_joints=self._wheels)
+        self._command_radps = (0.0,) * len(self._wheels)
+        self._apply()
+
+    def teleport(self, position):
+        """
+        Put the robot at rest at (x [m], y [m], yaw [rad]) on the ground; the command stays.
+
+        :raises InvalidPoseError: when it would be inside another body (nothing moved).
+        """
+        self.world.try_place(self.body_id, lambda: self.world.place_at_rest(
+            self.body_id, self._link_to_com, position, SPAWN_CLEARANCE_M,
+            stop_joints=self._wheels))
 
     # ---------------------------------------------------------------- measurement
     def read(self):

@@ -38,6 +38,7 @@ class SimulatedCar:
         """
         self.world = world
         self.params = params
+        self.spawn = position
         self.logic = CarLogic(params)
         self.body = CarBody(world, params, position, name=name, register=False)
         self.measurement = Measurement()
@@ -52,6 +53,28 @@ class SimulatedCar:
         body.read(self.measurement)
         body.apply(self.logic.step(self.measurement, world.time_s, world.time_step_s))
         self._body_pre_step()
+
+    def reset(self):
+        """
+        Put the car back as it was built: spawn pose, at rest, joints at 0, logic reset.
+
+        CarLogic.reset gives the start state of every command and estimate; simulated time
+        goes on.
+        """
+        self.body.place(self.spawn, rest_joints=True)
+        self.logic.reset()
+
+    def teleport(self, position):
+        """
+        Put the car at rest at (x [m], y [m], yaw [rad]) on the ground; its commands stay.
+
+        The wheels keep their angles, every velocity becomes 0 and the logic forgets the motion
+        (CarLogic.come_to_rest).
+
+        :raises InvalidPoseError: when the car would be inside another body (nothing moved).
+        """
+        self.world.try_place(self.body.body_id, lambda: self.body.place(position))
+        self.logic.come_to_rest()
 
     def destroy(self):
         """Remove the car's bodies from the physics (World.remove calls this)."""

@@ -36,6 +36,8 @@ import tempfile
 
 import pybullet
 
+from vehicle_sim.core.errors import InvalidPoseError
+
 # Tyre-road friction coefficient of the ground (Bullet multiplies the two materials' values; car
 # wheels have 1.0). 0-100 km/h in time0To100 needs about 1.1 on the driven axle (DESIGN §3
 # "Grip"; TeslaModel3 is the hardest); Webots' vehicle worlds use coulombFriction 8.
@@ -61,6 +63,9 @@ GROUND_COLOR = (0.45, 0.45, 0.45, 1.0)
 _FIRST_RAY_GROUP_BIT = 4
 _LAST_RAY_GROUP_BIT = 30
 ALL_GROUPS = -1
+# A teleported body overlaps another when they interpenetrate by more than this [m] (touching,
+# or the solver's contact slop, is not an overlap).
+OVERLAP_TOLERANCE_M = 1.0e-3
 
 
 
@@ -141,6 +146,7 @@ class World:
         self._post_step = []
         self._names = {}              # body id -> name (obstacles)
         self.obstacles = {}           # obstacle name -> body id
+        self._obstacle_specs = {}     # obstacle name -> its ObstacleSpec (reset_obstacles)
         self._ray_masks = {}          # body id -> ray mask excluding that body
         self._ground_visual = False
         self._broadphase_stale = True   # bodies added since the last step: rays miss them
@@ -263,9 +269,108 @@ class World:
             raise ValueError(f'obstacle {spec.name!r} exists already')
         body_id = create_obstacle(self.client_id, spec)
         self.obstacles[spec.name] = body_id
+        self._obstacle_specs[spec.name] = spec
         self._names[body_id] = spec.name
         self._broadphase_stale = True
         return body_id
+
+    def reset_obstacles(self):
+        """
+        Put every movable obstacle (mass > 0) back at its initial pose, at rest.
+
+        :return: the names of the obstacles put back, in the order they were added.
+        """
+        names = []
+        for name, spec in self._obstacle_specs.items():
+            if not spec.static:
+                pose = spec.pose
+                self._reset_base(self.obstacles[name], list(pose.xyz), list(pose.quaternion))
+                names.append(name)
+        return tuple(names)
+
+    # ---------------------------------------------------------------- placing bodies
+    def _reset_base(self, body_id, position, orientation):
+        cid = self.client_id
+        pybullet.resetBasePositionAndOrientation(body_id, position, orientation,
+                                                 physicsClientId=cid)
+        pybullet.resetBaseVelocity(body_id, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0],
+                                   physicsClientId=cid)
+        self._broadphase_stale = True
+
+    def place_at_rest(self, body_id, link_to_com, position, clearance_m=0.0, zero_joints=(),
+                      stop_joints=()):
+        """
+        Put a body's base link at a pose with every velocity 0 (reset and teleport).
+
+        :param body_id: the body.
+        :param link_to_com: (position, orientation) of the base's centre of mass in the base
+            link frame (PyBullet's local inertial frame).
+        :param position: base link pose, see :func:`pose_from`; the (x, y, yaw) form puts the
+            base link ``clearance_m`` above the ground plane (z = 0), level.
+        :param clearance_m: spawn height of the base link for the (x, y, yaw) form [m].
+        :param zero_joints: joint indices set to position 0 (the URDF's rest position).
+        :param stop_joints: joint indices that keep their position; their velocity becomes 0.
+        """
+        cid = self.client_id
+        xyz, q = pose_from(position, clearance_m)
+        com_xyz, com_q = pybullet.multiplyTransforms(xyz, q, *link_to_com)
+        self._reset_base(body_id, com_xyz, com_q)
+        for joint in zero_joints:
+            pybullet.resetJointState(body_id, joint, 0.0, 0.0, physicsClientId=cid)
+        for joint in stop_joints:
+            angle = pybullet.getJointState(body_id, joint, physicsClientId=cid)[0]
+            pybullet.resetJointState(body_id, joint, angle, 0.0, physicsClientId=cid)
+
+    def body_state(self, body_id):
+        """Return a body's pose, velocities and joint states, for :meth:`restore_body_state`."""
+        cid = self.client_id
+        joints = range(pybullet.getNumJoints(body_id, physicsClientId=cid))
+        return (pybullet.getBasePositionAndOrientation(body_id, physicsClientId=cid),
+                pybullet.getBaseVelocity(body_id, physicsClientId=cid),
+                [(joint, pybullet.getJointState(body_id, joint, physicsClientId=cid)[:2])
+                 for joint in joints])
+
+    def restore_body_state(self, body_id, state):
+        """Put a body back in a state :meth:`body_state` returned."""
+        cid = self.client_id
+        (position, orientation), (linear, angular), joints = state
+        pybullet.resetBasePositionAndOrientation(body_id, position, orientation,
+                                                 physicsClientId=cid)
+        pybullet.resetBaseVelocity(body_id, linear, angular, physicsClientId=cid)
+        for joint, (angle, velocity) in joints:
+            pybullet.resetJointState(body_id, joint, angle, velocity, physicsClientId=cid)
+        self._broadphase_stale = True
+
+    def overlaps(self, body_id, tolerance_m=OVERLAP_TOLERANCE_M):
+        """
+        Return the names of the bodies (not the ground) that ``body_id`` interpenetrates now.
+
+        :param tolerance_m: penetration depth below which touching bodies do not overlap [m].
+        """
+        cid = self.client_id
+        found = []
+        for index in range(pybullet.getNumBodies(physicsClientId=cid)):
+            other = pybullet.getBodyUniqueId(index, physicsClientId=cid)
+            if other in (body_id, self.ground_id):
+                continue
+            points = pybullet.getClosestPoints(body_id, other, 0.0, physicsClientId=cid)
+            if any(point[8] < -tolerance_m for point in points):
+                found.append(self.body_name(other))
+        return found
+
+    def try_place(self, body_id, place):
+        """
+        Run ``place()`` (which moves ``body_id``), undoing it if the body then overlaps another.
+
+        :raises InvalidPoseError: naming what the body would be inside; the body is back in its
+            state before the call.
+        """
+        saved = self.body_state(body_id)
+        place()
+        blocking = self.overlaps(body_id)
+        if blocking:
+            self.restore_body_state(body_id, saved)
+            raise InvalidPoseError(f'that place is inside {", ".join(blocking)}')
 
     def update_collision_state(self):
         """

@@ -58,6 +58,7 @@ from vehicle_sim.ros.endpoints import (
     topic_table_markdown,
 )
 from vehicle_sim.ros.sensor_interfaces import COLLISION
+from vehicle_sim.ros.sim_control import vehicle_services, WORLD_INPUTS, WORLD_SERVICES
 from vehicle_sim.transport.port import QOS_CLOCK, QOS_DEFAULT, QOS_LATCHED
 
 
@@ -264,7 +265,11 @@ ROBOT_TIME_STEP = Service('robot/time_step', 'vehicle_msgs/srv/SetInt', kind='ti
 ROBOT_INPUTS = (ROBOT_DIFFERENTIAL_COMMAND, ROBOT_WHEEL_VELOCITIES, CMD_VEL)
 ROBOT_OUTPUTS = (CLOCK, ROBOT_JOINT_STATES, ROBOT_ODOM, ROBOT_GROUND_TRUTH_ODOM, TF, TF_STATIC,
                  ROBOT_ROBOT_DESCRIPTION, COLLISION)
-ROBOT_SERVICES = (ROBOT_TIME_STEP,)
+# <ns>/reset and <ns>/set_pose (ros/sim_control.py); the node that owns its world also serves
+# /sim/reset, /sim/pause and reads /initialpose (sim_control.WORLD_SERVICES, WORLD_INPUTS).
+ROBOT_POSE_SERVICES = vehicle_services(
+    '', 'back to the spawn pose at rest, wheel angles and commands 0, wheel odometry 0')
+ROBOT_SERVICES = (ROBOT_TIME_STEP,) + ROBOT_POSE_SERVICES
 
 # --------------------------------------------------------------------------------------------
 # Docs (docs/autoware.md embeds these; a test checks it)
@@ -289,5 +294,5 @@ def robot_markdown() -> str:
     def name(row):
         return row.name if row.name.startswith('/') else f'/{ROBOT_NODE_NAME}/{row.name}'
     rows = ROBOT_INPUTS + (CMD_VEL_STAMPED,) + ROBOT_OUTPUTS
-    return (topic_table_markdown(rows, _COLUMNS[:-2] + ('unit', 'notes'), name) + '\n' +
-            service_table_markdown(ROBOT_SERVICES, name))
+    return (topic_table_markdown(rows + WORLD_INPUTS, _COLUMNS[:-2] + ('unit', 'notes'), name)
+            + '\n' + service_table_markdown(ROBOT_SERVICES + WORLD_SERVICES, name))

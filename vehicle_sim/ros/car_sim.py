@@ -28,6 +28,9 @@ world while the node spins between steps (services stay responsive); ``real_time
 steps on every non-blocking spin; ``synchronous`` steps only on ``robot/time_step`` calls, which
 are queued and run in chunks from the node's loop (:mod:`.time_step`), so the node keeps
 serving and honours signals however long a request is.
+
+Reset, teleport and pause (``automobile/reset``, ``automobile/set_pose``, ``/sim/reset``,
+``/sim/pause``, ``/initialpose``): :mod:`.sim_control`; a paused node skips its step timer.
 """
 
 from types import SimpleNamespace
@@ -56,7 +59,8 @@ from vehicle_sim.ros.endpoints import (
 )
 from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.sensor_interfaces import check_names, selected_sensors, sensor_rows
-from vehicle_sim.ros.sim_params import declare_parameters, world_spec
+from vehicle_sim.ros.sim_control import serve_vehicle, WorldControl
+from vehicle_sim.ros.sim_params import declare_parameters, initialpose_index, world_spec
 from vehicle_sim.ros.time_step import TimeStepService
 from vehicle_sim.transport import create_node
 from vehicle_sim.transport.port import resolve_name, ThrottledWarning
@@ -129,6 +133,32 @@ class _Vehicle:
         _, positions, velocities = body.joint_states()
         self.joints = (positions, velocities)
 
+    @property
+    def label(self):
+        return f'vehicle {self.spec.name!r}'
+
+    def reset(self):
+        """Put the car back at its spawn pose and its logic in its start state (sim_control)."""
+        self.car.reset()
+        self.feed.restart_motion()
+        if self.drive is not None:
+            self.drive.service_override()   # a stale command's watchdog must not brake later
+        status = self.logic.status()
+        x, y, _ = self.spawn_xyz
+        return (f'back at its spawn pose (x {x:g} m, y {y:g} m, yaw {self.spec.yaw_rad:g} rad) '
+                f'at rest, joints at 0; car logic reset: control mode '
+                f'{ControlMode(status.control_mode).name}, gear {status.gear}, cruising speed '
+                f'{status.target_cruising_speed_kmh:g} km/h, throttle {status.throttle:g}, '
+                f'brake {status.brake_intensity:g}, steering '
+                f'{status.commanded_steering_angle_rad:g} rad, indicator off, hazard flashers, '
+                f'lights and wipers off; simulated time goes on '
+                f'({self.car.world.time_s:.3f} s)')
+
+    def teleport(self, place):
+        """Put the car at rest at a GroundPose (sim_control); raises InvalidPoseError."""
+        self.car.teleport(place.position)
+        self.feed.restart_motion()
+
     def description(self):
         """Return the URDF published on robot_description (names prefixed ``<p>``)."""
         return with_sensor_links(car_urdf(self.car.params, name=self.spec.name,
@@ -145,8 +175,9 @@ class AutomobileNode:
     """
     Simulated cars behind Webots' ros_automobile interface.
 
-    In-process API (tests, benchmarks): :meth:`step_once`, :meth:`step`, :attr:`world`,
-    :attr:`vehicles` (namespace -> SimulatedCar), :attr:`settings`, :meth:`close`.
+    In-process API (tests, benchmarks): :meth:`step_once`, :meth:`step`, :meth:`reset` (as
+    /sim/reset), :attr:`paused`, :attr:`world`, :attr:`vehicles` (namespace -> SimulatedCar),
+    :attr:`settings`, :meth:`close`.
     """
 
     def __init__(self, args=None, *, transport: Optional[str] = None,
@@ -170,6 +201,7 @@ class AutomobileNode:
         self._drive_inputs = drive_inputs
         self._timer = None
         self._time_step = None
+        self._control = None
         self._sensing = []
         try:
             self._build()
@@ -201,6 +233,10 @@ class AutomobileNode:
             self._vehicles.append(vehicle)
         self._start_sensors(scene)
         self._wire_world()
+        # /sim/reset, /sim/pause, /initialpose (ros/sim_control.py).
+        self._control = WorldControl(
+            node, self.world, self._vehicles, settings.synchronous,
+            self._vehicles[initialpose_index(settings, scene)])
         self._publish_latched()
         self._publish_step(self.world.time_s)
         if not settings.synchronous:
@@ -236,6 +272,8 @@ class AutomobileNode:
         # {fully-qualified name: what has it} of every table row of the node.
         global_name = self._full_name('')
         taken = {global_name(row.name): 'a topic of the node' for row in itf.WORLD_TOPICS}
+        taken.update({global_name(row.name): 'an endpoint of the node'
+                      for row in itf.WORLD_SERVICES + itf.WORLD_INPUTS})
         for spec in scene.vehicles:
             full_name = self._full_name(spec.namespace)
             for row in itf.VEHICLE_TOPICS + itf.INPUT_TOPICS + itf.SERVICES:
@@ -277,7 +315,8 @@ class AutomobileNode:
         }
         vehicle.services = list(serve(node, {
             spec: self._bind(handlers[spec.kind], spec, vehicle, resolve(spec.name))
-            for spec in itf.SERVICES}, resolve).values())
+            for spec in itf.SERVICES if spec.kind in handlers}, resolve).values())
+        vehicle.services += serve_vehicle(node, itf.POSE_SERVICES, vehicle, resolve).values()
         vehicle.drive = CarDriveInput(vehicle.logic, self.settings.cmd_vel_timeout_s)
         if self._drive_inputs:
             self._wire_inputs(vehicle, resolve)
@@ -368,7 +407,8 @@ class AutomobileNode:
     # ------------------------------------------------------------------------------ stepping
 
     def _on_step_timer(self):
-        self.step_once()
+        if not self._control.paused:     # /sim/pause
+            self.step_once()
 
     def step_once(self) -> float:
         """
@@ -431,6 +471,15 @@ class AutomobileNode:
             vehicle.outputs.publish(ONCE_LATCHED, vehicle)
 
     # ------------------------------------------------------------------------------ access
+
+    def reset(self) -> str:
+        """Reset every vehicle and movable obstacle (as /sim/reset); return what was reset."""
+        return self._control.reset()
+
+    @property
+    def paused(self) -> bool:
+        """True while /sim/pause holds simulated time (real-time mode)."""
+        return self._control.paused
 
     @property
     def vehicles(self) -> Dict[str, SimulatedCar]:

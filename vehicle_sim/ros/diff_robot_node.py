@@ -32,6 +32,9 @@ and ``fleet/diff_robot/``):
   ``<p>lidar``, ``<p>imu``; ``ros/sensor_interfaces.py``)
 - service ``<ns>/robot/time_step`` vehicle_msgs/SetInt (synchronous mode; queued requests
   run in chunks from the node's loop, see :mod:`.time_step`)
+- services ``<ns>/reset`` (std_srvs/Trigger) and ``<ns>/set_pose`` (vehicle_msgs/SetPose); while
+  it owns its world also ``/sim/reset``, ``/sim/pause`` and the ``/initialpose`` input
+  (:mod:`.sim_control`)
 
 Bad commands (NaN, ±inf, beyond max_wheel_speed, wrong length) are rejected with a throttled
 warning; the command in force stays. A cmd_vel stream is not refused for its size: wheel speeds
@@ -46,7 +49,7 @@ from types import SimpleNamespace
 from vehicle_sim.core.diff_drive import integrate_pose, twist_from_wheel_speeds
 from vehicle_sim.core.drive_input import DiffDriveInput
 from vehicle_sim.core.errors import InvalidCommandError, VehicleSimError
-from vehicle_sim.core.frames import quaternion_from_yaw
+from vehicle_sim.core.frames import pose_in_frame, quaternion_from_yaw, rpy_from_quaternion
 from vehicle_sim.core.param_spec import ParamSpec
 from vehicle_sim.core.sensor_sets import enable_sensors, static_transforms
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
@@ -75,6 +78,7 @@ from vehicle_sim.ros.sensor_interfaces import (
     sensor_rows,
     SENSORS_PARAMETER,
 )
+from vehicle_sim.ros.sim_control import serve_vehicle, WorldControl
 from vehicle_sim.ros.time_step import TimeStepService
 from vehicle_sim.transport.port import resolve_name
 from vehicle_sim.transport.selection import create_node
@@ -136,6 +140,8 @@ class DiffRobotNode:
         self.robot = DiffRobotBody(self.world, self.params,
                                    (values['x'], values['y'], values['yaw']))
         self._spawn = (values['x'], values['y'], values['yaw'])
+        self.spawn_xyz = (values['x'], values['y'], 0.0)
+        self.spawn_q = quaternion_from_yaw(values['yaw'])
         joints = [j for j in values['wheel_joints'] if j] or list(self.params.wheel_joints)
         if sorted(joints) != sorted(self.params.wheel_joints):
             raise VehicleSimError(
@@ -165,6 +171,9 @@ class DiffRobotNode:
         # but the ground and the robot).
         self._feed = SensorFeed(self.world, self.robot, self.sensors,
                                 collisions=not self._owns_world)
+        # /sim/reset, /sim/pause and /initialpose belong to the node that steps the world.
+        self._control = WorldControl(node, self.world, (self,), self.synchronous, self) \
+            if self._owns_world else None
         self._timer = None
         if self._owns_world and not self.synchronous:
             self._timer = node.create_timer(self.world.time_step_s, self._on_timer)
@@ -219,6 +228,7 @@ class DiffRobotNode:
             self._cmd_vel: self._on_cmd_vel}, _private)
         self._time_step_srv = serve(node, {bi.ROBOT_TIME_STEP: self._handle_time_step},
                                     _private)[bi.ROBOT_TIME_STEP]
+        self._pose_srvs = serve_vehicle(node, bi.ROBOT_POSE_SERVICES, self, _private)
         self._outputs.publish(ONCE_LATCHED, ctx)
 
     # ---------------------------------------------------------------- commands
@@ -266,7 +276,37 @@ class DiffRobotNode:
         return self._time_step.handle(self._time_step_name, request, response)
 
     def _on_timer(self):
-        self.step()
+        if not self._control.paused:     # /sim/pause
+            self.step()
+
+    # ---------------------------------------------------------------- reset and teleport
+    @property
+    def label(self):
+        return f'robot {self.node.get_fully_qualified_name()!r}'
+
+    def reset(self):
+        """Put the robot back at its spawn pose, at rest, commands 0, odometry 0 (sim_control)."""
+        self.robot.reset()
+        self._drive.override()      # a stale command's watchdog must not act on the reset robot
+        self._odom_pose = (0.0, 0.0, 0.0)
+        self._feed.restart_motion()
+        x, y, yaw = self._spawn
+        return (f'back at its spawn pose (x {x:g} m, y {y:g} m, yaw {yaw:g} rad) at rest, wheel '
+                'commands 0, wheel odometry 0; simulated time goes on '
+                f'({self.world.time_s:.3f} s)')
+
+    def teleport(self, place):
+        """
+        Put the robot at rest at a GroundPose (sim_control); raises InvalidPoseError.
+
+        The wheel odometry restarts at the new pose (expressed in <p>odom), so odom, /tf and
+        ground truth agree from the next message on.
+        """
+        self.robot.teleport(place.position)
+        xyz, q = pose_in_frame(self.spawn_xyz, self.spawn_q, (place.x_m, place.y_m, 0.0),
+                               quaternion_from_yaw(place.yaw_rad))
+        self._odom_pose = (xyz[0], xyz[1], rpy_from_quaternion(q)[2])
+        self._feed.restart_motion()
 
     def step(self):
         """Advance the world by one basic step (only if this node owns it) and publish."""

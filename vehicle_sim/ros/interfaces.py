@@ -58,6 +58,13 @@ from vehicle_sim.ros.endpoints import (  # noqa: F401 - the cadences are part of
     value_text,
 )
 from vehicle_sim.ros.sensor_interfaces import COLLISION, sensor_topic_rows
+from vehicle_sim.ros.sim_control import (
+    RESET,
+    TELEPORT,
+    vehicle_services,
+    WORLD_INPUTS,
+    WORLD_SERVICES,
+)
 from vehicle_sim.transport.port import QOS_DEFAULT, QOS_LATCHED
 
 FLOAT64_STAMPED = m.FLOAT64_STAMPED
@@ -250,7 +257,15 @@ ROBOT_SERVICES = (
             unit='ms', doc='basic time step'),
 )
 
-SERVICES = AUTOMOBILE_SERVICES + ROBOT_SERVICES
+# automobile/reset and automobile/set_pose (ros/sim_control.py).
+POSE_SERVICES = vehicle_services(
+    'automobile/', 'back to the spawn pose at rest, joints at 0, car logic in its start state '
+                   '(control mode, gear, cruising speed, throttle, brake, steering, indicators, '
+                   'lights, wipers)')
+
+SERVICES = AUTOMOBILE_SERVICES + ROBOT_SERVICES + POSE_SERVICES
+# Served and read once per node (global names): /sim/reset, /sim/pause and /initialpose.
+# WORLD_SERVICES, WORLD_INPUTS: imported above from ros/sim_control.py.
 
 # Setters of the car's speed: a call after a cmd_vel/drive command holds until the next command
 # (the watchdog stands down); steering setters win over the last command's steering only.
@@ -299,7 +314,7 @@ def frame_prefix(namespace: str) -> str:
 
 
 def _docs_name(row) -> str:
-    return row.name if row.is_global else '/<ns>/' + row.name
+    return row.name if row.name.startswith('/') else '/<ns>/' + row.name
 
 
 def sensor_table_markdown() -> str:
@@ -314,15 +329,17 @@ def interface_table_markdown() -> str:
     :return: three Markdown tables: topics, inputs, services.
     """
     lines = [topic_table_markdown(TOPICS, display_name=_docs_name).rstrip('\n'), '',
-             topic_table_markdown(INPUT_TOPICS, ('type', 'QoS', 'unit', 'notes'),
+             topic_table_markdown(INPUT_TOPICS + WORLD_INPUTS, ('type', 'QoS', 'unit', 'notes'),
                                   _docs_name, first='input').rstrip('\n'), '',
              '| service | type | maps to | value | unit | refused (success=false) | notes |',
              '|---|---|---|---|---|---|---|']
-    for spec in SERVICES:
+    for spec in SERVICES + WORLD_SERVICES:
         if spec.kind in (SETTER, GETTER):
             target = f'CarLogic.{spec.core}'
         elif spec.kind == DIMENSIONS:
             target = 'CarLogic.dimensions()'
+        elif spec.kind in (RESET, TELEPORT):
+            target = f'SimulatedCar.{"reset" if spec.kind == RESET else "teleport"}()'
         else:
             target = f'world ({spec.kind})'
         refused = ', '.join(value_text(v) for v in spec.invalid)
@@ -331,6 +348,6 @@ def interface_table_markdown() -> str:
             notes += ' (legacy)'
         if not spec.webots:
             notes += " (not in Webots' ros_automobile)"
-        lines.append(f'| `/<ns>/{spec.name}` | {spec.srv_type} | {target} | {spec.value} | '
+        lines.append(f'| `{_docs_name(spec)}` | {spec.srv_type} | {target} | {spec.value} | '
                      f'{spec.unit} | {refused} | {notes} |')
     return '\n'.join(lines) + '\n'

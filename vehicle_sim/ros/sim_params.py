@@ -89,6 +89,9 @@ AUTOMOBILE_PARAMETERS: Tuple[ParamSpec, ...] = (
     SENSORS_PARAMETER,
     CMD_VEL_STAMPED_PARAMETER,
     CMD_VEL_TIMEOUT_PARAMETER,
+    ParamSpec('initialpose_vehicle', kind='str', default='', empty=True,
+              doc="name of the vehicle that /initialpose (RViz 2D Pose Estimate) teleports; "
+                  "'' = the first vehicle of the world"),
 )
 
 
@@ -119,6 +122,7 @@ class SimSettings:
     sensors: Tuple[str, ...] = ('',)
     cmd_vel_stamped: bool = False
     cmd_vel_timeout_s: float = CMD_VEL_TIMEOUT_PARAMETER.default
+    initialpose_vehicle: str = ''
 
     @property
     def time_step_s(self) -> float:
@@ -173,6 +177,23 @@ def world_spec(settings: SimSettings) -> WorldSpec:
                           settings.initial_yaw, load_car(model).sensor_set)
         return WorldSpec(GeodeticOrigin(), (car,), ())
     return load_world(settings.world, settings.car_model)
+
+
+def initialpose_index(settings: SimSettings, scene: WorldSpec) -> int:
+    """
+    Return the index of the vehicle /initialpose teleports (parameter initialpose_vehicle).
+
+    :raises InvalidParameterError: for a name that is not a vehicle of the world.
+    """
+    name = settings.initialpose_vehicle
+    if not name:
+        return 0
+    names = [vehicle.name for vehicle in scene.vehicles]
+    if name not in names:
+        raise InvalidParameterError(
+            f'initialpose_vehicle = {name!r}: not a vehicle of the world; vehicles: '
+            f'{", ".join(names)}')
+    return names.index(name)
 
 
 def world_vehicles(settings: SimSettings) -> Tuple[VehicleSpec, ...]:

@@ -80,6 +80,10 @@ class SensorFeed:
             self._events = []
         return samples, events
 
+    def restart_motion(self):
+        """After the body was reset or teleported: see SensorSuite.restart_motion."""
+        self.suite.restart_motion()
+
     def close(self):
         """Stop sampling and watching, and leave the world's hooks."""
         self.suite.close()

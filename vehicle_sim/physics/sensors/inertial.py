@@ -81,6 +81,12 @@ class ImuSensor:
         velocity, _ = self.mount.point_velocity(position)
         self._previous = (self.world.step_count, velocity)
 
+    def restart(self):
+        """After a reset or teleport: differentiate the next sample from the velocity now."""
+        position, _, _ = self.mount.world_frame()
+        velocity, _ = self.mount.point_velocity(position)
+        self._previous = (self.world.step_count, velocity)
+
     def sample(self, time_s):
         """Return an ImuReading of the current state stamped ``time_s``."""
         position, rotation, quaternion = self.mount.world_frame()

@@ -167,6 +167,11 @@ class SensorSuite:
         self.fresh = fresh
         self._track(step)
 
+    def restart_motion(self):
+        """After a reset or teleport: no sensor differentiates across the jump (IMU)."""
+        for name in self._trackers:
+            self.sensors[name].restart()
+
     def sample(self, name):
         """Sample a sensor now, whatever its schedules; return the reading (also ``latest``)."""
         self._check([name])
