@@ -221,6 +221,17 @@ def test_car_service_call_after_a_command_wins_until_the_next_command(watched_ca
     assert car.cruising_kmh() == pytest.approx(3.6)
 
 
+def test_car_reset_after_a_command_stands_the_watchdog_down(watched_car):
+    # A reset puts the logic in its start state; the watchdog of the command before it must not
+    # brake the reset car half a second later.
+    car, client = watched_car, watched_car.client
+    car.twist(2.0, 0.0)
+    assert client.call('automobile/reset').success
+    client.step(100)                          # 1 s: twice the timeout
+    assert car.cruising_kmh() == 0.0
+    assert client.latest('brake_intensity').data == 0.0
+
+
 # ------------------------------------------------------------------------------ the robot
 
 class Robot:
