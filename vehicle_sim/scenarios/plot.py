@@ -78,9 +78,11 @@ def plot_result(result, out_path):
             ys = [p[1] for p in values['path']]
             ax.plot(xs, ys, ':', color='black', label=f'{criterion.name} path '
                                                       f'(± {values["max_distance_m"]:g} m)')
+    actors = {actor.vehicle for actor in spec.actors}
     for name, track in result.tracks.items():
         style = '-' if name == spec.vehicle else '--'
-        role = 'under test' if name == spec.vehicle else 'actor/parked'
+        role = ('under test' if name == spec.vehicle else
+                'actor' if name in actors else 'parked')
         ax.plot(track.x_m, track.y_m, style, linewidth=2 if name == spec.vehicle else 1,
                 label=f'{name} ({role})')
         ax.plot(track.x_m[:1], track.y_m[:1], 'o', color='grey')     # start

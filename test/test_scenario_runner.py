@@ -1,0 +1,228 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Running scenario files: verdicts, determinism, JUnit XML and the CLI.
+
+The shipped examples pass or fail as stated, runs are deterministic, the JUnit XML has pytest's
+shape, and ``vehicle-sim scenario`` exits as documented.
+"""
+
+from pathlib import Path
+import textwrap
+from xml.etree import ElementTree
+
+import pytest
+
+from vehicle_sim.scenarios.junit import write_junit
+from vehicle_sim.scenarios.runner import run_scenario
+from vehicle_sim.scenarios.yaml_lines import ScenarioError
+from vehicle_sim.tools.cli import main
+
+ROOT = Path(__file__).resolve().parent.parent
+STOP = ROOT / 'scenarios' / 'stop_before_obstacle.yaml'
+BLIND = ROOT / 'scenarios' / 'drive_into_obstacle.yaml'
+COMMANDS = ROOT / 'test' / 'scenarios' / 'commands_and_actor.yaml'
+# config/worlds/obstacle_course.yaml: the wall's near face.
+WALL_FACE_X_M = 19.5
+
+
+@pytest.fixture(scope='module')
+def stop_result():
+    return run_scenario(STOP)
+
+
+@pytest.fixture(scope='module')
+def blind_result():
+    return run_scenario(BLIND)
+
+
+def test_runner_lidar_controller_stops_before_the_wall_and_passes(stop_result):
+    result = stop_result
+    assert result.passed, [c.detail for c in result.criteria]
+    assert result.error is None
+    assert result.sim_time_s == pytest.approx(10.0, abs=1e-9)
+    assert result.criterion('no_collision').value == 0
+    # it drove there: the rear axle passed the goal region and stopped short of the wall
+    x_end = result.tracks['Car'].x_m[-1]
+    assert 9.0 < x_end < WALL_FACE_X_M - 4.5
+    assert result.criterion('max_speed').value == pytest.approx(20.0 / 3.6, abs=0.1)
+
+
+def test_runner_blind_controller_fails_on_exactly_no_collision(blind_result):
+    result = blind_result
+    assert not result.passed
+    assert result.error is None
+    assert [c.name for c in result.failures] == ['no_collision']
+    collision = result.criterion('no_collision')
+    assert collision.value == 1
+    assert 'wall' in collision.detail
+
+
+def test_runner_commands_and_actor_scenario_passes_with_its_values():
+    result = run_scenario(COMMANDS)
+    assert result.passed, [c.detail for c in result.criteria]
+    # ego cruised at 18 km/h = 5 m/s; the actor kept within 1 m of its waypoint path
+    assert result.criterion('max_speed').value == pytest.approx(5.0, abs=0.05)
+    assert result.criterion('stay_on_path').value < 1.0
+    other = result.tracks['other']
+    assert other.x_m[-1] > 15.0 and other.y_m[-1] > 10.5     # turned towards (25, 15)
+
+
+@pytest.mark.parametrize('path', [COMMANDS, STOP], ids=['commands', 'controller'])
+def test_runner_same_scenario_and_seed_give_identical_odometry_streams(path):
+    first = run_scenario(path, seed=3)
+    second = run_scenario(path, seed=3)
+    assert first.odometry_sha256 == second.odometry_sha256
+    assert first.tracks[first.spec.vehicle].x_m == second.tracks[second.spec.vehicle].x_m
+    assert first.deterministic and second.deterministic
+    assert first.tracks[first.spec.vehicle].x_m[-1] > 5.0      # not a trivial stream
+
+
+def test_runner_refused_command_names_its_line(tmp_path):
+    path = tmp_path / 'bad_command.yaml'
+    path.write_text(textwrap.dedent("""\
+        world: {vehicles: [{name: ego}]}
+        duration: 1.0
+        driver:
+          commands:
+            - {t: 0.0, cruising_speed: 10.0}
+            - {t: 0.5, steering_angle: 3.0}
+        criteria: [{kind: no_collision}]
+        """), encoding='utf-8')
+    with pytest.raises(ScenarioError, match=r'setSteeringAngle\(3.0\) refused') as caught:
+        run_scenario(path)
+    assert caught.value.line == 6
+
+
+def _controller_scenario(tmp_path, body):
+    script = tmp_path / 'controller.py'
+    script.write_text('from vehicle_sim.webots import Driver\n' + textwrap.dedent(body),
+                      encoding='utf-8')
+    path = tmp_path / 'scenario.yaml'
+    path.write_text('world: {vehicles: [{name: ego}]}\nduration: 0.5\n'
+                    'driver: {controller: controller.py}\n'
+                    'criteria: [{kind: max_speed, limit: 10.0}]\n', encoding='utf-8')
+    return path
+
+
+def test_runner_controller_that_ignores_the_end_is_stopped(tmp_path):
+    path = _controller_scenario(tmp_path, """\
+        driver = Driver()
+        driver.setCruisingSpeed(5.0)
+        while True:
+            driver.step()
+        """)
+    result = run_scenario(path)
+    assert result.error is None and result.passed
+    assert result.sim_time_s == pytest.approx(0.5, abs=1e-9)
+
+
+def test_runner_controller_exception_is_the_runs_error(tmp_path):
+    path = _controller_scenario(tmp_path, """\
+        driver = Driver()
+        driver.step()
+        raise RuntimeError('controller bug')
+        """)
+    result = run_scenario(path)
+    assert not result.passed
+    assert 'controller bug' in result.error
+    assert result.sim_time_s == pytest.approx(0.5, abs=1e-9)   # the world stepped on
+
+
+def test_runner_controller_sees_the_seed(tmp_path):
+    path = _controller_scenario(tmp_path, """\
+        import os
+        import random
+        driver = Driver()
+        assert os.environ['VEHICLE_SIM_SEED'] == '7'
+        assert random.random() == random.Random(7).random()
+        """)
+    assert run_scenario(path, seed=7).passed
+
+
+def test_junit_has_pytests_shape_and_one_testcase_per_criterion(blind_result, tmp_path):
+    out = tmp_path / 'out.xml'
+    write_junit(blind_result, out)
+    root = ElementTree.parse(out).getroot()
+    assert root.tag == 'testsuites'
+    suite, = root.findall('testsuite')
+    for attribute in ('name', 'tests', 'failures', 'errors', 'skipped', 'time', 'timestamp',
+                      'hostname'):
+        assert suite.get(attribute), attribute
+    assert suite.get('name') == 'drive_into_obstacle'
+    assert (suite.get('tests'), suite.get('failures'), suite.get('errors')) == ('3', '1', '0')
+    cases = suite.findall('testcase')
+    assert [c.get('name') for c in cases] == ['no_collision', 'reach_goal', 'max_speed']
+    assert {c.get('classname') for c in cases} == {'scenario.drive_into_obstacle'}
+    assert all(float(c.get('time')) >= 0.0 for c in cases)
+    failed = [c for c in cases if c.find('failure') is not None]
+    assert [c.get('name') for c in failed] == ['no_collision']
+    assert 'wall' in failed[0].find('failure').get('message')
+    assert 'm/s' in cases[2].find('system-out').text
+    properties = {p.get('name'): p.get('value') for p in suite.find('properties')}
+    assert properties['odometry_sha256'] == blind_result.odometry_sha256
+    assert properties['seed'] == '0'
+
+
+def test_junit_run_error_is_an_error_testcase(tmp_path):
+    path = _controller_scenario(tmp_path, 'raise ValueError("broken")\n')
+    result = run_scenario(path)
+    out = tmp_path / 'out.xml'
+    write_junit(result, out)
+    suite = ElementTree.parse(out).getroot().find('testsuite')
+    assert (suite.get('tests'), suite.get('errors')) == ('2', '1')
+    error = suite.find("testcase[@name='run']/error")
+    assert 'broken' in error.text
+
+
+def test_cli_scenario_exit_status_is_0_only_when_all_pass(tmp_path, capsys):
+    junit = tmp_path / 'stop.xml'
+    assert main(['scenario', str(STOP), '--junit', str(junit), '--no-progress']) == 0
+    out = capsys.readouterr().out
+    assert 'PASS  no_collision: 0 collisions' in out
+    assert 'PASS: 3/3 criteria passed' in out
+    assert ElementTree.parse(junit).getroot().find('testsuite').get('failures') == '0'
+    assert main(['scenario', str(BLIND), '--no-progress']) == 1
+    assert 'FAIL  no_collision: 1 collisions' in capsys.readouterr().out
+
+
+def test_cli_scenario_invalid_file_exits_2_naming_the_line(tmp_path, capsys):
+    path = tmp_path / 'bad.yaml'
+    path.write_text('world: default\nduration: -1\n', encoding='utf-8')
+    assert main(['scenario', str(path)]) == 2
+    assert f'{path}:2: ' in capsys.readouterr().err
+
+
+def test_cli_scenario_plot_writes_a_png(tmp_path):
+    pytest.importorskip('matplotlib', reason='the plot needs matplotlib')
+    out = tmp_path / 'plot.png'
+    assert main(['scenario', str(COMMANDS), '--plot', str(out), '--no-progress']) == 0
+    assert out.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'
+
+
+def test_cli_scenario_plot_without_matplotlib_exits_2_before_running(tmp_path, capsys,
+                                                                     monkeypatch):
+    monkeypatch.setitem(__import__('sys').modules, 'matplotlib', None)
+    assert main(['scenario', str(COMMANDS), '--plot', str(tmp_path / 'p.png')]) == 2
+    captured = capsys.readouterr()
+    assert "pip install 'vehicle_sim[plot]'" in captured.err
+    assert 'criteria passed' not in captured.out
+
+
+def test_cli_scenario_progress_is_plain_lines_off_a_terminal(capsys):
+    assert main(['scenario', str(COMMANDS)]) == 0
+    err = capsys.readouterr().err
+    assert 'commands_and_actor: t = 6.00 / 6 s' in err
+    assert '\r' not in err
