@@ -127,7 +127,8 @@ def _topic(op, value, mode, values):
 
 
 @pytest.mark.parametrize('op, value, mode, values, passed, measured', [
-    ('<=', 30.0, 'always', [10.0, 29.0, 30.0], True, 30.0),      # the last one
+    ('<=', 30.0, 'always', [10.0, 29.0, 30.0, 5.0], True, 30.0),  # the closest to failing
+    ('>', 1.0, 'always', [10.0, 2.0, 30.0], True, 2.0),
     ('<=', 30.0, 'always', [10.0, 31.0, 40.0], False, 31.0),     # the first that fails
     ('>', 20.0, 'eventually', [10.0, 21.0, 25.0], True, 21.0),   # the first that passes
     ('>', 20.0, 'eventually', [10.0, 15.0], False, 15.0),        # none: the last

@@ -226,3 +226,33 @@ def test_cli_scenario_progress_is_plain_lines_off_a_terminal(capsys):
     err = capsys.readouterr().err
     assert 'commands_and_actor: t = 6.00 / 6 s' in err
     assert '\r' not in err
+
+
+def test_runner_repeated_deterministic_run_has_no_spread():
+    result = run_scenario(COMMANDS, repeat=2)
+    assert result.runs == 2 and result.passed
+    for name, (low, high) in result.spread.items():
+        assert low == high, name
+
+
+def test_runner_topic_criteria_are_judged_over_the_wire():
+    # A topic criterion serves the car over ROS (the automobile node in the runner's process);
+    # every Float64Stamped of the 2 s (one per 10 ms step) reaches the runner's subscription.
+    result = run_scenario(ROOT / 'test' / 'scenarios' / 'served_topic.yaml')
+    assert result.passed, [c.detail for c in result.criteria]
+    assert result.deterministic
+    eventually, always = result.criteria
+    assert 15.0 < eventually.value < 16.0            # km/h, the first message above 15
+    assert 19.0 < always.value <= 20.5               # the top speed reached, below 20.5
+    assert 'all 200 messages pass' in always.detail
+
+
+def test_runner_bridge_drives_the_caster_robot_along_the_s_curve():
+    # Two processes (the S-curve commander and the ackermann_to_differential bridge) drive the
+    # caster robot served over ROS, in lockstep with the commander's /clock answers.
+    result = run_scenario(ROOT / 'scenarios' / 'bridge_s_curve.yaml')
+    assert result.error is None
+    assert result.passed, [c.detail for c in result.criteria]
+    assert not result.deterministic
+    assert result.criterion('stay_on_path').value < 0.15
+    assert result.criterion('max_speed').value == pytest.approx(0.8, abs=0.02)

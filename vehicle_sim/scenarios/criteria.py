@@ -282,6 +282,7 @@ class TopicPredicate(Criterion):
         super().__init__(*args)
         self.count = 0
         self.last = None
+        self.extreme = {}         # '<': (time, largest value), '>': (time, smallest value)
         self.first_bad = None     # (time, value) of the first message that fails
         self.first_good = None    # (time, value) of the first message that passes
         self.error = None
@@ -294,6 +295,12 @@ class TopicPredicate(Criterion):
             return
         self.count += 1
         self.last = (time_s, value)
+        # '<' keeps the largest value seen, '>' the smallest
+        top, bottom = self.extreme.get('<'), self.extreme.get('>')
+        if top is None or value > top[1]:
+            self.extreme['<'] = (time_s, value)
+        if bottom is None or value < bottom[1]:
+            self.extreme['>'] = (time_s, value)
         good = COMPARISONS[self.values['op']](value, self.values['value'])
         if good and self.first_good is None:
             self.first_good = (time_s, value)
@@ -310,9 +317,13 @@ class TopicPredicate(Criterion):
         mode = v['mode']
         if mode == 'always':
             passed = self.first_bad is None
-            time_s, value = self.last if passed else self.first_bad
-            detail = (f'{what}: all {self.count} messages pass' if passed else
-                      f'{what}: {value:g} at {time_s:.2f} s fails')
+            if passed:      # the value that came closest to failing
+                time_s, value = self.extreme.get(v['op'][0], self.last)
+                detail = f'{what}: all {self.count} messages pass (closest {value:g} at ' \
+                         f'{time_s:.2f} s)'
+            else:
+                time_s, value = self.first_bad
+                detail = f'{what}: {value:g} at {time_s:.2f} s fails'
         elif mode == 'eventually':
             passed = self.first_good is not None
             time_s, value = self.first_good if passed else self.last
@@ -372,7 +383,8 @@ def criteria_from_list(ctx, data, names, default_vehicle):
         values.pop('kind')
         if kind == 'stay_on_path' and len(values['path']) < 2:
             raise ctx.fail(where + ('path',), 'a path needs at least 2 points')
-        counts[kind] = counts.get(kind, 0) + 1
+        if not name:
+            counts[kind] = counts.get(kind, 0) + 1
         specs.append([kind, name, vehicle, values, line_of(ctx.lines, where)])
     seen = {}
     for spec in specs:

@@ -334,7 +334,7 @@ def _seed_random(seed):
 class _TopicWatcher:
     """The runner's node: the topic criteria's subscriptions and the /clock subscriber count."""
 
-    def __init__(self, sim, criteria, transport):
+    def __init__(self, sim, criteria, transport, sync=()):
         from vehicle_sim.transport import create_node
         from vehicle_sim.transport.port import QOS_CLOCK
         self.sim = sim
@@ -346,14 +346,42 @@ class _TopicWatcher:
                 self._subs.append(self.node.create_subscription(
                     criterion.values['ros_type'], criterion.values['topic'],
                     self._callback(criterion)))
+        self.sync_counts = []
+        for topic, ros_type in sync:
+            index = len(self.sync_counts)
+            self.sync_counts.append(0)
+            self._subs.append(self.node.create_subscription(ros_type, topic,
+                                                            self._counter(index)))
         # Never publishes: it matches the /clock subscribers, to count them.
         self._clock = self.node.create_publisher('rosgraph_msgs/msg/Clock', '/clock',
                                                  QOS_CLOCK)
 
     def _callback(self, criterion):
         def on_message(msg):
-            criterion.message(msg, self.world.time_s)
+            criterion.message(msg, _stamp_s(msg, self.world.time_s))
         return on_message
+
+    def _counter(self, index):
+        def on_message(msg):
+            self.sync_counts[index] += 1
+        return on_message
+
+    def await_sync(self, before, timeout_s):
+        """
+        Spin until every sync topic has a message beyond the counts ``before``.
+
+        :return: None, or the index of a topic with none after ``timeout_s`` (wall clock).
+        """
+        deadline = time.monotonic() + timeout_s
+        while True:
+            waiting = [i for i, (now, then) in enumerate(zip(self.sync_counts, before))
+                       if now <= then]
+            if not waiting:
+                return None
+            if time.monotonic() > deadline:
+                return waiting[0]
+            self.spin()
+            time.sleep(0.0002)
 
     def clock_subscribers(self):
         return self._clock.get_subscription_count()
@@ -372,11 +400,25 @@ class _TopicWatcher:
         self.node.shutdown()
 
 
+def _stamp_s(msg, default_s):
+    # The time a message is about: its header stamp (or a Clock's clock), else its receipt.
+    stamp = getattr(getattr(msg, 'header', None), 'stamp', None) or getattr(msg, 'clock', None)
+    if stamp is None:
+        return default_s
+    return stamp.sec + stamp.nanosec * 1e-9
+
+
 def _run_processes(spec, sim, criteria, transport):
-    """Start the driver's processes, step the served world at the real-time factor."""
+    """
+    Start the driver's processes, step the served world at the real-time factor.
+
+    With ``sync`` topics, time waits after every sync period for the controller's answer
+    (lockstep); a wait that times out ends the run with an error.
+    """
     driver = spec.driver
-    watcher = _TopicWatcher(sim, criteria, transport)
-    processes = _Processes(driver.processes, spec.seed)
+    watcher = _TopicWatcher(sim, criteria, transport, driver.sync)
+    processes = _Processes(driver.processes, spec.seed,
+                           os.path.dirname(os.path.abspath(spec.source)))
     try:
         processes.start()
         wanted = (len(driver.processes) if driver.clock_subscribers < 0
@@ -394,9 +436,20 @@ def _run_processes(spec, sim, criteria, transport):
             time.sleep(0.01)
         start = time.monotonic()
         factor = driver.real_time_factor
+        step_s = spec.time_step_ms / 1000.0
+        sync_every = max(1, int(round(driver.sync_period_s / step_s)))
+        steps = 0
         while sim.world.time_s < spec.duration_s - _EPS_S:
+            before = list(watcher.sync_counts)
             now_s = sim.step()
+            steps += 1
             watcher.spin()
+            if driver.sync and steps % sync_every == 0:
+                late = watcher.await_sync(before, driver.sync_timeout_s)
+                if late is not None:
+                    return (f'lockstep: no message on {driver.sync[late][0]} within '
+                            f'{driver.sync_timeout_s:g} s (wall) after /clock {now_s:.3f} s\n'
+                            + processes.output())
             if factor > 0.0:
                 due = start + now_s / factor
                 while time.monotonic() < due:
@@ -413,22 +466,29 @@ def _run_processes(spec, sim, criteria, transport):
 
 
 class _Processes:
-    """The driver's subprocesses, each in its own process group, output to a temporary file."""
+    """
+    The driver's subprocesses, each in its own process group, output to a temporary file.
 
-    def __init__(self, commands, seed):
+    They run in the scenario file's folder (relative paths in their command lines work).
+    """
+
+    def __init__(self, commands, seed, cwd):
         self.commands = commands
         self.seed = seed
+        self.cwd = cwd
         self.procs = []
         self._folder = tempfile.mkdtemp(prefix='vehicle_sim_scenario_')
 
     def start(self):
         env = dict(os.environ, VEHICLE_SIM_SEED=str(self.seed))
         for index, argv in enumerate(self.commands):
-            executable = shutil.which(argv[0]) or argv[0]
+            # 'python' is the runner's own interpreter (its environment, its vehicle_sim)
+            executable = (sys.executable if argv[0] == 'python' else
+                          shutil.which(argv[0]) or argv[0])
             log = open(os.path.join(self._folder, f'process{index}.log'), 'wb')
             try:
                 proc = subprocess.Popen([executable] + list(argv[1:]), stdout=log,
-                                        stderr=subprocess.STDOUT, env=env,
+                                        stderr=subprocess.STDOUT, env=env, cwd=self.cwd,
                                         start_new_session=True)
             except OSError as error:
                 log.close()

@@ -40,7 +40,12 @@ from typing import Any, Dict, Optional, Tuple
 from vehicle_sim import config
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.param_spec import ParamSpec, REQUIRED, validate_table
-from vehicle_sim.core.world_params import WorldSpec
+from vehicle_sim.core.world_params import (
+    obstacles_from_list,
+    origin_from_dict,
+    WORLD_KEYS,
+    WorldSpec,
+)
 from vehicle_sim.scenarios.yaml_lines import error_at, line_of, load_with_lines, ScenarioError
 from vehicle_sim.webots.api_table import CAR_API, DRIVER_API
 
@@ -101,11 +106,19 @@ DRIVER_SPECS = (
               check=lambda v: None if isinstance(v, (list, tuple)) and all(
                   isinstance(a, str) for a in v) else 'must be a list of strings'),
     ParamSpec('processes', 'processes', 'raw', None, optional=True,
-              doc='command lines started as subprocesses (ROS 2 nodes, built-ins); the '
-                  'simulation is served over ROS with /clock'),
+              doc='command lines started as subprocesses (ROS 2 nodes, built-ins; the '
+                  "program 'python' is the runner's interpreter); the simulation is served "
+                  'over ROS with /clock'),
     ParamSpec('real_time_factor', 'real_time_factor', 'float', 1.0, '',
               'processes: simulated seconds per wall-clock second; 0 = as fast as possible',
               ge=0.0),
+    ParamSpec('sync', 'sync', 'raw', (), doc='processes: lockstep topics [{topic, type}, ...]: '
+              'after every sync_period the runner waits until each has a new message (the '
+              "controller's answer to that /clock)"),
+    ParamSpec('sync_period', 'sync_period_s', 'float', 0.0, 's', 'processes: simulated time '
+              'between lockstep waits; 0 = every basic step', ge=0.0),
+    ParamSpec('sync_timeout', 'sync_timeout_s', 'float', 5.0, 's', 'processes: longest '
+              'lockstep wait (wall clock); a longer one ends the run with an error', gt=0.0),
     ParamSpec('clock_subscribers', 'clock_subscribers', 'int', -1, '',
               'processes: time starts once /clock has this many subscribers; -1 = one per '
               'process', ge=-1),
@@ -171,6 +184,9 @@ class DriverSpec:
     real_time_factor: float = 1.0
     clock_subscribers: int = -1
     startup_timeout_s: float = 60.0
+    sync: Tuple[Tuple[str, str], ...] = ()
+    sync_period_s: float = 0.0
+    sync_timeout_s: float = 5.0
 
 
 @dataclass(frozen=True)
@@ -271,9 +287,9 @@ def scenario_from_data(data, lines, source) -> ScenarioSpec:
         raise ctx.fail((), 'a scenario must be a mapping with world, duration, driver and '
                            'criteria')
     values = ctx.validated(SCENARIO_SPECS, data, (), 'a scenario')
-    world, world_file = _world(ctx, values['world'])
-    world_data = values['world'] if world_file is None else None
     robots = _robots(ctx, values['robots'])
+    world, world_file = _world(ctx, values['world'], cars_optional=bool(robots))
+    world_data = values['world'] if world_file is None else None
     cars = tuple(v.name for v in world.vehicles)
     names = cars + tuple(r.name for r in robots)
     duplicates = sorted({n for n in names if names.count(n) > 1})
@@ -294,18 +310,31 @@ def scenario_from_data(data, lines, source) -> ScenarioSpec:
                         driver, criteria, lines)
 
 
-def _world(ctx, value):
+def _world(ctx, value, cars_optional):
     path = ('world',)
     try:
         if isinstance(value, str):
             file = ctx.relative(value)
             return config.load_world(file), str(config.world_path(file))
+        if isinstance(value, dict) and cars_optional and not value.get('vehicles'):
+            return _world_without_cars(ctx, value), None
         if isinstance(value, dict):
             return config.world_from_data(value, f'{ctx.source}: world'), None
     except InvalidParameterError as error:
         raise error_at(ctx.source, ctx.lines, path, error) from None
     raise ctx.fail(path, f'world = {value!r}: give a world name, a path to a world .yaml or '
                          'an inline world mapping')
+
+
+def _world_without_cars(ctx, value):
+    # Robots only: the world's origin and obstacles, validated as a world file's.
+    source = f'{ctx.source}: world'
+    unknown = sorted(set(value) - set(WORLD_KEYS))
+    if unknown:
+        raise InvalidParameterError(f'{source}: unknown key(s) {unknown}; valid: '
+                                    + ', '.join(WORLD_KEYS))
+    return WorldSpec(origin_from_dict(value.get('origin'), f'{source}: origin'), (),
+                     obstacles_from_list(value.get('obstacles'), f'{source}: obstacles'), source)
 
 
 def _robots(ctx, value):
@@ -393,7 +422,23 @@ def _driver(ctx, value, drives_car):
     return DriverSpec(kind, processes=_processes(ctx, values['processes']),
                       real_time_factor=values['real_time_factor'],
                       clock_subscribers=values['clock_subscribers'],
-                      startup_timeout_s=values['startup_timeout_s'])
+                      startup_timeout_s=values['startup_timeout_s'],
+                      sync=_sync(ctx, values['sync']), sync_period_s=values['sync_period_s'],
+                      sync_timeout_s=values['sync_timeout_s'])
+
+
+def _sync(ctx, value):
+    path = ('driver', 'sync')
+    if not isinstance(value, (list, tuple)):
+        raise ctx.fail(path, 'sync must be a list of {topic, type}')
+    topics = []
+    for index, entry in enumerate(value):
+        if not (isinstance(entry, dict) and set(entry) == {'topic', 'type'}
+                and all(isinstance(v, str) and v for v in entry.values())):
+            raise ctx.fail(path + (index,), f'sync entry {entry!r}: must be {{topic: /name, '
+                                            'type: pkg/msg/Type}')
+        topics.append((entry['topic'], entry['type']))
+    return tuple(topics)
 
 
 def _commands(ctx, value):

@@ -21,7 +21,9 @@ when one fails or the run itself failed (a controller raised, a process died), 2
 error, an invalid scenario file or ``--plot`` without matplotlib.
 """
 
+import signal
 import sys
+import threading
 import time
 
 from vehicle_sim.tools.command import CliError, EXIT_FAILURE, EXIT_OK, EXIT_USAGE
@@ -100,6 +102,13 @@ def report_lines(result):
     return lines
 
 
+def _exit_on_sigterm():
+    if threading.current_thread() is threading.main_thread():
+        def handler(signum, frame):
+            raise SystemExit(128 + signum)
+        signal.signal(signal.SIGTERM, handler)
+
+
 def cmd_scenario(args) -> int:
     """Run ``vehicle-sim scenario``."""
     from vehicle_sim.scenarios.runner import run_scenario
@@ -123,6 +132,7 @@ def cmd_scenario(args) -> int:
     print(f'scenario {spec.name} ({args.file}), seed {seed}, {spec.duration_s:g} s, driver: '
           f'{spec.driver.kind}')
     progress = None if args.no_progress else Progress(sys.stderr, spec.name)
+    _exit_on_sigterm()      # so that the driver's processes are stopped on the way out
     try:
         result = run_scenario(spec, seed=args.seed, gui=args.gui, progress=progress,
                               repeat=args.repeat)
