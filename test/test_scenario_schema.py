@@ -165,3 +165,9 @@ def test_schema_world_by_relative_path_resolves_next_to_the_scenario(tmp_path):
     spec = load_scenario(_write(tmp_path, text))
     assert spec.vehicle == 'solo'
     assert spec.world_file == str(tmp_path / 'my_world.yaml')
+
+
+def test_schema_docs_show_the_generated_key_tables():
+    from vehicle_sim.scenarios.schema import schema_markdown
+    text = (ROOT / 'docs' / 'scenarios.md').read_text(encoding='utf-8')
+    assert schema_markdown() in text

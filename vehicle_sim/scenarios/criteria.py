@@ -74,9 +74,11 @@ def distance_to_polyline(px, py, points: Sequence[Tuple[float, float]]):
     return min(distance_to_segment(px, py, *a, *b) for a, b in zip(points, points[1:]))
 
 
-def _common(kind):
+def common_specs():
+    """Return the keys every criterion has: kind, name, vehicle."""
     return (
-        ParamSpec('kind', 'kind', 'enum', kind, choices=tuple(CRITERIA), doc='criterion kind'),
+        ParamSpec('kind', 'kind', 'enum', REQUIRED, choices=tuple(CRITERIA),
+                  doc='criterion kind (the sections below)'),
         ParamSpec('name', 'name', 'str', '', empty=True,
                   doc="test case name; '' = the kind (numbered when repeated)"),
         ParamSpec('vehicle', 'vehicle', 'str', '', empty=True,
@@ -342,7 +344,7 @@ CRITERIA = {cls.KIND: cls for cls in (ReachGoal, NoCollision, StayOnPath, MaxSpe
 
 def criterion_specs(kind):
     """Return the full ParamSpec table of a criterion kind (common keys first)."""
-    return _common(kind) + CRITERIA[kind].SPECS
+    return common_specs() + CRITERIA[kind].SPECS
 
 
 def build_criteria(specs, duration_s):

@@ -508,3 +508,26 @@ def _processes(ctx, value):
                                             'a list of strings)')
         commands.append(tuple(argv))
     return tuple(commands)
+
+
+def schema_markdown():
+    """Return the key tables of docs/scenarios.md (the file format), generated from the specs."""
+    from vehicle_sim.core.param_spec import parameter_table_markdown
+    from vehicle_sim.scenarios.criteria import common_specs, CRITERIA
+    parts = ['#### Top level\n\n', parameter_table_markdown(SCENARIO_SPECS, 'key'),
+             '\n#### `robots` entries\n\n', parameter_table_markdown(ROBOT_SPECS, 'key'),
+             '\n#### `actors` entries\n\n', parameter_table_markdown(ACTOR_SPECS, 'key'),
+             '\n#### `driver`\n\n', parameter_table_markdown(DRIVER_SPECS, 'key'),
+             '\n#### `driver.commands` setters (besides `t` [s])\n\n',
+             '| key | Webots setter | value | unit | description |\n|---|---|---|---|---|\n']
+    for key, row in sorted(COMMAND_ROWS.items()):
+        parts.append(f'| `{key}` | `{row.setter}` | {row.kind} | {row.unit} | {row.doc} |\n')
+    parts += ['\n#### Keys of every criterion\n\n',
+              parameter_table_markdown(common_specs(), 'key')]
+    for kind, cls in CRITERIA.items():
+        table = (parameter_table_markdown(cls.SPECS, 'key') if cls.SPECS
+                 else 'No keys of its own.\n')
+        unit = cls.UNIT or "the field's unit"
+        parts.append(f'\n#### `{kind}` (measured value in {unit})\n\n{cls.__doc__.strip()}\n\n'
+                     + table)
+    return ''.join(parts)
