@@ -256,3 +256,39 @@ def test_runner_bridge_drives_the_caster_robot_along_the_s_curve():
     assert not result.deterministic
     assert result.criterion('stay_on_path').value < 0.15
     assert result.criterion('max_speed').value == pytest.approx(0.8, abs=0.02)
+
+
+def test_hosted_driver_binds_to_the_host_car_and_leaves_it_in_the_world():
+    from vehicle_sim.config import load_car
+    from vehicle_sim.physics.simulated_car import SimulatedCar
+    from vehicle_sim.physics.world import World
+    from vehicle_sim.webots import Driver
+    from vehicle_sim.webots.host import ControllerHost, hosting
+    with World() as world:
+        car = SimulatedCar(world, load_car('Car'), (0.0, 0.0, 0.0), name='ego')
+        host = ControllerHost(world, car, duration_s=0.02)
+        with hosting(host):
+            driver = Driver(car='TeslaModel3')          # the host's car wins, as in Webots
+        assert driver.world is world and driver.logic is car.logic
+        driver.setCruisingSpeed(10.0)
+        assert car.logic.target_cruising_speed_kmh == 10.0
+        assert (driver.step(), driver.step(), driver.step()) == (0, -1, -1)
+        assert world.time_s == pytest.approx(0.02, abs=1e-12)
+        driver.close()
+        assert car in world.bodies and not world.closed
+
+
+def test_progress_draws_a_bar_on_a_terminal():
+    import io
+
+    from vehicle_sim.tools.scenario_command import Progress
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+
+    stream = Tty()
+    progress = Progress(stream, 'demo')
+    progress(5.0, 10.0)
+    progress.done()
+    assert stream.getvalue() == '\rdemo [' + '#' * 15 + '.' * 15 + ']    5.00 / 10 s\n'

@@ -204,7 +204,8 @@ class Director:
         self.world = None
 
 
-def _needs_serving(spec):
+def needs_serving(spec):
+    """Tell whether a scenario runs served over ROS (processes, or a topic criterion)."""
     return spec.driver.kind == 'processes' or any(c.kind == 'topic' for c in spec.criteria)
 
 
@@ -251,7 +252,7 @@ def _spread(results):
 def _run_once(spec, gui, progress, transport):
     criteria = build_criteria(spec.criteria, spec.duration_s)
     director = Director(spec, criteria, progress)
-    served = _needs_serving(spec)
+    served = needs_serving(spec)
     start = time.monotonic()
     sim = (ServedSim(spec, director, spec.seed, gui, transport) if served
            else LocalSim(spec, director, spec.seed, gui))
