@@ -20,6 +20,7 @@ pass criteria.
 
 Modules: :mod:`.yaml_lines` (YAML with line numbers), :mod:`.schema` (the file format),
 :mod:`.criteria` (pass criteria), :mod:`.actors` (waypoint followers), :mod:`.sim` (the
-simulation a scenario runs in), :mod:`.runner` (running one), :mod:`.junit` and :mod:`.plot`
-(reports).
+simulation a scenario runs in), :mod:`.runner` (running one), :mod:`.external` (controllers
+in subprocesses), :mod:`.junit` and :mod:`.plot` (reports), :mod:`.pytest_items` (scenario files
+as pytest tests).
 """
