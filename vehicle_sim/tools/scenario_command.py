@@ -77,6 +77,10 @@ class Progress:
             self.stream.flush()
 
 
+def _shown(value):
+    return '-' if value is None else f'{value:.4g}'
+
+
 def report_lines(result):
     """Return the printed report of a ScenarioResult: one line per criterion, then the verdict."""
     lines = []
@@ -87,7 +91,7 @@ def report_lines(result):
         line = f'  {mark}  {criterion.name}: {value}  ({criterion.detail})'
         if result.spread and criterion.name in result.spread:
             low, high = result.spread[criterion.name]
-            line += f' [over {result.runs} runs: min {low}, max {high}]'
+            line += f' [over {result.runs} runs: min {_shown(low)}, max {_shown(high)}]'
         lines.append(line)
     if result.error:
         lines.append(f'  ERROR run: {result.error}')
