@@ -292,3 +292,10 @@ def test_progress_draws_a_bar_on_a_terminal():
     progress(5.0, 10.0)
     progress.done()
     assert stream.getvalue() == '\rdemo [' + '#' * 15 + '.' * 15 + ']    5.00 / 10 s\n'
+
+
+def test_runner_in_process_controller_in_a_served_world_publishes_every_step():
+    result = run_scenario(ROOT / 'test' / 'scenarios' / 'served_controller.yaml')
+    assert result.passed, [c.detail for c in result.criteria]
+    assert result.deterministic
+    assert 5.0 < result.criteria[0].value < 6.0       # km/h, the first message above 5

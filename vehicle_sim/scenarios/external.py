@@ -124,7 +124,7 @@ def run_processes(spec, sim, criteria, transport):
     driver = spec.driver
     watcher = TopicWatcher(sim, criteria, transport, driver.sync)
     processes = _Processes(driver.processes, spec.seed,
-                           os.path.dirname(os.path.abspath(spec.source)))
+                           os.path.dirname(os.path.abspath(spec.source)), spec.source)
     try:
         processes.start()
         wanted = (len(driver.processes) if driver.clock_subscribers < 0
@@ -178,7 +178,8 @@ class _Processes:
     They run in the scenario file's folder (relative paths in their command lines work).
     """
 
-    def __init__(self, commands, seed, cwd):
+    def __init__(self, commands, seed, cwd, source):
+        self.source = source
         self.commands = commands
         self.seed = seed
         self.cwd = cwd
@@ -198,7 +199,7 @@ class _Processes:
                                         start_new_session=True)
             except OSError as error:
                 log.close()
-                raise ScenarioError('driver.processes', None,
+                raise ScenarioError(self.source, None,
                                     f'cannot start {" ".join(argv)}: {error}') from None
             self.procs.append((argv, proc, log))
 

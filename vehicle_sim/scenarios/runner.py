@@ -251,27 +251,32 @@ def _run_once(spec, gui, progress, transport):
     sim = (ServedSim(spec, director, spec.seed, gui, transport) if served
            else LocalSim(spec, director, spec.seed, gui))
     error = None
+    watcher = None
     try:
         director.attach(sim)
         kind = spec.driver.kind
-        if kind == 'controller':
-            error = _run_controller(spec, sim, director)
-        elif kind == 'processes':
+        if kind == 'processes':
             error = run_processes(spec, sim, criteria, transport)
-        if kind != 'processes':
-            watcher = TopicWatcher(sim, criteria, transport) if served else None
-            try:
-                while sim.world.time_s < spec.duration_s - _EPS_S:
-                    sim.step()
-                    if watcher is not None:
-                        watcher.spin()
+        else:
+            if served:
+                watcher = TopicWatcher(sim, criteria, transport)
+
+            def step():
+                # one basic step; a served world also publishes and serves its nodes
+                sim.step()
                 if watcher is not None:
-                    watcher.drain()
-            finally:
-                if watcher is not None:
-                    watcher.close()
+                    watcher.spin()
+
+            if kind == 'controller':
+                error = _run_controller(spec, sim, director, step)
+            while sim.world.time_s < spec.duration_s - _EPS_S:
+                step()
+            if watcher is not None:
+                watcher.drain()
         sim_time_s = sim.world.time_s
     finally:
+        if watcher is not None:
+            watcher.close()
         director.close()
         sim.close()
     return ScenarioResult(spec, spec.seed, [c.result() for c in criteria], sim_time_s,
@@ -281,11 +286,12 @@ def _run_once(spec, gui, progress, transport):
 
 
 # ---------------------------------------------------------------------------- in-process
-def _run_controller(spec, sim, director):
+def _run_controller(spec, sim, director, step):
     """Run the controller script with Driver() bound to the vehicle under test."""
     from vehicle_sim.webots.host import ControllerHost, ControllerStopped, hosting
     vut = director.vut
-    host = ControllerHost(sim.world, vut.car, vut.sensors, spec.world.origin, spec.duration_s)
+    host = ControllerHost(sim.world, vut.car, vut.sensors, spec.world.origin, spec.duration_s,
+                          step)
     script = spec.driver.controller
     saved_argv, saved_path = sys.argv, list(sys.path)
     saved_seed = os.environ.get('VEHICLE_SIM_SEED')

@@ -134,9 +134,9 @@ class _WorldSync:
     def join(self, driver):
         self.seen[driver] = self.tick
 
-    def request_step(self, world, driver):
+    def request_step(self, step, driver):
         if self.seen.get(driver, self.tick) >= self.tick:
-            world.step()
+            step()
             self.tick += 1
         self.seen[driver] = self.tick
 
@@ -263,8 +263,9 @@ class Driver:
         if world.closed or self._ended():
             return self._host.after_end() if self._host is not None else -1
         request_step = self._sync.request_step
+        step = self._host.step if self._host is not None and self._host.step else world.step
         for _ in range(count):
-            request_step(world, self)
+            request_step(step, self)
         return -1 if self._ended() else 0
 
     def _ended(self):

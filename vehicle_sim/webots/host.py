@@ -25,7 +25,7 @@ calling ``step()`` after -1 is stopped with :class:`ControllerStopped`.
 
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Any, List, Optional
+from typing import Any, Callable, List, Optional
 
 from vehicle_sim.core.geodesy import GeodeticOrigin
 
@@ -51,6 +51,8 @@ class ControllerHost:
     :param sensors: the car's SensorSpecs (the mounted ones become devices).
     :param origin: GeodeticOrigin of the world (GNSS).
     :param duration_s: ``step()`` returns -1 from this simulated time on [s].
+    :param step: advances the world one basic step (and serves it, when the host publishes it);
+        None = ``world.step``.
     """
 
     world: Any
@@ -58,6 +60,7 @@ class ControllerHost:
     sensors: tuple = ()
     origin: GeodeticOrigin = field(default_factory=GeodeticOrigin)
     duration_s: Optional[float] = None
+    step: Optional[Callable[[], Any]] = None
     drivers: List[Any] = field(default_factory=list)
     calls_after_end: int = 0
 
