@@ -299,3 +299,35 @@ def test_runner_in_process_controller_in_a_served_world_publishes_every_step():
     assert result.passed, [c.detail for c in result.criteria]
     assert result.deterministic
     assert 5.0 < result.criteria[0].value < 6.0       # km/h, the first message above 5
+
+
+def _process_scenario(tmp_path, command, extra=''):
+    path = tmp_path / 'scenario.yaml'
+    path.write_text(textwrap.dedent(f"""\
+        world: {{vehicles: [{{name: Car}}]}}
+        duration: 0.5
+        driver:
+          processes: ['{command}']
+          clock_subscribers: 1
+        {extra}
+        criteria: [{{kind: no_collision}}]
+        """), encoding='utf-8')
+    return path
+
+
+def test_runner_process_that_fails_is_the_runs_error(tmp_path):
+    path = _process_scenario(tmp_path, 'python -c "import sys; print(42); sys.exit(3)"')
+    result = run_scenario(path)
+    assert not result.passed
+    assert 'exited with status 3' in result.error
+    assert '42' in result.error                        # its output is quoted
+
+
+def test_runner_processes_that_do_not_come_up_time_out_and_are_stopped(tmp_path):
+    path = _process_scenario(tmp_path, 'python -c "import time; time.sleep(60)"')
+    text = path.read_text().replace('clock_subscribers: 1', 'clock_subscribers: 1\n'
+                                    '  startup_timeout: 0.5')
+    path.write_text(text)
+    result = run_scenario(path)
+    assert not result.passed
+    assert '0 of 1 /clock subscriber(s)' in result.error
