@@ -19,6 +19,7 @@ The shipped examples pass or fail as stated, runs are deterministic, the JUnit X
 shape, and ``vehicle-sim scenario`` exits as documented.
 """
 
+import math
 from pathlib import Path
 import textwrap
 from xml.etree import ElementTree
@@ -78,6 +79,10 @@ def test_runner_commands_and_actor_scenario_passes_with_its_values():
     assert result.criterion('stay_on_path').value < 1.0
     other = result.tracks['other']
     assert other.x_m[-1] > 15.0 and other.y_m[-1] > 10.5     # turned towards (25, 15)
+    # the robot actor stopped at its last waypoint (within its tread, 0.4 m, plus braking)
+    bot = result.tracks['bot']
+    assert result.criterion('reach_goal_2').passed
+    assert math.hypot(bot.x_m[-1] - 4.0, bot.y_m[-1] + 4.0) < 0.5
 
 
 @pytest.mark.parametrize('path', [COMMANDS, STOP], ids=['commands', 'controller'])

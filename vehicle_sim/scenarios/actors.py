@@ -29,7 +29,7 @@ import math
 from vehicle_sim.core.units import mps_to_kmh, ros_steering_to_webots
 
 # The aim point moves on once the vehicle is this close to it (its look-ahead), and the last
-# waypoint counts as reached within ARRIVE_M.
+# waypoint counts as reached within ARRIVE_M or one wheelbase (a robot: its tread), the smaller.
 ARRIVE_M = 1.0
 LOOKAHEAD_TIME_S = 1.0
 
@@ -70,7 +70,8 @@ class WaypointFollower:
             target = points[self.index]
             distance = math.hypot(target.x_m - x_m, target.y_m - y_m)
             last = self.index == len(points) - 1 and not self.spec.loop
-            reach = ARRIVE_M if last else self.lookahead_m(target.speed_mps)
+            reach = (min(ARRIVE_M, self.wheelbase_m) if last
+                     else self.lookahead_m(target.speed_mps))
             if distance > reach:
                 break
             if last:
