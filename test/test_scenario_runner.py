@@ -336,3 +336,21 @@ def test_runner_processes_that_do_not_come_up_time_out_and_are_stopped(tmp_path)
     result = run_scenario(path)
     assert not result.passed
     assert '0 of 1 /clock subscriber(s)' in result.error
+
+
+def test_runner_odometry_stream_is_identical_across_processes(tmp_path):
+    # Two separate processes (no shared interpreter or PyBullet state) give the same hash.
+    import subprocess
+    import sys
+    digests = []
+    for index in range(2):
+        out = tmp_path / f'run{index}.xml'
+        done = subprocess.run([sys.executable, '-m', 'vehicle_sim', 'scenario', str(STOP),
+                               '--junit', str(out), '--no-progress', '--seed', '5'],
+                              capture_output=True, text=True, timeout=120)
+        assert done.returncode == 0, done.stdout + done.stderr
+        suite = ElementTree.parse(out).getroot().find('testsuite')
+        digests.append({p.get('name'): p.get('value')
+                        for p in suite.find('properties')}['odometry_sha256'])
+    assert digests[0] == digests[1]
+    assert digests[0] == run_scenario(STOP, seed=5).odometry_sha256
