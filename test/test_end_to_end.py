@@ -15,7 +15,7 @@
 """
 End to end on simulated time: one Autoware command stream drives the robots and the car.
 
-The scenario (vehicle_sim/tools/scenario.py, docs/end_to_end.md): straight, left arc, S-curve,
+The scenario (vehicle_sim/tools/end_to_end.py, docs/end_to_end.md): straight, left arc, S-curve,
 silence, stop. The caster and skid-steer robots go through the Ackermann -> differential bridge in
 ONE shared World; the car goes through the autoware_automobile node. Paths are compared with the
 kinematic bicycle integrated from the commands as applied. Everything is driven in-process with sim
@@ -27,8 +27,8 @@ import struct
 
 import pytest
 
-from vehicle_sim.tools import scenario
-from vehicle_sim.tools.scenario import (
+from vehicle_sim.tools import end_to_end
+from vehicle_sim.tools.end_to_end import (
     BRIDGE_CONTROL_RATE_HZ,
     COMMAND_TIMEOUT_S,
     constant_stream,
@@ -44,7 +44,7 @@ CAR_FRACTION = 0.10
 
 @pytest.fixture(scope='module')
 def result():
-    return scenario.run_scenario()
+    return end_to_end.run_scenario()
 
 
 def test_bicycle_reference_of_a_constant_command_is_the_closed_form_circle():
@@ -53,12 +53,12 @@ def test_bicycle_reference_of_a_constant_command_is_the_closed_form_circle():
     radius = wheel_base / math.tan(steer)
     steps = 1000
     dt = (math.pi / 2) * radius / speed / steps
-    x, y, yaw = scenario.bicycle_reference([(speed, steer)] * steps, wheel_base, dt)[-1]
+    x, y, yaw = end_to_end.bicycle_reference([(speed, steer)] * steps, wheel_base, dt)[-1]
     assert (x, y, yaw) == pytest.approx((radius, radius, math.pi / 2), abs=1e-9)
 
 
 def test_stream_segments_follow_each_other_and_silence_sends_nothing():
-    stream = scenario.autoware_stream(1.0, 0.3)
+    stream = end_to_end.autoware_stream(1.0, 0.3)
     assert [s.name for s in stream.segments] == ['straight', 'arc', 's_curve', 'silence', 'stop']
     assert stream.command_at(0.0) == (1.0, 0.0)
     assert stream.command_at(3.5) == (1.0, 0.3)

@@ -478,3 +478,35 @@ def test_bridge_node_on_rclpy_gives_closed_form_outputs():
             bridge.destroy()
     finally:
         rclpy.try_shutdown()
+
+
+def test_bridge_sim_time_tick_behind_the_node_clock_does_not_trip_the_watchdog(monkeypatch):
+    # Under use_sim_time the node clock (its own /clock subscription) can be a step ahead of the
+    # /clock message that triggers a control tick (two subscriptions of one topic are served in
+    # any order). The command's receipt time and the tick must use one time source, else the
+    # tick sees a command from "the future" (negative age: stale) and brakes.
+    from vehicle_sim.ros.bridge_node import AckermannToDifferentialNode
+    from vehicle_sim.transport.port import Time
+    bridge = AckermannToDifferentialNode(
+        [], transport='dds', parameter_overrides={
+            'wheel_base': L_M, 'wheel_tread': T_M, 'wheel_radius': R_M, 'use_sim_time': True,
+            'max_accel_mps2': 0.0, 'max_decel_mps2': 0.0})
+    try:
+        clock_msg = bridge.node.msg('rosgraph_msgs/msg/Clock')
+
+        def clock(t_s):
+            msg = clock_msg()
+            msg.clock.sec, msg.clock.nanosec = int(t_s), int(round((t_s % 1.0) * 1e9))
+            return msg
+
+        bridge._on_clock(clock(2.28))
+        # the node clock has seen 2.31 already; the tick's /clock message says 2.30
+        monkeypatch.setattr(bridge.node, 'now', lambda: Time(2_310_000_000))
+        command = bridge.node.msg(bi.CONTROL)()
+        command.longitudinal.velocity, command.lateral.steering_tire_angle = f32(0.3), f32(0.0)
+        bridge.handle_command(command)
+        bridge._on_clock(clock(2.30))
+        out = bridge.controller.last_output
+        assert (out.left_mps, out.right_mps) == pytest.approx((f32(0.3), f32(0.3)), rel=1e-9)
+    finally:
+        bridge.destroy()

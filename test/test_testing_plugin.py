@@ -76,3 +76,30 @@ def test_automobile_sim_stops_its_node_process_when_its_client_node_fails(monkey
         testing.AutomobileSim()
     (proc,) = started
     assert proc.poll() is not None
+
+
+def test_plugin_collects_scenario_files_one_test_per_criterion(tmp_path):
+    # scenario_*.yaml files become tests (one per criterion); run_scenario() serves test code.
+    for name, controller in (('scenario_stop.yaml', 'lidar_stop_controller.py'),
+                             ('scenario_blind.yaml', 'blind_controller.py')):
+        text = open(os.path.join(REPO_ROOT, 'scenarios', 'stop_before_obstacle.yaml')).read()
+        text = text.replace('../examples/lidar_stop_controller.py',
+                            os.path.join(REPO_ROOT, 'examples', controller))
+        (tmp_path / name).write_text(text, encoding='utf-8')
+    (tmp_path / 'test_use.py').write_text(
+        'from vehicle_sim.testing import run_scenario\n\n\n'
+        'def test_run_scenario_returns_the_values():\n'
+        "    result = run_scenario('scenario_stop.yaml')\n"
+        "    assert result.passed and result.criterion('no_collision').value == 0\n",
+        encoding='utf-8')
+    env = peer_env()
+    env['ROS_DOMAIN_ID'] = str(102 + os.getpid() % 100)
+    result = subprocess.run(
+        [sys.executable, '-m', 'pytest', '-v', '-p', 'no:cacheprovider', str(tmp_path)],
+        cwd=tmp_path, env=env, capture_output=True, text=True, timeout=CHILD_TIMEOUT_S)
+    out = result.stdout
+    assert result.returncode == 1, out[-4000:] + result.stderr[-2000:]
+    assert '1 failed, 6 passed' in out, out[-4000:]
+    assert 'scenario_blind.yaml::no_collision FAILED' in out
+    assert 'scenario_stop.yaml::no_collision PASSED' in out
+    assert 'no_collision: 1 collision(s): wall' in out

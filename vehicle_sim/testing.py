@@ -34,6 +34,15 @@ Options: ``@pytest.mark.vehicle_sim(car='TeslaModel3', namespace='/sim',
 params={'friction': 1.2})``, or ``@pytest.mark.parametrize('automobile_node', ['BmwX5'],
 indirect=True)`` for the car model; ``--vehicle-sim-car`` sets the default model.
 
+Scenario files: ``run_scenario(path, seed=None)`` runs one and returns its result (each
+criterion's verdict and measured value), and files named ``scenario_*.yaml`` are collected as
+tests, one per criterion (docs/scenarios.md)::
+
+    def test_stops_before_the_wall():
+        result = run_scenario('scenarios/stop_before_obstacle.yaml')
+        assert result.passed
+        assert result.criterion('reach_goal').value < 5.0     # seconds
+
 Isolation: unless already set, the plugin confines DDS traffic to the loopback interface
 (``ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST``) and picks a ROS_DOMAIN_ID from the pid, before
 any DDS participant exists; the node subprocess inherits both.
@@ -76,6 +85,27 @@ def pytest_configure(config):
     config.addinivalue_line(
         'markers', 'vehicle_sim(car=None, namespace=None, params=None): options of the '
                    'automobile_node fixture (car model, node namespace, node parameters)')
+
+
+def pytest_collect_file(parent, file_path):
+    from fnmatch import fnmatch
+
+    from vehicle_sim.scenarios.pytest_items import PATTERN, ScenarioFile
+    if fnmatch(file_path.name, PATTERN):
+        return ScenarioFile.from_parent(parent, path=file_path)
+    return None
+
+
+def run_scenario(path, seed=None, **options):
+    """
+    Run a scenario file; return its ScenarioResult (``passed``, ``criteria``, ``criterion(name)``).
+
+    :param path: the scenario file.
+    :param seed: overrides the file's seed.
+    :param options: ``repeat``, ``gui`` (see vehicle_sim.scenarios.runner.run_scenario).
+    """
+    from vehicle_sim.scenarios.runner import run_scenario as run
+    return run(path, seed=seed, **options)
 
 
 # --------------------------------------------------------------------------------------------

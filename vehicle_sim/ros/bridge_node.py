@@ -179,7 +179,16 @@ class AckermannToDifferentialNode:
 
     # ---------------------------------------------------------------- time
     def now_s(self):
-        """Node clock [s]: sim time (latest /clock) under use_sim_time, else wall time."""
+        """
+        Node clock [s]: sim time (latest /clock) under use_sim_time, else wall time.
+
+        Under use_sim_time the time of the latest /clock message this node handled wins: the
+        control ticks run on those messages, so command receipt times and ticks share one time
+        source (the port's node clock, a second /clock subscription, may be served earlier and
+        run a step ahead: a command would then look newer than the tick and trip the watchdog).
+        """
+        if self._use_sim_time and self._last_clock_s is not None:
+            return self._last_clock_s
         now = self.node.now().nanoseconds * 1e-9
         if self._last_clock_s is not None and self._last_clock_s > now:
             return self._last_clock_s

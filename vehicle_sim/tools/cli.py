@@ -25,6 +25,7 @@ Subcommands (``vehicle-sim <command> --help`` for details)::
     export-interfaces   write the vehicle_msgs ament package for a ROS workspace
     demo                run the end-to-end scenario and write a PNG of the paths
     teleop              drive the car (or --robot) from the keyboard through cmd_vel
+    scenario FILE       run a scenario file headless: criteria, JUnit XML, plot, exit status
 
 Everything talks over the embedded Cyclone DDS transport, with ``ROS_DOMAIN_ID`` and
 ``ROS_AUTOMATIC_DISCOVERY_RANGE`` honoured like a ROS 2 node does (docs/transport.md).
@@ -161,6 +162,13 @@ def build_parser() -> argparse.ArgumentParser:
     from vehicle_sim.tools.teleop import add_arguments as add_teleop_arguments
     add_teleop_arguments(teleop)
     teleop.set_defaults(func=cmd_teleop)
+
+    scenario = sub.add_parser('scenario', help='run a scenario file and judge its criteria '
+                                               '(docs/scenarios.md)')
+    from vehicle_sim.tools.scenario_command import add_arguments as add_scenario_arguments
+    from vehicle_sim.tools.scenario_command import cmd_scenario
+    add_scenario_arguments(scenario)
+    scenario.set_defaults(func=cmd_scenario)
     return parser
 
 

@@ -104,16 +104,16 @@ def run_demo(out_path=DEFAULT_OUT, car_model=None, short=False, stream=sys.stdou
     Run the scenario, write the PNG and print the errors.
 
     :param out_path: PNG path.
-    :param car_model: car preset (default: scenario.DEFAULT_CAR).
+    :param car_model: car preset (default: end_to_end.DEFAULT_CAR).
     :param short: run the short variant (half-length segments).
     :return: (ScenarioResult, out_path).
     """
     os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'OFF')
-    from vehicle_sim.tools import scenario
-    result = scenario.run_scenario(car_model=car_model or scenario.DEFAULT_CAR,
-                                   scale=0.5 if short else 1.0)
+    from vehicle_sim.tools import end_to_end
+    result = end_to_end.run_scenario(car_model=car_model or end_to_end.DEFAULT_CAR,
+                                     scale=0.5 if short else 1.0)
     plot(result, out_path)
-    for line in scenario.summary(result):
+    for line in end_to_end.summary(result):
         print(line, file=stream)
     print(f'wrote {os.path.abspath(out_path)}', file=stream)
     return result, out_path

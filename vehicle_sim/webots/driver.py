@@ -53,6 +53,7 @@ from vehicle_sim.webots.api_table import (
     UNSUPPORTED_ROBOT_API,
 )
 from vehicle_sim.webots.devices import devices_of
+from vehicle_sim.webots.host import current_host
 from vehicle_sim.webots.webots_warning import warn, WebotsWarning  # noqa: F401 (exported)
 
 
@@ -133,9 +134,9 @@ class _WorldSync:
     def join(self, driver):
         self.seen[driver] = self.tick
 
-    def request_step(self, world, driver):
+    def request_step(self, step, driver):
         if self.seen.get(driver, self.tick) >= self.tick:
-            world.step()
+            step()
             self.tick += 1
         self.seen[driver] = self.tick
 
@@ -158,6 +159,10 @@ class Driver:
         vehicles stand held where the file puts them.
     :param sensors: names of the car preset's sensors to mount (or 'all'), in addition to those
         the world file mounts; their Webots devices are then available (``getDevice``).
+
+    Inside a controller host (``vehicle_sim.webots.host.hosting``, as the scenario runner runs
+    controllers) the Driver binds to the host's car and world instead, as a Webots controller
+    binds to its robot; the world arguments are then ignored.
     """
 
     INDICATOR_OFF = 0
@@ -171,9 +176,14 @@ class Driver:
     FAST = 3
 
     _API = DRIVER_API
+    _host = None
 
     def __init__(self, car=None, world=None, position=None, gui=False,
                  time_step_ms=None, duration_s=None, name=None, world_file=None, sensors=None):
+        host = current_host()
+        if host is not None:
+            self._bind(host, sensors)
+            return
         car = car if car is not None else os.environ.get('VEHICLE_SIM_CAR', 'Car')
         if world is None and world_file is None:
             world_file = os.environ.get('VEHICLE_SIM_WORLD') or None
@@ -213,6 +223,24 @@ class Driver:
         self._sync = _WorldSync.of(world)
         self._sync.join(self)
 
+    def _bind(self, host, sensors):
+        # A hosted Driver: the host's world and car (see vehicle_sim.webots.host).
+        self._host = host
+        self._owns_world = False
+        self.world = world = host.world
+        self._others = []
+        self.simulated_car = host.car
+        self.logic = host.car.logic
+        specs = host.sensors
+        if sensors is not None:
+            specs = enable_sensors(specs, sensors, 'Driver(sensors=...)')
+        self.sensors = SensorSuite(world, host.car.body, specs, host.origin)
+        self._devices = devices_of(self.sensors)
+        self._duration_s = host.duration_s
+        self._sync = _WorldSync.of(world)
+        self._sync.join(self)
+        host.drivers.append(self)
+
     # ---------------------------------------------------------------- Robot API subset
     def step(self, duration_ms=None):
         """
@@ -233,10 +261,11 @@ class Driver:
             count = max(1, int(round(count)))
         world = self.world
         if world.closed or self._ended():
-            return -1
+            return self._host.after_end() if self._host is not None else -1
         request_step = self._sync.request_step
+        step = self._host.step if self._host is not None and self._host.step else world.step
         for _ in range(count):
-            request_step(world, self)
+            request_step(step, self)
         return -1 if self._ended() else 0
 
     def _ended(self):
@@ -264,7 +293,7 @@ class Driver:
         self.sensors.close()
         if self._owns_world:
             self.world.close()
-        elif not self.world.closed:
+        elif not self.world.closed and self._host is None:
             self.world.remove(self.simulated_car)
         self._sync.seen.pop(self, None)
 

@@ -1,0 +1,146 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Scripted actors: vehicles that follow waypoints at given speeds, with pure pursuit.
+
+A car actor drives through its own CarLogic, as any car: the cruising speed (SPEED mode) and the
+steering angle, the one from pure pursuit (Coulter 1992: δ = atan(2 L sin α / L_d), α the angle
+of the aim point seen from the rear axle, L_d its distance), limited to the car's steering range
+by the follower (the follower's choice, not an input clamp). A robot actor gets the same
+curvature κ = 2 sin α / L_d as wheel speeds v ∓ κ v t / 2. After the last waypoint (unless it
+loops) the vehicle stops: cruising speed 0 and full brake for a car, zero wheel speeds for a
+robot.
+"""
+
+import math
+
+from vehicle_sim.core.units import mps_to_kmh, ros_steering_to_webots
+
+# The aim point moves on once the vehicle is this close to it (its look-ahead), and the last
+# waypoint counts as reached within ARRIVE_M or one wheelbase (a robot: its tread), the smaller.
+ARRIVE_M = 1.0
+LOOKAHEAD_TIME_S = 1.0
+
+
+class WaypointFollower:
+    """
+    Pure pursuit over a waypoint list (ROS-free, PyBullet-free).
+
+    :param spec: the ActorSpec (waypoints, look-ahead, loop).
+    :param wheelbase_m: L for the steering angle [m].
+    """
+
+    def __init__(self, spec, wheelbase_m):
+        self.spec = spec
+        self.wheelbase_m = float(wheelbase_m)
+        self.index = 0
+        self.done = False
+
+    def lookahead_m(self, speed_mps):
+        """Return the look-ahead distance [m] at a speed."""
+        if self.spec.lookahead_m > 0.0:
+            return self.spec.lookahead_m
+        return max(2.0 * self.wheelbase_m, abs(speed_mps) * LOOKAHEAD_TIME_S)
+
+    def command(self, x_m, y_m, yaw_rad):
+        """
+        Return (speed [m/s], curvature [1/m], + = left) towards the current aim point, or None.
+
+        :param x_m: rear-axle (base_link) x in the world [m].
+        :param y_m: its y [m].
+        :param yaw_rad: heading [rad].
+        :return: None once the last waypoint is reached (and it does not loop).
+        """
+        points = self.spec.waypoints
+        if self.done:
+            return None
+        while True:
+            target = points[self.index]
+            distance = math.hypot(target.x_m - x_m, target.y_m - y_m)
+            last = self.index == len(points) - 1 and not self.spec.loop
+            reach = (min(ARRIVE_M, self.wheelbase_m) if last
+                     else self.lookahead_m(target.speed_mps))
+            if distance > reach:
+                break
+            if last:
+                self.done = True
+                return None
+            self.index = (self.index + 1) % len(points)
+            if self.index == 0 and len(points) == 1:
+                break
+        alpha = math.atan2(target.y_m - y_m, target.x_m - x_m) - yaw_rad
+        curvature = 2.0 * math.sin(alpha) / max(distance, 1e-6)
+        return target.speed_mps, curvature
+
+
+class CarActor:
+    """
+    A car following waypoints through its CarLogic (cruising speed and steering angle).
+
+    :param spec: ActorSpec.
+    :param car: SimulatedCar.
+    """
+
+    def __init__(self, spec, car):
+        self.car = car
+        logic = car.logic
+        self.follower = WaypointFollower(spec, logic.wheelbase_m)
+        self._limits = (logic.min_steering_angle_rad, logic.max_steering_angle_rad)
+        logic.set_brake_intensity(0.0)
+
+    def control(self):
+        """Set the car's commands for the coming step."""
+        logic = self.car.logic
+        x, y, _, qx, qy, qz, qw = self.car.body.pose()
+        yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+        command = self.follower.command(x, y, yaw)
+        if command is None:
+            logic.set_cruising_speed_kmh(0.0)
+            logic.set_brake_intensity(1.0)
+            return
+        speed, curvature = command
+        steer = ros_steering_to_webots(math.atan(curvature * self.follower.wheelbase_m))
+        low, high = self._limits
+        logic.set_steering_angle(min(max(steer, low), high))
+        logic.set_cruising_speed_kmh(mps_to_kmh(speed))
+
+
+class RobotActor:
+    """
+    A differential robot following waypoints (wheel speeds from speed and curvature).
+
+    :param spec: ActorSpec.
+    :param robot: DiffRobotBody.
+    """
+
+    def __init__(self, spec, robot):
+        self.robot = robot
+        params = robot.params
+        self._tread = params.wheel_tread_m
+        self._radius = params.wheel_radius_m
+        self.follower = WaypointFollower(spec, params.wheel_tread_m)
+
+    def control(self):
+        """Set the robot's wheel speeds for the coming step."""
+        x, y, _, qx, qy, qz, qw = self.robot.pose()
+        yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+        command = self.follower.command(x, y, yaw)
+        if command is None:
+            self.robot.set_wheel_velocities(0.0, 0.0)
+            return
+        speed, curvature = command
+        half = curvature * speed * self._tread / 2.0
+        self.robot.set_wheel_velocities((speed - half) / self._radius,
+                                        (speed + half) / self._radius)

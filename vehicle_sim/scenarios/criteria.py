@@ -1,0 +1,408 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Pass criteria of a scenario: one class per kind, in the ``CRITERIA`` registry.
+
+Each criterion watches one vehicle: :meth:`Criterion.observe` gets a :class:`Sample` after every
+basic step, :meth:`Criterion.collision` each collision event of that vehicle, and a topic
+criterion :meth:`Criterion.message` each message of its topic. :meth:`Criterion.result` gives
+the verdict with the measured value. Nothing here touches PyBullet or ROS: the runner feeds
+them, and the unit tests feed them by hand.
+"""
+
+from dataclasses import dataclass
+import math
+import operator
+from typing import Any, Dict, Optional, Sequence, Tuple
+
+from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.param_spec import ParamSpec, REQUIRED, validate_table
+
+
+@dataclass(frozen=True)
+class Sample:
+    """A vehicle's ground truth after a step: time [s], x, y [m], yaw [rad], speed [m/s]."""
+
+    time_s: float
+    x_m: float
+    y_m: float
+    yaw_rad: float
+    speed_mps: float
+
+
+@dataclass(frozen=True)
+class CriterionResult:
+    """
+    The verdict of one criterion.
+
+    :param value: the measured value (None when nothing was measured).
+    :param unit: its unit.
+    :param detail: one line: what was measured against what.
+    """
+
+    name: str
+    kind: str
+    passed: bool
+    value: Optional[float]
+    unit: str
+    detail: str
+
+
+def distance_to_segment(px, py, ax, ay, bx, by):
+    """Return the distance [m] from point p to the segment a-b."""
+    dx, dy = bx - ax, by - ay
+    length2 = dx * dx + dy * dy
+    t = 0.0 if length2 == 0.0 else max(0.0, min(1.0, ((px - ax) * dx + (py - ay) * dy)
+                                                / length2))
+    return math.hypot(px - (ax + t * dx), py - (ay + t * dy))
+
+
+def distance_to_polyline(px, py, points: Sequence[Tuple[float, float]]):
+    """Return the distance [m] from a point to a polyline (the lateral deviation from a path)."""
+    return min(distance_to_segment(px, py, *a, *b) for a, b in zip(points, points[1:]))
+
+
+def common_specs():
+    """Return the keys every criterion has: kind, name, vehicle."""
+    return (
+        ParamSpec('kind', 'kind', 'enum', REQUIRED, choices=tuple(CRITERIA),
+                  doc='criterion kind (the sections below)'),
+        ParamSpec('name', 'name', 'str', '', empty=True,
+                  doc="test case name; '' = the kind (numbered when repeated)"),
+        ParamSpec('vehicle', 'vehicle', 'str', '', empty=True,
+                  doc="the vehicle it watches; '' = the vehicle under test"),
+    )
+
+
+class Criterion:
+    """Base: a criterion of one vehicle; subclasses set KIND, UNIT and SPECS."""
+
+    KIND = ''
+    UNIT = ''
+    SPECS: Tuple[ParamSpec, ...] = ()
+
+    def __init__(self, name, vehicle, values: Dict[str, Any], duration_s):
+        self.name = name
+        self.vehicle = vehicle
+        self.values = values
+        self.duration_s = duration_s
+
+    def observe(self, sample: Sample):
+        """Take the vehicle's state after a step."""
+
+    def collision(self, event):
+        """Take a collision event of the vehicle (core CollisionEvent)."""
+
+    def message(self, msg, time_s):
+        """Take a message of the criterion's topic, received at simulated time ``time_s``."""
+
+    def result(self) -> CriterionResult:
+        raise NotImplementedError
+
+    def _result(self, passed, value, detail):
+        return CriterionResult(self.name, self.KIND, bool(passed), value, self.UNIT, detail)
+
+
+class ReachGoal(Criterion):
+    """The vehicle enters a circle (optionally slower than a speed) within a time."""
+
+    KIND = 'reach_goal'
+    UNIT = 's'
+    SPECS = (
+        ParamSpec('goal', 'goal', 'floats', REQUIRED, 'm', 'centre [x, y] of the goal region',
+                  length=2),
+        ParamSpec('radius', 'radius_m', 'float', REQUIRED, 'm', 'radius of the goal region',
+                  gt=0.0),
+        ParamSpec('within', 'within_s', 'float', None, 's', 'deadline; null = the duration',
+                  gt=0.0, optional=True),
+        ParamSpec('max_speed', 'max_speed_mps', 'float', None, 'm/s', 'counts only below this '
+                  'speed (e.g. 0.05: stopped in the region); null = any speed', ge=0.0,
+                  optional=True),
+    )
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        self.reached_s = None
+        self.closest_m = math.inf
+
+    def observe(self, sample):
+        gx, gy = self.values['goal']
+        distance = math.hypot(sample.x_m - gx, sample.y_m - gy)
+        self.closest_m = min(self.closest_m, distance)
+        slow = (self.values['max_speed_mps'] is None
+                or abs(sample.speed_mps) <= self.values['max_speed_mps'])
+        if self.reached_s is None and distance <= self.values['radius_m'] and slow:
+            self.reached_s = sample.time_s
+
+    def result(self):
+        within = self.values['within_s'] or self.duration_s
+        goal = f'goal ({self.values["goal"][0]:g}, {self.values["goal"][1]:g}) r=' \
+               f'{self.values["radius_m"]:g} m'
+        if self.values['max_speed_mps'] is not None:
+            goal += f' below {self.values["max_speed_mps"]:g} m/s'
+        if self.reached_s is None:
+            return self._result(False, None, f'{goal} not reached (closest '
+                                              f'{self.closest_m:.3f} m); deadline {within:g} s')
+        passed = self.reached_s <= within + 1e-9
+        return self._result(passed, self.reached_s, f'{goal} reached at '
+                                                    f'{self.reached_s:.2f} s (deadline '
+                                                    f'{within:g} s)')
+
+
+class NoCollision(Criterion):
+    """The vehicle touches nothing but the ground (and the bodies it may ignore)."""
+
+    KIND = 'no_collision'
+    UNIT = 'collisions'
+    SPECS = (
+        ParamSpec('ignore', 'ignore', 'raw', (), doc='names of bodies it may touch',
+                  check=lambda v: None if isinstance(v, (list, tuple)) and all(
+                      isinstance(a, str) for a in v) else 'must be a list of names'),
+    )
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        self.events = []
+
+    def collision(self, event):
+        if event.other not in self.values['ignore']:
+            self.events.append(event)
+
+    def result(self):
+        count = len(self.events)
+        if not count:
+            return self._result(True, 0, 'no collision')
+        first = ', '.join(f'{e.other} at {e.time_s:.2f} s' for e in self.events[:3])
+        return self._result(False, count, f'{count} collision(s): {first}')
+
+
+class StayOnPath(Criterion):
+    """The vehicle stays within a lateral distance of a polyline."""
+
+    KIND = 'stay_on_path'
+    UNIT = 'm'
+    SPECS = (
+        ParamSpec('path', 'path', 'rows', REQUIRED, 'm', 'the polyline [[x, y], ...] (at '
+                  'least 2 points)', length=2),
+        ParamSpec('max_distance', 'max_distance_m', 'float', REQUIRED, 'm',
+                  'largest lateral distance allowed', gt=0.0),
+    )
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        self.worst_m = 0.0
+        self.worst_s = None
+
+    def observe(self, sample):
+        distance = distance_to_polyline(sample.x_m, sample.y_m, self.values['path'])
+        if self.worst_s is None or distance > self.worst_m:
+            self.worst_m, self.worst_s = distance, sample.time_s
+
+    def result(self):
+        limit = self.values['max_distance_m']
+        at = f' at {self.worst_s:.2f} s' if self.worst_s is not None else ''
+        return self._result(self.worst_m <= limit, self.worst_m,
+                            f'max lateral distance {self.worst_m:.3f} m{at} (limit {limit:g} m)')
+
+
+class MaxSpeed(Criterion):
+    """The vehicle's ground-truth speed never exceeds a limit."""
+
+    KIND = 'max_speed'
+    UNIT = 'm/s'
+    SPECS = (
+        ParamSpec('limit', 'limit_mps', 'float', REQUIRED, 'm/s', 'speed limit (ground truth, '
+                  'horizontal)', gt=0.0),
+    )
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        self.top_mps = 0.0
+        self.top_s = None
+
+    def observe(self, sample):
+        speed = abs(sample.speed_mps)
+        if self.top_s is None or speed > self.top_mps:
+            self.top_mps, self.top_s = speed, sample.time_s
+
+    def result(self):
+        limit = self.values['limit_mps']
+        at = f' at {self.top_s:.2f} s' if self.top_s is not None else ''
+        return self._result(self.top_mps <= limit, self.top_mps,
+                            f'top speed {self.top_mps:.3f} m/s{at} (limit {limit:g} m/s)')
+
+
+COMPARISONS = {'<': operator.lt, '<=': operator.le, '>': operator.gt, '>=': operator.ge,
+               '==': operator.eq, '!=': operator.ne}
+TOPIC_MODES = ('always', 'eventually', 'final')
+
+
+def field_value(msg, dotted):
+    """
+    Return a message field by its dotted name (``header.stamp.sec``, ``twist.twist.linear.x``).
+
+    :raises InvalidParameterError: naming the missing part.
+    """
+    value = msg
+    for part in dotted.split('.'):
+        if not hasattr(value, part):
+            raise InvalidParameterError(f'field {dotted!r}: the message has no {part!r}')
+        value = getattr(value, part)
+    return value
+
+
+class TopicPredicate(Criterion):
+    """A field of a topic's messages compared with a value: always, eventually or at the end."""
+
+    KIND = 'topic'
+    SPECS = (
+        ParamSpec('topic', 'topic', 'topic', REQUIRED, doc='topic name (absolute)'),
+        ParamSpec('type', 'ros_type', 'str', REQUIRED, doc='message type, e.g. '
+                  'vehicle_msgs/msg/Float64Stamped'),
+        ParamSpec('field', 'field', 'str', REQUIRED, doc='dotted field name, e.g. data or '
+                  'twist.twist.linear.x'),
+        ParamSpec('op', 'op', 'enum', REQUIRED, choices=tuple(COMPARISONS),
+                  doc='comparison: field <op> value'),
+        ParamSpec('value', 'value', 'float', REQUIRED, doc='the number compared with'),
+        ParamSpec('mode', 'mode', 'enum', 'always', choices=TOPIC_MODES,
+                  doc='always (every message), eventually (one message) or final (the last)'),
+    )
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        self.count = 0
+        self.last = None
+        self.extreme = {}         # '<': (time, largest value), '>': (time, smallest value)
+        self.first_bad = None     # (time, value) of the first message that fails
+        self.first_good = None    # (time, value) of the first message that passes
+        self.error = None
+
+    def message(self, msg, time_s):
+        try:
+            value = float(field_value(msg, self.values['field']))
+        except (InvalidParameterError, TypeError, ValueError) as error:
+            self.error = self.error or str(error)
+            return
+        self.count += 1
+        self.last = (time_s, value)
+        # '<' keeps the largest value seen, '>' the smallest
+        top, bottom = self.extreme.get('<'), self.extreme.get('>')
+        if top is None or value > top[1]:
+            self.extreme['<'] = (time_s, value)
+        if bottom is None or value < bottom[1]:
+            self.extreme['>'] = (time_s, value)
+        good = COMPARISONS[self.values['op']](value, self.values['value'])
+        if good and self.first_good is None:
+            self.first_good = (time_s, value)
+        if not good and self.first_bad is None:
+            self.first_bad = (time_s, value)
+
+    def result(self):
+        v = self.values
+        what = f'{v["topic"]} {v["field"]} {v["op"]} {v["value"]:g} ({v["mode"]})'
+        if self.error is not None:
+            return self._result(False, None, f'{what}: {self.error}')
+        if not self.count:
+            return self._result(False, None, f'{what}: no message received')
+        mode = v['mode']
+        if mode == 'always':
+            passed = self.first_bad is None
+            if passed:      # the value that came closest to failing
+                time_s, value = self.extreme.get(v['op'][0], self.last)
+                detail = f'{what}: all {self.count} messages pass (closest {value:g} at ' \
+                         f'{time_s:.2f} s)'
+            else:
+                time_s, value = self.first_bad
+                detail = f'{what}: {value:g} at {time_s:.2f} s fails'
+        elif mode == 'eventually':
+            passed = self.first_good is not None
+            time_s, value = self.first_good if passed else self.last
+            detail = (f'{what}: {value:g} at {time_s:.2f} s' if passed else
+                      f'{what}: none of {self.count} messages pass (last {value:g})')
+        else:
+            time_s, value = self.last
+            passed = COMPARISONS[v['op']](value, v['value'])
+            detail = f'{what}: last {value:g} at {time_s:.2f} s'
+        return self._result(passed, value, detail)
+
+
+CRITERIA = {cls.KIND: cls for cls in (ReachGoal, NoCollision, StayOnPath, MaxSpeed,
+                                      TopicPredicate)}
+
+
+def criterion_specs(kind):
+    """Return the full ParamSpec table of a criterion kind (common keys first)."""
+    return common_specs() + CRITERIA[kind].SPECS
+
+
+def build_criteria(specs, duration_s):
+    """Instantiate validated CriterionSpecs."""
+    return [CRITERIA[s.kind](s.name, s.vehicle, s.values, duration_s) for s in specs]
+
+
+def criteria_from_list(ctx, data, names, default_vehicle):
+    """
+    Validate the ``criteria:`` list of a scenario.
+
+    :param ctx: the schema's file context (``fail``, ``validated``, ``lines``).
+    :param data: the list.
+    :param names: the vehicles of the scenario.
+    :param default_vehicle: the vehicle under test.
+    :return: tuple of CriterionSpec.
+    :raises ScenarioError: naming the line.
+    """
+    from vehicle_sim.scenarios.schema import CriterionSpec
+    from vehicle_sim.scenarios.yaml_lines import line_of
+    path = ('criteria',)
+    if not isinstance(data, list) or not data:
+        raise ctx.fail(path, 'criteria must be a non-empty list of {kind: ..., ...}; kinds: '
+                             + ', '.join(CRITERIA))
+    specs, counts = [], {}
+    for index, entry in enumerate(data):
+        where = path + (index,)
+        kind = entry.get('kind') if isinstance(entry, dict) else None
+        if kind not in CRITERIA:
+            raise ctx.fail(where + ('kind',) if isinstance(entry, dict) else where,
+                           f'criterion kind {kind!r}: valid kinds: ' + ', '.join(CRITERIA))
+        values = ctx.validated(criterion_specs(kind), entry, where, 'a criterion')
+        vehicle = values.pop('vehicle') or default_vehicle
+        if vehicle not in names:
+            raise ctx.fail(where + ('vehicle',), f'vehicle {vehicle!r}: not in the world; '
+                                                 f'vehicles: {", ".join(names)}')
+        name = values.pop('name')
+        values.pop('kind')
+        if kind == 'stay_on_path' and len(values['path']) < 2:
+            raise ctx.fail(where + ('path',), 'a path needs at least 2 points')
+        if not name:
+            counts[kind] = counts.get(kind, 0) + 1
+        specs.append([kind, name, vehicle, values, line_of(ctx.lines, where)])
+    seen = {}
+    for spec in specs:
+        if not spec[1]:
+            seen[spec[0]] = seen.get(spec[0], 0) + 1
+            spec[1] = spec[0] if counts[spec[0]] == 1 else f'{spec[0]}_{seen[spec[0]]}'
+    names_used = [s[1] for s in specs]
+    for spec in specs:
+        if names_used.count(spec[1]) > 1:
+            raise ctx.fail(('criteria',), f'two criteria are named {spec[1]!r}')
+    return tuple(CriterionSpec(*spec) for spec in specs)
+
+
+def validate_criterion(kind, data, source='criterion'):
+    """Validate one criterion mapping outside a file (tests, Python users): its values."""
+    values = validate_table(criterion_specs(kind), dict(data, kind=kind), source)
+    for key in ('kind', 'name', 'vehicle'):
+        values.pop(key)
+    return values

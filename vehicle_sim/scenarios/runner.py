@@ -1,0 +1,331 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Running a scenario: build its simulation, drive the vehicle under test, judge the criteria.
+
+Time is synchronous: the world advances one basic step at a time, as fast as the driver keeps
+up. Scripted commands and actors act in the world's ``pre_step`` (the runner's
+:class:`Director` is a world body); after each step the Director records every vehicle's
+ground-truth odometry and feeds the criteria. An in-process controller is run like Webots runs
+one (its ``Driver()`` bound to the vehicle under test, :mod:`vehicle_sim.webots.host`); after
+it returns the world steps on to the duration with its last commands. External processes get
+the simulation served over ROS (:class:`~.sim.ServedSim`), paced at the driver's
+``real_time_factor``; their timing is not reproducible, so such runs report
+``deterministic = False`` (``repeat`` gives the spread of the measured values).
+"""
+
+from dataclasses import dataclass, field
+import hashlib
+import os
+import random
+import runpy
+import sys
+import time
+import traceback
+from typing import Dict, List, Optional
+
+from vehicle_sim.core.errors import InvalidCommandError
+from vehicle_sim.physics.sensors.collisions import CollisionMonitor
+from vehicle_sim.scenarios.actors import CarActor, RobotActor
+from vehicle_sim.scenarios.criteria import build_criteria, CriterionResult
+from vehicle_sim.scenarios.external import run_processes, TopicWatcher
+from vehicle_sim.scenarios.schema import load_scenario, ScenarioSpec
+from vehicle_sim.scenarios.sim import LocalSim, ServedSim
+from vehicle_sim.scenarios.yaml_lines import ScenarioError
+
+_EPS_S = 1e-9
+
+
+@dataclass
+class Track:
+    """A vehicle's path: times [s], x and y [m] after every step (and at the start)."""
+
+    time_s: List[float] = field(default_factory=list)
+    x_m: List[float] = field(default_factory=list)
+    y_m: List[float] = field(default_factory=list)
+
+
+@dataclass
+class ScenarioResult:
+    """
+    The outcome of one run.
+
+    :param criteria: one CriterionResult per criterion, in file order.
+    :param error: why the run itself failed (a controller exception, a process that died), or
+        None.
+    :param odometry_sha256: hash of the vehicle under test's ground-truth odometry stream
+        (ODOMETRY_ROW per step).
+    :param deterministic: the same scenario and seed give the same run (False with external
+        processes).
+    :param spread: with repeated runs, {criterion name: (min, max)} of the measured values.
+    """
+
+    spec: ScenarioSpec
+    seed: int
+    criteria: List[CriterionResult]
+    sim_time_s: float
+    wall_time_s: float
+    tracks: Dict[str, Track]
+    odometry_sha256: str
+    deterministic: bool
+    error: Optional[str] = None
+    spread: Optional[Dict[str, tuple]] = None
+    runs: int = 1
+
+    @property
+    def passed(self):
+        return self.error is None and all(c.passed for c in self.criteria)
+
+    @property
+    def failures(self):
+        return [c for c in self.criteria if not c.passed]
+
+    def criterion(self, name):
+        """Return the CriterionResult called ``name``."""
+        for result in self.criteria:
+            if result.name == name:
+                return result
+        raise KeyError(f'no criterion {name!r}; criteria: '
+                       + ', '.join(c.name for c in self.criteria))
+
+
+class Director:
+    """
+    The runner's world body: commands and actors before each step, measurements after it.
+
+    :param spec: ScenarioSpec.
+    :param criteria: the Criterion objects.
+    :param progress: ``progress(time_s, duration_s)`` after each step, or None.
+    """
+
+    def __init__(self, spec, criteria, progress=None):
+        self.spec = spec
+        self.criteria = criteria
+        self.progress = progress
+        self.world = None
+        self.vehicles = {}
+        self.actors = []
+        self.monitors = {}
+        self.tracks = {}
+        self.digest = hashlib.sha256()
+        self._commands = list(spec.driver.commands)
+        self._next = 0
+
+    def attach(self, sim):
+        """Bind to the built simulation: vehicles, actors, collision monitors."""
+        self.world = sim.world
+        self.vehicles = sim.vehicles
+        for actor in self.spec.actors:
+            handle = self.vehicles[actor.vehicle]
+            self.actors.append(CarActor(actor, handle.car) if handle.is_car
+                               else RobotActor(actor, handle.robot))
+        watched = {c.vehicle for c in self.criteria if c.KIND == 'no_collision'}
+        for name in watched:
+            monitor = CollisionMonitor(self.world, self.vehicles[name].body)
+            self.world.remove(monitor)      # stepped from post_step, after the physics
+            self.monitors[name] = monitor
+        self.tracks = {name: Track() for name in self.vehicles}
+        self._measure(self.world.time_s)
+
+    @property
+    def vut(self):
+        return self.vehicles[self.spec.vehicle]
+
+    def pre_step(self):
+        """World hook: the scripted commands due now, then the actors."""
+        if self.world is None:
+            return
+        now_s = self.world.time_s
+        commands = self._commands
+        while self._next < len(commands) and commands[self._next].t_s <= now_s + _EPS_S:
+            self._apply(commands[self._next])
+            self._next += 1
+        for actor in self.actors:
+            actor.control()
+
+    def _apply(self, command):
+        logic = self.vut.car.logic
+        for core_setter, value, webots_name in command.setters:
+            try:
+                getattr(logic, core_setter)(value)
+            except InvalidCommandError as error:
+                raise ScenarioError(self.spec.source, command.line,
+                                    f'command at t = {command.t_s:g} s: {webots_name}'
+                                    f'({value!r}) refused: {error}') from None
+
+    def post_step(self):
+        """World hook: collisions, odometry, criteria, progress."""
+        if self.world is None:
+            return
+        now_s = self.world.time_s
+        for name, monitor in self.monitors.items():
+            monitor.post_step()
+            for event in monitor.fresh:
+                for criterion in self.criteria:
+                    if criterion.vehicle == name:
+                        criterion.collision(event)
+        self._measure(now_s)
+        if self.progress is not None:
+            self.progress(now_s, self.spec.duration_s)
+
+    def _measure(self, now_s):
+        vut = self.spec.vehicle
+        for name, handle in self.vehicles.items():
+            sample = handle.sample(now_s)
+            track = self.tracks[name]
+            track.time_s.append(now_s)
+            track.x_m.append(sample.x_m)
+            track.y_m.append(sample.y_m)
+            if name == vut:
+                self.digest.update(handle.odometry_row(now_s))
+            for criterion in self.criteria:
+                if criterion.vehicle == name:
+                    criterion.observe(sample)
+
+    def close(self):
+        self.world = None
+
+
+def needs_serving(spec):
+    """Tell whether a scenario runs served over ROS (processes, or a topic criterion)."""
+    return spec.driver.kind == 'processes' or any(c.kind == 'topic' for c in spec.criteria)
+
+
+def run_scenario(spec_or_path, seed=None, gui=False, progress=None, repeat=1,
+                 transport=None) -> ScenarioResult:
+    """
+    Run a scenario and return its result.
+
+    :param spec_or_path: a ScenarioSpec or the path of a scenario file.
+    :param seed: overrides the file's seed.
+    :param gui: open PyBullet's GUI (local simulations).
+    :param progress: ``progress(time_s, duration_s)`` after each step.
+    :param repeat: run this many times (external processes: the spread of the values).
+    :param transport: the served nodes' transport (None = VEHICLE_SIM_TRANSPORT).
+    :raises ScenarioError: for an invalid file or a refused scripted command.
+    """
+    spec = spec_or_path if isinstance(spec_or_path, ScenarioSpec) else load_scenario(
+        spec_or_path)
+    if seed is not None:
+        spec = spec.with_seed(seed)
+    if repeat < 1:
+        raise ValueError(f'repeat = {repeat!r}: must be >= 1')
+    results = [_run_once(spec, gui, progress, transport) for _ in range(repeat)]
+    result = results[-1]
+    if repeat > 1:
+        result.runs = repeat
+        result.spread = _spread(results)
+        result.error = next((r.error for r in results if r.error), None)
+        if not all(r.passed for r in results):
+            failed = sum(not r.passed for r in results)
+            result.error = result.error or f'{failed} of {repeat} runs failed'
+    return result
+
+
+def _spread(results):
+    spread = {}
+    for index, criterion in enumerate(results[0].criteria):
+        values = [r.criteria[index].value for r in results
+                  if r.criteria[index].value is not None]
+        spread[criterion.name] = (min(values), max(values)) if values else (None, None)
+    return spread
+
+
+def _run_once(spec, gui, progress, transport):
+    criteria = build_criteria(spec.criteria, spec.duration_s)
+    director = Director(spec, criteria, progress)
+    served = needs_serving(spec)
+    start = time.monotonic()
+    sim = (ServedSim(spec, director, spec.seed, gui, transport) if served
+           else LocalSim(spec, director, spec.seed, gui))
+    error = None
+    watcher = None
+    try:
+        director.attach(sim)
+        kind = spec.driver.kind
+        if kind == 'processes':
+            error = run_processes(spec, sim, criteria, transport)
+        else:
+            if served:
+                watcher = TopicWatcher(sim, criteria, transport)
+
+            def step():
+                # one basic step; a served world also publishes and serves its nodes
+                sim.step()
+                if watcher is not None:
+                    watcher.spin()
+
+            if kind == 'controller':
+                error = _run_controller(spec, sim, director, step)
+            while sim.world.time_s < spec.duration_s - _EPS_S:
+                step()
+            if watcher is not None:
+                watcher.drain()
+        sim_time_s = sim.world.time_s
+    finally:
+        if watcher is not None:
+            watcher.close()
+        director.close()
+        sim.close()
+    return ScenarioResult(spec, spec.seed, [c.result() for c in criteria], sim_time_s,
+                          time.monotonic() - start, director.tracks,
+                          director.digest.hexdigest(), not served or kind != 'processes',
+                          error)
+
+
+# ---------------------------------------------------------------------------- in-process
+def _run_controller(spec, sim, director, step):
+    """Run the controller script with Driver() bound to the vehicle under test."""
+    from vehicle_sim.webots.host import ControllerHost, ControllerStopped, hosting
+    vut = director.vut
+    host = ControllerHost(sim.world, vut.car, vut.sensors, spec.world.origin, spec.duration_s,
+                          step)
+    script = spec.driver.controller
+    saved_argv, saved_path = sys.argv, list(sys.path)
+    saved_seed = os.environ.get('VEHICLE_SIM_SEED')
+    sys.argv = [script] + list(spec.driver.args)
+    sys.path.insert(0, os.path.dirname(os.path.abspath(script)))
+    os.environ['VEHICLE_SIM_SEED'] = str(spec.seed)
+    _seed_random(spec.seed)
+    try:
+        with hosting(host):
+            runpy.run_path(script, run_name='__main__')
+    except ControllerStopped:
+        pass
+    except SystemExit as exit_:
+        if exit_.code not in (None, 0):
+            return f'controller {script} exited with status {exit_.code}'
+    except ScenarioError:
+        raise
+    except Exception:  # noqa: BLE001 - the controller's failure is the run's error
+        return f'controller {script} raised:\n{traceback.format_exc(limit=-3)}'
+    finally:
+        sys.argv, sys.path[:] = saved_argv, saved_path
+        if saved_seed is None:
+            os.environ.pop('VEHICLE_SIM_SEED', None)
+        else:
+            os.environ['VEHICLE_SIM_SEED'] = saved_seed
+        for driver in host.drivers:
+            driver.sensors.close()
+    return None
+
+
+def _seed_random(seed):
+    random.seed(seed)
+    try:
+        import numpy
+        numpy.random.seed(seed)
+    except ImportError:     # pragma: no cover - numpy is a dependency
+        pass

@@ -1,0 +1,533 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The scenario file format: validated into a :class:`ScenarioSpec`, errors naming ``file:line``.
+
+Top-level keys (docs/scenarios.md has the tables, generated from the ParamSpec rows here)::
+
+    name: stop_before_wall
+    world: obstacle_course          # a world name/path, or an inline world mapping
+    robots: [{name: diff_robot, model: caster_robot, pose: {x: 0, y: 0, yaw: 0}}]
+    vehicle: Car                    # the vehicle under test (default: the first one)
+    duration: 12.0
+    seed: 0
+    actors: [{vehicle: car2, waypoints: [[0, 6], [40, 6]], speed: 5.0}]
+    driver: {controller: ../examples/lidar_stop_controller.py}
+    criteria: [{kind: no_collision}, {kind: max_speed, limit: 6.0}]
+
+The world keeps the schema of the node's ``world`` parameter (core/world_params.py); criteria
+are checked by :mod:`.criteria` (its ``CRITERIA`` registry gives each kind's table).
+"""
+
+from dataclasses import dataclass, field
+import os
+from pathlib import Path
+import shlex
+from typing import Any, Dict, Optional, Tuple
+
+from vehicle_sim import config
+from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.param_spec import ParamSpec, REQUIRED, validate_table
+from vehicle_sim.core.world_params import (
+    obstacles_from_list,
+    origin_from_dict,
+    WORLD_KEYS,
+    WorldSpec,
+)
+from vehicle_sim.scenarios.yaml_lines import error_at, line_of, load_with_lines, ScenarioError
+from vehicle_sim.webots.api_table import CAR_API, DRIVER_API
+
+DRIVER_KINDS = ('commands', 'controller', 'processes')
+
+SCENARIO_SPECS = (
+    ParamSpec('name', 'name', 'str', '', doc="test name; '' = the file name without .yaml",
+              empty=True),
+    ParamSpec('description', 'description', 'str', '', empty=True, doc='free text'),
+    ParamSpec('world', 'world', 'raw', REQUIRED, doc='world name (config/worlds), path to a '
+              'world .yaml (relative to the scenario file), or an inline world mapping'),
+    ParamSpec('robots', 'robots', 'raw', None, optional=True,
+              doc='differential-drive robots added to the world (table below)'),
+    ParamSpec('vehicle', 'vehicle', 'str', None, optional=True,
+              doc='name of the vehicle under test; null = the first vehicle of the world '
+                  '(the first robot when the world has no car)'),
+    ParamSpec('duration', 'duration_s', 'float', REQUIRED, 's', 'simulated time the scenario '
+              'runs', gt=0.0),
+    ParamSpec('seed', 'seed', 'int', 0, doc='seed of the sensor noise and of the '
+              'controller (random, numpy, VEHICLE_SIM_SEED); --seed overrides it', ge=0),
+    ParamSpec('time_step_ms', 'time_step_ms', 'int', 10, 'ms', 'basic time step', ge=1),
+    ParamSpec('actors', 'actors', 'raw', None, optional=True,
+              doc='scripted vehicles following waypoints (table below)'),
+    ParamSpec('driver', 'driver', 'raw', REQUIRED,
+              doc='what drives the vehicle under test: exactly one of ' +
+                  ', '.join(DRIVER_KINDS)),
+    ParamSpec('criteria', 'criteria', 'raw', REQUIRED, doc='pass criteria (table below)'),
+)
+
+ROBOT_SPECS = (
+    ParamSpec('name', 'name', 'ros_name', REQUIRED,
+              doc='robot name (its node name when served: /<name>/differential_command)'),
+    ParamSpec('model', 'model', 'str', 'caster_robot', doc='robot preset (config/robots)'),
+    ParamSpec('pose', 'pose', 'pose', None, 'm, rad', 'spawn pose {x, y, yaw}',
+              choices=('x', 'y', 'yaw'), optional=True),
+)
+
+ACTOR_SPECS = (
+    ParamSpec('vehicle', 'vehicle', 'str', REQUIRED,
+              doc='name of a world vehicle or robot (not the vehicle under test)'),
+    ParamSpec('waypoints', 'waypoints', 'raw', REQUIRED, 'm, m/s',
+              doc='[[x, y], ...] or [[x, y, speed], ...]: the speed towards that point'),
+    ParamSpec('speed', 'speed_mps', 'float', 5.0, 'm/s', 'speed of waypoints that give none',
+              ge=0.0),
+    ParamSpec('lookahead', 'lookahead_m', 'float', 0.0, 'm',
+              'pure-pursuit look-ahead; 0 = max(2 wheelbases, 1 s of travel)', ge=0.0),
+    ParamSpec('loop', 'loop', 'bool', False, doc='back to the first waypoint after the last '
+              '(else stop there)'),
+)
+
+DRIVER_SPECS = (
+    ParamSpec('commands', 'commands', 'raw', None, optional=True,
+              doc='[{t: s, <setter>: value, ...}, ...] in time order (Webots driver setters)'),
+    ParamSpec('controller', 'controller', 'str', None, optional=True,
+              doc='Webots-API controller script (.py, relative to the scenario file), run in '
+                  "the runner's process"),
+    ParamSpec('args', 'args', 'raw', (), doc="the controller's sys.argv[1:] (strings)",
+              check=lambda v: None if isinstance(v, (list, tuple)) and all(
+                  isinstance(a, str) for a in v) else 'must be a list of strings'),
+    ParamSpec('processes', 'processes', 'raw', None, optional=True,
+              doc='command lines started as subprocesses (ROS 2 nodes, built-ins; the '
+                  "program 'python' is the runner's interpreter); the simulation is served "
+                  'over ROS with /clock'),
+    ParamSpec('real_time_factor', 'real_time_factor', 'float', 1.0, '',
+              'processes: simulated seconds per wall-clock second; 0 = as fast as possible',
+              ge=0.0),
+    ParamSpec('sync', 'sync', 'raw', (), doc='processes: lockstep topics [{topic, type}, ...]: '
+              'after every sync_period the runner waits until each has a new message (the '
+              "controller's answer to that /clock)"),
+    ParamSpec('sync_period', 'sync_period_s', 'float', 0.0, 's', 'processes: simulated time '
+              'between lockstep waits; 0 = every basic step', ge=0.0),
+    ParamSpec('sync_timeout', 'sync_timeout_s', 'float', 5.0, 's', 'processes: longest '
+              'lockstep wait (wall clock); a longer one ends the run with an error', gt=0.0),
+    ParamSpec('clock_subscribers', 'clock_subscribers', 'int', -1, '',
+              'processes: time starts once /clock has this many subscribers; -1 = one per '
+              'process', ge=-1),
+    ParamSpec('startup_timeout', 'startup_timeout_s', 'float', 60.0, 's',
+              'processes: how long to wait for them (wall clock)', gt=0.0),
+)
+
+# Webots driver-level setters a command may hold: the snake_case names of the 2023 Python
+# wrapper (api_table ``prop``), applied through the strict core setter.
+COMMAND_ROWS = {row.prop: row for row in DRIVER_API + CAR_API
+                if row.setter is not None and row.prop is not None}
+
+
+@dataclass(frozen=True)
+class RobotSpec:
+    """A differential-drive robot of the scenario: name, preset and spawn pose."""
+
+    name: str
+    model: str
+    x_m: float = 0.0
+    y_m: float = 0.0
+    yaw_rad: float = 0.0
+
+
+@dataclass(frozen=True)
+class Waypoint:
+    """A point to drive to [m] and the speed on the way to it [m/s]."""
+
+    x_m: float
+    y_m: float
+    speed_mps: float
+
+
+@dataclass(frozen=True)
+class ActorSpec:
+    """A scripted vehicle: which one, its waypoints, look-ahead and whether it loops."""
+
+    vehicle: str
+    waypoints: Tuple[Waypoint, ...]
+    lookahead_m: float
+    loop: bool
+    line: Optional[int] = None
+
+
+@dataclass(frozen=True)
+class Command:
+    """Setters applied at time ``t_s``: ((core setter, value, Webots name), ...)."""
+
+    t_s: float
+    setters: Tuple[Tuple[str, Any, str], ...]
+    line: Optional[int] = None
+
+
+@dataclass(frozen=True)
+class DriverSpec:
+    """What drives the vehicle under test: ``kind`` is one of DRIVER_KINDS."""
+
+    kind: str
+    commands: Tuple[Command, ...] = ()
+    controller: Optional[str] = None
+    args: Tuple[str, ...] = ()
+    processes: Tuple[Tuple[str, ...], ...] = ()
+    real_time_factor: float = 1.0
+    clock_subscribers: int = -1
+    startup_timeout_s: float = 60.0
+    sync: Tuple[Tuple[str, str], ...] = ()
+    sync_period_s: float = 0.0
+    sync_timeout_s: float = 5.0
+
+
+@dataclass(frozen=True)
+class CriterionSpec:
+    """One pass criterion: its kind, test name, vehicle and validated values."""
+
+    kind: str
+    name: str
+    vehicle: str
+    values: Dict[str, Any]
+    line: Optional[int] = None
+
+
+@dataclass(frozen=True)
+class ScenarioSpec:
+    """A validated scenario file."""
+
+    name: str
+    description: str
+    source: str
+    world: WorldSpec
+    world_file: Optional[str]
+    world_data: Optional[dict]
+    robots: Tuple[RobotSpec, ...]
+    vehicle: str
+    duration_s: float
+    seed: int
+    time_step_ms: int
+    actors: Tuple[ActorSpec, ...]
+    driver: DriverSpec
+    criteria: Tuple[CriterionSpec, ...]
+    lines: Dict = field(default_factory=dict, compare=False, repr=False)
+
+    @property
+    def car_names(self):
+        return tuple(v.name for v in self.world.vehicles)
+
+    @property
+    def robot_names(self):
+        return tuple(r.name for r in self.robots)
+
+    def with_seed(self, seed):
+        """Return this scenario with another seed."""
+        from dataclasses import replace
+        return replace(self, seed=int(seed))
+
+
+def load_scenario(path) -> ScenarioSpec:
+    """
+    Read and validate a scenario file.
+
+    :param path: the .yaml file.
+    :return: ScenarioSpec.
+    :raises ScenarioError: ``file:line: what is wrong`` for any invalid content.
+    """
+    source = str(path)
+    try:
+        text = Path(path).read_text(encoding='utf-8')
+    except OSError as error:
+        raise ScenarioError(source, None, f'cannot read: {error.strerror or error}') from None
+    data, lines = load_with_lines(text, source)
+    return scenario_from_data(data, lines, source)
+
+
+class _Context:
+    """The file, its lines and its folder, for errors and relative paths."""
+
+    def __init__(self, source, lines):
+        self.source = source
+        self.lines = lines
+        self.folder = Path(source).resolve().parent
+
+    def fail(self, path, message):
+        return ScenarioError(self.source, line_of(self.lines, path), message)
+
+    def validated(self, specs, data, path, what):
+        where = '.'.join(str(p) for p in path) or 'scenario'
+        try:
+            return validate_table(specs, data, where, what=what)
+        except InvalidParameterError as error:
+            raise error_at(self.source, self.lines, path, error) from None
+
+    def relative(self, name):
+        candidate = self.folder / name
+        return str(candidate) if candidate.is_file() else name
+
+
+def scenario_from_data(data, lines, source) -> ScenarioSpec:
+    """
+    Validate scenario data (see :func:`load_scenario`).
+
+    :param data: the parsed YAML.
+    :param lines: {path: line} from :func:`~.yaml_lines.load_with_lines`.
+    :param source: file name for errors and relative paths.
+    """
+    ctx = _Context(source, lines)
+    if not isinstance(data, dict):
+        raise ctx.fail((), 'a scenario must be a mapping with world, duration, driver and '
+                           'criteria')
+    values = ctx.validated(SCENARIO_SPECS, data, (), 'a scenario')
+    robots = _robots(ctx, values['robots'])
+    world, world_file = _world(ctx, values['world'], cars_optional=bool(robots))
+    world_data = values['world'] if world_file is None else None
+    cars = tuple(v.name for v in world.vehicles)
+    names = cars + tuple(r.name for r in robots)
+    duplicates = sorted({n for n in names if names.count(n) > 1})
+    if duplicates:
+        raise ctx.fail(('robots',), f'vehicle name(s) used twice: {duplicates}')
+    vehicle = values['vehicle'] or names[0]
+    if vehicle not in names:
+        raise ctx.fail(('vehicle',), f'vehicle {vehicle!r}: not in the world; vehicles: '
+                                     f'{", ".join(names)}')
+    actors = _actors(ctx, values['actors'], names, vehicle)
+    driver = _driver(ctx, values['driver'], vehicle in cars)
+    from vehicle_sim.scenarios.criteria import criteria_from_list
+    criteria = criteria_from_list(ctx, data.get('criteria'), names, vehicle)
+    name = values['name'] or Path(source).stem
+    return ScenarioSpec(name, values['description'], source, world, world_file, world_data,
+                        robots, vehicle,
+                        values['duration_s'], values['seed'], values['time_step_ms'], actors,
+                        driver, criteria, lines)
+
+
+def _world(ctx, value, cars_optional):
+    path = ('world',)
+    try:
+        if isinstance(value, str):
+            file = ctx.relative(value)
+            return config.load_world(file), str(config.world_path(file))
+        if isinstance(value, dict) and cars_optional and not value.get('vehicles'):
+            return _world_without_cars(ctx, value), None
+        if isinstance(value, dict):
+            return config.world_from_data(value, f'{ctx.source}: world'), None
+    except InvalidParameterError as error:
+        raise error_at(ctx.source, ctx.lines, path, error) from None
+    raise ctx.fail(path, f'world = {value!r}: give a world name, a path to a world .yaml or '
+                         'an inline world mapping')
+
+
+def _world_without_cars(ctx, value):
+    # Robots only: the world's origin and obstacles, validated as a world file's.
+    source = f'{ctx.source}: world'
+    unknown = sorted(set(value) - set(WORLD_KEYS))
+    if unknown:
+        raise InvalidParameterError(f'{source}: unknown key(s) {unknown}; valid: '
+                                    + ', '.join(WORLD_KEYS))
+    return WorldSpec(origin_from_dict(value.get('origin'), f'{source}: origin'), (),
+                     obstacles_from_list(value.get('obstacles'), f'{source}: obstacles'), source)
+
+
+def _robots(ctx, value):
+    if value is None:
+        return ()
+    if not isinstance(value, list):
+        raise ctx.fail(('robots',), 'robots must be a list of {name, model, pose}')
+    robots = []
+    for index, entry in enumerate(value):
+        path = ('robots', index)
+        values = ctx.validated(ROBOT_SPECS, entry, path, 'a robot')
+        try:
+            config.load_robot(values['model'])
+        except InvalidParameterError as error:
+            raise ctx.fail(path + ('model',), str(error)) from None
+        pose = values['pose']
+        robots.append(RobotSpec(values['name'], values['model'],
+                                *((pose.x_m, pose.y_m, pose.yaw_rad) if pose else ())))
+    return tuple(robots)
+
+
+def _actors(ctx, value, names, vehicle):
+    if value is None:
+        return ()
+    if not isinstance(value, list):
+        raise ctx.fail(('actors',), 'actors must be a list of {vehicle, waypoints, speed}')
+    actors, taken = [], set()
+    for index, entry in enumerate(value):
+        path = ('actors', index)
+        values = ctx.validated(ACTOR_SPECS, entry, path, 'an actor')
+        name = values['vehicle']
+        if name not in names:
+            raise ctx.fail(path + ('vehicle',), f'vehicle {name!r}: not in the world; '
+                                                f'vehicles: {", ".join(names)}')
+        if name == vehicle:
+            raise ctx.fail(path + ('vehicle',), f'vehicle {name!r} is the vehicle under test '
+                                                '(the driver drives it)')
+        if name in taken:
+            raise ctx.fail(path + ('vehicle',), f'vehicle {name!r} has two actors')
+        taken.add(name)
+        points = _waypoints(ctx, values['waypoints'], path + ('waypoints',),
+                            values['speed_mps'])
+        actors.append(ActorSpec(name, points, values['lookahead_m'], values['loop'],
+                                line_of(ctx.lines, path)))
+    return tuple(actors)
+
+
+def _waypoints(ctx, value, path, speed_mps):
+    if not isinstance(value, list) or not value:
+        raise ctx.fail(path, 'waypoints must be a non-empty list of [x, y] or [x, y, speed]')
+    points = []
+    for index, point in enumerate(value):
+        ok = isinstance(point, list) and len(point) in (2, 3) and all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and abs(v) < float('inf')
+            for v in point)
+        if not ok or (len(point) == 3 and point[2] < 0):
+            raise ctx.fail(path + (index,), f'waypoint {point!r}: must be [x, y] or '
+                                            '[x, y, speed >= 0] (finite numbers)')
+        points.append(Waypoint(float(point[0]), float(point[1]),
+                               float(point[2]) if len(point) == 3 else speed_mps))
+    return tuple(points)
+
+
+def _driver(ctx, value, drives_car):
+    path = ('driver',)
+    values = ctx.validated(DRIVER_SPECS, value, path, 'the driver')
+    given = [kind for kind in DRIVER_KINDS if values[kind] is not None]
+    if len(given) != 1:
+        raise ctx.fail(path, f'driver: give exactly one of {", ".join(DRIVER_KINDS)} '
+                             f'(got {", ".join(given) or "none"})')
+    kind = given[0]
+    if kind == 'commands':
+        if not drives_car:
+            raise ctx.fail(path + ('commands',), 'commands drive a car (Webots driver '
+                                                 'setters); a robot takes processes')
+        return DriverSpec(kind, commands=_commands(ctx, values['commands']))
+    if kind == 'controller':
+        if not drives_car:
+            raise ctx.fail(path + ('controller',), 'a Webots controller drives a car')
+        script = ctx.relative(values['controller'])
+        if not os.path.isfile(script):
+            raise ctx.fail(path + ('controller',), f'controller {values["controller"]!r}: no '
+                                                   f'such file (relative to {ctx.folder})')
+        return DriverSpec(kind, controller=script, args=tuple(values['args']))
+    return DriverSpec(kind, processes=_processes(ctx, values['processes']),
+                      real_time_factor=values['real_time_factor'],
+                      clock_subscribers=values['clock_subscribers'],
+                      startup_timeout_s=values['startup_timeout_s'],
+                      sync=_sync(ctx, values['sync']), sync_period_s=values['sync_period_s'],
+                      sync_timeout_s=values['sync_timeout_s'])
+
+
+def _sync(ctx, value):
+    path = ('driver', 'sync')
+    if not isinstance(value, (list, tuple)):
+        raise ctx.fail(path, 'sync must be a list of {topic, type}')
+    topics = []
+    for index, entry in enumerate(value):
+        if not (isinstance(entry, dict) and set(entry) == {'topic', 'type'}
+                and all(isinstance(v, str) and v for v in entry.values())):
+            raise ctx.fail(path + (index,), f'sync entry {entry!r}: must be {{topic: /name, '
+                                            'type: pkg/msg/Type}')
+        topics.append((entry['topic'], entry['type']))
+    return tuple(topics)
+
+
+def _commands(ctx, value):
+    path = ('driver', 'commands')
+    if not isinstance(value, list) or not value:
+        raise ctx.fail(path, 'commands must be a non-empty list of {t: s, <setter>: value}')
+    commands, last_t = [], 0.0
+    for index, entry in enumerate(value):
+        where = path + (index,)
+        if not isinstance(entry, dict) or 't' not in entry:
+            raise ctx.fail(where, f'command {entry!r}: must be a mapping with t (s) and '
+                                  'setters')
+        t_s = entry['t']
+        if isinstance(t_s, bool) or not isinstance(t_s, (int, float)) or not 0 <= t_s < 1e12:
+            raise ctx.fail(where + ('t',), f't = {t_s!r}: must be a finite time >= 0 s')
+        if t_s < last_t:
+            raise ctx.fail(where + ('t',), f't = {t_s!r}: commands must be in time order '
+                                           f'(previous t = {last_t!r})')
+        last_t = t_s
+        setters = []
+        for key, item in entry.items():
+            if key == 't':
+                continue
+            row = COMMAND_ROWS.get(key)
+            if row is None:
+                raise ctx.fail(where + (key,), f'unknown setter {key!r}; valid: '
+                                               + ', '.join(sorted(COMMAND_ROWS)))
+            setters.append((row.core_setter, _command_value(ctx, where + (key,), row, item),
+                            row.setter))
+        if not setters:
+            raise ctx.fail(where, 'a command needs at least one setter besides t')
+        commands.append(Command(float(t_s), tuple(setters), line_of(ctx.lines, where)))
+    return tuple(commands)
+
+
+def _command_value(ctx, path, row, value):
+    # The type only: ranges depend on the car and are the core setter's (checked at run start).
+    number = isinstance(value, (int, float)) and not isinstance(value, bool)
+    if row.kind == 'bool' and isinstance(value, bool):
+        return value
+    if row.kind in ('int', 'enum') and number and float(value).is_integer():
+        return int(value)
+    if row.kind == 'float' and number and abs(value) < float('inf'):
+        return float(value)
+    want = {'bool': 'true or false', 'int': 'an integer', 'enum': 'an integer',
+            'float': 'a finite number'}[row.kind]
+    raise ctx.fail(path, f'{path[-1]} = {value!r}: must be {want} ({row.setter}, '
+                         f'{row.unit or "no unit"})')
+
+
+def _processes(ctx, value):
+    path = ('driver', 'processes')
+    if isinstance(value, str):
+        value = [value]
+    if not isinstance(value, list) or not value:
+        raise ctx.fail(path, 'processes must be a command line or a list of them')
+    commands = []
+    for index, entry in enumerate(value):
+        if isinstance(entry, str):
+            argv = shlex.split(entry)
+        elif isinstance(entry, list) and all(isinstance(a, str) for a in entry):
+            argv = list(entry)
+        else:
+            argv = []
+        if not argv:
+            raise ctx.fail(path + (index,), f'process {entry!r}: a command line (a string or '
+                                            'a list of strings)')
+        commands.append(tuple(argv))
+    return tuple(commands)
+
+
+def schema_markdown():
+    """Return the key tables of docs/scenarios.md (the file format), generated from the specs."""
+    from vehicle_sim.core.param_spec import parameter_table_markdown
+    from vehicle_sim.scenarios.criteria import common_specs, CRITERIA
+    parts = ['#### Top level\n\n', parameter_table_markdown(SCENARIO_SPECS, 'key'),
+             '\n#### `robots` entries\n\n', parameter_table_markdown(ROBOT_SPECS, 'key'),
+             '\n#### `actors` entries\n\n', parameter_table_markdown(ACTOR_SPECS, 'key'),
+             '\n#### `driver`\n\n', parameter_table_markdown(DRIVER_SPECS, 'key'),
+             '\n#### `driver.commands` setters (besides `t` [s])\n\n',
+             '| key | Webots setter | value | unit | description |\n|---|---|---|---|---|\n']
+    for key, row in sorted(COMMAND_ROWS.items()):
+        parts.append(f'| `{key}` | `{row.setter}` | {row.kind} | {row.unit} | {row.doc} |\n')
+    parts += ['\n#### Keys of every criterion\n\n',
+              parameter_table_markdown(common_specs(), 'key')]
+    for kind, cls in CRITERIA.items():
+        table = (parameter_table_markdown(cls.SPECS, 'key') if cls.SPECS
+                 else 'No keys of its own.\n')
+        unit = cls.UNIT or "the field's unit"
+        parts.append(f'\n#### `{kind}` (measured value in {unit})\n\n{cls.__doc__.strip()}\n\n'
+                     + table)
+    return ''.join(parts)

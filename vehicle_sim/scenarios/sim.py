@@ -1,0 +1,226 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The simulation a scenario runs in: a World with the scenario's vehicles, plain or served.
+
+- :class:`LocalSim`: the World, its obstacles, cars (SimulatedCar) and robots (DiffRobotBody),
+  nothing on the network. Scripted commands and in-process controllers run here.
+- :class:`ServedSim`: the same world served over ROS in the runner's process, stepped
+  synchronously: the automobile node (cars; it owns the world and publishes /clock) and a robot
+  node per robot sharing that world (the first robot owns it when there is no car). External
+  controllers (subprocesses) and topic criteria need it.
+
+Both give a :class:`VehicleHandle` per vehicle name and call a ``director`` (the runner's
+per-step hooks) from the world's step.
+"""
+
+import math
+import os
+import struct
+import tempfile
+
+import yaml
+
+from vehicle_sim.config import load_car, load_robot
+from vehicle_sim.physics.diff_robot import DiffRobotBody
+from vehicle_sim.physics.simulated_car import SimulatedCar
+from vehicle_sim.physics.world import World
+from vehicle_sim.scenarios.criteria import Sample
+
+# One odometry row: time, pose (x, y, z, qx, qy, qz, qw), linear and angular velocity (world).
+ODOMETRY_ROW = struct.Struct('<14d')
+
+
+def _yaw(qx, qy, qz, qw):
+    return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+
+
+class VehicleHandle:
+    """
+    One vehicle of a scenario: a car (``car``: SimulatedCar) or a robot (``robot``).
+
+    :param name: its name in the scenario.
+    :param sensors: its SensorSpecs (cars; the in-process controller's devices).
+    """
+
+    def __init__(self, name, car=None, robot=None, sensors=()):
+        self.name = name
+        self.car = car
+        self.robot = robot
+        self.sensors = sensors
+        self.body = car.body if car is not None else robot
+
+    @property
+    def is_car(self):
+        return self.car is not None
+
+    def odometry_row(self, time_s):
+        """Return the packed ground-truth odometry row (ODOMETRY_ROW) at ``time_s``."""
+        pose = self.body.pose()
+        linear, angular = self.body.velocity()
+        return ODOMETRY_ROW.pack(time_s, *pose, *linear, *angular)
+
+    def sample(self, time_s):
+        """Return the criteria's Sample: position, heading, forward speed."""
+        x, y, _, qx, qy, qz, qw = self.body.pose()
+        if self.car is not None:
+            speed = self.body.forward_speed_mps()
+        else:
+            speed = self.robot.body_twist()[0][0]
+        return Sample(time_s, x, y, _yaw(qx, qy, qz, qw), speed)
+
+
+def _seeded(sensors, seed):
+    from dataclasses import replace
+    return tuple(replace(spec, seed=seed) for spec in sensors)
+
+
+class LocalSim:
+    """
+    The scenario's world without ROS.
+
+    :param spec: ScenarioSpec.
+    :param director: registered first, so its ``pre_step`` (scripted commands, actors) acts in
+        the same step and its ``post_step`` sees the step's result.
+    :param seed: the run's seed (every sensor's noise seed).
+    :param gui: open PyBullet's GUI.
+    """
+
+    served = False
+
+    def __init__(self, spec, director, seed, gui=False):
+        self.world = world = World(time_step_s=spec.time_step_ms / 1000.0, gui=gui)
+        try:
+            world.add_body(director)
+            for obstacle in spec.world.obstacles:
+                world.add_obstacle(obstacle)
+            self.vehicles = {}
+            for vehicle in spec.world.vehicles:
+                car = SimulatedCar(world, load_car(vehicle.model),
+                                   (vehicle.x_m, vehicle.y_m, vehicle.yaw_rad), name=vehicle.name)
+                self.vehicles[vehicle.name] = VehicleHandle(
+                    vehicle.name, car=car, sensors=_seeded(vehicle.sensors, seed))
+            for robot in spec.robots:
+                body = DiffRobotBody(world, load_robot(robot.model),
+                                     (robot.x_m, robot.y_m, robot.yaw_rad), name=robot.name)
+                self.vehicles[robot.name] = VehicleHandle(robot.name, robot=body)
+        except BaseException:
+            world.close()
+            raise
+
+    def step(self):
+        """Advance one basic step; return the time [s]."""
+        return self.world.step()
+
+    def spin(self):
+        """Nothing to serve."""
+
+    def close(self):
+        self.world.close()
+
+
+class ServedSim:
+    """
+    The scenario's world served over ROS (synchronous, /clock each step).
+
+    :param spec: ScenarioSpec.
+    :param director: registered with the world once it exists (after the served vehicles: their
+        commands of a step are those set before it).
+    :param transport: the nodes' transport (None = VEHICLE_SIM_TRANSPORT).
+    """
+
+    served = True
+
+    def __init__(self, spec, director, seed, gui=False, transport=None):
+        from vehicle_sim.ros.diff_robot_node import DiffRobotNode
+        self.automobile = None
+        self.robot_nodes = []
+        self._temp = None
+        self.vehicles = {}
+        step_ms = spec.time_step_ms
+        try:
+            if spec.world.vehicles:
+                from vehicle_sim.ros.car_sim import AutomobileNode
+                self.automobile = AutomobileNode(transport=transport, parameter_overrides={
+                    'world': self._world_file(spec), 'synchronous': True,
+                    'time_step_ms': step_ms})
+                world = self.automobile.world
+                cars = self.automobile.vehicles
+                for vehicle in spec.world.vehicles:
+                    self.vehicles[vehicle.name] = VehicleHandle(
+                        vehicle.name, car=cars[vehicle.namespace], sensors=vehicle.sensors)
+            else:
+                world = None
+            for robot in spec.robots:
+                node = DiffRobotNode(world=world, transport=transport, node_name=robot.name,
+                                     parameter_overrides={
+                                         'robot': robot.model, 'x': robot.x_m, 'y': robot.y_m,
+                                         'yaw': robot.yaw_rad, 'synchronous': True,
+                                         'time_step_ms': step_ms})
+                self.robot_nodes.append(node)
+                if world is None:
+                    world = node.world
+                    for obstacle in spec.world.obstacles:
+                        world.add_obstacle(obstacle)
+                self.vehicles[robot.name] = VehicleHandle(robot.name, robot=node.robot)
+            self.world = world
+            world.add_body(director)
+        except BaseException:
+            self.close()
+            raise
+
+    def _world_file(self, spec):
+        if spec.world_file:
+            return spec.world_file
+        handle, path = tempfile.mkstemp(prefix='vehicle_sim_world_', suffix='.yaml')
+        with os.fdopen(handle, 'w', encoding='utf-8') as stream:
+            yaml.safe_dump(spec.world_data, stream)
+        self._temp = path
+        return path
+
+    @property
+    def nodes(self):
+        """The transport nodes to spin."""
+        nodes = [self.automobile.node] if self.automobile is not None else []
+        return nodes + [robot.node for robot in self.robot_nodes]
+
+    def step(self):
+        """Advance one basic step and publish (/clock, the vehicles' topics)."""
+        if self.automobile is not None:
+            time_s = self.automobile.step_once()
+            for robot in self.robot_nodes:
+                robot.publish_state()
+            return time_s
+        owner, *others = self.robot_nodes
+        owner.step()          # owns the world: steps it and publishes /clock
+        for robot in others:
+            robot.publish_state()
+        return self.world.time_s
+
+    def spin(self):
+        """Serve pending requests and messages of every node (non-blocking)."""
+        for node in self.nodes:
+            node.spin_once(0.0)
+
+    def close(self):
+        for robot in reversed(self.robot_nodes):
+            robot.destroy()
+        self.robot_nodes = []
+        if self.automobile is not None:
+            self.automobile.close()
+            self.automobile = None
+        if self._temp is not None:
+            os.unlink(self._temp)
+            self._temp = None

@@ -1,0 +1,162 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+``vehicle-sim scenario FILE``: run a scenario file headless and judge it (docs/scenarios.md).
+
+Prints each criterion with its measured value, optionally writes JUnit XML (``--junit``) and a
+trajectory plot (``--plot``, needs matplotlib). Exit status: 0 when every criterion passes, 1
+when one fails or the run itself failed (a controller raised, a process died), 2 for a usage
+error, an invalid scenario file or ``--plot`` without matplotlib.
+"""
+
+import signal
+import sys
+import threading
+import time
+
+from vehicle_sim.tools.command import CliError, EXIT_FAILURE, EXIT_OK, EXIT_USAGE
+
+BAR_WIDTH = 30
+BAR_PERIOD_S = 0.1          # a tty progress bar redraws at most this often (wall clock)
+PLAIN_STEPS = 4             # elsewhere, a line at each quarter of the duration
+
+
+def add_arguments(parser):
+    """Add the ``scenario`` arguments to its sub-parser."""
+    parser.add_argument('file', metavar='FILE', help='scenario file (.yaml)')
+    parser.add_argument('--junit', metavar='OUT.xml', help="write JUnit XML (pytest's format)")
+    parser.add_argument('--seed', type=int, metavar='N', help="override the file's seed")
+    parser.add_argument('--gui', action='store_true', help="open PyBullet's window")
+    parser.add_argument('--plot', metavar='OUT.png', help='write a trajectory plot (matplotlib)')
+    parser.add_argument('--repeat', type=int, default=1, metavar='N',
+                        help='run N times and report the spread of the measured values '
+                             '(external processes are not deterministic)')
+    parser.add_argument('--no-progress', action='store_true', help='no progress display')
+
+
+class Progress:
+    """A progress bar on a terminal, a line per quarter elsewhere."""
+
+    def __init__(self, stream, name):
+        self.stream = stream
+        self.name = name
+        self.tty = stream.isatty()
+        self._last = 0.0
+        self._quarter = 0
+
+    def __call__(self, time_s, duration_s):
+        fraction = min(1.0, time_s / duration_s)
+        if self.tty:
+            now = time.monotonic()
+            if now - self._last < BAR_PERIOD_S and fraction < 1.0:
+                return
+            self._last = now
+            filled = int(round(fraction * BAR_WIDTH))
+            self.stream.write(f'\r{self.name} [{"#" * filled}{"." * (BAR_WIDTH - filled)}] '
+                              f'{time_s:7.2f} / {duration_s:g} s')
+            self.stream.flush()
+        elif fraction >= (self._quarter + 1) / PLAIN_STEPS - 1e-9:
+            self._quarter = int(fraction * PLAIN_STEPS + 1e-9)
+            print(f'{self.name}: t = {time_s:.2f} / {duration_s:g} s', file=self.stream)
+
+    def done(self):
+        if self.tty:
+            self.stream.write('\n')
+            self.stream.flush()
+
+
+def _shown(value):
+    return '-' if value is None else f'{value:.4g}'
+
+
+def report_lines(result):
+    """Return the printed report of a ScenarioResult: one line per criterion, then the verdict."""
+    lines = []
+    for criterion in result.criteria:
+        mark = 'PASS' if criterion.passed else 'FAIL'
+        value = ('-' if criterion.value is None else
+                 f'{criterion.value:.4g} {criterion.unit}'.strip())
+        line = f'  {mark}  {criterion.name}: {value}  ({criterion.detail})'
+        if result.spread and criterion.name in result.spread:
+            low, high = result.spread[criterion.name]
+            line += f' [over {result.runs} runs: min {_shown(low)}, max {_shown(high)}]'
+        lines.append(line)
+    if result.error:
+        lines.append(f'  ERROR run: {result.error}')
+    passed = sum(c.passed for c in result.criteria)
+    verdict = 'PASS' if result.passed else 'FAIL'
+    lines.append(f'{verdict}: {passed}/{len(result.criteria)} criteria passed; '
+                 f'{result.sim_time_s:g} s simulated in {result.wall_time_s:.2f} s; '
+                 f'odometry sha256 {result.odometry_sha256[:16]}')
+    if not result.deterministic:
+        lines.append('note: an external controller drives this scenario: runs are not '
+                     'deterministic (use --repeat N for the spread)')
+    return lines
+
+
+def _exit_on_sigterm():
+    if threading.current_thread() is threading.main_thread():
+        def handler(signum, frame):
+            raise SystemExit(128 + signum)
+        signal.signal(signal.SIGTERM, handler)
+
+
+def cmd_scenario(args) -> int:
+    """Run ``vehicle-sim scenario``."""
+    from vehicle_sim.scenarios.runner import run_scenario
+    from vehicle_sim.scenarios.schema import load_scenario
+    from vehicle_sim.scenarios.yaml_lines import ScenarioError
+    if args.repeat < 1:
+        raise CliError(f'--repeat {args.repeat}: must be >= 1', EXIT_USAGE)
+    if args.seed is not None and args.seed < 0:
+        raise CliError(f'--seed {args.seed}: must be >= 0', EXIT_USAGE)
+    if args.plot:
+        from vehicle_sim.scenarios.plot import PlotUnavailable, require
+        try:
+            require()
+        except PlotUnavailable as error:
+            raise CliError(str(error), EXIT_USAGE) from None
+    try:
+        spec = load_scenario(args.file)
+    except ScenarioError as error:
+        raise CliError(str(error), EXIT_USAGE) from None
+    seed = spec.seed if args.seed is None else args.seed
+    print(f'scenario {spec.name} ({args.file}), seed {seed}, {spec.duration_s:g} s, driver: '
+          f'{spec.driver.kind}')
+    from vehicle_sim.scenarios.runner import needs_serving
+    if args.gui and needs_serving(spec):
+        print('note: --gui applies to local runs; this scenario is served over ROS by the '
+              'automobile/robot nodes, which open no window', file=sys.stderr)
+    progress = None if args.no_progress else Progress(sys.stderr, spec.name)
+    _exit_on_sigterm()      # so that the driver's processes are stopped on the way out
+    try:
+        result = run_scenario(spec, seed=args.seed, gui=args.gui, progress=progress,
+                              repeat=args.repeat)
+    except ScenarioError as error:
+        raise CliError(str(error), EXIT_FAILURE) from None
+    finally:
+        if progress is not None:
+            progress.done()
+    for line in report_lines(result):
+        print(line)
+    if args.junit:
+        from vehicle_sim.scenarios.junit import write_junit
+        write_junit(result, args.junit)
+        print(f'wrote {args.junit}')
+    if args.plot:
+        from vehicle_sim.scenarios.plot import plot_result
+        plot_result(result, args.plot)
+        print(f'wrote {args.plot}')
+    return EXIT_OK if result.passed else EXIT_FAILURE
