@@ -121,10 +121,39 @@ def joint_state(names, frame_id: str = ''):
     return serialize
 
 
+def tf_message(frames):
+    """
+    Return ``serialize(stamp, poses)``: tf2_msgs/TFMessage, one transform per (parent, child).
+
+    The same constants and values as ``tf_message_builder``. The frame ids are constant, so
+    the whole layout (each transform's frame ids and paddings) is packed once here; a call packs
+    the stamp and the seven numbers of each pose.
+    """
+    frames = tuple(frames)
+    fmt, offset, middles = '<4sI', 4, []        # offset: after the sequence length
+    for pair in frames:
+        pad = _pad(offset, 4)                     # each TransformStamped starts 4-aligned
+        middle = _strings(offset + pad + 8, pair, 8)
+        middles.append(middle)
+        fmt += f'{pad}xiI{len(middle)}s7d'
+        offset += pad + 8 + len(middle) + 7 * 8
+    pack = struct.Struct(fmt).pack
+    count = len(frames)
+
+    def serialize(stamp, poses):
+        sec, nanosec = stamp.sec, stamp.nanosec
+        values = [CDR_LE, count]
+        for middle, (xyz, q) in zip(middles, poses):
+            values += (sec, nanosec, middle, xyz[0], xyz[1], xyz[2], q[0], q[1], q[2], q[3])
+        return pack(*values)
+    return serialize
+
+
 # ROS type -> serializer factory (the constants of the type's message builder).
 SERIALIZERS = {
     'rosgraph_msgs/msg/Clock': clock,
     'vehicle_msgs/msg/Float64Stamped': float64_stamped,
     'nav_msgs/msg/Odometry': odometry,
     'sensor_msgs/msg/JointState': joint_state,
+    'tf2_msgs/msg/TFMessage': tf_message,
 }
