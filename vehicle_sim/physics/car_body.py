@@ -217,13 +217,15 @@ class CarBody:
         pos, orn = pybullet.multiplyTransforms(com_pos, com_orn, *self._com_to_link)
         return tuple(pos) + tuple(orn)
 
-    def velocity(self):
+    def velocity(self, pose=None):
         """
         Velocity of base_link in the world frame.
 
+        :param pose: this step's ``pose()``, when the caller has it already.
         :return: ((vx, vy, vz) [m/s], (wx, wy, wz) [rad/s]).
         """
-        return self.world.base_link_velocity(self.body_id, self.pose()[:3])
+        return self.world.base_link_velocity(self.body_id,
+                                             (pose if pose is not None else self.pose())[:3])
 
     def _axes(self, pose):
         matrix = pybullet.getMatrixFromQuaternion(pose[3:], physicsClientId=self._cid)

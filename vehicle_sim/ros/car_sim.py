@@ -118,7 +118,7 @@ class _Vehicle:
         self.torque_mode = status.control_mode == ControlMode.TORQUE
         body = self.body
         pose = body.pose()
-        linear, angular = body.velocity()
+        linear, angular = body.velocity(pose)
         xyz, q = pose_in_frame(self.spawn_xyz, self.spawn_q, pose[:3], pose[3:])
         linear_b, angular_b = twist_in_body(pose[3:], linear, angular)
         self.odom = (xyz, q, linear_b, angular_b)

@@ -105,6 +105,21 @@ def write_serialized(writer, data: bytes) -> None:
         raise DDSException(ret, f'Occurred while writing serialized data in {writer!r}')
 
 
+def serialized_writer(writer):
+    """
+    Return ``write(data)``: :func:`write_serialized` bound to ``writer``, for a hot loop.
+
+    ``data`` must be ``bytes`` (what ``struct.pack`` returns); the writer's handle is looked up
+    once here.
+    """
+    ref = writer._ref
+
+    def write(data: bytes) -> None:
+        if ddspy_write(ref, data) < 0:
+            write_serialized(writer, data)    # raises with Cyclone's error
+    return write
+
+
 def delete_entity(entity: Entity) -> None:
     """Delete a DDS entity now (not at garbage collection), exactly once."""
     ref = getattr(entity, '_ref', None)

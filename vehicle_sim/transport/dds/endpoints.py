@@ -62,6 +62,7 @@ class DdsPublisher(port.Publisher):
         self._type = msg_type
         self.topic_name = topic_name
         self.serialized_writes = 0    # samples written by publish_serialized
+        self._write_serialized = cyclone_private.serialized_writer(writer)
 
     def publish(self, msg) -> None:
         if type(msg) is not self._type:
@@ -71,7 +72,7 @@ class DdsPublisher(port.Publisher):
 
     def publish_serialized(self, data: bytes) -> None:
         """Write CDR bytes (with the encapsulation header) of this topic's type, unchecked."""
-        cyclone_private.write_serialized(self._writer, data)
+        self._write_serialized(data if type(data) is bytes else bytes(data))
         self.serialized_writes += 1
 
     def get_subscription_count(self) -> int:
