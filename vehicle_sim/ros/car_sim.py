@@ -336,9 +336,12 @@ class AutomobileNode:
         """
         Advance the world by one basic step and publish; return the simulated time [s].
 
-        /clock is published every step, the other topics every publish period.
+        /clock is published every step, the other topics every publish period. Requests that
+        came in during the physics step are served before the publishing (they take effect at
+        the next step), so none waits for the whole step.
         """
         time_s = self.world.step()
+        self.node.serve_pending()
         self._publish_step(time_s)
         return time_s
 

@@ -605,6 +605,16 @@ class NodePort(abc.ABC):
     def spin(self) -> None:
         """Spin until shutdown() (or a signal handled by run_node)."""
 
+    def serve_pending(self) -> None:
+        """
+        From inside a callback, run the handlers of requests and messages already received.
+
+        A long callback (a simulation step) calls it between its parts, so that a request
+        waits for one part, not the whole callback. It never waits and never fires timers.
+        The default does nothing: an adapter whose executor cannot run handlers from inside a
+        callback (rclpy's) serves them at its next spin, as before.
+        """
+
     def spin_until(self, predicate: Callable[[], bool], timeout_s: float) -> bool:
         """Spin until ``predicate()`` is true; return False if ``timeout_s`` passed first."""
         deadline = time.monotonic() + timeout_s

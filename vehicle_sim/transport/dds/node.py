@@ -322,6 +322,10 @@ class DdsNode(port.NodePort):
                 self._logger.warning(warning)
         self._executor.spin_once(timeout_s)
 
+    def serve_pending(self) -> None:
+        if not self._shutdown:
+            self._executor.serve_pending()
+
     def spin(self) -> None:
         while self.ok():
             self.spin_once(SPIN_SLICE_S)
