@@ -277,7 +277,7 @@ class AutomobileClient:
         """
         Advance the simulation by ``steps`` basic steps, or by ``ms`` milliseconds.
 
-        :return: the simulated time after the step [s].
+        :return: the simulated time after the step [s] (the stamp of the node's /clock).
         :raises AssertionError: when the node refused the step.
         """
         if self.basic_time_step_ms is None:
@@ -291,7 +291,10 @@ class AutomobileClient:
         assert response.success, (f'robot/time_step {ms} ms refused (a multiple of '
                                   f'{self.basic_time_step_ms} ms, node synchronous?)')
         self._expected_s += max(ms, self.basic_time_step_ms) / 1000.0
-        return self.sim_time()
+        # The node publishes /clock at every step, before its reply: the /clock message of the
+        # new time is the answer, without a robot/get_time round trip.
+        self._time_s = stamp_s(self.latest(self._itf.CLOCK.name))
+        return self._time_s
 
     def wait_until_ready(self, timeout_s: float, alive: Callable[[], bool] = lambda: True):
         """Wait for the node's services and the subscriptions' matches; start the time base."""
