@@ -30,20 +30,12 @@ import subprocess
 import sys
 import time
 
+from bench_common import process_cpu_s, use_free_domain
+
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, REPO_ROOT)
-os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
-os.environ.setdefault('ROS_DOMAIN_ID', str(102 + os.getpid() % 100))
 
 TARGET_SHARE = 0.20
-
-
-def cpu_seconds(pid):
-    """Return utime + stime [s] of a process from /proc/<pid>/stat."""
-    with open(f'/proc/{pid}/stat', encoding='ascii') as stream:
-        fields = stream.read().rsplit(')', 1)[1].split()
-    ticks = int(fields[11]) + int(fields[12])   # utime, stime (fields 14, 15 of stat)
-    return ticks / os.sysconf('SC_CLK_TCK')
 
 
 def measure_node(seconds, step_ms):
@@ -73,11 +65,11 @@ def measure_node(seconds, step_ms):
             listener.spin_once(0.05)
         for key in counts:
             counts[key] = 0
-        cpu0, wall0 = cpu_seconds(proc.pid), time.monotonic()
+        cpu0, wall0 = process_cpu_s(proc.pid), time.monotonic()
         end = wall0 + seconds
         while time.monotonic() < end:
             listener.spin_once(0.05)
-        cpu1, wall1 = cpu_seconds(proc.pid), time.monotonic()
+        cpu1, wall1 = process_cpu_s(proc.pid), time.monotonic()
     finally:
         proc.terminate()
         proc.wait(30)
@@ -111,6 +103,7 @@ def main():
     parser.add_argument('--seconds', type=float, default=10.0)
     parser.add_argument('--step-ms', type=int, default=10)
     options = parser.parse_args()
+    use_free_domain()
     share, wall, counts = measure_node(options.seconds, options.step_ms)
     clock = counts.get('/clock', 0)
     print(f'automobile node, all topics every {options.step_ms} ms step, real time, '
