@@ -168,3 +168,22 @@ def test_the_tf_row_is_written_serialized_and_static_tf_stays_a_message(nodes):
     assert [(t.header.frame_id, t.child_frame_id, t.header.stamp.sec, t.header.stamp.nanosec,
              t.transform.translation.x, t.transform.rotation.w) for t in transforms] == \
         [('odom', 'base_link', 5, 7, 1.0, 0.75), ('car1/odom', 'car1/base_link', 5, 7, -4.0, 1.0)]
+
+
+def test_a_raw_subscription_gets_the_bytes_and_deserialize_decodes_them(nodes):
+    node, reader = nodes
+    outputs = endpoints.Outputs(node, (SPEED,), SimpleNamespace(base_frame='b'),
+                                resolve=lambda name: f'/fast/{name}')
+    raw, decoded = [], []
+    reader.create_subscription(SPEED.ros_type, '/fast/automobile/current_speed', raw.append,
+                               SPEED.qos, raw=True)
+    reader.create_subscription(SPEED.ros_type, '/fast/automobile/current_speed', decoded.append,
+                               SPEED.qos)
+    assert wait_for(lambda: outputs.publishers[SPEED].get_subscription_count() == 2, spin=reader)
+    outputs.publish(itf.EACH_PUBLISH, _call(6, 9, -3.25))
+    assert wait_for(lambda: raw and decoded, spin=reader)
+    assert type(raw[0]) is bytes
+    assert raw[0] == outputs.messages(itf.EACH_PUBLISH, _call(6, 9, -3.25))[SPEED].serialize()
+    message = reader.deserialize(SPEED.ros_type, raw[0])
+    assert message == decoded[0]
+    assert (message.header.stamp.sec, message.header.frame_id, message.data) == (6, 'b', -3.25)

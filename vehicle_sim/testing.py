@@ -97,10 +97,39 @@ def stamp_s(msg: Any) -> float:
 
 @dataclass
 class _Topic:
+    """
+    A subscribed topic: what came in, decoded when first looked at.
+
+    The subscription keeps each message's bytes; a test looks at few of the messages of every
+    step (the newest, mostly), so decoding them all on receipt would cost the test's CPU for
+    nothing.
+    """
+
     name: str
     ros_type: str
-    messages: List[Any] = field(default_factory=list)
+    decode: Callable[[bytes], Any]
+    items: List[Any] = field(default_factory=list)   # bytes, or the message once decoded
     subscription: Any = None
+
+    def add(self, data: bytes) -> None:
+        items = self.items
+        items.append(data)
+        if len(items) > MAX_HISTORY:
+            del items[:len(items) - MAX_HISTORY]
+
+    def __len__(self) -> int:
+        return len(self.items)
+
+    def __getitem__(self, index: int):
+        item = self.items[index]
+        if isinstance(item, bytes):
+            item = self.items[index] = self.decode(item)
+        return item
+
+    @property
+    def messages(self) -> List[Any]:
+        """Every message kept (oldest first), decoded."""
+        return [self[index] for index in range(len(self.items))]
 
 
 class AutomobileClient:
@@ -163,16 +192,12 @@ class AutomobileClient:
         found = self._topics.get(full)
         if found is None:
             from vehicle_sim.transport.port import QosProfile
-            found = _Topic(full, spec.ros_type)
+            found = _Topic(full, spec.ros_type,
+                           lambda data, ros_type=spec.ros_type: self.node.deserialize(ros_type,
+                                                                                        data))
             qos = QosProfile(depth=max(10, spec.qos.depth), durability=spec.qos.durability)
-
-            def on_message(msg, topic=found):
-                topic.messages.append(msg)
-                if len(topic.messages) > MAX_HISTORY:
-                    del topic.messages[:len(topic.messages) - MAX_HISTORY]
-
             found.subscription = self.node.create_subscription(
-                spec.ros_type, full, on_message, qos)
+                spec.ros_type, full, found.add, qos, raw=True)
             self._topics[full] = found
         return found
 
@@ -184,7 +209,7 @@ class AutomobileClient:
     def messages(self, name: str) -> List[Any]:
         """Return every message received on a topic so far (oldest first)."""
         self.node.spin_once(0.0)
-        return list(self.topic(name).messages)
+        return self.topic(name).messages
 
     def _fresh_after_ns(self) -> int:
         """Stamp the newest message must reach: the last publishing step at the current time."""
@@ -206,15 +231,15 @@ class AutomobileClient:
         needed = self._fresh_after_ns()
 
         def fresh():
-            return bool(topic.messages) and (
-                not _has_stamp(topic.messages[-1]) or stamp_ns(topic.messages[-1]) >= needed)
+            return len(topic) > 0 and (
+                not _has_stamp(topic[-1]) or stamp_ns(topic[-1]) >= needed)
 
         if not self.node.spin_until(fresh, self.timeout_s if timeout_s is None else timeout_s):
-            got = (f'; newest stamp {stamp_s(topic.messages[-1]):.3f} s' if topic.messages
+            got = (f'; newest stamp {stamp_s(topic[-1]):.3f} s' if len(topic)
                    else '; nothing received')
             raise TimeoutError(f'no message on {topic.name} for sim time '
                                f'{(self._expected_s or 0.0):.3f} s{got}')
-        return topic.messages[-1]
+        return topic[-1]
 
     def wait_for(self, name: str, predicate: Callable[[Any], bool],
                  timeout_s: Optional[float] = None):
@@ -226,13 +251,13 @@ class AutomobileClient:
         :raises TimeoutError: when none did within the timeout.
         """
         topic = self.topic(name)
-        index = max(0, len(topic.messages) - 1)
+        index = max(0, len(topic) - 1)
         found = []
 
         def check():
             nonlocal index
-            while index < len(topic.messages):
-                msg = topic.messages[index]
+            while index < len(topic):
+                msg = topic[index]
                 index += 1
                 if predicate(msg):
                     found.append(msg)

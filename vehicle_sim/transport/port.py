@@ -539,8 +539,19 @@ class NodePort(abc.ABC):
     def create_publisher(self, ros_type: str, topic: str, qos=None) -> Publisher: ...
 
     @abc.abstractmethod
-    def create_subscription(self, ros_type: str, topic: str, callback, qos=None) -> Subscription:
-        ...
+    def create_subscription(self, ros_type: str, topic: str, callback, qos=None, *,
+                            raw: bool = False) -> Subscription:
+        """
+        Call ``callback(message)`` for each message received on ``topic``.
+
+        :param raw: hand the callback each message's serialized bytes (CDR with its 4-byte
+            encapsulation header, as rclpy's ``raw=True``) instead of the message; decode one
+            later with :meth:`deserialize` (a reader that keeps many messages and looks at few).
+        """
+
+    def deserialize(self, ros_type: str, data: bytes):
+        """Return the message of ``ros_type`` whose serialized bytes are ``data``."""
+        return self.msg(ros_type).deserialize(bytes(data))
 
     @abc.abstractmethod
     def create_service(self, srv_type: str, name: str, callback) -> Service:

@@ -195,9 +195,14 @@ class RclpyNode(port.NodePort):
     def create_publisher(self, ros_type: str, topic: str, qos=None):
         return self.node.create_publisher(import_type(ros_type), topic, to_rclpy_qos(qos))
 
-    def create_subscription(self, ros_type: str, topic: str, callback, qos=None):
+    def create_subscription(self, ros_type: str, topic: str, callback, qos=None, *,
+                            raw: bool = False):
         return _Subscription(self.node, self.node.create_subscription(
-            import_type(ros_type), topic, callback, to_rclpy_qos(qos)))
+            import_type(ros_type), topic, callback, to_rclpy_qos(qos), raw=raw))
+
+    def deserialize(self, ros_type: str, data: bytes):
+        from rclpy.serialization import deserialize_message
+        return deserialize_message(bytes(data), import_type(ros_type))
 
     def create_service(self, srv_type: str, name: str, callback, qos=port.QOS_SERVICES):
         executor = self.executor
