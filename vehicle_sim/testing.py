@@ -47,7 +47,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from typing import Any, Callable, Dict, List, Optional
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import pytest
 
@@ -158,6 +158,7 @@ class AutomobileClient:
                                 transport=transport,
                                 args=['--ros-args', '--disable-rosout-logs'])
         self._topics: Dict[str, _Topic] = {}
+        self._found: Dict[Tuple[str, str], Tuple[Any, str]] = {}   # (name, kind) -> _find
         self._clients: Dict[str, Any] = {}
         self._time_s = None       # the node's answer to robot/get_time [s]
         self._expected_s = None   # start time plus the steps this client requested [s]
@@ -175,10 +176,14 @@ class AutomobileClient:
         return spec_name if spec_name.startswith('/') else f'{self.namespace}/{spec_name}'
 
     def _find(self, name: str, specs, kind: str):
+        found = self._found.get((name, kind))    # tests ask for the same few names each step
+        if found is not None:
+            return found
         for spec in specs:
             full = self._full(spec.name)
             if name in (full, spec.name, spec.short_name, full.lstrip('/')):
-                return spec, full
+                found = self._found[(name, kind)] = (spec, full)
+                return found
         from vehicle_sim.graph import close_names
         names = [self._full(s.name) for s in specs]
         close = close_names(name if name.startswith('/') else '/' + name, names)
