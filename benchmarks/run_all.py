@@ -43,7 +43,8 @@ def _load():
 def bare_write_us(count=20000):
     """Return the cost of a DDS write of serialized Float64Stamped bytes, no reader [us]."""
     from vehicle_msgs_py import types
-    from vehicle_sim.transport.dds import DdsNode, fast_cdr
+    from vehicle_sim.transport import fast_cdr
+    from vehicle_sim.transport.dds import DdsNode
     node = DdsNode('bench_floor')
     try:
         publisher = node.create_publisher('vehicle_msgs/msg/Float64Stamped', '/bench_floor/x')
@@ -79,7 +80,8 @@ def matched_write_us(count=3000):
     import subprocess
 
     from vehicle_msgs_py import types
-    from vehicle_sim.transport.dds import DdsNode, fast_cdr
+    from vehicle_sim.transport import fast_cdr
+    from vehicle_sim.transport.dds import DdsNode
     reader = subprocess.Popen([sys.executable, '-c', _READER], stdout=subprocess.PIPE,
                               text=True)
     node = DdsNode('bench_floor_writer')

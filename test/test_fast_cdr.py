@@ -21,7 +21,7 @@ import pytest
 
 from vehicle_msgs_py import message_type, to_rosbags, typestore
 from vehicle_sim.ros import messages as m
-from vehicle_sim.transport.dds import fast_cdr
+from vehicle_sim.transport import fast_cdr
 
 STAMPS = [(0, 0), (1, 999_999_999), (-5, 3), (2**31 - 1, 4_000_000_000), (1_700_000_000, 1)]
 VALUES = [0.0, -0.0, 27.5, -1e-3, 1e300, -math.inf, math.inf, math.nan, 5, True]

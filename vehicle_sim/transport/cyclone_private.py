@@ -25,8 +25,9 @@ each internal is needed:
   rest of the batch, already removed from the reader, is lost. ``ddspy_take`` returns each
   sample's CDR bytes and SampleInfo, so each one is deserialized on its own.
 * :func:`write_serialized` (``_clayer.ddspy_write``): writes bytes that are already CDR: the
-  publishing fast path (``DdsPublisher.publish_serialized``, bytes of ``dds/fast_cdr.py``; the
-  public ``DataWriter.write`` type-checks and serializes a message object itself), a malformed
+  publishing fast path (``DdsPublisher.publish_serialized``, bytes of
+  ``transport/fast_cdr.py``; the public ``DataWriter.write`` type-checks and serializes a
+  message object itself), a malformed
   sample in a test, or recorded bytes re-published unchanged.
 * :func:`delete_entity` / :func:`delete_participant` (``Entity._entities``, ``Entity._delete``,
   ``Entity._ref``): the public API deletes an entity only when Python collects it (and not at

@@ -29,8 +29,7 @@ from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
 
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.transport import cyclone_private, port
-from vehicle_sim.transport.dds import fast_cdr
+from vehicle_sim.transport import cyclone_private, fast_cdr, port
 from vehicle_sim.transport.dds.context import Context
 from vehicle_sim.transport.dds.endpoints import (
     DdsPublisher,
