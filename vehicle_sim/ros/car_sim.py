@@ -361,9 +361,12 @@ class AutomobileNode:
         outputs.publish(EACH_STEP, fleet)
         if self.world.step_count % self._publish_every == 0:
             vehicles = self._vehicles
+            serve_pending = self.node.serve_pending if len(vehicles) > 1 else None
             for vehicle in vehicles:
                 vehicle.sample(stamp)
                 vehicle.outputs.publish(EACH_PUBLISH, vehicle)
+                if serve_pending is not None:   # a request waits for one car's burst at most
+                    serve_pending()
             fleet.tf_poses = [vehicle.odom[:2] for vehicle in vehicles]
             outputs.publish(EACH_PUBLISH, fleet)
         for vehicle in self._sensing:
