@@ -151,7 +151,10 @@ def collect(quick):
         f'simulation server p50 {sim_p50:.0f} us, p99 {sim_p99:.0f} us; plain embedded node '
         f'p50 {service["embedded"][0]:.0f} us, p99 {service["embedded"][1]:.0f} us',
         f'over ROS: {ros["ros_us"]:.0f} us per step wall, of which the node\'s CPU '
-        f'{ros["node_cpu_us"]:.0f} us; in process {ros["inproc_us"]:.0f} us',
+        f'{ros["node_cpu_us"]:.0f} us (with a core to itself: '
+        f'{10_000.0 / ros["node_cpu_us"]:.1f}x real time, '
+        f'{ros["node_cpu_us"] / ros["inproc_us"]:.2f}x in process); in process '
+        f'{ros["inproc_us"]:.0f} us',
         f'plugin steps: node CPU {plugin["node_cpu_ms_per_step"]:.3f} ms, test process CPU '
         f'{plugin["client_cpu_ms_per_step"]:.3f} ms per step',
         f'topics received in the CPU-share window: /clock {counts.get("/clock", 0)}',
