@@ -117,6 +117,60 @@ def measure_in_process(steps, repeats):
     return walls
 
 
+_READER = """
+import time
+from vehicle_sim.transport.dds import DdsNode
+node = DdsNode("bench_ros_sync_reader")
+node.create_subscription("rosgraph_msgs/msg/Clock", "/clock", lambda m: None)
+node.create_subscription("vehicle_msgs/msg/Float64Stamped", "/bench_node/automobile/current_speed",
+                         lambda m: None)
+print("READY", flush=True)
+end = time.monotonic() + 120.0
+while time.monotonic() < end:
+    node.spin_once(0.1)
+"""
+
+
+def measure_node_in_process(steps, repeats):
+    """
+    Return the node's CPU per step [us] in this process: no subscriber, two in another one.
+
+    The two subscribe to ``/clock`` and ``current_speed``, as in :func:`measure_ros`. The
+    difference is what delivering samples to another process costs the publisher.
+    """
+    from vehicle_sim.ros.automobile_node import AutomobileNode
+    app = AutomobileNode(['bench', '--ros-args', '-r', '__ns:=/bench_node', '-p',
+                          'synchronous:=true', '-p', f'car_model:={CAR}'], transport='dds')
+    reader = None
+    try:
+        app.vehicles[''].logic.set_cruising_speed_kmh(SPEED_KMH)
+        app.step(200)
+
+        def cpu_per_step():
+            start = time.process_time()
+            app.step(steps)
+            return (time.process_time() - start) / steps * 1e6
+
+        alone = min(cpu_per_step() for _ in range(repeats))
+        reader = subprocess.Popen([sys.executable, '-c', _READER], stdout=subprocess.PIPE,
+                                  text=True)
+        reader.stdout.readline()
+        publishers = list(app._fleet_outputs.publishers.values()) + list(
+            app._vehicles[0].outputs.publishers.values())
+        deadline = time.monotonic() + 30.0
+        while sum(p.get_subscription_count() for p in publishers) < 2:
+            if time.monotonic() > deadline:
+                raise RuntimeError('the reader did not match')
+            time.sleep(0.02)
+        matched = min(cpu_per_step() for _ in range(repeats))
+    finally:
+        if reader is not None:
+            reader.kill()
+            reader.wait()
+        app.close()
+    return alone, matched
+
+
 def figures(steps=1000, repeats=3):
     """
     Return the figures of one run (medians).
@@ -129,9 +183,11 @@ def figures(steps=1000, repeats=3):
         raise RuntimeError(f'the subscribers received nothing: {received}')
     ros, cpu = statistics.median(walls), statistics.median(cpus)
     inproc = statistics.median(measure_in_process(steps, repeats))
+    alone, matched = measure_node_in_process(steps // 2, repeats)
     sim_s = steps * STEP_MS / 1000.0
     return {'ros_rtf': sim_s / ros, 'ros_us': ros / steps * 1e6, 'node_cpu_us': cpu / steps * 1e6,
-            'inproc_us': inproc / steps * 1e6, 'ratio': ros / inproc}
+            'inproc_us': inproc / steps * 1e6, 'ratio': ros / inproc,
+            'node_alone_cpu_us': alone, 'node_matched_cpu_us': matched}
 
 
 def main(argv=None):
@@ -157,6 +213,9 @@ def main(argv=None):
           f'{result["node_cpu_us"]:.1f} us per step')
     print(f'  in process: {result["inproc_us"]:7.1f} us per step; ROS / in process '
           f'{result["ratio"]:.2f}x (target <= {TARGET_RATIO:g}x)')
+    print(f'  the node stepped in process: CPU {result["node_alone_cpu_us"]:.0f} us per step '
+          f'without a subscriber, {result["node_matched_cpu_us"]:.0f} us with subscribers to '
+          '/clock and current_speed in another process')
     return 0
 
 

@@ -155,6 +155,9 @@ def collect(quick):
         f'{10_000.0 / ros["node_cpu_us"]:.1f}x real time, '
         f'{ros["node_cpu_us"] / ros["inproc_us"]:.2f}x in process); in process '
         f'{ros["inproc_us"]:.0f} us',
+        f'the node stepped in process: {ros["node_alone_cpu_us"]:.0f} us CPU per step without '
+        f'a subscriber, {ros["node_matched_cpu_us"]:.0f} us with the same two subscribers in '
+        'another process (the cost of delivering their samples)',
         f'plugin steps: node CPU {plugin["node_cpu_ms_per_step"]:.3f} ms, test process CPU '
         f'{plugin["client_cpu_ms_per_step"]:.3f} ms per step',
         f'topics received in the CPU-share window: /clock {counts.get("/clock", 0)}',
