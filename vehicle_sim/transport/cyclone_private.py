@@ -110,14 +110,19 @@ def serialized_writer(writer):
     """
     Return ``write(data)``: :func:`write_serialized` bound to ``writer``, for a hot loop.
 
-    ``data`` must be ``bytes`` (what ``struct.pack`` returns); the writer's handle is looked up
-    once here.
+    The writer's handle is looked up once here; ``write.count`` is a one-element list holding
+    how many samples ``write`` wrote.
     """
     ref = writer._ref
+    count = [0]
 
     def write(data: bytes) -> None:
+        if type(data) is not bytes:
+            data = bytes(data)
         if ddspy_write(ref, data) < 0:
             write_serialized(writer, data)    # raises with Cyclone's error
+        count[0] += 1
+    write.count = count
     return write
 
 
