@@ -117,8 +117,7 @@ class _Vehicle:
         self.status = status = self.logic.status()
         self.torque_mode = status.control_mode == ControlMode.TORQUE
         body = self.body
-        pose = body.pose()
-        linear, angular = body.velocity(pose)
+        pose, (linear, angular) = body.pose_and_velocity()
         xyz, q = pose_in_frame(self.spawn_xyz, self.spawn_q, pose[:3], pose[3:])
         linear_b, angular_b = twist_in_body(pose[3:], linear, angular)
         self.odom = (xyz, q, linear_b, angular_b)
