@@ -257,6 +257,42 @@ def measure(calls, warmup, servers=('embedded', 'simulation'), block=50):
             caller.close()
 
 
+def during_time_step(calls=400):
+    """
+    Return (p50, p99) [us] of ``robot/get_time`` while a long ``robot/time_step`` runs.
+
+    A synchronous automobile node steps 20000 basic steps for one request; meanwhile another
+    client of this process asks for the time, up to ``calls`` times.
+    """
+    from vehicle_sim.transport.dds import DdsNode
+    proc = subprocess.Popen([sys.executable, '-m', 'vehicle_sim.ros.automobile_node',
+                             '--ros-args', '-r', '__ns:=/bench_during', '-p',
+                             'synchronous:=true'],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    node = DdsNode('bench_during_step')
+    try:
+        time_step = node.create_client('vehicle_msgs/srv/SetInt', '/bench_during/robot/time_step')
+        get_time = node.create_client('vehicle_msgs/srv/GetFloat',
+                                      '/bench_during/robot/get_time')
+        if not (time_step.wait_for_service(60.0) and get_time.wait_for_service(60.0)):
+            raise RuntimeError('the automobile node did not come up')
+        request = node.srv('vehicle_msgs/srv/GetFloat').Request
+        for _ in range(20):
+            get_time.call(request(), 10.0)
+        long_step = time_step.call_async(node.srv('vehicle_msgs/srv/SetInt').Request(
+            value=200_000))
+        times = []
+        while not long_step.done() and len(times) < calls:
+            start = time.perf_counter()
+            get_time.call(request(), 30.0)
+            times.append(time.perf_counter() - start)
+        return _percentiles(times)
+    finally:
+        node.shutdown()
+        proc.terminate()     # it leaves the graph at once
+        proc.wait()
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[1])
     parser.add_argument('--calls', type=int, default=2000)
@@ -287,6 +323,9 @@ def main(argv=None):
         print(f'  embedded transport ({server:>10}): p50 {emb_p50:8.1f} us   p99 {emb_p99:8.1f} us'
               f'   p50 ratio {ratio:.2f}x (target <= 2.0x: {verdict}); '
               f'p99 ratio {emb_p99 / bare_p99:.2f}x')
+    during_p50, during_p99 = during_time_step()
+    print(f'  robot/get_time during a long robot/time_step: p50 {during_p50:8.1f} us   '
+          f'p99 {during_p99:8.1f} us')
     return 0
 
 

@@ -123,6 +123,7 @@ def collect(quick):
     raw_share = bench_topics_cpu.raw_pybullet_share(4.0 if quick else 10.0, 10)
     service = bench_service_roundtrip.measure(500 if quick else 2000, 100 if quick else 200,
                                               ('embedded', 'simulation'))
+    during = bench_service_roundtrip.during_time_step(200 if quick else 400)
     plugin = bench_plugin.figures(1000 if quick else 6000)
     found['write_us'] = bare_write_us()
     found['matched_write_us'] = matched_write_us()
@@ -152,6 +153,8 @@ def collect(quick):
         f'bare cyclonedds request/reply: p50 {bare_p50:.0f} us, p99 {bare_p99:.0f} us; '
         f'simulation server p50 {sim_p50:.0f} us, p99 {sim_p99:.0f} us; plain embedded node '
         f'p50 {service["embedded"][0]:.0f} us, p99 {service["embedded"][1]:.0f} us',
+        f'robot/get_time while a long robot/time_step runs: p50 {during[0]:.0f} us, '
+        f'p99 {during[1]:.0f} us (served between two basic steps)',
         f'over ROS: {ros["ros_us"]:.0f} us per step wall, of which the node\'s CPU '
         f'{ros["node_cpu_us"]:.0f} us (with a core to itself: '
         f'{10_000.0 / ros["node_cpu_us"]:.1f}x real time, '
