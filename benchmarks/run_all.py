@@ -174,13 +174,13 @@ def collect(quick):
 
 def print_table(rows, floors, load_before, load_after):
     width = max(len(row[0]) for row in rows)
-    print(f'{"figure":<{width}} | {"measured":>14} | {"target":>12} | verdict')
-    print(f'{"-" * width}-|-{"-" * 14}-|-{"-" * 12}-|--------')
+    print(f'{"figure":<{width}} | {"measured":>18} | {"target":>16} | verdict')
+    print(f'{"-" * width}-|-{"-" * 18}-|-{"-" * 16}-|--------')
     misses = 0
     for name, value, relation, target, unit in rows:
         met = value >= target if relation == '>=' else value <= target
         misses += not met
-        print(f'{name:<{width}} | {value:>10.2f} {unit:<3} | {relation} {target:>5g} {unit:<3} | '
+        print(f'{name:<{width}} | {value:>10.2f} {unit:<7} | {relation} {target:>5g} {unit:<7} | '
               f'{"met" if met else "MISSED"}')
     print()
     print('floors and context:')
