@@ -36,14 +36,15 @@ import subprocess
 import sys
 import time
 
+from bench_common import use_free_domain
+
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, REPO_ROOT)
-os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
-os.environ.setdefault('ROS_DOMAIN_ID', str(102 + os.getpid() % 100))
 
 SRV_TYPE = 'vehicle_msgs/srv/SetInt'
 SERVICE = '/bench/set_int'
 READY = 'READY'
+BARE_RESEND_S = 0.5   # a bare request without a reply after this is sent again (warm-up)
 
 
 def _set_int(request, response):
@@ -144,63 +145,151 @@ def _percentiles(samples_s):
     return p50 * 1e6, p99 * 1e6
 
 
-def bench_embedded(calls, warmup, server_spec):
-    from vehicle_sim.transport.dds import DdsNode
-    proc = _start_server(server_spec)
-    node = DdsNode('bench_client')
-    try:
-        client = node.create_client(SRV_TYPE, SERVICE_OF.get(server_spec, SERVICE))
-        if not client.wait_for_service(30.0):
-            raise RuntimeError('embedded server not reachable')
-        request = node.srv(SRV_TYPE).Request
-        times = []
-        for i in range(warmup + calls):
-            start = time.perf_counter()
-            client.call(request(value=1 + i % 2), 10.0)   # valid gears 1 and 2
-            if i >= warmup:
-                times.append(time.perf_counter() - start)
-        return _percentiles(times)
-    finally:
-        node.shutdown()
-        proc.kill()
-        proc.wait()
+class EmbeddedCaller:
+    """A DdsNode client of one server subprocess; ``call(i)`` makes one timed round trip."""
+
+    def __init__(self, server_spec):
+        from vehicle_sim.transport.dds import DdsNode
+        self.proc = _start_server(server_spec)
+        self.node = DdsNode('bench_client_' + server_spec.replace(':', '_').replace('.', '_'))
+        self.client = self.node.create_client(SRV_TYPE, SERVICE_OF.get(server_spec, SERVICE))
+        if not self.client.wait_for_service(30.0):
+            raise RuntimeError(f'server {server_spec!r} not reachable')
+        self.request = self.node.srv(SRV_TYPE).Request
+
+    def call(self, i):
+        start = time.perf_counter()
+        self.client.call(self.request(value=1 + i % 2), 10.0)   # valid gears 1 and 2
+        return time.perf_counter() - start
+
+    def close(self):
+        self.node.shutdown()
+        self.proc.kill()
+        self.proc.wait()
 
 
-def bench_bare(calls, warmup):
-    from cyclonedds.core import InstanceState, ReadCondition, SampleState, ViewState, WaitSet
-    from cyclonedds.domain import DomainParticipant
+def _bare_reply(reader, sequence):
+    return any(s.sample_info.valid_data and s.sequence == sequence for s in reader.take(N=64))
 
-    from vehicle_msgs_py import types as msg_types
-    from vehicle_sim.transport import dds_config
-    proc = _start_server('bare')
-    participant = DomainParticipant(dds_config.domain_id())
-    try:
-        types = msg_types.service_types(SRV_TYPE)
-        writer, reader = _bare_endpoints(participant, SERVICE, 'rq', 'rr',
-                                         (types.request_wire, types.response_wire))
-        waitset = WaitSet(participant)
-        waitset.attach(ReadCondition(reader, SampleState.Any | ViewState.Any |
-                                     InstanceState.Any))
+
+class BareCaller:
+    """A plain cyclonedds client (reader, writer, WaitSet) of the bare server subprocess."""
+
+    def __init__(self):
+        from cyclonedds.core import InstanceState, ReadCondition, SampleState, ViewState, WaitSet
+        from cyclonedds.domain import DomainParticipant
+
+        from vehicle_msgs_py import types as msg_types
+        from vehicle_sim.transport import dds_config
+        self.proc = _start_server('bare')
+        self.participant = DomainParticipant(dds_config.domain_id())
+        self.types = msg_types.service_types(SRV_TYPE)
+        self.writer, self.reader = _bare_endpoints(
+            self.participant, SERVICE, 'rq', 'rr',
+            (self.types.request_wire, self.types.response_wire))
+        self.waitset = WaitSet(self.participant)
+        self.waitset.attach(ReadCondition(self.reader, SampleState.Any | ViewState.Any |
+                                          InstanceState.Any))
         deadline = time.monotonic() + 30.0
-        while not (writer.get_matched_subscriptions() and reader.get_matched_publications()):
+        while not (self.writer.get_matched_subscriptions() and
+                   self.reader.get_matched_publications()):
             if time.monotonic() > deadline:
                 raise RuntimeError('bare server not reachable')
             time.sleep(0.01)
-        client_id = writer.get_instance_handle() & 0xFFFFFFFFFFFFFFFF
+        self.client_id = self.writer.get_instance_handle() & 0xFFFFFFFFFFFFFFFF
+        self.sequence = 0
+
+    def call(self, i, resend=False):
+        """
+        Make one round trip; return its wall time [s].
+
+        The server's reply writer may match this reader after the server answered the first
+        requests (discovery is not symmetric): with ``resend`` (the warm-up) a lost reply is
+        asked for again, within bounds, instead of waiting forever; after it, a lost reply is
+        an error.
+        """
+        self.sequence += 1
+        sequence = self.sequence
+        start = time.perf_counter()
+        request = self.types.request_wire(client_id=self.client_id, sequence=sequence, value=i)
+        self.writer.write(request)
+        resend_at = time.monotonic() + BARE_RESEND_S
+        deadline = time.monotonic() + 30.0
+        while not _bare_reply(self.reader, sequence):
+            now = time.monotonic()
+            if now >= deadline:
+                raise RuntimeError(f'bare server: no reply to request {sequence} in 30 s')
+            if now >= resend_at:
+                if not resend:
+                    raise RuntimeError(f'bare server: reply {sequence} lost after the warm-up')
+                self.writer.write(request)
+                resend_at = now + BARE_RESEND_S
+            self.waitset.wait(int(BARE_RESEND_S * 1e9))
+        return time.perf_counter() - start
+
+    def close(self):
+        self.proc.kill()
+        self.proc.wait()
+
+
+def measure(calls, warmup, servers=('embedded', 'simulation'), block=50):
+    """
+    Return {'bare': (p50, p99), server: (p50, p99), ...} [us], measured in interleaved blocks.
+
+    Every server runs at once; blocks of ``block`` calls go to each in turn, so load from other
+    processes hits them alike.
+    """
+    callers = {}
+    try:
+        callers['bare'] = BareCaller()
+        for spec in servers:
+            callers[spec] = EmbeddedCaller(spec)
+        for i in range(warmup):
+            for name, caller in callers.items():
+                caller.call(i, True) if name == 'bare' else caller.call(i)
+        times = {name: [] for name in callers}
+        for start in range(0, calls, block):
+            for name, caller in callers.items():
+                times[name] += [caller.call(i) for i in range(start, min(calls, start + block))]
+        return {name: _percentiles(found) for name, found in times.items()}
+    finally:
+        for caller in callers.values():
+            caller.close()
+
+
+def during_time_step(calls=400):
+    """
+    Return (p50, p99) [us] of ``robot/get_time`` while a long ``robot/time_step`` runs.
+
+    A synchronous automobile node steps 20000 basic steps for one request; meanwhile another
+    client of this process asks for the time, up to ``calls`` times.
+    """
+    from vehicle_sim.transport.dds import DdsNode
+    proc = subprocess.Popen([sys.executable, '-m', 'vehicle_sim.ros.automobile_node',
+                             '--ros-args', '-r', '__ns:=/bench_during', '-p',
+                             'synchronous:=true'],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    node = DdsNode('bench_during_step')
+    try:
+        time_step = node.create_client('vehicle_msgs/srv/SetInt', '/bench_during/robot/time_step')
+        get_time = node.create_client('vehicle_msgs/srv/GetFloat',
+                                      '/bench_during/robot/get_time')
+        if not (time_step.wait_for_service(60.0) and get_time.wait_for_service(60.0)):
+            raise RuntimeError('the automobile node did not come up')
+        request = node.srv('vehicle_msgs/srv/GetFloat').Request
+        for _ in range(20):
+            get_time.call(request(), 10.0)
+        long_step = time_step.call_async(node.srv('vehicle_msgs/srv/SetInt').Request(
+            value=200_000))
         times = []
-        for i in range(warmup + calls):
+        while not long_step.done() and len(times) < calls:
             start = time.perf_counter()
-            writer.write(types.request_wire(client_id=client_id, sequence=i + 1, value=i))
-            done = False
-            while not done:
-                waitset.wait(10_000_000_000)
-                done = any(s.sample_info.valid_data and s.sequence == i + 1
-                           for s in reader.take(N=64))
-            if i >= warmup:
-                times.append(time.perf_counter() - start)
+            get_time.call(request(), 30.0)
+            times.append(time.perf_counter() - start)
         return _percentiles(times)
     finally:
-        proc.kill()
+        node.shutdown()
+        proc.terminate()     # it leaves the graph at once
         proc.wait()
 
 
@@ -216,21 +305,27 @@ def main(argv=None):
         _resolve_server(options.serve)(SERVICE_OF.get(options.serve, SERVICE),
                                        lambda: print(READY, flush=True))
         return 0
+    use_free_domain()
     from vehicle_sim.transport import dds
     dds.ensure_domain()  # the same loopback-only configuration for the bare participant
-    bare_p50, bare_p99 = bench_bare(options.calls, options.warmup)
     servers = [options.server_for_embedded]
     if options.server_for_embedded == 'embedded':
         servers.append('simulation')
-    print(f'service round trip, {options.calls} calls of {SRV_TYPE} over loopback')
+    found = measure(options.calls, options.warmup, servers)
+    bare_p50, bare_p99 = found['bare']
+    print(f'service round trip, {options.calls} calls of {SRV_TYPE} over loopback per server, '
+          'in interleaved blocks')
     print(f'  bare cyclonedds request/reply : p50 {bare_p50:8.1f} us   p99 {bare_p99:8.1f} us')
     for server in servers:
-        emb_p50, emb_p99 = bench_embedded(options.calls, options.warmup, server)
+        emb_p50, emb_p99 = found[server]
         ratio = emb_p50 / bare_p50
         verdict = 'meets' if ratio <= 2.0 else 'misses'
         print(f'  embedded transport ({server:>10}): p50 {emb_p50:8.1f} us   p99 {emb_p99:8.1f} us'
               f'   p50 ratio {ratio:.2f}x (target <= 2.0x: {verdict}); '
               f'p99 ratio {emb_p99 / bare_p99:.2f}x')
+    during_p50, during_p99 = during_time_step()
+    print(f'  robot/get_time during a long robot/time_step: p50 {during_p50:8.1f} us   '
+          f'p99 {during_p99:8.1f} us')
     return 0
 
 

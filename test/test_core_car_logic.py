@@ -15,6 +15,7 @@
 """CarLogic: start state, modes, step actuation and the strict setter API (DESIGN §3-4)."""
 
 import copy
+import dataclasses
 import math
 
 import numpy as np
@@ -22,7 +23,7 @@ import pytest
 
 from vehicle_sim.config import load_car
 from vehicle_sim.core.ackermann import ackermann_angles
-from vehicle_sim.core.car_logic import CarLogic
+from vehicle_sim.core.car_logic import CarLogic, CarStatus
 from vehicle_sim.core.drivetrain import CarType, ControlMode
 from vehicle_sim.core.engines import EngineType
 from vehicle_sim.core.errors import InvalidCommandError
@@ -346,6 +347,15 @@ def _actuation_values(actuation):
     return (actuation.steer_right_rad, actuation.steer_left_rad, list(actuation.wheel_mode),
             actuation.wheel_velocity_radps.tolist(), actuation.wheel_torque_nm.tolist(),
             actuation.brake_torque_nm.tolist())
+
+
+def test_status_fills_every_field_of_a_frozen_car_status():
+    status = _busy_car().status()
+    assert set(vars(status)) == {f.name for f in dataclasses.fields(CarStatus)}
+    assert status == CarStatus(**vars(status))
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        status.gear = 3
+    assert all(type(v) is float for v in status.wheel_encoders_rad + status.wheel_speeds_radps)
 
 
 @pytest.mark.parametrize('setter, value', [(setter, value) for setter, values in STRICT_CASES

@@ -22,7 +22,7 @@ internal is used. One participant in this process; samples go through Cyclone's 
 from importlib.metadata import version
 
 from automobile_helpers import wait_for
-from cyclonedds.core import ReadCondition
+from cyclonedds.core import DDSException, ReadCondition
 from cyclonedds.domain import DomainParticipant
 from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
@@ -115,6 +115,25 @@ def test_write_serialized_delivers_the_exact_bytes(endpoints):
     cyclone_private.write_serialized(writer, GOOD)
     _wait_readable(reader)
     assert [data for data, _ in cyclone_private.take_serialized(reader, 16)] == [GOOD]
+
+
+def test_serialized_writer_delivers_the_exact_bytes_and_refuses_after_delete(participant):
+    topic = Topic(participant, 'rt/cyclone_private_bound_writer', STRING)
+    reader = DataReader(participant, topic, qos=dds.dds_qos(port.QOS_DEFAULT, b'', False))
+    writer = DataWriter(participant, topic, qos=dds.dds_qos(port.QOS_DEFAULT, b'', True))
+    assert wait_for(lambda: writer.get_matched_subscriptions())
+    write = cyclone_private.serialized_writer(writer)
+    write(GOOD)
+    write(BAD)
+    _wait_readable(reader)
+    assert wait_for(lambda: len(reader.get_matched_publications()) == 1)
+    found = []
+    assert wait_for(lambda: found.extend(cyclone_private.take_serialized(reader, 16)) or
+                    len(found) == 2)
+    assert [data for data, _ in found] == [GOOD, BAD]
+    cyclone_private.delete_entity(writer)
+    with pytest.raises(DDSException):
+        write(GOOD)
 
 
 def test_delete_participant_deletes_it_and_its_children_now():

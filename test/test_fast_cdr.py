@@ -21,7 +21,7 @@ import pytest
 
 from vehicle_msgs_py import message_type, to_rosbags, typestore
 from vehicle_sim.ros import messages as m
-from vehicle_sim.transport.dds import fast_cdr
+from vehicle_sim.transport import fast_cdr
 
 STAMPS = [(0, 0), (1, 999_999_999), (-5, 3), (2**31 - 1, 4_000_000_000), (1_700_000_000, 1)]
 VALUES = [0.0, -0.0, 27.5, -1e-3, 1e300, -math.inf, math.inf, math.nan, 5, True]
@@ -65,7 +65,8 @@ def test_float64_stamped_bytes_equal_rosbags_for_every_frame_id_alignment(frame_
 
 
 def test_serializers_take_the_builders_constants_and_values():
-    assert set(fast_cdr.SERIALIZERS) == {m.CLOCK, m.FLOAT64_STAMPED, m.ODOMETRY, m.JOINT_STATE}
+    assert set(fast_cdr.SERIALIZERS) == {m.CLOCK, m.FLOAT64_STAMPED, m.ODOMETRY, m.JOINT_STATE,
+                                        m.TF_MESSAGE}
     assert fast_cdr.SERIALIZERS[m.FLOAT64_STAMPED] is fast_cdr.float64_stamped
     assert fast_cdr.SERIALIZERS[m.CLOCK] is fast_cdr.clock
 
@@ -106,3 +107,22 @@ def test_joint_state_bytes_equal_rosbags_for_names_frames_and_lengths(names, fra
         for _ in range(2):     # the second call takes the cached layout
             assert same_bytes(serialize(t, positions, velocities),
                               build(t, positions, velocities)), (positions, velocities)
+
+
+FRAME_PAIRS = [(), (('odom', 'base_link'),), (('', ''), ('a', 'abcd')),
+               (('car1/odom', 'car1/base_link'), ('ab', 'abc'), ('abcde', 'abcdefg'),
+                ('world', 'x'))]
+
+
+@pytest.mark.parametrize('frames', FRAME_PAIRS)
+def test_tf_message_bytes_equal_rosbags_for_every_frame_id_alignment(frames):
+    serialize = fast_cdr.tf_message(frames)
+    build = m.tf_message_builder(message_type, frames)
+    for (sec, nanosec), pose in zip(STAMPS, POSES * 3):
+        t = stamp(sec, nanosec)
+        poses = [(tuple(x + i for x in pose[0]), pose[1]) for i in range(len(frames))]
+        data = serialize(t, poses)
+        assert same_bytes(data, build(t, poses)), (sec, nanosec, poses)
+        decoded = message_type(m.TF_MESSAGE).deserialize(data)
+        assert [(s.header.frame_id, s.child_frame_id) for s in decoded.transforms] == \
+            [tuple(pair) for pair in frames]

@@ -100,9 +100,10 @@ def test_a_kit_without_serializers_builds_messages_and_one_with_them_gives_bytes
 def test_the_embedded_node_has_serializers_for_the_fast_cdr_types_only(nodes):
     node, _ = nodes
     for ros_type in ('rosgraph_msgs/msg/Clock', 'vehicle_msgs/msg/Float64Stamped',
-                     'nav_msgs/msg/Odometry', 'sensor_msgs/msg/JointState'):
+                     'nav_msgs/msg/Odometry', 'sensor_msgs/msg/JointState',
+                     'tf2_msgs/msg/TFMessage'):
         assert node.serializer(ros_type) is not None
-    assert node.serializer('tf2_msgs/msg/TFMessage') is None
+    assert node.serializer('sensor_msgs/msg/Imu') is None
 
 
 def test_a_transport_without_serializers_refuses_serialized_publishing():
@@ -142,3 +143,47 @@ def test_odometry_and_joint_state_rows_are_written_serialized_and_received(nodes
     assert list(odom.pose.covariance) == [0.0] * 36
     assert (state.name, state.position, state.velocity, state.effort) == \
         (['car1/a', 'car1/b'], [0.5, 1.5], [2.0, -2.0], [])
+
+
+def test_the_tf_row_is_written_serialized_and_static_tf_stays_a_message(nodes):
+    node, reader = nodes
+    rows = (endpoints.TF, endpoints.TF_STATIC)
+    wiring = SimpleNamespace(tf_frames=[('odom', 'base_link'), ('car1/odom', 'car1/base_link')],
+                             static_transforms=[('world', 'odom', (1.0, 2.0, 0.0),
+                                                 (0.0, 0.0, 0.0, 1.0))])
+    outputs = endpoints.Outputs(node, rows, wiring, resolve=lambda name: f'/fast{name}')
+    received = []
+    reader.create_subscription(endpoints.TF.ros_type, '/fast/tf', received.append,
+                               endpoints.TF.qos)
+    assert wait_for(lambda: outputs.publishers[endpoints.TF].get_subscription_count(),
+                    spin=reader)
+    call = _call(5, 7, 0.0)
+    call.tf_poses = [((1.0, 2.0, 3.0), (0.0, 0.0, 0.5, 0.75)),
+                     ((-4.0, 0.5, 0.0), (0.0, 0.0, 0.0, 1.0))]
+    outputs.publish(itf.EACH_PUBLISH, call)
+    outputs.publish(itf.ONCE_LATCHED, call)
+    assert [p.serialized_writes for p in outputs.publishers.values()] == [1, 0]
+    assert wait_for(lambda: received, spin=reader)
+    transforms = received[0].transforms
+    assert [(t.header.frame_id, t.child_frame_id, t.header.stamp.sec, t.header.stamp.nanosec,
+             t.transform.translation.x, t.transform.rotation.w) for t in transforms] == \
+        [('odom', 'base_link', 5, 7, 1.0, 0.75), ('car1/odom', 'car1/base_link', 5, 7, -4.0, 1.0)]
+
+
+def test_a_raw_subscription_gets_the_bytes_and_deserialize_decodes_them(nodes):
+    node, reader = nodes
+    outputs = endpoints.Outputs(node, (SPEED,), SimpleNamespace(base_frame='b'),
+                                resolve=lambda name: f'/fast/{name}')
+    raw, decoded = [], []
+    reader.create_subscription(SPEED.ros_type, '/fast/automobile/current_speed', raw.append,
+                               SPEED.qos, raw=True)
+    reader.create_subscription(SPEED.ros_type, '/fast/automobile/current_speed', decoded.append,
+                               SPEED.qos)
+    assert wait_for(lambda: outputs.publishers[SPEED].get_subscription_count() == 2, spin=reader)
+    outputs.publish(itf.EACH_PUBLISH, _call(6, 9, -3.25))
+    assert wait_for(lambda: raw and decoded, spin=reader)
+    assert type(raw[0]) is bytes
+    assert raw[0] == outputs.messages(itf.EACH_PUBLISH, _call(6, 9, -3.25))[SPEED].serialize()
+    message = reader.deserialize(SPEED.ros_type, raw[0])
+    assert message == decoded[0]
+    assert (message.header.stamp.sec, message.header.frame_id, message.data) == (6, 'b', -3.25)

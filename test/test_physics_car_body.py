@@ -331,3 +331,18 @@ def test_car_body_default_grip_lets_every_preset_follow_its_0_to_100_ramp(model)
                 reached_s = world.time_s
         assert reached_s == pytest.approx(params.time_0_to_100_s, rel=0.02)
         assert abs(car.pose()[1]) < 0.05
+
+
+def test_car_body_pose_and_velocity_equal_pose_and_velocity_read_apart():
+    # One read of the base state for both (the ROS node samples them every step): the same
+    # numbers as pose() and velocity(), in a turn where the base link moves unlike the COM.
+    params = load_car('BmwX5')
+    with World() as world:
+        car = CarBody(world, params)
+        actuation = _all_wheels(WheelMode.VELOCITY, 8.0)
+        actuation.steer_right_rad = actuation.steer_left_rad = 0.3
+        _run(world, car, actuation, 2.0)
+        pose, (linear, angular) = car.pose_and_velocity()
+        assert pose == car.pose()
+        assert (linear, angular) == car.velocity()
+        assert abs(angular[2]) > 0.1 and math.hypot(linear[0], linear[1]) > 1.0

@@ -249,3 +249,43 @@ def test_sigint_during_and_after_shutdown_is_ignored_and_the_node_exits_0():
         if proc.poll() is None:
             proc.kill()
             proc.wait()
+
+
+def test_rclpy_rows_publish_fast_cdr_bytes_and_a_raw_subscription_decodes_them(context):
+    from types import SimpleNamespace
+
+    from vehicle_sim.ros import endpoints
+    from vehicle_sim.ros import interfaces as itf
+    publisher = RclpyNode('fast_pub', '/rfast', context=context)
+    reader = RclpyNode('fast_sub', '/rfast', context=context)
+    try:
+        rows = (endpoints.CLOCK, itf.topic('automobile/current_speed'), itf.ODOM)
+        assert all(publisher.serializer(row.ros_type) is not None for row in rows)
+        outputs = endpoints.Outputs(publisher, rows, SimpleNamespace(
+            base_frame='car1/base_link', odom_frame='car1/odom'),
+            resolve=lambda name: name if name.startswith('/') else f'/rfast/{name}')
+        messages, raw = [], []
+        speed = outputs.publishers[rows[1]].topic_name
+        reader.create_subscription(rows[1].ros_type, speed, messages.append, rows[1].qos)
+        reader.create_subscription(rows[1].ros_type, speed, raw.append, rows[1].qos, raw=True)
+        odom = []
+        reader.create_subscription(itf.ODOM.ros_type, '/rfast/odom', odom.append, itf.ODOM.qos)
+        assert reader.spin_until(lambda: outputs.publishers[rows[1]].get_subscription_count()
+                                 == 2 and outputs.publishers[itf.ODOM].get_subscription_count(),
+                                 30.0)
+        stamp = publisher.msg('builtin_interfaces/msg/Time')(sec=3, nanosec=7)
+        call = SimpleNamespace(stamp=stamp, status=SimpleNamespace(current_speed_kmh=-12.5),
+                               torque_mode=False,
+                               odom=((1.0, 2.0, 0.0), (0.0, 0.0, 0.0, 1.0), (4.0, 0.0, 0.0),
+                                     (0.0, 0.0, 0.5)))
+        outputs.publish(itf.EACH_PUBLISH, call)
+        assert reader.spin_until(lambda: messages and raw and odom, 30.0)
+        assert (messages[0].header.frame_id, messages[0].header.stamp.sec, messages[0].data) == \
+            ('car1/base_link', 3, -12.5)
+        assert type(raw[0]) is bytes
+        assert reader.deserialize(rows[1].ros_type, raw[0]) == messages[0]
+        assert (odom[0].child_frame_id, odom[0].pose.pose.position.y,
+                odom[0].twist.twist.angular.z) == ('car1/base_link', 2.0, 0.5)
+    finally:
+        reader.shutdown()
+        publisher.shutdown()

@@ -121,6 +121,9 @@ class Dimensions:
     rear_wheel_radius_m: float
 
 
+_NEW = object.__new__
+
+
 @dataclass(frozen=True)
 class CarStatus:
     """Every value the driver and car library getters expose, at one instant."""
@@ -769,7 +772,11 @@ class CarLogic:
 
     def status(self):
         """Return every getter's value at once, as a frozen CarStatus."""
-        return CarStatus(
+        # Filled without the frozen dataclass' __init__, whose per-field object.__setattr__ is
+        # most of this call's cost (published each step); every field is given here, which
+        # test_core_car_logic checks, and CarStatus has no __post_init__.
+        status = _NEW(CarStatus)
+        status.__dict__.update(
             time_s=self._time_s,
             steering_angle_rad=self.steering_angle_rad,
             commanded_steering_angle_rad=self._steering_rad,
@@ -799,6 +806,7 @@ class CarLogic:
             indicator_period_s=self._indicator_period_s,
             limited_slip_differential=self._lsd,
             indicator_auto_disabling=self._auto_disable,
-            wheel_encoders_rad=tuple(float(x) for x in self._encoder),
-            wheel_speeds_radps=tuple(float(x) for x in self._speed),
+            wheel_encoders_rad=tuple(map(float, self._encoder)),
+            wheel_speeds_radps=tuple(map(float, self._speed)),
         )
+        return status

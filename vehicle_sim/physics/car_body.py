@@ -34,6 +34,7 @@ import pybullet
 
 from vehicle_sim.core.vehicle_io import WHEEL_COUNT, WheelMode
 from vehicle_sim.physics.urdf import car_urdf, joint_names, STEER_MAX_VELOCITY_RADPS
+from vehicle_sim.physics.world import point_velocity
 
 # Webots' driven-wheel motors have maxTorque 1e8 N*m (Car.proto); Bullet's implicit motor is
 # stable with it, the impulse actually used is what the tyre can transmit.
@@ -239,6 +240,19 @@ class CarBody:
         :return: ((vx, vy, vz) [m/s], (wx, wy, wz) [rad/s]).
         """
         return self.world.base_link_velocity(self.body_id, self.pose()[:3])
+
+    def pose_and_velocity(self):
+        """
+        Return ``(pose(), velocity())`` of one instant, reading the base state once.
+
+        The same values as the two calls, for a caller that needs both every step.
+        """
+        cid = self._cid
+        com_pos, com_orn = pybullet.getBasePositionAndOrientation(self.body_id,
+                                                                  physicsClientId=cid)
+        pos, orn = pybullet.multiplyTransforms(com_pos, com_orn, *self._com_to_link)
+        linear, angular = pybullet.getBaseVelocity(self.body_id, physicsClientId=cid)
+        return tuple(pos) + tuple(orn), point_velocity(com_pos, linear, angular, pos)
 
     def _axes(self, pose):
         matrix = pybullet.getMatrixFromQuaternion(pose[3:], physicsClientId=self._cid)

@@ -105,6 +105,18 @@ def _quiet_stdout():
         os.close(saved)
 
 
+
+def point_velocity(com_pos, linear, angular, point):
+    """
+    Return the velocity of a point of a rigid body: v = v_com + w x (point - p_com).
+
+    :return: ((vx, vy, vz) [m/s], (wx, wy, wz) [rad/s]) in the world frame.
+    """
+    rx, ry, rz = point[0] - com_pos[0], point[1] - com_pos[1], point[2] - com_pos[2]
+    wx, wy, wz = angular
+    return ((linear[0] + wy * rz - wz * ry, linear[1] + wz * rx - wx * rz,
+             linear[2] + wx * ry - wy * rx), tuple(angular))
+
 class World:
     """
     One simulation: a PyBullet client with a ground plane, stepped explicitly at a fixed dt.
@@ -250,11 +262,7 @@ class World:
         cid = self.client_id
         com_pos, _ = pybullet.getBasePositionAndOrientation(body_id, physicsClientId=cid)
         linear, angular = pybullet.getBaseVelocity(body_id, physicsClientId=cid)
-        rx, ry, rz = (link_position[0] - com_pos[0], link_position[1] - com_pos[1],
-                      link_position[2] - com_pos[2])
-        wx, wy, wz = angular
-        return ((linear[0] + wy * rz - wz * ry, linear[1] + wz * rx - wx * rz,
-                 linear[2] + wx * ry - wy * rx), tuple(angular))
+        return point_velocity(com_pos, linear, angular, link_position)
 
     # ---------------------------------------------------------------- obstacles and names
     def add_obstacle(self, spec):

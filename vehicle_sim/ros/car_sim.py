@@ -125,8 +125,7 @@ class _Vehicle:
         self.status = status = self.logic.status()
         self.torque_mode = status.control_mode == ControlMode.TORQUE
         body = self.body
-        pose = body.pose()
-        linear, angular = body.velocity()
+        pose, (linear, angular) = body.pose_and_velocity()
         xyz, q = pose_in_frame(self.spawn_xyz, self.spawn_q, pose[:3], pose[3:])
         linear_b, angular_b = twist_in_body(pose[3:], linear, angular)
         self.odom = (xyz, q, linear_b, angular_b)
@@ -414,7 +413,9 @@ class AutomobileNode:
         """
         Advance the world by one basic step and publish; return the simulated time [s].
 
-        /clock is published every step, the other topics every publish period.
+        /clock is published every step, the other topics every publish period. Requests that
+        came in during the physics step are served before the publishing (they take effect at
+        the next step), so none waits for the whole step.
         """
         time_s = self.world.step()
         for vehicle in self._vehicles:
@@ -423,6 +424,7 @@ class AutomobileNode:
                     f'{itf.vehicle_name("cmd_vel", vehicle.spec.namespace)}: no cmd_vel or drive '
                     f'command for {vehicle.drive.watchdog.timeout_s:g} s: cruising speed 0, '
                     'brake 1')
+        self.node.serve_pending()
         self._publish_step(time_s)
         return time_s
 
@@ -442,9 +444,12 @@ class AutomobileNode:
         outputs.publish(EACH_STEP, fleet)
         if self.world.step_count % self._publish_every == 0:
             vehicles = self._vehicles
+            serve_pending = self.node.serve_pending if len(vehicles) > 1 else None
             for vehicle in vehicles:
                 vehicle.sample(stamp)
                 vehicle.outputs.publish(EACH_PUBLISH, vehicle)
+                if serve_pending is not None:   # a request waits for one car's burst at most
+                    serve_pending()
             fleet.tf_poses = [vehicle.odom[:2] for vehicle in vehicles]
             outputs.publish(EACH_PUBLISH, fleet)
         for vehicle in self._sensing:

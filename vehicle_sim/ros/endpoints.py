@@ -218,6 +218,7 @@ def converter(builder, values, constants=None):
             args = values(ctx)
             return None if args is None else build(*args)
         convert.serialized = serialize is not None
+        convert.parts = (values, build)     # Outputs.publish calls them without convert
         return convert
     return factory
 
@@ -312,8 +313,11 @@ class Outputs:
             self.publishers[row] = publisher
             convert = row.converter(kit, context)
             serialized = getattr(convert, 'serialized', False)
+            publish = publisher.publish_serialized if serialized else publisher.publish
+            # Hot loop: a converter made by converter() is called as its two parts.
+            values, build = getattr(convert, 'parts', (convert, None))
             self._groups.setdefault(row.cadence, []).append(
-                (row, convert, publisher.publish_serialized if serialized else publisher.publish))
+                (row, convert, publish, values, build))
 
     @property
     def rows(self) -> Tuple[Topic, ...]:
@@ -322,15 +326,15 @@ class Outputs:
 
     def publish(self, cadence: str, ctx) -> None:
         """Publish every wired row of ``cadence`` whose converter gives a message for ``ctx``."""
-        for _, convert, publish in self._groups.get(cadence, ()):
-            message = convert(ctx)
-            if message is not None:
-                publish(message)
+        for _, _, publish, values, build in self._groups.get(cadence, ()):
+            found = values(ctx)
+            if found is not None:
+                publish(found if build is None else build(*found))
 
     def messages(self, cadence: str, ctx) -> Dict[Topic, object]:
         """Return {row: message} of the rows of ``cadence`` for ``ctx``, without publishing."""
         found = {}
-        for row, convert, _ in self._groups.get(cadence, ()):
+        for row, convert, _, _, _ in self._groups.get(cadence, ()):
             message = convert(ctx)
             if message is not None:
                 found[row] = self._msg(row.ros_type).deserialize(message) \

@@ -409,4 +409,5 @@ BUILT_TYPES = {
     float64_stamped_builder: FLOAT64_STAMPED,
     odometry_builder: ODOMETRY,
     joint_state_builder: JOINT_STATE,
+    tf_message_builder: TF_MESSAGE,
 }

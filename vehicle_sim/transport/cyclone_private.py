@@ -25,8 +25,9 @@ each internal is needed:
   rest of the batch, already removed from the reader, is lost. ``ddspy_take`` returns each
   sample's CDR bytes and SampleInfo, so each one is deserialized on its own.
 * :func:`write_serialized` (``_clayer.ddspy_write``): writes bytes that are already CDR: the
-  publishing fast path (``DdsPublisher.publish_serialized``, bytes of ``dds/fast_cdr.py``; the
-  public ``DataWriter.write`` type-checks and serializes a message object itself), a malformed
+  publishing fast path (``DdsPublisher.publish_serialized``, bytes of
+  ``transport/fast_cdr.py``; the public ``DataWriter.write`` type-checks and serializes a
+  message object itself), a malformed
   sample in a test, or recorded bytes re-published unchanged.
 * :func:`delete_entity` / :func:`delete_participant` (``Entity._entities``, ``Entity._delete``,
   ``Entity._ref``): the public API deletes an entity only when Python collects it (and not at
@@ -103,6 +104,26 @@ def write_serialized(writer, data: bytes) -> None:
     ret = ddspy_write(writer._ref, bytes(data))
     if ret < 0:
         raise DDSException(ret, f'Occurred while writing serialized data in {writer!r}')
+
+
+def serialized_writer(writer):
+    """
+    Return ``write(data)``: :func:`write_serialized` bound to ``writer``, for a hot loop.
+
+    The writer's handle is looked up once here; ``write.count`` is a one-element list holding
+    how many samples ``write`` wrote.
+    """
+    ref = writer._ref
+    count = [0]
+
+    def write(data: bytes) -> None:
+        if type(data) is not bytes:
+            data = bytes(data)
+        if ddspy_write(ref, data) < 0:
+            write_serialized(writer, data)    # raises with Cyclone's error
+        count[0] += 1
+    write.count = count
+    return write
 
 
 def delete_entity(entity: Entity) -> None:

@@ -539,8 +539,19 @@ class NodePort(abc.ABC):
     def create_publisher(self, ros_type: str, topic: str, qos=None) -> Publisher: ...
 
     @abc.abstractmethod
-    def create_subscription(self, ros_type: str, topic: str, callback, qos=None) -> Subscription:
-        ...
+    def create_subscription(self, ros_type: str, topic: str, callback, qos=None, *,
+                            raw: bool = False) -> Subscription:
+        """
+        Call ``callback(message)`` for each message received on ``topic``.
+
+        :param raw: hand the callback each message's serialized bytes (CDR with its 4-byte
+            encapsulation header, as rclpy's ``raw=True``) instead of the message; decode one
+            later with :meth:`deserialize` (a reader that keeps many messages and looks at few).
+        """
+
+    def deserialize(self, ros_type: str, data: bytes):
+        """Return the message of ``ros_type`` whose serialized bytes are ``data``."""
+        return self.msg(ros_type).deserialize(bytes(data))
 
     @abc.abstractmethod
     def create_service(self, srv_type: str, name: str, callback) -> Service:
@@ -604,6 +615,16 @@ class NodePort(abc.ABC):
     @abc.abstractmethod
     def spin(self) -> None:
         """Spin until shutdown() (or a signal handled by run_node)."""
+
+    def serve_pending(self) -> None:
+        """
+        From inside a callback, run the handlers of requests and messages already received.
+
+        A long callback (a simulation step) calls it between its parts, so that a request
+        waits for one part, not the whole callback. It never waits and never fires timers.
+        The default does nothing: an adapter whose executor cannot run handlers from inside a
+        callback (rclpy's) serves them at its next spin, as before.
+        """
 
     def spin_until(self, predicate: Callable[[], bool], timeout_s: float) -> bool:
         """Spin until ``predicate()`` is true; return False if ``timeout_s`` passed first."""

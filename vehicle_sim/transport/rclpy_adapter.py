@@ -47,7 +47,7 @@ from rclpy.parameter import Parameter as RclpyParameter
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.task import Future as RclpyFuture
 
-from vehicle_sim.transport import port
+from vehicle_sim.transport import fast_cdr, port
 from vehicle_sim.transport.params import unknown_overrides_warning
 from vehicle_sim.transport.port import (
     as_qos,
@@ -105,6 +105,28 @@ class _Logger(port.Logger):
             self._logger.error(message)
         else:
             self._logger.fatal(message)
+
+
+class _Publisher(port.Publisher):
+    """
+    An rclpy publisher; ``publish_serialized`` hands bytes to rclpy's ``publish``.
+
+    rclpy's ``Publisher.publish`` takes a message or bytes (``rcl_publish_serialized_message``),
+    so the embedded transport's fast serializers (``transport/fast_cdr.py``) serve here too.
+    Both calls are rclpy's own bound method: no wrapper on the hot path.
+    """
+
+    def __init__(self, publisher):
+        self.publisher = publisher
+        self.topic_name = publisher.topic_name
+        # Instance attributes: rclpy's bound method itself, called without a wrapper.
+        self.publish = self.publish_serialized = publisher.publish
+
+    def publish(self, msg) -> None:   # noqa: F811 - the class-level form the port requires
+        self.publisher.publish(msg)
+
+    def get_subscription_count(self) -> int:
+        return self.publisher.get_subscription_count()
 
 
 class _Subscription(port.Subscription):
@@ -192,12 +214,21 @@ class RclpyNode(port.NodePort):
     def srv(self, srv_type: str):
         return import_type(srv_type)
 
-    def create_publisher(self, ros_type: str, topic: str, qos=None):
-        return self.node.create_publisher(import_type(ros_type), topic, to_rclpy_qos(qos))
+    def serializer(self, ros_type: str):
+        return fast_cdr.SERIALIZERS.get(ros_type)
 
-    def create_subscription(self, ros_type: str, topic: str, callback, qos=None):
+    def create_publisher(self, ros_type: str, topic: str, qos=None):
+        return _Publisher(self.node.create_publisher(import_type(ros_type), topic,
+                                                     to_rclpy_qos(qos)))
+
+    def create_subscription(self, ros_type: str, topic: str, callback, qos=None, *,
+                            raw: bool = False):
         return _Subscription(self.node, self.node.create_subscription(
-            import_type(ros_type), topic, callback, to_rclpy_qos(qos)))
+            import_type(ros_type), topic, callback, to_rclpy_qos(qos), raw=raw))
+
+    def deserialize(self, ros_type: str, data: bytes):
+        from rclpy.serialization import deserialize_message
+        return deserialize_message(bytes(data), import_type(ros_type))
 
     def create_service(self, srv_type: str, name: str, callback, qos=port.QOS_SERVICES):
         executor = self.executor

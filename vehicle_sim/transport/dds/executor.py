@@ -164,6 +164,18 @@ class Executor:
                 if self.stopped():
                     return
 
+    def serve_pending(self) -> None:
+        """Run the handlers of the conditions triggered now (no wait, no timers)."""
+        try:
+            count = self._waitset.wait(0)
+        except DDSException:
+            return
+        if count:
+            for entry in self._fired(count):
+                entry.handler()
+                if self.stopped():
+                    return
+
     def _fired(self, count: int) -> List[_Entry]:
         """Return the ``count`` triggered entries (fewer if some went quiet), in attach order."""
         found = 1 if self._guard.take() else 0

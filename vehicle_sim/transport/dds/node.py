@@ -29,10 +29,14 @@ from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
 
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.transport import cyclone_private, port
-from vehicle_sim.transport.dds import fast_cdr
+from vehicle_sim.transport import cyclone_private, fast_cdr, port
 from vehicle_sim.transport.dds.context import Context
-from vehicle_sim.transport.dds.endpoints import DdsPublisher, DdsSubscription, Intake
+from vehicle_sim.transport.dds.endpoints import (
+    DdsPublisher,
+    DdsSubscription,
+    Intake,
+    TAKE_BATCH,
+)
 from vehicle_sim.transport.dds.executor import DdsTimer, Executor, SPIN_SLICE_S
 from vehicle_sim.transport.dds.parameters import ParameterStore
 from vehicle_sim.transport.dds.qos import dds_qos, endpoint_user_data
@@ -219,7 +223,7 @@ class DdsNode(port.NodePort):
         return DdsPublisher(self, writer, msg_type, fqn)
 
     def create_subscription(self, ros_type: str, topic: str, callback,
-                            qos=None) -> DdsSubscription:
+                            qos=None, *, raw: bool = False) -> DdsSubscription:
         self._check_ok()
         profile = as_qos(qos)
         msg_type, fqn, dds_topic, user_data = self._dds_topic(ros_type, topic, profile)
@@ -227,9 +231,15 @@ class DdsNode(port.NodePort):
                             qos=dds_qos(profile, user_data, False))
         intake = Intake(self, reader, f'subscription {fqn} ({msg_type.__ros_type__})')
 
-        def on_data():
-            for sample in intake.take():
-                callback(sample)
+        if raw:
+            def on_data():
+                for data, info in cyclone_private.take_serialized(reader, TAKE_BATCH):
+                    if info.valid_data:
+                        callback(data)
+        else:
+            def on_data():
+                for sample in intake.take():
+                    callback(sample)
 
         self._add_reader(reader, on_data)
         self._graph_changed()
@@ -321,6 +331,10 @@ class DdsNode(port.NodePort):
             if warning:
                 self._logger.warning(warning)
         self._executor.spin_once(timeout_s)
+
+    def serve_pending(self) -> None:
+        if not self._shutdown:
+            self._executor.serve_pending()
 
     def spin(self) -> None:
         while self.ok():

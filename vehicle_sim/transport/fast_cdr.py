@@ -18,8 +18,10 @@ Fast CDR serializers: the bytes of a message packed with ``struct``, no message 
 Each ``<type>`` factory here takes the same constants as its message builder in
 ``vehicle_sim.ros.messages`` and returns ``serialize(*values)`` taking the same per-call values,
 so a row's converter can use either one (:data:`SERIALIZERS`, by ROS type). The bytes are plain
-XCDR1 little endian with the 4-byte encapsulation header, as ``DdsPublisher.publish_serialized``
-writes them; test/test_fast_cdr.py checks them equal to rosbags' and cyclonedds-python's CDR.
+XCDR1 little endian with the 4-byte encapsulation header, what ``DdsPublisher.publish_serialized``
+writes and what rclpy's ``Publisher.publish`` takes as bytes (``rcl_publish_serialized_message``);
+test/test_fast_cdr.py checks them equal to rosbags' and cyclonedds-python's CDR. Both transports
+use them; this module needs nothing but ``struct``.
 
 Layout: after the encapsulation header, offsets count from 0; a primitive is aligned to its
 size; a string is its uint32 length (NUL included), its bytes and the NUL. A Header-led type has
@@ -121,10 +123,39 @@ def joint_state(names, frame_id: str = ''):
     return serialize
 
 
+def tf_message(frames):
+    """
+    Return ``serialize(stamp, poses)``: tf2_msgs/TFMessage, one transform per (parent, child).
+
+    The same constants and values as ``tf_message_builder``. The frame ids are constant, so
+    the whole layout (each transform's frame ids and paddings) is packed once here; a call packs
+    the stamp and the seven numbers of each pose.
+    """
+    frames = tuple(frames)
+    fmt, offset, middles = '<4sI', 4, []        # offset: after the sequence length
+    for pair in frames:
+        pad = _pad(offset, 4)                     # each TransformStamped starts 4-aligned
+        middle = _strings(offset + pad + 8, pair, 8)
+        middles.append(middle)
+        fmt += f'{pad}xiI{len(middle)}s7d'
+        offset += pad + 8 + len(middle) + 7 * 8
+    pack = struct.Struct(fmt).pack
+    count = len(frames)
+
+    def serialize(stamp, poses):
+        sec, nanosec = stamp.sec, stamp.nanosec
+        values = [CDR_LE, count]
+        for middle, (xyz, q) in zip(middles, poses):
+            values += (sec, nanosec, middle, xyz[0], xyz[1], xyz[2], q[0], q[1], q[2], q[3])
+        return pack(*values)
+    return serialize
+
+
 # ROS type -> serializer factory (the constants of the type's message builder).
 SERIALIZERS = {
     'rosgraph_msgs/msg/Clock': clock,
     'vehicle_msgs/msg/Float64Stamped': float64_stamped,
     'nav_msgs/msg/Odometry': odometry,
     'sensor_msgs/msg/JointState': joint_state,
+    'tf2_msgs/msg/TFMessage': tf_message,
 }

@@ -1,0 +1,209 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Every performance figure of issue 10 in one table: measured, target, met or missed.
+
+``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
+also run alone and say more); each ratio is measured in this run, its two sides interleaved or
+back to back. The physical floors (raw PyBullet stepping, a bare DDS write of serialized bytes,
+a bare cyclonedds request/reply) are printed below the table. The machine's load average is
+printed too: on a shared machine, wall-clock figures move with other people's work; the node's
+CPU time per step does much less.
+
+Run: ``.venv/bin/python benchmarks/run_all.py [--quick]`` (``--quick``: fewer samples).
+"""
+
+import argparse
+import os
+import sys
+import time
+
+import bench_common
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(HERE))
+
+
+def _load():
+    return '/'.join(f'{x:.1f}' for x in os.getloadavg())
+
+
+def bare_write_us(count=20000):
+    """Return the cost of a DDS write of serialized Float64Stamped bytes, no reader [us]."""
+    from vehicle_msgs_py import types
+    from vehicle_sim.transport import fast_cdr
+    from vehicle_sim.transport.dds import DdsNode
+    node = DdsNode('bench_floor')
+    try:
+        publisher = node.create_publisher('vehicle_msgs/msg/Float64Stamped', '/bench_floor/x')
+        stamp = types.message_type('builtin_interfaces/msg/Time')(sec=1, nanosec=2)
+        data = fast_cdr.float64_stamped('base_link')(stamp, 1.5)
+        write = publisher.publish_serialized
+        best = float('inf')
+        for _ in range(5):
+            start = time.perf_counter()
+            for _ in range(count // 5):
+                write(data)
+            best = min(best, (time.perf_counter() - start) / (count // 5))
+        return best * 1e6
+    finally:
+        node.shutdown()
+
+
+_READER = (
+    'import sys, time\n'
+    'from vehicle_sim.transport.dds import DdsNode\n'
+    'node = DdsNode("bench_floor_reader")\n'
+    'node.create_subscription("vehicle_msgs/msg/Float64Stamped", "/bench_floor/y", '
+    'lambda data: None, raw=True)\n'
+    'print("READY", flush=True)\n'
+    'end = time.monotonic() + 60.0\n'
+    'while time.monotonic() < end:\n'
+    '    node.spin_once(0.05)\n'
+)
+
+
+def matched_write_us(count=3000):
+    """Return the cost of a serialized write to a reliable reader in another process [us]."""
+    import subprocess
+
+    from vehicle_msgs_py import types
+    from vehicle_sim.transport import fast_cdr
+    from vehicle_sim.transport.dds import DdsNode
+    reader = subprocess.Popen([sys.executable, '-c', _READER], stdout=subprocess.PIPE,
+                              text=True)
+    node = DdsNode('bench_floor_writer')
+    try:
+        reader.stdout.readline()
+        publisher = node.create_publisher('vehicle_msgs/msg/Float64Stamped', '/bench_floor/y')
+        deadline = time.monotonic() + 30.0
+        while not publisher.get_subscription_count() and time.monotonic() < deadline:
+            time.sleep(0.01)
+        stamp = types.message_type('builtin_interfaces/msg/Time')(sec=1, nanosec=2)
+        data = fast_cdr.float64_stamped('base_link')(stamp, 1.5)
+        start = time.perf_counter()
+        for _ in range(count):
+            publisher.publish_serialized(data)
+        return (time.perf_counter() - start) / count * 1e6
+    finally:
+        node.shutdown()
+        reader.kill()
+        reader.wait()
+
+
+def collect(quick):
+    """Run every benchmark; return (rows, floors)."""
+    import bench_plugin
+    import bench_ros_sync
+    import bench_service_roundtrip
+    import bench_step
+    import bench_topics_cpu
+
+    from vehicle_sim.transport import dds
+    dds.ensure_domain()
+    found = {}
+    ros = bench_ros_sync.figures(steps=1000, repeats=3 if quick else 5)
+    overhead, raw_us, full_us, substeps, _ = bench_step.measure_overhead(
+        5 if quick else 15, 200 if quick else 400)
+    ten = bench_step.measure_ten_cars(5 if quick else 15, 200 if quick else 400)
+    share, _, counts = bench_topics_cpu.measure_node(4.0 if quick else 10.0, 10)
+    clock_only, _, _ = bench_topics_cpu.measure_node(4.0 if quick else 10.0, 10, False)
+    raw_share = bench_topics_cpu.raw_pybullet_share(4.0 if quick else 10.0, 10)
+    service = bench_service_roundtrip.measure(500 if quick else 2000, 100 if quick else 200,
+                                              ('embedded', 'simulation'))
+    during = bench_service_roundtrip.during_time_step(200 if quick else 400)
+    plugin = bench_plugin.figures(1000 if quick else 6000)
+    found['write_us'] = bare_write_us()
+    found['matched_write_us'] = matched_write_us()
+    bare_p50, bare_p99 = service['bare']
+    sim_p50, sim_p99 = service['simulation']
+    rows = [
+        ('ROS-synchronous RTF, 1000 steps per robot/time_step (ToyotaPrius, 10 ms)',
+         ros['ros_rtf'], '>=', 40.0, 'x'),
+        ('step cost over ROS / in-process Driver.step (same run, same car)',
+         ros['ratio'], '<=', 2.5, 'x'),
+        (f'pytest plugin: {plugin["steps"]} single client.step() calls', plugin['ms_per_step'],
+         '<=', 0.5, 'ms/step'),
+        (f'in-process Driver.step / raw stepSimulation (BmwX5, {substeps} sub-step)',
+         overhead, '<=', 1.5, 'x'),
+        ('CPU share, every topic at 10 ms in real time', share * 100.0, '<=', 5.0, '%'),
+        ('service p99, simulation running / bare cyclonedds p99', sim_p99 / bare_p99, '<=',
+         2.0, 'x'),
+        ('service p50, simulation running / bare cyclonedds p50', sim_p50 / bare_p50, '<=',
+         1.3, 'x'),
+        ('10 cars in one world, per-car cost / one car', ten, '<=', 1.2, 'x'),
+    ]
+    floors = [
+        f'raw PyBullet stepSimulation (BmwX5): {raw_us:.1f} us per basic step; Driver.step '
+        f'{full_us:.1f} us',
+        f'bare DDS write of serialized bytes: {found["write_us"]:.2f} us with no reader, '
+        f'{found["matched_write_us"]:.1f} us to a reliable reader in another process',
+        f'bare cyclonedds request/reply: p50 {bare_p50:.0f} us, p99 {bare_p99:.0f} us; '
+        f'simulation server p50 {sim_p50:.0f} us, p99 {sim_p99:.0f} us; plain embedded node '
+        f'p50 {service["embedded"][0]:.0f} us, p99 {service["embedded"][1]:.0f} us',
+        f'robot/get_time while a long robot/time_step runs: p50 {during[0]:.0f} us, '
+        f'p99 {during[1]:.0f} us (served between two basic steps)',
+        f'over ROS: {ros["ros_us"]:.0f} us per step wall, of which the node\'s CPU '
+        f'{ros["node_cpu_us"]:.0f} us (with a core to itself: '
+        f'{10_000.0 / ros["node_cpu_us"]:.1f}x real time, '
+        f'{ros["node_cpu_us"] / ros["inproc_us"]:.2f}x in process); in process '
+        f'{ros["inproc_us"]:.0f} us',
+        f'the node stepped in process: {ros["node_alone_cpu_us"]:.0f} us CPU per step without '
+        f'a subscriber, {ros["node_matched_cpu_us"]:.0f} us with the same two subscribers in '
+        'another process (the cost of delivering their samples)',
+        f'plugin steps: node CPU {plugin["node_cpu_ms_per_step"]:.3f} ms, test process CPU '
+        f'{plugin["client_cpu_ms_per_step"]:.3f} ms per step',
+        f'CPU share with a subscriber on every topic {share * 100:.1f} %, on /clock only '
+        f'{clock_only * 100:.1f} %; raw PyBullet stepping the same bodies in real time '
+        f'{raw_share * 100:.1f} % (/clock messages received: {counts.get("/clock", 0)})',
+    ]
+    return rows, floors
+
+
+def print_table(rows, floors, load_before, load_after):
+    width = max(len(row[0]) for row in rows)
+    print(f'{"figure":<{width}} | {"measured":>18} | {"target":>16} | verdict')
+    print(f'{"-" * width}-|-{"-" * 18}-|-{"-" * 16}-|--------')
+    misses = 0
+    for name, value, relation, target, unit in rows:
+        met = value >= target if relation == '>=' else value <= target
+        misses += not met
+        print(f'{name:<{width}} | {value:>10.2f} {unit:<7} | {relation} {target:>5g} {unit:<7} | '
+              f'{"met" if met else "MISSED"}')
+    print()
+    print('floors and context:')
+    for line in floors:
+        print('  ' + line)
+    print(f'  load average (1/5/15 min) before {load_before}, after {load_after} '
+          f'on {os.cpu_count()} cores')
+    return misses
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    parser.add_argument('--quick', action='store_true', help='fewer samples (about 1 min)')
+    options = parser.parse_args(argv)
+    domain = bench_common.use_free_domain()
+    load_before = _load()
+    print(f'vehicle_sim benchmarks (issue 10), ROS_DOMAIN_ID {domain}, loopback only; running...',
+          flush=True)
+    rows, floors = collect(options.quick)
+    print()
+    print_table(rows, floors, load_before, _load())
+    return 0   # a missed target is a figure to read, not a failed run
+
+
+if __name__ == '__main__':
+    sys.exit(main())
