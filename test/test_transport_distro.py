@@ -185,7 +185,7 @@ def _warnings(peer, about):
 
 
 @pytest.mark.transport
-def test_a_humble_and_a_jazzy_process_each_warn_once_and_both_are_listed(monkeypatch):
+def test_a_humble_and_a_jazzy_process_each_warn_once_and_keep_serving(monkeypatch):
     humble = _peer('humble', '/distro_h', monkeypatch)
     jazzy = _peer('jazzy', '/distro_j', monkeypatch)
     try:
@@ -196,18 +196,26 @@ def test_a_humble_and_a_jazzy_process_each_warn_once_and_both_are_listed(monkeyp
         assert 'set VEHICLE_SIM_ROS_DISTRO=humble' in to_jazzy
         (to_humble,) = _warnings(humble, 'Jazzy')
         assert 'set VEHICLE_SIM_ROS_DISTRO=jazzy' in to_humble
+        assert 'no longer announces its nodes' in to_jazzy
         with GraphView() as view:
-            assert view.wait_until(lambda: view.find_node('/distro_h/peer') and
-                                   view.find_node('/distro_j/peer'), WAIT_S)
+            # the Jazzy process, having met a Humble one, announces no nodes (Humble would
+            # misread them); the Humble process's nodes are listed with their distribution
+            def listed():
+                by_guid = {p.guid.hex(): p for p in view.participants()}
+                return (by_guid.get(humble.info['participant']),
+                        by_guid.get(jazzy.info['participant']))
+
+            assert view.wait_until(lambda: all(listed()) and listed()[0].nodes and
+                                   listed()[1].distro and not listed()[1].nodes, WAIT_S)
+            humble_entry, jazzy_entry = listed()
+            assert (humble_entry.vendor, humble_entry.distro, humble_entry.nodes) == (
+                peers.CYCLONE, 'humble', ('/distro_h/peer',))
+            assert (jazzy_entry.vendor, jazzy_entry.distro) == (peers.CYCLONE, 'jazzy')
             assert view.find_node('/distro_h/peer').distro == 'humble'
-            assert view.find_node('/distro_j/peer').distro == 'jazzy'
+            assert view.find_node('/distro_j/peer') is None
             other = 'humble' if view.distro == 'jazzy' else 'jazzy'
             assert len(view.warnings) == 1
             assert f'set VEHICLE_SIM_ROS_DISTRO={other}' in view.warnings[0]
-            by_guid = {p.guid.hex(): p for p in view.participants()}
-            listed = by_guid[humble.info['participant']]
-            assert (listed.vendor, listed.distro, listed.nodes) == (
-                peers.CYCLONE, 'humble', ('/distro_h/peer',))
             # each still serves: a call from this process to both works
             node = DdsNode('distro_caller', '/distro_test')
             try:

@@ -259,7 +259,8 @@ class GraphView:
             gid = found.gid
             if found.distro != self.distro:
                 self._warn_once(peers.other_distro_warning(
-                    found.distro, self.distro, gid, self.domain_id), key=found.distro)
+                    found.distro, self.distro, gid, self.domain_id, listing=True),
+                    key=found.distro)
             self._distro_of[gid] = found.distro
             self._nodes_by_participant[gid] = [
                 NodeInfo(n.namespace, n.name, gid, set(n.reader_gids), set(n.writer_gids),

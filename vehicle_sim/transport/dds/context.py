@@ -117,6 +117,8 @@ class Context:
             qos=dds_qos(port.QOS_DISCOVERY_INFO_READER, user_data, False))
         self._distro_announced = False
         self._warned = set()
+        # True once a Jazzy process met a Humble participant: it then announces no nodes.
+        self.nodes_hidden = False
 
     @classmethod
     def acquire(cls, node) -> 'Context':
@@ -197,7 +199,7 @@ class Context:
         if self._closed:
             return
         nodes = []
-        for node in self._nodes:
+        for node in [] if self.nodes_hidden else self._nodes:
             gids = node.graph_gids()
             if gids is None:
                 continue
@@ -238,9 +240,16 @@ class Context:
                 self._warn_once(logger, 'undecodable',
                                 peers.undecodable_info_warning(self.domain_id, str(exc)))
                 continue
-            if found.distro != self.distro:
-                self._warn_once(logger, found.distro, peers.other_distro_warning(
-                    found.distro, self.distro, found.gid, self.domain_id))
+            if found.distro == self.distro:
+                continue
+            if found.distro == distro.HUMBLE and not self.nodes_hidden:
+                # Humble reads a Jazzy node list as dozens of nameless nodes, which breaks its
+                # node-name queries for the whole domain; an empty list (20 bytes, too short for
+                # its 24-byte Gid) adds no node.
+                self.nodes_hidden = True
+                self.publish_graph()
+            self._warn_once(logger, found.distro, peers.other_distro_warning(
+                found.distro, self.distro, found.gid, self.domain_id))
 
 
 def participant_guid() -> Optional[bytes]:

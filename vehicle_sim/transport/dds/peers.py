@@ -58,12 +58,22 @@ def guid_text(guid: bytes) -> str:
     return '.'.join(f'{b:02x}' for b in guid)
 
 
-def other_distro_warning(theirs: str, ours: str, participant: bytes, domain_id: int) -> str:
-    """Return the one warning about a participant that speaks the other distribution."""
+def other_distro_warning(theirs: str, ours: str, participant: bytes, domain_id: int,
+                         listing: bool = False) -> str:
+    """
+    Return the one warning about a participant that speaks the other distribution.
+
+    :param listing: for the graph view of ``vehicle-sim list`` (which has no nodes of its own)
+        rather than a node.
+    """
     sizes = f'{distro.GID_SIZES[theirs]}-byte Gids in ros_discovery_info'
-    if theirs == distro.HUMBLE:
-        effect = ("its `ros2 node list` cannot read this process's nodes (and may fail for "
-                  'every node on the domain)')
+    if listing:
+        effect = (f'its nodes are listed here, but nodes started in this environment speak '
+                  f'{distro.title(ours)} and the two cannot list each other')
+    elif theirs == distro.HUMBLE:
+        effect = ("it misreads this process's node list (its `ros2 node list` fails for every "
+                  'node on the domain), so this process no longer announces its nodes (a Humble '
+                  'process that read them already needs a restart, e.g. `ros2 daemon stop`)')
     else:
         effect = "it does not see this process's nodes"
     return (f'a ROS 2 {distro.title(theirs)} participant ({sizes}, participant '
