@@ -71,9 +71,8 @@ def other_distro_warning(theirs: str, ours: str, participant: bytes, domain_id: 
         effect = (f'its nodes are listed here, but nodes started in this environment speak '
                   f'{distro.title(ours)} and the two cannot list each other')
     elif theirs == distro.HUMBLE:
-        effect = ("it misreads this process's node list (its `ros2 node list` fails for every "
-                  'node on the domain), so this process no longer announces its nodes (a Humble '
-                  'process that read them already needs a restart, e.g. `ros2 daemon stop`)')
+        effect = ("it would misread this process's node list (its `ros2 node list` would fail "
+                  'for every node on the domain), so this process no longer announces its nodes')
     else:
         effect = "it does not see this process's nodes"
     return (f'a ROS 2 {distro.title(theirs)} participant ({sizes}, participant '
