@@ -171,7 +171,9 @@ def _print_list(graph, show_all: bool) -> None:
         details = [participant.vendor]
         if participant.distro:
             details.append(f'ROS 2 {distro.title(participant.distro)}')
-        nodes_text = f': {", ".join(shown)}' if shown else ''
+            nodes_text = f': {", ".join(shown)}' if shown else ''
+        else:   # Fast DDS sends its transient-local data only after ~3 s
+            nodes_text = ' (no ros_discovery_info received: not ROS, or try a longer --wait)'
         print(f'  {participant.guid.hex()} [{"; ".join(details)}]{nodes_text}')
 
 
