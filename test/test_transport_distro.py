@@ -36,7 +36,7 @@ from rosbags.typesys import get_typestore, Stores
 
 from vehicle_msgs_py import distro
 from vehicle_sim.graph import GraphView
-from vehicle_sim.transport.dds import DdsNode, discovery_info, peers
+from vehicle_sim.transport.dds import DdsNode, discovery_info, peers, services
 
 GUID = bytes(range(1, 17))
 READER = bytes(range(0x20, 0x30))
@@ -288,22 +288,31 @@ class _Log:
 def test_a_fast_dds_client_is_warned_about_once_per_client_and_service(monkeypatch):
     node = DdsNode('fast_dds_check', '/distro_test')
     try:
-        service = node.create_service('vehicle_msgs/srv/SetInt', 'set_int', lambda q, r: r)
+        first = node.create_service('vehicle_msgs/srv/SetInt', 'set_int', lambda q, r: r)
+        second = node.create_service('vehicle_msgs/srv/SetInt', 'set_other', lambda q, r: r)
         log = _Log()
         monkeypatch.setattr(node, 'get_logger', lambda: log)
-        fake = _FakeRequestReader()
-        monkeypatch.setattr(service, '_reader', fake)
-        fake.writers[1] = _Endpoint('010f', None)                      # Fast DDS client
-        fake.writers[2] = _Endpoint('0110', b'clientid=1.2.3;')        # rmw_cyclonedds client
-        fake.writers[3] = _Endpoint('0110', b'')                       # Cyclone, no id: served
-        service.check_clients()
-        service.check_clients()
+        fakes = [_FakeRequestReader(), _FakeRequestReader()]
+        monkeypatch.setattr(first, '_reader', fakes[0])
+        monkeypatch.setattr(second, '_reader', fakes[1])
+        fakes[0].writers[1] = _Endpoint('010f', None)                   # Fast DDS client
+        fakes[0].writers[2] = _Endpoint('0110', b'clientid=1.2.3;')     # rmw_cyclonedds client
+        fakes[0].writers[3] = _Endpoint('0110', b'')                    # Cyclone, no id: served
+        services.warn_unservable_clients([first, second])
+        services.warn_unservable_clients([first, second])
         (line,) = log.lines
         assert line.startswith('service /distro_test/set_int: a client (participant 01.0f.')
         assert 'runs Fast DDS' in line and 'RMW_IMPLEMENTATION=rmw_cyclonedds_cpp' in line
         assert 'rclpy' in line
-        fake.writers[4] = _Endpoint('010f', b'enclave=/;')             # a second Fast DDS client
-        service.check_clients()
+        # one client participant matching two services at once: one line naming both
+        other = _Endpoint('010f', b'enclave=/;')
+        other.participant_key = uuid.UUID(bytes=bytes.fromhex('010f') + b'\x07' * 14)
+        fakes[0].writers[4] = other
+        fakes[1].writers[9] = other
+        services.warn_unservable_clients([first, second])
         assert len(log.lines) == 2
+        assert log.lines[1].startswith(
+            'services /distro_test/set_int, /distro_test/set_other: a client (participant '
+            '01.0f.07.07.')
     finally:
         node.shutdown()

@@ -26,7 +26,7 @@ conditions whether they are triggered until it has found that many, most recentl
 at once whatever its number of readers), then runs their handlers in attach order. The
 conditions are level-triggered: a reader that still holds samples, or that received some after
 the wait, wakes the next wait at once. A node with services also wakes every ``CLIENT_CHECK_S``
-to look for newly matched clients it cannot serve (``DdsService.check_clients``).
+to look for newly matched clients it cannot serve (``services.warn_unservable_clients``).
 """
 
 import signal
@@ -39,7 +39,11 @@ from cyclonedds.core import DDSException, GuardCondition, WaitSet
 
 from vehicle_sim.transport import cyclone_private, port
 from vehicle_sim.transport.dds.context import Context
-from vehicle_sim.transport.dds.services import CLIENT_CHECK_S, PENDING_REPLY_POLL_S
+from vehicle_sim.transport.dds.services import (
+    CLIENT_CHECK_S,
+    PENDING_REPLY_POLL_S,
+    warn_unservable_clients,
+)
 from vehicle_sim.transport.port import TransportError
 
 # How long spin() may block before it looks at shutdown requests (signals) again.
@@ -159,8 +163,7 @@ class Executor:
                 service.flush_pending(now)
         if self.services and now >= self._next_client_check:
             self._next_client_check = now + CLIENT_CHECK_S
-            for service in self.services:
-                service.check_clients()
+            warn_unservable_clients(self.services)
         for timer in list(self._timers):
             if timer.cancelled:
                 self._timers.remove(timer)

@@ -23,7 +23,7 @@ recommends that a GUID prefix start with the vendor id, and Cyclone DDS (01.10) 
 (01.0f) do so; other implementations may not, so any other value reads as ``unknown``.
 """
 
-from typing import Optional
+from typing import Optional, Sequence
 
 from vehicle_msgs_py import distro
 
@@ -87,9 +87,11 @@ def undecodable_info_warning(domain_id: int, reason: str) -> str:
             f"Jazzy layout ({reason}); its participant's nodes are not listed")
 
 
-def fast_dds_client_warning(service: str, vendor: str, participant: bytes) -> str:
-    """Return the warning about a service client whose requests Cyclone cannot deliver."""
+def fast_dds_client_warning(services: Sequence[str], vendor: str, participant: bytes) -> str:
+    """Return the warning about a client whose requests Cyclone cannot deliver to ``services``."""
     who = 'runs Fast DDS' if vendor == FAST_DDS else f'does not run rmw_cyclonedds ({vendor})'
-    return (f'service {service}: a client (participant {guid_text(participant)}) {who}; its '
-            'requests carry no rmw_cyclonedds request header, so Cyclone DDS drops them and '
-            f'the client gets no answer: {FIX_FAST_DDS_CLIENT}')
+    what = f'service {services[0]}' if len(services) == 1 else \
+        f'services {", ".join(services)}'
+    return (f'{what}: a client (participant {guid_text(participant)}) {who}; its requests carry '
+            'no rmw_cyclonedds request header, so Cyclone DDS drops them and the client gets no '
+            f'answer: {FIX_FAST_DDS_CLIENT}')

@@ -26,11 +26,12 @@ sent once it is done (a deferred reply).
 A client that is not rmw_cyclonedds (Fast DDS: its request carries no header, the request id
 travels as the sample identity) cannot be served: Cyclone DDS drops its requests before they
 reach Python. Such a client is recognised when its request writer matches (no ``clientid=`` in
-its USER_DATA, a participant GUID that is not Cyclone's) and the service logs it once.
+its USER_DATA, a participant GUID that is not Cyclone's) and logged once per client and service
+(one line per client participant).
 """
 
 import time
-from typing import Dict, List, Optional
+from typing import Dict, List, Optional, Tuple
 
 from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
@@ -120,14 +121,20 @@ class DdsService(port.Service):
         """How many requests could not be decoded and were dropped."""
         return self._intake.dropped
 
-    def check_clients(self) -> None:
-        """Warn once per matched request writer that is not rmw_cyclonedds (see the module)."""
+    def check_clients(self) -> List[Tuple[bytes, str]]:
+        """
+        Return ``(participant, vendor)`` of the newly matched clients that cannot be served.
+
+        Those are the request writers that are not rmw_cyclonedds (see the module); each writer
+        is returned once.
+        """
         total = self._reader.get_subscription_matched_status().total_count
         if total == self._match_count:
-            return
+            return []
         self._match_count = total
         handles = set(self._reader.get_matched_publications())
         self._checked_writers &= handles
+        found = []
         for handle in handles - self._checked_writers:
             self._checked_writers.add(handle)
             data = self._reader.get_matched_publication_data(handle)
@@ -135,10 +142,9 @@ class DdsService(port.Service):
                 continue
             participant = data.participant_key.bytes
             vendor = peers.vendor_of(participant)
-            if vendor == peers.CYCLONE:
-                continue   # a Cyclone client without an id: its requests are served
-            self._node.get_logger().warning(
-                peers.fast_dds_client_warning(self.service_name, vendor, participant))
+            if vendor != peers.CYCLONE:   # a Cyclone client without an id is served
+                found.append((participant, vendor))
+        return found
 
     def on_data(self) -> None:
         """Serve the requests that arrived (the executor's handler of the request reader)."""
@@ -199,6 +205,23 @@ class DdsService(port.Service):
             else:
                 keep.append(item)
         self.pending = keep
+
+
+def warn_unservable_clients(services: List[DdsService]) -> None:
+    """
+    Log the clients the services cannot serve.
+
+    One warning per client participant, naming every service it newly matched (``ros2 param
+    list`` matches all six parameter services at once).
+    """
+    by_participant: Dict[bytes, Tuple[str, List[str], DdsService]] = {}
+    for service in services:
+        for participant, vendor in service.check_clients():
+            entry = by_participant.setdefault(participant, (vendor, [], service))
+            entry[1].append(service.service_name)
+    for participant, (vendor, names, service) in by_participant.items():
+        service._node.get_logger().warning(
+            peers.fast_dds_client_warning(names, vendor, participant))
 
 
 class DdsClient(port.Client):
