@@ -115,6 +115,48 @@ def test_discovery_info_decodes_rosbags_humble_bytes_with_16_byte_gids():
     assert (found.gid, found.nodes[0].writer_gids) == (GUID, (WRITER, READER))
 
 
+# ros_discovery_info of an rclpy node '/h_talker' on a ROS 2 Humble built from source
+# (rmw_cyclonedds_cpp, Cyclone DDS 0.10), captured off the wire.
+HUMBLE_TALKER_INFO = bytes.fromhex(
+    '0001000001102c651e378fb08d1271e0000001c1000000000000000001000000020000002f00000009000000'
+    '685f74616c6b6572000000000600000001102c651e378fb08d1271e000000904000000000000000001102c65'
+    '1e378fb08d1271e000000b04000000000000000001102c651e378fb08d1271e000000d040000000000000000'
+    '01102c651e378fb08d1271e000000f04000000000000000001102c651e378fb08d1271e00000110400000000'
+    '0000000001102c651e378fb08d1271e00000130400000000000000000900000001102c651e378fb08d1271e0'
+    '00000603000000000000000001102c651e378fb08d1271e000000703000000000000000001102c651e378fb0'
+    '8d1271e000000803000000000000000001102c651e378fb08d1271e000000a03000000000000000001102c65'
+    '1e378fb08d1271e000000c03000000000000000001102c651e378fb08d1271e000000e030000000000000000'
+    '01102c651e378fb08d1271e000001003000000000000000001102c651e378fb08d1271e00000120300000000'
+    '0000000001102c651e378fb08d1271e0000014030000000000000000')
+
+# The same from '/f_talker' on ROS 2 Jazzy with Fast DDS 2.14.5 (rmw_fastrtps_dynamic_cpp).
+FAST_DDS_TALKER_INFO = bytes.fromhex(
+    '00010000010f78fd965c8d5a00000000000001c101000000020000002f00000009000000665f74616c6b6572'
+    '0000000007000000010f78fd965c8d5a0000000000000504010f78fd965c8d5a0000000000000704010f78fd'
+    '965c8d5a0000000000000904010f78fd965c8d5a0000000000000b04010f78fd965c8d5a0000000000000d04'
+    '010f78fd965c8d5a0000000000000f04010f78fd965c8d5a00000000000011040a000000010f78fd965c8d5a'
+    '0000000000000303010f78fd965c8d5a0000000000000403010f78fd965c8d5a0000000000000603010f78fd'
+    '965c8d5a0000000000000803010f78fd965c8d5a0000000000000a03010f78fd965c8d5a0000000000000c03'
+    '010f78fd965c8d5a0000000000000e03010f78fd965c8d5a0000000000001003010f78fd965c8d5a00000000'
+    '00001203010f78fd965c8d5a0000000000001303')
+
+
+@pytest.mark.parametrize('data, gid_size, name, counts', [
+    (HUMBLE_TALKER_INFO, 24, 'h_talker', (6, 9)),
+    (FAST_DDS_TALKER_INFO, 16, 'f_talker', (7, 10)),
+])
+def test_discovery_info_of_real_builds_decodes_and_encodes_to_the_same_bytes(
+        data, gid_size, name, counts):
+    found = discovery_info.decode(data, prefer=40 - gid_size)   # the other layout first
+    assert found.gid_size == gid_size
+    assert [(n.namespace, n.name) for n in found.nodes] == [('/', name)]
+    node = found.nodes[0]
+    assert (len(node.reader_gids), len(node.writer_gids)) == counts
+    # every endpoint gid belongs to the participant (same 12-byte GUID prefix)
+    assert {g[:12] for g in node.reader_gids + node.writer_gids} == {found.gid[:12]}
+    assert discovery_info.encode(found.gid, found.nodes, gid_size) == data
+
+
 @pytest.mark.parametrize('damage', ['truncated', 'not utf-8', 'not cdr', 'extra bytes'])
 def test_discovery_info_that_fits_no_layout_is_refused(damage):
     data = discovery_info.encode(GUID, NODES, 24)
