@@ -112,9 +112,11 @@ class Context:
         self._discovery_writer = DataWriter(
             self.participant, self.topic(DISCOVERY_TOPIC, info_type),
             qos=dds_qos(port.QOS_DISCOVERY_INFO_WRITER, user_data, True))
+        # Our own samples are not read back (as rmw_cyclonedds ignores its participant's).
         self.discovery_reader = DataReader(
             self.participant, self.topic(DISCOVERY_TOPIC, info_type),
-            qos=dds_qos(port.QOS_DISCOVERY_INFO_READER, user_data, False))
+            qos=dds_qos(port.QOS_DISCOVERY_INFO_READER, user_data, False)
+            + Qos(Policy.IgnoreLocal.Participant))
         self._distro_announced = False
         self._warned = set()
         # True once a Jazzy process met a Humble participant: it then announces no nodes.
