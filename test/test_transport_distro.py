@@ -29,14 +29,20 @@ import uuid
 
 from automobile_helpers import wait_for, WAIT_S
 from conftest import peer_env, PeerProcess, stop_processes
+from cyclonedds.domain import DomainParticipant
 from cyclonedds.qos import Policy, Qos
+from cyclonedds.sub import DataReader
+from cyclonedds.topic import Topic
 import numpy as np
 import pytest
 from rosbags.typesys import get_typestore, Stores
 
 from vehicle_msgs_py import distro
+from vehicle_msgs_py import types as msg_types
 from vehicle_sim.graph import GraphView
+from vehicle_sim.transport import cyclone_private, dds, port
 from vehicle_sim.transport.dds import DdsNode, discovery_info, peers, services
+from vehicle_sim.transport.dds_config import domain_id
 
 GUID = bytes(range(1, 17))
 READER = bytes(range(0x20, 0x30))
@@ -226,9 +232,26 @@ def _warnings(peer, about):
             if '[WARN]' in line and f'a ROS 2 {about} participant' in line]
 
 
+def _node_lists_of(reader, participant_hex):
+    """Return the node lists the participant wrote to ros_discovery_info (raw reader)."""
+    found = []
+    for data, info in cyclone_private.take_serialized(reader, 256):
+        if info.valid_data:
+            sample = discovery_info.decode(data)
+            if sample.gid.hex() == participant_hex:
+                found.append(sample.nodes)
+    return found
+
+
 @pytest.mark.transport
 def test_a_humble_and_a_jazzy_process_each_warn_once_and_keep_serving(monkeypatch):
     humble = _peer('humble', '/distro_h', monkeypatch)
+    # Everything written to ros_discovery_info from now on (transient local, keep all).
+    dds.ensure_domain()
+    raw = DomainParticipant(domain_id())
+    info_type = msg_types.message_type('rmw_dds_common/msg/ParticipantEntitiesInfo')
+    reader = DataReader(raw, Topic(raw, 'ros_discovery_info', info_type),
+                        qos=dds.dds_qos(port.QOS_DISCOVERY_INFO_READER, b'', writer=False))
     jazzy = _peer('jazzy', '/distro_j', monkeypatch)
     try:
         assert 'speaking ROS 2 Humble' in ''.join(humble.stderr_lines)
@@ -269,8 +292,13 @@ def test_a_humble_and_a_jazzy_process_each_warn_once_and_keep_serving(monkeypatc
             finally:
                 node.shutdown()
         assert len(_warnings(jazzy, 'Humble')) == 1 and len(_warnings(humble, 'Jazzy')) == 1
+        # The Jazzy process met the Humble one before announcing: it never wrote a node list
+        # (Humble keeps a misread one for good), only empty ones.
+        written = _node_lists_of(reader, jazzy.info['participant'])
+        assert written and all(nodes == () for nodes in written)
     finally:
         stop_processes([humble.proc, jazzy.proc])
+        cyclone_private.delete_participant(raw)
 
 
 # --------------------------------------------------------------------------------------------

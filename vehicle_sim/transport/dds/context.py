@@ -42,6 +42,9 @@ from vehicle_sim.transport.dds.qos import dds_qos, endpoint_user_data
 from vehicle_sim.transport.port import TransportError
 
 DISCOVERY_TOPIC = 'ros_discovery_info'
+# How long a Jazzy process listens for Humble participants before it announces its nodes [s]:
+# the ros_discovery_info of the participants already on the domain arrives well within it.
+JAZZY_ANNOUNCE_DELAY_S = 0.5
 
 _domains: Dict[int, Domain] = {}
 _domains_lock = threading.Lock()
@@ -119,8 +122,18 @@ class Context:
             + Qos(Policy.IgnoreLocal.Participant))
         self._distro_announced = False
         self._warned = set()
+        self._info_lock = threading.Lock()
         # True once a Jazzy process met a Humble participant: it then announces no nodes.
         self.nodes_hidden = False
+        # A Jazzy process announces its nodes only once it has listened for Humble participants
+        # (a Humble process that received a Jazzy node list keeps it broken): the timer reads
+        # what arrived, then publishes. Humble's node lists are harmless to Jazzy.
+        self._announce_timer = None
+        self.announcing = self.distro != distro.JAZZY
+        if not self.announcing:
+            self._announce_timer = threading.Timer(JAZZY_ANNOUNCE_DELAY_S, self._start_announcing)
+            self._announce_timer.daemon = True
+            self._announce_timer.start()
 
     @classmethod
     def acquire(cls, node) -> 'Context':
@@ -151,7 +164,18 @@ class Context:
             if last:
                 self._close_locked()
 
+    def _start_announcing(self) -> None:
+        with Context._lock:
+            if self._closed:
+                return
+            if self._nodes:
+                self.read_discovery_info(self._nodes[0].get_logger())
+            self.announcing = True
+            self.publish_graph()
+
     def _close_locked(self) -> None:
+        if self._announce_timer is not None:
+            self._announce_timer.cancel()
         if not self._closed:
             self._closed = True
             cyclone_private.delete_participant(self.participant)
@@ -198,7 +222,7 @@ class Context:
 
     def publish_graph(self) -> None:
         """Publish the complete ParticipantEntitiesInfo of this process."""
-        if self._closed:
+        if self._closed or not self.announcing:
             return
         nodes = []
         for node in [] if self.nodes_hidden else self._nodes:
@@ -231,8 +255,11 @@ class Context:
         Warns, once per process, about a participant of the other distribution or a sample
         that fits no layout.
         """
-        if self._closed:
-            return
+        with self._info_lock:
+            if not self._closed:
+                self._read_discovery_info(logger)
+
+    def _read_discovery_info(self, logger) -> None:
         for data, info in cyclone_private.take_serialized(self.discovery_reader, 256):
             if not info.valid_data:
                 continue
