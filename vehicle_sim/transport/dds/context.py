@@ -72,8 +72,8 @@ class Context:
 
     Created by the first node (:meth:`acquire`), its participant deleted when the last node
     leaves (:meth:`release`). A node registered here provides ``get_namespace()``,
-    ``get_name()``, ``graph_gids()`` (its reader and writer GUIDs, or None while it is not
-    announced) and ``abandon()`` (for :meth:`close_process`).
+    ``get_name()``, ``get_logger()``, ``graph_gids()`` (its reader and writer GUIDs, or None
+    while it is not announced) and ``abandon()`` (for :meth:`close_process`).
     """
 
     _lock = threading.Lock()
@@ -168,10 +168,22 @@ class Context:
         with Context._lock:
             if self._closed:
                 return
-            if self._nodes:
-                self.read_discovery_info(self._nodes[0].get_logger())
-            self.announcing = True
-            self.publish_graph()
+            # The first node's logger (a node still in its constructor may have none yet; its
+            # first spin then reads what arrived).
+            logger = None
+            for node in self._nodes:
+                try:
+                    logger = node.get_logger()
+                    break
+                except AttributeError:
+                    continue
+            try:
+                if logger is not None:
+                    self.read_discovery_info(logger)
+                self.announcing = True
+                self.publish_graph()
+            except DDSException:
+                pass   # the participant is going away
 
     def _close_locked(self) -> None:
         if self._announce_timer is not None:
