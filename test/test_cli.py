@@ -28,6 +28,8 @@ import sys
 from conftest import peer_env, PEER_START_TIMEOUT_S, stop_processes
 import pytest
 
+from vehicle_msgs_py import distro
+
 NS = '/tp_cli'
 # Generous bound for one CLI run (interpreter start, discovery, one exchange).
 CLI_TIMEOUT_S = 60.0
@@ -70,6 +72,15 @@ def test_list_shows_the_peer_node_topics_and_services_with_types(peer):
     assert f'  {NS}/echo_out [std_msgs/msg/String]' in result.stdout
     assert f'  {NS}/set_int [vehicle_msgs/srv/SetInt]' in result.stdout
     assert '_vehicle_sim_cli' not in result.stdout
+
+
+def test_list_ends_with_the_participants_their_vendor_and_distribution(peer):
+    result = vehicle_sim('list', '--wait', '3')
+    assert result.returncode == 0, result.stderr
+    participants = result.stdout.split('participants:\n', 1)[1]
+    spoken = distro.title(distro.choose(peer_env())[0])
+    assert (f'  {peer.info["participant"]} [Eclipse Cyclone DDS; ROS 2 {spoken}]: {NS}/peer\n'
+            in participants)
 
 
 def test_call_single_value_and_yaml_request_print_the_response(peer):

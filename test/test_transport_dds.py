@@ -30,6 +30,7 @@ from cyclonedds.sub import DataReader
 from cyclonedds.topic import Topic
 import pytest
 
+from vehicle_msgs_py import distro
 from vehicle_msgs_py import types as msg_types
 from vehicle_sim.transport import dds, port
 from vehicle_sim.transport.dds import DdsNode
@@ -267,8 +268,14 @@ def test_parameter_services_list_get_set_and_reject(node, peer):
 def test_rosout_receives_the_peer_log(node, peer):
     logs = []
     node.create_subscription('rcl_interfaces/msg/Log', '/rosout', logs.append, port.QOS_ROSOUT)
-    found = wait_for(lambda: [m for m in logs if m.name == 'tp.peer'], spin=node)
+    found = wait_for(lambda: [m for m in logs if m.name == 'tp.peer' and
+                              m.msg == 'peer ready'], spin=node)
     assert [(m.level, m.msg) for m in found] == [(20, 'peer ready')]
+    # the process's first node also says which distribution it speaks (issue 11)
+    (announced,) = [m for m in logs if m.name == 'tp.peer' and m.msg != 'peer ready']
+    spoken = distro.title(distro.choose()[0])   # the peer runs in this test's environment
+    assert (announced.level, announced.msg.split(' on domain')[0]) == (
+        20, f'speaking ROS 2 {spoken}')
 
 
 def test_use_sim_time_node_clock_follows_clock_topic(node):

@@ -16,10 +16,12 @@
 ROS 2 message and service types for the embedded Cyclone DDS transport.
 
 One rosbags type store (``Stores.ROS2_JAZZY`` plus the definitions of
-:mod:`vehicle_msgs_py.catalog`) is the single source of every layout; from it this module
-generates cyclonedds-python ``IdlStruct`` classes that serialise exactly like rmw_cyclonedds
-(final extensibility, classic CDR / XCDR1), with the ROS field names, defaults for every field
-(so ``Msg()`` works) and the message constants as class attributes.
+:mod:`vehicle_msgs_py.catalog`; in a process that speaks Humble, the few layouts of
+``Stores.ROS2_HUMBLE`` that differ, see :mod:`vehicle_msgs_py.distro`) is the single source of
+every layout; from it this module generates cyclonedds-python ``IdlStruct`` classes that
+serialise exactly like rmw_cyclonedds (final extensibility, classic CDR / XCDR1), with the ROS
+field names, defaults for every field (so ``Msg()`` works) and the message constants as class
+attributes.
 
 Conventions (reference/ros2_wire.md):
 
@@ -43,6 +45,7 @@ import numpy as np
 from rosbags.typesys import get_types_from_msg, get_typestore, Stores
 from rosbags.typesys.base import Nodetype
 
+from vehicle_msgs_py import distro
 from vehicle_msgs_py.catalog import definitions, split_service
 
 # rmw_cyclonedds request header members (ros2_wire A4), in wire order.
@@ -166,6 +169,12 @@ def _build_store():
         ])
         services[srv] = (srv + '_Request', srv + '_Response')
     store.register(typs)
+    if distro.selected() == distro.HUMBLE:
+        # The few layouts Humble has otherwise (vehicle_msgs_py.distro); the Gid of
+        # ros_discovery_info is written and read by the transport's discovery_info codec.
+        humble = get_typestore(Stores.ROS2_HUMBLE)
+        for name in distro.HUMBLE_LAYOUTS:
+            store.fielddefs[name] = humble.fielddefs[name]
     for name, (consts, fields) in list(store.fielddefs.items()):
         store.fielddefs[name] = (consts, [(f, _char_to_uint8(d)) for f, d in fields])
     return store, services

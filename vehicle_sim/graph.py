@@ -21,7 +21,10 @@ Like ``ros2 node list / topic list -t / service list -t``, it reads only DDS dis
   ``DCPSSubscription`` built-in topics, demangled (``rt``/``rq``/``rr`` prefixes,
   ``pkg::msg::dds_::Name_`` → ``pkg/msg/Name``);
 * nodes from ``ros_discovery_info`` (``rmw_dds_common/msg/ParticipantEntitiesInfo``), kept only
-  while their participant is alive in ``DCPSParticipant``.
+  while their participant is alive in ``DCPSParticipant``; samples of either Gid layout (Humble's
+  24 bytes, Jazzy's 16) are read, and a participant of the other distribution than the one this
+  process speaks, or a sample that fits neither, adds one line to :attr:`GraphView.warnings`;
+* participants from ``DCPSParticipant``, with their DDS vendor (from the GUID prefix).
 
 The view owns a DDS participant of its own (no node: it is invisible to ``ros2 node list``) and
 hides the endpoints of this process's participants, so a CLI's helper node is not listed.
@@ -125,10 +128,21 @@ class NodeInfo:
     participant: bytes
     reader_gids: Set[bytes] = field(default_factory=set)
     writer_gids: Set[bytes] = field(default_factory=set)
+    distro: str = ''
 
     @property
     def fqn(self) -> str:
         return self.namespace.rstrip('/') + '/' + self.name
+
+
+@dataclass(frozen=True)
+class ParticipantInfo:
+    """A live DDS participant: its GUID, DDS vendor, distribution (if it announced nodes)."""
+
+    guid: bytes
+    vendor: str
+    distro: str
+    nodes: Tuple[str, ...]
 
 
 def _is_alive(sample) -> bool:
@@ -177,8 +191,14 @@ class GraphView:
         self._participants: Set[bytes] = set()
         self._endpoints: Dict[bytes, Endpoint] = {}
         self._nodes_by_participant: Dict[bytes, List[NodeInfo]] = {}
+        self._distro_of: Dict[bytes, str] = {}
         # ros_discovery_info samples that could not be decoded (dropped, the rest is kept).
         self.dropped_samples = 0
+        from vehicle_msgs_py import distro
+        self.distro = distro.selected()
+        # One line per kind of trouble met (another distribution, a sample fitting no layout).
+        self.warnings: List[str] = []
+        self._warning_keys: Set[str] = set()
         self._closed = False
 
     # ------------------------------------------------------------------------- life cycle
@@ -213,6 +233,7 @@ class GraphView:
             else:
                 self._participants.discard(key)
                 self._nodes_by_participant.pop(key, None)
+                self._distro_of.pop(key, None)
         for reader, is_writer in self._endpoint_readers:
             for sample in reader.take(N=1000):
                 key = sample.key.bytes
@@ -220,16 +241,36 @@ class GraphView:
                     self._endpoints.pop(key, None)
                     continue
                 self._endpoints[key] = _endpoint(sample, is_writer)
+        self._read_discovery_info()
+
+    def _read_discovery_info(self) -> None:
+        from vehicle_msgs_py import distro
         from vehicle_sim.transport import cyclone_private
-        samples, errors = cyclone_private.take(self._info_reader, 1000)
-        self.dropped_samples += len(errors)
-        for sample in samples:
-            gid = bytes(sample.gid.data)
+        from vehicle_sim.transport.dds import discovery_info, peers
+        for data, info in cyclone_private.take_serialized(self._info_reader, 1000):
+            if not info.valid_data:
+                continue
+            try:
+                found = discovery_info.decode(data, prefer=distro.gid_size(self.distro))
+            except discovery_info.UndecodableSample as exc:
+                self.dropped_samples += 1
+                self._warn_once(peers.undecodable_info_warning(self.domain_id, str(exc)))
+                continue
+            gid = found.gid
+            if found.distro != self.distro:
+                self._warn_once(peers.other_distro_warning(
+                    found.distro, self.distro, gid, self.domain_id, listing=True),
+                    key=found.distro)
+            self._distro_of[gid] = found.distro
             self._nodes_by_participant[gid] = [
-                NodeInfo(n.node_namespace, n.node_name, gid,
-                         {bytes(g.data) for g in n.reader_gid_seq},
-                         {bytes(g.data) for g in n.writer_gid_seq})
-                for n in sample.node_entities_info_seq]
+                NodeInfo(n.namespace, n.name, gid, set(n.reader_gids), set(n.writer_gids),
+                         found.distro)
+                for n in found.nodes]
+
+    def _warn_once(self, text: str, key: str = 'undecodable') -> None:
+        if key not in self._warning_keys:
+            self._warning_keys.add(key)
+            self.warnings.append(text)
 
     def wait(self, duration_s: float) -> None:
         """Collect discovery data for ``duration_s`` seconds."""
@@ -269,6 +310,16 @@ class GraphView:
                 continue
             found.extend(nodes)
         return sorted(found, key=lambda n: n.fqn)
+
+    def participants(self) -> List[ParticipantInfo]:
+        """Return the live participants of other processes, with vendor and distribution."""
+        from vehicle_sim.transport.dds import peers
+        found = []
+        for guid in sorted(self._participants - self._own_participants):
+            nodes = tuple(sorted(n.fqn for n in self._nodes_by_participant.get(guid, ())))
+            found.append(ParticipantInfo(guid, peers.vendor_of(guid),
+                                         self._distro_of.get(guid, ''), nodes))
+        return found
 
     def node_names(self) -> List[str]:
         return sorted({n.fqn for n in self.nodes()})

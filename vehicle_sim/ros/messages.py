@@ -351,16 +351,22 @@ def nav_sat_fix_builder(msg, frame_id: str):
 
 
 def range_builder(msg, frame_id: str):
-    """Return ``build(stamp, reading)``: sensor_msgs/Range (Jazzy, with variance)."""
+    """
+    Return ``build(stamp, reading)``: sensor_msgs/Range.
+
+    Jazzy's Range has ``variance``; Humble's has not (the reading's variance is then not sent).
+    """
     header_type, range_type = msg(HEADER), msg(RANGE)
+    with_variance = hasattr(range_type, 'variance')
 
     def build(stamp, reading):
+        extra = {'variance': float(reading.variance_m2)} if with_variance else {}
         return range_type(
             header=header_type(stamp=stamp, frame_id=frame_id),
             radiation_type=int(reading.radiation_type),
             field_of_view=float(reading.field_of_view_rad),
             min_range=float(reading.min_range_m), max_range=float(reading.max_range_m),
-            range=float(reading.range_m), variance=float(reading.variance_m2))
+            range=float(reading.range_m), **extra)
     return build
 
 

@@ -138,21 +138,43 @@ def cmd_list(args) -> int:
     try:
         session.graph.wait(args.wait)
         graph = session.graph
-        nodes = [n for n in graph.node_names() if args.all or not _hidden(n)]
-        topics = {k: v for k, v in graph.topics().items() if args.all or not _hidden(k)}
-        services = {k: v for k, v in graph.services().items() if args.all or not _hidden(k)}
-        print('nodes:')
-        for name in nodes:
-            print(f'  {name}')
-        print('topics:')
-        for name in sorted(topics):
-            print(f'  {name} [{", ".join(sorted(topics[name]))}]')
-        print('services:')
-        for name in sorted(services):
-            print(f'  {name} [{", ".join(sorted(services[name]))}]')
+        _print_list(graph, args.all)
+        for warning in graph.warnings:
+            sys.stderr.write(f'warning: {warning}\n')
     finally:
         session.close()
     return EXIT_OK
+
+
+def _print_list(graph, show_all: bool) -> None:
+    """Print nodes, topics, services and participants (DDS vendor, distribution)."""
+    from vehicle_msgs_py import distro
+    foreign = {n.fqn: n.distro for n in graph.nodes() if n.distro and n.distro != graph.distro}
+    nodes = [n for n in graph.node_names() if show_all or not _hidden(n)]
+    topics = {k: v for k, v in graph.topics().items() if show_all or not _hidden(k)}
+    services = {k: v for k, v in graph.services().items() if show_all or not _hidden(k)}
+    print('nodes:')
+    for name in nodes:
+        mark = f'  ({distro.title(foreign[name])})' if name in foreign else ''
+        print(f'  {name}{mark}')
+    print('topics:')
+    for name in sorted(topics):
+        print(f'  {name} [{", ".join(sorted(topics[name]))}]')
+    print('services:')
+    for name in sorted(services):
+        print(f'  {name} [{", ".join(sorted(services[name]))}]')
+    print('participants:')
+    for participant in graph.participants():
+        shown = [n for n in participant.nodes if show_all or not _hidden(n)]
+        if not show_all and participant.nodes and not shown:
+            continue   # only hidden nodes (another vehicle-sim command)
+        details = [participant.vendor]
+        if participant.distro:
+            details.append(f'ROS 2 {distro.title(participant.distro)}')
+            nodes_text = f': {", ".join(shown)}' if shown else ''
+        else:   # Fast DDS sends its transient-local data only after ~3 s
+            nodes_text = ' (no ros_discovery_info received: not ROS, or try a longer --wait)'
+        print(f'  {participant.guid.hex()} [{"; ".join(details)}]{nodes_text}')
 
 
 # --------------------------------------------------------------------------------------------

@@ -18,7 +18,11 @@ The rclpy adapter: a thin wrapper of a real ``rclpy.node.Node`` with the port AP
 Written against ROS 2 Jazzy's rclpy: ``rclpy.init`` / ``Node`` / ``create_publisher(msg_type,
 topic, QoSProfile)`` / ``create_service`` / ``create_client`` / ``call_async`` / ``spin_once`` /
 ``try_shutdown``; message classes come from the generated ``pkg.msg`` / ``pkg.srv`` modules.
-Only imported when rclpy is importable.
+Only imported when rclpy is importable. Humble's rclpy has every API used here (same
+signatures, ``Executor._execute_service`` awaiting ``await_or_execute``, ``_parameter_overrides``):
+the nodes run on it unchanged (``ros2 run`` / ``ros2 launch`` checked on a Humble built from
+source); the one message that differs, ``sensor_msgs/msg/Range`` (no ``variance`` on Humble),
+is built from the fields its class has.
 
 Deferred service replies (a port callback returning a port Future) use rclpy's own mechanism:
 the service callback is a coroutine, which rclpy's executor awaits (Jazzy ``executors.py``,

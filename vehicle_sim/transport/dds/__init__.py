@@ -13,15 +13,18 @@
 # limitations under the License.
 
 """
-The embedded Cyclone DDS adapter: a ROS 2 Jazzy graph citizen without ROS.
+The embedded Cyclone DDS adapter: a ROS 2 Jazzy (or Humble) graph citizen without ROS.
 
 On the wire it does what rmw_cyclonedds (Jazzy, ``rmw_node.cpp``) does, so that ROS 2 nodes and
-the ``ros2`` tools see its nodes, topics, services and parameters.
+the ``ros2`` tools see its nodes, topics, services and parameters; a process can speak Humble's
+conventions instead (:mod:`vehicle_msgs_py.distro`).
 
 One concern per module:
 
 * ``context``: the domain, the process's one participant (USER_DATA ``enclave=/;``), topics,
   ``serviceid``/``clientid`` tokens and ``ros_discovery_info``;
+* ``discovery_info``: ``ros_discovery_info`` samples as bytes, in Humble's and Jazzy's layouts;
+* ``peers``: a participant's DDS vendor and the warnings about peers we cannot fully serve;
 * ``qos``: ROS QoS profiles and USER_DATA (``typehash=``) as rmw_cyclonedds maps them;
 * ``endpoints``: publishers, subscriptions, and the per-sample decoding of every reader;
 * ``services``: services and clients with the rmw_cyclonedds request header, deferred replies;

@@ -18,7 +18,9 @@ The process-wide DDS state of the embedded transport: domain, participant, topic
 One DomainParticipant per process (USER_DATA ``enclave=/;``) shared by all nodes of the process,
 one Topic per name, ``serviceid``/``clientid`` tokens, and the process's
 ``ros_discovery_info`` (``rmw_dds_common/msg/ParticipantEntitiesInfo``, read by rmw_dds_common's
-graph cache) republished on every change.
+graph cache) republished on every change, in the Gid layout of the distribution the process
+speaks (:mod:`vehicle_msgs_py.distro`). The process also reads ``ros_discovery_info``, as every
+rmw participant does, to warn once about a participant that speaks the other distribution.
 """
 
 import itertools
@@ -29,14 +31,20 @@ from cyclonedds.core import DDSException
 from cyclonedds.domain import Domain, DomainParticipant
 from cyclonedds.pub import DataWriter
 from cyclonedds.qos import Policy, Qos
+from cyclonedds.sub import DataReader
 from cyclonedds.topic import Topic
 
+from vehicle_msgs_py import distro
 from vehicle_msgs_py import types as msg_types
 from vehicle_sim.transport import cyclone_private, dds_config, port
+from vehicle_sim.transport.dds import discovery_info, peers
 from vehicle_sim.transport.dds.qos import dds_qos, endpoint_user_data
 from vehicle_sim.transport.port import TransportError
 
 DISCOVERY_TOPIC = 'ros_discovery_info'
+# How long a Jazzy process listens for Humble participants before it announces its nodes [s]:
+# the ros_discovery_info of the participants already on the domain arrives well within it.
+JAZZY_ANNOUNCE_DELAY_S = 0.5
 
 _domains: Dict[int, Domain] = {}
 _domains_lock = threading.Lock()
@@ -64,14 +72,19 @@ class Context:
 
     Created by the first node (:meth:`acquire`), its participant deleted when the last node
     leaves (:meth:`release`). A node registered here provides ``get_namespace()``,
-    ``get_name()``, ``graph_gids()`` (its reader and writer GUIDs, or None while it is not
-    announced) and ``abandon()`` (for :meth:`close_process`).
+    ``get_name()``, ``get_logger()``, ``graph_gids()`` (its reader and writer GUIDs, or None
+    while it is not announced) and ``abandon()`` (for :meth:`close_process`).
     """
 
     _lock = threading.Lock()
     _instance: Optional['Context'] = None
 
     def __init__(self):
+        try:
+            self.distro, self.distro_reason = distro.selected_with_reason()
+        except ValueError as exc:
+            raise TransportError(str(exc)) from None
+        self.gid_size = distro.gid_size(self.distro)
         self.domain_id = dds_config.domain_id()
         ensure_domain(self.domain_id)
         try:
@@ -96,12 +109,31 @@ class Context:
         self._closed = False
         info_type = msg_types.message_type('rmw_dds_common/msg/ParticipantEntitiesInfo')
         self._info_type = info_type
-        self._node_info_type = msg_types.message_type('rmw_dds_common/msg/NodeEntitiesInfo')
-        self._gid_type = msg_types.message_type('rmw_dds_common/msg/Gid')
+        # The topic's type is Jazzy's in both modes (so that processes of either mode match);
+        # the samples are written and read as bytes by the discovery_info codec.
+        user_data = endpoint_user_data(info_type.__ros_type__)
         self._discovery_writer = DataWriter(
             self.participant, self.topic(DISCOVERY_TOPIC, info_type),
-            qos=dds_qos(port.QOS_DISCOVERY_INFO_WRITER,
-                        endpoint_user_data(info_type.__ros_type__), True))
+            qos=dds_qos(port.QOS_DISCOVERY_INFO_WRITER, user_data, True))
+        # Our own samples are not read back (as rmw_cyclonedds ignores its participant's).
+        self.discovery_reader = DataReader(
+            self.participant, self.topic(DISCOVERY_TOPIC, info_type),
+            qos=dds_qos(port.QOS_DISCOVERY_INFO_READER, user_data, False)
+            + Qos(Policy.IgnoreLocal.Participant))
+        self._distro_announced = False
+        self._warned = set()
+        self._info_lock = threading.Lock()
+        # True once a Jazzy process met a Humble participant: it then announces no nodes.
+        self.nodes_hidden = False
+        # A Jazzy process announces its nodes only once it has listened for Humble participants
+        # (a Humble process that received a Jazzy node list keeps it broken): the timer reads
+        # what arrived, then publishes. Humble's node lists are harmless to Jazzy.
+        self._announce_timer = None
+        self.announcing = self.distro != distro.JAZZY
+        if not self.announcing:
+            self._announce_timer = threading.Timer(JAZZY_ANNOUNCE_DELAY_S, self._start_announcing)
+            self._announce_timer.daemon = True
+            self._announce_timer.start()
 
     @classmethod
     def acquire(cls, node) -> 'Context':
@@ -132,7 +164,30 @@ class Context:
             if last:
                 self._close_locked()
 
+    def _start_announcing(self) -> None:
+        with Context._lock:
+            if self._closed:
+                return
+            # The first node's logger (a node still in its constructor may have none yet; its
+            # first spin then reads what arrived).
+            logger = None
+            for node in self._nodes:
+                try:
+                    logger = node.get_logger()
+                    break
+                except AttributeError:
+                    continue
+            try:
+                if logger is not None:
+                    self.read_discovery_info(logger)
+                self.announcing = True
+                self.publish_graph()
+            except DDSException:
+                pass   # the participant is going away
+
     def _close_locked(self) -> None:
+        if self._announce_timer is not None:
+            self._announce_timer.cancel()
         if not self._closed:
             self._closed = True
             cyclone_private.delete_participant(self.participant)
@@ -179,21 +234,63 @@ class Context:
 
     def publish_graph(self) -> None:
         """Publish the complete ParticipantEntitiesInfo of this process."""
-        if self._closed:
+        if self._closed or not self.announcing:
             return
-        gid = self._gid_type
         nodes = []
-        for node in self._nodes:
+        for node in [] if self.nodes_hidden else self._nodes:
             gids = node.graph_gids()
             if gids is None:
                 continue
             readers, writers = gids
-            nodes.append(self._node_info_type(
-                node_namespace=node.get_namespace(), node_name=node.get_name(),
-                reader_gid_seq=[gid(data=g) for g in readers],
-                writer_gid_seq=[gid(data=g) for g in writers]))
-        self._discovery_writer.write(self._info_type(
-            gid=gid(data=self.participant_gid), node_entities_info_seq=nodes))
+            nodes.append(discovery_info.NodeEntry(
+                node.get_namespace(), node.get_name(), tuple(readers), tuple(writers)))
+        cyclone_private.write_serialized(self._discovery_writer, discovery_info.encode(
+            self.participant_gid, nodes, self.gid_size))
+
+    def announce_distro(self) -> str:
+        """Return the start-up line naming the distribution spoken, once per process ('' after)."""
+        if self._distro_announced:
+            return ''
+        self._distro_announced = True
+        return (f'speaking ROS 2 {distro.title(self.distro)} on domain {self.domain_id} '
+                f'({self.gid_size}-byte Gids in ros_discovery_info; {self.distro_reason})')
+
+    def _warn_once(self, logger, key, text: str) -> None:
+        if key not in self._warned:
+            self._warned.add(key)
+            logger.warning(text)
+
+    def read_discovery_info(self, logger) -> None:
+        """
+        Take the ``ros_discovery_info`` samples that arrived.
+
+        Warns, once per process, about a participant of the other distribution or a sample
+        that fits no layout.
+        """
+        with self._info_lock:
+            if not self._closed:
+                self._read_discovery_info(logger)
+
+    def _read_discovery_info(self, logger) -> None:
+        for data, info in cyclone_private.take_serialized(self.discovery_reader, 256):
+            if not info.valid_data:
+                continue
+            try:
+                found = discovery_info.decode(data, prefer=self.gid_size)
+            except discovery_info.UndecodableSample as exc:
+                self._warn_once(logger, 'undecodable',
+                                peers.undecodable_info_warning(self.domain_id, str(exc)))
+                continue
+            if found.distro == self.distro:
+                continue
+            if found.distro == distro.HUMBLE and not self.nodes_hidden:
+                # Humble reads a Jazzy node list as dozens of nameless nodes, which breaks its
+                # node-name queries for the whole domain; an empty list (20 bytes, too short for
+                # its 24-byte Gid) adds no node.
+                self.nodes_hidden = True
+                self.publish_graph()
+            self._warn_once(logger, found.distro, peers.other_distro_warning(
+                found.distro, self.distro, found.gid, self.domain_id))
 
 
 def participant_guid() -> Optional[bytes]:

@@ -25,7 +25,8 @@ conditions whether they are triggered until it has found that many, most recentl
 (one call per condition asked, so a node whose traffic comes from a few readers finds them
 at once whatever its number of readers), then runs their handlers in attach order. The
 conditions are level-triggered: a reader that still holds samples, or that received some after
-the wait, wakes the next wait at once.
+the wait, wakes the next wait at once. A node with services also wakes every ``CLIENT_CHECK_S``
+to look for newly matched clients it cannot serve (``services.warn_unservable_clients``).
 """
 
 import signal
@@ -38,7 +39,11 @@ from cyclonedds.core import DDSException, GuardCondition, WaitSet
 
 from vehicle_sim.transport import cyclone_private, port
 from vehicle_sim.transport.dds.context import Context
-from vehicle_sim.transport.dds.services import PENDING_REPLY_POLL_S
+from vehicle_sim.transport.dds.services import (
+    CLIENT_CHECK_S,
+    PENDING_REPLY_POLL_S,
+    warn_unservable_clients,
+)
 from vehicle_sim.transport.port import TransportError
 
 # How long spin() may block before it looks at shutdown requests (signals) again.
@@ -97,6 +102,7 @@ class Executor:
         self._recent: List[_Entry] = []
         self._timers: List[DdsTimer] = []
         self.services: List = []
+        self._next_client_check = 0.0
         self._attach(self._guard)
 
     def _attach(self, condition) -> None:
@@ -138,6 +144,8 @@ class Executor:
                 wait_s = min(wait_s, max(0.0, timer.next_due - now))
         if any(s.pending for s in self.services):
             wait_s = min(wait_s, PENDING_REPLY_POLL_S)
+        if self.services:
+            wait_s = min(wait_s, max(0.0, self._next_client_check - now))
         try:
             count = self._waitset.wait(int(wait_s * 1e9))
         except DDSException:
@@ -153,6 +161,9 @@ class Executor:
         for service in self.services:
             if service.pending:
                 service.flush_pending(now)
+        if self.services and now >= self._next_client_check:
+            self._next_client_check = now + CLIENT_CHECK_S
+            warn_unservable_clients(self.services)
         for timer in list(self._timers):
             if timer.cancelled:
                 self._timers.remove(timer)

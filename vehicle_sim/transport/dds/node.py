@@ -130,6 +130,12 @@ class DdsNode(port.NodePort):
             logger_name = '.'.join([t for t in self._namespace.split('/') if t] + [self._name])
             self._logger = DdsLogger(self, logger_name, ros_args.log_level or 20,
                                      ros_args.rosout_logs, ros_args.stdout_logs)
+            announcement = self._ctx.announce_distro()
+            if announcement:
+                self._logger.info(announcement)
+            self._executor.add(
+                ReadCondition(self._ctx.discovery_reader, cyclone_private.ANY_STATE),
+                lambda: self._ctx.read_discovery_info(self._logger))
             self._parameters = ParameterStore(self, overrides, self._parameter_applied)
             self.declare_parameter('use_sim_time', False,
                                    description='use /clock as the node clock')

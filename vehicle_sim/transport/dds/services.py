@@ -22,16 +22,23 @@ client reply reader is not matched yet is queued and retried by the executor for
 node's ``reply_match_timeout_s``: the caller is never blocked (rmw_cyclonedds itself blocks up to
 100 ms). A service callback may return a port ``Future`` instead of the response: the reply is
 sent once it is done (a deferred reply).
+
+A client that is not rmw_cyclonedds (Fast DDS: its request carries no header, the request id
+travels as the sample identity) cannot be served: Cyclone DDS drops its requests before they
+reach Python. Such a client is recognised when its request writer matches (no ``clientid=`` in
+its USER_DATA, a participant GUID that is not Cyclone's) and logged once per client and service
+(one line per client participant).
 """
 
 import time
-from typing import Dict, List, Optional
+from typing import Dict, List, Optional, Tuple
 
 from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
 
 from vehicle_msgs_py import types as msg_types
 from vehicle_sim.transport import port
+from vehicle_sim.transport.dds import peers
 from vehicle_sim.transport.dds.endpoints import Intake
 from vehicle_sim.transport.dds.qos import dds_qos, endpoint_user_data, userdata_tokens
 from vehicle_sim.transport.port import QosProfile, TransportError
@@ -39,6 +46,8 @@ from vehicle_sim.transport.port import QosProfile, TransportError
 UINT64_MASK = 0xFFFFFFFFFFFFFFFF
 # How often the executor wakes while replies wait for their client's reply reader to match [s].
 PENDING_REPLY_POLL_S = 0.002
+# How often the executor looks for newly matched request writers it cannot serve [s].
+CLIENT_CHECK_S = 0.25
 
 
 class _PendingReply:
@@ -79,6 +88,8 @@ class DdsService(port.Service):
         self._reader_tokens: Dict[int, str] = {}
         self._matched_tokens = set()
         self.pending: List[_PendingReply] = []
+        self._match_count = 0
+        self._checked_writers = set()
 
     def _request_writer_token(self, handle: int) -> Optional[str]:
         """Return the request writer's clientid ('' if none), None when the writer is gone."""
@@ -109,6 +120,31 @@ class DdsService(port.Service):
     def dropped_samples(self) -> int:
         """How many requests could not be decoded and were dropped."""
         return self._intake.dropped
+
+    def check_clients(self) -> List[Tuple[bytes, str]]:
+        """
+        Return ``(participant, vendor)`` of the newly matched clients that cannot be served.
+
+        Those are the request writers that are not rmw_cyclonedds (see the module); each writer
+        is returned once.
+        """
+        total = self._reader.get_subscription_matched_status().total_count
+        if total == self._match_count:
+            return []
+        self._match_count = total
+        handles = set(self._reader.get_matched_publications())
+        self._checked_writers &= handles
+        found = []
+        for handle in handles - self._checked_writers:
+            self._checked_writers.add(handle)
+            data = self._reader.get_matched_publication_data(handle)
+            if data is None or 'clientid' in userdata_tokens(data.qos):
+                continue
+            participant = data.participant_key.bytes
+            vendor = peers.vendor_of(participant)
+            if vendor != peers.CYCLONE:   # a Cyclone client without an id is served
+                found.append((participant, vendor))
+        return found
 
     def on_data(self) -> None:
         """Serve the requests that arrived (the executor's handler of the request reader)."""
@@ -169,6 +205,23 @@ class DdsService(port.Service):
             else:
                 keep.append(item)
         self.pending = keep
+
+
+def warn_unservable_clients(services: List[DdsService]) -> None:
+    """
+    Log the clients the services cannot serve.
+
+    One warning per client participant, naming every service it newly matched (``ros2 param
+    list`` matches all six parameter services at once).
+    """
+    by_participant: Dict[bytes, Tuple[str, List[str], DdsService]] = {}
+    for service in services:
+        for participant, vendor in service.check_clients():
+            entry = by_participant.setdefault(participant, (vendor, [], service))
+            entry[1].append(service.service_name)
+    for participant, (vendor, names, service) in by_participant.items():
+        service._node.get_logger().warning(
+            peers.fast_dds_client_warning(names, vendor, participant))
 
 
 class DdsClient(port.Client):
