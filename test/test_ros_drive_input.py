@@ -226,7 +226,7 @@ def test_car_reset_after_a_command_stands_the_watchdog_down(watched_car):
     # brake the reset car half a second later.
     car, client = watched_car, watched_car.client
     car.twist(2.0, 0.0)
-    assert client.call('automobile/reset').success
+    assert client.call('reset').success
     client.step(100)                          # 1 s: twice the timeout
     assert car.cruising_kmh() == 0.0
     assert client.latest('brake_intensity').data == 0.0

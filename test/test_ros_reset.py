@@ -249,9 +249,9 @@ BAD_POSES = [
 @pytest.fixture
 def resting(car, tester):
     """Teleport the car to (2, 1, 0.3), let it settle; return its odometry and getters."""
-    assert car.call('automobile/reset').success
+    assert car.call('reset').success
     assert car.call('automobile/set_indicator', 2).success
-    assert car.call('automobile/set_pose', pose=_pose(tester, 2.0, 1.0, rpy=(0, 0, 0.3))).success
+    assert car.call('set_pose', pose=_pose(tester, 2.0, 1.0, rpy=(0, 0, 0.3))).success
     odom = car.step_and_read('odom', 200)
     return odom, _getters(car)
 
@@ -281,7 +281,7 @@ class TestCar:
         assert math.hypot(moved.x, moved.y) > 1.0
         assert _getters(car) != _initial_getters()
         before_s = car.time_s()
-        answer = car.call('automobile/reset')
+        answer = car.call('reset')
         assert answer.success
         assert 'spawn pose' in answer.message and 'simulated time goes on' in answer.message
         assert car.time_s() == before_s                      # time is not rewound
@@ -301,10 +301,10 @@ class TestCar:
 
     def test_set_pose_teleports_and_odometry_tf_and_joints_agree_in_the_same_step(self, car,
                                                                                    tester):
-        assert car.call('automobile/reset').success
+        assert car.call('reset').success
         car.call('automobile/set_cruising_speed', 20.0)
         car.step_and_read('odom', 1000)
-        answer = car.call('automobile/set_pose',
+        answer = car.call('set_pose',
                           pose=_pose(tester, 3.0, -4.0, z=2.0, rpy=(0.2, -0.1, 0.7)))
         assert answer.success, answer.message
         assert 'x 3.000 m, y -4.000 m, yaw 0.7000 rad' in answer.message
@@ -329,7 +329,7 @@ class TestCar:
 
     @pytest.mark.parametrize('frame_id', ['map', 'world', '', 'odom'])
     def test_initialpose_teleports_the_first_vehicle(self, car, tester, initialpose, frame_id):
-        assert car.call('automobile/reset').success
+        assert car.call('reset').success
         x, y, yaw = -5.0, 2.0 + len(frame_id), -1.2
         _publish(tester, initialpose,
                  _stamped(tester, frame_id, _pose(tester, x, y, rpy=(0.0, 0.0, yaw))))
@@ -346,7 +346,7 @@ class TestCar:
     @pytest.mark.parametrize('request_fields, reason', BAD_POSES)
     def test_set_pose_refuses_a_bad_pose_and_changes_nothing(self, car, tester, resting,
                                                              request_fields, reason):
-        answer = car.call('automobile/set_pose', pose=_pose(tester, **request_fields))
+        answer = car.call('set_pose', pose=_pose(tester, **request_fields))
         assert not answer.success
         assert reason in answer.message and 'nothing moved' in answer.message
         _assert_unchanged(car, resting)
@@ -373,7 +373,7 @@ class TestCar:
         # Drive into the crate and push it, then bring the car alone back: the crate is farther.
         assert car.call('automobile/set_cruising_speed', 25.0).success
         car.step_and_read('odom', 5000)
-        assert car.call('automobile/set_pose', pose=_pose(tester, 0.0, 0.0)).success
+        assert car.call('set_pose', pose=_pose(tester, 0.0, 0.0)).success
         assert car.call('automobile/set_cruising_speed', 0.0).success
         assert lidar() > CRATE_RANGE_M + 1.0
         before_s = car.time_s()
@@ -433,7 +433,7 @@ class TestTwoCars:
         _assert_at(odom.pose.pose, 2.0, 1.0, 0.5)          # its odom frame: the request itself
         _assert_at(car1.step_and_read('odom').pose.pose, *_xy_yaw(start1.pose.pose))
         # car2's own set_pose is in the world frame: (0, 6) is its spawn, odom (0, 0).
-        assert car2.call('automobile/set_pose', pose=_pose(tester, 0.0, 6.0)).success
+        assert car2.call('set_pose', pose=_pose(tester, 0.0, 6.0)).success
         _assert_at(car2.step_and_read('odom').pose.pose, 0.0, 0.0, 0.0)
 
     def test_unknown_initialpose_vehicle_is_refused_naming_the_vehicles(self):

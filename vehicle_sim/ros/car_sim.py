@@ -29,7 +29,7 @@ steps on every non-blocking spin; ``synchronous`` steps only on ``robot/time_ste
 are queued and run in chunks from the node's loop (:mod:`.time_step`), so the node keeps
 serving and honours signals however long a request is.
 
-Reset, teleport and pause (``automobile/reset``, ``automobile/set_pose``, ``/sim/reset``,
+Reset, teleport and pause (``reset``, ``set_pose``, ``/sim/reset``,
 ``/sim/pause``, ``/initialpose``): :mod:`.sim_control`; a paused node skips its step timer.
 """
 

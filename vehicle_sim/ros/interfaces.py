@@ -257,11 +257,10 @@ ROBOT_SERVICES = (
             unit='ms', doc='basic time step'),
 )
 
-# automobile/reset and automobile/set_pose (ros/sim_control.py).
+# reset and set_pose (ros/sim_control.py).
 POSE_SERVICES = vehicle_services(
-    'automobile/', 'back to the spawn pose at rest, joints at 0, car logic in its start state '
-                   '(control mode, gear, cruising speed, throttle, brake, steering, indicators, '
-                   'lights, wipers)')
+    '', 'back to the spawn pose at rest, joints at 0, car logic in its start state (control '
+        'mode, gear, cruising speed, throttle, brake, steering, indicators, lights, wipers)')
 
 SERVICES = AUTOMOBILE_SERVICES + ROBOT_SERVICES + POSE_SERVICES
 # Served and read once per node (global names): /sim/reset, /sim/pause and /initialpose.
