@@ -23,29 +23,21 @@ Needs ``xvfb-run`` (Debian/Ubuntu package ``xvfb``); the screenshot test also ne
 import json
 import math
 import os
-import shutil
-import subprocess
 import sys
 
-from conftest import peer_env, REPO_ROOT
+from conftest import REPO_ROOT
 import pytest
+from xvfb_helpers import require_xvfb, xvfb_run
 
 PROBE = os.path.join(REPO_ROOT, 'test', 'gui_probe.py')
-# Xvfb screen larger than PyBullet's default 1024 x 768 window.
-SCREEN = '-screen 0 1280x1024x24'
 PROBE_TIMEOUT_S = 240
 
 
 @pytest.fixture(scope='module')
 def seen(tmp_path_factory):
-    if shutil.which('xvfb-run') is None:
-        pytest.skip('xvfb-run not found: the GUI test needs a virtual X display '
-                    '(Debian/Ubuntu: apt-get install xvfb)')
+    require_xvfb()
     out_dir = tmp_path_factory.mktemp('gui')
-    env = peer_env()
-    env.pop('DISPLAY', None)
-    proc = subprocess.run(['xvfb-run', '-a', '-s', SCREEN, sys.executable, PROBE, str(out_dir)],
-                          env=env, capture_output=True, text=True, timeout=PROBE_TIMEOUT_S)
+    proc = xvfb_run([sys.executable, PROBE, str(out_dir)], PROBE_TIMEOUT_S, out_dir)
     lines = [line for line in proc.stdout.splitlines() if line.startswith('{')]
     assert proc.returncode == 0 and lines, (proc.returncode, proc.stdout[-3000:],
                                             proc.stderr[-3000:])

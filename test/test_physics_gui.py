@@ -83,7 +83,7 @@ def two_cars():
 
 def test_chase_camera_follows_the_first_vehicle_from_behind(two_cars):
     world, first, second = two_cars
-    camera = ChaseCamera(world, [first, second])
+    camera = ChaseCamera(world, [first, second], period_s=0.0)
     first.logic.set_cruising_speed_kmh(30.0)
     for _ in range(200):
         world.step()
@@ -97,6 +97,20 @@ def test_chase_camera_follows_the_first_vehicle_from_behind(two_cars):
     eye = eye_position(view)
     assert eye[0] < x and eye[2] > view.target_m[2]           # behind and above
     assert view.yaw_deg == pytest.approx(-90.0, abs=1.0)      # heading 0 -> yaw -90 deg
+
+
+def test_camera_moves_once_per_period(two_cars):
+    world, first, _ = two_cars
+    camera = ChaseCamera(world, [first])        # 0.03 s: every third 10 ms step
+    first.logic.set_cruising_speed_kmh(30.0)
+    views = []
+    for _ in range(12):
+        world.step()
+        views.append(camera.view)
+    changed = [index + 1 for index in range(1, 12) if views[index] is not views[index - 1]]
+    assert changed == [3, 6, 9, 12]
+    with pytest.raises(ValueError, match='period_s'):
+        ChaseCamera(world, [first], period_s=-1.0)
 
 
 def test_keys_toggle_follow_cycle_vehicles_and_zoom(two_cars):

@@ -45,6 +45,9 @@ KEY_FOLLOW = 'f'
 KEY_NEXT = 'n'
 KEY_CLOSER = '='
 KEY_FARTHER = '-'
+# Simulated time between camera updates and key polls [s]: in GUI mode a PyBullet call can wait
+# for the window to finish a frame, so the camera does not move each 10 ms step.
+CAMERA_PERIOD_S = 0.03
 SHORTCUTS = (
     (KEY_FOLLOW, 'chase camera on/off (off: the mouse moves the camera)'),
     (KEY_NEXT, 'follow the next vehicle'),
@@ -119,20 +122,27 @@ class ChaseCamera:
     """
     World hook: PyBullet's window camera behind and above a vehicle, yaw following its heading.
 
-    After every world step it reads the window's key presses (:data:`SHORTCUTS`) and, while
-    following, moves the camera (``resetDebugVisualizerCamera``; PyBullet applies it at the
-    window's next frame). In a DIRECT world nothing is shown but :attr:`view` is still computed.
+    After a world step, every ``period_s`` of simulated time, it reads the window's key presses
+    (:data:`SHORTCUTS`) and, while following, moves the camera (``resetDebugVisualizerCamera``;
+    PyBullet applies it at the window's next frame). In a DIRECT world nothing is shown but
+    :attr:`view` is still computed.
 
     :param world: the World (it registers itself with ``world.add_body``).
     :param targets: what can be followed, first one first: body ids, bodies with ``body_id``
         or vehicles with ``body`` (SimulatedCar).
     :param settings: distance, pitch, target height, heading lag (core ChaseSettings).
-    :raises ValueError: for an empty target list.
+    :param period_s: simulated time between updates [s]; 0 = after every step.
+    :raises ValueError: for an empty target list or a negative period.
     """
 
-    def __init__(self, world, targets: Sequence, settings: Optional[ChaseSettings] = None):
+    def __init__(self, world, targets: Sequence, settings: Optional[ChaseSettings] = None,
+                 period_s: float = CAMERA_PERIOD_S):
         if not targets:
             raise ValueError('ChaseCamera needs at least one target to follow')
+        if not period_s >= 0.0:
+            raise ValueError(f'period_s = {period_s!r}: must be >= 0')
+        self.period_s = float(period_s)
+        self._last_s = world.time_s
         self.world = world
         self._target_ids = [_body_id(target) for target in targets]
         self.settings = settings or ChaseSettings()
@@ -152,12 +162,16 @@ class ChaseCamera:
         return self._target_ids[self.index]
 
     def post_step(self):
-        """World hook, after each step: keys, then the camera."""
+        """World hook, after each step: keys, then the camera, once per period."""
+        now = self.world.time_s
+        if now - self._last_s < self.period_s - 1e-9:
+            return
+        dt_s, self._last_s = now - self._last_s, now
         events = pybullet.getKeyboardEvents(physicsClientId=self.world.client_id)
         if events:
             self.handle_keys(events)
         if self.following:
-            self.update(self.world.time_step_s)
+            self.update(dt_s)
 
     def handle_keys(self, events: Dict[int, int]) -> None:
         """Act on the keys pressed since the last call (``getKeyboardEvents`` form)."""

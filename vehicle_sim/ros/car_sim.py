@@ -39,6 +39,7 @@ from vehicle_sim.core.errors import InvalidCommandError
 from vehicle_sim.core.frames import pose_in_frame, quaternion_from_yaw, twist_in_body
 from vehicle_sim.core.sensor_sets import enable_sensors, static_transforms
 from vehicle_sim.physics import SimulatedCar, World
+from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
 from vehicle_sim.physics.sensor_urdf import with_sensor_links
 from vehicle_sim.physics.sensors import SensorFeed
 from vehicle_sim.physics.urdf import car_urdf
@@ -164,6 +165,7 @@ class AutomobileNode:
         self._timer = None
         self._time_step = None
         self._sensing = []
+        self._gui_closed = False
         try:
             self._build()
         except BaseException:
@@ -175,7 +177,8 @@ class AutomobileNode:
         self._logger = node.get_logger()
         self.settings = settings = declare_parameters(node)
         scene = world_spec(settings)
-        self.world = World(time_step_s=settings.time_step_s, friction=settings.friction)
+        self.world = World(time_step_s=settings.time_step_s, friction=settings.friction,
+                           gui=settings.gui)
         for obstacle in scene.obstacles:
             self.world.add_obstacle(obstacle)
         self._publish_every = settings.publish_every_steps
@@ -193,6 +196,9 @@ class AutomobileNode:
             self._wire_vehicle(vehicle)
             self._vehicles.append(vehicle)
         self._start_sensors(scene)
+        if settings.gui and self._vehicles:
+            ChaseCamera(self.world, [v.car for v in self._vehicles])
+            self._logger.info(f'PyBullet window open; keys: {shortcuts_text()}')
         self._wire_world()
         self._publish_latched()
         self._publish_step(self.world.time_s)
@@ -338,7 +344,15 @@ class AutomobileNode:
 
         /clock is published every step, the other topics every publish period.
         """
-        time_s = self.world.step()
+        if self._gui_closed:
+            return self.world.time_s
+        try:
+            time_s = self.world.step()
+        except GuiClosedError:
+            self._gui_closed = True
+            self._logger.info('the PyBullet window was closed: shutting down')
+            self.node.request_shutdown()
+            return self.world.time_s
         self._publish_step(time_s)
         return time_s
 

@@ -38,12 +38,14 @@ warning; the command in force stays.
 import sys
 from types import SimpleNamespace
 
+from vehicle_sim.core.chase_camera import ChaseSettings
 from vehicle_sim.core.diff_drive import integrate_pose, twist_from_wheel_speeds
 from vehicle_sim.core.errors import InvalidCommandError, VehicleSimError
 from vehicle_sim.core.frames import quaternion_from_yaw
 from vehicle_sim.core.param_spec import ParamSpec
 from vehicle_sim.core.sensor_sets import enable_sensors, static_transforms
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
+from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
 from vehicle_sim.physics.sensor_urdf import with_sensor_links
 from vehicle_sim.physics.sensors import SensorFeed
 from vehicle_sim.physics.world import World
@@ -90,6 +92,9 @@ ROBOT_NODE_PARAMETERS = (
     ParamSpec('publish_tf', kind='bool', default=True,
               doc='publish <p>odom -> <p>base_link on /tf (wheel odometry)'),
     SENSORS_PARAMETER,
+    ParamSpec('gui', kind='bool', default=False,
+              doc="open PyBullet's window, a chase camera following the robot (a node that "
+                  'owns its world; needs an X display; docs/drive.md)'),
 )
 
 
@@ -120,10 +125,15 @@ class DiffRobotNode:
         values = declare_parameters(node, ROBOT_NODE_PARAMETERS)
         self.params = load_robot(values['robot'])
         self._owns_world = world is None
-        self.world = World(time_step_s=values['time_step_ms'] / 1000.0) if world is None \
-            else world
+        self.world = World(time_step_s=values['time_step_ms'] / 1000.0,
+                           gui=values['gui']) if world is None else world
         self.robot = DiffRobotBody(self.world, self.params,
                                    (values['x'], values['y'], values['yaw']))
+        self._gui_closed = False
+        if values['gui'] and self._owns_world:
+            ChaseCamera(self.world, [self.robot], ChaseSettings(distance_m=3.0, pitch_deg=-25.0,
+                                                                target_height_m=0.3))
+            node.get_logger().info(f'PyBullet window open; keys: {shortcuts_text()}')
         self._spawn = (values['x'], values['y'], values['yaw'])
         joints = [j for j in values['wheel_joints'] if j] or list(self.params.wheel_joints)
         if sorted(joints) != sorted(self.params.wheel_joints):
@@ -239,7 +249,15 @@ class DiffRobotNode:
     def step(self):
         """Advance the world by one basic step (only if this node owns it) and publish."""
         if self._owns_world:
-            self.world.step()
+            if self._gui_closed:
+                return
+            try:
+                self.world.step()
+            except GuiClosedError:
+                self._gui_closed = True
+                self.node.get_logger().info('the PyBullet window was closed: shutting down')
+                self.node.request_shutdown()
+                return
         self.publish_state()
 
     # ---------------------------------------------------------------- outputs

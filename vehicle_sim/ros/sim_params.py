@@ -86,6 +86,9 @@ AUTOMOBILE_PARAMETERS: Tuple[ParamSpec, ...] = (
     ParamSpec('friction', kind='float', default=DEFAULT_FRICTION, unit='1', gt=0.0,
               doc='tyre-road friction coefficient of the ground'),
     SENSORS_PARAMETER,
+    ParamSpec('gui', kind='bool', default=False,
+              doc="open PyBullet's window, a chase camera following the first vehicle (needs "
+                  'an X display; docs/drive.md)'),
 )
 
 
@@ -114,6 +117,7 @@ class SimSettings:
     synchronous: bool
     friction: float
     sensors: Tuple[str, ...] = ('',)
+    gui: bool = False
 
     @property
     def time_step_s(self) -> float:
