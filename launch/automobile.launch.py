@@ -13,24 +13,47 @@
 # limitations under the License.
 
 """
-Launch the automobile node (Webots ros_automobile interface on PyBullet).
+Launch the automobile node (Webots ros_automobile interface on PyBullet), and optionally RViz.
 
 Example: ``ros2 launch vehicle_sim automobile.launch.py car_model:=ToyotaPrius synchronous:=true``
+
+``rviz:=true`` also starts one robot_state_publisher per vehicle (in the vehicle's namespace, fed
+the URDF the node publishes on ``<ns>/robot_description``, so RViz's RobotModel gets the TF of
+every link from ``<ns>/joint_states``) and rviz2 with config/rviz/vehicle_sim.rviz. Both run on
+simulated time: every stamp the node publishes is simulated time.
 """
 
 import os
 
 from ament_index_python.packages import get_package_share_directory
 from launch import LaunchDescription
-from launch.actions import DeclareLaunchArgument
+from launch.actions import DeclareLaunchArgument, OpaqueFunction
+from launch.conditions import IfCondition
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
 from launch_ros.parameter_descriptions import ParameterValue
+import yaml
+
+
+def _robot_state_publishers(context, config):
+    # One per vehicle of the world the node runs, with the node's own URDF function
+    # (vehicle_sim/ros/descriptions.py) and the sensors parameter of the params file.
+    from vehicle_sim.ros.descriptions import robot_descriptions
+    with open(config, encoding='utf-8') as stream:
+        sensors = yaml.safe_load(stream)['automobile']['ros__parameters'].get('sensors', [''])
+    car_model = LaunchConfiguration('car_model').perform(context)
+    world = LaunchConfiguration('world').perform(context)
+    return [Node(package='robot_state_publisher', executable='robot_state_publisher',
+                 namespace=namespace, output='screen',
+                 parameters=[{'robot_description': urdf, 'use_sim_time': True}],
+                 # The node publishes <ns>/robot_description itself; this copy goes aside.
+                 remappings=[('robot_description', 'robot_state_publisher/robot_description')])
+            for namespace, urdf in robot_descriptions(car_model, world, sensors)]
 
 
 def generate_launch_description():
-    config = os.path.join(get_package_share_directory('vehicle_sim'), 'config',
-                          'automobile.yaml')
+    share = get_package_share_directory('vehicle_sim')
+    config = os.path.join(share, 'config', 'automobile.yaml')
     arguments = [
         DeclareLaunchArgument('car_model', default_value='Car',
                               description='car preset (config/cars) or path to a .yaml'),
@@ -42,6 +65,14 @@ def generate_launch_description():
                               description='1 = real time, 0 = as fast as possible'),
         DeclareLaunchArgument('use_sim_time', default_value='false',
                               description='use /clock as the node clock'),
+        DeclareLaunchArgument('gui', default_value='false',
+                              description="open PyBullet's window with a chase camera"),
+        DeclareLaunchArgument('rviz', default_value='false',
+                              description='also start robot_state_publisher and rviz2'),
+        DeclareLaunchArgument('rviz_config',
+                              default_value=os.path.join(share, 'config', 'rviz',
+                                                         'vehicle_sim.rviz'),
+                              description='RViz configuration file'),
     ]
     overrides = {
         'car_model': LaunchConfiguration('car_model'),
@@ -50,7 +81,15 @@ def generate_launch_description():
         'real_time_factor': ParameterValue(LaunchConfiguration('real_time_factor'),
                                            value_type=float),
         'use_sim_time': ParameterValue(LaunchConfiguration('use_sim_time'), value_type=bool),
+        'gui': ParameterValue(LaunchConfiguration('gui'), value_type=bool),
     }
     node = Node(package='vehicle_sim', executable='automobile', name='automobile',
                 output='screen', parameters=[config, overrides])
-    return LaunchDescription(arguments + [node])
+    rviz = IfCondition(LaunchConfiguration('rviz'))
+    viewers = [
+        OpaqueFunction(function=_robot_state_publishers, args=[config], condition=rviz),
+        Node(package='rviz2', executable='rviz2', name='rviz2', output='screen',
+             arguments=['-d', LaunchConfiguration('rviz_config')],
+             parameters=[{'use_sim_time': True}], condition=rviz),
+    ]
+    return LaunchDescription(arguments + [node] + viewers)

@@ -37,13 +37,12 @@ from vehicle_sim.config import load_car
 from vehicle_sim.core.drivetrain import ControlMode
 from vehicle_sim.core.errors import InvalidCommandError
 from vehicle_sim.core.frames import pose_in_frame, quaternion_from_yaw, twist_in_body
-from vehicle_sim.core.sensor_sets import enable_sensors, static_transforms
+from vehicle_sim.core.sensor_sets import static_transforms
 from vehicle_sim.physics import SimulatedCar, World
 from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
-from vehicle_sim.physics.sensor_urdf import with_sensor_links
 from vehicle_sim.physics.sensors import SensorFeed
-from vehicle_sim.physics.urdf import car_urdf
 from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros.descriptions import mounted_sensors, vehicle_description
 from vehicle_sim.ros.endpoints import (
     EACH_PUBLISH,
     EACH_SAMPLE,
@@ -54,7 +53,7 @@ from vehicle_sim.ros.endpoints import (
     serve,
 )
 from vehicle_sim.ros.messages import stamp_builder
-from vehicle_sim.ros.sensor_interfaces import check_names, selected_sensors, sensor_rows
+from vehicle_sim.ros.sensor_interfaces import check_names, sensor_rows
 from vehicle_sim.ros.sim_params import declare_parameters, world_spec
 from vehicle_sim.ros.time_step import TimeStepService
 from vehicle_sim.transport import create_node
@@ -128,8 +127,7 @@ class _Vehicle:
 
     def description(self):
         """Return the URDF published on robot_description (names prefixed ``<p>``)."""
-        return with_sensor_links(car_urdf(self.car.params, name=self.spec.name,
-                                          prefix=self.prefix), self.sensors, self.prefix)
+        return vehicle_description(self.spec, self.sensors, self.car.params)
 
     def static_transforms(self):
         """Return the vehicle's /tf_static entries: world -> <p>odom, then its sensor mounts."""
@@ -218,12 +216,9 @@ class AutomobileNode:
 
     def _vehicle_sensors(self, spec):
         # The vehicle's sensors: the world's, plus the presets' the sensors parameter mounts.
-        names = selected_sensors(self.settings.sensors)
-        if names is None:
-            return spec.sensors
         source = f'{self.node.get_fully_qualified_name()}: parameter sensors, vehicle ' \
                  f'{spec.name!r}'
-        return enable_sensors(spec.sensors, names, source)
+        return mounted_sensors(spec, self.settings.sensors, source)
 
     def _full_name(self, vehicle_namespace):
         # row name -> its fully-qualified name on this node (remaps aside).
