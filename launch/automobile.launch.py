@@ -23,9 +23,13 @@ every link from ``<ns>/joint_states``) and rviz2 with config/rviz/vehicle_sim.rv
 simulated time: every stamp the node publishes is simulated time.
 """
 
+import json
 import os
+import shlex
+import subprocess
+import sys
 
-from ament_index_python.packages import get_package_share_directory
+from ament_index_python.packages import get_package_prefix, get_package_share_directory
 from launch import LaunchDescription
 from launch.actions import DeclareLaunchArgument, OpaqueFunction
 from launch.conditions import IfCondition
@@ -35,20 +39,36 @@ from launch_ros.parameter_descriptions import ParameterValue
 import yaml
 
 
+def _node_python():
+    # The interpreter of the installed node (its shebang): the one with PyBullet, which the
+    # Python running `ros2 launch` may lack.
+    executable = os.path.join(get_package_prefix('vehicle_sim'), 'lib', 'vehicle_sim',
+                              'automobile')
+    with open(executable, encoding='utf-8') as stream:
+        first = stream.readline()
+    return shlex.split(first[2:]) if first.startswith('#!') else [sys.executable]
+
+
 def _robot_state_publishers(context, config):
-    # One per vehicle of the world the node runs, with the node's own URDF function
-    # (vehicle_sim/ros/descriptions.py) and the sensors parameter of the params file.
-    from vehicle_sim.ros.descriptions import robot_descriptions
+    # One per vehicle of the world the node runs, fed the URDF of the node's own function
+    # (vehicle_sim/ros/descriptions.py) with the sensors parameter of the params file.
     with open(config, encoding='utf-8') as stream:
         sensors = yaml.safe_load(stream)['automobile']['ros__parameters'].get('sensors', [''])
     car_model = LaunchConfiguration('car_model').perform(context)
     world = LaunchConfiguration('world').perform(context)
+    result = subprocess.run(
+        _node_python() + ['-m', 'vehicle_sim.ros.descriptions', car_model, world,
+                          *[name for name in sensors if name]],
+        capture_output=True, text=True, check=False)
+    if result.returncode != 0:
+        raise RuntimeError(f'vehicle_sim: no URDF for car_model {car_model!r}, world '
+                           f'{world!r}: {result.stderr.strip()}')
     return [Node(package='robot_state_publisher', executable='robot_state_publisher',
                  namespace=namespace, output='screen',
                  parameters=[{'robot_description': urdf, 'use_sim_time': True}],
                  # The node publishes <ns>/robot_description itself; this copy goes aside.
                  remappings=[('robot_description', 'robot_state_publisher/robot_description')])
-            for namespace, urdf in robot_descriptions(car_model, world, sensors)]
+            for namespace, urdf in json.loads(result.stdout)]
 
 
 def generate_launch_description():
@@ -86,10 +106,10 @@ def generate_launch_description():
     node = Node(package='vehicle_sim', executable='automobile', name='automobile',
                 output='screen', parameters=[config, overrides])
     rviz = IfCondition(LaunchConfiguration('rviz'))
-    viewers = [
-        OpaqueFunction(function=_robot_state_publishers, args=[config], condition=rviz),
-        Node(package='rviz2', executable='rviz2', name='rviz2', output='screen',
-             arguments=['-d', LaunchConfiguration('rviz_config')],
-             parameters=[{'use_sim_time': True}], condition=rviz),
-    ]
-    return LaunchDescription(arguments + [node] + viewers)
+    # The publishers come first: a refused car or world, or a missing robot_state_publisher,
+    # stops the launch before the node starts.
+    publishers = OpaqueFunction(function=_robot_state_publishers, args=[config], condition=rviz)
+    viewer = Node(package='rviz2', executable='rviz2', name='rviz2', output='screen',
+                  arguments=['-d', LaunchConfiguration('rviz_config')],
+                  parameters=[{'use_sim_time': True}], condition=rviz)
+    return LaunchDescription(arguments + [publishers, node, viewer])

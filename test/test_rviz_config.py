@@ -114,3 +114,39 @@ def test_tf_display_is_on_and_the_only_tool_topic_is_initialpose(config):
     tool_topics = [tool['Topic']['Value'] for tool in config['Visualization Manager']['Tools']
                    if 'Topic' in tool]
     assert tool_topics == ['/initialpose']
+
+
+def test_launch_feeds_robot_state_publisher_the_urdf_the_node_publishes():
+    # launch/automobile.launch.py rviz:=true calls robot_descriptions with the launch arguments
+    # and the params file's sensors; the node publishes description() of each vehicle.
+    from vehicle_sim.ros.car_sim import AutomobileNode
+    from vehicle_sim.ros.descriptions import robot_descriptions
+    app = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/rviz_urdf', '-p', 'world:=two_cars',
+                          '-p', 'synchronous:=true', '-p', 'sensors:=[lidar]'], transport='dds')
+    try:
+        published = {v.spec.namespace: v.description() for v in app._vehicles}
+    finally:
+        app.close()
+    launched = dict(robot_descriptions('Car', 'two_cars', ['lidar']))
+    assert sorted(launched) == ['car1', 'car2']
+    assert launched == published
+    assert '<child link="car1/lidar"/>' in launched['car1']
+
+
+def test_descriptions_command_prints_json_and_refuses_an_unknown_car_in_one_line():
+    # What the launch file runs with the node's interpreter.
+    import json
+    import subprocess
+    import sys
+
+    from vehicle_sim.ros.descriptions import robot_descriptions
+    command = [sys.executable, '-m', 'vehicle_sim.ros.descriptions']
+    ok = subprocess.run(command + ['Car', 'default', 'lidar'], capture_output=True, text=True,
+                        timeout=120)
+    assert ok.returncode == 0, ok.stderr
+    assert json.loads(ok.stdout) == [list(d) for d in robot_descriptions('Car', 'default',
+                                                                         ['lidar'])]
+    bad = subprocess.run(command + ['Nope', 'default'], capture_output=True, text=True,
+                         timeout=120)
+    assert bad.returncode == 2 and bad.stdout == ''
+    assert len(bad.stderr.splitlines()) == 1 and "unknown car 'Nope'" in bad.stderr

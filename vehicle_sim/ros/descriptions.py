@@ -24,6 +24,7 @@ from dataclasses import fields, replace
 from typing import List, Sequence, Tuple
 
 from vehicle_sim.config import load_car
+from vehicle_sim.core.errors import VehicleSimError
 from vehicle_sim.core.sensor_sets import enable_sensors
 from vehicle_sim.physics.sensor_urdf import with_sensor_links
 from vehicle_sim.physics.urdf import car_urdf
@@ -75,3 +76,31 @@ def robot_descriptions(car_model='Car', world='', sensors=('',)) -> List[Tuple[s
                 spec, mounted_sensors(spec, settings.sensors,
                                       f'parameter sensors, vehicle {spec.name!r}')))
             for spec in world_spec(settings).vehicles]
+
+
+def main(argv=None) -> int:
+    """
+    Print :func:`robot_descriptions` as JSON: ``[[namespace, urdf], ...]``.
+
+    Usage: ``python -m vehicle_sim.ros.descriptions CAR_MODEL WORLD [SENSOR ...]``. The launch
+    file runs it with the node's own interpreter (the one that has PyBullet), since ``ros2
+    launch`` itself may run on a Python without it.
+    """
+    import json
+    import sys
+    args = sys.argv[1:] if argv is None else list(argv)
+    if len(args) < 2:
+        print('usage: python -m vehicle_sim.ros.descriptions CAR_MODEL WORLD [SENSOR ...]',
+              file=sys.stderr)
+        return 2
+    try:
+        descriptions = robot_descriptions(args[0], args[1], tuple(args[2:]) or ('',))
+    except VehicleSimError as error:   # an unknown car, world or sensor: said in one line
+        print(error, file=sys.stderr)
+        return 2
+    json.dump(descriptions, sys.stdout)
+    return 0
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())
