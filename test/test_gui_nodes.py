@@ -19,6 +19,7 @@ The Xvfb run needs ``xvfb-run`` (Debian/Ubuntu package ``xvfb``) and is skipped 
 reason printed where it is missing.
 """
 
+import shutil
 import subprocess
 import sys
 
@@ -72,3 +73,61 @@ def test_run_gui_under_xvfb_opens_the_window_and_steps(tmp_path):
     times = [float(line.split()[1]) for line in result.stdout.splitlines()
              if line.startswith('t ')]
     assert times and times[-1] > 0.0, result.stdout[-3000:]   # the world steps
+
+
+def test_a_closed_window_shuts_the_node_down_instead_of_raising(monkeypatch):
+    # The window's Esc (or close button) disconnects PyBullet: World.step raises GuiClosedError;
+    # the node logs it, asks its spin to end, and steps no more.
+    from vehicle_sim.physics.gui import GuiClosedError
+    from vehicle_sim.ros.automobile_node import AutomobileNode
+    app = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/gui_closed', '-p',
+                          'synchronous:=true'], transport='dds')
+    try:
+        calls = []
+
+        def closed():
+            calls.append('step')
+            raise GuiClosedError('the PyBullet window was closed')
+
+        monkeypatch.setattr(app.world, 'step', closed)
+        monkeypatch.setattr(type(app.world), 'gui_closed', property(lambda world: True))
+        monkeypatch.setattr(app.node, 'request_shutdown', lambda: calls.append('shutdown'))
+        assert app.step_once() == 0.0
+        assert app.step_once() == 0.0
+        assert calls == ['step', 'shutdown']
+    finally:
+        monkeypatch.undo()
+        app.close()
+
+
+def test_an_error_with_the_window_still_open_is_raised(monkeypatch):
+    from vehicle_sim.ros.automobile_node import AutomobileNode
+    app = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/gui_other_error', '-p',
+                          'synchronous:=true'], transport='dds')
+    try:
+        def broken():
+            raise RuntimeError('something else')
+
+        monkeypatch.setattr(app.world, 'step', broken)
+        with pytest.raises(RuntimeError, match='something else'):
+            app.step_once()
+    finally:
+        monkeypatch.undo()
+        app.close()
+
+
+def test_escape_in_the_window_ends_vehicle_sim_run_with_status_0(tmp_path):
+    require_xvfb()
+    if shutil.which('xdotool') is None:
+        pytest.skip('xdotool not found: no key can be sent to the window '
+                    '(Debian/Ubuntu: apt-get install xdotool)')
+    log = tmp_path / 'node.log'
+    # Escape once the node is ready (a window closed during start-up is refused differently).
+    script = (f'"{sys.executable}" -m vehicle_sim run --gui --no-status -- --ros-args '
+              f'-r __ns:=/gui_escape 2> {log} & node=$!; '
+              f'for i in $(seq 600); do grep -q "automobile ready" {log} && break; sleep 0.2; '
+              'done; xdotool search --sync --name "Bullet Physics" windowfocus --sync; '
+              f'xdotool key Escape; wait $node; status=$?; cat {log} >&2; exit $status')
+    result = xvfb_run(['sh', '-c', script], RUN_TIMEOUT_S, tmp_path)
+    assert result.returncode == 0, result.stderr[-3000:]
+    assert 'the PyBullet window was closed: shutting down' in result.stderr

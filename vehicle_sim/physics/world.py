@@ -397,6 +397,11 @@ class World:
     def closed(self):
         return self._closed
 
+    @property
+    def gui_closed(self):
+        """True for a GUI world whose window was closed (PyBullet disconnected it)."""
+        return self.gui and not pybullet.isConnected(physicsClientId=self.client_id)
+
     def __enter__(self):
         return self
 

@@ -166,8 +166,12 @@ class AutomobileNode:
         self._gui_closed = False
         try:
             self._build()
-        except BaseException:
+        except BaseException as error:
+            # The window closed while the world was being built: say so, not PyBullet's error.
+            window_closed = self.world is not None and self.world.gui_closed
             self.close()
+            if window_closed and not isinstance(error, GuiClosedError):
+                raise GuiClosedError('the PyBullet window was closed during start-up') from None
             raise
 
     def _build(self):
@@ -343,12 +347,15 @@ class AutomobileNode:
             return self.world.time_s
         try:
             time_s = self.world.step()
-        except GuiClosedError:
+            self._publish_step(time_s)
+        except Exception:
+            # The window closes asynchronously: whichever PyBullet call comes next fails.
+            if not self.world.gui_closed:
+                raise
             self._gui_closed = True
             self._logger.info('the PyBullet window was closed: shutting down')
             self.node.request_shutdown()
             return self.world.time_s
-        self._publish_step(time_s)
         return time_s
 
     def step(self, count: int = 1) -> float:

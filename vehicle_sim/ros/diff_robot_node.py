@@ -45,7 +45,7 @@ from vehicle_sim.core.frames import quaternion_from_yaw
 from vehicle_sim.core.param_spec import ParamSpec
 from vehicle_sim.core.sensor_sets import enable_sensors, static_transforms
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
-from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
+from vehicle_sim.physics.gui import ChaseCamera, shortcuts_text
 from vehicle_sim.physics.sensor_urdf import with_sensor_links
 from vehicle_sim.physics.sensors import SensorFeed
 from vehicle_sim.physics.world import World
@@ -248,17 +248,21 @@ class DiffRobotNode:
 
     def step(self):
         """Advance the world by one basic step (only if this node owns it) and publish."""
-        if self._owns_world:
-            if self._gui_closed:
-                return
-            try:
-                self.world.step()
-            except GuiClosedError:
-                self._gui_closed = True
-                self.node.get_logger().info('the PyBullet window was closed: shutting down')
-                self.node.request_shutdown()
-                return
-        self.publish_state()
+        if not self._owns_world:
+            self.publish_state()
+            return
+        if self._gui_closed:
+            return
+        try:
+            self.world.step()
+            self.publish_state()
+        except Exception:
+            # The window closes asynchronously: whichever PyBullet call comes next fails.
+            if not self.world.gui_closed:
+                raise
+            self._gui_closed = True
+            self.node.get_logger().info('the PyBullet window was closed: shutting down')
+            self.node.request_shutdown()
 
     # ---------------------------------------------------------------- outputs
     def publish_state(self):
