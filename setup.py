@@ -42,6 +42,7 @@ setup(
         ('share/' + package_name + '/config/cars', _data('config/cars/*.yaml')),
         ('share/' + package_name + '/config/robots', _data('config/robots/*.yaml')),
         ('share/' + package_name + '/config/worlds', _data('config/worlds/*.yaml')),
+        ('share/' + package_name + '/config/rviz', _data('config/rviz/*.rviz')),
     ],
     install_requires=['setuptools', 'numpy', 'pybullet', 'PyYAML', 'cyclonedds==11.0.1',
                       'rosbags>=0.10'],

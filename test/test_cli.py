@@ -158,6 +158,19 @@ def test_run_for_one_second_without_status_exits_0():
     assert result.stdout == ''
 
 
+@pytest.mark.skipif(not sys.platform.startswith('linux'), reason='X display check: Linux only')
+def test_run_gui_without_a_display_fails_with_a_clear_error():
+    # PyBullet alone would print 'cannot connect to X server' and end the process with status 1.
+    env = peer_env()
+    env.pop('DISPLAY', None)
+    result = subprocess.run([sys.executable, '-m', 'vehicle_sim', 'run', '--gui', '--duration',
+                             '1', '--no-status'], env=env, capture_output=True, text=True,
+                            timeout=CLI_TIMEOUT_S)
+    assert result.returncode == 2, result.stderr
+    assert result.stderr.startswith('vehicle-sim run: --gui: DISPLAY is not set'), result.stderr
+    assert 'xvfb-run' in result.stderr
+
+
 def test_run_prints_plain_status_lines_with_advancing_time_when_not_on_a_terminal():
     result = vehicle_sim('run', '--duration', '2.5')
     assert result.returncode == 0, result.stderr

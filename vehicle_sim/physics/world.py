@@ -122,6 +122,8 @@ class World:
     One simulation: a PyBullet client with a ground plane, stepped explicitly at a fixed dt.
 
     Several worlds may exist in one process (each has its own DIRECT client; at most one GUI).
+    A GUI world raises ``GuiUnavailableError`` when no window can open (physics/gui.py) and
+    ``GuiClosedError`` from ``step()`` once its window was closed.
     """
 
     def __init__(self, time_step_s=DEFAULT_TIME_STEP_S, substeps=None, gui=False,
@@ -148,9 +150,8 @@ class World:
         self.substep_s = self.time_step_s / self.substeps
         self.friction = float(friction)
         self.gravity = float(gravity)
-        self.client_id = pybullet.connect(pybullet.GUI if gui else pybullet.DIRECT)
-        if self.client_id < 0:
-            raise RuntimeError('PyBullet could not connect (is a GUI already open?)')
+        self.gui = bool(gui)
+        self.client_id = self._connect(self.gui)
         self._closed = False
         self._bodies = []
         self._pre_step = []
@@ -180,6 +181,24 @@ class World:
         pybullet.changeDynamics(self.ground_id, -1, lateralFriction=self.friction,
                                 restitution=0.0, physicsClientId=cid)
         self._step_simulation = pybullet.stepSimulation
+
+    @staticmethod
+    def _connect(gui):
+        if not gui:
+            client_id = pybullet.connect(pybullet.DIRECT)
+            if client_id < 0:
+                raise RuntimeError('PyBullet could not start a physics client')
+            return client_id
+        from vehicle_sim.physics.gui import check_gui_available, GuiUnavailableError
+        check_gui_available()   # PyBullet would end the process without an X server
+        with _quiet_stdout():   # the window's start-up notices
+            client_id = pybullet.connect(pybullet.GUI)
+        if client_id < 0:
+            raise GuiUnavailableError('PyBullet could not open its window: one is open in this '
+                                      'process already (PyBullet allows one per process)')
+        # The side panels render three synthetic camera images each frame: off until 'g'.
+        pybullet.configureDebugVisualizer(pybullet.COV_ENABLE_GUI, 0, physicsClientId=client_id)
+        return client_id
 
     @property
     def time_s(self):
@@ -456,17 +475,24 @@ class World:
         if self._closed:
             raise RuntimeError('World.step() after close()')
         cid = self.client_id
-        for hook in self._pre_step:
-            hook()
-        self._step_simulation(physicsClientId=cid)
-        for _ in range(self.substeps - 1):
-            for hook in self._pre_substep:
+        try:
+            for hook in self._pre_step:
                 hook()
             self._step_simulation(physicsClientId=cid)
-        self._step_count += 1
-        self._broadphase_stale = False
-        for hook in self._post_step:
-            hook()
+            for _ in range(self.substeps - 1):
+                for hook in self._pre_substep:
+                    hook()
+                self._step_simulation(physicsClientId=cid)
+            self._step_count += 1
+            self._broadphase_stale = False
+            for hook in self._post_step:
+                hook()
+        except pybullet.error:
+            if self.gui and not pybullet.isConnected(physicsClientId=cid):
+                from vehicle_sim.physics.gui import GuiClosedError
+                self._closed = True
+                raise GuiClosedError('the PyBullet window was closed') from None
+            raise
         return self.time_s
 
     def close(self):
@@ -483,6 +509,11 @@ class World:
     @property
     def closed(self):
         return self._closed
+
+    @property
+    def gui_closed(self):
+        """True for a GUI world whose window was closed (PyBullet disconnected it)."""
+        return self.gui and not pybullet.isConnected(physicsClientId=self.client_id)
 
     def __enter__(self):
         return self

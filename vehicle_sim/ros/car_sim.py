@@ -41,12 +41,12 @@ from vehicle_sim.core.drive_input import CarDriveInput
 from vehicle_sim.core.drivetrain import ControlMode
 from vehicle_sim.core.errors import InvalidCommandError
 from vehicle_sim.core.frames import pose_in_frame, quaternion_from_yaw, twist_in_body
-from vehicle_sim.core.sensor_sets import enable_sensors, static_transforms
+from vehicle_sim.core.sensor_sets import static_transforms
 from vehicle_sim.physics import SimulatedCar, World
-from vehicle_sim.physics.sensor_urdf import with_sensor_links
+from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
 from vehicle_sim.physics.sensors import SensorFeed
-from vehicle_sim.physics.urdf import car_urdf
 from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros.descriptions import mounted_sensors, vehicle_description
 from vehicle_sim.ros.endpoints import (
     EACH_PUBLISH,
     EACH_SAMPLE,
@@ -58,7 +58,7 @@ from vehicle_sim.ros.endpoints import (
     subscribe,
 )
 from vehicle_sim.ros.messages import stamp_builder
-from vehicle_sim.ros.sensor_interfaces import check_names, selected_sensors, sensor_rows
+from vehicle_sim.ros.sensor_interfaces import check_names, sensor_rows
 from vehicle_sim.ros.sim_control import serve_vehicle, WorldControl
 from vehicle_sim.ros.sim_params import declare_parameters, initialpose_index, world_spec
 from vehicle_sim.ros.time_step import TimeStepService
@@ -160,8 +160,7 @@ class _Vehicle:
 
     def description(self):
         """Return the URDF published on robot_description (names prefixed ``<p>``)."""
-        return with_sensor_links(car_urdf(self.car.params, name=self.spec.name,
-                                          prefix=self.prefix), self.sensors, self.prefix)
+        return vehicle_description(self.spec, self.sensors, self.car.params)
 
     def static_transforms(self):
         """Return the vehicle's /tf_static entries: world -> <p>odom, then its sensor mounts."""
@@ -202,10 +201,15 @@ class AutomobileNode:
         self._time_step = None
         self._control = None
         self._sensing = []
+        self._gui_closed = False
         try:
             self._build()
-        except BaseException:
+        except BaseException as error:
+            # The window closed while the world was being built: say so, not PyBullet's error.
+            window_closed = self.world is not None and self.world.gui_closed
             self.close()
+            if window_closed and not isinstance(error, GuiClosedError):
+                raise GuiClosedError('the PyBullet window was closed during start-up') from None
             raise
 
     def _build(self):
@@ -213,7 +217,8 @@ class AutomobileNode:
         self._logger = node.get_logger()
         self.settings = settings = declare_parameters(node)
         scene = world_spec(settings)
-        self.world = World(time_step_s=settings.time_step_s, friction=settings.friction)
+        self.world = World(time_step_s=settings.time_step_s, friction=settings.friction,
+                           gui=settings.gui)
         for obstacle in scene.obstacles:
             self.world.add_obstacle(obstacle)
         self._publish_every = settings.publish_every_steps
@@ -231,6 +236,9 @@ class AutomobileNode:
             self._wire_vehicle(vehicle)
             self._vehicles.append(vehicle)
         self._start_sensors(scene)
+        if settings.gui and self._vehicles:
+            ChaseCamera(self.world, [v.car for v in self._vehicles])
+            self._logger.info(f'PyBullet window open; keys: {shortcuts_text()}')
         self._wire_world()
         # /sim/reset, /sim/pause, /initialpose (ros/sim_control.py).
         self._control = WorldControl(
@@ -254,12 +262,9 @@ class AutomobileNode:
 
     def _vehicle_sensors(self, spec):
         # The vehicle's sensors: the world's, plus the presets' the sensors parameter mounts.
-        names = selected_sensors(self.settings.sensors)
-        if names is None:
-            return spec.sensors
         source = f'{self.node.get_fully_qualified_name()}: parameter sensors, vehicle ' \
                  f'{spec.name!r}'
-        return enable_sensors(spec.sensors, names, source)
+        return mounted_sensors(spec, self.settings.sensors, source)
 
     def _full_name(self, vehicle_namespace):
         # row name -> its fully-qualified name on this node (remaps aside).
@@ -417,15 +422,26 @@ class AutomobileNode:
         came in during the physics step are served before the publishing (they take effect at
         the next step), so none waits for the whole step.
         """
-        time_s = self.world.step()
-        for vehicle in self._vehicles:
-            if vehicle.drive.tick(time_s):
-                self._logger.warn(
-                    f'{itf.vehicle_name("cmd_vel", vehicle.spec.namespace)}: no cmd_vel or drive '
-                    f'command for {vehicle.drive.watchdog.timeout_s:g} s: cruising speed 0, '
-                    'brake 1')
-        self.node.serve_pending()
-        self._publish_step(time_s)
+        if self._gui_closed:
+            return self.world.time_s
+        try:
+            time_s = self.world.step()
+            for vehicle in self._vehicles:
+                if vehicle.drive.tick(time_s):
+                    self._logger.warn(
+                        f'{itf.vehicle_name("cmd_vel", vehicle.spec.namespace)}: no cmd_vel or '
+                        f'drive command for {vehicle.drive.watchdog.timeout_s:g} s: cruising '
+                        'speed 0, brake 1')
+            self.node.serve_pending()
+            self._publish_step(time_s)
+        except Exception:
+            # The window closes asynchronously: whichever PyBullet call comes next fails.
+            if not self.world.gui_closed:
+                raise
+            self._gui_closed = True
+            self._logger.info('the PyBullet window was closed: shutting down')
+            self.node.request_shutdown()
+            return self.world.time_s
         return time_s
 
     def step(self, count: int = 1) -> float:

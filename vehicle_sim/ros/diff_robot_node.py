@@ -46,6 +46,7 @@ watchdog down until the next cmd_vel.
 import sys
 from types import SimpleNamespace
 
+from vehicle_sim.core.chase_camera import ChaseSettings
 from vehicle_sim.core.diff_drive import integrate_pose, twist_from_wheel_speeds
 from vehicle_sim.core.drive_input import DiffDriveInput
 from vehicle_sim.core.errors import InvalidCommandError, VehicleSimError
@@ -53,6 +54,7 @@ from vehicle_sim.core.frames import pose_in_frame, quaternion_from_yaw, rpy_from
 from vehicle_sim.core.param_spec import ParamSpec
 from vehicle_sim.core.sensor_sets import enable_sensors, static_transforms
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
+from vehicle_sim.physics.gui import ChaseCamera, shortcuts_text
 from vehicle_sim.physics.sensor_urdf import with_sensor_links
 from vehicle_sim.physics.sensors import SensorFeed
 from vehicle_sim.physics.world import World
@@ -105,6 +107,9 @@ ROBOT_NODE_PARAMETERS = (
     SENSORS_PARAMETER,
     CMD_VEL_STAMPED_PARAMETER,
     CMD_VEL_TIMEOUT_PARAMETER,
+    ParamSpec('gui', kind='bool', default=False,
+              doc="open PyBullet's window, a chase camera following the robot (a node that "
+                  'owns its world; needs an X display; docs/drive.md)'),
 )
 
 
@@ -135,10 +140,15 @@ class DiffRobotNode:
         values = declare_parameters(node, ROBOT_NODE_PARAMETERS)
         self.params = load_robot(values['robot'])
         self._owns_world = world is None
-        self.world = World(time_step_s=values['time_step_ms'] / 1000.0) if world is None \
-            else world
+        self.world = World(time_step_s=values['time_step_ms'] / 1000.0,
+                           gui=values['gui']) if world is None else world
         self.robot = DiffRobotBody(self.world, self.params,
                                    (values['x'], values['y'], values['yaw']))
+        self._gui_closed = False
+        if values['gui'] and self._owns_world:
+            ChaseCamera(self.world, [self.robot], ChaseSettings(distance_m=3.0, pitch_deg=-25.0,
+                                                                target_height_m=0.3))
+            node.get_logger().info(f'PyBullet window open; keys: {shortcuts_text()}')
         self._spawn = (values['x'], values['y'], values['yaw'])
         self.spawn_xyz = (values['x'], values['y'], 0.0)
         self.spawn_q = quaternion_from_yaw(values['yaw'])
@@ -310,9 +320,21 @@ class DiffRobotNode:
 
     def step(self):
         """Advance the world by one basic step (only if this node owns it) and publish."""
-        if self._owns_world:
+        if not self._owns_world:
+            self.publish_state()
+            return
+        if self._gui_closed:
+            return
+        try:
             self.world.step()
-        self.publish_state()
+            self.publish_state()
+        except Exception:
+            # The window closes asynchronously: whichever PyBullet call comes next fails.
+            if not self.world.gui_closed:
+                raise
+            self._gui_closed = True
+            self.node.get_logger().info('the PyBullet window was closed: shutting down')
+            self.node.request_shutdown()
 
     # ---------------------------------------------------------------- outputs
     def publish_state(self):

@@ -92,6 +92,9 @@ AUTOMOBILE_PARAMETERS: Tuple[ParamSpec, ...] = (
     ParamSpec('initialpose_vehicle', kind='str', default='', empty=True,
               doc="name of the vehicle that /initialpose (RViz 2D Pose Estimate) teleports; "
                   "'' = the first vehicle of the world"),
+    ParamSpec('gui', kind='bool', default=False,
+              doc="open PyBullet's window, a chase camera following the first vehicle (needs "
+                  'an X display; docs/drive.md)'),
 )
 
 
@@ -123,6 +126,7 @@ class SimSettings:
     cmd_vel_stamped: bool = False
     cmd_vel_timeout_s: float = CMD_VEL_TIMEOUT_PARAMETER.default
     initialpose_vehicle: str = ''
+    gui: bool = False
 
     @property
     def time_step_s(self) -> float:

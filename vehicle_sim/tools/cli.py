@@ -95,6 +95,9 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument('--duration', type=float, metavar='S',
                      help='stop after S wall-clock seconds')
     run.add_argument('--no-status', action='store_true', help='no status line')
+    run.add_argument('--gui', action='store_true',
+                     help="open PyBullet's window with a chase camera following the first "
+                          'vehicle (needs an X display; keys: docs/drive.md)')
     run.add_argument('ros_args', nargs=argparse.REMAINDER,
                      help='ROS arguments after --')
     run.set_defaults(func=cmd_run)

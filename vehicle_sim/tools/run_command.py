@@ -185,6 +185,12 @@ def cmd_run(args) -> int:
         overrides['synchronous'] = True
     if args.duration is not None and args.duration < 0:
         raise CliError('--duration must be >= 0', EXIT_USAGE)
+    if args.gui:
+        from vehicle_sim.physics.gui import gui_unavailable_reason
+        reason = gui_unavailable_reason()   # before the node joins the graph
+        if reason is not None:
+            raise CliError(f'--gui: {reason}', EXIT_USAGE)
+        overrides['gui'] = True
     # The CLI runs on the embedded transport unless the user asked for another one.
     transport = os.environ.get('VEHICLE_SIM_TRANSPORT') or 'dds'
     output = _StatusOutput(not args.no_status)

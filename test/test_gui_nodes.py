@@ -1,0 +1,133 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The nodes' ``gui`` parameter: a clear refusal without a display, a window under Xvfb.
+
+The Xvfb run needs ``xvfb-run`` (Debian/Ubuntu package ``xvfb``) and is skipped with the
+reason printed where it is missing.
+"""
+
+import shutil
+import subprocess
+import sys
+
+from conftest import peer_env
+import pytest
+from xvfb_helpers import require_xvfb, xvfb_run
+
+from vehicle_sim.physics.gui import GuiUnavailableError
+
+linux_only = pytest.mark.skipif(not sys.platform.startswith('linux'),
+                                reason='the X display check applies on Linux only')
+RUN_TIMEOUT_S = 180
+
+
+@linux_only
+def test_automobile_node_with_gui_and_no_display_is_refused_at_start(monkeypatch):
+    from vehicle_sim.ros.automobile_node import AutomobileNode
+    monkeypatch.delenv('DISPLAY', raising=False)
+    with pytest.raises(GuiUnavailableError, match='DISPLAY is not set.*xvfb-run'):
+        AutomobileNode(['x', '--ros-args', '-r', '__ns:=/gui_refused', '-p', 'gui:=true',
+                        '-p', 'synchronous:=true'], transport='dds')
+
+
+@linux_only
+def test_diff_robot_node_with_gui_and_no_display_is_refused_at_start(monkeypatch):
+    from vehicle_sim.ros.diff_robot_node import DiffRobotNode
+    monkeypatch.delenv('DISPLAY', raising=False)
+    with pytest.raises(GuiUnavailableError, match='DISPLAY is not set'):
+        DiffRobotNode(['x', '--ros-args', '-p', 'gui:=true', '-p', 'synchronous:=true'],
+                      transport='dds', namespace='/gui_refused')
+
+
+@linux_only
+def test_automobile_node_main_without_display_exits_2_with_the_reason():
+    env = peer_env()
+    env.pop('DISPLAY', None)
+    result = subprocess.run(
+        [sys.executable, '-m', 'vehicle_sim.ros.automobile_node', '--ros-args', '-r',
+         '__ns:=/gui_refused_main', '-p', 'gui:=true'], env=env, capture_output=True, text=True,
+        timeout=RUN_TIMEOUT_S)
+    assert result.returncode == 2, result.stderr
+    assert 'automobile: DISPLAY is not set' in result.stderr
+
+
+def test_run_gui_under_xvfb_opens_the_window_and_steps(tmp_path):
+    require_xvfb()
+    result = xvfb_run([sys.executable, '-m', 'vehicle_sim', 'run', '--gui', '--duration', '4',
+                       '--', '--ros-args', '-r', '__ns:=/gui_run'], RUN_TIMEOUT_S, tmp_path)
+    assert result.returncode == 0, result.stderr[-3000:]
+    assert "PyBullet window open; keys: 'f' chase camera on/off" in result.stderr
+    times = [float(line.split()[1]) for line in result.stdout.splitlines()
+             if line.startswith('t ')]
+    assert times and times[-1] > 0.0, result.stdout[-3000:]   # the world steps
+
+
+def test_a_closed_window_shuts_the_node_down_instead_of_raising(monkeypatch):
+    # The window's Esc (or close button) disconnects PyBullet: World.step raises GuiClosedError;
+    # the node logs it, asks its spin to end, and steps no more.
+    from vehicle_sim.physics.gui import GuiClosedError
+    from vehicle_sim.ros.automobile_node import AutomobileNode
+    app = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/gui_closed', '-p',
+                          'synchronous:=true'], transport='dds')
+    try:
+        calls = []
+
+        def closed():
+            calls.append('step')
+            raise GuiClosedError('the PyBullet window was closed')
+
+        monkeypatch.setattr(app.world, 'step', closed)
+        monkeypatch.setattr(type(app.world), 'gui_closed', property(lambda world: True))
+        monkeypatch.setattr(app.node, 'request_shutdown', lambda: calls.append('shutdown'))
+        assert app.step_once() == 0.0
+        assert app.step_once() == 0.0
+        assert calls == ['step', 'shutdown']
+    finally:
+        monkeypatch.undo()
+        app.close()
+
+
+def test_an_error_with_the_window_still_open_is_raised(monkeypatch):
+    from vehicle_sim.ros.automobile_node import AutomobileNode
+    app = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/gui_other_error', '-p',
+                          'synchronous:=true'], transport='dds')
+    try:
+        def broken():
+            raise RuntimeError('something else')
+
+        monkeypatch.setattr(app.world, 'step', broken)
+        with pytest.raises(RuntimeError, match='something else'):
+            app.step_once()
+    finally:
+        monkeypatch.undo()
+        app.close()
+
+
+def test_escape_in_the_window_ends_vehicle_sim_run_with_status_0(tmp_path):
+    require_xvfb()
+    if shutil.which('xdotool') is None:
+        pytest.skip('xdotool not found: no key can be sent to the window '
+                    '(Debian/Ubuntu: apt-get install xdotool)')
+    log = tmp_path / 'node.log'
+    # Escape once the node is ready (a window closed during start-up is refused differently).
+    script = (f'"{sys.executable}" -m vehicle_sim run --gui --no-status -- --ros-args '
+              f'-r __ns:=/gui_escape 2> {log} & node=$!; '
+              f'for i in $(seq 600); do grep -q "automobile ready" {log} && break; sleep 0.2; '
+              'done; xdotool search --sync --name "Bullet Physics" windowfocus --sync; '
+              f'xdotool key Escape; wait $node; status=$?; cat {log} >&2; exit $status')
+    result = xvfb_run(['sh', '-c', script], RUN_TIMEOUT_S, tmp_path)
+    assert result.returncode == 0, result.stderr[-3000:]
+    assert 'the PyBullet window was closed: shutting down' in result.stderr
