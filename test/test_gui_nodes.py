@@ -19,6 +19,9 @@ The Xvfb run needs ``xvfb-run`` (Debian/Ubuntu package ``xvfb``) and is skipped 
 reason printed where it is missing.
 """
 
+import json
+import math
+import os
 import shutil
 import subprocess
 import sys
@@ -32,6 +35,7 @@ from vehicle_sim.physics.gui import GuiUnavailableError
 linux_only = pytest.mark.skipif(not sys.platform.startswith('linux'),
                                 reason='the X display check applies on Linux only')
 RUN_TIMEOUT_S = 180
+REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 @linux_only
@@ -131,3 +135,43 @@ def test_escape_in_the_window_ends_vehicle_sim_run_with_status_0(tmp_path):
     result = xvfb_run(['sh', '-c', script], RUN_TIMEOUT_S, tmp_path)
     assert result.returncode == 0, result.stderr[-3000:]
     assert 'the PyBullet window was closed: shutting down' in result.stderr
+
+
+_SCENARIO_CAMERA_PROBE = """
+import json, sys
+import pybullet
+from vehicle_sim.scenarios.runner import run_scenario
+from vehicle_sim.scenarios.sim import LocalSim
+
+seen = {}
+original_close = LocalSim.close
+
+
+def close(self):
+    # Just before the window goes: where the camera looks and where the car is.
+    camera = pybullet.getDebugVisualizerCamera(physicsClientId=self.world.client_id)
+    car = next(iter(self.vehicles.values())).car
+    seen['target'] = list(camera[11])
+    seen['car'] = list(pybullet.getBasePositionAndOrientation(  # its centre of mass
+        car.body.body_id, physicsClientId=self.world.client_id)[0])
+    original_close(self)
+
+
+LocalSim.close = close
+result = run_scenario(sys.argv[1], gui=True)
+print(json.dumps({'passed': result.passed, **seen}))
+"""
+
+
+def test_scenario_gui_under_xvfb_follows_the_vehicle_under_test(tmp_path):
+    require_xvfb()
+    result = xvfb_run([sys.executable, '-c', _SCENARIO_CAMERA_PROBE,
+                       os.path.join(REPO_ROOT, 'scenarios', 'stop_before_obstacle.yaml')],
+                      RUN_TIMEOUT_S, tmp_path)
+    assert result.returncode == 0, result.stdout + result.stderr
+    seen = json.loads(result.stdout.strip().splitlines()[-1])
+    assert seen['passed']
+    # The car drove ~10 m; the camera looks at its centre of mass (from above), not at the start.
+    assert seen['car'][0] > 5.0
+    assert math.hypot(seen['target'][0] - seen['car'][0],
+                      seen['target'][1] - seen['car'][1]) < 0.5

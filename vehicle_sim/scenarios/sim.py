@@ -95,7 +95,7 @@ class LocalSim:
     :param director: registered first, so its ``pre_step`` (scripted commands, actors) acts in
         the same step and its ``post_step`` sees the step's result.
     :param seed: the run's seed (every sensor's noise seed).
-    :param gui: open PyBullet's GUI.
+    :param gui: open PyBullet's window with a chase camera on the first vehicle.
     """
 
     served = False
@@ -116,6 +116,9 @@ class LocalSim:
                 body = DiffRobotBody(world, load_robot(robot.model),
                                      (robot.x_m, robot.y_m, robot.yaw_rad), name=robot.name)
                 self.vehicles[robot.name] = VehicleHandle(robot.name, robot=body)
+            if gui:
+                from vehicle_sim.physics.gui import ChaseCamera
+                ChaseCamera(world, [v.car or v.robot for v in self.vehicles.values()])
         except BaseException:
             world.close()
             raise
@@ -155,7 +158,7 @@ class ServedSim:
                 from vehicle_sim.ros.car_sim import AutomobileNode
                 self.automobile = AutomobileNode(transport=transport, parameter_overrides={
                     'world': self._world_file(spec), 'synchronous': True,
-                    'time_step_ms': step_ms})
+                    'time_step_ms': step_ms, 'gui': gui})
                 world = self.automobile.world
                 cars = self.automobile.vehicles
                 for vehicle in spec.world.vehicles:
@@ -168,7 +171,8 @@ class ServedSim:
                                      parameter_overrides={
                                          'robot': robot.model, 'x': robot.x_m, 'y': robot.y_m,
                                          'yaw': robot.yaw_rad, 'synchronous': True,
-                                         'time_step_ms': step_ms})
+                                         'time_step_ms': step_ms,
+                                         'gui': gui and world is None})
                 self.robot_nodes.append(node)
                 if world is None:
                     world = node.world

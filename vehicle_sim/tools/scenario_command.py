@@ -135,10 +135,6 @@ def cmd_scenario(args) -> int:
     seed = spec.seed if args.seed is None else args.seed
     print(f'scenario {spec.name} ({args.file}), seed {seed}, {spec.duration_s:g} s, driver: '
           f'{spec.driver.kind}')
-    from vehicle_sim.scenarios.runner import needs_serving
-    if args.gui and needs_serving(spec):
-        print('note: --gui applies to local runs; this scenario is served over ROS by the '
-              'automobile/robot nodes, which open no window', file=sys.stderr)
     progress = None if args.no_progress else Progress(sys.stderr, spec.name)
     _exit_on_sigterm()      # so that the driver's processes are stopped on the way out
     try:
