@@ -21,6 +21,8 @@ shape, and ``vehicle-sim scenario`` exits as documented.
 
 import math
 from pathlib import Path
+import subprocess
+import sys
 import textwrap
 from xml.etree import ElementTree
 
@@ -354,3 +356,33 @@ def test_runner_odometry_stream_is_identical_across_processes(tmp_path):
                         for p in suite.find('properties')}['odometry_sha256'])
     assert digests[0] == digests[1]
     assert digests[0] == run_scenario(STOP, seed=5).odometry_sha256
+
+
+def _shape(root):
+    # tag -> attribute names, over every element of a JUnit tree.
+    shape = {}
+    for element in root.iter():
+        shape.setdefault(element.tag, set()).update(element.attrib)
+    return shape
+
+
+def test_junit_uses_the_elements_and_attributes_pytest_junitxml_writes(blind_result, tmp_path):
+    # The reference is what this pytest writes for one passing and one failing test.
+    (tmp_path / 'test_ref.py').write_text('def test_ok():\n    pass\n\n\n'
+                                          'def test_bad():\n    assert 1 == 2\n')
+    reference = tmp_path / 'ref.xml'
+    subprocess.run([sys.executable, '-m', 'pytest', '-q', '-p', 'no:cacheprovider',
+                    f'--junitxml={reference}', str(tmp_path / 'test_ref.py')],
+                   cwd=tmp_path, capture_output=True, timeout=120)
+    pytest_shape = _shape(ElementTree.parse(reference).getroot())
+    out = tmp_path / 'out.xml'
+    write_junit(blind_result, out)
+    ours = _shape(ElementTree.parse(out).getroot())
+    for tag in ('testsuites', 'testsuite', 'testcase', 'failure'):
+        assert tag in ours, tag
+    for tag, attributes in ours.items():
+        if tag in ('properties', 'property', 'system-out', 'system-err', 'error', 'skipped'):
+            continue      # elements of pytest's format that a passing/failing pair does not show
+        assert tag in pytest_shape, f"<{tag}> is not in pytest's --junitxml output"
+        assert attributes <= pytest_shape[tag], (tag, attributes - pytest_shape[tag])
+        assert pytest_shape[tag] <= attributes, (tag, pytest_shape[tag] - attributes)
