@@ -62,6 +62,7 @@ setup(
             'ackermann_to_differential = vehicle_sim.ros.bridge_node:main',
             'diff_robot = vehicle_sim.ros.diff_robot_node:main',
             'autoware_automobile = vehicle_sim.ros.autoware_automobile_node:main',
+            'teleop = vehicle_sim.tools.cli:teleop_main',
         ],
         'pytest11': ['vehicle_sim = vehicle_sim.testing'],
     },

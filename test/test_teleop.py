@@ -193,6 +193,18 @@ def test_teleop_without_a_terminal_says_so_and_fails():
     assert 'stdin is not a terminal' in result.stderr
 
 
+def test_the_teleop_executable_drops_ros_arguments_as_ros2_run_passes_them():
+    # `ros2 run vehicle_sim teleop --ros-args -r __ns:=/x` runs the `teleop` console script with
+    # those arguments: they must not be a usage error (exit 2); the non-tty check answers.
+    script = ('import sys; from vehicle_sim.tools.cli import teleop_main; '
+              'sys.exit(teleop_main(sys.argv[1:]))')
+    result = subprocess.run([sys.executable, '-c', script, '--robot', '--ros-args', '-r',
+                             '__ns:=/x'], stdin=subprocess.DEVNULL, capture_output=True,
+                            text=True, env=peer_env(), timeout=WAIT_S)
+    assert result.returncode == 1, result.stderr
+    assert 'stdin is not a terminal' in result.stderr
+
+
 class PtyProcess:
     """A command whose stdin, stdout and stderr are a pseudo-terminal; its output collected."""
 

@@ -207,3 +207,15 @@ def main(argv: Optional[List[str]] = None) -> int:
 
 if __name__ == '__main__':
     sys.exit(main())
+
+
+def teleop_main(argv: Optional[List[str]] = None) -> int:
+    """
+    Run ``vehicle-sim teleop`` as the ``teleop`` executable (``ros2 run vehicle_sim teleop``).
+
+    ``ros2 run`` may append ROS arguments (``--ros-args ...``); teleop takes its settings as
+    options (``--namespace``, ``--robot``, ...), so those are dropped.
+    """
+    from vehicle_sim.transport.params import parse_ros_args
+    argv = sys.argv[1:] if argv is None else list(argv)
+    return main(['teleop', *parse_ros_args(argv).non_ros_args])
