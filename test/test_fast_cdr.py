@@ -126,3 +126,25 @@ def test_tf_message_bytes_equal_rosbags_for_every_frame_id_alignment(frames):
         decoded = message_type(m.TF_MESSAGE).deserialize(data)
         assert [(s.header.frame_id, s.child_frame_id) for s in decoded.transforms] == \
             [tuple(pair) for pair in frames]
+
+
+@pytest.mark.parametrize('little_endian', [True, False])
+@pytest.mark.parametrize('sec, nanosec', STAMPS)
+def test_leading_stamp_reads_the_stamp_of_clock_and_header_led_messages(sec, nanosec,
+                                                                          little_endian):
+    t = stamp(sec, nanosec)
+    messages = (m.clock_builder(message_type)(t),
+                m.float64_stamped_builder(message_type, 'abc')(t, 2.5),
+                message_type(m.ODOMETRY)(header=message_type('std_msgs/msg/Header')(
+                    stamp=t, frame_id='odom')))
+    for message in messages:
+        data = bytes(typestore().serialize_cdr(to_rosbags(message), type(message).__ros_type__,
+                                               little_endian=little_endian))
+        assert fast_cdr.leading_stamp_ns(data) == sec * 1_000_000_000 + nanosec
+
+
+def test_leading_stamp_is_none_for_other_encapsulations_and_short_data():
+    data = fast_cdr.clock()(stamp(3, 4))
+    assert fast_cdr.leading_stamp_ns(data) == 3_000_000_004
+    assert fast_cdr.leading_stamp_ns(b'\x00\x09' + data[2:]) is None    # XCDR2 delimited
+    assert fast_cdr.leading_stamp_ns(data[:10]) is None

@@ -65,6 +65,8 @@ from typing import Any, Callable, Dict, Iterable, List, Optional, Tuple
 
 import pytest
 
+from vehicle_sim.transport.fast_cdr import leading_stamp_ns
+
 # Generous bound for the node subprocess to come up (PyBullet import, discovery).
 START_TIMEOUT_S = 60.0
 # Bound for a reply or a message that the simulation is known to produce.
@@ -153,6 +155,8 @@ class _Topic:
     subscription: Any = None
     # The client's step count when subscribed (None: before the client's first request).
     subscribed_at_step: Optional[int] = None
+    # The type's CDR starts with its stamp (Header-led types, Clock): read without decoding.
+    leading_stamp: bool = False
 
     def add(self, data: bytes) -> None:
         items = self.items
@@ -168,6 +172,16 @@ class _Topic:
         if isinstance(item, bytes):
             item = self.items[index] = self.decode(item)
         return item
+
+    def stamp_ns(self, index: int) -> Optional[int]:
+        """Return the stamp of a message [ns] (None for a type without one), decoding if needed."""
+        item = self.items[index]
+        if self.leading_stamp and isinstance(item, bytes):
+            found = leading_stamp_ns(item)
+            if found is not None:
+                return found
+        msg = self[index]
+        return stamp_ns(msg) if _has_stamp(msg) else None
 
     @property
     def messages(self) -> List[Any]:
@@ -258,6 +272,8 @@ class AutomobileClient:
             found = _Topic(full, spec.ros_type,
                            lambda data, ros_type=spec.ros_type: self.node.deserialize(ros_type,
                                                                                         data))
+            first = _field_names(self.node.msg(spec.ros_type)())[:1]
+            found.leading_stamp = first in (['header'], ['clock'])
             qos = QosProfile(depth=max(10, spec.qos.depth), durability=spec.qos.durability)
             found.subscription = self.node.create_subscription(
                 spec.ros_type, full, found.add, qos, raw=True)
@@ -296,12 +312,18 @@ class AutomobileClient:
 
         :raises TimeoutError: when no such message arrived within the timeout.
         """
+        return self._fresh(name, timeout_s)[-1]
+
+    def _fresh(self, name: str, timeout_s: Optional[float] = None) -> _Topic:
+        """Return the topic's record once its newest message is of the current sim time."""
         topic = self.topic(name)
         needed = self._fresh_after_ns()
 
         def fresh():
-            return len(topic) > 0 and (
-                not _has_stamp(topic[-1]) or stamp_ns(topic[-1]) >= needed)
+            if not len(topic):
+                return False
+            found = topic.stamp_ns(-1)
+            return found is None or found >= needed
 
         if topic.subscribed_at_step is not None and topic.subscribed_at_step == self._steps:
             # Subscribed since the last step: the node published that step's message before
@@ -317,7 +339,7 @@ class AutomobileClient:
                    else '; nothing received')
             raise TimeoutError(f'no message on {topic.name} for sim time '
                                f'{(self._expected_s or 0.0):.3f} s{got}')
-        return topic[-1]
+        return topic
 
     def wait_for(self, name: str, predicate: Callable[[Any], bool],
                  timeout_s: Optional[float] = None):
@@ -397,7 +419,7 @@ class AutomobileClient:
         self._steps += 1
         # The node publishes /clock at every step, before its reply: the /clock message of the
         # new time is the answer, without a robot/get_time round trip.
-        self._time_s = stamp_s(self.latest(self._itf.CLOCK.name))
+        self._time_s = self._fresh(self._itf.CLOCK.name).stamp_ns(-1) * 1e-9
         return self._time_s
 
     def wait_until_ready(self, timeout_s: float, alive: Callable[[], bool] = lambda: True):

@@ -55,6 +55,25 @@ def _strings(offset: int, texts, align: int) -> bytes:
     return out + bytes(_pad(offset + len(out), align))
 
 
+# The stamp a Header-led message or a Clock starts with, by encapsulation kind (the first two
+# bytes: plain CDR and XCDR2 plain, big and little endian; both put it right after the header).
+_LEADING_STAMP = {b'\x00\x00': struct.Struct('>iI'), b'\x00\x01': struct.Struct('<iI'),
+                  b'\x00\x06': struct.Struct('>iI'), b'\x00\x07': struct.Struct('<iI')}
+
+
+def leading_stamp_ns(data: bytes):
+    """
+    Return the stamp [ns] a serialized Header-led message or Clock starts with, without decoding.
+
+    None for an encapsulation kind other than plain CDR or XCDR2 plain (decode the message then).
+    """
+    layout = _LEADING_STAMP.get(bytes(data[:2]))
+    if layout is None or len(data) < 12:
+        return None
+    sec, nanosec = layout.unpack_from(data, 4)
+    return sec * 1_000_000_000 + nanosec
+
+
 def clock():
     """Return ``serialize(stamp)``: rosgraph_msgs/Clock (``stamp`` a builtin_interfaces/Time)."""
     pack = struct.Struct('<4siI').pack
