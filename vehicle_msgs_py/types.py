@@ -35,6 +35,7 @@ Conventions (reference/ros2_wire.md):
 """
 
 import dataclasses
+import functools
 import keyword
 import threading
 
@@ -397,8 +398,10 @@ class ServiceTypes:
         return _from_wire(self.response, wire)
 
 
+@functools.lru_cache(maxsize=None)
 def _plain_field_names(cls):
-    return [f.name for f in dataclasses.fields(cls) if f.name not in WIRE_HEADER_FIELDS]
+    # Cached per class: every request and reply of a service goes through it.
+    return tuple(f.name for f in dataclasses.fields(cls) if f.name not in WIRE_HEADER_FIELDS)
 
 
 def _to_wire(wire_cls, plain, client_id, sequence):
