@@ -126,3 +126,77 @@ def test_tf_message_bytes_equal_rosbags_for_every_frame_id_alignment(frames):
         decoded = message_type(m.TF_MESSAGE).deserialize(data)
         assert [(s.header.frame_id, s.child_frame_id) for s in decoded.transforms] == \
             [tuple(pair) for pair in frames]
+
+
+@pytest.mark.parametrize('little_endian', [True, False])
+@pytest.mark.parametrize('sec, nanosec', STAMPS)
+def test_leading_stamp_reads_the_stamp_of_clock_and_header_led_messages(sec, nanosec,
+                                                                          little_endian):
+    t = stamp(sec, nanosec)
+    messages = (m.clock_builder(message_type)(t),
+                m.float64_stamped_builder(message_type, 'abc')(t, 2.5),
+                message_type(m.ODOMETRY)(header=message_type('std_msgs/msg/Header')(
+                    stamp=t, frame_id='odom')))
+    for message in messages:
+        data = bytes(typestore().serialize_cdr(to_rosbags(message), type(message).__ros_type__,
+                                               little_endian=little_endian))
+        assert fast_cdr.leading_stamp_ns(data) == sec * 1_000_000_000 + nanosec
+
+
+def test_leading_stamp_is_none_for_other_encapsulations_and_short_data():
+    data = fast_cdr.clock()(stamp(3, 4))
+    assert fast_cdr.leading_stamp_ns(data) == 3_000_000_004
+    assert fast_cdr.leading_stamp_ns(b'\x00\x09' + data[2:]) is None    # XCDR2 delimited
+    assert fast_cdr.leading_stamp_ns(data[:10]) is None
+
+
+def _fixed_services():
+    from vehicle_msgs_py import types
+    types.typestore()
+    found = []
+    for srv in sorted(types._services):
+        st = types.service_types(srv)
+        for part in ('request', 'response'):
+            fields = st.wire_primitives(part)
+            if fields is not None and fast_cdr.fixed_layout([k for _, k in fields]):
+                found.append((st, part, fields))
+    return found
+
+
+# Extremes of each primitive, as the generic serializer takes them.
+EXTREMES = {'bool': [False, True], 'int8': [-128, 127], 'uint8': [0, 255],
+            'int16': [-32768, 32767], 'uint16': [0, 65535], 'int32': [-2**31, 2**31 - 1],
+            'uint32': [0, 2**32 - 1], 'int64': [-2**63, 2**63 - 1], 'uint64': [0, 2**64 - 1],
+            'float32': [-1.5, 3.25], 'float64': [-math.inf, 1e-300]}
+
+
+def test_fixed_layout_bytes_equal_cyclonedds_for_every_fixed_service_wire_type():
+    from vehicle_sim.transport.dds.services import _WireCodec
+    cases = _fixed_services()
+    names = {st.srv_type for st, _, _ in cases}
+    assert {'vehicle_msgs/srv/SetInt', 'vehicle_msgs/srv/GetFloat',
+            'vehicle_msgs/srv/GetDimensions', 'std_srvs/srv/Empty'} <= names
+    for st, part, fields in cases:
+        wire_cls = st.request_wire if part == 'request' else st.response_wire
+        codec = _WireCodec.of(st, part)
+        for pick in (0, 1):
+            wire = wire_cls(**{name: EXTREMES[kind][pick] for name, kind in fields})
+            data = codec.encode(wire)
+            assert data == wire.serialize(), (st.srv_type, part, pick)
+            assert codec.decode(data) == wire_cls.deserialize(data) == wire
+
+
+def test_wire_codec_decodes_big_endian_the_generic_way_and_leaves_refused_values_to_it():
+    import struct
+
+    from vehicle_msgs_py import types
+    from vehicle_sim.transport.dds.services import _WireCodec
+    st = types.service_types('vehicle_msgs/srv/SetInt')
+    codec = _WireCodec.of(st, 'request')
+    big = b'\x00\x00\x00\x00' + struct.pack('>QqI', 7, 8, 9)   # CDR_BE: client, seq, value
+    assert codec.decode(big) == st.request_wire(client_id=7, sequence=8, value=9)
+    with pytest.raises(Exception):
+        codec.decode(codec.encode(st.request_wire(client_id=1, sequence=2, value=3))[:-1])
+    assert codec.encode(st.request_wire(client_id=1, sequence=2, value=2**31)) is None
+    assert codec.encode(st.request_wire(client_id=1, sequence=2, value='x')) is None
+    assert _WireCodec.of(types.service_types('std_srvs/srv/Trigger'), 'response') is None

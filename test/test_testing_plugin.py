@@ -103,3 +103,59 @@ def test_plugin_collects_scenario_files_one_test_per_criterion(tmp_path):
     assert 'scenario_blind.yaml::no_collision FAILED' in out
     assert 'scenario_stop.yaml::no_collision PASSED' in out
     assert 'no_collision: 1 collision(s): wall' in out
+
+
+def test_client_topics_subscribes_clock_and_the_named_topics_only_and_latest_is_exact():
+    from vehicle_sim.testing import AutomobileSim, stamp_s
+    sim = AutomobileSim(topics=('current_speed', '/automobile/current_speed'))
+    try:
+        car = sim.client
+        assert car.subscribed_topics == ('/clock', '/automobile/current_speed')
+        start_s = car.sim_time()
+        assert car.call('set_cruising_speed', 30.0).success
+        end_s = car.step(50)
+        assert end_s - start_s == pytest.approx(0.5, abs=1e-9)
+        speed = car.latest('current_speed')
+        assert stamp_s(speed) == pytest.approx(end_s, abs=1e-9)
+        assert speed.data > 0.0
+        for _ in range(3):
+            now_s = car.step()
+            assert stamp_s(car.latest('current_speed')) == pytest.approx(now_s, abs=1e-9)
+        # A topic outside the list, first used after a step, missed that step's message: said
+        # at once (not after the timeout) and naming the way out.
+        with pytest.raises(TimeoutError, match='first used after the last step.*topics='):
+            car.latest('throttle', timeout_s=600.0)
+        assert car.subscribed_topics[-1] == '/automobile/throttle'
+    finally:
+        sim.close()
+
+
+def test_client_topics_refuses_unknown_names_and_a_single_string_before_starting_a_node():
+    from vehicle_sim.testing import AutomobileClient
+    with pytest.raises(KeyError, match='did you mean: /automobile/current_speed'):
+        AutomobileClient(topics=('curent_speed',))
+    with pytest.raises(TypeError, match='sequence of topic names'):
+        AutomobileClient(topics='current_speed')
+
+
+def test_plugin_topics_from_the_ini_option_and_the_marker(tmp_path):
+    (tmp_path / 'pytest.ini').write_text(
+        '[pytest]\nvehicle_sim_topics = throttle brake_intensity\n', encoding='utf-8')
+    (tmp_path / 'test_topics.py').write_text(
+        'import pytest\n\n\n'
+        'def test_ini(automobile_node):\n'
+        '    assert automobile_node.client.subscribed_topics == (\n'
+        "        '/clock', '/automobile/throttle', '/automobile/brake_intensity')\n\n\n"
+        "@pytest.mark.vehicle_sim(topics=('odom',))\n"
+        'def test_marker(automobile_node):\n'
+        "    assert automobile_node.client.subscribed_topics == ('/clock', '/odom')\n"
+        '    automobile_node.client.step()\n'
+        "    assert automobile_node.client.latest('odom').header.frame_id == 'odom'\n",
+        encoding='utf-8')
+    env = peer_env()
+    env['ROS_DOMAIN_ID'] = str(102 + os.getpid() % 100)
+    result = subprocess.run(
+        [sys.executable, '-m', 'pytest', '-q', '-p', 'no:cacheprovider', str(tmp_path)],
+        cwd=tmp_path, env=env, capture_output=True, text=True, timeout=CHILD_TIMEOUT_S)
+    assert result.returncode == 0, result.stdout[-4000:] + result.stderr[-2000:]
+    assert '2 passed' in result.stdout

@@ -35,6 +35,7 @@ Conventions (reference/ros2_wire.md):
 """
 
 import dataclasses
+import functools
 import keyword
 import threading
 
@@ -380,6 +381,23 @@ class ServiceTypes:
         """Wrap a plain response with the header echoed from its request."""
         return _to_wire(self.response_wire, response, client_id, sequence)
 
+    def wire_primitives(self, part):
+        """
+        Return the wire type's fields as ``[(name, ROS primitive type), ...]``, header first.
+
+        None when a field is not a single primitive (a string, an array, a nested message).
+
+        :param part: 'request' or 'response'.
+        """
+        typestore()
+        fields = _store.fielddefs[_services[self.srv_type][part == 'response']][1]
+        found = [('client_id', 'uint64'), ('sequence', 'int64')]
+        for name, (kind, rest) in fields:
+            if kind != Nodetype.BASE or rest[0] == 'string':
+                return None
+            found.append((name, rest[0]))
+        return found
+
     def request_from_wire(self, wire):
         """
         Split a wire request into its header and plain request.
@@ -397,8 +415,10 @@ class ServiceTypes:
         return _from_wire(self.response, wire)
 
 
+@functools.lru_cache(maxsize=None)
 def _plain_field_names(cls):
-    return [f.name for f in dataclasses.fields(cls) if f.name not in WIRE_HEADER_FIELDS]
+    # Cached per class: every request and reply of a service goes through it.
+    return tuple(f.name for f in dataclasses.fields(cls) if f.name not in WIRE_HEADER_FIELDS)
 
 
 def _to_wire(wire_cls, plain, client_id, sequence):

@@ -31,8 +31,13 @@ values and on ``/clock`` are deterministic::
         assert car.latest('current_speed').data > 0.0
 
 Options: ``@pytest.mark.vehicle_sim(car='TeslaModel3', namespace='/sim',
-params={'friction': 1.2})``, or ``@pytest.mark.parametrize('automobile_node', ['BmwX5'],
-indirect=True)`` for the car model; ``--vehicle-sim-car`` sets the default model.
+params={'friction': 1.2}, topics=('current_speed',))``, or
+``@pytest.mark.parametrize('automobile_node', ['BmwX5'], indirect=True)`` for the car model;
+``--vehicle-sim-car`` sets the default model and the ini option ``vehicle_sim_topics`` the
+default topics. ``topics`` names the topics the client subscribes to before the first step
+(``/clock`` is always one); the default is every Float64Stamped topic. Fewer topics make each
+step cheaper (every subscribed topic is a delivery per step); a topic first used later is
+subscribed then and misses what was published before (``latest()`` says so at once).
 
 Scenario files: ``run_scenario(path, seed=None)`` runs one and returns its result (each
 criterion's verdict and measured value), and files named ``scenario_*.yaml`` are collected as
@@ -56,9 +61,11 @@ import subprocess
 import sys
 import tempfile
 import time
-from typing import Any, Callable, Dict, List, Optional, Tuple
+from typing import Any, Callable, Dict, Iterable, List, Optional, Tuple
 
 import pytest
+
+from vehicle_sim.transport.fast_cdr import leading_stamp_ns
 
 # Generous bound for the node subprocess to come up (PyBullet import, discovery).
 START_TIMEOUT_S = 60.0
@@ -67,6 +74,8 @@ DEFAULT_TIMEOUT_S = 10.0
 STOP_TIMEOUT_S = 10.0
 MAX_HISTORY = 10000
 DEFAULT_CAR = 'Car'
+# ini option: the topics the fixture's client subscribes to before the first step.
+TOPICS_INI = 'vehicle_sim_topics'
 _client_ids = itertools.count(1)
 
 
@@ -77,14 +86,18 @@ def pytest_addoption(parser):
     group = parser.getgroup('vehicle_sim')
     group.addoption('--vehicle-sim-car', default=None, metavar='MODEL',
                     help=f'default car model of the automobile_node fixture ({DEFAULT_CAR})')
+    parser.addini(TOPICS_INI, type='args', default=None,
+                  help='topics the automobile_node client subscribes to before the first step '
+                       '(/clock always; default: every Float64Stamped topic)')
 
 
 def pytest_configure(config):
     os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
     os.environ.setdefault('ROS_DOMAIN_ID', str(1 + os.getpid() % 101))
     config.addinivalue_line(
-        'markers', 'vehicle_sim(car=None, namespace=None, params=None): options of the '
-                   'automobile_node fixture (car model, node namespace, node parameters)')
+        'markers', 'vehicle_sim(car=None, namespace=None, params=None, topics=None): options '
+                   'of the automobile_node fixture (car model, node namespace, node parameters, '
+                   'topics subscribed before the first step)')
 
 
 def pytest_collect_file(parent, file_path):
@@ -140,6 +153,10 @@ class _Topic:
     decode: Callable[[bytes], Any]
     items: List[Any] = field(default_factory=list)   # bytes, or the message once decoded
     subscription: Any = None
+    # The client's step count when subscribed (None: before the client's first request).
+    subscribed_at_step: Optional[int] = None
+    # The type's CDR starts with its stamp (Header-led types, Clock): read without decoding.
+    leading_stamp: bool = False
 
     def add(self, data: bytes) -> None:
         items = self.items
@@ -155,6 +172,16 @@ class _Topic:
         if isinstance(item, bytes):
             item = self.items[index] = self.decode(item)
         return item
+
+    def stamp_ns(self, index: int) -> Optional[int]:
+        """Return the stamp of a message [ns] (None for a type without one), decoding if needed."""
+        item = self.items[index]
+        if self.leading_stamp and isinstance(item, bytes):
+            found = leading_stamp_ns(item)
+            if found is not None:
+                return found
+        msg = self[index]
+        return stamp_ns(msg) if _has_stamp(msg) else None
 
     @property
     def messages(self) -> List[Any]:
@@ -174,31 +201,46 @@ class AutomobileClient:
     :param transport: 'auto', 'rclpy' or 'dds' (default: ``VEHICLE_SIM_TRANSPORT``).
     :param publish_period_s: the node's topic period (0 = each basic step).
     :param timeout_s: bound for replies and expected messages.
+    :param topics: names of the topics to subscribe to before the first request, so that none
+        of their messages is lost to discovery; ``/clock`` always is one (``step()`` reads it).
+        None: every Float64Stamped topic. Each subscribed topic costs a delivery per step in
+        both processes. A topic first used later is subscribed then: what the node published
+        before is gone, so ``latest()`` of it right after that raises ``TimeoutError`` at once.
     """
 
     def __init__(self, namespace: str = '', transport: Optional[str] = None,
-                 publish_period_s: float = 0.0, timeout_s: float = DEFAULT_TIMEOUT_S):
+                 publish_period_s: float = 0.0, timeout_s: float = DEFAULT_TIMEOUT_S,
+                 topics: Optional[Iterable[str]] = None):
         from vehicle_sim.ros import interfaces as itf
         from vehicle_sim.transport.selection import create_node
         self._itf = itf
         self.namespace = '/' + namespace.strip('/') if namespace.strip('/') else ''
         self.timeout_s = timeout_s
         self.publish_period_s = publish_period_s
+        self._found: Dict[Tuple[str, str], Tuple[Any, str]] = {}   # (name, kind) -> _find
+        if topics is None:
+            specs = [spec for spec in itf.TOPICS
+                     if spec.ros_type in (itf.FLOAT64_STAMPED, itf.CLOCK.ros_type)]
+        else:
+            if isinstance(topics, str):
+                raise TypeError(f'topics must be a sequence of topic names, got {topics!r}')
+            specs = [self._find(name, itf.TOPICS, 'topic')[0] for name in topics]
+            specs = [itf.CLOCK] + [spec for i, spec in enumerate(specs)
+                                   if spec is not itf.CLOCK and spec not in specs[:i]]
         self.node = create_node(f'_vehicle_sim_test_{os.getpid()}_{next(_client_ids)}',
                                 transport=transport,
                                 args=['--ros-args', '--disable-rosout-logs'])
         self._topics: Dict[str, _Topic] = {}
-        self._found: Dict[Tuple[str, str], Tuple[Any, str]] = {}   # (name, kind) -> _find
         self._clients: Dict[str, Any] = {}
         self._time_s = None       # the node's answer to robot/get_time [s]
         self._expected_s = None   # start time plus the steps this client requested [s]
         self.basic_time_step_ms = None
+        self._steps = None        # step() calls since ready (None before the first request)
         # Subscriptions first: once a service reply comes back, the node has discovered every
         # reader created before the client (DDS announces endpoints in order), so no message
         # of a later step can be lost to discovery.
-        for spec in itf.TOPICS:
-            if spec.ros_type in (itf.FLOAT64_STAMPED, itf.CLOCK.ros_type):
-                self._subscribe(spec)
+        for spec in specs:
+            self._subscribe(spec)
 
     # ------------------------------------------------------------------------ names
 
@@ -230,11 +272,19 @@ class AutomobileClient:
             found = _Topic(full, spec.ros_type,
                            lambda data, ros_type=spec.ros_type: self.node.deserialize(ros_type,
                                                                                         data))
+            first = _field_names(self.node.msg(spec.ros_type)())[:1]
+            found.leading_stamp = first in (['header'], ['clock'])
             qos = QosProfile(depth=max(10, spec.qos.depth), durability=spec.qos.durability)
             found.subscription = self.node.create_subscription(
                 spec.ros_type, full, found.add, qos, raw=True)
+            found.subscribed_at_step = self._steps
             self._topics[full] = found
         return found
+
+    @property
+    def subscribed_topics(self) -> Tuple[str, ...]:
+        """The full names of the topics subscribed so far, in the order subscribed."""
+        return tuple(self._topics)
 
     def topic(self, name: str) -> _Topic:
         """Return the subscription record of a topic (subscribing now if needed)."""
@@ -262,19 +312,34 @@ class AutomobileClient:
 
         :raises TimeoutError: when no such message arrived within the timeout.
         """
+        return self._fresh(name, timeout_s)[-1]
+
+    def _fresh(self, name: str, timeout_s: Optional[float] = None) -> _Topic:
+        """Return the topic's record once its newest message is of the current sim time."""
         topic = self.topic(name)
         needed = self._fresh_after_ns()
 
         def fresh():
-            return len(topic) > 0 and (
-                not _has_stamp(topic[-1]) or stamp_ns(topic[-1]) >= needed)
+            if not len(topic):
+                return False
+            found = topic.stamp_ns(-1)
+            return found is None or found >= needed
 
+        if topic.subscribed_at_step is not None and topic.subscribed_at_step == self._steps:
+            # Subscribed since the last step: the node published that step's message before
+            # the subscription existed and publishes nothing until the next step.
+            self.node.spin_once(0.0)
+            if not fresh():
+                raise TimeoutError(
+                    f'{topic.name} was first used after the last step: its message of that '
+                    'step was published before the subscription; list it in topics= '
+                    '(marker vehicle_sim(topics=...)) to subscribe before the first step')
         if not self.node.spin_until(fresh, self.timeout_s if timeout_s is None else timeout_s):
             got = (f'; newest stamp {stamp_s(topic[-1]):.3f} s' if len(topic)
                    else '; nothing received')
             raise TimeoutError(f'no message on {topic.name} for sim time '
                                f'{(self._expected_s or 0.0):.3f} s{got}')
-        return topic[-1]
+        return topic
 
     def wait_for(self, name: str, predicate: Callable[[Any], bool],
                  timeout_s: Optional[float] = None):
@@ -351,9 +416,10 @@ class AutomobileClient:
         assert response.success, (f'robot/time_step {ms} ms refused (a multiple of '
                                   f'{self.basic_time_step_ms} ms, node synchronous?)')
         self._expected_s += max(ms, self.basic_time_step_ms) / 1000.0
+        self._steps += 1
         # The node publishes /clock at every step, before its reply: the /clock message of the
         # new time is the answer, without a robot/get_time round trip.
-        self._time_s = stamp_s(self.latest(self._itf.CLOCK.name))
+        self._time_s = self._fresh(self._itf.CLOCK.name).stamp_ns(-1) * 1e-9
         return self._time_s
 
     def wait_until_ready(self, timeout_s: float, alive: Callable[[], bool] = lambda: True):
@@ -373,6 +439,7 @@ class AutomobileClient:
                 raise TimeoutError(f'{topic.name}: no publisher matched')
         self.basic_time_step_ms = int(round(self.call('robot/get_basic_time_step').value))
         self._expected_s = self._time_s
+        self._steps = 0
 
     def close(self) -> None:
         self.node.shutdown()
@@ -400,11 +467,14 @@ class AutomobileSim:
     :param namespace: node namespace ('' = root: endpoints under /automobile).
     :param params: extra node parameters ``{name: value}``.
     :param transport: transport of node and client (default: ``VEHICLE_SIM_TRANSPORT``).
+    :param topics: the topics the client subscribes to before the first step (see
+        :class:`AutomobileClient`; None: every Float64Stamped topic).
     """
 
     def __init__(self, car: str = DEFAULT_CAR, namespace: str = '',
                  params: Optional[Dict[str, Any]] = None, transport: Optional[str] = None,
-                 start_timeout_s: float = START_TIMEOUT_S):
+                 start_timeout_s: float = START_TIMEOUT_S,
+                 topics: Optional[Iterable[str]] = None):
         self.car = car
         self.namespace = '/' + namespace.strip('/') if namespace.strip('/') else ''
         params = dict(params or {})
@@ -426,7 +496,7 @@ class AutomobileSim:
         try:
             period_ms = float(params.get('publish_period_ms', 0) or 0)
             self.client = AutomobileClient(self.namespace, transport=transport,
-                                           publish_period_s=period_ms / 1000.0)
+                                           publish_period_s=period_ms / 1000.0, topics=topics)
             self.client.wait_until_ready(start_timeout_s,
                                          alive=lambda: self.process.poll() is None)
         except BaseException as exc:
@@ -468,10 +538,13 @@ def automobile_node(request):
     """
     Start a synchronous automobile node in a subprocess; yield an :class:`AutomobileSim`.
 
-    Options: marker ``vehicle_sim(car=..., namespace=..., params=...)``; indirect
-    parametrization with a car model name; ``--vehicle-sim-car``.
+    Options: marker ``vehicle_sim(car=..., namespace=..., params=..., topics=...)``; indirect
+    parametrization with a car model name; ``--vehicle-sim-car``; ini ``vehicle_sim_topics``.
     """
     options: Dict[str, Any] = {}
+    ini_topics = request.config.getini(TOPICS_INI)
+    if ini_topics:
+        options['topics'] = tuple(ini_topics)
     marker = request.node.get_closest_marker('vehicle_sim')
     if marker is not None:
         options.update(marker.kwargs)

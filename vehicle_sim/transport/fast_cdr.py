@@ -55,6 +55,63 @@ def _strings(offset: int, texts, align: int) -> bytes:
     return out + bytes(_pad(offset + len(out), align))
 
 
+# The stamp a Header-led message or a Clock starts with, by encapsulation kind (the first two
+# bytes: plain CDR and XCDR2 plain, big and little endian; both put it right after the header).
+_LEADING_STAMP = {b'\x00\x00': struct.Struct('>iI'), b'\x00\x01': struct.Struct('<iI'),
+                  b'\x00\x06': struct.Struct('>iI'), b'\x00\x07': struct.Struct('<iI')}
+
+
+def leading_stamp_ns(data: bytes):
+    """
+    Return the stamp [ns] a serialized Header-led message or Clock starts with, without decoding.
+
+    None for an encapsulation kind other than plain CDR or XCDR2 plain (decode the message then).
+    """
+    layout = _LEADING_STAMP.get(bytes(data[:2]))
+    if layout is None or len(data) < 12:
+        return None
+    sec, nanosec = layout.unpack_from(data, 4)
+    return sec * 1_000_000_000 + nanosec
+
+
+# ROS primitive type -> struct code (the size is the CDR alignment: XCDR1 aligns up to 8);
+# byte and char are left to the generic serializer (their Python values vary by binding).
+_PRIMITIVES = {'bool': '?', 'int8': 'b', 'uint8': 'B', 'int16': 'h',
+               'uint16': 'H', 'int32': 'i', 'uint32': 'I', 'int64': 'q', 'uint64': 'Q',
+               'float32': 'f', 'float64': 'd'}
+
+
+def fixed_layout(kinds):
+    """
+    Return ``(pack, unpack)`` for a struct of fixed-size primitives, or None for other structs.
+
+    :param kinds: the fields' ROS primitive types in order (e.g. ``['uint64', 'int64', 'bool']``).
+    ``pack(*values)`` returns the CDR bytes (encapsulation header included, no trailing padding,
+    as cyclonedds-python writes them); ``unpack(data)`` returns the values of little-endian
+    plain-CDR bytes, or None for another encapsulation (decode those the generic way).
+    """
+    layout, offset = '<4s', 0
+    for kind in kinds:
+        code = _PRIMITIVES.get(kind)
+        if code is None:
+            return None
+        size = struct.calcsize('<' + code)
+        pad = _pad(offset, size)
+        layout += 'x' * pad + code
+        offset += pad + size
+    packer = struct.Struct(layout)
+    pack_into_bytes, unpack_from = packer.pack, packer.unpack_from
+
+    def pack(*values):
+        return pack_into_bytes(CDR_LE, *values)
+
+    def unpack(data):
+        if data[:2] != CDR_LE[:2] or len(data) < packer.size:
+            return None
+        return unpack_from(data)[1:]
+    return pack, unpack
+
+
 def clock():
     """Return ``serialize(stamp)``: rosgraph_msgs/Clock (``stamp`` a builtin_interfaces/Time)."""
     pack = struct.Struct('<4siI').pack

@@ -36,15 +36,16 @@ class Intake:
     :param what: the endpoint, as the warning names it.
     """
 
-    def __init__(self, node, reader: DataReader, what: str):
+    def __init__(self, node, reader: DataReader, what: str, decode=None):
         self._node = node
         self.reader = reader
         self.what = what
+        self._decode = decode
         self.dropped = 0
         self._warning = None
 
     def take(self) -> list:
-        samples, errors = cyclone_private.take(self.reader, TAKE_BATCH)
+        samples, errors = cyclone_private.take(self.reader, TAKE_BATCH, self._decode)
         for exc in errors:
             self.dropped += 1
             if self._warning is None:

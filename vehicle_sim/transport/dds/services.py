@@ -30,6 +30,8 @@ its USER_DATA, a participant GUID that is not Cyclone's) and logged once per cli
 (one line per client participant).
 """
 
+from operator import attrgetter
+import struct
 import time
 from typing import Dict, List, Optional, Tuple
 
@@ -37,7 +39,7 @@ from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
 
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.transport import port
+from vehicle_sim.transport import cyclone_private, fast_cdr, port
 from vehicle_sim.transport.dds import peers
 from vehicle_sim.transport.dds.endpoints import Intake
 from vehicle_sim.transport.dds.qos import dds_qos, endpoint_user_data, userdata_tokens
@@ -48,6 +50,60 @@ UINT64_MASK = 0xFFFFFFFFFFFFFFFF
 PENDING_REPLY_POLL_S = 0.002
 # How often the executor looks for newly matched request writers it cannot serve [s].
 CLIENT_CHECK_S = 0.25
+
+
+class _WireCodec:
+    """
+    The bytes of a service's wire type made only of fixed-size primitives, with ``struct``.
+
+    Every ``vehicle_msgs`` service of the automobile node is one (``SetInt``, ``GetFloat``, ...):
+    a request or reply then costs no generic (de)serialization. Bytes in another encapsulation
+    (big endian) are decoded the generic way; values ``struct`` refuses are written the generic
+    way, which raises its own error (both accept the same values: cyclonedds-python packs
+    primitives with ``struct`` too).
+    """
+
+    def __init__(self, wire_cls, fields):
+        self._wire_cls = wire_cls
+        self._names = tuple(name for name, _ in fields)
+        self._pack, self._unpack = fast_cdr.fixed_layout([kind for _, kind in fields])
+        self._values = attrgetter(*self._names)
+
+    @classmethod
+    def of(cls, types, part: str):
+        """Return the codec of ``types``' 'request' or 'response' wire type, or None."""
+        fields = types.wire_primitives(part)
+        if fields is None or fast_cdr.fixed_layout([kind for _, kind in fields]) is None:
+            return None
+        return cls(types.request_wire if part == 'request' else types.response_wire, fields)
+
+    def decode(self, data: bytes):
+        values = self._unpack(data)
+        if values is None:
+            return self._wire_cls.deserialize(data)
+        return self._wire_cls(**dict(zip(self._names, values)))
+
+    def encode(self, wire) -> Optional[bytes]:
+        """Return the bytes of ``wire``, or None when ``struct`` refuses a value."""
+        try:
+            return self._pack(*self._values(wire))
+        except (struct.error, TypeError, OverflowError):
+            return None
+
+
+def _wire_writer(writer, codec: Optional[_WireCodec]):
+    """Return ``write(wire)``: the codec's bytes written as they are, else the generic write."""
+    if codec is None:
+        return writer.write
+    write_serialized, encode = cyclone_private.serialized_writer(writer), codec.encode
+
+    def write(wire) -> None:
+        data = encode(wire)
+        if data is None:
+            writer.write(wire)
+        else:
+            write_serialized(data)
+    return write
 
 
 class _PendingReply:
@@ -81,7 +137,10 @@ class DdsService(port.Service):
         self._reader = DataReader(
             ctx.participant, ctx.topic(f'rq{name}Request', self._types.request_wire),
             qos=dds_qos(qos, endpoint_user_data(request, serviceid=self.token), False))
-        self._intake = Intake(node, self._reader, f'service {name} ({srv_type}) request')
+        request_codec = _WireCodec.of(self._types, 'request')
+        self._intake = Intake(node, self._reader, f'service {name} ({srv_type}) request',
+                              request_codec.decode if request_codec else None)
+        self._write = _wire_writer(self._writer, _WireCodec.of(self._types, 'response'))
         # publication handle of a request writer -> its clientid token ('' when it has none)
         self._client_tokens: Dict[int, Optional[str]] = {}
         # subscription handle of a matched reply reader -> its clientid token
@@ -186,7 +245,7 @@ class DdsService(port.Service):
         if token is None:
             return  # the client went away: drop silently, as rmw does
         if not token or self._reply_reader_matched(token):
-            self._writer.write(wire)
+            self._write(wire)
         else:
             self.pending.append(_PendingReply(
                 wire, handle, token, time.monotonic() + self._node.reply_match_timeout_s))
@@ -196,7 +255,7 @@ class DdsService(port.Service):
         keep = []
         for item in self.pending:
             if self._reply_reader_matched(item.token):
-                self._writer.write(item.wire)
+                self._write(item.wire)
             elif now >= item.deadline:
                 self._node.get_logger().debug(
                     f'{self.service_name}: client reply reader never matched; reply dropped')
@@ -242,10 +301,13 @@ class DdsClient(port.Client):
         self._reader = DataReader(
             ctx.participant, ctx.topic(f'rr{name}Reply', self._types.response_wire),
             qos=dds_qos(qos, endpoint_user_data(reply, clientid=self.token), False))
-        self._intake = Intake(node, self._reader, f'client {name} ({srv_type}) reply')
+        reply_codec = _WireCodec.of(self._types, 'response')
+        self._intake = Intake(node, self._reader, f'client {name} ({srv_type}) reply',
+                              reply_codec.decode if reply_codec else None)
         self._writer = DataWriter(
             ctx.participant, ctx.topic(f'rq{name}Request', self._types.request_wire),
             qos=dds_qos(qos, endpoint_user_data(request, clientid=self.token), True))
+        self._write = _wire_writer(self._writer, _WireCodec.of(self._types, 'request'))
         self.client_id = self._writer.get_instance_handle() & UINT64_MASK
         self._pending: Dict[int, port.Future] = {}
         self._endpoint_tokens: Dict[int, str] = {}
@@ -288,7 +350,7 @@ class DdsClient(port.Client):
         future = port.Future()
         future.sequence = sequence
         self._pending[sequence] = future
-        self._writer.write(self._types.request_to_wire(request, self.client_id, sequence))
+        self._write(self._types.request_to_wire(request, self.client_id, sequence))
         return future
 
     def call(self, request, timeout_s: float = 5.0):
