@@ -132,10 +132,12 @@ class TimeStepService:
                     return
             self._queue.popleft()
             current.future.set_result(current.response)
-            if time.monotonic() >= deadline:
-                break
-        if not self._queue:
-            self._timer.cancel()
+            if self._queue:
+                # Back to the executor before the next request's steps, so that this reply goes
+                # out first: rclpy sends a deferred reply when its coroutine resumes, at the
+                # executor's next turn (the timer fires again at once).
+                return
+        self._timer.cancel()
 
     def close(self):
         """Stop stepping; queued requests stay unanswered."""
