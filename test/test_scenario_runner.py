@@ -248,10 +248,12 @@ def test_runner_topic_criteria_are_judged_over_the_wire():
     result = run_scenario(ROOT / 'test' / 'scenarios' / 'served_topic.yaml')
     assert result.passed, [c.detail for c in result.criteria]
     assert result.deterministic
-    eventually, always = result.criteria
+    eventually, always, clock = result.criteria
     assert 15.0 < eventually.value < 16.0            # km/h, the first message above 15
     assert 19.0 < always.value <= 20.5               # the top speed reached, below 20.5
     assert 'all 200 messages pass' in always.detail
+    # /clock is published best effort, every step: a best-effort judge reads every one.
+    assert 'all 200 messages pass' in clock.detail
 
 
 def test_runner_bridge_drives_the_caster_robot_along_the_s_curve():
@@ -380,6 +382,8 @@ def test_junit_uses_the_elements_and_attributes_pytest_junitxml_writes(blind_res
     ours = _shape(ElementTree.parse(out).getroot())
     for tag in ('testsuites', 'testsuite', 'testcase', 'failure'):
         assert tag in ours, tag
+    # pytest 8 names the <testsuites> element; pytest 7 (Ubuntu 24.04's) does not.
+    pytest_shape['testsuites'] = pytest_shape.get('testsuites', set()) | {'name'}
     for tag, attributes in ours.items():
         if tag in ('properties', 'property', 'system-out', 'system-err', 'error', 'skipped'):
             continue      # elements of pytest's format that a passing/failing pair does not show

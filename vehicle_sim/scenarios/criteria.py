@@ -278,6 +278,9 @@ class TopicPredicate(Criterion):
         ParamSpec('value', 'value', 'float', REQUIRED, doc='the number compared with'),
         ParamSpec('mode', 'mode', 'enum', 'always', choices=TOPIC_MODES,
                   doc='always (every message), eventually (one message) or final (the last)'),
+        ParamSpec('best_effort', 'best_effort', 'bool', False,
+                  doc='read the topic best effort (needed for topics published best effort, '
+                      "such as the sensors' /scan; a reliable reader does not match them)"),
     )
 
     def __init__(self, *args):

@@ -31,11 +31,19 @@ import time
 
 from vehicle_sim.scenarios.criteria import TopicPredicate
 from vehicle_sim.scenarios.yaml_lines import ScenarioError
+from vehicle_sim.transport.port import BEST_EFFORT, QosProfile, RELIABLE
 
 _EPS_S = 1e-9
 PROCESS_STOP_TIMEOUT_S = 5.0
 # Wall time left to external processes after the last step, for their last messages.
 DRAIN_S = 0.2
+
+# Deep reader queues: a criterion judges every message, also when the runner spins less often
+# than the nodes publish (rclpy handles one callback per spin_once).
+JUDGE_DEPTH = 10000
+_JUDGE_RELIABLE = QosProfile(depth=JUDGE_DEPTH, reliability=RELIABLE)
+_JUDGE_BEST_EFFORT = QosProfile(depth=JUDGE_DEPTH, reliability=BEST_EFFORT)
+
 
 class TopicWatcher:
     """The runner's node: the topic criteria's subscriptions and the /clock subscriber count."""
@@ -49,9 +57,10 @@ class TopicWatcher:
         self._subs = []
         for criterion in criteria:
             if isinstance(criterion, TopicPredicate):
+                qos = _JUDGE_BEST_EFFORT if criterion.values['best_effort'] else _JUDGE_RELIABLE
                 self._subs.append(self.node.create_subscription(
                     criterion.values['ros_type'], criterion.values['topic'],
-                    self._callback(criterion)))
+                    self._callback(criterion), qos))
         self.sync_counts = []
         for topic, ros_type in sync:
             index = len(self.sync_counts)
@@ -94,7 +103,10 @@ class TopicWatcher:
 
     def spin(self):
         self.sim.spin()
-        self.node.spin_once(0.0)
+        # rclpy's spin_once handles one callback: one per subscription (a step's messages) and
+        # one more; what is left stays queued (deep queues) for the next spin and the drain.
+        for _ in range(len(self._subs) + 1):
+            self.node.spin_once(0.0)
 
     def drain(self, wall_s=DRAIN_S):
         end = time.monotonic() + wall_s

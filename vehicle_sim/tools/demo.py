@@ -99,7 +99,7 @@ def plot(result, out_path):
     return out_path
 
 
-def run_demo(out_path=DEFAULT_OUT, car_model=None, short=False, stream=sys.stdout):
+def run_demo(out_path=DEFAULT_OUT, car_model=None, short=False, stream=None):
     """
     Run the scenario, write the PNG and print the errors.
 
@@ -108,6 +108,7 @@ def run_demo(out_path=DEFAULT_OUT, car_model=None, short=False, stream=sys.stdou
     :param short: run the short variant (half-length segments).
     :return: (ScenarioResult, out_path).
     """
+    stream = sys.stdout if stream is None else stream   # the stdout of the call, not of import
     os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'OFF')
     from vehicle_sim.tools import end_to_end
     result = end_to_end.run_scenario(car_model=car_model or end_to_end.DEFAULT_CAR,
