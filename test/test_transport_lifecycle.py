@@ -122,6 +122,9 @@ def test_sigterm_after_clients_died_ends_the_process_and_leaves_the_graph(tmp_pa
     env = peer_env()
     env['CYCLONEDDS_URI'] = (f'<Tracing><Category>config,discovery</Category>'
                              f'<OutputFile>{trace}</OutputFile></Tracing>')
+    # The embedded transport's own discovery configuration (its writer linger) is under test;
+    # on a ROS machine the node would otherwise run on rclpy with rmw_cyclonedds' configuration.
+    env['VEHICLE_SIM_TRANSPORT'] = 'dds'
     process = NodeProcess('--ros-args', '-r', '__ns:=/dying', '-p', 'synchronous:=true',
                           env=env)
     services = ['/dying/robot/get_time', '/dying/robot/get_basic_time_step',

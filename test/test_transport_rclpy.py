@@ -191,6 +191,7 @@ def test_rclpy_automobile_time_step_is_answered_after_its_steps(context):
 # A node main whose destroy_node takes a second, so that a second SIGINT lands inside it; after
 # run_node returned it waits a second more (standing for the process's exit) before a last line.
 SLOW_SHUTDOWN_MAIN = textwrap.dedent("""
+    import sys
     import time
     from vehicle_sim.transport.rclpy_adapter import RclpyNode, run_rclpy_node
 
@@ -205,6 +206,7 @@ SLOW_SHUTDOWN_MAIN = textwrap.dedent("""
             print('destroyed', flush=True)
         node.shutdown = slow_shutdown
         print('ready', flush=True)
+        time.sleep(float(sys.argv[1]))   # the rest of a start-up, after the node exists
         return node
 
     status = run_rclpy_node(factory, ['slow_shutdown'])
@@ -220,7 +222,7 @@ def _wait_for_line(lines, text, event, timeout_s=30.0):
 
 def test_sigint_during_and_after_shutdown_is_ignored_and_the_node_exits_0():
     # Under `ros2 launch`, Ctrl-C reaches a node twice: from the terminal and from launch.
-    proc = subprocess.Popen([sys.executable, '-c', SLOW_SHUTDOWN_MAIN], env=peer_env(),
+    proc = subprocess.Popen([sys.executable, '-c', SLOW_SHUTDOWN_MAIN, '0'], env=peer_env(),
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     lines = []
     seen = {text: threading.Event() for text in ('ready', 'shutting down', 'returned 0')}
@@ -250,6 +252,24 @@ def test_sigint_during_and_after_shutdown_is_ignored_and_the_node_exits_0():
             proc.kill()
             proc.wait()
 
+
+
+def test_sigint_after_the_node_exists_during_start_up_still_shuts_it_down():
+    # The signal lands while the factory finishes its start-up (the node already exists): it must
+    # not unwind past the node unnamed; the node is built, then shut down, and the exit is 0.
+    proc = subprocess.Popen([sys.executable, '-c', SLOW_SHUTDOWN_MAIN, '1.0'], env=peer_env(),
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    try:
+        assert proc.stdout.readline().strip() == 'ready'
+        proc.send_signal(signal.SIGINT)
+        out, _ = proc.communicate(timeout=30)
+        assert proc.returncode == 0, out
+        assert [line.strip() for line in out.splitlines()] == [
+            'shutting down', 'destroyed', 'returned 0', 'exiting'], out
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
 
 def test_rclpy_rows_publish_fast_cdr_bytes_and_a_raw_subscription_decodes_them(context):
     from types import SimpleNamespace

@@ -387,8 +387,9 @@ def run_rclpy_node(node_factory, args=None) -> int:
     """
     Jazzy main shape: init, build, try spin, finally destroy_node and try_shutdown.
 
-    The first SIGINT ends the run (a KeyboardInterrupt, as Python's default handler raises);
-    every later one is ignored, so that it cannot interrupt the shutdown: under ``ros2 launch``
+    The first SIGINT ends the run (a KeyboardInterrupt while spinning, as Python's default handler
+    raises; during start-up it is recorded and the node is shut down once built); every later one
+    is ignored, so that it cannot interrupt the shutdown: under ``ros2 launch``
     a Ctrl-C reaches the node twice (from the terminal, then forwarded by launch), and a second
     KeyboardInterrupt inside ``destroy_node`` would print a traceback and end the process with
     -2. The handler is installed before ``rclpy.init``, which chains rclpy's own SIGINT handling
@@ -402,11 +403,16 @@ def run_rclpy_node(node_factory, args=None) -> int:
     :return: the process exit status (0 after a signal).
     """
     stopping = []
+    spinning = []
 
     def on_sigint(signum, frame):
         if not stopping:
             stopping.append(signum)
-            raise KeyboardInterrupt
+            # Only while spinning: during start-up the interrupt would land anywhere, also
+            # between the node's construction and the name that lets the finally destroy it.
+            # rclpy's own handler has shut the context down either way.
+            if spinning:
+                raise KeyboardInterrupt
 
     previous = None
     if threading.current_thread() is threading.main_thread():
@@ -425,7 +431,9 @@ def run_rclpy_node(node_factory, args=None) -> int:
     try:
         app = node_factory(args)
         node = app if isinstance(app, port.NodePort) else app.node
-        node.spin()
+        spinning.append(True)
+        if not stopping:      # a SIGINT during start-up: straight to the shutdown
+            node.spin()
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception:
