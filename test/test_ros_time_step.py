@@ -220,9 +220,48 @@ def test_time_step_service_runs_requests_in_order_one_chunk_at_a_time():
         timer.callback()
     assert done == [('first', 3), ('second', 4)]
     assert first.result().success and second.result().success
-    # A later request re-arms the same timer.
-    service.handle('/robot/time_step', _Request(10), _Response())
+    # A later request of more than one step re-arms the same timer.
+    service.handle('/robot/time_step', _Request(20), _Response())
     assert node.timers == [timer] and not timer.cancelled
+
+
+@pytest.mark.parametrize('value', [0, 10])
+def test_time_step_service_steps_one_step_in_the_callback_when_nothing_is_queued(value):
+    node, steps = _Node(), []
+    service = TimeStepService(node, 10, lambda: steps.append(1), synchronous=True)
+    response = _Response()
+    assert service.handle('/robot/time_step', _Request(value), response) is response
+    assert response.success is True and steps == [1]
+    assert service.queued == 0 and not node.timers
+
+
+def test_time_step_service_queues_a_one_step_request_served_during_a_one_step_request():
+    # The node serves requests between the physics and the publishing of a step: a second
+    # one-step request arriving then is answered after the first, with its own step.
+    node, steps, inner = _Node(), [], []
+
+    def step_once():
+        steps.append(1)
+        if len(steps) == 1:
+            inner.append(service.handle('/robot/time_step', _Request(0), _Response()))
+
+    service = TimeStepService(node, 10, step_once, synchronous=True)
+    outer = service.handle('/robot/time_step', _Request(0), _Response())
+    assert outer.success is True and steps == [1]
+    (second,) = inner
+    assert not second.done() and service.queued == 1
+    (timer,) = node.timers
+    timer.callback()
+    assert second.result().success is True and steps == [1, 1] and timer.cancelled
+
+
+def test_time_step_service_queues_a_one_step_request_once_the_node_is_stopping():
+    node, steps = _Node(), []
+    service = TimeStepService(node, 10, lambda: steps.append(1), synchronous=True)
+    node.stopping = True
+    request = service.handle('/robot/time_step', _Request(0), _Response())
+    node.timers[0].callback()
+    assert steps == [] and not request.done()
 
 
 def test_time_step_service_stops_stepping_once_the_node_is_stopping():

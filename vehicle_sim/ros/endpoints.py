@@ -317,7 +317,7 @@ class Outputs:
             # Hot loop: a converter made by converter() is called as its two parts.
             values, build = getattr(convert, 'parts', (convert, None))
             self._groups.setdefault(row.cadence, []).append(
-                (row, convert, publish, values, build))
+                (row, convert, publish, values, build, publisher.reader_gate))
 
     @property
     def rows(self) -> Tuple[Topic, ...]:
@@ -325,16 +325,22 @@ class Outputs:
         return tuple(self.publishers)
 
     def publish(self, cadence: str, ctx) -> None:
-        """Publish every wired row of ``cadence`` whose converter gives a message for ``ctx``."""
-        for _, _, publish, values, build in self._groups.get(cadence, ()):
-            found = values(ctx)
-            if found is not None:
-                publish(found if build is None else build(*found))
+        """
+        Publish every wired row of ``cadence`` whose converter gives a message for ``ctx``.
+
+        A row whose publisher's reader gate is closed (no subscriber would receive it:
+        ``port.ReaderGate``) is skipped: its message is not even built.
+        """
+        for _, _, publish, values, build, gate in self._groups.get(cadence, ()):
+            if gate.open:
+                found = values(ctx)
+                if found is not None:
+                    publish(found if build is None else build(*found))
 
     def messages(self, cadence: str, ctx) -> Dict[Topic, object]:
         """Return {row: message} of the rows of ``cadence`` for ``ctx``, without publishing."""
         found = {}
-        for row, convert, _, _, _ in self._groups.get(cadence, ()):
+        for row, convert, _, _, _, _ in self._groups.get(cadence, ()):
             message = convert(ctx)
             if message is not None:
                 found[row] = self._msg(row.ros_type).deserialize(message) \

@@ -18,8 +18,10 @@ The ``robot/time_step`` service of synchronous nodes: stepping in chunks from th
 A request for ``value`` ms (0 = one basic step, else a positive multiple of the basic step) is
 queued and answered, with a deferred reply (transport port), once its own steps are done. The
 steps run from a timer of the node, at most ``CHUNK_S`` of wall time at once; between two
-chunks the node serves its other requests and notices SIGINT/SIGTERM. Hence, however long a
-request is:
+chunks the node serves its other requests and notices SIGINT/SIGTERM. A request of one basic
+step that finds nothing queued is one chunk anyway: it is stepped in the service callback and
+answered at once, without the deferred reply and the timer (a test stepping one step at a time
+sends thousands). Hence, however long a request is:
 
 * the node answers other requests meanwhile; a setter takes effect at the next basic step;
 * a second ``time_step`` waits its turn (first come, first served) and is answered when its own
@@ -74,6 +76,9 @@ class TimeStepService:
         self._chunk_s = chunk_s
         self._queue = collections.deque()
         self._timer = None
+        # True while a one-step request is stepped in its callback: a request served from
+        # inside that step (the node serves requests between physics and publishing) queues.
+        self._stepping = False
 
     @property
     def queued(self) -> int:
@@ -93,7 +98,7 @@ class TimeStepService:
 
     def handle(self, name: str, request, response):
         """
-        Serve one request: the response at once when refused, else a Future of it.
+        Serve one request: the response at once when refused or stepped at once, else a Future.
 
         :param name: the service name, for the log.
         """
@@ -110,6 +115,13 @@ class TimeStepService:
             response.success = False
             return response
         response.success = True
+        if steps == 1 and not self._queue and not self._stepping and self._node.ok():
+            self._stepping = True
+            try:
+                self._step_once()
+            finally:
+                self._stepping = False
+            return response
         queued = _Request(steps, response)
         self._queue.append(queued)
         if self._timer is None:

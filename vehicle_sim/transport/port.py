@@ -429,8 +429,31 @@ class Future:
             callback(self)
 
 
+class ReaderGate:
+    """
+    Whether a message published now can reach a subscriber (``open``).
+
+    ``open`` is False only while the transport knows that no subscriber would receive it: a
+    volatile publisher of the embedded transport with no matched subscription (the message
+    would go nowhere; a subscriber matching later does not get it either). A node's publishing
+    loop reads it before building a message and skips the message when it is closed. Kept up to
+    date by the transport, read as a plain attribute.
+    """
+
+    __slots__ = ('open',)
+
+    def __init__(self, open_: bool = True):
+        self.open = open_
+
+
+# The gate of publishers whose transport does not track their subscribers: always open.
+ALWAYS_OPEN = ReaderGate(True)
+
+
 class Publisher(abc.ABC):
     topic_name: str
+    # See ReaderGate; the embedded transport gives its volatile publishers their own.
+    reader_gate: ReaderGate = ALWAYS_OPEN
 
     @abc.abstractmethod
     def publish(self, msg) -> None:

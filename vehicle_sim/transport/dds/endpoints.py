@@ -14,6 +14,9 @@
 
 """Publishers and subscriptions of the embedded transport, and how every reader takes samples."""
 
+from typing import Optional
+
+from cyclonedds.core import Listener
 from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
 
@@ -56,8 +59,36 @@ class Intake:
         return samples
 
 
+def reader_gate_listener(gate: port.ReaderGate) -> Listener:
+    """
+    Return a Listener keeping ``gate.open`` = "the writer has a matched reader".
+
+    Give it to the DataWriter at creation: Cyclone then calls it for every change of the
+    writer's matched readers, those matched during the creation included, from the thread
+    that matched them (its discovery thread, or the creating thread for readers of this
+    process). The gate starts closed. Cyclone calls a writer's listener one call at a time,
+    each with the current count, so the last call leaves the current state.
+    """
+    gate.open = False
+
+    def on_publication_matched(writer, status) -> None:
+        gate.open = status.current_count > 0
+
+    return Listener(on_publication_matched=on_publication_matched)
+
+
 class DdsPublisher(port.Publisher):
-    def __init__(self, node, writer: DataWriter, msg_type, topic_name: str):
+    """
+    A topic's writer; ``reader_gate`` tracks its matched readers when one is given.
+
+    :param reader_gate: the gate kept by :func:`reader_gate_listener` of the writer (volatile
+        writers only: a transient-local writer keeps samples for readers matching later).
+    """
+
+    def __init__(self, node, writer: DataWriter, msg_type, topic_name: str,
+                 reader_gate: Optional[port.ReaderGate] = None):
+        if reader_gate is not None:
+            self.reader_gate = reader_gate
         self._node = node
         self._writer = writer
         self._type = msg_type

@@ -35,6 +35,7 @@ from vehicle_sim.transport.dds.endpoints import (
     DdsPublisher,
     DdsSubscription,
     Intake,
+    reader_gate_listener,
     TAKE_BATCH,
 )
 from vehicle_sim.transport.dds.executor import DdsTimer, Executor, SPIN_SLICE_S
@@ -222,11 +223,16 @@ class DdsNode(port.NodePort):
         self._check_ok()
         profile = as_qos(qos)
         msg_type, fqn, dds_topic, user_data = self._dds_topic(ros_type, topic, profile)
+        # A volatile writer without a matched reader delivers nothing: its gate lets the node
+        # skip building such messages. A transient-local one keeps its last samples for readers
+        # matching later, so it is always written.
+        gate = port.ReaderGate() if profile.durability == port.VOLATILE else None
         writer = DataWriter(self._ctx.participant, dds_topic,
-                            qos=dds_qos(profile, user_data, True))
+                            qos=dds_qos(profile, user_data, True),
+                            listener=reader_gate_listener(gate) if gate is not None else None)
         self._add_writer(writer)
         self._graph_changed()
-        return DdsPublisher(self, writer, msg_type, fqn)
+        return DdsPublisher(self, writer, msg_type, fqn, gate)
 
     def create_subscription(self, ros_type: str, topic: str, callback,
                             qos=None, *, raw: bool = False) -> DdsSubscription:
