@@ -71,13 +71,18 @@ class NodeProcess:
         return self.proc.wait(timeout_s)
 
     def stop(self):
-        if self.proc.poll() is None:
-            self.proc.terminate()
-            try:
-                self.proc.wait(WAIT_S)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
+        stop_process(self.proc)
+
+
+def stop_process(proc):
+    """SIGTERM a child process still running, then SIGKILL it if it has not ended in WAIT_S."""
+    if proc.poll() is None:
+        proc.terminate()
+        try:
+            proc.wait(WAIT_S)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
 
 
 class AutomobileClient:

@@ -26,7 +26,7 @@ import sys
 import threading
 import time
 
-from automobile_helpers import NodeProcess, wait_for, WAIT_S
+from automobile_helpers import NodeProcess, stop_process, wait_for, WAIT_S
 from conftest import peer_env
 import pytest
 
@@ -234,13 +234,7 @@ class PtyProcess:
         os.write(self.master, data)
 
     def stop(self):
-        if self.proc.poll() is None:
-            self.proc.terminate()
-            try:
-                self.proc.wait(WAIT_S)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
+        stop_process(self.proc)
         os.close(self.master)
 
 
