@@ -19,9 +19,10 @@ The automobile node runs in a subprocess (embedded DDS transport, loopback-only 
 synchronous mode with every topic published each basic step (the default); this process
 subscribes to ``/automobile/current_speed`` and ``/clock`` (so the traffic is real), sets the
 car cruising at 30 km/h and calls ``robot/time_step`` for 1000 basic steps in one request, a
-few times. The wall time of the call gives the real-time factor. In the same run, the same car
-(ToyotaPrius, 10 ms) steps 1000 times in process through ``Driver.step``; the ratio of the two
-per-step costs is the cost of ROS (issue 10 targets: >= 40x real time; <= 2.5x in-process).
+few times. The wall time of the call gives the real-time factor. After each request, the same
+car (ToyotaPrius, 10 ms) steps 1000 times in this process through ``Driver.step``; the median of
+the ratios of the two per-step costs, request by request, is the cost of ROS (issue 10 targets:
+>= 40x real time; <= 2.5x in-process).
 
 Run: ``.venv/bin/python benchmarks/bench_ros_sync.py [--repeats N] [--steps N] [--profile]``;
 ``--profile`` runs one request under cProfile inside the node and prints its top functions.
@@ -55,8 +56,13 @@ def _node_command(profile_path=None):
     return command
 
 
-def measure_ros(steps, repeats, profile_path=None):
-    """Return the wall and node CPU seconds of each ``robot/time_step`` request, the counts."""
+def measure_ros(steps, repeats, profile_path=None, between=None):
+    """
+    Return the wall and node CPU seconds of each ``robot/time_step`` request, the counts.
+
+    :param between: called after each request (the in-process block of the same run, so
+        that the two sides of the ratio are interleaved and a change of load hits both).
+    """
     from vehicle_sim.transport.dds import DdsNode
     env = dict(os.environ, PYTHONPATH=REPO_ROOT + os.pathsep + os.environ.get('PYTHONPATH', ''))
     command = _node_command(profile_path)
@@ -90,6 +96,8 @@ def measure_ros(steps, repeats, profile_path=None):
             cpus.append(process_cpu_s(proc.pid) - cpu0)
             if not response.success:
                 raise RuntimeError('robot/time_step refused')
+            if between is not None:
+                between()
         client.spin_once(0.2)
     finally:
         client.shutdown()
@@ -98,23 +106,27 @@ def measure_ros(steps, repeats, profile_path=None):
     return walls, cpus, received
 
 
-def measure_in_process(steps, repeats):
-    """Return the wall seconds of ``steps`` ``Driver.step()`` calls, ``repeats`` times."""
-    from vehicle_sim.webots import Car
-    car = Car(CAR)
-    try:
-        car.setCruisingSpeed(SPEED_KMH)
+class InProcessCar:
+    """The same car stepped through ``Driver.step()`` in this process, a block at a time."""
+
+    def __init__(self, steps):
+        from vehicle_sim.webots import Car
+        self.steps = steps
+        self.walls = []
+        self.car = Car(CAR)
+        self.car.setCruisingSpeed(SPEED_KMH)
         for _ in range(200):
-            car.step()
-        walls = []
-        for _ in range(repeats):
-            start = time.perf_counter()
-            for _ in range(steps):
-                car.step()
-            walls.append(time.perf_counter() - start)
-    finally:
-        car.close()
-    return walls
+            self.car.step()
+
+    def block(self):
+        step = self.car.step
+        start = time.perf_counter()
+        for _ in range(self.steps):
+            step()
+        self.walls.append(time.perf_counter() - start)
+
+    def close(self):
+        self.car.close()
 
 
 _READER = """
@@ -171,29 +183,37 @@ def measure_node_in_process(steps, repeats):
     return alone, matched
 
 
-def figures(steps=1000, repeats=3):
+def figures(steps=1000, repeats=5):
     """
     Return the figures of one run (medians).
 
     ``ros_rtf``, ``ros_us`` (wall per step over ROS), ``node_cpu_us`` (the node's CPU per step),
-    ``inproc_us`` (``Driver.step``), ``ratio`` (ROS / in process, wall).
+    ``inproc_us`` (``Driver.step``), ``ratio`` (ROS / in process, wall: the median of the
+    ratios of each request to the in-process block run right after it).
     """
-    walls, cpus, received = measure_ros(steps, repeats)
+    in_process = InProcessCar(steps)
+    try:
+        in_process.block()      # warm, as the node is by its first request
+        in_process.walls.clear()
+        walls, cpus, received = measure_ros(steps, repeats, between=in_process.block)
+    finally:
+        in_process.close()
     if not received['speed'] or not received['clock']:
         raise RuntimeError(f'the subscribers received nothing: {received}')
     ros, cpu = statistics.median(walls), statistics.median(cpus)
-    inproc = statistics.median(measure_in_process(steps, repeats))
+    inproc = statistics.median(in_process.walls)
+    ratio = statistics.median(w / i for w, i in zip(walls, in_process.walls))
     alone, matched = measure_node_in_process(steps // 2, repeats)
     sim_s = steps * STEP_MS / 1000.0
     return {'ros_rtf': sim_s / ros, 'ros_us': ros / steps * 1e6, 'node_cpu_us': cpu / steps * 1e6,
-            'inproc_us': inproc / steps * 1e6, 'ratio': ros / inproc,
+            'inproc_us': inproc / steps * 1e6, 'ratio': ratio,
             'node_alone_cpu_us': alone, 'node_matched_cpu_us': matched}
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     parser.add_argument('--steps', type=int, default=1000)
-    parser.add_argument('--repeats', type=int, default=3)
+    parser.add_argument('--repeats', type=int, default=5)
     parser.add_argument('--profile', action='store_true')
     options = parser.parse_args(argv)
     use_free_domain()

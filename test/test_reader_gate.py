@@ -23,6 +23,7 @@ import pytest
 from vehicle_msgs_py import types as msg_types
 from vehicle_sim.ros import endpoints
 from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros.automobile_node import AutomobileNode
 from vehicle_sim.transport import port
 from vehicle_sim.transport.dds import DdsNode
 
@@ -116,3 +117,65 @@ def test_publishers_of_other_transports_are_always_open():
             pass
 
     assert Other().reader_gate.open is True and Other().reader_gate is port.ALWAYS_OPEN
+
+
+class _Counted:
+    """Wrap ``owner.name`` so that its calls are counted (the original still answers)."""
+
+    def __init__(self, owner, name):
+        self.calls = 0
+        original = getattr(owner, name)
+
+        def counted(*args, **kwargs):
+            self.calls += 1
+            return original(*args, **kwargs)
+        setattr(owner, name, counted)
+
+
+def test_a_step_reads_only_the_car_state_its_subscribed_rows_need():
+    app = AutomobileNode(['t', '--ros-args', '-r', '__ns:=/lazy', '-p', 'synchronous:=true'],
+                         transport='dds')
+    listener = DdsNode('lazy_listener')
+    try:
+        car = app.vehicles['']
+        pose = _Counted(car.body, 'pose_and_velocity')
+        joints = _Counted(car.body, 'joint_states')
+        status = _Counted(car.logic, 'status')
+
+        def steps(count=20):
+            pose.calls = joints.calls = status.calls = 0
+            app.step(count)
+            return pose.calls, joints.calls, status.calls
+
+        assert steps() == (0, 0, 0)     # /clock has no reader either: nothing is read
+        received = []
+        subscriptions = [listener.create_subscription(
+            'vehicle_msgs/msg/Float64Stamped', '/lazy/automobile/current_speed',
+            received.append)]
+        assert wait_for(lambda: app._fleet_outputs is not None and all(
+            gate.open for gate in _gates(app, 'automobile/current_speed')), spin=listener)
+        assert steps() == (0, 0, 20)    # the status once a step, no pose, no joints
+        subscriptions.append(listener.create_subscription(
+            'nav_msgs/msg/Odometry', '/lazy/odom', received.append))
+        subscriptions.append(listener.create_subscription(
+            'tf2_msgs/msg/TFMessage', '/tf', received.append))
+        assert wait_for(lambda: all(gate.open for gate in _gates(app, 'odom', '/tf')),
+                        spin=listener)
+        assert steps() == (20, 0, 20)   # odometry and /tf share one read of the pose
+        subscriptions.append(listener.create_subscription(
+            'sensor_msgs/msg/JointState', '/lazy/joint_states', received.append))
+        assert wait_for(lambda: all(gate.open for gate in _gates(app, 'joint_states')),
+                        spin=listener)
+        assert steps() == (20, 20, 20)
+    finally:
+        listener.shutdown()
+        app.close()
+
+
+def _gates(app, *names):
+    """Return the reader gates of the node's publishers whose row name ends with ``names``."""
+    found = [publisher.reader_gate
+             for outputs in [app._fleet_outputs] + [v.outputs for v in app._vehicles]
+             for row, publisher in outputs.publishers.items() if row.name.endswith(names)]
+    assert len(found) == len(names), names
+    return found

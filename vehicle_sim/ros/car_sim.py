@@ -107,12 +107,11 @@ class _Vehicle:
         self.inputs = []
         self.drive = None                 # CarDriveInput: cmd_vel and drive (docs/drive.md)
         self.feed = None                  # SensorFeed: its sensors and collisions
-        # Call context, set by sample().
+        # Call context, set by sample(): the stamp, and the car's state read on first use.
         self.stamp = None
-        self.status = None
-        self.torque_mode = False
-        self.odom = None
-        self.joints = None
+        self._status = None
+        self._odom = None
+        self._joints = None
         # Call context of the sensor and collision rows (ros/sensor_interfaces.py).
         self.readings = {}
         self.sample_stamp = None
@@ -120,17 +119,49 @@ class _Vehicle:
         self.event_stamp = None
 
     def sample(self, stamp):
-        """Read the car's state once for every row published at ``stamp``."""
+        """
+        Start the sample of every row published at ``stamp``.
+
+        Each part of the car's state (status, odometry, joints) is read from the car once, when
+        the first row that needs it asks, so a step whose subscribed rows need only the status
+        does not read the pose or the joints. Rows are published right after ``sample`` with
+        nothing in between that could move the car.
+        """
         self.stamp = stamp
-        self.status = status = self.logic.status()
-        self.torque_mode = status.control_mode == ControlMode.TORQUE
-        body = self.body
-        pose, (linear, angular) = body.pose_and_velocity()
-        xyz, q = pose_in_frame(self.spawn_xyz, self.spawn_q, pose[:3], pose[3:])
-        linear_b, angular_b = twist_in_body(pose[3:], linear, angular)
-        self.odom = (xyz, q, linear_b, angular_b)
-        _, positions, velocities = body.joint_states()
-        self.joints = (positions, velocities)
+        self._status = self._odom = self._joints = None
+
+    @property
+    def status(self):
+        """The car logic's CarStatus of this sample."""
+        status = self._status
+        if status is None:
+            status = self._status = self.logic.status()
+        return status
+
+    @property
+    def torque_mode(self):
+        """True when the car is in TORQUE control (the rows of that mode only)."""
+        return self.status.control_mode == ControlMode.TORQUE
+
+    @property
+    def odom(self):
+        """(xyz, q, linear, angular) of base_link in <p>odom, the twist in base_link."""
+        odom = self._odom
+        if odom is None:
+            pose, (linear, angular) = self.body.pose_and_velocity()
+            xyz, q = pose_in_frame(self.spawn_xyz, self.spawn_q, pose[:3], pose[3:])
+            linear_b, angular_b = twist_in_body(pose[3:], linear, angular)
+            odom = self._odom = (xyz, q, linear_b, angular_b)
+        return odom
+
+    @property
+    def joints(self):
+        """(positions, velocities) of the joint_states joints."""
+        joints = self._joints
+        if joints is None:
+            _, positions, velocities = self.body.joint_states()
+            joints = self._joints = (positions, velocities)
+        return joints
 
     @property
     def label(self):
@@ -461,12 +492,16 @@ class AutomobileNode:
         if self.world.step_count % self._publish_every == 0:
             vehicles = self._vehicles
             serve_pending = self.node.serve_pending if len(vehicles) > 1 else None
+            # /tf's poses are taken with each car's sample, before a request can move it.
+            tf_poses = [] if outputs.wanted(EACH_PUBLISH) else None
             for vehicle in vehicles:
                 vehicle.sample(stamp)
                 vehicle.outputs.publish(EACH_PUBLISH, vehicle)
+                if tf_poses is not None:
+                    tf_poses.append(vehicle.odom[:2])
                 if serve_pending is not None:   # a request waits for one car's burst at most
                     serve_pending()
-            fleet.tf_poses = [vehicle.odom[:2] for vehicle in vehicles]
+            fleet.tf_poses = tf_poses
             outputs.publish(EACH_PUBLISH, fleet)
         for vehicle in self._sensing:
             self._publish_sensors(vehicle)
@@ -488,7 +523,7 @@ class AutomobileNode:
         fleet.stamp = self._stamp(self.world.time_s)
         self._fleet_outputs.publish(ONCE_LATCHED, fleet)
         for vehicle in self._vehicles:
-            vehicle.stamp = fleet.stamp
+            vehicle.sample(fleet.stamp)
             vehicle.outputs.publish(ONCE_LATCHED, vehicle)
 
     # ------------------------------------------------------------------------------ access

@@ -337,6 +337,10 @@ class Outputs:
                 if found is not None:
                     publish(found if build is None else build(*found))
 
+    def wanted(self, cadence: str) -> bool:
+        """Say whether a row of ``cadence`` would be published (its reader gate is open)."""
+        return any(entry[5].open for entry in self._groups.get(cadence, ()))
+
     def messages(self, cadence: str, ctx) -> Dict[Topic, object]:
         """Return {row: message} of the rows of ``cadence`` for ``ctx``, without publishing."""
         found = {}
