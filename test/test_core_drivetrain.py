@@ -131,6 +131,15 @@ def test_wheel_speeds_are_backward_differences():
     np.testing.assert_allclose(speeds, [2.0, 4.0, -6.0, 8.0], rtol=1e-12)
 
 
+def test_wheel_speeds_of_lists_are_a_list_equal_bit_for_bit_to_the_array_path():
+    # The car logic's per-step path hands lists; the result must not depend on the path.
+    now = [12.345678901, -0.1, 3.0e-9, 1.0e6 + 0.3]
+    before = [12.3, 0.2, -7.0e-9, 1.0e6]
+    listed = wheel_speeds(now, before, 0.01)
+    assert type(listed) is list
+    assert listed == wheel_speeds(np.array(now), np.array(before), 0.01).tolist()
+
+
 def test_max_signed_acceleration_keeps_the_sign_of_the_largest_magnitude():
     # Accelerations (now − before)/0.01: [100, −300, 200, 0] → −300.
     now = [1.0, -3.0, 2.0, 0.0]

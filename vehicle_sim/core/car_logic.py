@@ -123,6 +123,11 @@ class Dimensions:
 
 _NEW = object.__new__
 
+# Enum members as plain names for the per-step code: each ``ControlMode.X`` lookup costs about
+# 0.1 us on CPython 3.11, a dozen of them per step (benchmarks/bench_step.py).
+_SPEED, _TORQUE = ControlMode.SPEED, ControlMode.TORQUE
+_WHEEL_TORQUE, _WHEEL_VELOCITY = WheelMode.TORQUE, WheelMode.VELOCITY
+
 
 @dataclass(frozen=True)
 class CarStatus:
@@ -232,9 +237,9 @@ class CarLogic:
         self._rpm = 0.0
         self._slip = np.zeros(3)
         self._have_sample = False
-        self._previous_position = np.zeros(WHEEL_COUNT)
+        self._previous_position = [0.0] * WHEEL_COUNT
         self._speed = np.zeros(WHEEL_COUNT)
-        self._previous_speed = np.zeros(WHEEL_COUNT)
+        self._previous_speed = [0.0] * WHEEL_COUNT
         self._max_acceleration = 0.0
         self._ramp = np.zeros(WHEEL_COUNT)
         self._torque = np.zeros(WHEEL_COUNT)
@@ -465,23 +470,25 @@ class CarLogic:
         self._wiper.step(now_s, dt_s)
         lights.backwards = backwards_light_on(self._mode, self._gear, self._cruising_kmh)
         # 4. Wheel speeds; without a previous sample they are 0 (Webots: NaN twice).
+        # As lists of floats: numpy calls on 4 elements cost more than the arithmetic.
         position = measurement.wheel_position_rad
-        if not self._have_sample:
-            self._previous_position[:] = position
-            self._have_sample = True
-        wheel_speeds(position, self._previous_position, dt_s, out=self._speed)
-        self._max_acceleration = max_signed_acceleration(self._speed, self._previous_speed,
-                                                         dt_s)
-        self._previous_position[:] = position
-        self._previous_speed[:] = self._speed
-        self._encoder[:] = position
+        now = (position.tolist() if type(position) is np.ndarray
+               else [float(value) for value in position])
+        previous = self._previous_position if self._have_sample else now
+        self._have_sample = True
+        speed = wheel_speeds(now, previous, dt_s)
+        self._max_acceleration = max_signed_acceleration(speed, self._previous_speed, dt_s)
+        self._previous_position = now
+        self._previous_speed = speed
+        self._speed[:] = speed
+        self._encoder[:] = now
         self._measured_right_rad = float(measurement.steer_right_rad)
         self._measured_left_rad = float(measurement.steer_left_rad)
         # 5. Engine rpm (every mode).
         params = self._params
         self._rpm = engine_rpm(self._speed, self._gear, params.gear_ratio, params.engine_max_rpm)
         # 6. TORQUE mode: limited-slip integrator, then output torque and its distribution.
-        if self._mode == ControlMode.TORQUE:
+        if self._mode == _TORQUE:
             if self._lsd:
                 update_slip_ratios(self._slip, self._speed, self._car_type)
             torque = output_torque_nm(self._engine, self._rpm, self._gear, params.gear_ratio,
@@ -521,27 +528,29 @@ class CarLogic:
         modes = actuation.wheel_mode
         velocity = actuation.wheel_velocity_radps
         torque = actuation.wheel_torque_nm
-        driven_mode = WheelMode.TORQUE if self._mode == ControlMode.TORQUE else WheelMode.VELOCITY
+        driven_mode = _WHEEL_TORQUE if self._mode == _TORQUE else _WHEEL_VELOCITY
         if self._driven_mode != driven_mode:
             self._driven_mode = driven_mode
             velocity.fill(0.0)
             torque.fill(0.0)
             for wheel in range(WHEEL_COUNT):
                 modes[wheel] = driven_mode if wheel in self._driven else WheelMode.FREE
-        if driven_mode == WheelMode.TORQUE:
+        if driven_mode == _WHEEL_TORQUE:
             source = self._torque
             for wheel in self._driven:
                 torque[wheel] = source[wheel]
         else:
             ramp = self._ramp
-            if self._mode == ControlMode.SPEED:
-                target = self._cruise_target
-                limits = self._wheel_acceleration_radps2
+            if self._mode == _SPEED:
+                current = ramp.tolist()
+                target = self._cruise_target.tolist()
+                limits = self._wheel_acceleration_radps2.tolist()
                 for wheel in self._driven:
-                    ramp[wheel] = ramp_toward(float(ramp[wheel]), float(target[wheel]),
-                                              float(limits[wheel]) * dt_s)
-            for wheel in self._driven:
-                velocity[wheel] = ramp[wheel]
+                    ramp[wheel] = velocity[wheel] = ramp_toward(current[wheel], target[wheel],
+                                                                limits[wheel] * dt_s)
+            else:
+                for wheel in self._driven:
+                    velocity[wheel] = ramp[wheel]
         actuation.brake_torque_nm.fill(self._brake * self._params.brake_coefficient_nm)
         return actuation
 

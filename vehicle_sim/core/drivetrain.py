@@ -213,8 +213,12 @@ def wheel_speeds(position_rad, previous_position_rad, dt_s, out=None):
     :param previous_position_rad: values one step earlier [rad].
     :param dt_s: time between the two samples [s], > 0.
     :param out: optional array of 4 to fill.
-    :return: wheel speeds [rad/s].
+    :return: wheel speeds [rad/s]; a list when both samples are lists and ``out`` is None
+        (the car logic's per-step path: numpy calls on 4 elements cost more than the
+        arithmetic).
     """
+    if out is None and type(position_rad) is list and type(previous_position_rad) is list:
+        return [(now - before) / dt_s for now, before in zip(position_rad, previous_position_rad)]
     out = np.subtract(position_rad, previous_position_rad, out=out)
     out /= dt_s
     return out

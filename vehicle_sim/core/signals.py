@@ -87,6 +87,12 @@ def indicator_phase_on(time_s, period_s):
     return math.fmod(time_s, 2.0 * period_s) < period_s
 
 
+# Enum members as plain names for the per-step functions below (each ``Enum.X`` lookup costs
+# about 0.1 us on CPython 3.11).
+_INDICATOR_OFF, _INDICATOR_RIGHT = Indicator.OFF, Indicator.RIGHT
+_TORQUE, _SPEED = ControlMode.TORQUE, ControlMode.SPEED
+
+
 def indicator_lamps(indicator, hazard_flashers, time_s, period_s):
     """
     Return the (right, left) indicator lamp states.
@@ -97,12 +103,12 @@ def indicator_lamps(indicator, hazard_flashers, time_s, period_s):
     :param period_s: indicator period [s] > 0.
     :return: (right_on, left_on).
     """
-    if not hazard_flashers and indicator == Indicator.OFF:
+    if not hazard_flashers and indicator == _INDICATOR_OFF:
         return False, False
     on = indicator_phase_on(time_s, period_s)
     if hazard_flashers:
         return on, on
-    if indicator == Indicator.RIGHT:
+    if indicator == _INDICATOR_RIGHT:
         return on, False
     return False, on
 
@@ -141,8 +147,11 @@ def backwards_light_on(control_mode, gear, cruising_speed_kmh):
     :param cruising_speed_kmh: target cruising speed [km/h].
     :return: True in TORQUE mode with gear −1 or in SPEED mode with a negative cruising speed.
     """
-    return ((control_mode == ControlMode.TORQUE and gear == -1)
-            or (control_mode == ControlMode.SPEED and cruising_speed_kmh < 0.0))
+    return ((control_mode == _TORQUE and gear == -1)
+            or (control_mode == _SPEED and cruising_speed_kmh < 0.0))
+
+
+_WIPER_DOWN, _WIPER_SLOW = WiperMode.DOWN, WiperMode.SLOW
 
 
 class Wiper:
@@ -183,10 +192,11 @@ class Wiper:
         :param dt_s: step length [s].
         :return: the new angle [rad].
         """
-        if self.mode != WiperMode.DOWN:
+        mode = self.mode
+        if mode != _WIPER_DOWN:
             if self.angle_rad <= WIPER_MIN_ANGLE_RAD + WIPER_LIMIT_TOLERANCE_RAD:
                 self.target_rad = WIPER_MAX_ANGLE_RAD
-            slow_pause = (self.mode == WiperMode.SLOW
+            slow_pause = (mode == _WIPER_SLOW
                           and int(time_s) % WIPER_SLOW_WINDOW_S != 0)
             if self.angle_rad >= WIPER_MAX_ANGLE_RAD - WIPER_LIMIT_TOLERANCE_RAD or slow_pause:
                 self.target_rad = WIPER_MIN_ANGLE_RAD
