@@ -486,7 +486,7 @@ class CarLogic:
         self._measured_left_rad = float(measurement.steer_left_rad)
         # 5. Engine rpm (every mode).
         params = self._params
-        self._rpm = engine_rpm(self._speed, self._gear, params.gear_ratio, params.engine_max_rpm)
+        self._rpm = engine_rpm(speed, self._gear, params.gear_ratio, params.engine_max_rpm)
         # 6. TORQUE mode: limited-slip integrator, then output torque and its distribution.
         if self._mode == _TORQUE:
             if self._lsd:
