@@ -190,6 +190,41 @@ def test_node_watchdog_stops_the_car_after_the_timeout_of_sim_time(aw):
     assert aw.car.logic.target_cruising_speed_kmh == 0.0
 
 
+@pytest.mark.parametrize('how', ['sim_reset', 'vehicle_reset'])
+def test_node_reset_puts_the_autoware_interface_back_in_its_start_state(aw, how):
+    def reported(messages):
+        return (messages[bi.GEAR_STATUS].report, messages[bi.TURN_INDICATORS_STATUS].report,
+                messages[bi.HAZARD_LIGHTS_STATUS].report, messages[bi.CONTROL_MODE_STATUS].mode)
+
+    start = reported(aw.status_messages())
+    assert start[0] == GEAR_DRIVE
+    gear(aw, GEAR_REVERSE)
+    drive(aw, 2.0, 0.2, 2.0)
+    assert aw.status_messages()[bi.GEAR_STATUS].report == GEAR_REVERSE
+    if how == 'sim_reset':
+        aw.automobile.reset()                                  # as /sim/reset
+    else:
+        aw.automobile.reset_vehicle('')                        # as the car's /reset
+    assert reported(aw.status_messages()) == start             # gear DRIVE, as at start
+    assert aw.state.target is None and not aw.state.timed_out
+    for _ in range(100):                                       # no command: it stays at rest
+        aw.automobile.step_once()
+    assert abs(aw.car.body.forward_speed_mps()) < 0.01
+    assert not aw.state.timed_out                              # nothing to time out
+    drive(aw, 2.0, 0.0, 3.0)                                   # forward, not in reverse
+    assert aw.car.body.forward_speed_mps() == pytest.approx(2.0, rel=0.05)
+
+
+def test_node_reset_keeps_manual_mode_and_forgets_the_gear(aw):
+    gear(aw, GEAR_PARK)
+    assert aw.request_control_mode(MODE_MANUAL)
+    aw.automobile.reset()
+    assert aw.state.action == DRIVE and not aw.state.autonomous
+    reports = aw.status_messages()
+    assert reports[bi.CONTROL_MODE_STATUS].mode == MODE_MANUAL   # the operator's choice stays
+    assert reports[bi.GEAR_STATUS].report == GEAR_DRIVE
+
+
 def test_node_lights_and_control_mode_are_reported_from_the_car(aw):
     turn = aw.node.msg(bi.TURN_INDICATORS_COMMAND.ros_type)
     hazard = aw.node.msg(bi.HAZARD_LIGHTS_COMMAND.ros_type)

@@ -300,6 +300,20 @@ class AutowareCar:
             self._apply_target(0.0)
         self.autonomous = bool(autonomous)
 
+    def reset(self):
+        """
+        Start again after the car's logic was reset (the vehicle's reset, /sim/reset).
+
+        As when built: gear action DRIVE (the car in its first forward gear), no command, the
+        watchdog idle until the next command. AUTONOMOUS or MANUAL stays as last requested:
+        the control mode is the operator's choice, not the car's state.
+        """
+        self.action = DRIVE
+        self.target = None
+        self.timed_out = False
+        self.watchdog.reset()
+        self.logic.set_gear(WEBOTS_GEAR[DRIVE])
+
     def tick(self, now_s):
         """Run the watchdog at ``now_s``; return True when it acted on this call."""
         if not self.autonomous or self.timed_out or self.target is None or \

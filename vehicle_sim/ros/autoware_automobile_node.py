@@ -130,6 +130,7 @@ class AutowareAutomobileNode:
         self.world = self.automobile.world
         self.state = AutowareCar(self.car.logic, values['command_timeout_s'],
                                  values['timeout_action'])
+        self.automobile.add_reset_listener(namespace, self.state.reset)
         self.input_type = values['input_type']
         self._frame_id = values['frame_id']
         step_s = self.world.time_step_s

@@ -34,7 +34,7 @@ Reset, teleport and pause (``reset``, ``set_pose``, ``/sim/reset``,
 """
 
 from types import SimpleNamespace
-from typing import Dict, List, Optional
+from typing import Callable, Dict, List, Optional
 
 from vehicle_sim.config import load_car
 from vehicle_sim.core.drive_input import CarDriveInput
@@ -106,6 +106,7 @@ class _Vehicle:
         self.services = []
         self.inputs = []
         self.drive = None                 # CarDriveInput: cmd_vel and drive (docs/drive.md)
+        self.reset_listeners = []         # called after each reset (a composing node's state)
         self.feed = None                  # SensorFeed: its sensors and collisions
         # Call context, set by sample(): the stamp, and the car's state read on first use.
         self.stamp = None
@@ -173,6 +174,8 @@ class _Vehicle:
         self.feed.restart_motion()
         if self.drive is not None:
             self.drive.service_override()   # a stale command's watchdog must not brake later
+        for listener in self.reset_listeners:
+            listener()
         status = self.logic.status()
         x, y, _ = self.spawn_xyz
         return (f'back at its spawn pose (x {x:g} m, y {y:g} m, yaw {self.spec.yaw_rad:g} rad) '
@@ -531,6 +534,27 @@ class AutomobileNode:
     def reset(self) -> str:
         """Reset every vehicle and movable obstacle (as /sim/reset); return what was reset."""
         return self._control.reset()
+
+    def reset_vehicle(self, namespace: str) -> str:
+        """Reset one vehicle (as its ``<ns>/reset``); return what was reset."""
+        return self._vehicle(namespace).reset()
+
+    def add_reset_listener(self, namespace: str, callback: Callable[[], None]) -> None:
+        """
+        Call ``callback()`` after each reset of a vehicle (its ``<ns>/reset``, /sim/reset).
+
+        For a node composing this one that keeps state of its own about the car (as
+        autoware_automobile does): it runs after the car is back in its start state and before
+        the reset is reported.
+        """
+        self._vehicle(namespace).reset_listeners.append(callback)
+
+    def _vehicle(self, namespace):
+        for vehicle in self._vehicles:
+            if vehicle.spec.namespace == namespace:
+                return vehicle
+        raise KeyError(f'no vehicle {namespace!r}; known: '
+                       f'{sorted(v.spec.namespace for v in self._vehicles)}')
 
     @property
     def paused(self) -> bool:
