@@ -23,6 +23,7 @@ import subprocess
 import sys
 import textwrap
 import threading
+import time
 
 from conftest import peer_env
 import pytest
@@ -306,6 +307,27 @@ def test_rclpy_rows_publish_fast_cdr_bytes_and_a_raw_subscription_decodes_them(c
         assert reader.deserialize(rows[1].ros_type, raw[0]) == messages[0]
         assert (odom[0].child_frame_id, odom[0].pose.pose.position.y,
                 odom[0].twist.twist.angular.z) == ('car1/base_link', 2.0, 0.5)
+    finally:
+        reader.shutdown()
+        publisher.shutdown()
+
+
+def test_rclpy_spin_once_handles_every_message_already_received(context):
+    # The port's spin_once handles what is ready; rclpy's own handles one callback.
+    publisher = RclpyNode('drain_pub', '/rdrain', context=context)
+    reader = RclpyNode('drain_sub', '/rdrain', context=context)
+    try:
+        qos = port.QosProfile(depth=50)
+        received = []
+        reader.create_subscription('std_msgs/msg/Int32', 'n', lambda m: received.append(m.data),
+                                   qos)
+        pub = publisher.create_publisher('std_msgs/msg/Int32', 'n', qos)
+        assert reader.spin_until(lambda: pub.get_subscription_count() == 1, 30.0)
+        for value in range(30):
+            pub.publish(publisher.msg('std_msgs/msg/Int32')(data=value))
+        time.sleep(1.0)                 # loopback delivery of 30 small samples: far less
+        reader.spin_once(0.0)
+        assert received == list(range(30))
     finally:
         reader.shutdown()
         publisher.shutdown()

@@ -39,7 +39,7 @@ PROCESS_STOP_TIMEOUT_S = 5.0
 DRAIN_S = 0.2
 
 # Deep reader queues: a criterion judges every message, also when the runner spins less often
-# than the nodes publish (rclpy handles one callback per spin_once).
+# than the nodes publish (external processes publish on their own clocks).
 JUDGE_DEPTH = 10000
 _JUDGE_RELIABLE = QosProfile(depth=JUDGE_DEPTH, reliability=RELIABLE)
 _JUDGE_BEST_EFFORT = QosProfile(depth=JUDGE_DEPTH, reliability=BEST_EFFORT)
@@ -103,10 +103,7 @@ class TopicWatcher:
 
     def spin(self):
         self.sim.spin()
-        # rclpy's spin_once handles one callback: one per subscription (a step's messages) and
-        # one more; what is left stays queued (deep queues) for the next spin and the drain.
-        for _ in range(len(self._subs) + 1):
-            self.node.spin_once(0.0)
+        self.node.spin_once(0.0)
 
     def drain(self, wall_s=DRAIN_S):
         end = time.monotonic() + wall_s

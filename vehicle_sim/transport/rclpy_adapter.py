@@ -45,7 +45,12 @@ from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.clock import Clock, ClockType
 from rclpy.duration import Duration
 from rclpy.exceptions import ParameterException
-from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+from rclpy.executors import (
+    ExternalShutdownException,
+    ShutdownException,
+    SingleThreadedExecutor,
+    TimeoutException,
+)
 from rclpy.node import Node
 from rclpy.parameter import Parameter as RclpyParameter
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
@@ -59,6 +64,9 @@ from vehicle_sim.transport.port import (
     SetParametersResult,
     TransportError,
 )
+
+# The most callbacks one spin_once runs after the first (what was ready, not a flood).
+DRAIN_LIMIT = 1000
 
 
 def import_type(ros_type: str):
@@ -342,7 +350,30 @@ class RclpyNode(port.NodePort):
                                                 self.node.get_parameters_by_prefix(''))
             if warning:
                 self._logger.warning(warning)
-        self.executor.spin_once(timeout_sec=timeout_s)
+        executor = self.executor
+        executor.spin_once(timeout_sec=timeout_s)
+        # The port's spin_once handles what is ready; rclpy's runs one callback (one message of
+        # one subscription). Run the rest of what is ready now, without waiting, as rclpy's own
+        # SingleThreadedExecutor runs a handler; a bounded number, so a flood cannot hold us.
+        # Each handler triggers the executor's guard condition, so the wait after it can come
+        # back with nothing else (rclpy then raises TimeoutException): only a second empty
+        # wait in a row means that nothing is ready.
+        empty = 0
+        for _ in range(DRAIN_LIMIT):
+            try:
+                handler, _, _ = executor.wait_for_ready_callbacks(timeout_sec=0.0)
+            except TimeoutException:
+                empty += 1
+                if empty == 2:
+                    return
+                continue
+            except ShutdownException:
+                return
+            empty = 0
+            handler()
+            if handler.exception() is not None:
+                raise handler.exception()
+            handler.result()
 
     def spin(self) -> None:
         while self.ok():  # returns once shutdown() was called, like the embedded transport
