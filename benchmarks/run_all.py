@@ -114,10 +114,14 @@ def collect(quick):
     from vehicle_sim.transport import dds
     dds.ensure_domain()
     found = {}
-    ros = bench_ros_sync.figures(steps=1000, repeats=3 if quick else 5)
+    # The in-process figures first, in a process that has not run DDS traffic and other
+    # processes yet: after bench_ros_sync, a Driver.step block sometimes ran 1.6x raw PyBullet
+    # instead of 1.4x for a few seconds (the ratio measured alone, in a fresh process, is what
+    # a controller process sees).
     overhead, raw_us, full_us, substeps, _ = bench_step.measure_overhead(
         5 if quick else 15, 200 if quick else 400)
     ten = bench_step.measure_ten_cars(5 if quick else 15, 200 if quick else 400)
+    ros = bench_ros_sync.figures(steps=1000, repeats=3 if quick else 5)
     share, _, counts = bench_topics_cpu.measure_node(4.0 if quick else 10.0, 10)
     clock_only, _, _ = bench_topics_cpu.measure_node(4.0 if quick else 10.0, 10, False)
     raw_share = bench_topics_cpu.raw_pybullet_share(4.0 if quick else 10.0, 10)
