@@ -256,6 +256,15 @@ def test_runner_topic_criteria_are_judged_over_the_wire():
     assert 'all 200 messages pass' in clock.detail
 
 
+def test_runner_robot_sensors_are_published_by_its_node_when_served():
+    # The caster robot's lidar: 10 Hz, range 12 m (config/robots/caster_robot.yaml); 1 s.
+    result = run_scenario(ROOT / 'test' / 'scenarios' / 'served_robot_sensors.yaml')
+    assert result.passed, [c.detail for c in result.criteria]
+    (scan,) = result.criteria
+    assert scan.value == pytest.approx(12.0)
+    assert 'all 10 messages pass' in scan.detail
+
+
 def test_runner_bridge_drives_the_caster_robot_along_the_s_curve():
     # Two processes (the S-curve commander and the ackermann_to_differential bridge) drive the
     # caster robot served over ROS, in lockstep with the commander's /clock answers.

@@ -171,3 +171,47 @@ def test_schema_docs_show_the_generated_key_tables():
     from vehicle_sim.scenarios.schema import schema_markdown
     text = (ROOT / 'docs' / 'scenarios.md').read_text(encoding='utf-8')
     assert schema_markdown() in text
+
+
+ROBOT_WITH_SENSORS = textwrap.dedent("""\
+    world: {{vehicles: [{{name: Car}}]}}
+    robots:
+      - name: bot
+        sensors: {sensors}
+        pose: {{x: 0.0, y: 10.0, yaw: 0.0}}
+    duration: 1.0
+    driver: {{commands: [{{t: 0.0, cruising_speed: 0.0}}]}}
+    criteria:
+      - {{kind: no_collision}}{topic}
+    """)
+_SCAN_CRITERION = ("\n  - {kind: topic, topic: /bot/scan, type: sensor_msgs/msg/LaserScan, "
+                   "field: range_max, op: '>', value: 0.0, mode: eventually, "
+                   "best_effort: true}")
+
+
+@pytest.mark.parametrize('sensors, mounted', [('[lidar]', ('lidar',)), ('all', ('all',)),
+                                               ('[lidar, imu]', ('lidar', 'imu'))])
+def test_schema_robot_sensors_are_names_of_its_preset(tmp_path, sensors, mounted):
+    path = _write(tmp_path, ROBOT_WITH_SENSORS.format(sensors=sensors, topic=_SCAN_CRITERION))
+    spec = load_scenario(path)
+    assert spec.robots[0].sensors == mounted and spec.served
+
+
+@pytest.mark.parametrize('sensors, fragment', [
+    ('[radar]', "unknown sensor(s) ['radar']; this vehicle has lidar, imu"),
+    ('lidar', "sensors 'lidar': a list of sensor names, or 'all'"),
+    ('[]', "a list of sensor names, or 'all'"),
+])
+def test_schema_robot_sensors_refused_at_their_line(tmp_path, sensors, fragment):
+    path = _write(tmp_path, ROBOT_WITH_SENSORS.format(sensors=sensors, topic=_SCAN_CRITERION))
+    with pytest.raises(ScenarioError) as error:
+        load_scenario(path)
+    assert f'{path}:4:' in str(error.value) and fragment in str(error.value)
+
+
+def test_schema_robot_sensors_need_a_served_scenario(tmp_path):
+    path = _write(tmp_path, ROBOT_WITH_SENSORS.format(sensors='[lidar]', topic=''))
+    with pytest.raises(ScenarioError) as error:
+        load_scenario(path)
+    assert f'{path}:4:' in str(error.value)
+    assert 'published over ROS' in str(error.value)

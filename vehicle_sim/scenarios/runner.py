@@ -198,11 +198,6 @@ class Director:
         self.world = None
 
 
-def needs_serving(spec):
-    """Tell whether a scenario runs served over ROS (processes, or a topic criterion)."""
-    return spec.driver.kind == 'processes' or any(c.kind == 'topic' for c in spec.criteria)
-
-
 def run_scenario(spec_or_path, seed=None, gui=False, progress=None, repeat=1,
                  transport=None) -> ScenarioResult:
     """
@@ -246,7 +241,7 @@ def _spread(results):
 def _run_once(spec, gui, progress, transport):
     criteria = build_criteria(spec.criteria, spec.duration_s)
     director = Director(spec, criteria, progress)
-    served = needs_serving(spec)
+    served = spec.served
     start = time.monotonic()
     sim = (ServedSim(spec, director, spec.seed, gui, transport) if served
            else LocalSim(spec, director, spec.seed, gui))

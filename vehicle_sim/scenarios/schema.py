@@ -40,6 +40,7 @@ from typing import Any, Dict, Optional, Tuple
 from vehicle_sim import config
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.param_spec import ParamSpec, REQUIRED, validate_table
+from vehicle_sim.core.sensor_sets import enable_sensors
 from vehicle_sim.core.world_params import (
     obstacles_from_list,
     origin_from_dict,
@@ -81,6 +82,10 @@ ROBOT_SPECS = (
     ParamSpec('model', 'model', 'str', 'caster_robot', doc='robot preset (config/robots)'),
     ParamSpec('pose', 'pose', 'pose', None, 'm, rad', 'spawn pose {x, y, yaw}',
               choices=('x', 'y', 'yaw'), optional=True),
+    ParamSpec('sensors', 'sensors', 'raw', None, optional=True,
+              doc="names of the preset's sensors to mount, or 'all' (docs/sensors.md); "
+                  'published by the robot node (/<name>/scan, /<name>/imu): the scenario '
+                  'must be served (processes or a topic criterion)'),
 )
 
 ACTOR_SPECS = (
@@ -141,6 +146,7 @@ class RobotSpec:
     x_m: float = 0.0
     y_m: float = 0.0
     yaw_rad: float = 0.0
+    sensors: Tuple[str, ...] = ()     # names to mount, ('all',) for every one; () none
 
 
 @dataclass(frozen=True)
@@ -228,6 +234,11 @@ class ScenarioSpec:
     def robot_names(self):
         return tuple(r.name for r in self.robots)
 
+    @property
+    def served(self):
+        """Tell whether the scenario runs served over ROS (processes, or a topic criterion)."""
+        return self.driver.kind == 'processes' or any(c.kind == 'topic' for c in self.criteria)
+
     def with_seed(self, seed):
         """Return this scenario with another seed."""
         from dataclasses import replace
@@ -304,10 +315,17 @@ def scenario_from_data(data, lines, source) -> ScenarioSpec:
     from vehicle_sim.scenarios.criteria import criteria_from_list
     criteria = criteria_from_list(ctx, data.get('criteria'), names, vehicle)
     name = values['name'] or Path(source).stem
-    return ScenarioSpec(name, values['description'], source, world, world_file, world_data,
+    spec = ScenarioSpec(name, values['description'], source, world, world_file, world_data,
                         robots, vehicle,
                         values['duration_s'], values['seed'], values['time_step_ms'], actors,
                         driver, criteria, lines)
+    for index, robot in enumerate(robots):
+        if robot.sensors and not spec.served:
+            raise ctx.fail(('robots', index, 'sensors'),
+                           f'robot {robot.name!r}: its sensors are published over ROS by its '
+                           'node, and this scenario runs without ROS; add the process that '
+                           'reads them (driver.processes) or a topic criterion')
+    return spec
 
 
 def _world(ctx, value, cars_optional):
@@ -351,9 +369,26 @@ def _robots(ctx, value):
         except InvalidParameterError as error:
             raise ctx.fail(path + ('model',), str(error)) from None
         pose = values['pose']
-        robots.append(RobotSpec(values['name'], values['model'],
-                                *((pose.x_m, pose.y_m, pose.yaw_rad) if pose else ())))
+        x_m, y_m, yaw_rad = (pose.x_m, pose.y_m, pose.yaw_rad) if pose else (0.0, 0.0, 0.0)
+        sensors = _robot_sensors(ctx, values['sensors'], values['model'], path + ('sensors',))
+        robots.append(RobotSpec(values['name'], values['model'], x_m, y_m, yaw_rad, sensors))
     return tuple(robots)
+
+
+def _robot_sensors(ctx, value, model, path):
+    # None, 'all' or a list of names of the preset's sensors (the diff_robot node's parameter).
+    if value is None:
+        return ()
+    names = ('all',) if value == 'all' else value
+    if not (isinstance(names, (list, tuple)) and names
+            and all(isinstance(n, str) and n for n in names)):
+        raise ctx.fail(path, f"sensors {value!r}: a list of sensor names, or 'all'")
+    try:
+        enable_sensors(config.load_robot(model).sensor_set,
+                       'all' if tuple(names) == ('all',) else names, f'robot model {model!r}')
+    except InvalidParameterError as error:
+        raise ctx.fail(path, str(error)) from None
+    return tuple(names)
 
 
 def _actors(ctx, value, names, vehicle):

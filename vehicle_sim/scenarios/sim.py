@@ -172,7 +172,8 @@ class ServedSim:
                                          'robot': robot.model, 'x': robot.x_m, 'y': robot.y_m,
                                          'yaw': robot.yaw_rad, 'synchronous': True,
                                          'time_step_ms': step_ms,
-                                         'gui': gui and world is None})
+                                         'gui': gui and world is None,
+                                         'sensors': list(robot.sensors) or ['']})
                 self.robot_nodes.append(node)
                 if world is None:
                     world = node.world
