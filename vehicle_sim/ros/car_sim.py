@@ -38,15 +38,13 @@ from typing import Callable, Dict, List, Optional
 
 from vehicle_sim.config import load_car
 from vehicle_sim.core.drive_input import CarDriveInput
-from vehicle_sim.core.drivetrain import ControlMode
 from vehicle_sim.core.errors import InvalidCommandError
-from vehicle_sim.core.frames import pose_in_frame, quaternion_from_yaw, twist_in_body
-from vehicle_sim.core.sensor_sets import static_transforms
 from vehicle_sim.physics import SimulatedCar, World
 from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
 from vehicle_sim.physics.sensors import SensorFeed
 from vehicle_sim.ros import interfaces as itf
-from vehicle_sim.ros.descriptions import mounted_sensors, vehicle_description
+from vehicle_sim.ros.car_context import CarContext
+from vehicle_sim.ros.descriptions import mounted_sensors
 from vehicle_sim.ros.endpoints import (
     EACH_PUBLISH,
     EACH_SAMPLE,
@@ -80,127 +78,6 @@ def _to_core(kind, value):
     if kind == 'bool':
         return bool(value)
     return int(value)
-
-
-class _Vehicle:
-    """
-    One car: the wiring context of its rows and, after :meth:`sample`, their call context.
-
-    The attributes the rows' converters read are listed in ``ros/interfaces.py``.
-    """
-
-    def __init__(self, spec, car, sensors):
-        self.spec = spec
-        self.car = car
-        self.logic = car.logic
-        self.body = car.body
-        self.sensors = sensors            # its SensorSpecs (the mounted ones are published)
-        self.prefix = self.frame_prefix = itf.frame_prefix(spec.namespace)
-        self.base_frame = self.prefix + 'base_link'
-        self.odom_frame = self.prefix + 'odom'
-        self.spawn_xyz = (spec.x_m, spec.y_m, 0.0)
-        self.spawn_q = quaternion_from_yaw(spec.yaw_rad)
-        names, _, _ = car.body.joint_states()
-        self.joint_names = tuple(self.prefix + name for name in names)
-        self.outputs = None
-        self.services = []
-        self.inputs = []
-        self.drive = None                 # CarDriveInput: cmd_vel and drive (docs/drive.md)
-        self.reset_listeners = []         # called after each reset (a composing node's state)
-        self.feed = None                  # SensorFeed: its sensors and collisions
-        # Call context, set by sample(): the stamp, and the car's state read on first use.
-        self.stamp = None
-        self._status = None
-        self._odom = None
-        self._joints = None
-        # Call context of the sensor and collision rows (ros/sensor_interfaces.py).
-        self.readings = {}
-        self.sample_stamp = None
-        self.event = None
-        self.event_stamp = None
-
-    def sample(self, stamp):
-        """
-        Start the sample of every row published at ``stamp``.
-
-        Each part of the car's state (status, odometry, joints) is read from the car once, when
-        the first row that needs it asks, so a step whose subscribed rows need only the status
-        does not read the pose or the joints. Rows are published right after ``sample`` with
-        nothing in between that could move the car.
-        """
-        self.stamp = stamp
-        self._status = self._odom = self._joints = None
-
-    @property
-    def status(self):
-        """The car logic's CarStatus of this sample."""
-        status = self._status
-        if status is None:
-            status = self._status = self.logic.status()
-        return status
-
-    @property
-    def torque_mode(self):
-        """True when the car is in TORQUE control (the rows of that mode only)."""
-        return self.status.control_mode == ControlMode.TORQUE
-
-    @property
-    def odom(self):
-        """(xyz, q, linear, angular) of base_link in <p>odom, the twist in base_link."""
-        odom = self._odom
-        if odom is None:
-            pose, (linear, angular) = self.body.pose_and_velocity()
-            xyz, q = pose_in_frame(self.spawn_xyz, self.spawn_q, pose[:3], pose[3:])
-            linear_b, angular_b = twist_in_body(pose[3:], linear, angular)
-            odom = self._odom = (xyz, q, linear_b, angular_b)
-        return odom
-
-    @property
-    def joints(self):
-        """(positions, velocities) of the joint_states joints."""
-        joints = self._joints
-        if joints is None:
-            _, positions, velocities = self.body.joint_states()
-            joints = self._joints = (positions, velocities)
-        return joints
-
-    @property
-    def label(self):
-        return f'vehicle {self.spec.name!r}'
-
-    def reset(self):
-        """Put the car back at its spawn pose and its logic in its start state (sim_control)."""
-        self.car.reset()
-        self.feed.restart_motion()
-        if self.drive is not None:
-            self.drive.service_override()   # a stale command's watchdog must not brake later
-        for listener in self.reset_listeners:
-            listener()
-        status = self.logic.status()
-        x, y, _ = self.spawn_xyz
-        return (f'back at its spawn pose (x {x:g} m, y {y:g} m, yaw {self.spec.yaw_rad:g} rad) '
-                f'at rest, joints at 0; car logic reset: control mode '
-                f'{ControlMode(status.control_mode).name}, gear {status.gear}, cruising speed '
-                f'{status.target_cruising_speed_kmh:g} km/h, throttle {status.throttle:g}, '
-                f'brake {status.brake_intensity:g}, steering '
-                f'{status.commanded_steering_angle_rad:g} rad, indicator off, hazard flashers, '
-                f'lights and wipers off; simulated time goes on '
-                f'({self.car.world.time_s:.3f} s)')
-
-    def teleport(self, place):
-        """Put the car at rest at a GroundPose (sim_control); raises InvalidPoseError."""
-        self.car.teleport(place.position)
-        self.feed.restart_motion()
-
-    def description(self):
-        """Return the URDF published on robot_description (names prefixed ``<p>``)."""
-        return vehicle_description(self.spec, self.sensors, self.car.params)
-
-    def static_transforms(self):
-        """Return the vehicle's /tf_static entries: world -> <p>odom, then its sensor mounts."""
-        return [('world', self.odom_frame, self.spawn_xyz, self.spawn_q)] + [
-            (t.parent, t.child, t.xyz, t.quaternion)
-            for t in static_transforms(self.sensors, self.prefix)]
 
 
 class AutomobileNode:
@@ -260,13 +137,13 @@ class AutomobileNode:
         # One queue for every vehicle's robot/time_step: they all advance the one world.
         self._time_step = TimeStepService(node, settings.time_step_ms, self.step_once,
                                           settings.synchronous)
-        self._vehicles: List[_Vehicle] = []
+        self._vehicles: List[CarContext] = []
         self._taken_names = self._interface_names(scene)
         self._scene_source = scene.source or node.get_fully_qualified_name()
         for spec in scene.vehicles:
             car = SimulatedCar(self.world, load_car(spec.model), (spec.x_m, spec.y_m,
                                                                   spec.yaw_rad), name=spec.name)
-            vehicle = _Vehicle(spec, car, self._vehicle_sensors(spec))
+            vehicle = CarContext(spec, car, self._vehicle_sensors(spec))
             self._wire_vehicle(vehicle)
             self._vehicles.append(vehicle)
         self._start_sensors(scene)
