@@ -102,6 +102,8 @@ class Executor:
         self._recent: List[_Entry] = []
         self._timers: List[DdsTimer] = []
         self.services: List = []
+        # The services holding replies whose client reply reader has not matched yet.
+        self._waiting: List = []
         self._next_client_check = 0.0
         self._attach(self._guard)
 
@@ -116,6 +118,11 @@ class Executor:
         self._conditions.append(condition)
         self._attach(condition)
         self._recent.append(_Entry(len(self._conditions), condition, handler))
+
+    def add_service(self, service) -> None:
+        """Watch ``service`` for unservable clients and flush its pending replies."""
+        service.waiting = self._waiting
+        self.services.append(service)
 
     def create_timer(self, period_s: float, callback) -> DdsTimer:
         timer = DdsTimer(self, period_s, callback)
@@ -142,7 +149,7 @@ class Executor:
         for timer in self._timers:
             if not timer.cancelled:
                 wait_s = min(wait_s, max(0.0, timer.next_due - now))
-        if any(s.pending for s in self.services):
+        if self._waiting:
             wait_s = min(wait_s, PENDING_REPLY_POLL_S)
         if self.services:
             wait_s = min(wait_s, max(0.0, self._next_client_check - now))
@@ -158,9 +165,11 @@ class Executor:
                 if self.stopped():
                     return
         now = time.monotonic()
-        for service in self.services:
-            if service.pending:
+        if self._waiting:
+            for service in list(self._waiting):
                 service.flush_pending(now)
+                if not service.pending:
+                    self._waiting.remove(service)
         if self.services and now >= self._next_client_check:
             self._next_client_check = now + CLIENT_CHECK_S
             warn_unservable_clients(self.services)
@@ -217,6 +226,7 @@ class Executor:
         self._recent = []
         self._timers = []
         self.services = []
+        self._waiting.clear()
 
     def delete(self) -> None:
         """Delete the conditions and the waitset now (not needed when their participant goes)."""

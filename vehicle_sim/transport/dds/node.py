@@ -267,7 +267,7 @@ class DdsNode(port.NodePort):
             raise TransportError(str(exc)) from None
         self._add_reader(service._reader, service.on_data)
         self._add_writer(service._writer)
-        self._executor.services.append(service)
+        self._executor.add_service(service)
         self._graph_changed()
         return service
 

@@ -147,6 +147,9 @@ class DdsService(port.Service):
         self._reader_tokens: Dict[int, str] = {}
         self._matched_tokens = set()
         self.pending: List[_PendingReply] = []
+        # The executor's list of services holding pending replies (set by the node), so that
+        # its loop looks at those only, not at every service on every pass.
+        self.waiting: Optional[List['DdsService']] = None
         self._match_count = 0
         self._checked_writers = set()
 
@@ -247,6 +250,8 @@ class DdsService(port.Service):
         if not token or self._reply_reader_matched(token):
             self._write(wire)
         else:
+            if not self.pending and self.waiting is not None:
+                self.waiting.append(self)
             self.pending.append(_PendingReply(
                 wire, handle, token, time.monotonic() + self._node.reply_match_timeout_s))
 
