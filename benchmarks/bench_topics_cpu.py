@@ -39,7 +39,7 @@ sys.path.insert(0, REPO_ROOT)
 TARGET_SHARE = 0.05   # issue 10 (DESIGN §8: 20 %)
 
 
-def measure_node(seconds, step_ms, every_topic=True, floor=False):
+def measure_node(seconds, step_ms, every_topic=True, floor=False, parameters=()):
     """
     Return (CPU share, window [s], messages counted per topic) of the node in real time.
 
@@ -47,6 +47,7 @@ def measure_node(seconds, step_ms, every_topic=True, floor=False):
         of the share is delivering samples to subscribers).
     :param floor: run :func:`floor_child` instead of the node: the same bodies stepped by raw
         PyBullet and the same topics written as bytes serialized once, no Python logic.
+    :param parameters: more node parameters, ``('name:=value', ...)``.
     """
     from vehicle_sim.ros import interfaces as itf
     from vehicle_sim.transport.dds import DdsNode
@@ -54,7 +55,8 @@ def measure_node(seconds, step_ms, every_topic=True, floor=False):
     command = ([sys.executable, os.path.abspath(__file__), '--floor-child'] if floor else
                [sys.executable, '-m', 'vehicle_sim.ros.automobile_node', '--ros-args'])
     proc = subprocess.Popen(
-        command + ['-p', f'time_step_ms:={step_ms}', '-p', 'real_time_factor:=1.0'],
+        command + ['-p', f'time_step_ms:={step_ms}', '-p', 'real_time_factor:=1.0']
+        + [arg for parameter in parameters for arg in ('-p', parameter)],
         env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     listener = DdsNode('bench_listener')
     counts = {}
@@ -211,6 +213,10 @@ def main():
     print(f'  floor: the same, plus one raw write per topic of bytes serialized once, every '
           f'topic subscribed: {floor * 100:.1f} % ({received} of {len(counts)} topics received, '
           f'/clock at {counts.get("/clock", 0) / wall:.1f} Hz)')
+    slower, _, _ = measure_node(options.seconds, options.step_ms,
+                                parameters=('publish_period_ms:=100',))
+    print(f'  the node with publish_period_ms 100 (the status topics at 10 Hz, /clock every '
+          f'step), every topic subscribed: {slower * 100:.1f} %')
     physics_ms, publish_ms = step_breakdown(500, options.step_ms)
     print(f'  per step, in process: physics + car logic {physics_ms:.3f} ms, '
           f'publishing without a subscriber (rows skipped) {publish_ms:.3f} ms '
