@@ -386,3 +386,49 @@ def test_a_fast_dds_client_is_warned_about_once_per_client_and_service(monkeypat
             '01.0f.07.07.')
     finally:
         node.shutdown()
+
+
+class _FakeRequestWriter:
+    """Stands in for a client's request writer: its matched request readers (servers)."""
+
+    def __init__(self, write):
+        self.readers = {}
+        self.write = write
+
+    def get_matched_subscriptions(self):
+        return list(self.readers)
+
+    def get_matched_subscription_data(self, handle):
+        return self.readers.get(handle)
+
+
+def test_a_call_to_a_fast_dds_server_says_why_it_gets_no_answer(monkeypatch):
+    # Measured on Jazzy with Fast DDS 2.14.5: the server's request reader matches, drops the
+    # 24-byte request ("payload size larger than the history payload size") and never answers.
+    from vehicle_sim.transport.port import ServiceTimeoutError
+    node = DdsNode('fast_dds_server_check', '/distro_test')
+    try:
+        client = node.create_client('std_srvs/srv/SetBool', '/distro_test/fast_srv')
+        log = _Log()
+        monkeypatch.setattr(node, 'get_logger', lambda: log)
+        fake = _FakeRequestWriter(client._writer.write)
+        fake.readers[7] = _Endpoint('010f', None)               # a Fast DDS server
+        fake.readers[8] = _Endpoint('0110', b'serviceid=1.2;')  # an rmw_cyclonedds one
+        monkeypatch.setattr(client, '_writer', fake)
+        assert [vendor for _, vendor in client.foreign_servers()] == ['eProsima Fast DDS']
+        monkeypatch.setattr(client, 'service_is_ready', lambda: True)
+        assert client.wait_for_service(1.0) and client.wait_for_service(1.0)
+        (line,) = log.lines                                     # once per server and client
+        assert line.startswith('the server of /distro_test/fast_srv (participant 01.0f.')
+        assert 'runs Fast DDS' in line and 'RMW_IMPLEMENTATION=rmw_cyclonedds_cpp' in line
+        with pytest.raises(ServiceTimeoutError) as error:
+            client.call(node.srv('std_srvs/srv/SetBool').Request(data=True), 0.2)
+        assert str(error.value).startswith('no reply from /distro_test/fast_srv within 0.2 s; '
+                                           'the server of /distro_test/fast_srv (participant '
+                                           '01.0f.')
+        fake.readers.pop(7)                                     # only Cyclone servers: no why
+        with pytest.raises(ServiceTimeoutError) as error:
+            client.call(node.srv('std_srvs/srv/SetBool').Request(data=True), 0.2)
+        assert str(error.value) == 'no reply from /distro_test/fast_srv within 0.2 s'
+    finally:
+        node.shutdown()

@@ -126,8 +126,8 @@ def _call(node, srv_type: str, service: str, request, timeout_s: float):
                        f'{timeout_s:g} s)')
     try:
         return client.call(request, timeout_s)
-    except ServiceTimeoutError:
-        raise CliError(f'no reply from {service} within {timeout_s:g} s') from None
+    except ServiceTimeoutError as error:   # 'no reply from ... within ... s', and why if known
+        raise CliError(str(error)) from None
 
 
 # --------------------------------------------------------------------------------------------

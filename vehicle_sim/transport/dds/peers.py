@@ -87,6 +87,15 @@ def undecodable_info_warning(domain_id: int, reason: str) -> str:
             f"Jazzy layout ({reason}); its participant's nodes are not listed")
 
 
+def foreign_server_note(service: str, vendor: str, participant: bytes) -> str:
+    """Return why a server that does not run rmw_cyclonedds never answers this client."""
+    who = 'runs Fast DDS' if vendor == FAST_DDS else f'does not run rmw_cyclonedds ({vendor})'
+    return (f'the server of {service} (participant {guid_text(participant)}) {who}: it cannot '
+            'read requests that carry the rmw_cyclonedds request header and never answers '
+            'them; set RMW_IMPLEMENTATION=rmw_cyclonedds_cpp for the server, or run this '
+            'client on rclpy (VEHICLE_SIM_TRANSPORT=rclpy on a ROS machine)')
+
+
 def fast_dds_client_warning(services: Sequence[str], vendor: str, participant: bytes) -> str:
     """Return the warning about a client whose requests Cyclone cannot deliver to ``services``."""
     who = 'runs Fast DDS' if vendor == FAST_DDS else f'does not run rmw_cyclonedds ({vendor})'

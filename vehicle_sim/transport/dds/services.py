@@ -316,6 +316,7 @@ class DdsClient(port.Client):
         self.client_id = self._writer.get_instance_handle() & UINT64_MASK
         self._pending: Dict[int, port.Future] = {}
         self._endpoint_tokens: Dict[int, str] = {}
+        self._warned_servers = set()
 
     def _service_token(self, handle: int, lookup) -> str:
         token = self._endpoint_tokens.get(handle)
@@ -338,12 +339,35 @@ class DdsClient(port.Client):
                       for h in writers}
         return bool(reader_ids & writer_ids)
 
+    def foreign_servers(self) -> List[Tuple[bytes, str]]:
+        """
+        Return ``(participant, vendor)`` of the matched servers that are not rmw_cyclonedds.
+
+        Their request readers match this client's request writer, but they cannot read the
+        rmw_cyclonedds request header (Fast DDS drops the sample as too large) and never answer.
+        """
+        found = []
+        for handle in self._writer.get_matched_subscriptions():
+            data = self._writer.get_matched_subscription_data(handle)
+            if data is None:
+                continue
+            participant = data.participant_key.bytes
+            vendor = peers.vendor_of(participant)
+            if vendor != peers.CYCLONE:
+                found.append((participant, vendor))
+        return found
+
     def wait_for_service(self, timeout_s: Optional[float] = None) -> bool:
         deadline = None if timeout_s is None else time.monotonic() + timeout_s
         while not self.service_is_ready():
             if deadline is not None and time.monotonic() >= deadline:
                 return False
             time.sleep(0.01)
+        for participant, vendor in self.foreign_servers():
+            if participant not in self._warned_servers:   # once per server and client
+                self._warned_servers.add(participant)
+                self._node.get_logger().warning(
+                    peers.foreign_server_note(self.service_name, vendor, participant))
         return True
 
     def call_async(self, request) -> port.Future:
@@ -362,8 +386,10 @@ class DdsClient(port.Client):
         future = self.call_async(request)
         if not self._node.spin_until(future.done, timeout_s):
             self._pending.pop(future.sequence, None)
+            why = ''.join(f'; {peers.foreign_server_note(self.service_name, vendor, participant)}'
+                          for participant, vendor in self.foreign_servers())
             raise port.ServiceTimeoutError(
-                f'no reply from {self.service_name} within {timeout_s} s')
+                f'no reply from {self.service_name} within {timeout_s:g} s{why}')
         return future.result()
 
     @property
