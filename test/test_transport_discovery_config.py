@@ -88,6 +88,9 @@ def test_config_is_ours_then_rmw_then_the_user_uri_in_every_range(scope):
     assert dds_config.cyclone_config(env) == ','.join(p for p in parts if p)
     assert LINGER in parts[0]   # every range: no writer linger on shutdown
     assert (LOOPBACK_PIN in parts[0]) == (scope == 'LOCALHOST')
+    # LOCALHOST announces every second: multicast-only peers (Humble's Fast DDS with
+    # ROS_LOCALHOST_ONLY=1) learn of us from our unicast announcements alone.
+    assert ('<SPDPInterval>1 s</SPDPInterval>' in parts[0]) == (scope == 'LOCALHOST')
 
 
 @pytest.mark.parametrize('user_uri', [
