@@ -20,6 +20,7 @@ The node runs as ``python -m vehicle_sim.ros.automobile_node`` with this test ru
 on outcomes, never durations.
 """
 
+import contextlib
 import subprocess
 import sys
 import threading
@@ -72,6 +73,13 @@ class NodeProcess:
 
     def stop(self):
         stop_process(self.proc)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.stop()
+        return False
 
 
 def stop_process(proc):
@@ -190,3 +198,13 @@ def stamp_of(msg):
 
 def make_client_node(name):
     return DdsNode(name, '/automobile_test')
+
+
+@contextlib.contextmanager
+def client_node(name):
+    """Yield a client node (:func:`make_client_node`), shut down when the block ends."""
+    node = make_client_node(name)
+    try:
+        yield node
+    finally:
+        node.shutdown()

@@ -27,7 +27,7 @@ import struct
 
 from automobile_helpers import (
     AutomobileClient,
-    make_client_node,
+    client_node,
     NodeProcess,
     stamp_of,
     wait_for,
@@ -74,30 +74,21 @@ def sim(tmp_path_factory):
     """Run the default car: synchronous from a params file, the model from ``-p``."""
     path = tmp_path_factory.mktemp('automobile') / 'params.yaml'
     path.write_text('/**:\n  ros__parameters:\n    synchronous: true\n    time_step_ms: 10\n')
-    process = NodeProcess('--ros-args', '--params-file', str(path), '-p',
-                          'car_model:=ToyotaPrius')
-    try:
+    with NodeProcess('--ros-args', '--params-file', str(path), '-p',
+                          'car_model:=ToyotaPrius') as process:
         yield process
-    finally:
-        process.stop()
 
 
 @pytest.fixture(scope='module')
 def two_cars():
-    process = NodeProcess('--ros-args', '-p', 'world:=two_cars', '-p', 'synchronous:=true')
-    try:
+    with NodeProcess('--ros-args', '-p', 'world:=two_cars', '-p', 'synchronous:=true') as process:
         yield process
-    finally:
-        process.stop()
 
 
 @pytest.fixture(scope='module')
 def tester():
-    node = make_client_node('automobile_tester')
-    try:
+    with client_node('automobile_tester') as node:
         yield node
-    finally:
-        node.shutdown()
 
 
 @pytest.fixture(scope='module')

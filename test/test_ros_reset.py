@@ -62,7 +62,7 @@ import time
 
 from automobile_helpers import (
     AutomobileClient,
-    make_client_node,
+    client_node,
     NodeProcess,
     stamp_of,
     wait_for,
@@ -83,26 +83,12 @@ pytestmark = pytest.mark.transport
 
 
 MODEL = 'Car'
-
-
 POSITION_TOL_M = 0.01
-
-
 YAW_TOL_RAD = 1e-3
-
-
 CRATE_X_M = 8.0
-
-
 # Lidar at x = 1 m on the car: the crate's near face (x = 7.5 m) is 6.5 m away at spawn.
-
-
 CRATE_RANGE_M = CRATE_X_M - 0.5 - 1.0
-
-
 WORLD = f"""
-
-
 vehicles:
   - name: Car
     namespace: ''
@@ -111,21 +97,13 @@ vehicles:
     sensors:
       - {{type: lidar, name: lidar, pose: {{x: 1.0, y: 0.0, z: 0.5}}, fov: 0.2,
          horizontal_resolution: 3, min_range: 0.1, max_range: 60.0, rate_hz: 100.0}}
-
-
 obstacles:
   - {{name: wall, shape: box, size: [1.0, 6.0, 2.0], position: [30.0, 0.0, 1.0]}}
   - {{name: crate, shape: box, size: [1.0, 1.0, 1.0], position: [{CRATE_X_M}, 0.0, 0.5],
      mass: 20.0}}
 """
-
-
 SETTERS = [s for s in itf.SERVICES if s.kind == itf.SETTER]
-
-
 GETTERS = [s for s in itf.SERVICES if s.kind == itf.GETTER]
-
-
 FLOAT_TOPICS = ['automobile/throttle', 'automobile/brake_intensity', 'automobile/current_speed',
                 'automobile/steering_angle', 'automobile/front_left_wheel_encoder',
                 'automobile/rear_right_wheel_speed']
@@ -140,21 +118,15 @@ def world_file(tmp_path_factory):
 
 @pytest.fixture(scope='class')
 def sim(world_file):
-    process = NodeProcess('--ros-args', '-p', 'synchronous:=true', '-p',
-                          f'world:={world_file}')
-    try:
+    with NodeProcess('--ros-args', '-p', 'synchronous:=true', '-p',
+                          f'world:={world_file}') as process:
         yield process
-    finally:
-        process.stop()
 
 
 @pytest.fixture(scope='module')
 def tester():
-    node = make_client_node('reset_tester')
-    try:
+    with client_node('reset_tester') as node:
         yield node
-    finally:
-        node.shutdown()
 
 
 @pytest.fixture(scope='class')
@@ -392,12 +364,9 @@ class TestCar:
 
 @pytest.fixture(scope='class')
 def two_cars():
-    process = NodeProcess('--ros-args', '-p', 'world:=two_cars', '-p', 'synchronous:=true',
-                          '-p', 'initialpose_vehicle:=car2')
-    try:
+    with NodeProcess('--ros-args', '-p', 'world:=two_cars', '-p', 'synchronous:=true',
+                          '-p', 'initialpose_vehicle:=car2') as process:
         yield process
-    finally:
-        process.stop()
 
 
 @pytest.fixture(scope='class')
@@ -445,7 +414,6 @@ class TestTwoCars:
             assert 'car1, car2' in process.text()
         finally:
             process.stop()
-
 
 
 class TestRealTime:

@@ -29,7 +29,7 @@ import math
 
 from automobile_helpers import (
     AutomobileClient,
-    make_client_node,
+    client_node,
     NodeProcess,
     stamp_of,
     wait_for,
@@ -90,21 +90,15 @@ class Listener:
 
 @pytest.fixture(scope='module')
 def course():
-    process = NodeProcess('--ros-args', '-r', f'__ns:=/{NAMESPACE}', '-p',
-                          'world:=obstacle_course', '-p', 'synchronous:=true')
-    try:
+    with NodeProcess('--ros-args', '-r', f'__ns:=/{NAMESPACE}', '-p',
+                          'world:=obstacle_course', '-p', 'synchronous:=true') as process:
         yield process
-    finally:
-        process.stop()
 
 
 @pytest.fixture(scope='module')
 def tester():
-    node = make_client_node('sensor_tester')
-    try:
+    with client_node('sensor_tester') as node:
         yield node
-    finally:
-        node.shutdown()
 
 
 @pytest.fixture(scope='module')
