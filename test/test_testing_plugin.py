@@ -33,13 +33,17 @@ CHILD_TIMEOUT_S = 240.0
 pytestmark = pytest.mark.transport
 
 
-def test_user_example_passes_with_the_plugin():
+def _child_pytest(cwd, *args):
+    """Run pytest in a child process (the installed plugin) on a domain of its own."""
     env = peer_env()
     env['ROS_DOMAIN_ID'] = str(102 + os.getpid() % 100)
-    result = subprocess.run(
-        [sys.executable, '-m', 'pytest', EXAMPLE, '-q',
-         '-p', 'no:cacheprovider'],
-        cwd=REPO_ROOT, env=env, capture_output=True, text=True, timeout=CHILD_TIMEOUT_S)
+    return subprocess.run(
+        [sys.executable, '-m', 'pytest', '-p', 'no:cacheprovider', *args],
+        cwd=cwd, env=env, capture_output=True, text=True, timeout=CHILD_TIMEOUT_S)
+
+
+def test_user_example_passes_with_the_plugin():
+    result = _child_pytest(REPO_ROOT, EXAMPLE, '-q')
     assert result.returncode == 0, result.stdout[-4000:] + result.stderr[-2000:]
     assert '3 passed' in result.stdout
 
@@ -92,11 +96,7 @@ def test_plugin_collects_scenario_files_one_test_per_criterion(tmp_path):
         "    result = run_scenario('scenario_stop.yaml')\n"
         "    assert result.passed and result.criterion('no_collision').value == 0\n",
         encoding='utf-8')
-    env = peer_env()
-    env['ROS_DOMAIN_ID'] = str(102 + os.getpid() % 100)
-    result = subprocess.run(
-        [sys.executable, '-m', 'pytest', '-v', '-p', 'no:cacheprovider', str(tmp_path)],
-        cwd=tmp_path, env=env, capture_output=True, text=True, timeout=CHILD_TIMEOUT_S)
+    result = _child_pytest(tmp_path, '-v', str(tmp_path))
     out = result.stdout
     assert result.returncode == 1, out[-4000:] + result.stderr[-2000:]
     assert '1 failed, 6 passed' in out, out[-4000:]
@@ -152,10 +152,6 @@ def test_plugin_topics_from_the_ini_option_and_the_marker(tmp_path):
         '    automobile_node.client.step()\n'
         "    assert automobile_node.client.latest('odom').header.frame_id == 'odom'\n",
         encoding='utf-8')
-    env = peer_env()
-    env['ROS_DOMAIN_ID'] = str(102 + os.getpid() % 100)
-    result = subprocess.run(
-        [sys.executable, '-m', 'pytest', '-q', '-p', 'no:cacheprovider', str(tmp_path)],
-        cwd=tmp_path, env=env, capture_output=True, text=True, timeout=CHILD_TIMEOUT_S)
+    result = _child_pytest(tmp_path, '-q', str(tmp_path))
     assert result.returncode == 0, result.stdout[-4000:] + result.stderr[-2000:]
     assert '2 passed' in result.stdout
