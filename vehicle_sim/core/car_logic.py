@@ -65,7 +65,7 @@ from vehicle_sim.core.signals import (
     WiperMode,
 )
 from vehicle_sim.core.units import kmh_to_mps, mps_to_kmh
-from vehicle_sim.core.vehicle_io import Actuation, WHEEL_COUNT, WheelMode
+from vehicle_sim.core.vehicle_io import Actuation, as_floats, WHEEL_COUNT, WheelMode
 
 # ---------------------------------------------------------------------------------------------
 # Validation helpers: each returns the normalised value or raises without side effects.
@@ -472,8 +472,7 @@ class CarLogic:
         # 4. Wheel speeds; without a previous sample they are 0 (Webots: NaN twice).
         # As lists of floats: numpy calls on 4 elements cost more than the arithmetic.
         position = measurement.wheel_position_rad
-        now = (position.tolist() if type(position) is np.ndarray
-               else [float(value) for value in position])
+        now = as_floats(position)
         previous = self._previous_position if self._have_sample else now
         self._have_sample = True
         speed = wheel_speeds(now, previous, dt_s)

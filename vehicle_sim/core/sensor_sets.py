@@ -107,6 +107,19 @@ def merge_sensors(base: Sequence[SensorSpec], entries, source) -> Tuple[SensorSp
     return sensors
 
 
+def selected_sensors(value):
+    """
+    Return a list of sensor names as :func:`enable_sensors` takes it: 'all', names, or None.
+
+    :param value: names, ``['all']``, or none (empty strings are ignored: the node parameter's
+        default is ``['']``).
+    """
+    names = tuple(v for v in value if v)
+    if not names:
+        return None
+    return 'all' if names == ('all',) else names
+
+
 def enable_sensors(sensors: Sequence[SensorSpec], names, source) -> Tuple[SensorSpec, ...]:
     """
     Mount some of a vehicle's sensors by name (a node parameter, a Driver argument).

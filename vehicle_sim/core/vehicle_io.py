@@ -35,6 +35,16 @@ class Wheel(IntEnum):
 
 
 WHEEL_COUNT = 4
+
+
+def as_floats(values):
+    """
+    Return numbers (a numpy array or any sequence) as a list of floats.
+
+    The per-step code works on 4-element lists: numpy calls and element reads on arrays that
+    small cost more than the arithmetic.
+    """
+    return values.tolist() if type(values) is np.ndarray else [float(v) for v in values]
 WHEEL_NAMES = ('front_right', 'front_left', 'rear_right', 'rear_left')
 
 

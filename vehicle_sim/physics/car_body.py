@@ -30,10 +30,9 @@ Mappings (derivations in docs/physics.md):
 """
 
 
-import numpy as np
 import pybullet
 
-from vehicle_sim.core.vehicle_io import WHEEL_COUNT, WheelMode
+from vehicle_sim.core.vehicle_io import as_floats, WHEEL_COUNT, WheelMode
 from vehicle_sim.physics.urdf import car_urdf, joint_names, STEER_MAX_VELOCITY_RADPS
 from vehicle_sim.physics.world import point_velocity
 
@@ -49,11 +48,6 @@ CHASSIS_FRICTION = 0.5
 # Enum members as plain names for apply() (each ``WheelMode.X`` lookup costs about 0.1 us on
 # CPython 3.11).
 _VELOCITY, _TORQUE = WheelMode.VELOCITY, WheelMode.TORQUE
-
-
-def _floats(values):
-    """Return a sequence of numbers (a numpy array or a list) as a list of floats."""
-    return values.tolist() if type(values) is np.ndarray else [float(v) for v in values]
 
 
 def sprung_mass_per_corner_kg(params):
@@ -178,8 +172,8 @@ class CarBody:
         """
         self._set_steering(float(actuation.steer_right_rad), float(actuation.steer_left_rad))
         # Plain floats first: indexing numpy arrays element by element costs more.
-        velocities = _floats(actuation.wheel_velocity_radps)
-        brakes = _floats(actuation.brake_torque_nm)
+        velocities = as_floats(actuation.wheel_velocity_radps)
+        brakes = as_floats(actuation.brake_torque_nm)
         forces = [0.0] * WHEEL_COUNT
         torque_joints = []
         torques = []

@@ -25,11 +25,10 @@ from typing import List, Sequence, Tuple
 
 from vehicle_sim.config import load_car
 from vehicle_sim.core.errors import VehicleSimError
-from vehicle_sim.core.sensor_sets import enable_sensors
+from vehicle_sim.core.sensor_sets import enable_sensors, selected_sensors
 from vehicle_sim.physics.sensor_urdf import with_sensor_links
 from vehicle_sim.physics.urdf import car_urdf
 from vehicle_sim.ros.interfaces import frame_prefix
-from vehicle_sim.ros.sensor_interfaces import selected_sensors
 from vehicle_sim.ros.sim_params import defaults, SimSettings, world_spec
 
 

@@ -52,7 +52,7 @@ from vehicle_sim.core.drive_input import DiffDriveInput
 from vehicle_sim.core.errors import InvalidCommandError, VehicleSimError
 from vehicle_sim.core.frames import pose_in_frame, quaternion_from_yaw, rpy_from_quaternion
 from vehicle_sim.core.param_spec import ParamSpec
-from vehicle_sim.core.sensor_sets import enable_sensors, static_transforms
+from vehicle_sim.core.sensor_sets import enable_sensors, selected_sensors, static_transforms
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
 from vehicle_sim.physics.gui import ChaseCamera, shortcuts_text
 from vehicle_sim.physics.sensor_urdf import with_sensor_links
@@ -76,7 +76,6 @@ from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning
 from vehicle_sim.ros.sensor_interfaces import (
     check_names,
-    selected_sensors,
     sensor_rows,
     SENSORS_PARAMETER,
 )

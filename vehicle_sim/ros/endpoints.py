@@ -339,7 +339,7 @@ class Outputs:
 
     def wanted(self, cadence: str) -> bool:
         """Say whether a row of ``cadence`` would be published (its reader gate is open)."""
-        return any(entry[5].open for entry in self._groups.get(cadence, ()))
+        return any(gate.open for *_, gate in self._groups.get(cadence, ()))
 
     def messages(self, cadence: str, ctx) -> Dict[Topic, object]:
         """Return {row: message} of the rows of ``cadence`` for ``ctx``, without publishing."""

@@ -166,14 +166,6 @@ SENSORS_PARAMETER = ParamSpec(
         'a world file mounts (docs/sensors.md)')
 
 
-def selected_sensors(value):
-    """Return the ``sensors`` parameter as enable_sensors takes it: 'all', names, or None."""
-    names = tuple(v for v in value if v)
-    if not names:
-        return None
-    return 'all' if names == ('all',) else names
-
-
 # ---------------------------------------------------------------------------------------------
 # Docs
 

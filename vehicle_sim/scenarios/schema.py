@@ -40,7 +40,7 @@ from typing import Any, Dict, Optional, Tuple
 from vehicle_sim import config
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.param_spec import ParamSpec, REQUIRED, validate_table
-from vehicle_sim.core.sensor_sets import enable_sensors
+from vehicle_sim.core.sensor_sets import enable_sensors, selected_sensors
 from vehicle_sim.core.world_params import (
     obstacles_from_list,
     origin_from_dict,
@@ -384,8 +384,8 @@ def _robot_sensors(ctx, value, model, path):
             and all(isinstance(n, str) and n for n in names)):
         raise ctx.fail(path, f"sensors {value!r}: a list of sensor names, or 'all'")
     try:
-        enable_sensors(config.load_robot(model).sensor_set,
-                       'all' if tuple(names) == ('all',) else names, f'robot model {model!r}')
+        enable_sensors(config.load_robot(model).sensor_set, selected_sensors(names),
+                       f'robot model {model!r}')
     except InvalidParameterError as error:
         raise ctx.fail(path, str(error)) from None
     return tuple(names)
