@@ -231,6 +231,23 @@ class CarBody:
                                  zero_joints=self._suspension + (moving if rest_joints else []),
                                  stop_joints=[] if rest_joints else moving)
 
+    def rebuild(self, position):
+        """
+        Load the car afresh at a pose, as the constructor does (a reset).
+
+        Whatever state the physics left the old body in (one Bullet took out of the simulation
+        falls through the ground after any reset of its pose), the new one is as built: at
+        rest, joints at 0, no command. Same URDF, so the same joint indices.
+
+        :param position: base_link pose, as the constructor takes it.
+        """
+        self.body_id, _ = self.world.reload_urdf(self.body_id, self.urdf, position)
+        self._last_velocity_cmd = None
+        self._last_steer_cmd = None
+        self._torque_joints = []
+        self._torques = []
+        self._configure_dynamics()
+
     # ---------------------------------------------------------------- ground truth
     def pose(self):
         """Pose of base_link in the world: (x, y, z [m], qx, qy, qz, qw)."""
