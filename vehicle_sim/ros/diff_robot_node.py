@@ -187,7 +187,7 @@ class DiffRobotNode:
         if self._owns_world and not self.synchronous:
             self._timer = node.create_timer(self.world.time_step_s, self._on_timer)
         self.publish_state()
-        node.get_logger().info(
+        node.announce_ready(
             f'{self.params.model} ({self.params.drive}) ready: '
             f'{"synchronous" if self.synchronous else "real time"}, step '
             f'{self.world.time_step_s * 1000:g} ms, wheel_joints {list(self.wheel_joints)}')
