@@ -472,8 +472,7 @@ def run_rclpy_node(node_factory, args=None) -> int:
             app = node_factory(args)
             node = app if isinstance(app, port.NodePort) else app.node
             spinning.append(True)
-            if stop.mark_ready():      # else a signal during start-up: straight to the shutdown
-                node.spin()
+            stop.spin(node)      # not after a signal during start-up: straight to the shutdown
         except (KeyboardInterrupt, ExternalShutdownException):
             pass
         except Exception:

@@ -24,14 +24,15 @@ SIGINT and SIGTERM in a node process: one rule for ``run_node`` on every transpo
   start-up the signal hit (the interpreter, the imports, the node's construction).
 * A signal once the node is ready: the node stops, leaves the graph and the process exits 0,
   as an rclpy node does.
-* Either way, a process still running :data:`FORCED_EXIT_S` after the first signal is ended at
-  once (``os._exit``, same status). Python runs signal handlers between two bytecodes of the main
-  thread, never inside a C call: the node's loop notices a signal only when the current
-  PyBullet call returns, and a heavy step (several big sensors) is many such calls. The sensor
-  sizes are bounded so that one call stays well under half a second (docs/sensors.md), so the
-  watchdog thread, which also needs the interpreter, gets it in time: the process ends within
-  a second of the signal. A forced exit does not delete the DDS participant: other processes
-  stop listing the node when its lease expires.
+* A node still spinning :data:`FORCED_EXIT_S` after the first signal (inside a heavy step) is
+  ended at once (``os._exit``, exit status 0). Python runs signal handlers between two bytecodes
+  of the main thread, never inside a C call: the node's loop notices a signal only when the
+  current PyBullet call returns, and a heavy step (several big sensors) is many such calls. The
+  sensor sizes are bounded so that one call stays well under half a second (docs/sensors.md),
+  so the watchdog thread, which also needs the interpreter, gets it in time: the process ends
+  within a second of the signal. A forced exit does not delete the DDS participant: other
+  processes stop listing the node when its lease expires. Start-up (light: the world is built,
+  nothing is sampled) and shutdown (leaving the graph) are never cut short.
 
 Only one :class:`StopSignals` is current in a process (the running ``run_node``).
 """
@@ -53,8 +54,9 @@ class StopSignals:
         self.signum = None
         self.before_ready = False
         self._ready = False
+        self._spinning = False
         self._signalled = threading.Event()
-        self._finished = threading.Event()
+        self._spin_over = threading.Event()
         threading.Thread(target=self._watch, name='stop_signals', daemon=True).start()
 
     def __enter__(self):
@@ -65,9 +67,20 @@ class StopSignals:
     def __exit__(self, *exc):
         global _current
         _current = None
-        self._finished.set()
+        self._spin_over.set()
         self._signalled.set()   # the watchdog thread ends
         return False
+
+    def spin(self, node):
+        """Make the node ready and spin it, unless a signal came first (then return at once)."""
+        if not self.mark_ready():
+            return
+        self._spinning = True
+        try:
+            node.spin()
+        finally:
+            self._spinning = False
+            self._spin_over.set()
 
     def on_signal(self, signum):
         """Record a stop signal (from a signal handler); only the first one counts."""
@@ -93,7 +106,7 @@ class StopSignals:
 
     def _watch(self):
         self._signalled.wait()
-        if not self._finished.wait(FORCED_EXIT_S):
+        if not self._spin_over.wait(FORCED_EXIT_S) and self._spinning:
             for stream in (sys.stdout, sys.stderr):
                 try:
                     stream.flush()

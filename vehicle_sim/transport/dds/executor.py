@@ -273,8 +273,7 @@ def run_dds_node(node_factory, args=None) -> int:
                 app = node_factory(args)
                 node = app if isinstance(app, port.NodePort) else app.node
                 state['node'] = node   # from here on a signal asks spin() to return
-                if stop.mark_ready():   # else a signal during start-up: leave at once
-                    node.spin()
+                stop.spin(node)   # not after a signal during start-up: leave at once
             except KeyboardInterrupt:   # SIGINT under a handler of the caller's (Python's)
                 stop.on_signal(signal.SIGINT)
             except BaseException:
