@@ -42,7 +42,7 @@ import sys
 import threading
 
 # How long a node may take to stop after the first SIGINT/SIGTERM before it is ended [s].
-FORCED_EXIT_S = 0.5
+FORCED_EXIT_S = 0.3
 
 _current = None
 
