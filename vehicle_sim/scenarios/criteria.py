@@ -30,6 +30,7 @@ from typing import Any, Dict, Optional, Tuple
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.footprint import clearance, distance_to_polyline
 from vehicle_sim.core.param_spec import ParamSpec, REQUIRED, validate_table
+from vehicle_sim.core.value_text import brief
 
 
 @dataclass(frozen=True)
@@ -298,7 +299,7 @@ def field_value(msg, dotted):
     value = msg
     for part in dotted.split('.'):
         if not hasattr(value, part):
-            raise InvalidParameterError(f'field {dotted!r}: the message has no {part!r}')
+            raise InvalidParameterError(f'field {brief(dotted)}: the message has no {brief(part)}')
         value = getattr(value, part)
     return value
 
@@ -418,11 +419,11 @@ def criteria_from_list(ctx, data, names, default_vehicle):
         kind = entry.get('kind') if isinstance(entry, dict) else None
         if kind not in CRITERIA:
             raise ctx.fail(where + ('kind',) if isinstance(entry, dict) else where,
-                           f'criterion kind {kind!r}: valid kinds: ' + ', '.join(CRITERIA))
+                           f'criterion kind {brief(kind)}: valid kinds: ' + ', '.join(CRITERIA))
         values = ctx.validated(criterion_specs(kind), entry, where, 'a criterion')
         vehicle = values.pop('vehicle') or default_vehicle
         if vehicle not in names:
-            raise ctx.fail(where + ('vehicle',), f'vehicle {vehicle!r}: not in the world; '
+            raise ctx.fail(where + ('vehicle',), f'vehicle {brief(vehicle)}: not in the world; '
                                                  f'vehicles: {", ".join(names)}')
         name = values.pop('name')
         values.pop('kind')
@@ -439,7 +440,7 @@ def criteria_from_list(ctx, data, names, default_vehicle):
     names_used = [s[1] for s in specs]
     for spec in specs:
         if names_used.count(spec[1]) > 1:
-            raise ctx.fail(('criteria',), f'two criteria are named {spec[1]!r}')
+            raise ctx.fail(('criteria',), f'two criteria are named {brief(spec[1])}')
     return tuple(CriterionSpec(*spec) for spec in specs)
 
 
