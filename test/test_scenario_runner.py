@@ -199,7 +199,7 @@ def test_cli_scenario_exit_status_is_0_only_when_all_pass(tmp_path, capsys):
     assert main(['scenario', str(STOP), '--junit', str(junit), '--no-progress']) == 0
     out = capsys.readouterr().out
     assert 'PASS  no_collision: 0 collisions' in out
-    assert 'PASS: 3/3 criteria passed' in out
+    assert 'PASS: 4/4 criteria passed' in out
     assert ElementTree.parse(junit).getroot().find('testsuite').get('failures') == '0'
     assert main(['scenario', str(BLIND), '--no-progress']) == 1
     assert 'FAIL  no_collision: 1 collisions' in capsys.readouterr().out

@@ -99,8 +99,10 @@ def test_plugin_collects_scenario_files_one_test_per_criterion(tmp_path):
     result = _child_pytest(tmp_path, '-v', str(tmp_path))
     out = result.stdout
     assert result.returncode == 1, out[-4000:] + result.stderr[-2000:]
-    assert '1 failed, 6 passed' in out, out[-4000:]
+    # the blind controller fails no_collision and clearance (it touched the wall: 0 m)
+    assert '2 failed, 7 passed' in out, out[-4000:]
     assert 'scenario_blind.yaml::no_collision FAILED' in out
+    assert 'scenario_blind.yaml::clearance FAILED' in out
     assert 'scenario_stop.yaml::no_collision PASSED' in out
     assert 'no_collision: 1 collision(s): wall' in out
 

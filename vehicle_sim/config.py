@@ -24,12 +24,12 @@ import os
 from pathlib import Path
 from typing import Tuple
 
-import yaml
-
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.params import car_params_from_dict, CarParams
 from vehicle_sim.core.robot_params import robot_params_from_dict, RobotParams
+from vehicle_sim.core.value_text import brief
 from vehicle_sim.core.world_params import VehicleSpec, world_from_dict, WorldSpec
+from vehicle_sim.yaml_files import load_file
 
 __all__ = ['available', 'car_names', 'config_dirs', 'find_config', 'load_car', 'load_robot',
            'load_world', 'parse_world', 'read_yaml', 'robot_names', 'VehicleSpec',
@@ -64,16 +64,24 @@ def find_config(subdir, name, suffix='.yaml'):
     :raises InvalidParameterError: when nothing matches; the message lists the known names.
     """
     candidate = Path(name)
-    if candidate.suffix in ('.yaml', '.yml') and candidate.is_file():
+    if candidate.suffix in ('.yaml', '.yml') and _is_file(candidate):
         return candidate
     for folder in config_dirs():
         path = folder / subdir / (name + suffix)
-        if path.is_file():
+        if _is_file(path):
             return path
     known = sorted(available(subdir))
     raise InvalidParameterError(
-        f'unknown {subdir[:-1] if subdir.endswith("s") else subdir} {name!r}; '
+        f'unknown {subdir[:-1] if subdir.endswith("s") else subdir} {brief(name)}; '
         f'known: {", ".join(known) or "none"} (or give a path to a .yaml file)')
+
+
+def _is_file(path):
+    # A name no file system takes (5000 characters, a NUL) names no file: not an OSError.
+    try:
+        return path.is_file()
+    except (OSError, ValueError):
+        return False
 
 
 def available(subdir):
@@ -86,12 +94,12 @@ def available(subdir):
 
 
 def read_yaml(path):
-    """Read a YAML file; a syntax error becomes InvalidParameterError naming the file."""
-    try:
-        with open(path, encoding='utf-8') as stream:
-            return yaml.safe_load(stream)
-    except yaml.YAMLError as error:
-        raise InvalidParameterError(f'{path}: not valid YAML: {error}') from error
+    """
+    Read a YAML file within the bounds of vehicle_sim/yaml_files.py.
+
+    :raises InvalidParameterError: one line naming the file (and line) of what is wrong.
+    """
+    return load_file(path)
 
 
 def load_car(name_or_path='Car'):

@@ -21,7 +21,7 @@ reports again only after it was apart for at least ``min_apart_s`` (0.1 s by def
 """
 
 from dataclasses import dataclass
-from typing import Dict, List, Mapping
+from typing import Dict, List, Mapping, Optional, Tuple
 
 DEFAULT_MIN_APART_S = 0.1
 # Simulated times are multiples of the step; a tiny tolerance keeps 10 steps of 0.01 s = 0.1 s.
@@ -36,11 +36,14 @@ class CollisionEvent:
     :param time_s: simulated time of the step of first contact [s].
     :param other: the other body's name (an obstacle's or a vehicle's name).
     :param normal_force_n: sum of the contact normal forces at that step [N].
+    :param position_m: where they touched: the mean of that step's contact points on the other
+        body [x, y, z] in the world [m]; None where not known.
     """
 
     time_s: float
     other: str
     normal_force_n: float
+    position_m: Optional[Tuple[float, float, float]] = None
 
 
 class CollisionDebouncer:

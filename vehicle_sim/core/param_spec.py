@@ -30,6 +30,7 @@ import re
 from typing import Any, Callable, Optional, Tuple
 
 from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.value_text import brief
 
 # kind -> the type column of the generated docs tables (ROS parameter types for node kinds).
 PARAM_KINDS = {
@@ -154,7 +155,7 @@ class ParamSpec:
         try:
             self.parse(value)
         except ParamRefused as refused:
-            return f'{self.key} = {_shown(refused, value)!r}: {refused.reason}'
+            return f'{self.key} = {brief(_shown(refused, value))}: {refused.reason}'
         return None
 
 
@@ -193,7 +194,7 @@ def _is_number(value):
 
 
 def fail(source, key, value, reason, what='field'):
-    raise InvalidParameterError(f'{source}: {what} {key!r} = {value!r}: {reason}')
+    raise InvalidParameterError(f'{source}: {what} {key!r} = {brief(value)}: {reason}')
 
 
 def _range_reason(spec, value):
@@ -213,12 +214,24 @@ def _must_be(spec):
 
 def _check_float(spec, value):
     if not _is_number(value):
-        raise ParamRefused('must be a number')
+        raise ParamRefused('must be a number' + _number_as_text(value))
     value = float(value)
     reason = _range_reason(spec, value)
     if reason:
         raise ParamRefused(reason, value)
     return value
+
+
+def _number_as_text(value):
+    # YAML 1.1 (PyYAML) reads a float in exponent form only with a dot and a signed exponent:
+    # 1.0e+12 is a float, 1.0e12 and 1e+12 are strings.
+    if isinstance(value, str) and _EXPONENT_FORM.match(value):
+        return ' (YAML reads it as a string: a float needs a dot and a signed exponent, ' \
+               'e.g. 1.0e+12)'
+    return ''
+
+
+_EXPONENT_FORM = re.compile(r'[-+]?(\d+\.?\d*|\.\d+)[eE][-+]?\d+$')
 
 
 def _check_int(spec, value):
@@ -306,7 +319,7 @@ def _check_pose(spec, value):
         raise ParamRefused(f'must be a mapping of {", ".join(keys)}')
     unknown = sorted(set(value) - set(keys))
     if unknown:
-        raise ParamRefused(f'unknown key(s) {unknown}; valid: {", ".join(keys)}')
+        raise ParamRefused(f'unknown key(s) {brief(unknown)}; valid: {", ".join(keys)}')
     numbers = {}
     for key in POSE_KEYS:
         item = value.get(key, 0.0)
@@ -434,12 +447,13 @@ def validate_table(specs, data, source, defaults=None, what='parameters', key_wo
         type or an impossible value.
     """
     if not isinstance(data, dict):
-        raise InvalidParameterError(f'{source}: {what} must be a mapping, got {data!r}')
+        raise InvalidParameterError(f'{source}: {what} must be a mapping, got {brief(data)}')
     by_key = {spec.key: spec for spec in specs}
     for key, value in data.items():
         if key not in by_key:
             raise InvalidParameterError(
-                f'{source}: unknown {key_word} {key!r} (value {value!r}); valid {key_word}s: '
+                f'{source}: unknown {key_word} {brief(key)} (value {brief(value)}); '
+                f'valid {key_word}s: '
                 + ', '.join(sorted(by_key)))
     merged = table_defaults(specs) if defaults is None else dict(defaults)
     merged.update(data)

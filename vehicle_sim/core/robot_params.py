@@ -25,7 +25,7 @@ driven axle (caster) or of the wheel rectangle (skid steer).
 from dataclasses import dataclass
 from typing import Optional, Tuple
 
-from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.param_spec import fail as _fail
 from vehicle_sim.core.param_spec import ParamSpec, validate_table
 
 DRIVE_TYPES = ('caster', 'skid_steer')
@@ -115,10 +115,6 @@ class RobotParams:
 def default_robot_dict():
     """Return the robot defaults keyed by preset field name."""
     return {spec.key: spec.default for spec in ROBOT_PARAM_SPECS}
-
-
-def _fail(source, key, value, reason):
-    raise InvalidParameterError(f'{source}: field {key!r} = {value!r}: {reason}')
 
 
 def _check_relations(source, values):

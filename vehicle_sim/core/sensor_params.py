@@ -37,12 +37,14 @@ from typing import Dict, Optional, Tuple
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.frames import Pose
 from vehicle_sim.core.lookup_table import LookupTable
+from vehicle_sim.core.param_spec import fail as _fail
 from vehicle_sim.core.param_spec import (
     parameter_table_markdown,
     ParamSpec,
     REQUIRED,
     validate_table,
 )
+from vehicle_sim.core.value_text import brief
 
 SENSOR_TYPE_NAMES = ('lidar', 'imu', 'gnss', 'distance', 'camera')
 RADIATION_TYPES = ('ultrasound', 'infrared')
@@ -388,10 +390,6 @@ SENSOR_TYPES.update({
 })
 
 
-def _fail(source, key, value, reason):
-    raise InvalidParameterError(f'{source}: field {key!r} = {value!r}: {reason}')
-
-
 def sensor_from_dict(data, source, enabled_default=True) -> SensorSpec:
     """
     Validate one sensor mapping.
@@ -403,14 +401,14 @@ def sensor_from_dict(data, source, enabled_default=True) -> SensorSpec:
     :raises InvalidParameterError: naming source, field and value.
     """
     if not isinstance(data, dict):
-        raise InvalidParameterError(f'{source}: a sensor must be a mapping, got {data!r}')
+        raise InvalidParameterError(f'{source}: a sensor must be a mapping, got {brief(data)}')
     sensor_type = data.get('type', REQUIRED)
     if sensor_type is REQUIRED:
         raise InvalidParameterError(f"{source}: field 'type' is required; one of "
                                     + ', '.join(SENSOR_TYPES))
     row = SENSOR_TYPES.get(sensor_type) if isinstance(sensor_type, str) else None
     if row is None:
-        raise InvalidParameterError(f"{source}: field 'type' = {sensor_type!r}: unknown "
+        raise InvalidParameterError(f"{source}: field 'type' = {brief(sensor_type)}: unknown "
                                     f'sensor type; valid: {", ".join(SENSOR_TYPES)}')
     defaults = {spec.key: spec.default for spec in row.specs}
     defaults['enabled'] = enabled_default

@@ -24,17 +24,15 @@ from typing import Dict, Sequence, Tuple
 
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.frames import OPTICAL_QUATERNION
+from vehicle_sim.core.param_spec import fail as _fail
 from vehicle_sim.core.param_spec import REQUIRED
 from vehicle_sim.core.sensor_params import CameraSpec, sensor_from_dict, SensorSpec
+from vehicle_sim.core.value_text import brief
 
 # Topics of the vehicle that sensors may not take (ROS interface sheet, DESIGN §5.2).
 RESERVED_TOPICS = ('odom', 'joint_states', 'robot_description', 'collision', 'tf', 'tf_static',
                    'clock')
 RESERVED_TOPIC_PREFIXES = ('automobile/', 'robot/')
-
-
-def _fail(source, key, value, reason):
-    raise InvalidParameterError(f'{source}: field {key!r} = {value!r}: {reason}')
 
 
 def sensors_from_list(data, source, enabled_default=True) -> Tuple[SensorSpec, ...]:
@@ -50,7 +48,8 @@ def sensors_from_list(data, source, enabled_default=True) -> Tuple[SensorSpec, .
         sensors = tuple(sensor_from_dict(item, f'{source}[{index}]', enabled_default)
                         for index, item in enumerate(data))
     else:
-        raise InvalidParameterError(f'{source}: sensors must be a list of mappings, got {data!r}')
+        raise InvalidParameterError(f'{source}: sensors must be a list of mappings, '
+                                    f'got {brief(data)}')
     check_sensor_set(sensors, source)
     return sensors
 
@@ -74,26 +73,26 @@ def merge_sensors(base: Sequence[SensorSpec], entries, source) -> Tuple[SensorSp
         return tuple(base)
     if not isinstance(entries, list):
         raise InvalidParameterError(f'{source}: must be a list of sensor mappings, '
-                                    f'got {entries!r}')
+                                    f'got {brief(entries)}')
     result = list(base)
     index_of = {spec.name: i for i, spec in enumerate(result)}
     given = set()
     for index, entry in enumerate(entries):
         where = f'{source}[{index}]'
         if not isinstance(entry, dict):
-            raise InvalidParameterError(f'{where}: a sensor must be a mapping, got {entry!r}')
+            raise InvalidParameterError(f'{where}: a sensor must be a mapping, got {brief(entry)}')
         name = entry.get('name', REQUIRED)
         if name is REQUIRED:
             raise InvalidParameterError(f"{where}: field 'name' is required")
         if isinstance(name, str):
             if name in given:
-                raise InvalidParameterError(f'{source}: two sensors are named {name!r}')
+                raise InvalidParameterError(f'{source}: two sensors are named {brief(name)}')
             given.add(name)
         if isinstance(name, str) and name in index_of:
             old = result[index_of[name]]
             if 'type' in entry and entry['type'] != old.sensor_type:
                 _fail(where, 'type', entry['type'],
-                      f'the preset sensor {name!r} is a {old.sensor_type}')
+                      f'the preset sensor {brief(name)} is a {old.sensor_type}')
             data = old.as_dict()
             data.update(entry)
             data['enabled'] = entry.get('enabled', True)
@@ -131,8 +130,8 @@ def enable_sensors(sensors: Sequence[SensorSpec], names, source) -> Tuple[Sensor
     wanted = set(known) if names == 'all' else set(names)
     unknown = sorted(wanted - set(known))
     if unknown:
-        raise InvalidParameterError(f'{source}: unknown sensor(s) {unknown}; this vehicle has '
-                                    f'{", ".join(known) or "none"}')
+        raise InvalidParameterError(f'{source}: unknown sensor(s) {brief(unknown)}; '
+                                    f'this vehicle has {", ".join(known) or "none"}')
     result = tuple(replace(s, enabled=True) if s.name in wanted else s for s in sensors)
     check_sensor_set(result, source)
     return result
@@ -151,7 +150,7 @@ def check_sensor_set(sensors: Sequence[SensorSpec], source):
     for spec in sensors:
         key = ('name', spec.name)
         if key in owners:
-            raise InvalidParameterError(f'{source}: two sensors are named {spec.name!r}')
+            raise InvalidParameterError(f'{source}: two sensors are named {brief(spec.name)}')
         owners[key] = spec.name
     for spec in sensors:
         if not spec.enabled:
@@ -162,13 +161,13 @@ def check_sensor_set(sensors: Sequence[SensorSpec], source):
                 if kind == 'topic' and (relative in RESERVED_TOPICS or relative.startswith(
                         RESERVED_TOPIC_PREFIXES)):
                     raise InvalidParameterError(
-                        f'{source}: sensor {spec.name!r}: topic {value!r} is one of the '
+                        f'{source}: sensor {brief(spec.name)}: topic {brief(value)} is one of the '
                         'vehicle\'s own topics; set another "topic"')
                 if (kind, value) in owners:
                     raise InvalidParameterError(
-                        f'{source}: sensors {owners[(kind, value)]!r} and {spec.name!r} have '
-                        f'the same {kind} {value!r}; set "{"device" if kind != "topic" else kind}'
-                        '" on one of them')
+                        f'{source}: sensors {brief(owners[(kind, value)])} and '
+                        f'{brief(spec.name)} have the same {kind} {brief(value)}; '
+                        f'set "{"device" if kind != "topic" else kind}" on one of them')
                 owners[(kind, value)] = spec.name
 
 

@@ -44,6 +44,7 @@ from vehicle_sim.core.param_spec import (
 from vehicle_sim.core.placement import check_in_world
 from vehicle_sim.core.sensor_params import SensorSpec
 from vehicle_sim.core.sensor_sets import merge_sensors
+from vehicle_sim.core.value_text import brief
 
 WORLD_KEYS = ('origin', 'vehicles', 'obstacles')
 
@@ -148,10 +149,10 @@ def obstacle_from_dict(data, source) -> ObstacleSpec:
     :raises InvalidParameterError: naming source, field and value.
     """
     if not isinstance(data, dict):
-        raise InvalidParameterError(f'{source}: an obstacle must be a mapping, got {data!r}')
+        raise InvalidParameterError(f'{source}: an obstacle must be a mapping, got {brief(data)}')
     shape = data.get('shape', REQUIRED)
     if shape is REQUIRED or not isinstance(shape, str) or shape not in OBSTACLE_SPECS:
-        what = 'is required' if shape is REQUIRED else f'= {shape!r}: unknown shape'
+        what = 'is required' if shape is REQUIRED else f'= {brief(shape)}: unknown shape'
         raise InvalidParameterError(f"{source}: field 'shape' {what}; valid: "
                                     + ', '.join(OBSTACLE_SHAPES))
     specs = OBSTACLE_SPECS[shape]
@@ -180,13 +181,20 @@ def obstacles_from_list(data, source) -> Tuple[ObstacleSpec, ...]:
     if data is None:
         return ()
     if not isinstance(data, list):
-        raise InvalidParameterError(f'{source}: must be a list of obstacles, got {data!r}')
+        raise InvalidParameterError(f'{source}: must be a list of obstacles, got {brief(data)}')
     obstacles = tuple(obstacle_from_dict(item, f'{source}[{i}]') for i, item in enumerate(data))
-    names = [o.name for o in obstacles]
-    for name in names:
-        if names.count(name) > 1:
-            raise InvalidParameterError(f'{source}: two obstacles are named {name!r}')
+    twice = used_twice(o.name for o in obstacles)
+    if twice:
+        raise InvalidParameterError(f'{source}: two obstacles are named {brief(twice[0])}')
     return obstacles
+
+
+def used_twice(names):
+    """Return the names that occur more than once, sorted."""
+    seen, twice = set(), set()
+    for name in names:
+        (twice if name in seen else seen).add(name)
+    return sorted(twice)
 
 
 def origin_from_dict(data, source) -> GeodeticOrigin:
@@ -258,7 +266,7 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver) 
         raise InvalidParameterError(f'{source}: a world must be a mapping with "vehicles"')
     unknown = sorted(set(data) - set(WORLD_KEYS))
     if unknown:
-        raise InvalidParameterError(f'{source}: unknown key(s) {unknown}; valid: '
+        raise InvalidParameterError(f'{source}: unknown key(s) {brief(unknown)}; valid: '
                                     + ', '.join(WORLD_KEYS))
     entries = data.get('vehicles')
     if not isinstance(entries, list) or not entries:
@@ -266,14 +274,20 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver) 
     origin = origin_from_dict(data.get('origin'), f'{source}: origin')
     vehicles = tuple(_vehicle(entry, f'{source}: vehicles[{index}]', index, default_model,
                               preset_sensors) for index, entry in enumerate(entries))
+    # Names are how getDevice, /initialpose and scenarios find a vehicle: unique in the world,
+    # whatever the namespaces.
+    twice = used_twice(v.name for v in vehicles)
+    if twice:
+        raise InvalidParameterError(f'{source}: vehicle name(s) used twice: {brief(twice)}')
     namespaces = [v.namespace for v in vehicles]
     if len(set(namespaces)) != len(namespaces):
-        raise InvalidParameterError(f'{source}: two vehicles share a namespace: {namespaces}')
+        raise InvalidParameterError(f'{source}: two vehicles share a namespace: '
+                                    f'{brief(namespaces)}')
     obstacles = obstacles_from_list(data.get('obstacles'), f'{source}: obstacles')
     taken = {v.name for v in vehicles} & {o.name for o in obstacles}
     if taken:
         raise InvalidParameterError(f'{source}: obstacle and vehicle share a name: '
-                                    f'{sorted(taken)}')
+                                    f'{brief(sorted(taken))}')
     return WorldSpec(origin, vehicles, obstacles, source)
 
 
@@ -286,7 +300,7 @@ def _vehicle(entry, where, index, default_model, preset_sensors):
     try:
         base = preset_sensors(model)
     except InvalidParameterError as error:
-        raise InvalidParameterError(f"{where}: field 'model' = {model!r}: {error}") from None
+        raise InvalidParameterError(f"{where}: field 'model': {error}") from None
     sensors = merge_sensors(base, values['sensors'], f'{where}.sensors')
     pose = values['pose']
     _check_in_world(where, 'pose', pose.x_m, pose.y_m)

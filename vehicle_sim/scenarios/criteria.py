@@ -25,10 +25,12 @@ them, and the unit tests feed them by hand.
 from dataclasses import dataclass
 import math
 import operator
-from typing import Any, Dict, Optional, Sequence, Tuple
+from typing import Any, Dict, Optional, Tuple
 
 from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.footprint import clearance, distance_to_polyline
 from vehicle_sim.core.param_spec import ParamSpec, REQUIRED, validate_table
+from vehicle_sim.core.value_text import brief
 
 
 @dataclass(frozen=True)
@@ -50,6 +52,8 @@ class CriterionResult:
     :param value: the measured value (None when nothing was measured).
     :param unit: its unit.
     :param detail: one line: what was measured against what.
+    :param points_m: where the value was measured, for plots ((x, y) [m]; clearance: per
+        obstacle, nearest first, the closest point of the vehicle and that of the obstacle).
     """
 
     name: str
@@ -58,20 +62,7 @@ class CriterionResult:
     value: Optional[float]
     unit: str
     detail: str
-
-
-def distance_to_segment(px, py, ax, ay, bx, by):
-    """Return the distance [m] from point p to the segment a-b."""
-    dx, dy = bx - ax, by - ay
-    length2 = dx * dx + dy * dy
-    t = 0.0 if length2 == 0.0 else max(0.0, min(1.0, ((px - ax) * dx + (py - ay) * dy)
-                                                / length2))
-    return math.hypot(px - (ax + t * dx), py - (ay + t * dy))
-
-
-def distance_to_polyline(px, py, points: Sequence[Tuple[float, float]]):
-    """Return the distance [m] from a point to a polyline (the lateral deviation from a path)."""
-    return min(distance_to_segment(px, py, *a, *b) for a, b in zip(points, points[1:]))
+    points_m: Tuple[Tuple[float, float], ...] = ()
 
 
 def common_specs():
@@ -98,6 +89,9 @@ class Criterion:
         self.vehicle = vehicle
         self.values = values
         self.duration_s = duration_s
+
+    def bind(self, scene):
+        """Take the run's scene (vehicle outlines, obstacle footprints) before the first step."""
 
     def observe(self, sample: Sample):
         """Take the vehicle's state after a step."""
@@ -244,6 +238,53 @@ class MaxSpeed(Criterion):
                             f'top speed {self.top_mps:.3f} m/s{at} (limit {limit:g} m/s)')
 
 
+class Clearance(Criterion):
+    """The vehicle's footprint keeps a distance from every obstacle (and map wall)."""
+
+    KIND = 'clearance'
+    UNIT = 'm'
+    SPECS = (
+        ParamSpec('min', 'min_m', 'float', REQUIRED, 'm', "smallest distance allowed between "
+                  "the vehicle's footprint rectangle and any obstacle's footprint (seen from "
+                  'above)', ge=0.0),
+    )
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        self.outline = None
+        self.footprints = None
+        self.nearest = {}         # obstacle name: (distance, time, vehicle point, its point)
+
+    def bind(self, scene):
+        self.outline = scene.outline(self.vehicle)
+        self.footprints = scene.footprints
+
+    def observe(self, sample):
+        if self.outline is None:
+            return
+        corners = self.outline.corners(sample.x_m, sample.y_m, sample.yaw_rad)
+        for footprint in self.footprints():
+            distance, on_vehicle, on_other = clearance(corners, footprint)
+            best = self.nearest.get(footprint.name)
+            if best is None or distance < best[0]:
+                self.nearest[footprint.name] = (distance, sample.time_s, on_vehicle, on_other)
+
+    def result(self):
+        bound = self.values['min_m']
+        if not self.nearest:
+            return self._result(True, None, f'no obstacle to keep {bound:g} m from')
+        ranked = sorted(self.nearest.items(), key=lambda item: item[1][0])
+        name, (distance, time_s, _, _) = ranked[0]
+        others = ''.join(f'; {other} {d:.3f} m at {t:.2f} s' for other, (d, t, _, _)
+                         in ranked[1:3])
+        # two points per obstacle (vehicle, obstacle), nearest first; none where they touched
+        points = tuple(p for _, (_, _, on_vehicle, on_other) in ranked if on_vehicle is not None
+                       for p in (on_vehicle, on_other))
+        return CriterionResult(self.name, self.KIND, distance >= bound, distance, self.UNIT,
+                               f'closest {distance:.3f} m to {name} at {time_s:.2f} s '
+                               f'(bound {bound:g} m){others}', points)
+
+
 COMPARISONS = {'<': operator.lt, '<=': operator.le, '>': operator.gt, '>=': operator.ge,
                '==': operator.eq, '!=': operator.ne}
 TOPIC_MODES = ('always', 'eventually', 'final')
@@ -258,7 +299,7 @@ def field_value(msg, dotted):
     value = msg
     for part in dotted.split('.'):
         if not hasattr(value, part):
-            raise InvalidParameterError(f'field {dotted!r}: the message has no {part!r}')
+            raise InvalidParameterError(f'field {brief(dotted)}: the message has no {brief(part)}')
         value = getattr(value, part)
     return value
 
@@ -341,7 +382,7 @@ class TopicPredicate(Criterion):
         return self._result(passed, value, detail)
 
 
-CRITERIA = {cls.KIND: cls for cls in (ReachGoal, NoCollision, StayOnPath, MaxSpeed,
+CRITERIA = {cls.KIND: cls for cls in (ReachGoal, NoCollision, StayOnPath, MaxSpeed, Clearance,
                                       TopicPredicate)}
 
 
@@ -378,11 +419,11 @@ def criteria_from_list(ctx, data, names, default_vehicle):
         kind = entry.get('kind') if isinstance(entry, dict) else None
         if kind not in CRITERIA:
             raise ctx.fail(where + ('kind',) if isinstance(entry, dict) else where,
-                           f'criterion kind {kind!r}: valid kinds: ' + ', '.join(CRITERIA))
+                           f'criterion kind {brief(kind)}: valid kinds: ' + ', '.join(CRITERIA))
         values = ctx.validated(criterion_specs(kind), entry, where, 'a criterion')
         vehicle = values.pop('vehicle') or default_vehicle
         if vehicle not in names:
-            raise ctx.fail(where + ('vehicle',), f'vehicle {vehicle!r}: not in the world; '
+            raise ctx.fail(where + ('vehicle',), f'vehicle {brief(vehicle)}: not in the world; '
                                                  f'vehicles: {", ".join(names)}')
         name = values.pop('name')
         values.pop('kind')
@@ -399,7 +440,7 @@ def criteria_from_list(ctx, data, names, default_vehicle):
     names_used = [s[1] for s in specs]
     for spec in specs:
         if names_used.count(spec[1]) > 1:
-            raise ctx.fail(('criteria',), f'two criteria are named {spec[1]!r}')
+            raise ctx.fail(('criteria',), f'two criteria are named {brief(spec[1])}')
     return tuple(CriterionSpec(*spec) for spec in specs)
 
 

@@ -36,11 +36,14 @@ import time
 import traceback
 from typing import Dict, List, Optional
 
+from vehicle_sim.core.collision import CollisionEvent
 from vehicle_sim.core.errors import InvalidCommandError
+from vehicle_sim.core.footprint import Outline
 from vehicle_sim.physics.sensors.collisions import CollisionMonitor
 from vehicle_sim.scenarios.actors import CarActor, RobotActor
 from vehicle_sim.scenarios.criteria import build_criteria, CriterionResult
 from vehicle_sim.scenarios.external import run_processes, TopicWatcher
+from vehicle_sim.scenarios.scene import world_scene
 from vehicle_sim.scenarios.schema import load_scenario, ScenarioSpec
 from vehicle_sim.scenarios.sim import LocalSim, ServedSim
 from vehicle_sim.scenarios.yaml_lines import ScenarioError
@@ -50,11 +53,17 @@ _EPS_S = 1e-9
 
 @dataclass
 class Track:
-    """A vehicle's path: times [s], x and y [m] after every step (and at the start)."""
+    """
+    A vehicle's path: times [s], x, y [m] and yaw [rad] after every step (and at the start).
+
+    :param outline: its footprint rectangle in base_link (core Outline), or None.
+    """
 
     time_s: List[float] = field(default_factory=list)
     x_m: List[float] = field(default_factory=list)
     y_m: List[float] = field(default_factory=list)
+    yaw_rad: List[float] = field(default_factory=list)
+    outline: Optional[Outline] = None
 
 
 @dataclass
@@ -70,6 +79,7 @@ class ScenarioResult:
     :param deterministic: the same scenario and seed give the same run (False with external
         processes).
     :param spread: with repeated runs, {criterion name: (min, max)} of the measured values.
+    :param collisions: {vehicle name: its CollisionEvents (with the contact point)}.
     """
 
     spec: ScenarioSpec
@@ -83,6 +93,7 @@ class ScenarioResult:
     error: Optional[str] = None
     spread: Optional[Dict[str, tuple]] = None
     runs: int = 1
+    collisions: Dict[str, List[CollisionEvent]] = field(default_factory=dict)
 
     @property
     def passed(self):
@@ -119,6 +130,7 @@ class Director:
         self.actors = []
         self.monitors = {}
         self.tracks = {}
+        self.collisions = {}
         self.digest = hashlib.sha256()
         self._commands = list(spec.driver.commands)
         self._next = 0
@@ -131,12 +143,15 @@ class Director:
             handle = self.vehicles[actor.vehicle]
             self.actors.append(CarActor(actor, handle.car) if handle.is_car
                                else RobotActor(actor, handle.robot))
-        watched = {c.vehicle for c in self.criteria if c.KIND == 'no_collision'}
-        for name in watched:
-            monitor = CollisionMonitor(self.world, self.vehicles[name].body)
+        for name, handle in self.vehicles.items():   # every vehicle: the plot marks them
+            monitor = CollisionMonitor(self.world, handle.body)
             self.world.remove(monitor)      # stepped from post_step, after the physics
             self.monitors[name] = monitor
-        self.tracks = {name: Track() for name in self.vehicles}
+        self.collisions = {name: [] for name in self.vehicles}
+        scene = world_scene(self.world, self.vehicles, self.spec.world.obstacles)
+        for criterion in self.criteria:
+            criterion.bind(scene)
+        self.tracks = {name: Track(outline=scene.outline(name)) for name in self.vehicles}
         self._measure(self.world.time_s)
 
     @property
@@ -172,6 +187,7 @@ class Director:
         now_s = self.world.time_s
         for name, monitor in self.monitors.items():
             monitor.post_step()
+            self.collisions[name].extend(monitor.fresh)
             for event in monitor.fresh:
                 for criterion in self.criteria:
                     if criterion.vehicle == name:
@@ -188,6 +204,7 @@ class Director:
             track.time_s.append(now_s)
             track.x_m.append(sample.x_m)
             track.y_m.append(sample.y_m)
+            track.yaw_rad.append(sample.yaw_rad)
             if name == vut:
                 self.digest.update(handle.odometry_row(now_s))
             for criterion in self.criteria:
@@ -277,7 +294,7 @@ def _run_once(spec, gui, progress, transport):
     return ScenarioResult(spec, spec.seed, [c.result() for c in criteria], sim_time_s,
                           time.monotonic() - start, director.tracks,
                           director.digest.hexdigest(), not served or kind != 'processes',
-                          error)
+                          error, collisions=director.collisions)
 
 
 # ---------------------------------------------------------------------------- in-process

@@ -41,9 +41,11 @@ from vehicle_sim import config
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.param_spec import ParamSpec, REQUIRED, validate_table
 from vehicle_sim.core.sensor_sets import enable_sensors, selected_sensors
+from vehicle_sim.core.value_text import brief
 from vehicle_sim.core.world_params import (
     obstacles_from_list,
     origin_from_dict,
+    used_twice,
     WORLD_KEYS,
     WorldSpec,
 )
@@ -51,6 +53,10 @@ from vehicle_sim.scenarios.yaml_lines import error_at, line_of, load_with_lines,
 from vehicle_sim.webots.api_table import CAR_API, DRIVER_API
 
 DRIVER_KINDS = ('commands', 'controller', 'processes')
+# The longest a scenario may run (simulated) and wait (wall clock): a file cannot keep the runner
+# busy for ever.
+MAX_DURATION_S = 86400.0
+MAX_WAIT_S = 3600.0
 
 SCENARIO_SPECS = (
     ParamSpec('name', 'name', 'str', '', doc="test name; '' = the file name without .yaml",
@@ -64,7 +70,7 @@ SCENARIO_SPECS = (
               doc='name of the vehicle under test; null = the first vehicle of the world '
                   '(the first robot when the world has no car)'),
     ParamSpec('duration', 'duration_s', 'float', REQUIRED, 's', 'simulated time the scenario '
-              'runs', gt=0.0),
+              'runs', gt=0.0, le=MAX_DURATION_S),
     ParamSpec('seed', 'seed', 'int', 0, doc='seed of the sensor noise and of the '
               'controller (random, numpy, VEHICLE_SIM_SEED); --seed overrides it', ge=0),
     ParamSpec('time_step_ms', 'time_step_ms', 'int', 10, 'ms', 'basic time step', ge=1),
@@ -115,20 +121,21 @@ DRIVER_SPECS = (
                   "program 'python' is the runner's interpreter); the simulation is served "
                   'over ROS with /clock'),
     ParamSpec('real_time_factor', 'real_time_factor', 'float', 1.0, '',
-              'processes: simulated seconds per wall-clock second; 0 = as fast as possible',
-              ge=0.0),
+              'processes: simulated seconds per wall-clock second; 0 = as fast as possible; '
+              f'duration / real_time_factor at most {MAX_DURATION_S:g} s', ge=0.0),
     ParamSpec('sync', 'sync', 'raw', (), doc='processes: lockstep topics [{topic, type}, ...]: '
               'after every sync_period the runner waits until each has a new message (the '
               "controller's answer to that /clock)"),
     ParamSpec('sync_period', 'sync_period_s', 'float', 0.0, 's', 'processes: simulated time '
               'between lockstep waits; 0 = every basic step', ge=0.0),
     ParamSpec('sync_timeout', 'sync_timeout_s', 'float', 5.0, 's', 'processes: longest '
-              'lockstep wait (wall clock); a longer one ends the run with an error', gt=0.0),
+              'lockstep wait (wall clock); a longer one ends the run with an error', gt=0.0,
+              le=MAX_WAIT_S),
     ParamSpec('clock_subscribers', 'clock_subscribers', 'int', -1, '',
               'processes: time starts once /clock has this many subscribers; -1 = one per '
               'process', ge=-1),
     ParamSpec('startup_timeout', 'startup_timeout_s', 'float', 60.0, 's',
-              'processes: how long to wait for them (wall clock)', gt=0.0),
+              'processes: how long to wait for them (wall clock)', gt=0.0, le=MAX_WAIT_S),
 )
 
 # Webots driver-level setters a command may hold: the snake_case names of the 2023 Python
@@ -255,10 +262,10 @@ def load_scenario(path) -> ScenarioSpec:
     """
     source = str(path)
     try:
-        text = Path(path).read_text(encoding='utf-8')
+        content = Path(path).read_bytes()
     except OSError as error:
         raise ScenarioError(source, None, f'cannot read: {error.strerror or error}') from None
-    data, lines = load_with_lines(text, source)
+    data, lines = load_with_lines(content, source)
     return scenario_from_data(data, lines, source)
 
 
@@ -303,15 +310,22 @@ def scenario_from_data(data, lines, source) -> ScenarioSpec:
     world_data = values['world'] if world_file is None else None
     cars = tuple(v.name for v in world.vehicles)
     names = cars + tuple(r.name for r in robots)
-    duplicates = sorted({n for n in names if names.count(n) > 1})
+    duplicates = used_twice(names)
     if duplicates:
-        raise ctx.fail(('robots',), f'vehicle name(s) used twice: {duplicates}')
+        raise ctx.fail(('robots',), f'vehicle name(s) used twice: {brief(duplicates)}')
     vehicle = values['vehicle'] or names[0]
     if vehicle not in names:
-        raise ctx.fail(('vehicle',), f'vehicle {vehicle!r}: not in the world; vehicles: '
+        raise ctx.fail(('vehicle',), f'vehicle {brief(vehicle)}: not in the world; vehicles: '
                                      f'{", ".join(names)}')
     actors = _actors(ctx, values['actors'], names, vehicle)
     driver = _driver(ctx, values['driver'], vehicle in cars)
+    paced = driver.kind == 'processes' and driver.real_time_factor > 0.0
+    if paced and values['duration_s'] / driver.real_time_factor > MAX_DURATION_S:
+        raise ctx.fail(('driver', 'real_time_factor'),
+                       f'real_time_factor = {driver.real_time_factor:g}: the '
+                       f'{values["duration_s"]:g} s would take '
+                       f'{values["duration_s"] / driver.real_time_factor:g} s of wall clock; '
+                       f'at most {MAX_DURATION_S:g} s')
     from vehicle_sim.scenarios.criteria import criteria_from_list
     criteria = criteria_from_list(ctx, data.get('criteria'), names, vehicle)
     name = values['name'] or Path(source).stem
@@ -322,7 +336,7 @@ def scenario_from_data(data, lines, source) -> ScenarioSpec:
     for index, robot in enumerate(robots):
         if robot.sensors and not spec.served:
             raise ctx.fail(('robots', index, 'sensors'),
-                           f'robot {robot.name!r}: its sensors are published over ROS by its '
+                           f'robot {brief(robot.name)}: its sensors are published over ROS by its '
                            'node, and this scenario runs without ROS; add the process that '
                            'reads them (driver.processes) or a topic criterion')
     return spec
@@ -340,7 +354,7 @@ def _world(ctx, value, cars_optional):
             return config.world_from_data(value, f'{ctx.source}: world'), None
     except InvalidParameterError as error:
         raise error_at(ctx.source, ctx.lines, path, error) from None
-    raise ctx.fail(path, f'world = {value!r}: give a world name, a path to a world .yaml or '
+    raise ctx.fail(path, f'world = {brief(value)}: give a world name, a path to a world .yaml or '
                          'an inline world mapping')
 
 
@@ -349,7 +363,7 @@ def _world_without_cars(ctx, value):
     source = f'{ctx.source}: world'
     unknown = sorted(set(value) - set(WORLD_KEYS))
     if unknown:
-        raise InvalidParameterError(f'{source}: unknown key(s) {unknown}; valid: '
+        raise InvalidParameterError(f'{source}: unknown key(s) {brief(unknown)}; valid: '
                                     + ', '.join(WORLD_KEYS))
     return WorldSpec(origin_from_dict(value.get('origin'), f'{source}: origin'), (),
                      obstacles_from_list(value.get('obstacles'), f'{source}: obstacles'), source)
@@ -382,10 +396,10 @@ def _robot_sensors(ctx, value, model, path):
     names = ('all',) if value == 'all' else value
     if not (isinstance(names, (list, tuple)) and names
             and all(isinstance(n, str) and n for n in names)):
-        raise ctx.fail(path, f"sensors {value!r}: a list of sensor names, or 'all'")
+        raise ctx.fail(path, f"sensors {brief(value)}: a list of sensor names, or 'all'")
     try:
         enable_sensors(config.load_robot(model).sensor_set, selected_sensors(names),
-                       f'robot model {model!r}')
+                       f'robot model {brief(model)}')
     except InvalidParameterError as error:
         raise ctx.fail(path, str(error)) from None
     return tuple(names)
@@ -402,13 +416,13 @@ def _actors(ctx, value, names, vehicle):
         values = ctx.validated(ACTOR_SPECS, entry, path, 'an actor')
         name = values['vehicle']
         if name not in names:
-            raise ctx.fail(path + ('vehicle',), f'vehicle {name!r}: not in the world; '
+            raise ctx.fail(path + ('vehicle',), f'vehicle {brief(name)}: not in the world; '
                                                 f'vehicles: {", ".join(names)}')
         if name == vehicle:
-            raise ctx.fail(path + ('vehicle',), f'vehicle {name!r} is the vehicle under test '
+            raise ctx.fail(path + ('vehicle',), f'vehicle {brief(name)} is the vehicle under test '
                                                 '(the driver drives it)')
         if name in taken:
-            raise ctx.fail(path + ('vehicle',), f'vehicle {name!r} has two actors')
+            raise ctx.fail(path + ('vehicle',), f'vehicle {brief(name)} has two actors')
         taken.add(name)
         points = _waypoints(ctx, values['waypoints'], path + ('waypoints',),
                             values['speed_mps'])
@@ -426,7 +440,7 @@ def _waypoints(ctx, value, path, speed_mps):
             isinstance(v, (int, float)) and not isinstance(v, bool) and abs(v) < float('inf')
             for v in point)
         if not ok or (len(point) == 3 and point[2] < 0):
-            raise ctx.fail(path + (index,), f'waypoint {point!r}: must be [x, y] or '
+            raise ctx.fail(path + (index,), f'waypoint {brief(point)}: must be [x, y] or '
                                             '[x, y, speed >= 0] (finite numbers)')
         points.append(Waypoint(float(point[0]), float(point[1]),
                                float(point[2]) if len(point) == 3 else speed_mps))
@@ -451,7 +465,7 @@ def _driver(ctx, value, drives_car):
             raise ctx.fail(path + ('controller',), 'a Webots controller drives a car')
         script = ctx.relative(values['controller'])
         if not os.path.isfile(script):
-            raise ctx.fail(path + ('controller',), f'controller {values["controller"]!r}: no '
+            raise ctx.fail(path + ('controller',), f'controller {brief(values["controller"])}: no '
                                                    f'such file (relative to {ctx.folder})')
         return DriverSpec(kind, controller=script, args=tuple(values['args']))
     return DriverSpec(kind, processes=_processes(ctx, values['processes']),
@@ -470,7 +484,7 @@ def _sync(ctx, value):
     for index, entry in enumerate(value):
         if not (isinstance(entry, dict) and set(entry) == {'topic', 'type'}
                 and all(isinstance(v, str) and v for v in entry.values())):
-            raise ctx.fail(path + (index,), f'sync entry {entry!r}: must be {{topic: /name, '
+            raise ctx.fail(path + (index,), f'sync entry {brief(entry)}: must be {{topic: /name, '
                                             'type: pkg/msg/Type}')
         topics.append((entry['topic'], entry['type']))
     return tuple(topics)
@@ -484,14 +498,14 @@ def _commands(ctx, value):
     for index, entry in enumerate(value):
         where = path + (index,)
         if not isinstance(entry, dict) or 't' not in entry:
-            raise ctx.fail(where, f'command {entry!r}: must be a mapping with t (s) and '
+            raise ctx.fail(where, f'command {brief(entry)}: must be a mapping with t (s) and '
                                   'setters')
         t_s = entry['t']
         if isinstance(t_s, bool) or not isinstance(t_s, (int, float)) or not 0 <= t_s < 1e12:
-            raise ctx.fail(where + ('t',), f't = {t_s!r}: must be a finite time >= 0 s')
+            raise ctx.fail(where + ('t',), f't = {brief(t_s)}: must be a finite time >= 0 s')
         if t_s < last_t:
-            raise ctx.fail(where + ('t',), f't = {t_s!r}: commands must be in time order '
-                                           f'(previous t = {last_t!r})')
+            raise ctx.fail(where + ('t',), f't = {brief(t_s)}: commands must be in time order '
+                                           f'(previous t = {brief(last_t)})')
         last_t = t_s
         setters = []
         for key, item in entry.items():
@@ -499,7 +513,7 @@ def _commands(ctx, value):
                 continue
             row = COMMAND_ROWS.get(key)
             if row is None:
-                raise ctx.fail(where + (key,), f'unknown setter {key!r}; valid: '
+                raise ctx.fail(where + (key,), f'unknown setter {brief(key)}; valid: '
                                                + ', '.join(sorted(COMMAND_ROWS)))
             setters.append((row.core_setter, _command_value(ctx, where + (key,), row, item),
                             row.setter))
@@ -520,7 +534,7 @@ def _command_value(ctx, path, row, value):
         return float(value)
     want = {'bool': 'true or false', 'int': 'an integer', 'enum': 'an integer',
             'float': 'a finite number'}[row.kind]
-    raise ctx.fail(path, f'{path[-1]} = {value!r}: must be {want} ({row.setter}, '
+    raise ctx.fail(path, f'{path[-1]} = {brief(value)}: must be {want} ({row.setter}, '
                          f'{row.unit or "no unit"})')
 
 
@@ -539,7 +553,7 @@ def _processes(ctx, value):
         else:
             argv = []
         if not argv:
-            raise ctx.fail(path + (index,), f'process {entry!r}: a command line (a string or '
+            raise ctx.fail(path + (index,), f'process {brief(entry)}: a command line (a string or '
                                             'a list of strings)')
         commands.append(tuple(argv))
     return tuple(commands)

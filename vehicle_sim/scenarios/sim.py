@@ -34,6 +34,7 @@ import tempfile
 import yaml
 
 from vehicle_sim.config import load_car, load_robot
+from vehicle_sim.core.footprint import car_outline, robot_outline
 from vehicle_sim.physics.diff_robot import DiffRobotBody
 from vehicle_sim.physics.simulated_car import SimulatedCar
 from vehicle_sim.physics.world import World
@@ -65,6 +66,13 @@ class VehicleHandle:
     @property
     def is_car(self):
         return self.car is not None
+
+    @property
+    def outline(self):
+        """Return its footprint rectangle in base_link (core Outline), from its parameters."""
+        if self.car is not None:
+            return car_outline(self.car.params)
+        return robot_outline(self.robot.params)
 
     def odometry_row(self, time_s):
         """Return the packed ground-truth odometry row (ODOMETRY_ROW) at ``time_s``."""

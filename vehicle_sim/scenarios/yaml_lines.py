@@ -25,13 +25,13 @@ from typing import Dict, Tuple
 
 import yaml
 
-from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.yaml_files import parse, YamlFileError
 
 Path = Tuple
 Lines = Dict[Path, int]
 
 
-class ScenarioError(InvalidParameterError):
+class ScenarioError(YamlFileError):
     """
     A scenario file is invalid: the message starts with ``file:line:``.
 
@@ -40,54 +40,45 @@ class ScenarioError(InvalidParameterError):
     :param message: what is wrong.
     """
 
-    def __init__(self, source, line, message):
-        self.source = str(source)
-        self.line = line
-        self.reason = message
-        where = f'{source}:{line}' if line else str(source)
-        super().__init__(f'{where}: {message}')
 
-
-def load_with_lines(text, source):
+def load_with_lines(content, source):
     """
     Parse one YAML document and return ``(data, lines)``.
 
-    :param text: the YAML text.
+    :param content: the YAML text, or the file's bytes.
     :param source: file name for errors.
     :return: (the data (None for an empty document), {path: 1-based line}).
-    :raises ScenarioError: on a YAML syntax error (with its line).
+    :raises ScenarioError: when the file cannot be read within the bounds of
+        vehicle_sim/yaml_files.py (a syntax error, a byte that is not UTF-8, nesting too deep,
+        aliases that stand for too much), with its line.
     """
-    loader = yaml.SafeLoader(text)
     try:
-        node = loader.get_single_node()
-        if node is None:
-            return None, {}
-        data = loader.construct_document(node)
-    except yaml.MarkedYAMLError as error:
-        mark = error.problem_mark or error.context_mark
-        line = mark.line + 1 if mark is not None else None
-        raise ScenarioError(source, line, f'not valid YAML: {error.problem or error}') from None
-    except yaml.YAMLError as error:
-        raise ScenarioError(source, None, f'not valid YAML: {error}') from None
-    finally:
-        loader.dispose()
+        data, node = parse(content, source)
+    except YamlFileError as error:
+        raise ScenarioError(error.source, error.line, error.reason) from None
     lines: Lines = {}
-    _walk(node, (), lines)
+    if node is not None:
+        _walk(node, (), lines, set())
     return data, lines
 
 
-def _walk(node, path, lines):
+def _walk(node, path, lines, walked):
+    # A node an alias names again is walked once (its first path): the paths under a later
+    # alias fall back to the alias's own line (line_of), and no alias is ever expanded.
     lines[path] = node.start_mark.line + 1
+    if id(node) in walked:
+        return
+    walked.add(id(node))
     if isinstance(node, yaml.MappingNode):
         for key_node, value_node in node.value:
             if isinstance(key_node, yaml.ScalarNode):
                 key = _typed_key(key_node, key_node.value)
-                _walk(value_node, path + (key,), lines)
+                _walk(value_node, path + (key,), lines, walked)
                 # the key's own line (a multi-line value starts on the next one)
                 lines[path + (key,)] = key_node.start_mark.line + 1
     elif isinstance(node, yaml.SequenceNode):
         for index, item in enumerate(node.value):
-            _walk(item, path + (index,), lines)
+            _walk(item, path + (index,), lines, walked)
 
 
 def _typed_key(node, text):

@@ -31,6 +31,7 @@ from vehicle_sim.tools.command import CliError, EXIT_FAILURE, EXIT_OK, EXIT_USAG
 BAR_WIDTH = 30
 BAR_PERIOD_S = 0.1          # a tty progress bar redraws at most this often (wall clock)
 PLAIN_STEPS = 4             # elsewhere, a line at each quarter of the duration
+MAX_REPEAT = 1000           # --repeat: so that one command cannot run for ever
 
 
 def add_arguments(parser):
@@ -118,8 +119,8 @@ def cmd_scenario(args) -> int:
     from vehicle_sim.scenarios.runner import run_scenario
     from vehicle_sim.scenarios.schema import load_scenario
     from vehicle_sim.scenarios.yaml_lines import ScenarioError
-    if args.repeat < 1:
-        raise CliError(f'--repeat {args.repeat}: must be >= 1', EXIT_USAGE)
+    if not 1 <= args.repeat <= MAX_REPEAT:
+        raise CliError(f'--repeat {args.repeat}: must be 1 .. {MAX_REPEAT}', EXIT_USAGE)
     if args.seed is not None and args.seed < 0:
         raise CliError(f'--seed {args.seed}: must be >= 0', EXIT_USAGE)
     if args.plot:

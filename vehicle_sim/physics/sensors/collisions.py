@@ -18,16 +18,19 @@ Collision events of a vehicle: contacts with any body but the ground, debounced 
 
 After each basic step the vehicle's contact points are read (getContactPoints); the points
 touching another body (distance <= 0 or a normal force) are grouped by body, their normal forces
-summed, and core's CollisionDebouncer turns "started touching" into one event per pair (again
-only after the pair was apart for 0.1 s). The other body is named by World.body_name: an
-obstacle's or a vehicle's name.
+summed and their points on the other body averaged (the event's position), and core's
+CollisionDebouncer turns "started touching" into one event per pair (again only after the pair
+was apart for 0.1 s). The other body is named by World.body_name: an obstacle's or a vehicle's
+name.
 """
+
+from dataclasses import replace
 
 import pybullet
 
 from vehicle_sim.core.collision import CollisionDebouncer, DEFAULT_MIN_APART_S
 
-_BODY_B, _DISTANCE, _NORMAL_FORCE = 2, 8, 9
+_BODY_B, _POSITION_ON_B, _DISTANCE, _NORMAL_FORCE = 2, 6, 8, 9
 
 
 class CollisionMonitor:
@@ -47,20 +50,30 @@ class CollisionMonitor:
         world.add_body(self)
 
     def contacts(self):
-        """Return {other body's name: sum of normal forces [N]} of the bodies touching now."""
+        """
+        Return the bodies touching now.
+
+        :return: {other body's name: (sum of normal forces [N], mean contact point on it [m])}.
+        """
         world = self.world
         own, ground = self.body.body_id, world.ground_id
-        forces = {}
+        found = {}
         for point in pybullet.getContactPoints(bodyA=own, physicsClientId=world.client_id):
             other = point[_BODY_B]
             if other in (own, ground) or (point[_DISTANCE] > 0.0 and point[_NORMAL_FORCE] <= 0.0):
                 continue
-            forces[other] = forces.get(other, 0.0) + point[_NORMAL_FORCE]
-        return {world.body_name(other): force for other, force in forces.items()}
+            found.setdefault(other, []).append((point[_NORMAL_FORCE], point[_POSITION_ON_B]))
+        return {world.body_name(other): (sum(f for f, _ in points),
+                                         tuple(sum(p[k] for _, p in points) / len(points)
+                                               for k in range(3)))
+                for other, points in found.items()}
 
     def post_step(self):
         """World hook: turn this step's contacts into events (``fresh``)."""
-        self.fresh = self._debouncer.update(self.world.time_s, self.contacts())
+        touching = self.contacts()
+        events = self._debouncer.update(
+            self.world.time_s, {name: force for name, (force, _) in touching.items()})
+        self.fresh = [replace(event, position_m=touching[event.other][1]) for event in events]
 
     def close(self):
         """Stop monitoring."""
