@@ -153,7 +153,8 @@ def test_validate_table_names_source_parameter_value_and_range():
     with pytest.raises(InvalidParameterError) as info:
         validate_table(ROBOT_NODE_PARAMETERS, {'x': math.inf}, '/diff_robot/diff_robot',
                        key_word='parameter')
-    assert str(info.value) == "/diff_robot/diff_robot: parameter 'x' = inf: must be finite"
+    assert str(info.value) == ("/diff_robot/diff_robot: parameter 'x' = inf: must be finite and "
+                               '>= -1e+06 and <= 1e+06')
 
 
 # --------------------------------------------------------------------------------------------
@@ -304,6 +305,7 @@ def test_node_declares_every_parameter_of_its_table(name):
 @pytest.mark.parametrize('name, overrides, expected', [
     ('diff_robot', {'x': math.nan}, 'x = nan: must be finite'),
     ('diff_robot', {'yaw': math.inf}, 'yaw = inf: must be finite'),
+    ('diff_robot', {'y': -2e6}, 'y = -2000000.0: must be >= -1e+06 and <= 1e+06'),
     ('diff_robot', {'time_step_ms': 0}, 'time_step_ms = 0: must be >= 1'),
     ('ackermann_to_differential', {'control_rate_hz': 0.0}, 'control_rate_hz = 0.0: must be > 0'),
     ('ackermann_to_differential', {'wheel_base': -0.4}, 'wheel_base = -0.4: must be > 0'),

@@ -36,7 +36,7 @@ from vehicle_sim.core.frames import (
     quaternion_from_yaw,
     rpy_from_quaternion,
 )
-from vehicle_sim.core.placement import ground_pose, QUATERNION_NORM_TOLERANCE
+from vehicle_sim.core.placement import ground_pose, QUATERNION_NORM_TOLERANCE, WORLD_EXTENT_M
 from vehicle_sim.core.vehicle_io import Measurement
 from vehicle_sim.core.world_params import obstacle_from_dict
 from vehicle_sim.physics import SimulatedCar, World
@@ -156,6 +156,16 @@ def test_ground_pose_refuses_non_finite_values_and_non_unit_quaternions(xyz, q, 
         ground_pose(xyz, q)
 
 
+def test_ground_pose_refuses_a_place_outside_the_world_and_accepts_its_edge():
+    edge = ground_pose((WORLD_EXTENT_M, -WORLD_EXTENT_M, 0.0), (0.0, 0.0, 0.0, 1.0))
+    assert (edge.x_m, edge.y_m) == (WORLD_EXTENT_M, -WORLD_EXTENT_M)
+    with pytest.raises(InvalidPoseError, match=r'x = 1e\+308 m is outside the world'):
+        ground_pose((1e308, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+    # The check is on the place in the world, after the request's frame.
+    with pytest.raises(InvalidPoseError, match='y = 1e\\+06 m is outside the world'):
+        ground_pose((0.0, 1.0, 0.0), (0.0, 0.0, 0.0, 1.0), frame_xyz=(0.0, WORLD_EXTENT_M, 0.0))
+
+
 # ------------------------------------------------------------------------------ physics
 
 @pytest.fixture
@@ -235,6 +245,60 @@ def test_teleport_inside_an_obstacle_or_a_vehicle_is_refused_and_moves_nothing(w
     car.teleport((15.0, 0.0, 0.0))
     assert car.body.pose()[:2] == pytest.approx((15.0, 0.0), abs=1e-6)
     assert other.body.pose()[:2] == pytest.approx((-10.0, 0.0), abs=1e-2)
+
+
+def _lost_by_bullet(world, vehicle):
+    # What set_pose did before it refused places beyond the world (the physics-level teleport
+    # takes any place): Bullet takes the body out of its simulation, and it falls through the
+    # ground after any reset of its pose and velocities.
+    vehicle.teleport((1e100, 0.0, 0.0))
+    for _ in range(10):
+        world.step()
+
+
+def test_simulated_car_reset_repairs_a_car_bullet_lost_far_beyond_the_world(world):
+    car = SimulatedCar(world, load_car('ToyotaPrius'), SPAWN)
+    for _ in range(100):
+        world.step()
+    at_rest = car.body.pose()
+    _lost_by_bullet(world, car)
+    car.reset()
+    for _ in range(300):   # 3 s: the lost car was at z = -44 m by then
+        world.step()
+    assert car.body.pose() == pytest.approx(at_rest, abs=1e-3)
+    car.logic.set_cruising_speed_kmh(20.0)
+    for _ in range(300):
+        world.step()
+    assert car.body.forward_speed_mps() > 3.0
+    assert car.body.pose()[2] == pytest.approx(at_rest[2], abs=0.05)
+
+
+def test_diff_robot_reset_repairs_a_robot_bullet_lost_far_beyond_the_world(world):
+    robot = DiffRobotBody(world, 'caster_robot', (1.0, 2.0, 0.3))
+    spawn = robot.pose()
+    _lost_by_bullet(world, robot)
+    robot.reset()
+    for _ in range(300):
+        world.step()
+    assert robot.pose()[:3] == pytest.approx(spawn[:3], abs=1e-2)
+
+
+def test_a_vehicle_starting_inside_an_obstacle_is_refused_naming_both(world):
+    # The crate of issue 22 over the car's start: base_link ended 0.96 m under the ground.
+    crate = _obstacle('crate', (1.5, 0.0, 1.0), size=(2.0, 2.0, 2.0))
+    world.add_obstacle(crate)
+    bodies = pybullet.getNumBodies(physicsClientId=world.client_id)
+    with pytest.raises(InvalidPoseError, match="vehicle 'Car' starts inside obstacle 'crate'"):
+        SimulatedCar(world, load_car('Car'), (0.0, 0.0, 0.0))
+    assert pybullet.getNumBodies(physicsClientId=world.client_id) == bodies   # nothing left
+    assert world.bodies == ()
+    # The other order (an obstacle added over a vehicle already there) is refused as well.
+    with World() as other:
+        SimulatedCar(other, load_car('Car'), (0.0, 0.0, 0.0))
+        with pytest.raises(InvalidPoseError, match="vehicle 'Car' starts inside obstacle"):
+            other.add_obstacle(crate)
+        assert 'crate' not in other.obstacles
+        other.add_obstacle(_obstacle('crate', (10.0, 0.0, 1.0)))
 
 
 def test_reset_obstacles_puts_movable_ones_back_and_leaves_static_ones(world):

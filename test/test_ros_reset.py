@@ -215,6 +215,10 @@ BAD_POSES = [
     pytest.param(dict(x=0.0, y=0.0, q=(0.0, 0.0, 0.0, 0.0)), 'norm 0', id='zero-quaternion'),
     pytest.param(dict(x=30.0, y=1.0), 'inside wall', id='in-the-wall'),
     pytest.param(dict(x=CRATE_X_M + 1.0, y=0.0), 'inside crate', id='on-the-crate'),
+    # Beyond the world (|x|, |y| <= 1e6 m): at 1e100 m Bullet lost the car for good.
+    pytest.param(dict(x=1e308, y=0.0), 'x = 1e+308 m is outside the world', id='far-x'),
+    pytest.param(dict(x=0.0, y=-1.0000001e6), 'y = -1e+06 m is outside the world',
+                 id='just-beyond-y'),
 ]
 
 

@@ -29,6 +29,7 @@ import warnings
 import numpy as np
 import pytest
 
+from vehicle_sim.core.errors import InvalidPoseError
 from vehicle_sim.webots import Driver, WebotsWarning
 from vehicle_sim.webots.api_table import DEVICE_API
 from vehicle_sim.webots.devices import DEVICE_CLASSES
@@ -282,3 +283,12 @@ def test_lidar_example_controller_stops_before_the_wall():
     assert 'stopped' in last, result.stdout
     gap_m = float(last.split('m ahead of the lidar, ')[1].split(' m')[0])
     assert 0.5 < gap_m < 5.0          # stopped before the wall, without touching it
+
+
+def test_a_world_whose_vehicle_starts_inside_an_obstacle_is_refused_naming_both(tmp_path):
+    # As the node and the scenario runner refuse it: the check is where vehicles join a World.
+    path = tmp_path / 'crate.yaml'
+    path.write_text('vehicles:\n  - {name: ego}\nobstacles:\n  - {name: crate, shape: box, '
+                    'size: [2, 2, 2], position: [1.5, 0, 1]}\n', encoding='utf-8')
+    with pytest.raises(InvalidPoseError, match="vehicle 'ego' starts inside obstacle 'crate'"):
+        Driver(world_file=str(path))

@@ -17,8 +17,9 @@ Teleport requests: a pose in a known frame turned into a place on the ground (x,
 
 A vehicle is teleported onto the ground: x, y and the heading come from the request, the height,
 roll and pitch from the ground (the physics layer places the body). The request is checked first,
-as every command is (DESIGN §4): non-finite values and quaternions whose norm is not within
-QUATERNION_NORM_TOLERANCE of 1 raise InvalidPoseError, naming the value.
+as every command is: non-finite values, places outside the world (|x| or |y| above
+WORLD_EXTENT_M) and quaternions whose norm is not within QUATERNION_NORM_TOLERANCE of 1 raise
+InvalidPoseError, naming the value.
 """
 
 from dataclasses import dataclass
@@ -30,6 +31,10 @@ from vehicle_sim.core.frames import pose_from_frame, rpy_from_quaternion
 
 # |‖q‖ − 1| above this is refused rather than normalised: such a quaternion is a bug upstream.
 QUATERNION_NORM_TOLERANCE = 1e-3
+# The world: |x| and |y| of every place [m] (a teleport, a spawn pose, an obstacle). A thousand
+# kilometres is far beyond any map, and keeps doubles exact to ~1e-10 m; beyond ~1e30 m Bullet
+# loses a body (it falls through the ground ever after).
+WORLD_EXTENT_M = 1.0e6
 _AXES = ('x', 'y', 'z')
 _COMPONENTS = ('qx', 'qy', 'qz', 'qw')
 
@@ -83,4 +88,19 @@ def ground_pose(xyz: Sequence[float], q: Sequence[float], frame_xyz=(0.0, 0.0, 0
     """
     xyz, q = check_pose(xyz, q)
     world_xyz, world_q = pose_from_frame(frame_xyz, frame_q, xyz, q)
+    check_in_world(world_xyz[0], world_xyz[1])
     return GroundPose(world_xyz[0], world_xyz[1], rpy_from_quaternion(world_q)[2])
+
+
+def check_in_world(x_m: float, y_m: float, what='pose'):
+    """
+    Check that a place is inside the world: ``|x|, |y| <= WORLD_EXTENT_M``.
+
+    :param what: what is placed, quoted in the error (``'pose'``, ``'position'``).
+    :raises InvalidPoseError: naming the coordinate, its value and the extent.
+    """
+    for name, value in (('x', x_m), ('y', y_m)):
+        if not abs(value) <= WORLD_EXTENT_M:
+            raise InvalidPoseError(
+                f'{what} {name} = {value:g} m is outside the world (|x| and |y| at most '
+                f'{WORLD_EXTENT_M:g} m)')

@@ -51,6 +51,16 @@ RADIATION_TYPES = ('ultrasound', 'infrared')
 DEFAULT_DISTANCE_RANGE_M = 5.0
 TWO_PI = 2.0 * math.pi
 
+# Sensor sizes a 2-core laptop runs: every sample is one short PyBullet call (or a few), so a
+# step stays short and a node stops within a second of SIGTERM. Measured here: 65536 rays
+# cast in ~0.07 s, a 1920 x 1080 frame rendered in ~0.3 s (docs/sensors.md, "Sizes").
+MAX_LIDAR_RAYS_PER_LAYER = 4096     # Ouster OS1: 2048; Velodyne HDL-64E: ~2000 at 10 Hz
+MAX_LIDAR_LAYERS = 128              # Ouster OS1-128
+MAX_LIDAR_RAYS = 65536              # per scan: horizontal_resolution x layers
+MAX_DISTANCE_RAYS = 1024
+MAX_CAMERA_SIDE_PX = 3840           # a 4K UHD row
+MAX_CAMERA_PIXELS = 1920 * 1080     # per frame: width x height (Full HD)
+
 
 def _common(sensor_type, rate_hz):
     return (
@@ -124,9 +134,10 @@ LIDAR_SPECS = _common('lidar', 10.0) + (
     ParamSpec('fov', 'fov_rad', 'float', 1.5 * math.pi, 'rad',
               'horizontal field of view, centred on the x axis', gt=0.0, le=TWO_PI),
     ParamSpec('horizontal_resolution', 'horizontal_resolution', 'int', 1080, '',
-              'rays per layer; angle_increment = fov / (rays - 1)', ge=2),
+              'rays per layer; angle_increment = fov / (rays - 1)', ge=2,
+              le=MAX_LIDAR_RAYS_PER_LAYER),
     ParamSpec('layers', 'layers', 'int', 1, '', 'number of layers (1: LaserScan, >1: '
-              'PointCloud2)', ge=1),
+              'PointCloud2)', ge=1, le=MAX_LIDAR_LAYERS),
     ParamSpec('vertical_fov', 'vertical_fov_rad', 'float', 0.0, 'rad',
               'angle between the top and the bottom layer (> 0 with several layers)',
               ge=0.0, le=math.pi),
@@ -176,6 +187,11 @@ class LidarSpec(SensorSpec):
 
 
 def _check_lidar(source, values):
+    rays = values['horizontal_resolution'] * values['layers']
+    if rays > MAX_LIDAR_RAYS:
+        _fail(source, 'layers', values['layers'],
+              f'{values["horizontal_resolution"]} rays x {values["layers"]} layers = {rays} '
+              f'rays per scan; at most {MAX_LIDAR_RAYS}')
     if values['min_range_m'] >= values['max_range_m']:
         _fail(source, 'min_range', values['min_range_m'],
               f'must be < max_range ({values["max_range_m"]:g} m)')
@@ -234,7 +250,8 @@ class GnssSpec(SensorSpec):
 
 
 DISTANCE_SPECS = _common('distance', 20.0) + (
-    ParamSpec('rays', 'rays', 'int', 1, '', 'rays in the cone (the nearest hit counts)', ge=1),
+    ParamSpec('rays', 'rays', 'int', 1, '', 'rays in the cone (the nearest hit counts)', ge=1,
+              le=MAX_DISTANCE_RAYS),
     ParamSpec('aperture', 'aperture_rad', 'float', 0.0, 'rad',
               'opening angle of the cone of rays (sensor_msgs/Range field_of_view)', ge=0.0,
               lt=math.pi),
@@ -291,8 +308,11 @@ def _check_distance(source, values):
 
 
 CAMERA_SPECS = _common('camera', 10.0) + (
-    ParamSpec('width', 'width', 'int', 320, 'px', 'image width', ge=1),
-    ParamSpec('height', 'height', 'int', 240, 'px', 'image height', ge=1),
+    ParamSpec('width', 'width', 'int', 320, 'px',
+              f'image width; width x height <= {MAX_CAMERA_PIXELS} px', ge=1,
+              le=MAX_CAMERA_SIDE_PX),
+    ParamSpec('height', 'height', 'int', 240, 'px', 'image height', ge=1,
+              le=MAX_CAMERA_SIDE_PX),
     ParamSpec('fov', 'fov_rad', 'float', 1.0, 'rad', 'horizontal field of view', gt=0.0,
               lt=math.pi),
     ParamSpec('near', 'near_m', 'float', 0.05, 'm', 'near clipping distance', gt=0.0),
@@ -342,6 +362,11 @@ class CameraSpec(SensorSpec):
 
 
 def _check_camera(source, values):
+    pixels = values['width'] * values['height']
+    if pixels > MAX_CAMERA_PIXELS:
+        _fail(source, 'height', values['height'],
+              f'{values["width"]} x {values["height"]} = {pixels} pixels per frame; at most '
+              f'{MAX_CAMERA_PIXELS} (1920 x 1080)')
     if values['near_m'] >= values['far_m']:
         _fail(source, 'near', values['near_m'], f'must be < far ({values["far_m"]:g} m)')
 

@@ -32,7 +32,7 @@ the file and resolving car models are config.py's (this module touches no file).
 from dataclasses import dataclass, replace
 from typing import Callable, Optional, Sequence, Tuple
 
-from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.errors import InvalidParameterError, InvalidPoseError
 from vehicle_sim.core.frames import Pose
 from vehicle_sim.core.geodesy import GeodeticOrigin
 from vehicle_sim.core.param_spec import (
@@ -41,6 +41,7 @@ from vehicle_sim.core.param_spec import (
     REQUIRED,
     validate_table,
 )
+from vehicle_sim.core.placement import check_in_world
 from vehicle_sim.core.sensor_params import SensorSpec
 from vehicle_sim.core.sensor_sets import merge_sensors
 from vehicle_sim.core.value_text import brief
@@ -157,10 +158,18 @@ def obstacle_from_dict(data, source) -> ObstacleSpec:
     specs = OBSTACLE_SPECS[shape]
     values = validate_table(specs, data, source, {s.key: s.default for s in specs},
                             'an obstacle')
+    _check_in_world(source, 'position', *values['position_m'][:2])
     if shape != 'box':
         diameter = 2.0 * values['radius_m']
         values['size_m'] = (diameter, diameter, values.get('height_m') or diameter)
     return ObstacleSpec(**values)
+
+
+def _check_in_world(source, key, x_m, y_m):
+    try:
+        check_in_world(x_m, y_m, key)
+    except InvalidPoseError as error:
+        raise InvalidParameterError(f'{source}: field {key!r}: {error}') from None
 
 
 def obstacles_from_list(data, source) -> Tuple[ObstacleSpec, ...]:
@@ -294,5 +303,6 @@ def _vehicle(entry, where, index, default_model, preset_sensors):
         raise InvalidParameterError(f"{where}: field 'model': {error}") from None
     sensors = merge_sensors(base, values['sensors'], f'{where}.sensors')
     pose = values['pose']
+    _check_in_world(where, 'pose', pose.x_m, pose.y_m)
     return VehicleSpec(values['name'] or f'vehicle{index}', values['namespace'], model,
                        pose.x_m, pose.y_m, pose.yaw_rad, sensors)

@@ -217,19 +217,36 @@ class CarBody:
         measurement.steer_left_rad = states[5][0]
         return measurement
 
-    def place(self, position, rest_joints=False):
+    def place(self, position):
         """
-        Put the car at a pose, at rest: chassis and joint velocities 0 (reset and teleport).
+        Put the car at a pose, at rest: chassis and joint velocities 0 (a teleport).
+
+        The wheels and steering keep their angles and the suspension goes to 0; a reset loads
+        the body afresh instead (:meth:`rebuild`).
 
         :param position: base_link pose, as the constructor takes it; the (x, y, yaw) form puts
             base_link on the ground, level, as at spawn.
-        :param rest_joints: every joint back at its spawn position 0 (a reset); otherwise the
-            wheels and steering keep their angles and the suspension goes to 0 (a teleport).
         """
-        moving = self._wheel + self._steer
         self.world.place_at_rest(self.body_id, self._link_to_com, position,
-                                 zero_joints=self._suspension + (moving if rest_joints else []),
-                                 stop_joints=[] if rest_joints else moving)
+                                 zero_joints=self._suspension,
+                                 stop_joints=self._wheel + self._steer)
+
+    def rebuild(self, position):
+        """
+        Load the car afresh at a pose, as the constructor does (a reset).
+
+        Whatever state the physics left the old body in (one Bullet took out of the simulation
+        falls through the ground after any reset of its pose), the new one is as built: at
+        rest, joints at 0, no command. Same URDF, so the same joint indices.
+
+        :param position: base_link pose, as the constructor takes it.
+        """
+        self.body_id, _ = self.world.reload_urdf(self.body_id, self.urdf, position)
+        self._last_velocity_cmd = None
+        self._last_steer_cmd = None
+        self._torque_joints = []
+        self._torques = []
+        self._configure_dynamics()
 
     # ---------------------------------------------------------------- ground truth
     def pose(self):

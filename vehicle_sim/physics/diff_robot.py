@@ -253,11 +253,16 @@ class DiffRobotBody:
 
     # ---------------------------------------------------------------- reset and teleport
     def reset(self):
-        """Put the robot back at its spawn pose, at rest, wheel angles 0, wheel commands 0."""
-        self.world.place_at_rest(self.body_id, self._link_to_com, self.spawn, SPAWN_CLEARANCE_M,
-                                 zero_joints=self._wheels)
+        """
+        Put the robot back as it was built: spawn pose, at rest, wheel angles 0, commands 0.
+
+        The body is loaded afresh (World.reload_urdf), so a reset repairs whatever state the
+        physics left it in.
+        """
+        self.body_id, _ = self.world.reload_urdf(self.body_id, self.urdf, self.spawn,
+                                                 SPAWN_CLEARANCE_M)
         self._command_radps = (0.0,) * len(self._wheels)
-        self._apply()
+        self._configure_dynamics()
 
     def teleport(self, position):
         """

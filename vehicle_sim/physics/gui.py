@@ -144,7 +144,7 @@ class ChaseCamera:
         self.period_s = float(period_s)
         self._last_s = world.time_s
         self.world = world
-        self._target_ids = [_body_id(target) for target in targets]
+        self._targets = list(targets)   # their ids are read each time: a reset reloads a body
         self.settings = settings or ChaseSettings()
         self.index = 0
         self.following = True
@@ -159,7 +159,7 @@ class ChaseCamera:
     @property
     def target_id(self) -> int:
         """Body id of the vehicle followed."""
-        return self._target_ids[self.index]
+        return _body_id(self._targets[self.index])
 
     def post_step(self):
         """World hook, after each step: keys, then the camera, once per period."""
@@ -210,7 +210,7 @@ class ChaseCamera:
             self.update(None)
 
     def _next_target(self):
-        self.index = (self.index + 1) % len(self._target_ids)
+        self.index = (self.index + 1) % len(self._targets)
         self.update(None)
 
     def _zoom(self, steps):

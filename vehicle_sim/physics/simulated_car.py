@@ -58,10 +58,11 @@ class SimulatedCar:
         """
         Put the car back as it was built: spawn pose, at rest, joints at 0, logic reset.
 
-        CarLogic.reset gives the start state of every command and estimate; simulated time
-        goes on.
+        The body is loaded afresh (CarBody.rebuild), so a reset repairs whatever state the
+        physics left it in. CarLogic.reset gives the start state of every command and
+        estimate; simulated time goes on.
         """
-        self.body.place(self.spawn, rest_joints=True)
+        self.body.rebuild(self.spawn)
         self.logic.reset()
 
     def teleport(self, position):

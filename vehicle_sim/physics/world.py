@@ -87,6 +87,15 @@ def pose_from(position, clearance_m=0.0):
     raise ValueError(f'position {position!r}: give (x, y, yaw) or (x, y, z, qx, qy, qz, qw)')
 
 
+def _vehicle_body(registered):
+    # A vehicle's body among the registered objects: one with a body_id and a name (CarBody,
+    # DiffRobotBody), or an owner holding one as ``body`` (SimulatedCar); None otherwise.
+    body = getattr(registered, 'body', registered)
+    if getattr(body, 'body_id', None) is None or not getattr(body, 'name', None):
+        return None
+    return body
+
+
 @contextmanager
 def _quiet_stdout():
     """Silence C-level stdout (PyBullet prints some notices with printf)."""
@@ -225,6 +234,17 @@ class World:
         """
         if body in self._bodies:
             return body
+        vehicle = _vehicle_body(body)
+        if vehicle is not None:
+            inside = [name for name in self.overlaps(vehicle.body_id) if name in self.obstacles]
+            if inside:
+                destroy = getattr(body, 'destroy', None)
+                if destroy is not None:
+                    destroy()
+                raise InvalidPoseError(
+                    f'vehicle {vehicle.name!r} starts inside obstacle '
+                    f'{", ".join(repr(name) for name in inside)}: its '
+                    'start pose must be clear of every obstacle (as set_pose requires)')
         self._bodies.append(body)
         self._rebuild_hooks()
         return body
@@ -267,6 +287,28 @@ class World:
         self._broadphase_stale = True
         return body_id, joints
 
+    def reload_urdf(self, body_id, urdf, position, clearance_m=0.0):
+        """
+        Replace a body by a fresh load of its URDF: the body as built, whatever state it was in.
+
+        A body that Bullet took out of the simulation (a bounding box that overflowed, e.g. after
+        a pose far beyond the world) keeps falling through the ground after any reset of its
+        pose and velocities; a new body does not. Its ray group (:meth:`ray_mask_excluding`)
+        moves to the new body, so the masks its sensors hold stay right.
+
+        :return: (new body id, {joint name: joint index}), as :meth:`load_urdf`.
+        """
+        cid = self.client_id
+        mask = self._ray_masks.pop(body_id, None)
+        pybullet.removeBody(body_id, physicsClientId=cid)
+        new_id, joints = self.load_urdf(urdf, position, clearance_m)
+        if mask is not None:
+            for link in range(-1, pybullet.getNumJoints(new_id, physicsClientId=cid)):
+                pybullet.setCollisionFilterGroupMask(new_id, link, ALL_GROUPS & ~mask,
+                                                     ALL_GROUPS, physicsClientId=cid)
+            self._ray_masks[new_id] = mask
+        return new_id, joints
+
     def base_link_velocity(self, body_id, link_position):
         """
         Velocity of a body's base link origin in the world frame.
@@ -290,11 +332,20 @@ class World:
 
         :return: its body id.
         :raises ValueError: when an obstacle of that name exists already.
+        :raises InvalidPoseError: when it would be inside a vehicle (nothing added).
         """
         from vehicle_sim.physics.obstacles import create_obstacle
         if spec.name in self.obstacles:
             raise ValueError(f'obstacle {spec.name!r} exists already')
         body_id = create_obstacle(self.client_id, spec)
+        vehicles = {v.body_id: v.name for v in map(_vehicle_body, self._bodies) if v is not None}
+        inside = [vehicles[other] for other in self._overlapping(body_id) if other in vehicles]
+        if inside:
+            pybullet.removeBody(body_id, physicsClientId=self.client_id)
+            raise InvalidPoseError(
+                f'vehicle {", ".join(repr(n) for n in inside)} starts inside obstacle '
+                f'{spec.name!r}: its start pose must be clear of every obstacle (as set_pose '
+                'requires)')
         self.obstacles[spec.name] = body_id
         self._obstacle_specs[spec.name] = spec
         self._names[body_id] = spec.name
@@ -374,6 +425,9 @@ class World:
 
         :param tolerance_m: penetration depth below which touching bodies do not overlap [m].
         """
+        return [self.body_name(other) for other in self._overlapping(body_id, tolerance_m)]
+
+    def _overlapping(self, body_id, tolerance_m=OVERLAP_TOLERANCE_M):
         cid = self.client_id
         found = []
         for index in range(pybullet.getNumBodies(physicsClientId=cid)):
@@ -382,7 +436,7 @@ class World:
                 continue
             points = pybullet.getClosestPoints(body_id, other, 0.0, physicsClientId=cid)
             if any(point[8] < -tolerance_m for point in points):
-                found.append(self.body_name(other))
+                found.append(other)
         return found
 
     def try_place(self, body_id, place):
@@ -420,9 +474,8 @@ class World:
         name = self._names.get(body_id)
         if name is not None:
             return name
-        for registered in self._bodies:
-            body = getattr(registered, 'body', registered)
-            if getattr(body, 'body_id', None) == body_id and getattr(body, 'name', None):
+        for body in map(_vehicle_body, self._bodies):
+            if body is not None and body.body_id == body_id:
                 return body.name
         return 'ground' if body_id == self.ground_id else f'body{body_id}'
 

@@ -142,7 +142,7 @@ class AutowareAutomobileNode:
         self.world.add_body(_StepHook(self._on_step))
         limits = self.state.limits
         low, high = limits.autoware_steering_range_rad
-        node.get_logger().info(
+        node.announce_ready(
             f'autoware_automobile ready: {self.input_type} on {self._input.name} drives '
             f'{self.car.params.model} (wheel_base {limits.wheelbase_m:g} m, steering tire angle '
             f'[{low:g}, {high:g}] rad, top speed {limits.max_speed_kmh / 3.6:g} m/s); timeout '

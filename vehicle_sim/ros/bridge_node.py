@@ -143,7 +143,7 @@ class AckermannToDifferentialNode:
         if warning:
             node.get_logger().warn(warning)
         outputs = ', '.join(p.topic_name for p in self._outputs.publishers.values())
-        node.get_logger().info(
+        node.announce_ready(
             f'bridge ready: {self.input_type} on {self._input.name} -> '
             f'{outputs or "no outputs"}; mode {self.params.mode}, wheel_base '
             f'{self.params.wheel_base_m:g} m, tread '

@@ -167,7 +167,7 @@ class AutomobileNode:
         names = ', '.join(f'{v.spec.name} ({v.spec.model}) under '
                           f'{node_ns}/{itf.vehicle_name("automobile", v.spec.namespace)}'
                           for v in self._vehicles)
-        self._logger.info(f'automobile ready: {names}; step {settings.time_step_ms} ms, {mode}')
+        node.announce_ready(f'automobile ready: {names}; step {settings.time_step_ms} ms, {mode}')
 
     # ------------------------------------------------------------------------------ wiring
 

@@ -52,6 +52,7 @@ from vehicle_sim.core.drive_input import DiffDriveInput
 from vehicle_sim.core.errors import InvalidCommandError, VehicleSimError
 from vehicle_sim.core.frames import pose_in_frame, quaternion_from_yaw, rpy_from_quaternion
 from vehicle_sim.core.param_spec import ParamSpec
+from vehicle_sim.core.placement import WORLD_EXTENT_M
 from vehicle_sim.core.sensor_sets import enable_sensors, selected_sensors, static_transforms
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
 from vehicle_sim.physics.gui import ChaseCamera, shortcuts_text
@@ -93,8 +94,10 @@ def _private(name):
 ROBOT_NODE_PARAMETERS = (
     ParamSpec('robot', kind='str', default='caster_robot',
               doc='robot preset in config/robots (name or YAML path)'),
-    ParamSpec('x', kind='float', default=0.0, unit='m', doc='spawn x of base_link in the world'),
-    ParamSpec('y', kind='float', default=0.0, unit='m', doc='spawn y of base_link in the world'),
+    ParamSpec('x', kind='float', default=0.0, unit='m', doc='spawn x of base_link in the world',
+              ge=-WORLD_EXTENT_M, le=WORLD_EXTENT_M),
+    ParamSpec('y', kind='float', default=0.0, unit='m', doc='spawn y of base_link in the world',
+              ge=-WORLD_EXTENT_M, le=WORLD_EXTENT_M),
     ParamSpec('yaw', kind='float', default=0.0, unit='rad', doc='spawn heading, positive = left'),
     ParamSpec('synchronous', kind='bool', default=False,
               doc='true: the world advances only through robot/time_step; false: in real time'),
@@ -187,7 +190,7 @@ class DiffRobotNode:
         if self._owns_world and not self.synchronous:
             self._timer = node.create_timer(self.world.time_step_s, self._on_timer)
         self.publish_state()
-        node.get_logger().info(
+        node.announce_ready(
             f'{self.params.model} ({self.params.drive}) ready: '
             f'{"synchronous" if self.synchronous else "real time"}, step '
             f'{self.world.time_step_s * 1000:g} ms, wheel_joints {list(self.wheel_joints)}')

@@ -87,7 +87,8 @@ def vehicle_services(prefix: str, reset_doc: str):
         Service(prefix + 'set_pose', SET_POSE, TELEPORT, value='pose', unit='m, rad',
                 doc='teleport at rest onto the ground: x, y, yaw from the pose (world frame), '
                     'z, roll, pitch from the ground; refused: NaN/inf, a quaternion norm not '
-                    'within 1e-3 of 1, a place inside an obstacle or vehicle'),
+                    'within 1e-3 of 1, x or y beyond ±1e6 m, a place inside an obstacle or '
+                    'vehicle'),
     )
 
 

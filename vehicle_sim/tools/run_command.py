@@ -19,7 +19,7 @@ import sys
 import time
 from typing import Any, Dict
 
-from vehicle_sim.tools.command import CliError, EXIT_OK, EXIT_USAGE
+from vehicle_sim.tools.command import CliError, EXIT_USAGE
 
 STATUS_PERIOD_S = 0.2
 PLAIN_STATUS_PERIOD_S = 1.0
@@ -228,7 +228,6 @@ def cmd_run(args) -> int:
     # As for the node mains, run_node shuts the node down (it leaves the graph); the world goes
     # with the process (closing the app after that would touch the destroyed node's timers).
     try:
-        run_node(build, ['vehicle-sim', *ros_args], transport=transport)
+        return run_node(build, ['vehicle-sim', *ros_args], transport=transport)
     finally:
         output.finish()
-    return EXIT_OK

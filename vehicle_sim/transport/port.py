@@ -28,6 +28,7 @@ import time
 from typing import Any, Callable, List, Optional, Union
 
 from vehicle_sim.core.errors import VehicleSimError
+from vehicle_sim.transport import stop_signals
 
 
 class TransportError(VehicleSimError):
@@ -602,6 +603,16 @@ class NodePort(abc.ABC):
 
     @abc.abstractmethod
     def get_logger(self) -> Logger: ...
+
+    def announce_ready(self, text: str) -> None:
+        """
+        Log the node's ready line (info), unless a stop was asked first.
+
+        A node interrupted in its start-up never says it is ready; under ``run_node`` the line
+        also marks the moment that decides the exit status (transport/stop_signals.py).
+        """
+        if stop_signals.mark_ready() and self.ok():
+            self.get_logger().info(text)
 
     @abc.abstractmethod
     def declare_parameter(self, name: str, default: Any, *, description: str = '',

@@ -64,6 +64,7 @@ from vehicle_sim.transport.port import (
     SetParametersResult,
     TransportError,
 )
+from vehicle_sim.transport.stop_signals import StopSignals
 
 # The most callbacks one spin_once runs after the first (what was ready, not a flood).
 DRAIN_LIMIT = 1000
@@ -423,35 +424,42 @@ def run_rclpy_node(node_factory, args=None) -> int:
     is ignored, so that it cannot interrupt the shutdown: under ``ros2 launch``
     a Ctrl-C reaches the node twice (from the terminal, then forwarded by launch), and a second
     KeyboardInterrupt inside ``destroy_node`` would print a traceback and end the process with
-    -2. The handler is installed before ``rclpy.init``, which chains rclpy's own SIGINT handling
-    (context shutdown) in front of it. This is a process's main: when it returns, SIGINT stays
-    ignored while the process ends (Python's finalization would otherwise reset it to the
-    default action, and a late second SIGINT would still kill the process with -2). SIGTERM
-    needs nothing: rclpy's handler only shuts the context down, however often it comes.
+    -2. The handlers are installed before ``rclpy.init``, which chains rclpy's own SIGINT and
+    SIGTERM handling (context shutdown) in front of them. This is a process's main: when it
+    returns, SIGINT stays ignored while the process ends (Python's finalization would otherwise
+    reset it to the default action, and a late second SIGINT would still kill the process with
+    -2). SIGTERM is only recorded: rclpy's handler shuts the context down, however often it
+    comes. Exit status and the ready line follow transport/stop_signals.py.
 
     :param node_factory: ``node_factory(args)`` returning a NodePort or an object with ``.node``.
     :param args: the command line.
-    :return: the process exit status (0 after a signal).
+    :return: the process exit status: 0, or 128 + the signal number for a signal that came
+        before the node was ready.
     """
-    stopping = []
+    stop = StopSignals()
     spinning = []
+    ending = []
 
     def on_sigint(signum, frame):
-        if not stopping:
-            stopping.append(signum)
+        if stop.signum is None and not ending:
+            stop.on_signal(signum)
             # Only while spinning: during start-up the interrupt would land anywhere, also
             # between the node's construction and the name that lets the finally destroy it.
             # rclpy's own handler has shut the context down either way.
             if spinning:
                 raise KeyboardInterrupt
 
-    previous = None
+    def on_sigterm(signum, frame):
+        stop.on_signal(signum)
+
+    previous = {}
     if threading.current_thread() is threading.main_thread():
-        previous = signal.signal(signal.SIGINT, on_sigint)
+        previous = {signal.SIGINT: signal.signal(signal.SIGINT, on_sigint),
+                    signal.SIGTERM: signal.signal(signal.SIGTERM, on_sigterm)}
 
     def restore():
-        if previous is not None:
-            signal.signal(signal.SIGINT, previous)
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
 
     try:
         rclpy.init(args=args)   # rclpy's SIGINT/SIGTERM handling, before anything is built
@@ -459,24 +467,25 @@ def run_rclpy_node(node_factory, args=None) -> int:
         restore()
         raise
     node = None
-    try:
-        app = node_factory(args)
-        node = app if isinstance(app, port.NodePort) else app.node
-        spinning.append(True)
-        if not stopping:      # a SIGINT during start-up: straight to the shutdown
-            node.spin()
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    except Exception:
-        # A signal during start-up shuts the context down under the node being built, which
-        # then fails to create its next entity: that is the requested shutdown, not an error.
-        if rclpy.ok():
-            raise
-    finally:
-        stopping.append(None)   # from here on a SIGINT is ignored
-        if node is not None:
-            node.shutdown()
-        rclpy.try_shutdown()
-        if previous is not None:
-            signal.signal(signal.SIGINT, signal.SIG_IGN)   # the process is ending
-    return 0
+    with stop:
+        try:
+            app = node_factory(args)
+            node = app if isinstance(app, port.NodePort) else app.node
+            spinning.append(True)
+            stop.spin(node)      # not after a signal during start-up: straight to the shutdown
+        except (KeyboardInterrupt, ExternalShutdownException):
+            pass
+        except Exception:
+            # A signal during start-up shuts the context down under the node being built, which
+            # then fails to create its next entity: that is the requested shutdown, not an error.
+            if rclpy.ok():
+                raise
+        finally:
+            ending.append(True)   # from here on a SIGINT is ignored
+            if node is not None:
+                node.shutdown()
+            rclpy.try_shutdown()
+            if previous:
+                restore()
+                signal.signal(signal.SIGINT, signal.SIG_IGN)   # the process is ending
+    return stop.exit_status

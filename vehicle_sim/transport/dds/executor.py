@@ -45,6 +45,7 @@ from vehicle_sim.transport.dds.services import (
     warn_unservable_clients,
 )
 from vehicle_sim.transport.port import TransportError
+from vehicle_sim.transport.stop_signals import StopSignals
 
 # How long spin() may block before it looks at shutdown requests (signals) again.
 SPIN_SLICE_S = 0.1
@@ -244,16 +245,19 @@ def run_dds_node(node_factory, args=None) -> int:
     as its construction returns, and the process ends cleanly; a signal while spinning makes
     ``spin()`` return. The handler never raises: an exception thrown into arbitrary start-up
     code (a lock, a class creation, a redirected descriptor) cannot be cleaned up reliably.
+    Exit status and the ready line follow transport/stop_signals.py.
 
     :param node_factory: ``node_factory(args)`` returning a DdsNode or an object with ``.node``.
     :param args: the command line (default ``sys.argv``).
-    :return: the process exit status (0 after a signal, as an rclpy node).
+    :return: the process exit status: 0, or 128 + the signal number for a signal that came
+        before the node was ready.
     """
     args = sys.argv if args is None else args
-    state = {'node': None, 'signalled': False}
+    state = {'node': None}
+    stop = StopSignals()
 
     def on_signal(signum, frame):
-        state['signalled'] = True
+        stop.on_signal(signum)
         node = state['node']
         if node is not None:
             node.request_shutdown()
@@ -264,23 +268,25 @@ def run_dds_node(node_factory, args=None) -> int:
             previous[signum] = signal.signal(signum, on_signal)
     node = None
     try:
-        app = node_factory(args)
-        node = app if isinstance(app, port.NodePort) else app.node
-        state['node'] = node   # from here on a signal asks spin() to return
-        if not state['signalled']:   # a signal during start-up: leave at once
-            node.spin()
-    except KeyboardInterrupt:   # SIGINT under a handler of the caller's (Python's default)
-        pass
-    except BaseException:
-        if not state['signalled']:
-            raise
-        # Start-up failed after a signal asked to stop (e.g. an endpoint refused while the
-        # process was ending): the stop is what the user asked for.
+        with stop:
+            try:
+                app = node_factory(args)
+                node = app if isinstance(app, port.NodePort) else app.node
+                state['node'] = node   # from here on a signal asks spin() to return
+                stop.spin(node)   # not after a signal during start-up: leave at once
+            except KeyboardInterrupt:   # SIGINT under a handler of the caller's (Python's)
+                stop.on_signal(signal.SIGINT)
+            except BaseException:
+                if stop.signum is None:
+                    raise
+                # Start-up failed after a signal asked to stop (e.g. an endpoint refused while
+                # the process was ending): the stop is what the user asked for.
+            finally:
+                if node is not None:
+                    node.shutdown()
+                else:
+                    Context.close_process()   # whatever an interrupted start-up left half-built
     finally:
-        if node is not None:
-            node.shutdown()
-        else:
-            Context.close_process()   # whatever an interrupted start-up left half-built
         for signum, handler in previous.items():
             signal.signal(signum, handler)
-    return 0
+    return stop.exit_status
