@@ -31,6 +31,18 @@ from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.footprint import clearance, distance_to_polyline
 from vehicle_sim.core.param_spec import ParamSpec, REQUIRED, validate_table
 from vehicle_sim.core.value_text import brief
+from vehicle_sim.scenarios.yaml_lines import line_of
+
+
+@dataclass(frozen=True)
+class CriterionSpec:
+    """One pass criterion: its kind, test name, vehicle and validated values."""
+
+    kind: str
+    name: str
+    vehicle: str
+    values: Dict[str, Any]
+    line: Optional[int] = None
 
 
 @dataclass(frozen=True)
@@ -407,8 +419,6 @@ def criteria_from_list(ctx, data, names, default_vehicle):
     :return: tuple of CriterionSpec.
     :raises ScenarioError: naming the line.
     """
-    from vehicle_sim.scenarios.schema import CriterionSpec
-    from vehicle_sim.scenarios.yaml_lines import line_of
     path = ('criteria',)
     if not isinstance(data, list) or not data:
         raise ctx.fail(path, 'criteria must be a non-empty list of {kind: ..., ...}; kinds: '

@@ -49,6 +49,12 @@ from vehicle_sim.core.world_params import (
     WORLD_KEYS,
     WorldSpec,
 )
+from vehicle_sim.scenarios.criteria import (
+    common_specs,
+    CRITERIA,
+    criteria_from_list,
+    CriterionSpec,
+)
 from vehicle_sim.scenarios.yaml_lines import error_at, line_of, load_with_lines, ScenarioError
 from vehicle_sim.webots.api_table import CAR_API, DRIVER_API
 
@@ -203,17 +209,6 @@ class DriverSpec:
 
 
 @dataclass(frozen=True)
-class CriterionSpec:
-    """One pass criterion: its kind, test name, vehicle and validated values."""
-
-    kind: str
-    name: str
-    vehicle: str
-    values: Dict[str, Any]
-    line: Optional[int] = None
-
-
-@dataclass(frozen=True)
 class ScenarioSpec:
     """A validated scenario file."""
 
@@ -326,7 +321,6 @@ def scenario_from_data(data, lines, source) -> ScenarioSpec:
                        f'{values["duration_s"]:g} s would take '
                        f'{values["duration_s"] / driver.real_time_factor:g} s of wall clock; '
                        f'at most {MAX_DURATION_S:g} s')
-    from vehicle_sim.scenarios.criteria import criteria_from_list
     criteria = criteria_from_list(ctx, data.get('criteria'), names, vehicle)
     name = values['name'] or Path(source).stem
     spec = ScenarioSpec(name, values['description'], source, world, world_file, world_data,
@@ -562,7 +556,6 @@ def _processes(ctx, value):
 def schema_markdown():
     """Return the key tables of docs/scenarios.md (the file format), generated from the specs."""
     from vehicle_sim.core.param_spec import parameter_table_markdown
-    from vehicle_sim.scenarios.criteria import common_specs, CRITERIA
     parts = ['#### Top level\n\n', parameter_table_markdown(SCENARIO_SPECS, 'key'),
              '\n#### `robots` entries\n\n', parameter_table_markdown(ROBOT_SPECS, 'key'),
              '\n#### `actors` entries\n\n', parameter_table_markdown(ACTOR_SPECS, 'key'),
