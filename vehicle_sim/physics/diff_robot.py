@@ -42,6 +42,7 @@ import pybullet
 
 from vehicle_sim.config import load_robot  # noqa: F401  (loaded there; kept importable here)
 from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
+from vehicle_sim.core.geometry import yaw_from_quaternion
 from vehicle_sim.physics.urdf import geometry_block, inertial, num, vec, wheel_inertia_kgm2
 
 CASTER_MASS_KG = 0.2
@@ -302,8 +303,7 @@ class DiffRobotBody:
 
     def yaw_rad(self):
         """Ground-truth heading of base_link [rad] (REP 103)."""
-        _, _, _, qx, qy, qz, qw = self.pose()
-        return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+        return yaw_from_quaternion(self.pose()[3:])
 
     def velocity(self):
         """

@@ -26,7 +26,6 @@ Both give a :class:`VehicleHandle` per vehicle name and call a ``director`` (the
 per-step hooks) from the world's step.
 """
 
-import math
 import os
 import struct
 import tempfile
@@ -35,6 +34,7 @@ import yaml
 
 from vehicle_sim.config import load_car, load_robot
 from vehicle_sim.core.footprint import car_outline, robot_outline
+from vehicle_sim.core.geometry import yaw_from_quaternion
 from vehicle_sim.physics.diff_robot import DiffRobotBody
 from vehicle_sim.physics.simulated_car import SimulatedCar
 from vehicle_sim.physics.world import World
@@ -42,10 +42,6 @@ from vehicle_sim.scenarios.criteria import Sample
 
 # One odometry row: time, pose (x, y, z, qx, qy, qz, qw), linear and angular velocity (world).
 ODOMETRY_ROW = struct.Struct('<14d')
-
-
-def _yaw(qx, qy, qz, qw):
-    return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
 
 
 class VehicleHandle:
@@ -87,7 +83,7 @@ class VehicleHandle:
             speed = self.body.forward_speed_mps()
         else:
             speed = self.robot.body_twist()[0][0]
-        return Sample(time_s, x, y, _yaw(qx, qy, qz, qw), speed)
+        return Sample(time_s, x, y, yaw_from_quaternion((qx, qy, qz, qw)), speed)
 
 
 def _seeded(sensors, seed):

@@ -37,6 +37,7 @@ import math
 from typing import Callable, List, Optional, Sequence, Tuple
 
 from vehicle_sim.core.diff_drive import integrate_pose, SpeedLimiter
+from vehicle_sim.core.geometry import yaw_from_quaternion
 from vehicle_sim.core.units import kmh_to_mps
 
 DT_S = 0.010                 # basic time step [s]
@@ -230,11 +231,6 @@ def _unwrap(angles):
     return out
 
 
-def _yaw(quaternion):
-    qx, qy, qz, qw = quaternion
-    return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
-
-
 def _due(time_s, period_s):
     return abs(time_s / period_s - round(time_s / period_s)) < 1e-6
 
@@ -337,7 +333,7 @@ def _bounds_or_none(stream, name):
 
 def _record_pose(track, time_s, pose):
     track.time_s.append(time_s)
-    track.pose.append((pose[0], pose[1], _yaw(pose[3:7])))
+    track.pose.append((pose[0], pose[1], yaw_from_quaternion(pose[3:7])))
 
 
 def _robot_control(rig, command, now_s, msg_type):
