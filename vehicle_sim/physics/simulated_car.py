@@ -23,8 +23,8 @@ class SimulatedCar:
     """
     CarLogic + CarBody, stepped by the World.
 
-    Each world step, before the physics: read the joints, run the driver step (webots_spec.md
-    §3.1) with the time before the step, and apply the resulting commands.
+    Each world step, before the physics: read the joints, run the driver step (wbu_driver_step of
+    Webots' driver.c) with the time before the step, and apply the resulting commands.
     """
 
     def __init__(self, world, params, position=(0.0, 0.0, 0.0), name=None):

@@ -39,8 +39,8 @@ import pybullet
 from vehicle_sim.core.errors import InvalidPoseError
 
 # Tyre-road friction coefficient of the ground (Bullet multiplies the two materials' values; car
-# wheels have 1.0). 0-100 km/h in time0To100 needs about 1.1 on the driven axle (DESIGN §3
-# "Grip"; TeslaModel3 is the hardest); Webots' vehicle worlds use coulombFriction 8.
+# wheels have 1.0). 0-100 km/h in time0To100 needs about 1.1 on the driven axle (TeslaModel3 is
+# the hardest); Webots' vehicle worlds use coulombFriction 8.
 DEFAULT_FRICTION = 1.5
 DEFAULT_TIME_STEP_S = 0.010
 DEFAULT_SUBSTEPS = 1

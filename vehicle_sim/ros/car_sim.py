@@ -283,7 +283,7 @@ class AutomobileNode:
         try:
             getattr(vehicle.logic, spec.core)(_to_core(spec.value, value))
         except InvalidCommandError as error:
-            # DESIGN §4, ROS column: success=false, nothing changed, the reason logged.
+            # Odd input on a service: success=false, nothing changed, the reason logged.
             self._logger.warn(f'{name}: refused {value!r}: {error}; nothing changed')
             response.success = False
         else:

@@ -120,7 +120,7 @@ class Service:
     :param webots: True for Webots' own names, False for our additions.
     :param observed_by: the getter service or topic that reports what a setter changed.
     :param example: a valid, non-default request value (tests).
-    :param invalid: values the node must refuse with success=false (DESIGN §4 ROS column).
+    :param invalid: values the node must refuse with success=false, nothing changed.
     :param doc: one-line description.
     :param switch: the bool parameter that enables the row (None: always served).
     :param qos: the service QoS profile.
@@ -229,7 +229,7 @@ def converter(builder, values, constants=None):
 # [(xyz, q)] in tf_frames order (None: nothing to publish).
 
 # Reliable, depth 1: rclpy's best-effort TimeSource reader and reliable readers both match
-# (DESIGN §5.2, for every node that publishes it).
+# (the same profile for every node that publishes it).
 QOS_CLOCK_PUBLISHER = QosProfile(depth=1)
 
 CLOCK = Topic(
