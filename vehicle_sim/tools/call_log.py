@@ -92,6 +92,8 @@ class CallLog:
     def lines(self) -> List[str]:
         """Return the serving node's records stamped within the call, as console lines."""
         found = []
+        if self._logger is None:   # the server's node is not on the graph (not announced)
+            return found
         for record in self._records:
             stamp_ns = record.stamp.sec * 1_000_000_000 + record.stamp.nanosec
             name = record.name

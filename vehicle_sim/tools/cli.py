@@ -44,6 +44,7 @@ from typing import List, Optional
 
 from vehicle_sim.tools.command import CliError, EXIT_FAILURE, EXIT_OK
 from vehicle_sim.tools.graph_commands import (
+    add_topic_arguments,
     cmd_call,
     cmd_echo,
     cmd_list,
@@ -54,10 +55,11 @@ from vehicle_sim.tools.graph_commands import (
 )
 from vehicle_sim.tools.run_command import cmd_run
 from vehicle_sim.tools.topic_commands import (
+    add_hz_arguments,
+    add_pub_arguments,
     cmd_hz,
     cmd_pub,
-    DEFAULT_HZ_WINDOW,
-    DEFAULT_PUB_RATE_HZ,
+    PUB_USAGE,
 )
 
 # --------------------------------------------------------------------------------------------
@@ -118,8 +120,7 @@ def build_parser() -> argparse.ArgumentParser:
     lst.set_defaults(func=cmd_list)
 
     echo = sub.add_parser('echo', help='print the messages of a topic')
-    echo.add_argument('topic', metavar='TOPIC')
-    echo.add_argument('--type', metavar='T', help='message type (default: from the graph)')
+    add_topic_arguments(echo)
     echo.add_argument('--once', action='store_true', help='print one message and exit')
     echo.add_argument('--count', type=int, metavar='N', help='print N messages and exit')
     echo.add_argument('--field', metavar='A.B',
@@ -128,40 +129,14 @@ def build_parser() -> argparse.ArgumentParser:
                       help='print at most HZ messages a second (the others are skipped)')
     echo.add_argument('--timeout', type=float, metavar='S',
                       help='fail when the messages did not come within S seconds')
-    echo.add_argument('--wait', type=float, default=DEFAULT_DISCOVERY_WAIT_S, metavar='S',
-                      help='how long to look for the topic')
     echo.set_defaults(func=cmd_echo)
 
-    pub = sub.add_parser('pub', help='publish a message to a topic',
-                         usage='vehicle-sim pub TOPIC [TYPE] VALUES [--rate HZ] [--once] '
-                               '[--times N] [--wait S]',
-                         description='VALUES is YAML ("{linear: {x: 1.0}}") or the value of a '
-                                     'single-field message; TYPE may be left out when the '
-                                     'topic is on the graph.')
-    pub.add_argument('topic', metavar='TOPIC')
-    pub.add_argument('type_and_values', nargs='+', metavar='[TYPE] VALUES')
-    pub.add_argument('--rate', type=float, default=DEFAULT_PUB_RATE_HZ, metavar='HZ',
-                     help=f'publishing rate (default {DEFAULT_PUB_RATE_HZ:g} Hz)')
-    pub.add_argument('--once', action='store_true', help='publish one message and exit')
-    pub.add_argument('--times', type=int, metavar='N', help='publish N messages and exit')
-    pub.add_argument('--wait', type=float, default=DEFAULT_DISCOVERY_WAIT_S, metavar='S',
-                     help='how long to look for the topic (and, with --once/--times, '
-                          'for a subscriber)')
+    pub = sub.add_parser('pub', help='publish a message to a topic', usage=PUB_USAGE)
+    add_pub_arguments(pub)
     pub.set_defaults(func=cmd_pub)
 
-    hz = sub.add_parser('hz', help="print a topic's rate",
-                        description='Average rate and min/max/std dev of the period over the '
-                                    'last --window messages, every second.')
-    hz.add_argument('topic', metavar='TOPIC')
-    hz.add_argument('--type', metavar='T', help='message type (default: from the graph)')
-    hz.add_argument('--window', type=int, default=DEFAULT_HZ_WINDOW, metavar='N',
-                    help=f'messages in the window (default {DEFAULT_HZ_WINDOW})')
-    hz.add_argument('--count', type=int, metavar='N',
-                    help='stop after N messages, with a last report')
-    hz.add_argument('--duration', type=float, metavar='S',
-                    help='stop after S seconds, with a last report')
-    hz.add_argument('--wait', type=float, default=DEFAULT_DISCOVERY_WAIT_S, metavar='S',
-                    help='how long to look for the topic')
+    hz = sub.add_parser('hz', help="print a topic's rate")
+    add_hz_arguments(hz)
     hz.set_defaults(func=cmd_hz)
 
     call = sub.add_parser('call', help='call a service',

@@ -48,7 +48,7 @@ DEFAULT_CALL_TIMEOUT_S = 5.0
 # --------------------------------------------------------------------------------------------
 # Shared helpers of the graph commands
 
-def _absolute(name: str) -> str:
+def absolute_name(name: str) -> str:
     return name if name.startswith('/') else '/' + name
 
 
@@ -82,7 +82,7 @@ def _nothing_found(domain_id: int) -> str:
             '(README, "Try it")')
 
 
-class _Session:
+class GraphSession:
     """The CLI's graph view and (created on demand) its hidden helper node."""
 
     def __init__(self):
@@ -186,7 +186,7 @@ def _call(node, srv_type: str, service: str, request, timeout_s: float):
 # list
 
 def cmd_list(args) -> int:
-    session = _Session()
+    session = GraphSession()
     try:
         session.graph.wait(args.wait)
         graph = session.graph
@@ -232,7 +232,15 @@ def _print_list(graph, show_all: bool) -> None:
 # --------------------------------------------------------------------------------------------
 # echo
 
-def subscribe(session: '_Session', args, on_message):
+def add_topic_arguments(parser) -> None:
+    """Add what every topic command takes: TOPIC, ``--type`` and ``--wait``."""
+    parser.add_argument('topic', metavar='TOPIC')
+    parser.add_argument('--type', metavar='T', help='message type (default: from the graph)')
+    parser.add_argument('--wait', type=float, default=DEFAULT_DISCOVERY_WAIT_S, metavar='S',
+                        help='how long to look for the topic')
+
+
+def subscribe(session: 'GraphSession', args, on_message):
     """
     Subscribe the helper node to ``args.topic`` (type from ``args.type`` or the graph).
 
@@ -246,7 +254,7 @@ def subscribe(session: '_Session', args, on_message):
         TRANSIENT_LOCAL,
         VOLATILE,
     )
-    topic = _absolute(args.topic)
+    topic = absolute_name(args.topic)
     graph = session.graph
     ros_type = session.resolve_type('topic', topic, args.type, args.wait, must_exist=False)
     graph.wait_until(lambda: bool(graph.publishers(topic)), min(args.wait, 1.0))
@@ -290,7 +298,7 @@ def cmd_echo(args) -> int:
         raise CliError('--count must be >= 1', EXIT_USAGE)
     if args.rate is not None and not args.rate > 0.0:
         raise CliError(f'--rate must be > 0 Hz, got {args.rate:g}', EXIT_USAGE)
-    session = _Session()
+    session = GraphSession()
     try:
         received = []
         rate = PrintRate(args.rate)
@@ -326,8 +334,8 @@ def cmd_echo(args) -> int:
 def cmd_call(args) -> int:
     from vehicle_msgs_py import service_types
     from vehicle_sim.tools.call_log import CallLog
-    service = _absolute(args.service)
-    session = _Session()
+    service = absolute_name(args.service)
+    session = GraphSession()
     try:
         srv_type = session.resolve_type('service', service, args.type, args.wait)
         request = build_request(service_types(srv_type).request, args.value)
@@ -354,8 +362,8 @@ _PARAM_LABELS = {
 }
 
 
-def _param_node(session: _Session, name: str, wait_s: float) -> str:
-    fqn = _absolute(name)
+def _param_node(session: GraphSession, name: str, wait_s: float) -> str:
+    fqn = absolute_name(name)
     graph = session.graph
     if not graph.wait_until(lambda: graph.find_node(fqn) is not None, wait_s):
         raise _not_found('node', fqn, graph, graph.node_names(), wait_s)
@@ -367,7 +375,7 @@ def cmd_param(args) -> int:
     from vehicle_sim.transport.dds import param_messages
     from vehicle_sim.transport.params import parse_parameter_value
     from vehicle_sim.transport.port import TransportError
-    session = _Session()
+    session = GraphSession()
     try:
         fqn = _param_node(session, args.node, args.wait)
         node = session.node

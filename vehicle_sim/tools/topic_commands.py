@@ -26,7 +26,13 @@ import time
 from typing import Optional, Sequence
 
 from vehicle_sim.tools.command import CliError, EXIT_OK, EXIT_USAGE, install_stop_handlers
-from vehicle_sim.tools.graph_commands import _absolute, _Session, subscribe
+from vehicle_sim.tools.graph_commands import (
+    absolute_name,
+    add_topic_arguments,
+    DEFAULT_DISCOVERY_WAIT_S,
+    GraphSession,
+    subscribe,
+)
 from vehicle_sim.tools.message_yaml import build_request, format_line
 
 # ros2 topic pub: 1 Hz unless --rate; ros2 topic hz: a window of 10000 messages, a report
@@ -39,10 +45,27 @@ HZ_REPORT_PERIOD_S = 1.0
 KEEP_ALIVE_S = 0.1
 # pkg/msg/Name or pkg/Name: a TYPE, not VALUES.
 _TYPE_NAME = re.compile(r'^[A-Za-z]\w*/(msg/)?[A-Za-z]\w*$')
+PUB_USAGE = 'vehicle-sim pub TOPIC [TYPE] VALUES [--rate HZ] [--once] [--times N] [--wait S]'
 
 
 # --------------------------------------------------------------------------------------------
 # pub
+
+def add_pub_arguments(parser) -> None:
+    """Add the arguments of ``vehicle-sim pub``."""
+    parser.description = ('VALUES is YAML ("{linear: {x: 1.0}}") or the value of a '
+                          'single-field message; TYPE may be left out when the topic is on '
+                          'the graph. Options go before TOPIC or after VALUES.')
+    parser.add_argument('topic', metavar='TOPIC')
+    parser.add_argument('type_and_values', nargs='+', metavar='[TYPE] VALUES')
+    parser.add_argument('--rate', type=float, default=DEFAULT_PUB_RATE_HZ, metavar='HZ',
+                        help=f'publishing rate (default {DEFAULT_PUB_RATE_HZ:g} Hz)')
+    parser.add_argument('--once', action='store_true', help='publish one message and exit')
+    parser.add_argument('--times', type=int, metavar='N', help='publish N messages and exit')
+    parser.add_argument('--wait', type=float, default=DEFAULT_DISCOVERY_WAIT_S, metavar='S',
+                        help='how long to look for the topic (and, with --once/--times, '
+                             'for a subscriber)')
+
 
 def split_type_and_values(words: Sequence[str]):
     """
@@ -67,14 +90,14 @@ def _pub_qos():
 
 def cmd_pub(args) -> int:
     from vehicle_msgs_py import types as msg_types
-    topic = _absolute(args.topic)
+    topic = absolute_name(args.topic)
     given_type, values = split_type_and_values(args.type_and_values)
     times = 1 if args.once else args.times
     if times is not None and times < 1:
         raise CliError('--times must be >= 1', EXIT_USAGE)
     if not args.rate > 0.0:
         raise CliError(f'--rate must be > 0 Hz, got {args.rate:g}', EXIT_USAGE)
-    session = _Session()
+    session = GraphSession()
     try:
         ros_type = session.resolve_type(
             'topic', topic, given_type, args.wait, must_exist=given_type is None,
@@ -114,6 +137,19 @@ def cmd_pub(args) -> int:
 # --------------------------------------------------------------------------------------------
 # hz
 
+def add_hz_arguments(parser) -> None:
+    """Add the arguments of ``vehicle-sim hz``."""
+    parser.description = ('Average rate and min/max/std dev of the period over the last '
+                          '--window messages, every second.')
+    add_topic_arguments(parser)
+    parser.add_argument('--window', type=int, default=DEFAULT_HZ_WINDOW, metavar='N',
+                        help=f'messages in the window (default {DEFAULT_HZ_WINDOW})')
+    parser.add_argument('--count', type=int, metavar='N',
+                        help='stop after N messages, with a last report')
+    parser.add_argument('--duration', type=float, metavar='S',
+                        help='stop after S seconds, with a last report')
+
+
 def rate_report(arrivals_s: Sequence[float]) -> Optional[str]:
     """
     Return ``ros2 topic hz``'s report of message arrival times, None for fewer than two.
@@ -140,7 +176,7 @@ def cmd_hz(args) -> int:
         raise CliError(f'--count must be >= 2 messages, got {args.count}', EXIT_USAGE)
     if args.duration is not None and not args.duration > 0.0:
         raise CliError(f'--duration must be > 0 s, got {args.duration:g}', EXIT_USAGE)
-    session = _Session()
+    session = GraphSession()
     try:
         arrivals = deque(maxlen=args.window)
         received = [0]
