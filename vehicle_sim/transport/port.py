@@ -324,6 +324,10 @@ class Time:
 # --------------------------------------------------------------------------------------------
 # The port
 
+# Severity names of rcutils' console output, by level.
+LOG_LEVEL_NAMES = {10: 'DEBUG', 20: 'INFO', 30: 'WARN', 40: 'ERROR', 50: 'FATAL'}
+
+
 class Logger(abc.ABC):
     """A node logger: rcutils-like console output plus /rosout."""
 
