@@ -86,8 +86,9 @@ class AutomobileNode:
     Simulated cars behind Webots' ros_automobile interface.
 
     In-process API (tests, benchmarks): :meth:`step_once`, :meth:`step`, :meth:`reset` (as
-    /sim/reset), :attr:`paused`, :attr:`world`, :attr:`vehicles` (namespace -> SimulatedCar),
-    :attr:`settings`, :meth:`close`.
+    /sim/reset), :attr:`paused`, :attr:`world`, :attr:`scene` (the Scene the scene builder
+    made: vehicles by name with body, car and sensor feed), :attr:`vehicles` (namespace ->
+    SimulatedCar), :attr:`settings`, :meth:`close`.
     """
 
     def __init__(self, args=None, *, transport: Optional[str] = None,
