@@ -159,16 +159,17 @@ def _car_sensors(model):
     return load_car(model).sensor_set
 
 
-def world_from_data(data, source, default_model='Car') -> WorldSpec:
+def world_from_data(data, source, default_model='Car', vehicles_required=True) -> WorldSpec:
     """
     Validate a world mapping; car models are resolved in config/cars.
 
     :param data: the YAML content.
     :param source: file name quoted in errors.
     :param default_model: model of the vehicles that give none.
+    :param vehicles_required: refuse a world without vehicles (see world_from_dict).
     :raises InvalidParameterError: naming file, entry and field.
     """
-    return world_from_dict(data, source, default_model, _car_sensors)
+    return world_from_dict(data, source, default_model, _car_sensors, vehicles_required)
 
 
 def load_world(name_or_path, default_model='Car') -> WorldSpec:
