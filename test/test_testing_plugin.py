@@ -104,7 +104,7 @@ def test_plugin_collects_scenario_files_one_test_per_criterion(tmp_path):
     assert 'scenario_blind.yaml::no_collision FAILED' in out
     assert 'scenario_blind.yaml::clearance FAILED' in out
     assert 'scenario_stop.yaml::no_collision PASSED' in out
-    assert 'no_collision: 1 collision(s): wall' in out
+    assert 'no_collision: 1 collision: wall' in out
 
 
 def test_client_topics_subscribes_clock_and_the_named_topics_only_and_latest_is_exact():
