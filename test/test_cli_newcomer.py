@@ -62,3 +62,43 @@ def test_scenario_output_that_cannot_be_written_is_refused_before_the_run(tmp_pa
     assert result.stderr.count('\n') == 1
     assert result.stderr.startswith(f'vehicle-sim scenario: {option} {blocker / "out"}: '
                                     'cannot create its folder')
+
+
+@pytest.mark.parametrize('option, value, what', [
+    ('--world', 'no/such/world.yaml', 'world'),
+    ('--world', 'missing.yaml', 'world'),
+    ('--car', 'my_car.yaml', 'car'),
+    ('--car', 'cars/MyCar', 'car'),
+])
+def test_run_with_a_path_that_does_not_exist_says_so(option, value, what):
+    # A path (a slash, or a .yaml name) is not a preset name: no list of presets.
+    result = vehicle_sim('run', option, value, '--duration', '5', '--no-status')
+    assert result.returncode == 2
+    assert result.stderr == (f"vehicle-sim run: {option} {value}: {what} file '{value}' does not "
+                             f'exist (relative to {os.getcwd()})\n')
+
+
+def test_run_with_an_unknown_preset_name_lists_the_known_ones():
+    result = vehicle_sim('run', '--car', 'Tesla', '--duration', '5', '--no-status')
+    assert result.returncode == 2
+    assert result.stderr.startswith("vehicle-sim run: --car Tesla: unknown car 'Tesla'; known: "
+                                    'BmwX5, Car, ')
+
+
+def test_run_refuses_arguments_after_the_separator_that_are_not_ros_arguments():
+    # '-p' means something only inside --ros-args: the node would have ignored it silently.
+    result = vehicle_sim('run', '--duration', '5', '--no-status', '--', '-p', 'friction:=2')
+    assert result.returncode == 2
+    assert result.stdout == ''
+    assert result.stderr == ("vehicle-sim run: arguments after '--' must be ROS arguments after "
+                             "--ros-args, e.g. '-- --ros-args -p friction:=2'; not understood: "
+                             '-p friction:=2\n')
+
+
+def test_run_with_a_parameter_of_the_wrong_type_names_both_types_and_the_value():
+    result = vehicle_sim('run', '--duration', '5', '--no-status', '--', '--ros-args', '-p',
+                         'time_step_ms:=abc')
+    assert result.returncode == 2
+    assert ("vehicle-sim run: parameter 'time_step_ms' override 'abc' rejected: Wrong parameter "
+            "type, parameter {time_step_ms} is of type {integer}, setting it to {string} 'abc' "
+            'is not allowed.\n') in result.stderr

@@ -312,7 +312,7 @@ def test_node_declares_every_parameter_of_its_table(name):
     ('ackermann_to_differential', {'wheel_joints': ['a_joint', 'b_joint']},
      'must contain exactly one of "left" or "right"'),
     ('automobile', {'time_step_ms': 0}, 'time_step_ms = 0: must be in 1 .. 1000'),
-    ('automobile', {'car_model': 'NoSuchCar'}, "car_model = 'NoSuchCar': unknown car model"),
+    ('automobile', {'car_model': 'NoSuchCar'}, "car_model = 'NoSuchCar': unknown car 'NoSuchCar'; known: BmwX5"),
     ('autoware_automobile', {'status_rate_hz': -1.0}, 'status_rate_hz = -1.0: must be > 0'),
     ('autoware_automobile', {'timeout_action': 'stop'},
      "timeout_action = 'stop': must be one of brake, coast, hold"),
