@@ -48,6 +48,26 @@ def test_user_example_passes_with_the_plugin():
     assert '3 passed' in result.stdout
 
 
+def test_user_example_passes_when_the_installed_plugin_is_also_named_with_p():
+    # What users of other pytest plugins type; it used to fail with "Plugin already registered
+    # under a different name" and run no test.
+    result = _child_pytest(REPO_ROOT, EXAMPLE, '-q', '-p', 'vehicle_sim.testing')
+    assert result.returncode == 0, result.stdout[-4000:] + result.stderr[-2000:]
+    assert '3 passed' in result.stdout
+
+
+def test_plugin_named_in_a_conftest_is_the_installed_one(tmp_path):
+    (tmp_path / 'conftest.py').write_text("pytest_plugins = ['vehicle_sim.testing']\n",
+                                          encoding='utf-8')
+    (tmp_path / 'test_fixture.py').write_text(
+        'def test_fixture_is_there(request):\n'
+        "    assert request.config.pluginmanager.has_plugin('vehicle_sim.testing')\n",
+        encoding='utf-8')
+    result = _child_pytest(tmp_path, '-q')
+    assert result.returncode == 0, result.stdout[-4000:] + result.stderr[-2000:]
+    assert '1 passed' in result.stdout
+
+
 def test_stamp_helpers_read_header_and_clock_stamps():
     from vehicle_msgs_py import message_type
     from vehicle_sim.testing import stamp_ns, stamp_s

@@ -16,7 +16,8 @@
 pytest plugin: test ROS 2 code against the simulator with plain pytest, no launch_testing.
 
 Enable it with ``-p vehicle_sim.testing`` (or ``pytest_plugins = ['vehicle_sim.testing']`` in a
-``conftest.py``; an installed vehicle_sim registers it as the ``vehicle_sim`` pytest11 plugin).
+``conftest.py``); an installed vehicle_sim registers it as the pytest11 plugin of the same name,
+``vehicle_sim.testing``, so naming it again is harmless.
 
 The ``automobile_node`` fixture starts the automobile node in **synchronous** mode in a
 subprocess and yields an :class:`AutomobileSim` whose ``client`` is a node on the selected
