@@ -152,6 +152,43 @@ def test_client_topics_subscribes_clock_and_the_named_topics_only_and_latest_is_
         sim.close()
 
 
+def test_client_calls_every_service_the_node_serves_sim_reset_and_sim_pause_too():
+    from vehicle_sim.graph import demangle_service, GraphView
+    from vehicle_sim.testing import AutomobileSim
+    sim = AutomobileSim(topics=('current_speed',))
+    try:
+        car = sim.client
+        assert car.call('set_cruising_speed', 30.0).success
+        car.step(100)
+        assert car.latest('current_speed').data > 5.0
+        assert car.call('/sim/reset').success
+        car.step()
+        assert car.latest('current_speed').data == pytest.approx(0.0, abs=0.05)
+        # Reached the node: a synchronous simulation refuses to pause (its clients step it).
+        assert car.call('/sim/pause', True).success is False
+        # One table: every service the node announces (its own, not rcl_interfaces' parameter
+        # services) is a name the client takes.
+        with GraphView() as graph:
+            assert graph.wait_until(lambda: '/sim/pause' in graph.services(), 30.0)
+            # the request readers of the node's process (the one serving /sim/pause)
+            readers = [e for e in graph.endpoints()
+                       if not e.is_writer and e.dds_topic.startswith('rq/')]
+            node = {e.participant for e in readers
+                    if demangle_service(e.dds_topic) == '/sim/pause'}
+            served = {demangle_service(e.dds_topic) for e in readers
+                      if e.participant in node} - {None}
+        parameter_services = {'/automobile/' + name for name in (
+            'describe_parameters', 'get_parameters', 'get_parameter_types', 'list_parameters',
+            'set_parameters', 'set_parameters_atomically')}
+        assert parameter_services <= served
+        served -= parameter_services
+        assert '/sim/reset' in served and '/automobile/set_gear' in served
+        for name in served:
+            assert car._find(name, car._itf.NODE_SERVICES, 'service')[1] == name
+    finally:
+        sim.close()
+
+
 def test_client_topics_refuses_unknown_names_and_a_single_string_before_starting_a_node():
     from vehicle_sim.testing import AutomobileClient
     with pytest.raises(KeyError, match='did you mean: /automobile/current_speed'):

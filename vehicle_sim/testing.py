@@ -377,7 +377,7 @@ class AutomobileClient:
 
         :return: the response (``.success`` for setters, ``.value`` for getters).
         """
-        spec, full = self._find(name, self._itf.SERVICES, 'service')
+        spec, full = self._find(name, self._itf.NODE_SERVICES, 'service')
         timeout_s = self.timeout_s if timeout_s is None else timeout_s
         client = self._clients.get(full)
         if client is None:
