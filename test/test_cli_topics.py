@@ -114,6 +114,23 @@ def test_accepted_call_prints_the_response_only(automobile):
     assert (result.returncode, result.stdout) == (0, 'success: true\n'), result.stderr
 
 
+def test_brake_while_cruising_is_taken_with_a_warning_saying_what_to_do(automobile):
+    assert vehicle_sim('call', '/automobile/set_cruising_speed', '20').stdout == \
+        'success: true\n'
+    try:
+        result = vehicle_sim('call', '/automobile/set_brake_intensity', '1')
+        assert result.returncode == 0, result.stderr
+        response, *logs = result.stdout.splitlines()
+        assert response == 'success: true'      # taken, as Webots takes it
+        assert [re.sub(r'\[\d+\.\d{9}\]', '[T]', line) for line in logs] == [
+            '[WARN] [T] [automobile]: automobile/set_brake_intensity: brake intensity 1 has no '
+            'effect while cruise control holds 20 km/h (the driven wheels follow the cruising '
+            'speed): set the cruising speed to 0 to slow down, or set the throttle (TORQUE '
+            'mode) so that the brake acts']
+    finally:
+        vehicle_sim('call', '/automobile/set_brake_intensity', '0')
+
+
 def test_refusal_reaches_rosout_as_rcl_log_with_its_call_site(automobile):
     listener = DdsNode('rosout_listener', '/tp_topics_test',
                        args=['--ros-args', '--disable-rosout-logs'])

@@ -341,11 +341,23 @@ class CarLogic:
         """
         Brake all four wheels; the brake light follows (wbu_driver_set_brake_intensity).
 
+        While cruise control holds a speed other than 0 (SPEED mode) the brake is taken but
+        barely acts: the driven wheels' motors hold the cruising speed (1e8 N·m, as in Webots'
+        driver.c, which neither changes the mode nor warns). The call returns a note saying so,
+        which the Webots facade, the nodes and the scenario runner show as a warning.
+
         :param intensity: brake in [0, 1]; braking torque per wheel = intensity·brakeCoefficient.
+        :return: None, or why this brake has no effect now and what to do instead.
         :raises InvalidCommandError: non-finite or outside [0, 1].
         """
         self._brake = _number_in('brake intensity', intensity, 0.0, 1.0)
         self._lights.brake = self._brake > 0.0
+        if self._brake > 0.0 and self._mode == ControlMode.SPEED and self._cruising_kmh != 0.0:
+            return (f'brake intensity {self._brake:g} has no effect while cruise control holds '
+                    f'{self._cruising_kmh:g} km/h (the driven wheels follow the cruising speed): '
+                    'set the cruising speed to 0 to slow down, or set the throttle (TORQUE '
+                    'mode) so that the brake acts')
+        return None
 
     def set_gear(self, gear):
         """

@@ -128,6 +128,7 @@ class AutomobileNode:
     def _build(self):
         node = self.node
         self._logger = node.get_logger()
+        self._warn_setter_note = ThrottledWarning(self._logger)
         self.settings = settings = declare_parameters(node)
         spec = self._with_sensor_parameter(world_spec(settings))
         # Collisions are watched when there is something besides the ground to hit.
@@ -284,13 +285,15 @@ class AutomobileNode:
     def _handle_setter(self, spec, vehicle, name, request, response):
         value = request.value
         try:
-            getattr(vehicle.logic, spec.core)(_to_core(spec.value, value))
+            note = getattr(vehicle.logic, spec.core)(_to_core(spec.value, value))
         except InvalidCommandError as error:
             # DESIGN §4, ROS column: success=false, nothing changed, the reason logged.
             self._logger.warn(f'{name}: refused {value!r}: {error}; nothing changed')
             response.success = False
         else:
             response.success = True
+            if note is not None:    # taken, but without effect now (e.g. a brake in SPEED mode)
+                self._warn_setter_note.warn(f'{name}: {note}')
             if spec.name in itf.LONGITUDINAL_SERVICES:
                 # A later service call wins over the last cmd_vel/drive command: the watchdog
                 # lets it stand until the next command arrives (docs/drive.md, precedence).

@@ -95,6 +95,7 @@ def report_lines(result):
             low, high = result.spread[criterion.name]
             line += f' [over {result.runs} runs: min {_shown(low)}, max {_shown(high)}]'
         lines.append(line)
+    lines.extend(f'  note: {note}' for note in result.notes)
     if result.error:
         lines.append(f'  ERROR run: {result.error}')
     passed = sum(c.passed for c in result.criteria)

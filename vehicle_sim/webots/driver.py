@@ -181,6 +181,7 @@ class Driver:
 
     def __init__(self, car=None, world=None, position=None, gui=False,
                  time_step_ms=None, duration_s=None, name=None, world_file=None, sensors=None):
+        self._last_note = None     # the last setter note shown (see _make_setter)
         host = current_host()
         if host is not None:
             self._bind(host, sensors)
@@ -392,7 +393,12 @@ def _make_setter(row):
                     clamped = min(max(value, low), high)
                     _warn(f'{row.setter}({value!r}): {valid}; used {clamped:g} instead')
                     value = type(value)(clamped)
-        getattr(self.logic, core_setter)(value)
+        note = getattr(self.logic, core_setter)(value)
+        # Taken, but without effect now (a brake while cruise control holds a speed): said once
+        # until the situation changes, not at every step of a controller that keeps braking.
+        if note is not None and note != self._last_note:
+            _warn(f'{row.setter}({value!r}): {note}')
+        self._last_note = note
 
     setter.__name__ = row.setter
     setter.__doc__ = f'Webots {row.setter}(){": " + row.doc if row.doc else ""}' + (
