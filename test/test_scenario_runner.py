@@ -202,7 +202,7 @@ def test_cli_scenario_exit_status_is_0_only_when_all_pass(tmp_path, capsys):
     assert 'PASS: 4/4 criteria passed' in out
     assert ElementTree.parse(junit).getroot().find('testsuite').get('failures') == '0'
     assert main(['scenario', str(BLIND), '--no-progress']) == 1
-    assert 'FAIL  no_collision: 1 collisions' in capsys.readouterr().out
+    assert 'FAIL  no_collision: 1 collision  (1 collision: wall' in capsys.readouterr().out
 
 
 def test_cli_scenario_invalid_file_exits_2_naming_the_line(tmp_path, capsys):

@@ -156,6 +156,8 @@ class ParamSpec:
         try:
             self.parse(value)
         except ParamRefused as refused:
+            if value is REQUIRED:
+                return f'{self.key} {refused.reason}'
             return f'{self.key} = {brief(_shown(refused, value))}: {refused.reason}'
         return None
 
@@ -195,6 +197,8 @@ def _is_number(value):
 
 
 def fail(source, key, value, reason, what='field'):
+    if value is REQUIRED:       # nothing to quote: "field 'driver' is required"
+        raise InvalidParameterError(f'{source}: {what} {key!r} {reason}')
     raise InvalidParameterError(f'{source}: {what} {key!r} = {brief(value)}: {reason}')
 
 

@@ -265,6 +265,9 @@ POSE_SERVICES = vehicle_services(
 SERVICES = AUTOMOBILE_SERVICES + ROBOT_SERVICES + POSE_SERVICES
 # Served and read once per node (global names): /sim/reset, /sim/pause and /initialpose.
 # WORLD_SERVICES, WORLD_INPUTS: imported above from ros/sim_control.py.
+# Every service row of an automobile node: each vehicle's, then the node's world services
+# (what the docs list and what a client such as vehicle_sim.testing may call).
+NODE_SERVICES = SERVICES + WORLD_SERVICES
 
 # Setters of the car's speed: a call after a cmd_vel/drive command holds until the next command
 # (the watchdog stands down); steering setters win over the last command's steering only.
@@ -332,7 +335,7 @@ def interface_table_markdown() -> str:
                                   _docs_name, first='input').rstrip('\n'), '',
              '| service | type | maps to | value | unit | refused (success=false) | notes |',
              '|---|---|---|---|---|---|---|']
-    for spec in SERVICES + WORLD_SERVICES:
+    for spec in NODE_SERVICES:
         if spec.kind in (SETTER, GETTER):
             target = f'CarLogic.{spec.core}'
         elif spec.kind == DIMENSIONS:

@@ -142,7 +142,7 @@ class Director:
         for actor in self.spec.actors:
             handle = self.vehicles[actor.vehicle]
             self.actors.append(CarActor(actor, handle.car) if handle.is_car
-                               else RobotActor(actor, handle.robot))
+                               else RobotActor(actor, handle.body))
         for name, handle in self.vehicles.items():   # every vehicle: the plot marks them
             monitor = CollisionMonitor(self.world, handle.body)
             self.world.remove(monitor)      # stepped from post_step, after the physics

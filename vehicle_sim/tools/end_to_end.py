@@ -267,12 +267,15 @@ def run_robots(stream, robots=ROBOTS, bridge_overrides=None, transport='dds',
     :param record_every: record wheel speeds every n steps.
     :return: {preset: Track}.
     """
-    from vehicle_sim.physics.world import World
+    from vehicle_sim.core.geodesy import GeodeticOrigin
+    from vehicle_sim.core.world_params import WorldSpec
+    from vehicle_sim.physics.scene import build_scene
     from vehicle_sim.ros import bridge_interfaces as bi
     from vehicle_sim.ros.bridge_node import AckermannToDifferentialNode
     from vehicle_sim.ros.diff_robot_node import DiffRobotNode
 
-    world = World(time_step_s=DT_S)
+    # An empty world the robot nodes fill (each through the scene builder).
+    world = build_scene(WorldSpec(GeodeticOrigin(), (), ()), time_step_s=DT_S).world
     rigs = []
     try:
         for index, preset in enumerate(robots):

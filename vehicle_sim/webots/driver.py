@@ -33,6 +33,7 @@ looked up by its device name. Sensors are mounted by a world file (``world_file=
 car preset's sensors, which carry the Webots car PROTOs' device names).
 """
 
+from dataclasses import replace
 import math
 import numbers
 import os
@@ -42,9 +43,9 @@ from vehicle_sim.config import load_car, load_world
 from vehicle_sim.core.drivetrain import ControlMode
 from vehicle_sim.core.geodesy import GeodeticOrigin
 from vehicle_sim.core.sensor_sets import enable_sensors
+from vehicle_sim.core.world_params import VehicleSpec, WorldSpec
+from vehicle_sim.physics.scene import build_scene, mount_suite
 from vehicle_sim.physics.sensors import SensorSuite
-from vehicle_sim.physics.simulated_car import SimulatedCar
-from vehicle_sim.physics.world import World
 from vehicle_sim.webots.api_table import (
     CAR_API,
     CAR_WHEEL_API,
@@ -187,8 +188,8 @@ class Driver:
         car = car if car is not None else os.environ.get('VEHICLE_SIM_CAR', 'Car')
         if world is None and world_file is None:
             world_file = os.environ.get('VEHICLE_SIM_WORLD') or None
-        scene = load_world(world_file, car) if world is None and world_file else None
-        vehicle = scene.vehicles[0] if scene is not None else None
+        spec = load_world(world_file, car) if world is None and world_file else None
+        vehicle = spec.vehicles[0] if spec is not None else None
         params = load_car(vehicle.model if vehicle is not None else car)
         if position is None:
             position = ((vehicle.x_m, vehicle.y_m, vehicle.yaw_rad) if vehicle is not None
@@ -199,25 +200,26 @@ class Driver:
         if sensors is not None:
             specs = enable_sensors(specs, sensors, 'Driver(sensors=...)')
         self._owns_world = world is None
-        if world is None:
-            step_s = 0.010 if time_step_ms is None else time_step_ms / 1000.0
-            world = World(time_step_s=step_s, gui=gui)
-        elif time_step_ms is not None and abs(time_step_ms / 1000.0 - world.time_step_s) > 1e-12:
+        if world is not None and time_step_ms is not None and \
+                abs(time_step_ms / 1000.0 - world.time_step_s) > 1e-12:
             raise ValueError(f"time_step_ms={time_step_ms} differs from the shared world's "
                              f'{world.time_step_s * 1000.0:g} ms')
-        self.world = world
-        self._others = []
-        if scene is not None:
-            for obstacle in scene.obstacles:
-                world.add_obstacle(obstacle)
-            name = name or vehicle.name
-            self._others = [SimulatedCar(world, load_car(other.model),
-                                         (other.x_m, other.y_m, other.yaw_rad), name=other.name)
-                            for other in scene.vehicles[1:]]
-        self.simulated_car = SimulatedCar(world, params, position, name=name)
+        # This Driver's car: the world file's first vehicle (its name, pose and sensors as
+        # given here), added after the others, which stand held where the file puts them.
+        name = name or (vehicle.name if vehicle is not None else params.model)
+        x_m, y_m, yaw_rad = position
+        driven = VehicleSpec(name, '', params.model, x_m, y_m, yaw_rad, specs)
+        spec = (replace(spec, vehicles=spec.vehicles[1:] + (driven,)) if spec is not None
+                else WorldSpec(GeodeticOrigin(), (driven,), ()))
+        scene = build_scene(
+            spec, world, time_step_s=0.010 if time_step_ms is None else time_step_ms / 1000.0,
+            gui=gui, params={name: params},
+            mount=lambda built, scene: mount_suite(built, scene) if built.name == name else None)
+        self.world = world = scene.world
+        self._others = [scene.vehicles[other.name].car for other in spec.vehicles[:-1]]
+        self.simulated_car = scene.vehicles[name].car
         self.logic = self.simulated_car.logic
-        self.sensors = SensorSuite(world, self.simulated_car.body, specs,
-                                   scene.origin if scene is not None else GeodeticOrigin())
+        self.sensors = scene.vehicles[name].sensors
         self._devices = devices_of(self.sensors)
         self._duration_s = duration_s
         self._sync = _WorldSync.of(world)
