@@ -29,13 +29,19 @@ from pathlib import Path
 
 import pytest
 
+from vehicle_sim.config import load_car, load_world
 from vehicle_sim.core import sensor_params
 from vehicle_sim.core.sensor_params import check_layer, LidarSpec, sensor_from_dict, SENSOR_TYPES
-from vehicle_sim.core.sensor_sets import static_transforms
+from vehicle_sim.core.sensor_sets import check_sensor_set, static_transforms
+from vehicle_sim.physics import World
 from vehicle_sim.physics.sensor_urdf import sensor_links_urdf
-from vehicle_sim.physics.sensors import Sensor, SENSOR_CLASSES
-from vehicle_sim.ros.sensor_interfaces import SENSOR_ROWS
-from vehicle_sim.webots.api_table import DEVICE_API
+from vehicle_sim.physics.sensors import Sensor, SENSOR_CLASSES, SensorSuite
+from vehicle_sim.physics.sensors.distance import DistanceSensor
+from vehicle_sim.physics.simulated_car import SimulatedCar
+from vehicle_sim.ros import messages as m
+from vehicle_sim.ros.sensor_interfaces import SENSOR_ROWS, sensor_rows
+from vehicle_sim.webots import devices
+from vehicle_sim.webots.api_table import DEVICE_API, DeviceRow
 from vehicle_sim.webots.devices import Device, DEVICE_CLASSES
 
 PACKAGE = Path(__file__).resolve().parent.parent / 'vehicle_sim'
@@ -153,3 +159,33 @@ def test_an_image_frame_comes_from_the_spec_contract_not_from_the_camera_type():
         ('car/base_link', 'car/l'), ('car/l', 'car/l_image')]
     assert 'car/l_image_joint' in sensor_links_urdf((imaging,), 'car/')
     assert 'car/l_image_joint' not in sensor_links_urdf((lidar,), 'car/')
+
+
+def test_a_new_type_registered_in_each_layer_works_with_no_other_change(monkeypatch):
+    # A 'radar' that reuses the distance sensor's parts: only the four registrations change.
+    specs = tuple(replace(spec, default='radar', choices=('radar',)) if spec.key == 'type'
+                  else spec for spec in SENSOR_TYPES['distance'].specs)
+    monkeypatch.setitem(sensor_params.SENSOR_TYPES, 'radar',
+                        replace(SENSOR_TYPES['distance'], specs=specs))
+    monkeypatch.setitem(SENSOR_CLASSES, 'radar', DistanceSensor)
+    monkeypatch.setitem(SENSOR_ROWS, 'radar', SENSOR_ROWS['distance'])
+    monkeypatch.setattr(devices, 'DEVICE_API',
+                        DEVICE_API + (DeviceRow('DistanceSensor', 'radar', 'device', 'getRadar'),))
+    spec = sensor_from_dict({'type': 'radar', 'name': 'front', 'pose': {'x': 4.6, 'z': 0.9},
+                             'max_range': 20.0}, 'test')
+    assert (spec.sensor_type, spec.as_dict()['type']) == ('radar', 'radar')
+    assert check_sensor_set((spec,), 'test') is None
+    assert [t.child for t in static_transforms((spec,))] == ['front']
+    assert [(row.name, row.ros_type) for row in sensor_rows((spec,))] == [('front', m.RANGE)]
+    world = World()
+    try:
+        for obstacle in load_world('obstacle_course').obstacles:   # a wall's face at x = 19.5 m
+            world.add_obstacle(obstacle)
+        car = SimulatedCar(world, load_car('Car'), (0.0, 0.0, 0.0))
+        suite = SensorSuite(world, car.body, (spec,))
+        world.step()
+        assert suite.sample('front').range_m == pytest.approx(19.5 - 4.6, abs=1e-3)
+        device, = devices.devices_of(suite).values()
+        assert type(device) is devices.DistanceSensor
+    finally:
+        world.close()
