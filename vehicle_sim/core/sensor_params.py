@@ -46,7 +46,6 @@ from vehicle_sim.core.param_spec import (
 )
 from vehicle_sim.core.value_text import brief
 
-SENSOR_TYPE_NAMES = ('lidar', 'imu', 'gnss', 'distance', 'camera')
 RADIATION_TYPES = ('ultrasound', 'infrared')
 DEFAULT_DISTANCE_RANGE_M = 5.0
 TWO_PI = 2.0 * math.pi
@@ -62,9 +61,10 @@ MAX_CAMERA_SIDE_PX = 3840           # a 4K UHD row
 MAX_CAMERA_PIXELS = 1920 * 1080     # per frame: width x height (Full HD)
 
 
-def _common(sensor_type, rate_hz):
+def _common(sensor_type, rate_hz, types=None):
+    # types: the valid ``type`` values shown in the docs (a type's own table: itself).
     return (
-        ParamSpec('type', 'sensor_type', 'enum', sensor_type, choices=SENSOR_TYPE_NAMES,
+        ParamSpec('type', 'sensor_type', 'enum', sensor_type, choices=types or (sensor_type,),
                   doc='sensor type'),
         ParamSpec('name', 'name', 'ros_name', REQUIRED,
                   doc='frame <p><name>; letters, digits, underscores; unique per vehicle'),
@@ -111,6 +111,10 @@ class SensorSpec:
     def frame_id(self, prefix=''):
         """Return the sensor frame: ``<prefix><name>``."""
         return prefix + self.name
+
+    def optical_frame_id(self, prefix=''):
+        """Return the frame of an image (z forward, x right, y down); None: no image."""
+        return None
 
     @property
     def period_s(self):
@@ -380,14 +384,33 @@ class SensorType:
     check: object
 
 
-SENSOR_TYPES: Dict[str, SensorType] = {}
-SENSOR_TYPES.update({
+# The core registration of the sensor types, in docs order: the one list of type names. Each
+# other layer registers its part under these names (physics class, ROS rows, Webots devices);
+# check_layer refuses a layer that misses one (docs/sensors.md, "Adding a sensor type").
+SENSOR_TYPES: Dict[str, SensorType] = {
     'lidar': SensorType(LidarSpec, LIDAR_SPECS, _check_lidar),
     'imu': SensorType(ImuSpec, IMU_SPECS, None),
     'gnss': SensorType(GnssSpec, GNSS_SPECS, None),
     'distance': SensorType(DistanceSpec, DISTANCE_SPECS, _check_distance),
     'camera': SensorType(CameraSpec, CAMERA_SPECS, _check_camera),
-})
+}
+
+
+def check_layer(layer, registered):
+    """
+    Refuse a layer's sensor registration that misses a core sensor type or names an unknown one.
+
+    :param layer: what registers (quoted in the error), e.g. 'physics SENSOR_CLASSES'.
+    :param registered: the sensor type names the layer registers.
+    :raises RuntimeError: naming the missing and the unknown types.
+    """
+    names = set(registered)
+    missing = [name for name in SENSOR_TYPES if name not in names]
+    unknown = sorted(names - set(SENSOR_TYPES))
+    if missing or unknown:
+        raise RuntimeError(f'{layer}: sensor types missing: {", ".join(missing) or "none"}; '
+                           f'unknown: {", ".join(unknown) or "none"} (registered in '
+                           f'core/sensor_params.py SENSOR_TYPES: {", ".join(SENSOR_TYPES)})')
 
 
 def sensor_from_dict(data, source, enabled_default=True) -> SensorSpec:
@@ -420,13 +443,14 @@ def sensor_from_dict(data, source, enabled_default=True) -> SensorSpec:
     return row.spec_class(**values)
 
 
-COMMON_KEYS = tuple(spec.key for spec in _common('lidar', 1.0))
+COMMON_KEYS = tuple(spec.key for spec in _common('any', 1.0))
 
 
 def sensors_markdown():
     """Return the key tables of docs/sensors.md: the common keys, then each type's own."""
     parts = ['#### Keys of every sensor\n\n',
-             parameter_table_markdown(_common('required', 'see the type'), 'key')]
+             parameter_table_markdown(_common('required', 'see the type', tuple(SENSOR_TYPES)),
+                                      'key')]
     for name, row in SENSOR_TYPES.items():
         rate = next(spec.default for spec in row.specs if spec.key == 'rate_hz')
         parts.append(f'\n#### `{name}` (default `rate_hz`: {rate:g} Hz)\n\n'

@@ -183,6 +183,8 @@ class DeviceRow:
     spec_getters: Tuple[Tuple[str, str, type], ...] = ()
 
 
+# The Webots registration: every device class of webots/devices.py under the core sensor type
+# it serves (one or more rows per type).
 DEVICE_API = (
     DeviceRow('Lidar', 'lidar', 'device', 'getLidar', (
         ('getHorizontalResolution', 'horizontal_resolution', int),
@@ -205,8 +207,9 @@ DEVICE_API = (
 )
 
 # Robot / Supervisor functions that exist in Webots but not here (no other devices are
-# simulated; the sensor devices of DEVICE_API are, through getDevice).
-UNSUPPORTED_ROBOT_API = (
+# simulated; the sensor devices of DEVICE_API are, through getDevice): a device getter that a
+# DEVICE_API row serves drops out of this list by itself.
+UNSUPPORTED_ROBOT_API = tuple(name for name in (
     'getKeyboard', 'getJoystick',
     'getMouse', 'getSelf', 'getRoot', 'getFromDef', 'getFromId', 'getFromDevice',
     'getDisplay',
@@ -215,4 +218,4 @@ UNSUPPORTED_ROBOT_API = (
     'getEmitter', 'simulationSetMode', 'simulationReset', 'simulationQuit', 'worldReload',
     'wwiSendText', 'wwiReceiveText', 'getCustomData', 'setCustomData', 'getUrdf',
     'batterySensorEnable', 'waitForUserInputEvent', 'exportImage',
-)
+) if name not in {row.robot_getter for row in DEVICE_API})
