@@ -26,6 +26,7 @@ import math
 from typing import NamedTuple
 
 from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
+from vehicle_sim.core.geometry import wrap_angle_rad
 from vehicle_sim.core.param_spec import ParamSpec, validate_table
 from vehicle_sim.core.watchdog import DEFAULT_TIMEOUT_ACTION, DEFAULT_TIMEOUT_S, TIMEOUT_ACTIONS
 
@@ -394,10 +395,6 @@ def wheel_base_plausibility(wheel_base_m, tread_m):
     return None
 
 
-def _wrap_angle_rad(angle_rad):
-    return math.atan2(math.sin(angle_rad), math.cos(angle_rad))
-
-
 def integrate_pose(x_m, y_m, yaw_rad, speed_mps, yaw_rate_radps, dt_s):
     """
     Advance a planar pose by a constant twist over ``dt_s``, exactly (circular arc).
@@ -422,7 +419,7 @@ def integrate_pose(x_m, y_m, yaw_rad, speed_mps, yaw_rate_radps, dt_s):
     chord_m = speed_mps * dt_s * sinc
     heading_rad = yaw_rad + half_turn_rad
     return Pose2D(x_m + chord_m * math.cos(heading_rad), y_m + chord_m * math.sin(heading_rad),
-                  _wrap_angle_rad(yaw_rad + 2.0 * half_turn_rad))
+                  wrap_angle_rad(yaw_rad + 2.0 * half_turn_rad))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -26,6 +26,8 @@ from typing import Tuple
 
 import numpy as np
 
+from vehicle_sim.core.geometry import yaw_from_quaternion
+
 Quaternion = Tuple[float, float, float, float]
 Vector = Tuple[float, float, float]
 
@@ -59,7 +61,7 @@ def rpy_from_quaternion(q):
     roll = math.atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y))
     sin_pitch = max(-1.0, min(1.0, 2.0 * (w * y - z * x)))
     pitch = math.asin(sin_pitch)
-    yaw = math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+    yaw = yaw_from_quaternion(x, y, z, w)
     return roll, pitch, yaw
 
 

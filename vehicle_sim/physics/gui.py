@@ -31,7 +31,6 @@ The camera math lives in :mod:`vehicle_sim.core.chase_camera`; docs/drive.md lis
 from contextlib import contextmanager
 import ctypes
 import ctypes.util
-import math
 import os
 import sys
 from typing import Dict, Optional, Sequence, Tuple
@@ -40,6 +39,7 @@ import pybullet
 
 from vehicle_sim.core.chase_camera import chase_view, ChaseSettings, follow_heading
 from vehicle_sim.core.errors import VehicleSimError
+from vehicle_sim.core.geometry import yaw_from_quaternion
 
 # Our keys (PyBullet's own shortcuts use a c d g i j k l o p s v w and Esc; see docs/drive.md).
 KEY_FOLLOW = 'f'
@@ -245,8 +245,7 @@ class ChaseCamera:
                 self.target_id, physicsClientId=cid)
         except pybullet.error:   # the body was removed: nothing to follow this step
             return
-        x, y, z, w = orientation
-        heading = math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+        heading = yaw_from_quaternion(*orientation)
         if dt_s is None or self._heading is None:
             self._heading = heading
         else:

@@ -32,11 +32,11 @@ A subclass gives its URDF, its footprint function (``OUTLINE``), its spawn heigh
 (dynamics and commands of a freshly loaded body).
 """
 
-import math
 
 import pybullet
 
 from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.geometry import yaw_from_quaternion
 
 
 class VehicleBody:
@@ -123,7 +123,7 @@ class VehicleBody:
     def yaw_rad(self):
         """Ground-truth heading of base_link [rad] (REP 103)."""
         _, _, _, qx, qy, qz, qw = self.pose()
-        return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+        return yaw_from_quaternion(qx, qy, qz, qw)
 
     def velocity(self):
         """

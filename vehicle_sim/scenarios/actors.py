@@ -26,6 +26,7 @@ robot.
 
 import math
 
+from vehicle_sim.core.geometry import yaw_from_quaternion
 from vehicle_sim.core.units import mps_to_kmh, ros_steering_to_webots
 
 # The aim point moves on once the vehicle is this close to it (its look-ahead), and the last
@@ -104,7 +105,7 @@ class CarActor:
         """Set the car's commands for the coming step."""
         logic = self.car.logic
         x, y, _, qx, qy, qz, qw = self.car.body.pose()
-        yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+        yaw = yaw_from_quaternion(qx, qy, qz, qw)
         command = self.follower.command(x, y, yaw)
         if command is None:
             logic.set_cruising_speed_kmh(0.0)
@@ -135,7 +136,7 @@ class RobotActor:
     def control(self):
         """Set the robot's wheel speeds for the coming step."""
         x, y, _, qx, qy, qz, qw = self.robot.pose()
-        yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+        yaw = yaw_from_quaternion(qx, qy, qz, qw)
         command = self.follower.command(x, y, yaw)
         if command is None:
             self.robot.set_wheel_velocities(0.0, 0.0)

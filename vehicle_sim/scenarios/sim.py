@@ -27,22 +27,18 @@ nodes) and give a :class:`VehicleHandle` per vehicle name and call a ``director`
 per-step hooks) from the world's step.
 """
 
-import math
 import os
 import struct
 import tempfile
 
 import yaml
 
+from vehicle_sim.core.geometry import yaw_from_quaternion
 from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.scenarios.criteria import Sample
 
 # One odometry row: time, pose (x, y, z, qx, qy, qz, qw), linear and angular velocity (world).
 ODOMETRY_ROW = struct.Struct('<14d')
-
-
-def _yaw(qx, qy, qz, qw):
-    return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
 
 
 class VehicleHandle:
@@ -79,7 +75,8 @@ class VehicleHandle:
     def sample(self, time_s):
         """Return the criteria's Sample: position, heading, forward speed."""
         x, y, _, qx, qy, qz, qw = self.body.pose()
-        return Sample(time_s, x, y, _yaw(qx, qy, qz, qw), self.body.forward_speed_mps())
+        return Sample(time_s, x, y, yaw_from_quaternion(qx, qy, qz, qw),
+                      self.body.forward_speed_mps())
 
 
 def _seeded(sensors, seed):

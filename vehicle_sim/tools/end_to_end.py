@@ -37,6 +37,7 @@ import math
 from typing import Callable, List, Optional, Sequence, Tuple
 
 from vehicle_sim.core.diff_drive import integrate_pose, SpeedLimiter
+from vehicle_sim.core.geometry import wrap_angle_rad, yaw_from_quaternion
 from vehicle_sim.core.units import kmh_to_mps
 
 DT_S = 0.010                 # basic time step [s]
@@ -225,14 +226,9 @@ class Track:
 def _unwrap(angles):
     out = [angles[0]]
     for angle in angles[1:]:
-        delta = math.atan2(math.sin(angle - out[-1]), math.cos(angle - out[-1]))
+        delta = wrap_angle_rad(angle - out[-1])
         out.append(out[-1] + delta)
     return out
-
-
-def _yaw(quaternion):
-    qx, qy, qz, qw = quaternion
-    return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
 
 
 def _due(time_s, period_s):
@@ -340,7 +336,7 @@ def _bounds_or_none(stream, name):
 
 def _record_pose(track, time_s, pose):
     track.time_s.append(time_s)
-    track.pose.append((pose[0], pose[1], _yaw(pose[3:7])))
+    track.pose.append((pose[0], pose[1], yaw_from_quaternion(*pose[3:7])))
 
 
 def _robot_control(rig, command, now_s, msg_type):
