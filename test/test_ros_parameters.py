@@ -49,7 +49,7 @@ from vehicle_sim.ros.node_support import node_parameter_table, USE_SIM_TIME
 from vehicle_sim.transport import TransportError
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
-NAMESPACE = '/test_parameters'
+NAMESPACE = '/test_ros_parameters'
 
 NODE_TABLES = {
     'automobile': sim_params.AUTOMOBILE_PARAMETERS,
