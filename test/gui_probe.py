@@ -16,8 +16,8 @@
 Open PyBullet's window with a chase camera, look at it, and print what was seen (JSON).
 
 Run by test/test_physics_gui_xvfb.py under ``xvfb-run`` (one GUI per process, so in a process
-of its own). A car drives a few metres in a world of its own with the chase camera following; the probe
-then waits until the window's camera reports the chase view and takes two pictures of the
+of its own). A car drives a few metres in a world of its own with the chase camera following;
+the probe then waits until the window's camera reports the chase view and takes two pictures of the
 window's view: one render through the window camera's own view and projection matrices
 (``getCameraImage`` with ``ER_BULLET_HARDWARE_OPENGL``, in the window's OpenGL context, with the
 segmentation mask) and, when ``xwd`` is installed, a screenshot of the X display. Both are taken
