@@ -31,6 +31,7 @@ from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.footprint import clearance, distance_to_polyline
 from vehicle_sim.core.param_spec import ParamSpec, REQUIRED, validate_table
 from vehicle_sim.core.value_text import brief
+from vehicle_sim.scenarios.yaml_lines import line_of
 
 
 @dataclass(frozen=True)
@@ -75,6 +76,17 @@ def common_specs():
         ParamSpec('vehicle', 'vehicle', 'str', '', empty=True,
                   doc="the vehicle it watches; '' = the vehicle under test"),
     )
+
+
+@dataclass(frozen=True)
+class CriterionSpec:
+    """One pass criterion: its kind, test name, vehicle and validated values."""
+
+    kind: str
+    name: str
+    vehicle: str
+    values: Dict[str, Any]
+    line: Optional[int] = None
 
 
 class Criterion:
@@ -427,8 +439,6 @@ def criteria_from_list(ctx, data, names, default_vehicle):
     :return: tuple of CriterionSpec.
     :raises ScenarioError: naming the line.
     """
-    from vehicle_sim.scenarios.schema import CriterionSpec
-    from vehicle_sim.scenarios.yaml_lines import line_of
     path = ('criteria',)
     if not isinstance(data, list) or not data:
         raise ctx.fail(path, 'criteria must be a non-empty list of {kind: ..., ...}; kinds: '
@@ -437,6 +447,8 @@ def criteria_from_list(ctx, data, names, default_vehicle):
     for index, entry in enumerate(data):
         where = path + (index,)
         kind = entry.get('kind') if isinstance(entry, dict) else None
+        if isinstance(entry, dict) and 'kind' not in entry:
+            raise ctx.fail(where, "a criterion needs 'kind': one of " + ', '.join(CRITERIA))
         if kind not in CRITERIA:
             raise ctx.fail(where + ('kind',) if isinstance(entry, dict) else where,
                            f'criterion kind {brief(kind)}: valid kinds: ' + ', '.join(CRITERIA))

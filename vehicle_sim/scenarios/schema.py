@@ -43,6 +43,7 @@ from vehicle_sim.core.param_spec import ParamSpec, REQUIRED, validate_table
 from vehicle_sim.core.sensor_sets import enable_sensors, selected_sensors
 from vehicle_sim.core.value_text import brief
 from vehicle_sim.core.world_params import RobotSpec, used_twice, WorldSpec
+from vehicle_sim.scenarios.criteria import criteria_from_list, CriterionSpec
 from vehicle_sim.scenarios.yaml_lines import error_at, line_of, load_with_lines, ScenarioError
 from vehicle_sim.webots.api_table import CAR_API, DRIVER_API
 
@@ -185,17 +186,6 @@ class DriverSpec:
 
 
 @dataclass(frozen=True)
-class CriterionSpec:
-    """One pass criterion: its kind, test name, vehicle and validated values."""
-
-    kind: str
-    name: str
-    vehicle: str
-    values: Dict[str, Any]
-    line: Optional[int] = None
-
-
-@dataclass(frozen=True)
 class ScenarioSpec:
     """A validated scenario file."""
 
@@ -308,7 +298,6 @@ def scenario_from_data(data, lines, source) -> ScenarioSpec:
                        f'{values["duration_s"]:g} s would take '
                        f'{values["duration_s"] / driver.real_time_factor:g} s of wall clock; '
                        f'at most {MAX_DURATION_S:g} s')
-    from vehicle_sim.scenarios.criteria import criteria_from_list
     criteria = criteria_from_list(ctx, data.get('criteria'), names, vehicle)
     name = values['name'] or Path(source).stem
     spec = ScenarioSpec(name, values['description'], source, world, world_file, world_data,
