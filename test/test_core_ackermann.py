@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Ackermann steering geometry (webots_spec.md §3.3)."""
+"""Ackermann steering geometry (Webots' driver.c)."""
 
 import math
 

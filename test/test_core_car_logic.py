@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""CarLogic: start state, modes, step actuation and the strict setter API (DESIGN §3-4)."""
+"""CarLogic: start state, modes, step actuation and the strict setter API (docs/core.md)."""
 
 import copy
 import dataclasses

@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Drivetrain math: differential ratios, ramp, speeds, rpm, LSD (webots_spec.md §3.2-3.6)."""
+"""Drivetrain math: differential ratios, ramp, speeds, rpm, LSD (Webots' driver.c)."""
 
 import math
 

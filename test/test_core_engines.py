@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Engine models and output torque (webots_spec.md §3.4.2)."""
+"""Engine models and output torque (Webots' driver.c, compute_output_torque)."""
 
 import math
 from types import SimpleNamespace

@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""The core imports only the standard library, numpy and vehicle_sim.core (STYLE rule 1)."""
+"""The core imports only the standard library, numpy and vehicle_sim.core."""
 
 import ast
 from pathlib import Path

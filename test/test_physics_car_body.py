@@ -311,7 +311,7 @@ def test_car_body_full_pose_spawn_and_invalid_pose():
 @pytest.mark.parametrize('model', car_names())
 def test_car_body_default_grip_lets_every_preset_follow_its_0_to_100_ramp(model):
     # Webots SPEED mode ramps the driven wheels at 27.78 / time0To100 m/s^2 at the tyre
-    # (webots_spec §3.2); with the default friction the chassis (ground truth) keeps up, so
+    # (Webots' driver.c); with the default friction the chassis (ground truth) keeps up, so
     # 100 km/h is reached within 2 % of time0To100 and the car stays on its line.
     params = load_car(model)
     accel = 100.0 / 3.6 / params.time_0_to_100_s

@@ -75,6 +75,29 @@ def test_user_docs_cite_no_working_note(path):
     assert offenders == []
 
 
+# The same notes as code and test comments name them ("DESIGN §4", "STYLE rule 9", "ros2_wire A6").
+NOTE_POINTERS = re.compile(r'DESIGN §|DESIGN\.md|STYLE\.md|STYLE rule|ros2_wire|webots_spec|'
+                           r'reference/ros2|seeds/')
+CODE_DIRS = ('vehicle_sim', 'vehicle_msgs_py', 'test', 'benchmarks', 'examples', 'launch',
+             'config')
+
+
+def _code_files():
+    this = Path(__file__).resolve()
+    return [p for p in _tracked_files()
+            if p.relative_to(REPO).parts[0] in CODE_DIRS and p.resolve() != this]
+
+
+def test_code_and_tests_point_at_no_document_outside_the_repository():
+    # A maintainer who clones the project cannot follow such a pointer: the code names the fact
+    # or the upstream source (Webots' driver.c, rmw_cyclonedds, REP 103) or a doc in docs/.
+    files = _code_files()
+    assert len(files) > 100
+    offenders = [f'{p.relative_to(REPO)}:{n}: {line.strip()}' for p in files
+                 for n, line in enumerate(_text(p).splitlines(), 1) if NOTE_POINTERS.search(line)]
+    assert offenders == []
+
+
 def _subcommands():
     (action,) = [a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)]
     return action.choices

@@ -48,7 +48,7 @@ from vehicle_sim.transport.port import QOS_ROSOUT
 
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WAIT_S = 30.0
-# Bridge under test: tread = wheel_base = 0.4 m (the caster robot's tread, the seed's advice),
+# Bridge under test: tread = wheel_base = 0.4 m (the caster robot's tread, Autoware's advice),
 # wheel radius 0.1 m, wheel limit 1 m/s, no ramps (closed-form outputs), timeout 0.5 s brake.
 L_M, T_M, R_M, VMAX = 0.4, 0.4, 0.1, 1.0
 TIMEOUT_S, CONTROL_HZ = 0.5, 20.0

@@ -130,7 +130,8 @@ def test_facade_deprecated_aliases_warn_and_delegate(car):
         assert car.getWipersMode() == Driver.FAST
 
 
-# ------------------------------------------------------------------------ odd input (DESIGN §4)
+# ------------------------------------------------------------------------ odd input
+# (docs/deviations.md)
 NUMERIC_ROWS = [row for row in API if row.setter and row.kind in ('float', 'int', 'enum')]
 
 

@@ -23,7 +23,7 @@ serialise exactly like rmw_cyclonedds (final extensibility, classic CDR / XCDR1)
 field names, defaults for every field (so ``Msg()`` works) and the message constants as class
 attributes.
 
-Conventions (reference/ros2_wire.md):
+Conventions (ROS 2 Jazzy over rmw_cyclonedds_cpp; docs/transport.md):
 
 * DDS type names ``pkg::msg::dds_::Name_`` and ``pkg::srv::dds_::Name_Request_`` (A1).
 * Services: users see plain ``request`` / ``response`` classes; on the wire rmw_cyclonedds puts
@@ -49,11 +49,11 @@ from rosbags.typesys.base import Nodetype
 from vehicle_msgs_py import distro
 from vehicle_msgs_py.catalog import definitions, split_service
 
-# rmw_cyclonedds request header members (ros2_wire A4), in wire order.
+# rmw_cyclonedds request header members (rmw_cyclonedds' cdds_request_header_t), in wire order.
 WIRE_HEADER_FIELDS = ('client_id', 'sequence')
 UINT64_MASK = 0xFFFFFFFFFFFFFFFF
 
-# Member that rosidl adds to messages without fields (ros2_wire A2).
+# Member that rosidl adds to messages without fields (rosidl).
 EMPTY_MEMBER = 'structure_needs_at_least_one_member'
 
 _IDL_PRIMITIVES = {
@@ -232,7 +232,7 @@ def dds_type_name(ros_type):
     Return the DDS type name ROS 2 uses for a message or service request/response type.
 
     ``std_msgs/msg/String`` → ``std_msgs::msg::dds_::String_``;
-    ``std_srvs/srv/SetBool_Request`` → ``std_srvs::srv::dds_::SetBool_Request_`` (ros2_wire A1).
+    ``std_srvs/srv/SetBool_Request`` → ``std_srvs::srv::dds_::SetBool_Request_`` (rmw_cyclonedds).
     """
     pkg, kind, name = normalize_type_name(ros_type).split('/')
     return f'{pkg}::{kind}::dds_::{name}_'

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Ackermann steering geometry of the Webots driver library (webots_spec.md §3.3).
+Ackermann steering geometry of the Webots driver library (Webots' driver.c).
 
 Signs follow Webots: a positive angle steers to the RIGHT.
 """

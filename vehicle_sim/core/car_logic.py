@@ -16,9 +16,10 @@
 CarLogic: the complete state of the Webots driver and car libraries, with a strict API.
 
 Built from CarParams; no ROS, no physics. Each basic step the physics body fills a Measurement,
-``CarLogic.step`` turns it into an Actuation (webots_spec.md §3.1 order), the body applies it and
+``CarLogic.step`` turns it into an Actuation (Webots' wbu_driver_step order), the body applies it
+and
 the world steps. Setters validate first and raise InvalidCommandError, naming the value and the
-valid range, without changing any state (DESIGN §4, core column). Getters are read-only
+valid range, without changing any state (docs/deviations.md, core column). Getters are read-only
 properties (plus ``wheel_encoder_rad(i)`` / ``wheel_speed_radps(i)``); ``status()`` bundles all
 of them for publishers and tests.
 
@@ -317,7 +318,8 @@ class CarLogic:
         """
         Set the cruising speed, refusing speeds beyond the top speed (the ROS services' policy).
 
-        DESIGN §4, ROS column: a service answers success=false rather than store a speed the
+        Odd input, ROS column (docs/deviations.md): a service answers success=false rather than
+        store a speed the
         car cannot reach; otherwise the same as ``set_cruising_speed_kmh``.
 
         :param speed_kmh: target speed [km/h], |v| <= maxVelocity·3.6.
@@ -456,7 +458,7 @@ class CarLogic:
 
     def step(self, measurement, now_s, dt_s):
         """
-        Run one driver step (wbu_driver_step, webots_spec.md §3.1) and return the commands.
+        Run one driver step (wbu_driver_step of Webots' driver.c) and return the commands.
 
         :param measurement: vehicle_io.Measurement read after the previous world step.
         :param now_s: simulation time [s] before this step (indicator phase, wiper window).

@@ -13,12 +13,12 @@
 # limitations under the License.
 
 """
-Ackermann → differential-drive kinematics of the Autoware bridge (DESIGN §5.3), ROS-free.
+Ackermann → differential-drive kinematics of the Autoware bridge, ROS-free.
 
 Signs and units: Autoware / REP 103, SI. Steering tire angle δ [rad] positive = LEFT, speed v
 [m/s] positive = forward, yaw rate ω [rad/s] positive = counter-clockwise (left). Wheel speeds
 are tyre-surface speeds [m/s] unless the name ends in ``_radps``. Time steps ``dt_s`` are passed
-in (STYLE rule 3). Formulas and their reasons: docs/bridge_kinematics.md.
+in (time is an argument). Formulas and their reasons: docs/bridge_kinematics.md.
 """
 
 from dataclasses import dataclass
@@ -35,7 +35,8 @@ KINEMATIC_MODES = ('kinematic', 'literal')
 # Below this |v| the reported steering is regularised (equivalent_steering_rad).
 STEERING_REPORT_SPEED_EPS_MPS = 0.05
 
-# wheel_base_plausibility: the seed suggests wheel_base ≈ wheel_tread; outside this band, warn.
+# wheel_base_plausibility: Autoware's diff-drive note suggests wheel_base ≈ wheel_tread; outside
+# this band, warn.
 WHEEL_BASE_MIN_TREAD_RATIO = 0.5
 WHEEL_BASE_MAX_TREAD_RATIO = 3.0
 
@@ -202,7 +203,8 @@ def ackermann_to_wheel_speeds(speed_mps, steering_rad, wheel_base_m, tread_m, mo
     Autoware's planner and controllers assume, so the robot follows the commanded curvature
     tan(δ)/L at any speed.
 
-    ``mode='literal'``: the seed's snippet (Autoware "Customizing for differential drive
+    ``mode='literal'``: the snippet of Autoware's note (Autoware "Customizing for differential
+    drive
     vehicle"), v_l = v − δ·t/2, v_r = v + δ·t/2, i.e. the steering *angle* is used as if it were a
     yaw *rate* (rad taken as rad/s). Kept only for compatibility with vehicle interfaces built
     from that snippet. It is not the default because its curvature δ/v depends on speed and not

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Drivetrain math of the Webots driver library as pure functions (webots_spec.md §3.2-3.6).
+Drivetrain math of the Webots driver library as pure functions (Webots' driver.c).
 
 Geometric differential ratios, cruise-control wheel targets and their acceleration ramp, wheel
 speed estimation, engine rpm, output torque, torque distribution, the limited-slip differential

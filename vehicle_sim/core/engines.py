@@ -15,7 +15,7 @@
 """
 Engine torque models of the Webots driver library, one class per engine type.
 
-Exactly the ``compute_output_torque`` engine part of Webots' driver.c (webots_spec.md §3.4.2):
+Exactly the ``compute_output_torque`` engine part of Webots' driver.c:
 the output torque (gear ratio, throttle, rpm cut, acceleration limiter) is in drivetrain.py.
 """
 
@@ -75,7 +75,7 @@ class EngineModel:
 
     def _electric_nm(self, rpm):
         # min(maxTorque, maxPower / ω); driver.c divides by 2π·rpm/60 and relies on x/0 = +inf
-        # at rpm 0, which gives maxTorque (webots_spec §7).
+        # at rpm 0, which gives maxTorque (Webots' driver.c).
         if rpm <= 0.0:
             return self.max_torque_nm
         return min(self.max_torque_nm, self.max_power_w / rpm_to_radps(rpm))

@@ -29,7 +29,7 @@ from vehicle_sim.core.param_spec import register_kind, REQUIRED
 from vehicle_sim.core.sensor_params import sensor_from_dict, SensorSpec
 from vehicle_sim.core.value_text import brief
 
-# Topics of the vehicle that sensors may not take (ROS interface sheet, DESIGN §5.2).
+# Topics of the vehicle that sensors may not take (docs/ros_interface.md).
 RESERVED_TOPICS = ('odom', 'joint_states', 'robot_description', 'collision', 'tf', 'tf_static',
                    'clock')
 RESERVED_TOPIC_PREFIXES = ('automobile/', 'robot/')

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Unit and sign conversions: the one place where units change (STYLE rule 4).
+Unit and sign conversions: the one place where units change.
 
 Webots semantics: speed in km/h, steering angle in rad with positive = right.
 ROS / REP 103 / Autoware semantics: speed in m/s, steering angle in rad with positive = left.

@@ -41,7 +41,7 @@ from vehicle_sim.physics.world import point_velocity
 # Webots' driven-wheel motors have maxTorque 1e8 N*m (Car.proto); Bullet's implicit motor is
 # stable with it, the impulse actually used is what the tyre can transmit.
 WHEEL_MOTOR_TORQUE_NM = 1.0e8
-# Webots' default RotationalMotor controlP (webots_spec §3.3).
+# Webots' default RotationalMotor controlP (Webots' RotationalMotor default, controlPID 10 0 0).
 STEER_P_PER_S = 10.0
 # Suspension motor force limit, in multiples of the static corner load.
 SUSPENSION_FORCE_LIMIT_G = 20.0

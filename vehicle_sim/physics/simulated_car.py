@@ -23,7 +23,7 @@ class SimulatedCar:
     """
     CarLogic + CarBody, stepped by the World.
 
-    Each world step, before the physics: read the joints, run the driver step (webots_spec.md
+    Each world step, before the physics: read the joints, run the driver step (Webots'
     §3.1) with the time before the step, and apply the resulting commands.
     """
 

@@ -42,7 +42,7 @@ import pybullet
 from vehicle_sim.core.errors import InvalidPoseError
 
 # Tyre-road friction coefficient of the ground (Bullet multiplies the two materials' values; car
-# wheels have 1.0). 0-100 km/h in time0To100 needs about 1.1 on the driven axle (DESIGN §3
+# wheels have 1.0). 0-100 km/h in time0To100 needs about 1.1 on the driven axle (docs/physics.md
 # "Grip"; TeslaModel3 is the hardest); Webots' vehicle worlds use coulombFriction 8.
 DEFAULT_FRICTION = 1.5
 DEFAULT_TIME_STEP_S = 0.010

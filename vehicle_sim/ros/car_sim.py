@@ -287,7 +287,8 @@ class AutomobileNode:
         try:
             note = getattr(vehicle.logic, spec.core)(_to_core(spec.value, value))
         except InvalidCommandError as error:
-            # DESIGN §4, ROS column: success=false, nothing changed, the reason logged.
+            # Odd input, ROS column (docs/deviations.md): success=false, nothing changed, the
+            # reason logged.
             self._logger.warn(f'{name}: refused {value!r}: {error}; nothing changed')
             response.success = False
         else:

@@ -13,14 +13,14 @@
 # limitations under the License.
 
 """
-The automobile node's interface table: every topic and service of a simulated car (DESIGN §5.2).
+The automobile node's interface table: every topic and service of a car (docs/ros_interface.md).
 
 Rows are :mod:`.endpoints` rows. Names are relative to the vehicle namespace ``ns`` (empty for
 the default car): ``automobile/x`` becomes ``/<ns>/automobile/x``; names with a leading ``/``
 are global and published once for all vehicles (``/clock``, ``/tf``, ``/tf_static``, defined in
 :mod:`.endpoints`). The automobile node wires and publishes these rows, its tests iterate them,
 and ``docs/ros_interface.md`` embeds :func:`interface_table_markdown`, so a name cannot diverge
-between them (STYLE rule 9).
+between them.
 
 Converter contexts of the per-vehicle rows: wiring ``w`` = the vehicle (``base_frame``,
 ``odom_frame``, ``joint_names``, ``frame_prefix``); call ``ctx`` = the same vehicle after
@@ -180,7 +180,7 @@ def _get(name, srv_type, core, value, unit='', doc='', legacy=False):
 
 
 AUTOMOBILE_SERVICES = (
-    # Setters (webots_spec §5.3 order), then the documented-but-missing car-library setters.
+    # Setters (Webots' ros_automobile order), then the documented-but-missing car-library setters.
     _set('enable_indicator_auto_disabling', SET_BOOL, 'enable_indicator_auto_disabling', 'bool',
          None, False, doc='switch the indicator off after a turn'),
     _set('enable_limited_slip_differential', SET_BOOL, 'enable_limited_slip_differential',
@@ -274,7 +274,7 @@ NODE_SERVICES = SERVICES + WORLD_SERVICES
 LONGITUDINAL_SERVICES = ('automobile/set_cruising_speed', 'automobile/set_throttle',
                          'automobile/set_brake_intensity')
 
-# Names of webots_spec §5.3 that are deliberately not served (documented in the docs).
+# Webots ros_automobile names that are deliberately not served (documented in the docs).
 NOT_SERVED = ('automobile/get_throttle', 'automobile/get_brake_intensity', 'automobile/get_rpm',
               'automobile/set_brake')
 

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-The automobile node's parameters, declared once (STYLE rule 6).
+The automobile node's parameters, declared once (one ParamSpec table).
 
 :data:`AUTOMOBILE_PARAMETERS` is a core ParamSpec table; the node declares it through
 ``ros/node_support.py``, and ``config/automobile.yaml`` and the table in

@@ -29,7 +29,7 @@ import yaml
 
 from vehicle_sim.tools.command import CliError, EXIT_USAGE
 
-# Fields generated for empty messages (ros2_wire A2); never shown, never set.
+# Fields generated for empty messages (rosidl); never shown, never set.
 _HIDDEN_FIELDS = ('structure_needs_at_least_one_member',)
 _INT_RANGES = {
     'int8': (-2 ** 7, 2 ** 7 - 1), 'uint8': (0, 2 ** 8 - 1),

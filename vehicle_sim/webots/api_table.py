@@ -13,10 +13,11 @@
 # limitations under the License.
 
 """
-The one table of the Webots driver and car library API (STYLE rule 9).
+The one table of the Webots driver and car library API.
 
 Each row names the Webots Python method(s), the CarLogic member behind them, the value kind,
-how the facade treats odd input (DESIGN §4, facade column), and what the round-trip test needs
+how the facade treats odd input (docs/deviations.md, facade column), and what the round-trip test
+needs
 (valid sample values, settling steps and a tolerance where the getter reports a measured value).
 The facade's methods and snake_case properties are generated from these rows, and the tests
 iterate them, so a name cannot diverge (the lesson of the Webots wrapper slips).

@@ -13,13 +13,14 @@
 # limitations under the License.
 
 """
-Webots-compatible ``Driver`` and ``Car`` classes on top of the strict core (DESIGN §4).
+Webots-compatible ``Driver`` and ``Car`` classes on top of the strict core.
 
 A Webots Python controller runs unchanged apart from its import::
 
     from vehicle_sim.webots import Driver   # Webots: from vehicle import Driver
 
-Odd input follows the facade column of the DESIGN §4 table: Webots semantics, each case
+Odd input follows the facade column of the odd-input table (docs/deviations.md): Webots semantics,
+each case
 reported with a ``WebotsWarning``: NaN/inf ignored, throttle/brake/steering/gear clamped, a
 cruising speed beyond the top speed stored as given (the wheel motors saturate),
 undefined enums and indicator periods below 1 ms ignored, wheel index outside 0..3 returns 0,
