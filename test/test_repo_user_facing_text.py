@@ -76,8 +76,8 @@ def test_user_docs_cite_no_working_note(path):
 
 
 # The same notes as code and test comments name them ("DESIGN §4", "STYLE rule 9", "ros2_wire A6").
-NOTE_POINTERS = re.compile(r'DESIGN §|DESIGN\.md|STYLE\.md|STYLE rule|ros2_wire|webots_spec|'
-                           r'reference/ros2|seeds/')
+NOTE_POINTERS = re.compile(r'DESIGN §|DESIGN\.md|\bDESIGN\b|STYLE\.md|\bSTYLE\b|ros2_wire|'
+                           r'webots_spec|reference/ros2|seeds/')
 CODE_DIRS = ('vehicle_sim', 'vehicle_msgs_py', 'test', 'benchmarks', 'examples', 'launch',
              'config')
 
@@ -115,3 +115,16 @@ def test_cli_doc_row_lists_the_subcommand_and_every_option(name):
         if options:
             assert any(re.search(re.escape(o) + r'\b', row) for o in options), \
                 f'{name} {options} missing from docs/cli.md'
+
+
+def test_architecture_doc_is_linked_from_the_readme_and_names_only_files_that_exist():
+    text = (REPO / 'docs' / 'architecture.md').read_text(encoding='utf-8')
+    assert '(docs/architecture.md)' in (REPO / 'README.md').read_text(encoding='utf-8')
+    named = set(re.findall(r'`((?:vehicle_sim/|test/|docs/)?[\w/]+\.(?:py|md))`', text))
+    named |= set(re.findall(r'\b(docs/\w+\.md)\b', text))
+    assert len(named) > 30
+    package = REPO / 'vehicle_sim'
+    missing = [name for name in sorted(named)
+               if not (REPO / name).exists() and not (package / name).exists()
+               and 'radar' not in name and 'core/map' not in name]
+    assert missing == []

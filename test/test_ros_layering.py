@@ -14,7 +14,7 @@
 
 
 """
-Node modules import core and the shared ROS modules, never each other (STYLE, "Nodes are thin").
+Node modules import core and the shared ROS modules, never each other.
 
 A node module is ``vehicle_sim/ros/*_node.py``. Shared code lives in core (ROS-free logic:
 ``core/bridge_controller.py``, ``core/autoware.py``) or in a shared module of ``vehicle_sim/ros``
