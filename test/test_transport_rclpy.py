@@ -124,6 +124,19 @@ def test_rclpy_node_warns_once_about_an_override_it_does_not_declare(context, ca
         node.shutdown()
 
 
+def test_rclpy_node_override_of_the_wrong_type_names_both_types_and_the_value(context):
+    # As on the embedded transport: rclcpp's type names and the value, not type codes.
+    node = RclpyNode('typed_user', context=context, parameter_overrides={'time_step_ms': 'abc'})
+    try:
+        with pytest.raises(port.TransportError) as error:
+            node.declare_parameter('time_step_ms', 10)
+        assert str(error.value) == (
+            "parameter 'time_step_ms' override 'abc' rejected: Wrong parameter type, parameter "
+            "{time_step_ms} is of type {integer}, setting it to {string} 'abc' is not allowed.")
+    finally:
+        node.shutdown()
+
+
 def test_rclpy_node_read_only_refusal_matches_the_embedded_transport(context):
     from vehicle_sim.transport.params import read_only_reason
     node = RclpyNode('read_only_user', context=context)
