@@ -64,6 +64,8 @@ setup(
             'autoware_automobile = vehicle_sim.ros.autoware_automobile_node:main',
             'teleop = vehicle_sim.tools.cli:teleop_main',
         ],
-        'pytest11': ['vehicle_sim = vehicle_sim.testing'],
+        # Named after the module, so that '-p vehicle_sim.testing' and pytest_plugins =
+        # ['vehicle_sim.testing'] find the installed plugin instead of registering it twice.
+        'pytest11': ['vehicle_sim.testing = vehicle_sim.testing'],
     },
 )

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Bridge latency: command received → wheel command published (DESIGN §8 target: p50 <= 1 ms).
+Bridge latency: command received → wheel command published (target: p50 <= 1 ms).
 
 1. In-process: the node's callback path (convert, validate, watchdog, kinematics, build and
    publish DifferentialCommand + Float64MultiArray on the embedded transport), timed around

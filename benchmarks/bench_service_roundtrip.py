@@ -15,7 +15,7 @@
 """
 Service round trip: the embedded transport vs a bare cyclonedds request/reply, in one run.
 
-DESIGN §8 target: p50 of the embedded transport <= 2x the bare cyclonedds pair. Both use the same
+Target: p50 of the embedded transport <= 2x the bare cyclonedds pair. Both use the same
 wire types (vehicle_msgs/srv/SetInt with the rmw_cyclonedds header), the same QoS and the same
 loopback-only discovery; each server runs in its own subprocess and spins.
 

@@ -15,7 +15,7 @@
 """
 How long the automobile node takes to end after SIGTERM, and to leave the graph.
 
-Target (issue 7, item 4; DESIGN §6): within 1 s of SIGINT/SIGTERM in every case. Cases:
+Target (issue 7, item 4; docs/transport.md): within 1 s of SIGINT/SIGTERM in every case. Cases:
 
 * ``idle``: a synchronous node that served nothing;
 * ``dead clients``: three services whose only client died (SIGKILL) right after sending its

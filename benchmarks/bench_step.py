@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Simulation step cost (DESIGN §8), measured in one run and printed as ratios.
+Simulation step cost (benchmarks/README.md), measured in one run and printed as ratios.
 
 1. Overhead: ``Driver.step()`` with all Webots logic vs raw PyBullet ``stepSimulation`` of the
    same bodies with the same sub-steps and no Python logic (target <= 1.5x).

@@ -15,7 +15,7 @@
 """
 CPU cost of the automobile node publishing every topic at the 10 ms step in real time.
 
-Target: <= 5 % of one core (issue 10; DESIGN §8 asked <= 20 %). The node runs in a
+Target: <= 5 % of one core (issue 10; the first target was <= 20 %). The node runs in a
 subprocess (embedded DDS transport, loopback-only discovery) at real_time_factor 1 with all
 topics published each basic step; a subscriber in this process counts the messages so the
 traffic is real. The CPU share is read from ``/proc/<pid>/stat`` (utime + stime) over the
@@ -36,7 +36,7 @@ from bench_common import process_cpu_s, use_free_domain
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, REPO_ROOT)
 
-TARGET_SHARE = 0.05   # issue 10 (DESIGN §8: 20 %)
+TARGET_SHARE = 0.05   # issue 10 (first target: 20 %)
 
 
 def measure_node(seconds, step_ms, every_topic=True, floor=False, parameters=()):

@@ -15,7 +15,8 @@
 """
 Example: test a car with plain pytest and the vehicle_sim plugin (docs/testing.md).
 
-Run: ``.venv/bin/python -m pytest examples/test_user_example.py -p vehicle_sim.testing``.
+Run: ``.venv/bin/python -m pytest examples/test_user_example.py`` (the installed plugin is
+active by itself; ``-p vehicle_sim.testing`` is accepted too).
 The ``automobile_node`` fixture starts a synchronous simulation; nothing moves until
 ``client.step(...)``, so every assertion below holds exactly, run after run.
 """

@@ -142,7 +142,8 @@ class AutomobileClient:
         """Subscribe to a table topic, keeping the latest message; return the subscription."""
         if table_name not in self._subs:
             spec = itf.topic(table_name)
-            # A tf_static listener keeps 100 (tf2_ros static QoS): every broadcaster sends its own.
+            # A tf_static listener keeps 100 (rmw's tf_static QoS): every broadcaster sends its
+            # own.
             qos = QOS_TF_STATIC_LISTENER if table_name == '/tf_static' else spec.qos
             self.history[table_name] = []
             self._subs[table_name] = self.node.create_subscription(

@@ -15,9 +15,9 @@
 """
 Open PyBullet's window with a chase camera, look at it, and print what was seen (JSON).
 
-Run by test/test_gui_xvfb.py under ``xvfb-run`` (one GUI per process, so in a process of its
-own). A car drives a few metres in a world of its own with the chase camera following; the probe
-then waits until the window's camera reports the chase view and takes two pictures of the
+Run by test/test_physics_gui_xvfb.py under ``xvfb-run`` (one GUI per process, so in a process
+of its own). A car drives a few metres in a world of its own with the chase camera following;
+the probe then waits until the window's camera reports the chase view and takes two pictures of the
 window's view: one render through the window camera's own view and projection matrices
 (``getCameraImage`` with ``ER_BULLET_HARDWARE_OPENGL``, in the window's OpenGL context, with the
 segmentation mask) and, when ``xwd`` is installed, a screenshot of the X display. Both are taken
@@ -118,7 +118,7 @@ def main(out_dir):
     body = car.body.body_id
     result = {
         'car_xy': pose[:2],
-        'car_yaw': yaw_from_quaternion(pose[3:7]),
+        'car_yaw': yaw_from_quaternion(*pose[3:7]),
         'view': {'yaw_deg': camera.view.yaw_deg, 'pitch_deg': camera.view.pitch_deg,
                  'distance_m': camera.view.distance_m, 'target_m': camera.view.target_m},
         'window_camera': {'yaw_deg': info[8], 'pitch_deg': info[9], 'distance_m': info[10],

@@ -46,7 +46,7 @@ def test_presets_car_yaml_equals_the_parameter_table_defaults():
     assert car_params_from_dict(data, 'Car.yaml') == DEFAULT_CAR
 
 
-# Values from Webots' car PROTO files (a representative subset per car).
+# Values from the Webots PROTO files (a representative subset per car).
 SPEC_VALUES = {
     'BmwX5': dict(wheelbase_m=2.995, track_front_m=1.628, time_0_to_100_s=7.0,
                   brake_coefficient_nm=1800.0, engine_max_rpm=6500.0, car_type='traction',

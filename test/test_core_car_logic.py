@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""CarLogic: start state, modes, step actuation and the strict setter API."""
+"""CarLogic: start state, modes, step actuation and the strict setter API (docs/core.md)."""
 
 import copy
 import dataclasses
@@ -200,6 +200,28 @@ def test_brake_torque_is_intensity_times_coefficient_on_all_wheels(mode):
     car.set_brake_intensity(0.5)
     actuation = car.step(Measurement(), 0.0, DT_S)
     np.testing.assert_allclose(actuation.brake_torque_nm, 0.5 * 700.0, rtol=1e-12)
+
+
+@pytest.mark.parametrize('mode', ['undefined', 'speed', 'torque'])
+def test_brake_in_speed_mode_is_taken_and_returns_a_note_saying_what_to_do(mode):
+    # Webots' driver.c takes the brake in any mode without a word; in SPEED mode the driven
+    # wheels' motors hold the cruising speed, so the call says why nothing slows down.
+    car = CarLogic(DEFAULT_CAR)
+    if mode == 'speed':
+        car.set_cruising_speed_kmh(20.0)
+    elif mode == 'torque':
+        car.set_throttle(0.0)
+    note = car.set_brake_intensity(1.0)
+    assert car.brake_intensity == 1.0 and car.status().brake_lights
+    if mode == 'speed':
+        assert note == ('brake intensity 1 has no effect while cruise control holds 20 km/h (the '
+                        'driven wheels follow the cruising speed): set the cruising speed to 0 '
+                        'to slow down, or set the throttle (TORQUE mode) so that the brake acts')
+    else:
+        assert note is None
+    assert car.set_brake_intensity(0.0) is None
+    car.set_cruising_speed_kmh(0.0)             # stopping with cruise control: nothing to say
+    assert car.set_brake_intensity(1.0) is None
 
 
 def test_mode_changes_only_through_cruising_speed_and_throttle():

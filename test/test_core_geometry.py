@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""yaw_from_quaternion: the one closed form of a quaternion's heading, and its only copy."""
+"""Plane geometry written once: yaw from a quaternion, angle wrapping."""
 
 import math
 from pathlib import Path
@@ -20,40 +20,40 @@ import re
 
 import pytest
 
-from vehicle_sim.core.frames import quaternion_from_rpy
-from vehicle_sim.core.geometry import yaw_from_quaternion
+from vehicle_sim.core.geometry import wrap_angle_rad, yaw_from_quaternion
 
-ROOT = Path(__file__).resolve().parent.parent
-
-
-@pytest.mark.parametrize('yaw', [0.0, 0.3, -1.2, math.pi / 2, -math.pi / 2, 3.0, -3.0])
-def test_pure_yaw_is_the_half_angle_closed_form(yaw):
-    # A rotation by yaw about z is (0, 0, sin(yaw/2), cos(yaw/2)).
-    q = (0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0))
-    assert yaw_from_quaternion(q) == pytest.approx(yaw, abs=1e-12)
+PACKAGE = Path(__file__).resolve().parent.parent / 'vehicle_sim'
 
 
-def test_values_from_the_formula():
-    # atan2(2 (w z + x y), 1 - 2 (y^2 + z^2)) on hand-picked values.
-    assert yaw_from_quaternion((0.0, 0.0, 0.0, 1.0)) == 0.0
-    assert yaw_from_quaternion((0.0, 0.0, 1.0, 0.0)) == pytest.approx(math.pi)
-    half = math.sqrt(0.5)
-    assert yaw_from_quaternion((0.0, 0.0, half, half)) == pytest.approx(math.pi / 2)
-    assert yaw_from_quaternion((0.0, 0.0, -half, half)) == pytest.approx(-math.pi / 2)
+@pytest.mark.parametrize('theta', [0.0, 0.3, -1.2, math.pi / 2, 3.0, -3.0])
+def test_yaw_from_quaternion_of_a_rotation_about_z_is_its_angle(theta):
+    # q = (0, 0, sin θ/2, cos θ/2): atan2(2 sin θ/2 cos θ/2, 1 - 2 sin² θ/2) = atan2(sin θ, cos θ)
+    assert yaw_from_quaternion(0.0, 0.0, math.sin(theta / 2), math.cos(theta / 2)) == \
+        pytest.approx(theta, abs=1e-12)
 
 
-@pytest.mark.parametrize('roll, pitch, yaw', [(0.2, -0.3, 1.0), (-0.5, 0.4, -2.5),
-                                              (0.1, 0.1, 3.1)])
-def test_yaw_survives_roll_and_pitch(roll, pitch, yaw):
-    assert yaw_from_quaternion(quaternion_from_rpy(roll, pitch, yaw)) == pytest.approx(yaw)
+def test_yaw_from_quaternion_ignores_roll_and_pitch():
+    # yaw 0.7 after roll 0.2 and pitch -0.1 (z-y-x): q = qz(0.7) ⊗ qy(-0.1) ⊗ qx(0.2)
+    def mul(a, b):
+        ax, ay, az, aw = a
+        bx, by, bz, bw = b
+        return (aw * bx + ax * bw + ay * bz - az * by, aw * by - ax * bz + ay * bw + az * bx,
+                aw * bz + ax * by - ay * bx + az * bw, aw * bw - ax * bx - ay * by - az * bz)
+    q = mul(mul((0.0, 0.0, math.sin(0.35), math.cos(0.35)),
+                (0.0, math.sin(-0.05), 0.0, math.cos(-0.05))),
+            (math.sin(0.1), 0.0, 0.0, math.cos(0.1)))
+    assert yaw_from_quaternion(*q) == pytest.approx(0.7, abs=1e-12)
 
 
-def test_the_formula_is_written_once():
-    pattern = re.compile(r'atan2\(\s*2(\.0)?\s*\*\s*\(?\s*\w+(\[\d\])?\s*\*\s*\w+(\[\d\])?\s*\+')
-    copies = []
-    for package in ('vehicle_sim', 'vehicle_msgs_py', 'test'):
-        for path in sorted((ROOT / package).rglob('*.py')):
-            for number, line in enumerate(path.read_text(encoding='utf-8').splitlines(), 1):
-                if pattern.search(line) and 'w * x' not in line:     # roll has its own formula
-                    copies.append(f'{path.relative_to(ROOT)}:{number}')
-    assert copies == ['vehicle_sim/core/geometry.py:36']
+@pytest.mark.parametrize('angle, wrapped', [
+    (0.0, 0.0), (3 * math.pi / 2, -math.pi / 2), (-3 * math.pi / 2, math.pi / 2),
+    (7.0, 7.0 - 2 * math.pi)])
+def test_wrap_angle_rad_brings_an_angle_into_minus_pi_pi(angle, wrapped):
+    assert wrap_angle_rad(angle) == pytest.approx(wrapped, abs=1e-12)
+
+
+def test_the_yaw_formula_is_written_once_in_the_package():
+    formula = re.compile(r'atan2\(\s*2(\.0)?\s*\*\s*\(\s*q?w\s*\*\s*q?z')
+    found = [str(path.relative_to(PACKAGE)) for path in PACKAGE.rglob('*.py')
+             if formula.search(path.read_text(encoding='utf-8'))]
+    assert found == ['core/geometry.py']

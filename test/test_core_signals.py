@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Indicators, hazard flashers, wipers and automatic lights (Webots' driver.c)."""
+"""Indicators, hazard flashers, wipers and automatic lights (Webots' driver.c and car.c)."""
 
 import math
 

@@ -15,7 +15,7 @@
 """
 PyBullet's window without a display, and the chase camera's logic in a DIRECT world.
 
-The window itself is tested under Xvfb in test_gui_xvfb.py.
+The window itself is tested under Xvfb in test_physics_gui_xvfb.py.
 """
 
 import math

@@ -37,6 +37,18 @@ def test_no_module_defines_its_own_fail_helper():
     assert copies == []
 
 
+def test_the_helper_is_called_by_its_own_name():
+    aliases = []
+    for package in ('vehicle_sim', 'vehicle_msgs_py'):
+        for path in sorted((ROOT / package).rglob('*.py')):
+            for node in ast.walk(ast.parse(path.read_text(encoding='utf-8'))):
+                if isinstance(node, ast.ImportFrom) \
+                        and node.module == 'vehicle_sim.core.param_spec':
+                    aliases += [f'{path.relative_to(ROOT)}:{node.lineno}' for alias in node.names
+                                if alias.name == 'fail' and alias.asname]
+    assert aliases == []
+
+
 def test_fail_names_source_key_value_and_reason():
     with pytest.raises(InvalidParameterError) as error:
         fail('car.yaml', 'mass', -1.0, 'must be > 0')

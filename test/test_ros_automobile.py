@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Cross-process tests of the automobile node over real DDS.
+Cross-process tests of the automobile node over real DDS (docs/ros_interface.md).
 
 The node runs in a subprocess in synchronous mode; the test talks to it with its own DdsNode
 and, for wire-level checks, with raw cyclonedds readers. Every service and topic comes from
@@ -398,7 +398,8 @@ class _Value:
 
 
 def test_setter_refusals_of_the_strict_ros_policy_in_process():
-    # Odd input on a service: a tiny indicator period (it used to answer true, then crash the
+    # Odd input, ROS column (docs/deviations.md): a tiny indicator period (it used to answer true,
+    # then crash the
     # next step) and a cruising speed beyond the top speed (the core stores it; a service must
     # not) answer success=false and change nothing.
     app = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/in_process_setters'],

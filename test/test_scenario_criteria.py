@@ -82,6 +82,28 @@ def test_reach_goal_never_reached_fails_and_names_the_closest_distance():
     assert 'closest 4.000 m' in result.detail
 
 
+def test_reach_goal_passed_through_too_fast_says_it_was_reached_and_by_how_much():
+    # Inside the circle at t = 0.5 s (3.5 m) and 1.0 s (4.2 m), never below 0.1 m/s there: the
+    # slowest inside is 1.5 m/s at 1.0 s, 1.4 m/s above the limit.
+    result = _feed(_criterion('reach_goal', goal=[4.0, 0.0], radius=1.0, max_speed=0.1),
+                   [(2.0, 0.0, 2.0), (3.5, 0.0, 2.0), (4.2, 0.0, 1.5), (6.0, 0.0, 1.0)])
+    assert not result.passed
+    assert result.value is None
+    assert result.detail == ('goal (4, 0) r=1 m below 0.1 m/s entered at 0.50 s but never below '
+                             'the limit there (slowest 1.5 m/s at 1.00 s, 1.4 m/s above it); '
+                             'deadline 10 s')
+
+
+def test_no_collision_says_one_collision_in_the_singular():
+    criterion = _criterion('no_collision')
+    criterion.collision(CollisionEvent(1.25, 'wall', 10.0))
+    result = criterion.result()
+    assert (result.value, result.unit) == (1, 'collision')
+    assert result.detail == '1 collision: wall at 1.25 s'
+    criterion.collision(CollisionEvent(1.5, 'wall', 10.0))
+    assert criterion.result().unit == 'collisions'
+
+
 def test_no_collision_counts_events_except_the_ignored_bodies():
     criterion = _criterion('no_collision', ignore=['cone'])
     assert criterion.result().passed and criterion.result().value == 0

@@ -113,6 +113,34 @@ def test_runner_refused_command_names_its_line(tmp_path):
     assert caught.value.line == 6
 
 
+@pytest.mark.parametrize('brake_command, stops', [
+    ('{t: 4.5, brake_intensity: 1.0}', False),                  # cruise control holds 20 km/h
+    ('{t: 4.5, throttle: 0.0, brake_intensity: 1.0}', True),    # docs/scenarios.md's example
+])
+def test_runner_brake_acts_once_the_throttle_ends_cruise_control(tmp_path, brake_command, stops):
+    path = tmp_path / 'brake.yaml'
+    path.write_text(textwrap.dedent(f"""\
+        world: {{vehicles: [{{name: ego}}]}}
+        duration: 10.0
+        driver:
+          commands: [{{t: 0.0, cruising_speed: 20}}, {brake_command}]
+        criteria:
+          - {{kind: reach_goal, goal: [25.0, 0.0], radius: 15.0, max_speed: 0.05}}
+        """), encoding='utf-8')
+    result = run_scenario(path)
+    assert result.passed is stops
+    if stops:
+        assert result.notes == []
+    else:
+        # Said once, with the command's line, where the user reads the result.
+        assert result.notes == [
+            f'{path}:4: command at t = 4.5 s: setBrakeIntensity(1.0): brake intensity 1 has no '
+            'effect while cruise control holds 20 km/h (the driven wheels follow the cruising '
+            'speed): set the cruising speed to 0 to slow down, or set the throttle (TORQUE '
+            'mode) so that the brake acts']
+        assert 'never below the limit there' in result.criteria[0].detail
+
+
 def _controller_scenario(tmp_path, body):
     script = tmp_path / 'controller.py'
     script.write_text('from vehicle_sim.webots import Driver\n' + textwrap.dedent(body),
@@ -202,7 +230,7 @@ def test_cli_scenario_exit_status_is_0_only_when_all_pass(tmp_path, capsys):
     assert 'PASS: 4/4 criteria passed' in out
     assert ElementTree.parse(junit).getroot().find('testsuite').get('failures') == '0'
     assert main(['scenario', str(BLIND), '--no-progress']) == 1
-    assert 'FAIL  no_collision: 1 collisions' in capsys.readouterr().out
+    assert 'FAIL  no_collision: 1 collision  (1 collision: wall' in capsys.readouterr().out
 
 
 def test_cli_scenario_invalid_file_exits_2_naming_the_line(tmp_path, capsys):

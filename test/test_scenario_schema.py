@@ -215,3 +215,25 @@ def test_schema_robot_sensors_need_a_served_scenario(tmp_path):
         load_scenario(path)
     assert f'{path}:4:' in str(error.value)
     assert 'published over ROS' in str(error.value)
+
+
+def test_a_missing_required_field_is_named_without_a_placeholder_value(tmp_path):
+    # Not "field 'driver' = REQUIRED: is required".
+    path = tmp_path / 'no_driver.yaml'
+    path.write_text('name: x\nduration: 5\nworld: {vehicles: [{name: ego}]}\n'
+                    'criteria: [{type: no_collision}]\n', encoding='utf-8')
+    with pytest.raises(ScenarioError) as error:
+        load_scenario(str(path))
+    assert str(error.value).endswith("scenario: field 'driver' is required")
+
+
+def test_a_criterion_without_kind_says_kind_is_needed(tmp_path):
+    # Not "criterion kind None: valid kinds: ..." for a criterion written with 'type:'.
+    path = tmp_path / 'typed.yaml'
+    path.write_text('duration: 5\nworld: {vehicles: [{name: ego}]}\n'
+                    'driver: {commands: [{t: 0.0, cruising_speed: 5}]}\n'
+                    'criteria:\n  - {type: no_collision}\n', encoding='utf-8')
+    with pytest.raises(ScenarioError) as error:
+        load_scenario(str(path))
+    assert error.value.line == 5
+    assert "a criterion needs 'kind': one of reach_goal, no_collision" in str(error.value)

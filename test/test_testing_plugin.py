@@ -48,6 +48,26 @@ def test_user_example_passes_with_the_plugin():
     assert '3 passed' in result.stdout
 
 
+def test_user_example_passes_when_the_installed_plugin_is_also_named_with_p():
+    # What users of other pytest plugins type; it used to fail with "Plugin already registered
+    # under a different name" and run no test.
+    result = _child_pytest(REPO_ROOT, EXAMPLE, '-q', '-p', 'vehicle_sim.testing')
+    assert result.returncode == 0, result.stdout[-4000:] + result.stderr[-2000:]
+    assert '3 passed' in result.stdout
+
+
+def test_plugin_named_in_a_conftest_is_the_installed_one(tmp_path):
+    (tmp_path / 'conftest.py').write_text("pytest_plugins = ['vehicle_sim.testing']\n",
+                                          encoding='utf-8')
+    (tmp_path / 'test_fixture.py').write_text(
+        'def test_fixture_is_there(request):\n'
+        "    assert request.config.pluginmanager.has_plugin('vehicle_sim.testing')\n",
+        encoding='utf-8')
+    result = _child_pytest(tmp_path, '-q')
+    assert result.returncode == 0, result.stdout[-4000:] + result.stderr[-2000:]
+    assert '1 passed' in result.stdout
+
+
 def test_stamp_helpers_read_header_and_clock_stamps():
     from vehicle_msgs_py import message_type
     from vehicle_sim.testing import stamp_ns, stamp_s
@@ -104,7 +124,7 @@ def test_plugin_collects_scenario_files_one_test_per_criterion(tmp_path):
     assert 'scenario_blind.yaml::no_collision FAILED' in out
     assert 'scenario_blind.yaml::clearance FAILED' in out
     assert 'scenario_stop.yaml::no_collision PASSED' in out
-    assert 'no_collision: 1 collision(s): wall' in out
+    assert 'no_collision: 1 collision: wall' in out
 
 
 def test_client_topics_subscribes_clock_and_the_named_topics_only_and_latest_is_exact():
@@ -128,6 +148,43 @@ def test_client_topics_subscribes_clock_and_the_named_topics_only_and_latest_is_
         with pytest.raises(TimeoutError, match='first used after the last step.*topics='):
             car.latest('throttle', timeout_s=600.0)
         assert car.subscribed_topics[-1] == '/automobile/throttle'
+    finally:
+        sim.close()
+
+
+def test_client_calls_every_service_the_node_serves_sim_reset_and_sim_pause_too():
+    from vehicle_sim.graph import demangle_service, GraphView
+    from vehicle_sim.testing import AutomobileSim
+    sim = AutomobileSim(topics=('current_speed',))
+    try:
+        car = sim.client
+        assert car.call('set_cruising_speed', 30.0).success
+        car.step(100)
+        assert car.latest('current_speed').data > 5.0
+        assert car.call('/sim/reset').success
+        car.step()
+        assert car.latest('current_speed').data == pytest.approx(0.0, abs=0.05)
+        # Reached the node: a synchronous simulation refuses to pause (its clients step it).
+        assert car.call('/sim/pause', True).success is False
+        # One table: every service the node announces (its own, not rcl_interfaces' parameter
+        # services) is a name the client takes.
+        with GraphView() as graph:
+            assert graph.wait_until(lambda: '/sim/pause' in graph.services(), 30.0)
+            # the request readers of the node's process (the one serving /sim/pause)
+            readers = [e for e in graph.endpoints()
+                       if not e.is_writer and e.dds_topic.startswith('rq/')]
+            node = {e.participant for e in readers
+                    if demangle_service(e.dds_topic) == '/sim/pause'}
+            served = {demangle_service(e.dds_topic) for e in readers
+                      if e.participant in node} - {None}
+        parameter_services = {'/automobile/' + name for name in (
+            'describe_parameters', 'get_parameters', 'get_parameter_types', 'list_parameters',
+            'set_parameters', 'set_parameters_atomically')}
+        assert parameter_services <= served
+        served -= parameter_services
+        assert '/sim/reset' in served and '/automobile/set_gear' in served
+        for name in served:
+            assert car._find(name, car._itf.NODE_SERVICES, 'service')[1] == name
     finally:
         sim.close()
 

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Cross-process tests of the embedded Cyclone DDS transport (rmw_cyclonedds conventions).
+Cross-process tests of the embedded Cyclone DDS transport (docs/transport.md).
 
 The peer node runs in a subprocess (test/transport_peer.py); the test process talks to it with
 its own DdsNode and, where the wire itself is checked, with raw cyclonedds readers and writers.

@@ -97,7 +97,7 @@ def test_resolve_name_rejects_invalid_names(bad):
         resolve_name(bad, '/', 'node')
 
 
-def test_qos_presets_match_the_ros2_presets():
+def test_qos_presets_match_rmw_qos_profiles():
     assert (port.QOS_ROSOUT.depth, port.QOS_ROSOUT.durability, port.QOS_ROSOUT.lifespan_s) == (
         1000, port.TRANSIENT_LOCAL, 10.0)
     assert (port.QOS_SENSOR_DATA.depth, port.QOS_SENSOR_DATA.reliability) == (

@@ -86,6 +86,29 @@ def test_rclpy_node_service_round_trip_in_process(context):
         server.shutdown()
 
 
+def test_rclpy_node_logger_reaches_rosout_as_rclpy_does_by_default(context):
+    # rclpy's nodes publish their log on /rosout (enable_rosout=True); the adapter's port
+    # logger goes through the node's rclpy logger, so a refusal's reason reaches the caller's
+    # `vehicle-sim call` on this transport too.
+    talker = RclpyNode('logger', '/rt', context=context)
+    listener = RclpyNode('listener', '/rt', context=context)
+    try:
+        records = []
+        listener.create_subscription('rcl_interfaces/msg/Log', '/rosout', records.append,
+                                     port.QOS_ROSOUT)
+        talker.get_logger().warn('refused 300.0: outside the valid range')
+        for _ in range(1000):
+            if any(r.name == 'rt.logger' for r in records):
+                break
+            talker.spin_once(0.01)
+            listener.spin_once(0.01)
+        assert [(r.level, r.msg) for r in records if r.name == 'rt.logger'] == [
+            (30, 'refused 300.0: outside the valid range')]
+    finally:
+        listener.shutdown()
+        talker.shutdown()
+
+
 def test_rclpy_node_warns_once_about_an_override_it_does_not_declare(context, capfd):
     node = RclpyNode('override_user', context=context,
                      parameter_overrides={'gian': 2.0, 'gain': 3.0})
@@ -97,6 +120,19 @@ def test_rclpy_node_warns_once_about_an_override_it_does_not_declare(context, ca
         assert err.count('ignored parameter override gian (did you mean gain?): not declared by '
                          'this node; its parameters: gain, ') == 1
         assert node.get_parameter('gain') == 3.0
+    finally:
+        node.shutdown()
+
+
+def test_rclpy_node_override_of_the_wrong_type_names_both_types_and_the_value(context):
+    # As on the embedded transport: rclcpp's type names and the value, not type codes.
+    node = RclpyNode('typed_user', context=context, parameter_overrides={'time_step_ms': 'abc'})
+    try:
+        with pytest.raises(port.TransportError) as error:
+            node.declare_parameter('time_step_ms', 10)
+        assert str(error.value) == (
+            "parameter 'time_step_ms' override 'abc' rejected: Wrong parameter type, parameter "
+            "{time_step_ms} is of type {integer}, setting it to {string} 'abc' is not allowed.")
     finally:
         node.shutdown()
 

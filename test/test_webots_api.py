@@ -130,7 +130,8 @@ def test_facade_deprecated_aliases_warn_and_delegate(car):
         assert car.getWipersMode() == Driver.FAST
 
 
-# ------------------------------------------------------------------------ odd input (Webots)
+# ------------------------------------------------------------------------ odd input
+# (docs/deviations.md)
 NUMERIC_ROWS = [row for row in API if row.setter and row.kind in ('float', 'int', 'enum')]
 
 
@@ -328,3 +329,35 @@ def test_facade_example_controller_runs_unchanged_apart_from_the_import():
     assert len(speeds) >= 9
     assert speeds[3] == pytest.approx(30.0, abs=0.5)   # cruise control reached 30 km/h
     assert speeds[-1] < speeds[7]                      # and slowed down after t = 8 s
+
+
+def test_facade_brake_while_cruising_warns_once_and_acts_after_set_throttle():
+    # Webots' driver.c takes a brake in SPEED mode without a word and the driven wheels keep the
+    # cruising speed; the facade takes it too and says, once, what to do instead.
+    driver = Driver()
+    try:
+        driver.setCruisingSpeed(20.0)
+        while driver.getTime() < 4.5:
+            driver.step()
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter('always')
+            for _ in range(3):
+                driver.setBrakeIntensity(1.0)
+        assert [str(w.message) for w in caught if w.category is WebotsWarning] == [
+            'setBrakeIntensity(1.0): brake intensity 1 has no effect while cruise control holds '
+            '20 km/h (the driven wheels follow the cruising speed): set the cruising speed to 0 '
+            'to slow down, or set the throttle (TORQUE mode) so that the brake acts']
+        assert driver.getBrakeIntensity() == 1.0
+        for _ in range(100):
+            driver.step()
+        assert driver.getCurrentSpeed() == pytest.approx(20.0, abs=0.1)   # cruise holds it
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter('always')
+            driver.setThrottle(0.0)
+            driver.setBrakeIntensity(1.0)
+        assert caught == []
+        while driver.getTime() < 9.5:
+            driver.step()
+        assert driver.getCurrentSpeed() == pytest.approx(0.0, abs=0.01)
+    finally:
+        driver.close()

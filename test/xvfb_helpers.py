@@ -34,17 +34,18 @@ def require_xvfb():
                     '(Debian/Ubuntu: apt-get install xvfb)')
 
 
-def xvfb_run(command, timeout_s, tmp_path):
+def xvfb_run(command, timeout_s, tmp_path, screen=SCREEN):
     """
     Run ``command`` under xvfb-run with this run's DDS settings; return the CompletedProcess.
 
-    Xvfb's own messages go to ``tmp_path/xvfb.log`` and are appended to stderr.
+    Xvfb's own messages go to ``tmp_path/xvfb.log`` and are appended to stderr. ``screen`` is
+    Xvfb's screen option (default: SCREEN).
     """
     env = peer_env()
     env.pop('DISPLAY', None)
     log = tmp_path / 'xvfb.log'
     for _ in range(ATTEMPTS):
-        result = subprocess.run(['xvfb-run', '-a', '-e', str(log), '-s', SCREEN, *command],
+        result = subprocess.run(['xvfb-run', '-a', '-e', str(log), '-s', screen, *command],
                                 env=env, capture_output=True, text=True, timeout=timeout_s)
         xvfb_log = log.read_text(errors='replace') if log.exists() else ''
         result.stderr += xvfb_log

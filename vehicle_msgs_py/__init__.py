@@ -16,7 +16,8 @@
 Interface definitions of vehicle_sim and their Python / DDS types.
 
 The ``.msg`` / ``.srv`` files under ``definitions/`` are the single source of every interface
-; :mod:`vehicle_msgs_py.types` builds cyclonedds-python types from them for the
+(docs/ros_interface.md); :mod:`vehicle_msgs_py.types` builds cyclonedds-python types from them for
+the
 embedded transport, and :mod:`vehicle_msgs_py.export` writes the ``vehicle_msgs`` ament package
 for ROS machines.
 

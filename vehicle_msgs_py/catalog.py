@@ -17,7 +17,8 @@ The interface definitions shipped with vehicle_sim, as ``.msg`` / ``.srv`` text 
 
 Every definition lives once, under ``definitions/<package>/<msg|srv>/<Name>.<msg|srv>``:
 
-* ``vehicle_msgs``: our own Webots-shaped types; exported as an ament package.
+* ``vehicle_msgs``: our own Webots-shaped types (docs/ros_interface.md); exported as an ament
+package.
 * ``autoware_control_msgs``, ``autoware_auto_control_msgs``, ``autoware_vehicle_msgs``,
   ``ackermann_msgs``: copies of the real packages' definitions (autoware_msgs 1.9.0,
   ackermann_msgs 2.0), so the embedded transport can speak them without ROS installed.

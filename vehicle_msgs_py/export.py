@@ -16,7 +16,8 @@
 Write the ``vehicle_msgs`` ament_cmake package from the shipped definitions.
 
 On a ROS 2 machine, ``vehicle-sim export-interfaces <ws>/src`` calls :func:`export_interfaces`;
-``colcon build`` then builds ``vehicle_msgs`` next to ``vehicle_sim``. Only our own
+``colcon build`` then builds ``vehicle_msgs`` next to ``vehicle_sim`` (docs/ros_interface.md).
+Only our own
 package is exported: the Autoware (autoware_control_msgs, autoware_auto_control_msgs,
 autoware_vehicle_msgs) and ackermann_msgs types come from their real packages on a ROS machine,
 and the rcl_interfaces / std_srvs copies from ROS itself.
@@ -77,7 +78,8 @@ ament_export_dependencies(rosidl_default_runtime)
 ament_package()
 """
 
-# Baseline dependencies (standard ROS 2 packages), plus any other package the definitions use.
+# Baseline dependencies (builtin_interfaces, std_msgs, ...), plus any other package the
+# definitions use.
 _BASE_DEPENDENCIES = ('builtin_interfaces', 'std_msgs')
 _PACKAGE_REF = re.compile(r'^\s*([a-z][a-z0-9_]*)/[A-Z]\w*', re.MULTILINE)
 

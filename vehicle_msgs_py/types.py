@@ -23,15 +23,15 @@ serialise exactly like rmw_cyclonedds (final extensibility, classic CDR / XCDR1)
 field names, defaults for every field (so ``Msg()`` works) and the message constants as class
 attributes.
 
-Conventions (as rmw_cyclonedds' rmw_node.cpp and rosidl write them):
+Conventions (ROS 2 Jazzy over rmw_cyclonedds_cpp; docs/transport.md):
 
-* DDS type names ``pkg::msg::dds_::Name_`` and ``pkg::srv::dds_::Name_Request_``.
+* DDS type names ``pkg::msg::dds_::Name_`` and ``pkg::srv::dds_::Name_Request_`` (A1).
 * Services: users see plain ``request`` / ``response`` classes; on the wire rmw_cyclonedds puts
-  ``uint64 client_id`` and ``int64 sequence`` in front of the fields, which the
+  ``uint64 client_id`` and ``int64 sequence`` in front of the fields (A4), which the
   ``request_wire`` / ``response_wire`` classes carry.
 * ``char`` is ``uint8`` in ROS 2 (rosidl maps it so); the type store is patched accordingly, which
-  also makes the REP-2011 hashes of rmw_dds_common's Gid types right.
-* Service request/response types are registered as ``pkg/srv/Name_Request``.
+  also makes the REP-2011 hashes of rmw_dds_common's Gid types right (Part C, A7).
+* Service request/response types are registered as ``pkg/srv/Name_Request`` (Part C 8).
 """
 
 import dataclasses
@@ -49,7 +49,7 @@ from rosbags.typesys.base import Nodetype
 from vehicle_msgs_py import distro
 from vehicle_msgs_py.catalog import definitions, split_service
 
-# rmw_cyclonedds request header members (rmw_cyclonedds' rmw_node.cpp), in wire order.
+# rmw_cyclonedds request header members (rmw_cyclonedds' cdds_request_header_t), in wire order.
 WIRE_HEADER_FIELDS = ('client_id', 'sequence')
 UINT64_MASK = 0xFFFFFFFFFFFFFFFF
 
@@ -136,7 +136,7 @@ def _non_empty(fields):
 
 
 def _parse(text, registered_name):
-    # rosbags would rename pkg/srv/X to pkg/srv/msg/X (rosbags quirk): parse as pkg/msg/X, so that
+    # rosbags would rename pkg/srv/X to pkg/srv/msg/X (Part C 8): parse as pkg/msg/X, so that
     # relative field types resolve inside the package, then register under the real name.
     pkg, _, name = registered_name.split('/')
     parse_name = f'{pkg}/msg/{name}'

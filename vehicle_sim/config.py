@@ -70,16 +70,28 @@ def find_config(subdir, name, suffix='.yaml'):
         path = folder / subdir / (name + suffix)
         if _is_file(path):
             return path
+    what = subdir[:-1] if subdir.endswith('s') else subdir
+    if _looks_like_path(name):
+        # A path, not a preset name: the list of presets would not help.
+        where = '' if candidate.is_absolute() else f' (relative to {os.getcwd()})'
+        reason = ('is not a .yaml file' if _is_file(candidate) else
+                  'is a folder, not a file' if _is_file(candidate, Path.is_dir) else
+                  'does not exist')
+        raise InvalidParameterError(f'{what} file {brief(name)} {reason}{where}')
     known = sorted(available(subdir))
     raise InvalidParameterError(
-        f'unknown {subdir[:-1] if subdir.endswith("s") else subdir} {brief(name)}; '
+        f'unknown {what} {brief(name)}; '
         f'known: {", ".join(known) or "none"} (or give a path to a .yaml file)')
 
 
-def _is_file(path):
+def _looks_like_path(name):
+    return '/' in name or os.sep in name or name.endswith(('.yaml', '.yml'))
+
+
+def _is_file(path, test=Path.is_file):
     # A name no file system takes (5000 characters, a NUL) names no file: not an OSError.
     try:
-        return path.is_file()
+        return test(path)
     except (OSError, ValueError):
         return False
 
@@ -159,16 +171,17 @@ def _car_sensors(model):
     return load_car(model).sensor_set
 
 
-def world_from_data(data, source, default_model='Car') -> WorldSpec:
+def world_from_data(data, source, default_model='Car', vehicles_required=True) -> WorldSpec:
     """
     Validate a world mapping; car models are resolved in config/cars.
 
     :param data: the YAML content.
     :param source: file name quoted in errors.
     :param default_model: model of the vehicles that give none.
+    :param vehicles_required: refuse a world without vehicles (see world_from_dict).
     :raises InvalidParameterError: naming file, entry and field.
     """
-    return world_from_dict(data, source, default_model, _car_sensors)
+    return world_from_dict(data, source, default_model, _car_sensors, vehicles_required)
 
 
 def load_world(name_or_path, default_model='Car') -> WorldSpec:

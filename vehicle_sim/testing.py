@@ -16,7 +16,8 @@
 pytest plugin: test ROS 2 code against the simulator with plain pytest, no launch_testing.
 
 Enable it with ``-p vehicle_sim.testing`` (or ``pytest_plugins = ['vehicle_sim.testing']`` in a
-``conftest.py``; an installed vehicle_sim registers it as the ``vehicle_sim`` pytest11 plugin).
+``conftest.py``); an installed vehicle_sim registers it as the pytest11 plugin of the same name,
+``vehicle_sim.testing``, so naming it again is harmless.
 
 The ``automobile_node`` fixture starts the automobile node in **synchronous** mode in a
 subprocess and yields an :class:`AutomobileSim` whose ``client`` is a node on the selected
@@ -376,7 +377,7 @@ class AutomobileClient:
 
         :return: the response (``.success`` for setters, ``.value`` for getters).
         """
-        spec, full = self._find(name, self._itf.SERVICES, 'service')
+        spec, full = self._find(name, self._itf.NODE_SERVICES, 'service')
         timeout_s = self.timeout_s if timeout_s is None else timeout_s
         client = self._clients.get(full)
         if client is None:

@@ -16,9 +16,10 @@
 CarLogic: the complete state of the Webots driver and car libraries, with a strict API.
 
 Built from CarParams; no ROS, no physics. Each basic step the physics body fills a Measurement,
-``CarLogic.step`` turns it into an Actuation (wbu_driver_step order), the body applies it and
+``CarLogic.step`` turns it into an Actuation (Webots' wbu_driver_step order), the body applies it
+and
 the world steps. Setters validate first and raise InvalidCommandError, naming the value and the
-valid range, without changing any state. Getters are read-only
+valid range, without changing any state (docs/deviations.md, core column). Getters are read-only
 properties (plus ``wheel_encoder_rad(i)`` / ``wheel_speed_radps(i)``); ``status()`` bundles all
 of them for publishers and tests.
 
@@ -317,7 +318,8 @@ class CarLogic:
         """
         Set the cruising speed, refusing speeds beyond the top speed (the ROS services' policy).
 
-        On ROS, a service answers success=false rather than store a speed the
+        Odd input, ROS column (docs/deviations.md): a service answers success=false rather than
+        store a speed the
         car cannot reach; otherwise the same as ``set_cruising_speed_kmh``.
 
         :param speed_kmh: target speed [km/h], |v| <= maxVelocity·3.6.
@@ -341,11 +343,23 @@ class CarLogic:
         """
         Brake all four wheels; the brake light follows (wbu_driver_set_brake_intensity).
 
+        While cruise control holds a speed other than 0 (SPEED mode) the brake is taken but
+        barely acts: the driven wheels' motors hold the cruising speed (1e8 N·m, as in Webots'
+        driver.c, which neither changes the mode nor warns). The call returns a note saying so,
+        which the Webots facade, the nodes and the scenario runner show as a warning.
+
         :param intensity: brake in [0, 1]; braking torque per wheel = intensity·brakeCoefficient.
+        :return: None, or why this brake has no effect now and what to do instead.
         :raises InvalidCommandError: non-finite or outside [0, 1].
         """
         self._brake = _number_in('brake intensity', intensity, 0.0, 1.0)
         self._lights.brake = self._brake > 0.0
+        if self._brake > 0.0 and self._mode == ControlMode.SPEED and self._cruising_kmh != 0.0:
+            return (f'brake intensity {self._brake:g} has no effect while cruise control holds '
+                    f'{self._cruising_kmh:g} km/h (the driven wheels follow the cruising speed): '
+                    'set the cruising speed to 0 to slow down, or set the throttle (TORQUE '
+                    'mode) so that the brake acts')
+        return None
 
     def set_gear(self, gear):
         """

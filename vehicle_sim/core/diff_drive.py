@@ -18,7 +18,7 @@ Ackermann → differential-drive kinematics of the Autoware bridge, ROS-free.
 Signs and units: Autoware / REP 103, SI. Steering tire angle δ [rad] positive = LEFT, speed v
 [m/s] positive = forward, yaw rate ω [rad/s] positive = counter-clockwise (left). Wheel speeds
 are tyre-surface speeds [m/s] unless the name ends in ``_radps``. Time steps ``dt_s`` are passed
-in. Formulas and their reasons: docs/bridge_kinematics.md.
+in (time is an argument). Formulas and their reasons: docs/bridge_kinematics.md.
 """
 
 from dataclasses import dataclass
@@ -26,6 +26,7 @@ import math
 from typing import NamedTuple
 
 from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
+from vehicle_sim.core.geometry import wrap_angle_rad
 from vehicle_sim.core.param_spec import ParamSpec, validate_table
 from vehicle_sim.core.watchdog import DEFAULT_TIMEOUT_ACTION, DEFAULT_TIMEOUT_S, TIMEOUT_ACTIONS
 
@@ -34,7 +35,8 @@ KINEMATIC_MODES = ('kinematic', 'literal')
 # Below this |v| the reported steering is regularised (equivalent_steering_rad).
 STEERING_REPORT_SPEED_EPS_MPS = 0.05
 
-# wheel_base_plausibility: Autoware suggests wheel_base ≈ wheel_tread; outside this band, warn.
+# wheel_base_plausibility: Autoware's diff-drive note suggests wheel_base ≈ wheel_tread; outside
+# this band, warn.
 WHEEL_BASE_MIN_TREAD_RATIO = 0.5
 WHEEL_BASE_MAX_TREAD_RATIO = 3.0
 
@@ -201,7 +203,8 @@ def ackermann_to_wheel_speeds(speed_mps, steering_rad, wheel_base_m, tread_m, mo
     Autoware's planner and controllers assume, so the robot follows the commanded curvature
     tan(δ)/L at any speed.
 
-    ``mode='literal'``: the snippet of Autoware's "Customizing for differential drive
+    ``mode='literal'``: the snippet of Autoware's note (Autoware "Customizing for differential
+    drive
     vehicle"), v_l = v − δ·t/2, v_r = v + δ·t/2, i.e. the steering *angle* is used as if it were a
     yaw *rate* (rad taken as rad/s). Kept only for compatibility with vehicle interfaces built
     from that snippet. It is not the default because its curvature δ/v depends on speed and not
@@ -394,10 +397,6 @@ def wheel_base_plausibility(wheel_base_m, tread_m):
     return None
 
 
-def _wrap_angle_rad(angle_rad):
-    return math.atan2(math.sin(angle_rad), math.cos(angle_rad))
-
-
 def integrate_pose(x_m, y_m, yaw_rad, speed_mps, yaw_rate_radps, dt_s):
     """
     Advance a planar pose by a constant twist over ``dt_s``, exactly (circular arc).
@@ -422,7 +421,7 @@ def integrate_pose(x_m, y_m, yaw_rad, speed_mps, yaw_rate_radps, dt_s):
     chord_m = speed_mps * dt_s * sinc
     heading_rad = yaw_rad + half_turn_rad
     return Pose2D(x_m + chord_m * math.cos(heading_rad), y_m + chord_m * math.sin(heading_rad),
-                  _wrap_angle_rad(yaw_rad + 2.0 * half_turn_rad))
+                  wrap_angle_rad(yaw_rad + 2.0 * half_turn_rad))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -75,7 +75,7 @@ class EngineModel:
 
     def _electric_nm(self, rpm):
         # min(maxTorque, maxPower / ω); driver.c divides by 2π·rpm/60 and relies on x/0 = +inf
-        # at rpm 0, which gives maxTorque (Python raises instead).
+        # at rpm 0, which gives maxTorque (Webots' driver.c).
         if rpm <= 0.0:
             return self.max_torque_nm
         return min(self.max_torque_nm, self.max_power_w / rpm_to_radps(rpm))

@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Error types of the strict core API (invalid values raise, state unchanged)."""
+"""Error types of the strict core API (docs/deviations.md)."""
 
 
 class VehicleSimError(Exception):

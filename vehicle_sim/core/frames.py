@@ -61,7 +61,8 @@ def rpy_from_quaternion(q):
     roll = math.atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y))
     sin_pitch = max(-1.0, min(1.0, 2.0 * (w * y - z * x)))
     pitch = math.asin(sin_pitch)
-    return roll, pitch, yaw_from_quaternion(q)
+    yaw = yaw_from_quaternion(x, y, z, w)
+    return roll, pitch, yaw
 
 
 def rotation_matrix(q):

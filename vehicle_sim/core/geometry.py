@@ -13,24 +13,35 @@
 # limitations under the License.
 
 """
-Plane geometry shared by every layer (ROS-free).
+Small plane-geometry truths used across the package, written once.
 
-Conventions (REP 103): right-handed, x forward, y left, z up; yaw is the heading about z,
-counter-clockwise from x. Quaternions are (x, y, z, w), as ROS messages and PyBullet order them.
+Angles follow REP 103: counter-clockwise positive about z, radians.
 """
 
 import math
 
 
-def yaw_from_quaternion(q):
+def yaw_from_quaternion(qx, qy, qz, qw):
     """
-    Return the yaw (heading about z) of a quaternion.
+    Return the heading of a unit quaternion: its rotation about z [rad], in (-pi, pi].
 
-    The closed form ``atan2(2 (w z + x y), 1 - 2 (y^2 + z^2))`` is exact for any rotation,
-    including ones with roll and pitch (it is the yaw of the fixed-axes x, y, z decomposition).
+    The yaw of the z-y-x (yaw, pitch, roll) decomposition,
+    ``atan2(2 (w z + x y), 1 - 2 (y² + z²))``; for a pure rotation about z by θ
+    (q = (0, 0, sin θ/2, cos θ/2)) it is θ.
 
-    :param q: (x, y, z, w), unit norm.
-    :return: yaw [rad] in [-pi, pi].
+    :param qx: quaternion x.
+    :param qy: quaternion y.
+    :param qz: quaternion z.
+    :param qw: quaternion w (scalar part).
+    :return: yaw [rad].
     """
-    x, y, z, w = q
-    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+    return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+
+
+def wrap_angle_rad(angle_rad):
+    """
+    Return an angle wrapped into (-pi, pi] [rad].
+
+    :param angle_rad: any finite angle [rad].
+    """
+    return math.atan2(math.sin(angle_rad), math.cos(angle_rad))

@@ -37,7 +37,7 @@ PARAM_KINDS = {
     'float': 'float', 'int': 'int', 'bool': 'bool', 'str': 'str', 'enum': 'str',
     'str_list': 'string[]', 'floats': 'float[]', 'float_list': 'float[]', 'vec3': 'float[3]',
     'inertia': 'float[6]', 'boxes': 'boxes', 'pose': 'pose', 'rgba': 'float[4]', 'rows': 'rows',
-    'ros_name': 'str', 'topic': 'str', 'namespace': 'str', 'sensors': 'sensors', 'raw': 'any',
+    'ros_name': 'str', 'topic': 'str', 'namespace': 'str', 'raw': 'any',
 }
 
 
@@ -62,8 +62,9 @@ class ParamSpec:
         ``choices``), 'str_list' (list of strings), 'floats' (``length`` numbers), 'float_list'
         (any number of numbers), 'vec3', 'inertia', 'boxes', 'pose' (mapping of x, y, z, roll,
         pitch, yaw; ``choices`` restricts the keys), 'rgba', 'rows' (a table of rows of
-        ``length`` numbers), 'ros_name', 'topic', 'namespace', 'sensors' (a list of sensor
-        mappings, see core/sensor_sets.py) and 'raw' (passed on; its caller validates it).
+        ``length`` numbers), 'ros_name', 'topic', 'namespace', 'raw' (passed on; its caller
+        validates it) and the kinds a domain module adds with :func:`register_kind` (e.g.
+        'sensors', a list of sensor mappings, in core/sensor_sets.py).
     :param default: the default; for node parameters its Python type is the ROS type;
         :data:`REQUIRED` makes a key mandatory.
     :param unit: unit, '' when none.
@@ -155,6 +156,8 @@ class ParamSpec:
         try:
             self.parse(value)
         except ParamRefused as refused:
+            if value is REQUIRED:
+                return f'{self.key} {refused.reason}'
             return f'{self.key} = {brief(_shown(refused, value))}: {refused.reason}'
         return None
 
@@ -194,6 +197,8 @@ def _is_number(value):
 
 
 def fail(source, key, value, reason, what='field'):
+    if value is REQUIRED:       # nothing to quote: "field 'driver' is required"
+        raise InvalidParameterError(f'{source}: {what} {key!r} {reason}')
     raise InvalidParameterError(f'{source}: {what} {key!r} = {brief(value)}: {reason}')
 
 
@@ -377,13 +382,6 @@ def _check_namespace(spec, value):
     return text
 
 
-def _check_sensors(spec, value):
-    # sensor_sets builds on this module: imported here, where it is needed, to avoid a cycle.
-    # It raises InvalidParameterError naming the sensor and its field itself.
-    from vehicle_sim.core.sensor_sets import sensors_from_list
-    return sensors_from_list(value, f'field {spec.key!r}', enabled_default=False)
-
-
 _CHECKERS: dict = {
     'float': _check_float,
     'int': _check_int,
@@ -402,9 +400,25 @@ _CHECKERS: dict = {
     'ros_name': _check_ros_name,
     'topic': _check_topic,
     'namespace': _check_namespace,
-    'sensors': _check_sensors,
     'raw': lambda spec, value: value,    # checked by the caller (e.g. world sensors)
 }
+
+
+def register_kind(kind, type_text, checker):
+    """
+    Add a kind of value that a domain module defines (this module knows no domain types).
+
+    :param kind: the kind's name, used as ``ParamSpec(kind=...)``; not one already registered.
+    :param type_text: its type column in the docs tables.
+    :param checker: ``checker(spec, value)`` -> the validated value; raises ParamRefused, or an
+        InvalidParameterError naming its own field (a nested table).
+    :return: ``kind``, for the modules whose ParamSpecs use it (importing it registers it).
+    """
+    if kind in PARAM_KINDS:
+        raise ValueError(f'ParamSpec kind {kind!r} is registered already')
+    PARAM_KINDS[kind] = type_text
+    _CHECKERS[kind] = checker
+    return kind
 
 
 def check_value(spec, value, source, key_word='field'):

@@ -33,6 +33,7 @@ from vehicle_sim.core.param_spec import (
     table_defaults,
     validate_table,
 )
+from vehicle_sim.core.sensor_sets import SENSORS_KIND
 
 CAR_TYPES = ('traction', 'propulsion', '4x4')
 ENGINE_TYPES = ('combustion', 'electric', 'parallel hybrid', 'power-split hybrid')
@@ -115,7 +116,7 @@ CAR_PARAM_SPECS = (
     ParamSpec('collisionBoxes', 'collision_boxes', 'boxes',
               ({'size': (5.0, 1.7, 1.0), 'position': (2.0, 0.0, 0.5), 'pitch': 0.0},), 'm',
               'chassis collision boxes: size [l, w, h], position [x, y, z], pitch [rad]'),
-    ParamSpec('sensors', 'sensors', 'sensors', None, '',
+    ParamSpec('sensors', 'sensors', SENSORS_KIND, None, '',
               'sensors of the car, each off unless "enabled: true" (docs/sensors.md); null = '
               'the default set (lidar, camera, gnss, imu)', optional=True),
 )

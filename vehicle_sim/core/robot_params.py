@@ -26,6 +26,7 @@ from dataclasses import dataclass
 from typing import Optional, Tuple
 
 from vehicle_sim.core.param_spec import fail, ParamSpec, validate_table
+from vehicle_sim.core.sensor_sets import SENSORS_KIND
 
 DRIVE_TYPES = ('caster', 'skid_steer')
 
@@ -57,7 +58,7 @@ ROBOT_PARAM_SPECS = (
               'ball caster radius (caster drive only)', gt=0.0),
     ParamSpec('caster_offset', 'caster_offset_m', 'float', -0.3, 'm',
               'x of the caster contact relative to base_link (caster drive only; != 0)'),
-    ParamSpec('sensors', 'sensors', 'sensors', None, '',
+    ParamSpec('sensors', 'sensors', SENSORS_KIND, None, '',
               'sensors of the robot, each off unless "enabled: true" (docs/sensors.md); null = '
               'the default set (lidar, imu)', optional=True),
 )

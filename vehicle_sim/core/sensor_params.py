@@ -37,8 +37,8 @@ from typing import Dict, Optional, Tuple
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.frames import Pose
 from vehicle_sim.core.lookup_table import LookupTable
-from vehicle_sim.core.param_spec import fail as _fail
 from vehicle_sim.core.param_spec import (
+    fail,
     parameter_table_markdown,
     ParamSpec,
     REQUIRED,
@@ -46,7 +46,6 @@ from vehicle_sim.core.param_spec import (
 )
 from vehicle_sim.core.value_text import brief
 
-SENSOR_TYPE_NAMES = ('lidar', 'imu', 'gnss', 'distance', 'camera')
 RADIATION_TYPES = ('ultrasound', 'infrared')
 DEFAULT_DISTANCE_RANGE_M = 5.0
 TWO_PI = 2.0 * math.pi
@@ -62,9 +61,10 @@ MAX_CAMERA_SIDE_PX = 3840           # a 4K UHD row
 MAX_CAMERA_PIXELS = 1920 * 1080     # per frame: width x height (Full HD)
 
 
-def _common(sensor_type, rate_hz):
+def _common(sensor_type, rate_hz, types=None):
+    # types: the valid ``type`` values shown in the docs (a type's own table: itself).
     return (
-        ParamSpec('type', 'sensor_type', 'enum', sensor_type, choices=SENSOR_TYPE_NAMES,
+        ParamSpec('type', 'sensor_type', 'enum', sensor_type, choices=types or (sensor_type,),
                   doc='sensor type'),
         ParamSpec('name', 'name', 'ros_name', REQUIRED,
                   doc='frame <p><name>; letters, digits, underscores; unique per vehicle'),
@@ -111,6 +111,10 @@ class SensorSpec:
     def frame_id(self, prefix=''):
         """Return the sensor frame: ``<prefix><name>``."""
         return prefix + self.name
+
+    def optical_frame_id(self, prefix=''):
+        """Return the frame of an image (z forward, x right, y down); None: no image."""
+        return None
 
     @property
     def period_s(self):
@@ -189,14 +193,14 @@ class LidarSpec(SensorSpec):
 def _check_lidar(source, values):
     rays = values['horizontal_resolution'] * values['layers']
     if rays > MAX_LIDAR_RAYS:
-        _fail(source, 'layers', values['layers'],
+        fail(source, 'layers', values['layers'],
               f'{values["horizontal_resolution"]} rays x {values["layers"]} layers = {rays} '
               f'rays per scan; at most {MAX_LIDAR_RAYS}')
     if values['min_range_m'] >= values['max_range_m']:
-        _fail(source, 'min_range', values['min_range_m'],
+        fail(source, 'min_range', values['min_range_m'],
               f'must be < max_range ({values["max_range_m"]:g} m)')
     if values['layers'] > 1 and values['vertical_fov_rad'] <= 0.0:
-        _fail(source, 'vertical_fov', values['vertical_fov_rad'],
+        fail(source, 'vertical_fov', values['vertical_fov_rad'],
               f'must be > 0 with {values["layers"]} layers')
 
 
@@ -298,12 +302,12 @@ def _check_distance(source, values):
         try:
             LookupTable(table)
         except ValueError as error:
-            _fail(source, 'lookup_table', [list(r) for r in table], str(error))
+            fail(source, 'lookup_table', [list(r) for r in table], str(error))
     if values['max_range_m'] is None:
         values['max_range_m'] = (table[-1][0] if table is not None
                                  else DEFAULT_DISTANCE_RANGE_M)
     if values['min_range_m'] >= values['max_range_m']:
-        _fail(source, 'min_range', values['min_range_m'],
+        fail(source, 'min_range', values['min_range_m'],
               f'must be < max_range ({values["max_range_m"]:g} m)')
 
 
@@ -364,11 +368,11 @@ class CameraSpec(SensorSpec):
 def _check_camera(source, values):
     pixels = values['width'] * values['height']
     if pixels > MAX_CAMERA_PIXELS:
-        _fail(source, 'height', values['height'],
+        fail(source, 'height', values['height'],
               f'{values["width"]} x {values["height"]} = {pixels} pixels per frame; at most '
               f'{MAX_CAMERA_PIXELS} (1920 x 1080)')
     if values['near_m'] >= values['far_m']:
-        _fail(source, 'near', values['near_m'], f'must be < far ({values["far_m"]:g} m)')
+        fail(source, 'near', values['near_m'], f'must be < far ({values["far_m"]:g} m)')
 
 
 @dataclass(frozen=True)
@@ -380,14 +384,33 @@ class SensorType:
     check: object
 
 
-SENSOR_TYPES: Dict[str, SensorType] = {}
-SENSOR_TYPES.update({
+# The core registration of the sensor types, in docs order: the one list of type names. Each
+# other layer registers its part under these names (physics class, ROS rows, Webots devices);
+# check_layer refuses a layer that misses one (docs/sensors.md, "Adding a sensor type").
+SENSOR_TYPES: Dict[str, SensorType] = {
     'lidar': SensorType(LidarSpec, LIDAR_SPECS, _check_lidar),
     'imu': SensorType(ImuSpec, IMU_SPECS, None),
     'gnss': SensorType(GnssSpec, GNSS_SPECS, None),
     'distance': SensorType(DistanceSpec, DISTANCE_SPECS, _check_distance),
     'camera': SensorType(CameraSpec, CAMERA_SPECS, _check_camera),
-})
+}
+
+
+def check_layer(layer, registered):
+    """
+    Refuse a layer's sensor registration that misses a core sensor type or names an unknown one.
+
+    :param layer: what registers (quoted in the error), e.g. 'physics SENSOR_CLASSES'.
+    :param registered: the sensor type names the layer registers.
+    :raises RuntimeError: naming the missing and the unknown types.
+    """
+    names = set(registered)
+    missing = [name for name in SENSOR_TYPES if name not in names]
+    unknown = sorted(names - set(SENSOR_TYPES))
+    if missing or unknown:
+        raise RuntimeError(f'{layer}: sensor types missing: {", ".join(missing) or "none"}; '
+                           f'unknown: {", ".join(unknown) or "none"} (registered in '
+                           f'core/sensor_params.py SENSOR_TYPES: {", ".join(SENSOR_TYPES)})')
 
 
 def sensor_from_dict(data, source, enabled_default=True) -> SensorSpec:
@@ -420,13 +443,14 @@ def sensor_from_dict(data, source, enabled_default=True) -> SensorSpec:
     return row.spec_class(**values)
 
 
-COMMON_KEYS = tuple(spec.key for spec in _common('lidar', 1.0))
+COMMON_KEYS = tuple(spec.key for spec in _common('any', 1.0))
 
 
 def sensors_markdown():
     """Return the key tables of docs/sensors.md: the common keys, then each type's own."""
     parts = ['#### Keys of every sensor\n\n',
-             parameter_table_markdown(_common('required', 'see the type'), 'key')]
+             parameter_table_markdown(_common('required', 'see the type', tuple(SENSOR_TYPES)),
+                                      'key')]
     for name, row in SENSOR_TYPES.items():
         rate = next(spec.default for spec in row.specs if spec.key == 'rate_hz')
         parts.append(f'\n#### `{name}` (default `rate_hz`: {rate:g} Hz)\n\n'

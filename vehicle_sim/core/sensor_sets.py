@@ -24,9 +24,8 @@ from typing import Dict, Sequence, Tuple
 
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.frames import OPTICAL_QUATERNION
-from vehicle_sim.core.param_spec import fail as _fail
-from vehicle_sim.core.param_spec import REQUIRED
-from vehicle_sim.core.sensor_params import CameraSpec, sensor_from_dict, SensorSpec
+from vehicle_sim.core.param_spec import fail, register_kind, REQUIRED
+from vehicle_sim.core.sensor_params import sensor_from_dict, SensorSpec
 from vehicle_sim.core.value_text import brief
 
 # Topics of the vehicle that sensors may not take (docs/ros_interface.md).
@@ -52,6 +51,16 @@ def sensors_from_list(data, source, enabled_default=True) -> Tuple[SensorSpec, .
                                     f'got {brief(data)}')
     check_sensor_set(sensors, source)
     return sensors
+
+
+def _check_sensors_kind(spec, value):
+    # raises InvalidParameterError naming the sensor and its field itself
+    return sensors_from_list(value, f'field {spec.key!r}', enabled_default=False)
+
+
+# The ParamSpec kind of a preset's sensor list (``ParamSpec(kind=SENSORS_KIND)``): registered
+# here, so the generic core/param_spec.py knows no sensor module.
+SENSORS_KIND = register_kind('sensors', 'sensors', _check_sensors_kind)
 
 
 def merge_sensors(base: Sequence[SensorSpec], entries, source) -> Tuple[SensorSpec, ...]:
@@ -91,7 +100,7 @@ def merge_sensors(base: Sequence[SensorSpec], entries, source) -> Tuple[SensorSp
         if isinstance(name, str) and name in index_of:
             old = result[index_of[name]]
             if 'type' in entry and entry['type'] != old.sensor_type:
-                _fail(where, 'type', entry['type'],
+                fail(where, 'type', entry['type'],
                       f'the preset sensor {brief(name)} is a {old.sensor_type}')
             data = old.as_dict()
             data.update(entry)
@@ -190,15 +199,16 @@ def static_transforms(sensors: Sequence[SensorSpec], prefix='') -> Tuple[StaticT
     """
     Return the static transforms of the mounted sensors.
 
-    ``<p>base_link`` -> ``<p><name>`` at the mount pose; a camera also ``<p><name>`` ->
-    ``<p><name>_optical`` (rpy -pi/2, 0, -pi/2).
+    ``<p>base_link`` -> ``<p><name>`` at the mount pose; a sensor with an image frame (a
+    camera: ``<p><name>_optical``) also ``<p><name>`` -> that frame (rpy -pi/2, 0, -pi/2).
     """
     base = f'{prefix}base_link'
     result = []
     for spec in mounted(sensors):
         result.append(StaticTransform(base, spec.frame_id(prefix), spec.pose.xyz,
                                       spec.pose.quaternion))
-        if isinstance(spec, CameraSpec):
-            result.append(StaticTransform(spec.frame_id(prefix), spec.optical_frame_id(prefix),
-                                          (0.0, 0.0, 0.0), OPTICAL_QUATERNION))
+        optical = spec.optical_frame_id(prefix)
+        if optical is not None:
+            result.append(StaticTransform(spec.frame_id(prefix), optical, (0.0, 0.0, 0.0),
+                                          OPTICAL_QUATERNION))
     return tuple(result)

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Indicators, hazard flashers, wipers and automatic lights (Webots' driver.c).
+Indicators, hazard flashers, wipers and automatic lights (Webots' driver.c and car.c).
 
 Pure functions of explicit inputs plus one small Wiper state machine; time is always passed in.
 """

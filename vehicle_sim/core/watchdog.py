@@ -16,7 +16,8 @@
 Command timeout on the node clock: what to publish when commands stop arriving.
 
 Time is passed in (``now_s``, seconds on the node clock, sim time included), never read here, so
-tests inject it and need no sleep. Freshness is judged by *receipt* time: the node
+tests inject it and need no sleep (time is an argument). Freshness is judged by *receipt* time:
+the node
 calls :meth:`CommandWatchdog.feed` when it accepts a command, not with the message stamp.
 """
 

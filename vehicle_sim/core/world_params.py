@@ -247,10 +247,23 @@ class WorldSpec:
     source: str = ''
 
 
+@dataclass(frozen=True)
+class RobotSpec:
+    """A differential-drive robot placed in a world: name, preset and spawn pose (REP 103)."""
+
+    name: str
+    model: str
+    x_m: float = 0.0
+    y_m: float = 0.0
+    yaw_rad: float = 0.0
+    sensors: Tuple[str, ...] = ()     # names to mount, ('all',) for every one; () none
+
+
 ModelResolver = Callable[[str], Sequence[SensorSpec]]
 
 
-def world_from_dict(data, source, default_model, preset_sensors: ModelResolver) -> WorldSpec:
+def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
+                    vehicles_required=True) -> WorldSpec:
     """
     Validate a world mapping.
 
@@ -259,6 +272,8 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver) 
     :param default_model: model of the vehicles that give none.
     :param preset_sensors: model name -> the preset's sensors; raises InvalidParameterError
         for an unknown model (config.py reads the preset).
+    :param vehicles_required: refuse a world without vehicles (False: a scenario whose
+        vehicles are all robots gives only the origin and the obstacles).
     :return: WorldSpec.
     :raises InvalidParameterError: naming file, entry and field.
     """
@@ -269,7 +284,9 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver) 
         raise InvalidParameterError(f'{source}: unknown key(s) {brief(unknown)}; valid: '
                                     + ', '.join(WORLD_KEYS))
     entries = data.get('vehicles')
-    if not isinstance(entries, list) or not entries:
+    if not entries and not vehicles_required:
+        entries = []
+    elif not isinstance(entries, list) or not entries:
         raise InvalidParameterError(f'{source}: needs a non-empty list "vehicles"')
     origin = origin_from_dict(data.get('origin'), f'{source}: origin')
     vehicles = tuple(_vehicle(entry, f'{source}: vehicles[{index}]', index, default_model,

@@ -32,14 +32,16 @@ Mappings (derivations in docs/physics.md):
 
 import pybullet
 
+from vehicle_sim.core.footprint import car_outline
 from vehicle_sim.core.vehicle_io import as_floats, WHEEL_COUNT, WheelMode
 from vehicle_sim.physics.urdf import car_urdf, joint_names, STEER_MAX_VELOCITY_RADPS
+from vehicle_sim.physics.vehicle_body import VehicleBody
 from vehicle_sim.physics.world import point_velocity
 
 # Webots' driven-wheel motors have maxTorque 1e8 N*m (Car.proto); Bullet's implicit motor is
 # stable with it, the impulse actually used is what the tyre can transmit.
 WHEEL_MOTOR_TORQUE_NM = 1.0e8
-# Webots' default RotationalMotor controlP (Webots' RotationalMotor node).
+# Webots' default RotationalMotor controlP (Webots' RotationalMotor default, controlPID 10 0 0).
 STEER_P_PER_S = 10.0
 # Suspension motor force limit, in multiples of the static corner load.
 SUSPENSION_FORCE_LIMIT_G = 20.0
@@ -61,8 +63,10 @@ def sprung_mass_per_corner_kg(params):
     return params.mass_kg * share / 2.0, params.mass_kg * (1.0 - share) / 2.0
 
 
-class CarBody:
+class CarBody(VehicleBody):
     """A car's rigid bodies and joints in a World (PyBullet), driven through Actuation."""
+
+    OUTLINE = staticmethod(car_outline)
 
     def __init__(self, world, params, position=(0.0, 0.0, 0.0), name=None,
                  wheel_shape='sphere', register=True):
@@ -79,13 +83,9 @@ class CarBody:
         :param register: register with the world's step hooks; False when an owner (e.g.
             SimulatedCar) calls ``pre_step``/``pre_substep`` itself.
         """
-        self.world = world
-        self.params = params
-        self.name = name or params.model
-        self.urdf = car_urdf(params, name=self.name, wheel_shape=wheel_shape)
-        cid = self._cid = world.client_id
-        self.body_id, joints = world.load_urdf(self.urdf, position)
-        self._joint = joints
+        name = name or params.model
+        joints = self._load(world, params, car_urdf(params, name=name, wheel_shape=wheel_shape),
+                            position, name)
         names = joint_names()
         self._wheel = [joints[n] for n in names['wheel']]
         self._steer = [joints[n] for n in names['steer']]
@@ -93,19 +93,19 @@ class CarBody:
         self._state_names = names['wheel'] + names['steer'] + names['suspension']
         self._state_joints = self._wheel + self._steer + self._suspension
         self._read_joints = self._wheel + self._steer
-        info = pybullet.getDynamicsInfo(self.body_id, -1, physicsClientId=cid)
-        # pybullet reports the base at its (principal-axes) inertial frame; keep its inverse.
-        self._link_to_com = (info[3], info[4])
-        self._com_to_link = pybullet.invertTransform(info[3], info[4])
+        self._configure()
+        if register:
+            world.add_body(self)
+
+    # ---------------------------------------------------------------- set-up
+    def _configure(self):
+        # A freshly loaded body: no command in force, the dynamics set.
         self._last_velocity_cmd = None
         self._last_steer_cmd = None
         self._torque_joints = []
         self._torques = []
         self._configure_dynamics()
-        if register:
-            world.add_body(self)
 
-    # ---------------------------------------------------------------- set-up
     def _configure_dynamics(self):
         cid, body, params = self._cid, self.body_id, self.params
         for link in range(-1, pybullet.getNumJoints(body, physicsClientId=cid)):
@@ -217,53 +217,12 @@ class CarBody:
         measurement.steer_left_rad = states[5][0]
         return measurement
 
-    def place(self, position):
-        """
-        Put the car at a pose, at rest: chassis and joint velocities 0 (a teleport).
-
-        The wheels and steering keep their angles and the suspension goes to 0; a reset loads
-        the body afresh instead (:meth:`rebuild`).
-
-        :param position: base_link pose, as the constructor takes it; the (x, y, yaw) form puts
-            base_link on the ground, level, as at spawn.
-        """
-        self.world.place_at_rest(self.body_id, self._link_to_com, position,
-                                 zero_joints=self._suspension,
-                                 stop_joints=self._wheel + self._steer)
-
-    def rebuild(self, position):
-        """
-        Load the car afresh at a pose, as the constructor does (a reset).
-
-        Whatever state the physics left the old body in (one Bullet took out of the simulation
-        falls through the ground after any reset of its pose), the new one is as built: at
-        rest, joints at 0, no command. Same URDF, so the same joint indices.
-
-        :param position: base_link pose, as the constructor takes it.
-        """
-        self.body_id, _ = self.world.reload_urdf(self.body_id, self.urdf, position)
-        self._last_velocity_cmd = None
-        self._last_steer_cmd = None
-        self._torque_joints = []
-        self._torques = []
-        self._configure_dynamics()
+    def _teleport_joints(self):
+        # The wheels and steering keep their angles and the suspension goes to 0; a reset
+        # loads the body afresh instead (rebuild).
+        return self._suspension, self._wheel + self._steer
 
     # ---------------------------------------------------------------- ground truth
-    def pose(self):
-        """Pose of base_link in the world: (x, y, z [m], qx, qy, qz, qw)."""
-        com_pos, com_orn = pybullet.getBasePositionAndOrientation(self.body_id,
-                                                                  physicsClientId=self._cid)
-        pos, orn = pybullet.multiplyTransforms(com_pos, com_orn, *self._com_to_link)
-        return tuple(pos) + tuple(orn)
-
-    def velocity(self):
-        """
-        Velocity of base_link in the world frame.
-
-        :return: ((vx, vy, vz) [m/s], (wx, wy, wz) [rad/s]).
-        """
-        return self.world.base_link_velocity(self.body_id, self.pose()[:3])
-
     def pose_and_velocity(self):
         """
         Return ``(pose(), velocity())`` of one instant, reading the base state once.
@@ -277,22 +236,6 @@ class CarBody:
         linear, angular = pybullet.getBaseVelocity(self.body_id, physicsClientId=cid)
         return tuple(pos) + tuple(orn), point_velocity(com_pos, linear, angular, pos)
 
-    def _axes(self, pose):
-        matrix = pybullet.getMatrixFromQuaternion(pose[3:], physicsClientId=self._cid)
-        return (matrix[0], matrix[3], matrix[6]), (matrix[2], matrix[5], matrix[8])
-
-    def forward_speed_mps(self):
-        """Speed of base_link along the car's heading (x axis) [m/s]; negative when reversing."""
-        linear, _ = self.velocity()
-        heading, _ = self._axes(self.pose())
-        return sum(a * b for a, b in zip(linear, heading))
-
-    def yaw_rate_radps(self):
-        """Angular velocity about the car's z axis [rad/s] (positive = left, REP 103)."""
-        _, angular = self.velocity()
-        _, up = self._axes(self.pose())
-        return sum(a * b for a, b in zip(angular, up))
-
     def joint_states(self):
         """
         Wheel spin (4), steering (2) and suspension (4) joints.
@@ -302,13 +245,3 @@ class CarBody:
         states = pybullet.getJointStates(self.body_id, self._state_joints,
                                          physicsClientId=self._cid)
         return (self._state_names, tuple(s[0] for s in states), tuple(s[1] for s in states))
-
-    def joint_index(self, name):
-        """PyBullet index of a joint by its URDF name."""
-        return self._joint[name]
-
-    def destroy(self):
-        """Remove the body from the physics (World.remove calls this)."""
-        if self.body_id is not None and not self.world.closed:
-            pybullet.removeBody(self.body_id, physicsClientId=self._cid)
-        self.body_id = None

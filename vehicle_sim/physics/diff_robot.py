@@ -41,9 +41,10 @@ from xml.sax.saxutils import escape
 import pybullet
 
 from vehicle_sim.config import load_robot  # noqa: F401  (loaded there; kept importable here)
-from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
-from vehicle_sim.core.geometry import yaw_from_quaternion
+from vehicle_sim.core.errors import InvalidCommandError
+from vehicle_sim.core.footprint import robot_outline
 from vehicle_sim.physics.urdf import geometry_block, inertial, num, vec, wheel_inertia_kgm2
+from vehicle_sim.physics.vehicle_body import VehicleBody
 
 CASTER_MASS_KG = 0.2
 # Spawn height of base_link above the ground [m]: the wheels touch down within a few steps.
@@ -141,8 +142,11 @@ class RobotReading:
     right_radps: float
 
 
-class DiffRobotBody:
+class DiffRobotBody(VehicleBody):
     """A differential-drive robot in a World, driven by wheel velocity motors."""
+
+    OUTLINE = staticmethod(robot_outline)
+    SPAWN_CLEARANCE_M = SPAWN_CLEARANCE_M
 
     def __init__(self, world, params, position=(0.0, 0.0, 0.0), name=None, register=True):
         """
@@ -157,25 +161,21 @@ class DiffRobotBody:
             the motors are implicit, so no per-step hook is needed).
         """
         params = load_robot(params)
-        self.world = world
-        self.params = params
-        self.name = name or params.model
-        self.urdf = robot_urdf(params, name=self.name)
-        cid = self._cid = world.client_id
-        self.body_id, joints = world.load_urdf(self.urdf, position, SPAWN_CLEARANCE_M)
-        self._joint = joints
+        name = name or params.model
+        self._load(world, params, robot_urdf(params, name=name), position, name)
         self.wheel_joints = params.wheel_joints
+        joints = self._joint
         self._wheels = [joints[n] for n in self.wheel_joints]
         self._left = [i for i, n in enumerate(self.wheel_joints) if 'left' in n]
         self._right = [i for i, n in enumerate(self.wheel_joints) if 'right' in n]
-        info = pybullet.getDynamicsInfo(self.body_id, -1, physicsClientId=cid)
-        self._link_to_com = (info[3], info[4])
-        self._com_to_link = pybullet.invertTransform(info[3], info[4])
-        self.spawn = position
-        self._command_radps = (0.0,) * len(self._wheels)
-        self._configure_dynamics()
+        self._configure()
         if register:
             world.add_body(self)
+
+    def _configure(self):
+        # A freshly loaded body: no command in force, the dynamics set.
+        self._command_radps = (0.0,) * len(self._wheels)
+        self._configure_dynamics()
 
     def _configure_dynamics(self):
         cid, body, params = self._cid, self.body_id, self.params
@@ -252,28 +252,9 @@ class DiffRobotBody:
         """The wheel speeds in force, in ``wheel_joints`` order [rad/s]."""
         return self._command_radps
 
-    # ---------------------------------------------------------------- reset and teleport
-    def reset(self):
-        """
-        Put the robot back as it was built: spawn pose, at rest, wheel angles 0, commands 0.
-
-        The body is loaded afresh (World.reload_urdf), so a reset repairs whatever state the
-        physics left it in.
-        """
-        self.body_id, _ = self.world.reload_urdf(self.body_id, self.urdf, self.spawn,
-                                                 SPAWN_CLEARANCE_M)
-        self._command_radps = (0.0,) * len(self._wheels)
-        self._configure_dynamics()
-
-    def teleport(self, position):
-        """
-        Put the robot at rest at (x [m], y [m], yaw [rad]) on the ground; the command stays.
-
-        :raises InvalidPoseError: when it would be inside another body (nothing moved).
-        """
-        self.world.try_place(self.body_id, lambda: self.world.place_at_rest(
-            self.body_id, self._link_to_com, position, SPAWN_CLEARANCE_M,
-            stop_joints=self._wheels))
+    def _teleport_joints(self):
+        # The wheels keep their angles; every velocity becomes 0.
+        return (), self._wheels
 
     # ---------------------------------------------------------------- measurement
     def read(self):
@@ -293,49 +274,3 @@ class DiffRobotBody:
         """
         reading = self.read()
         return self.wheel_joints, reading.wheel_position_rad, reading.wheel_velocity_radps
-
-    def pose(self):
-        """Ground-truth pose of base_link in the world: (x, y, z [m], qx, qy, qz, qw)."""
-        com_pos, com_orn = pybullet.getBasePositionAndOrientation(self.body_id,
-                                                                  physicsClientId=self._cid)
-        pos, orn = pybullet.multiplyTransforms(com_pos, com_orn, *self._com_to_link)
-        return tuple(pos) + tuple(orn)
-
-    def yaw_rad(self):
-        """Ground-truth heading of base_link [rad] (REP 103)."""
-        return yaw_from_quaternion(self.pose()[3:])
-
-    def velocity(self):
-        """
-        Ground-truth velocity of base_link in the world frame.
-
-        :return: ((vx, vy, vz) [m/s], (wx, wy, wz) [rad/s]).
-        """
-        return self.world.base_link_velocity(self.body_id, self.pose()[:3])
-
-    def body_twist(self):
-        """
-        Ground-truth twist of base_link in base_link axes.
-
-        :return: ((vx, vy, vz) [m/s], (wx, wy, wz) [rad/s]), forward speed = vx, yaw rate = wz.
-        """
-        linear, angular = self.velocity()
-        matrix = pybullet.getMatrixFromQuaternion(self.pose()[3:], physicsClientId=self._cid)
-        # columns of the rotation matrix are the body axes in the world frame
-        axes = [(matrix[0 + c], matrix[3 + c], matrix[6 + c]) for c in range(3)]
-        return (tuple(sum(a * b for a, b in zip(axis, linear)) for axis in axes),
-                tuple(sum(a * b for a, b in zip(axis, angular)) for axis in axes))
-
-    def joint_index(self, name):
-        """PyBullet index of a joint by its URDF name."""
-        try:
-            return self._joint[name]
-        except KeyError:
-            raise InvalidParameterError(
-                f'unknown joint {name!r}; joints: {", ".join(sorted(self._joint))}') from None
-
-    def destroy(self):
-        """Remove the body from the physics (World.remove calls this)."""
-        if self.body_id is not None and not self.world.closed:
-            pybullet.removeBody(self.body_id, physicsClientId=self._cid)
-        self.body_id = None

@@ -28,11 +28,12 @@ nodes, a scenario runner, a script) enables it the same way::
 The camera math lives in :mod:`vehicle_sim.core.chase_camera`; docs/drive.md lists the keys.
 """
 
+from contextlib import contextmanager
 import ctypes
 import ctypes.util
 import os
 import sys
-from typing import Dict, Optional, Sequence
+from typing import Dict, Optional, Sequence, Tuple
 
 import pybullet
 
@@ -45,6 +46,11 @@ KEY_FOLLOW = 'f'
 KEY_NEXT = 'n'
 KEY_CLOSER = '='
 KEY_FARTHER = '-'
+# PyBullet's own window size, the smallest we shrink it to, and what is left of the screen for the
+# window manager's title bar and a desktop panel [pixels].
+DEFAULT_WINDOW_SIZE = (1024, 768)
+MIN_WINDOW_SIZE = (320, 240)
+WINDOW_MARGIN = (40, 100)
 # Simulated time between camera updates and key polls [s]: in GUI mode a PyBullet call can wait
 # for the window to finish a frame, so the camera does not move each 10 ms step.
 CAMERA_PERIOD_S = 0.03
@@ -81,21 +87,67 @@ def gui_unavailable_reason(environ=None) -> Optional[str]:
             '(Debian/Ubuntu package xvfb: xvfb-run -a <command>) or leave the GUI off')
     if not display:
         return f'DISPLAY is not set: {hint}'
+    with _x_display(display) as (_, _, problem):
+        return None if problem is None else f'{problem}: {hint}'
+
+
+def screen_size(environ=None) -> Optional[Tuple[int, int]]:
+    """
+    Return the X display's default screen size (width, height) [pixels], or None if unknown.
+
+    :param environ: the environment to read DISPLAY from (default ``os.environ``).
+    """
+    display = (os.environ if environ is None else environ).get('DISPLAY', '')
+    if not display or not sys.platform.startswith('linux'):
+        return None
+    with _x_display(display) as (x11, handle, problem):
+        if problem is not None:
+            return None
+        screen = x11.XDefaultScreen(handle)
+        return int(x11.XDisplayWidth(handle, screen)), int(x11.XDisplayHeight(handle, screen))
+
+
+@contextmanager
+def _x_display(display):
+    # (libX11, the open display, None), or (None, None, why it cannot be opened); closed after.
     library = ctypes.util.find_library('X11')
     if library is None:
-        return f'libX11 is not installed: {hint}'
+        yield None, None, 'libX11 is not installed'
+        return
     try:
         x11 = ctypes.CDLL(library)
     except OSError as error:
-        return f'libX11 cannot be loaded ({error}): {hint}'
+        yield None, None, f'libX11 cannot be loaded ({error})'
+        return
     x11.XOpenDisplay.restype = ctypes.c_void_p
     x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
     x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
+    x11.XDefaultScreen.argtypes = [ctypes.c_void_p]
+    x11.XDisplayWidth.argtypes = x11.XDisplayHeight.argtypes = [ctypes.c_void_p, ctypes.c_int]
     handle = x11.XOpenDisplay(display.encode())
     if not handle:
-        return f'cannot open X display {display!r}: {hint}'
-    x11.XCloseDisplay(handle)
-    return None
+        yield None, None, f'cannot open X display {display!r}'
+        return
+    try:
+        yield x11, handle, None
+    finally:
+        x11.XCloseDisplay(handle)
+
+
+def window_size(screen: Optional[Tuple[int, int]]) -> Tuple[int, int]:
+    """
+    Return PyBullet's window size [pixels]: its usual 1024 × 768, shrunk to fit the screen.
+
+    A margin is left for the window manager's title bar and a desktop panel (a 1024 × 768
+    window does not fit a 1280 × 720 laptop screen).
+
+    :param screen: (width, height) of the screen [pixels], or None (unknown: the usual size).
+    """
+    width, height = DEFAULT_WINDOW_SIZE
+    if screen is None:
+        return width, height
+    return (max(MIN_WINDOW_SIZE[0], min(width, screen[0] - WINDOW_MARGIN[0])),
+            max(MIN_WINDOW_SIZE[1], min(height, screen[1] - WINDOW_MARGIN[1])))
 
 
 def check_gui_available(environ=None) -> None:
@@ -193,7 +245,7 @@ class ChaseCamera:
                 self.target_id, physicsClientId=cid)
         except pybullet.error:   # the body was removed: nothing to follow this step
             return
-        heading = yaw_from_quaternion(orientation)
+        heading = yaw_from_quaternion(*orientation)
         if dt_s is None or self._heading is None:
             self._heading = heading
         else:

@@ -26,7 +26,6 @@ them (CarBody, DiffRobotBody), and only ``robot_description`` carries them.
 from xml.sax.saxutils import escape
 
 from vehicle_sim.core.frames import OPTICAL_RPY
-from vehicle_sim.core.sensor_params import CameraSpec
 from vehicle_sim.core.sensor_sets import mounted
 from vehicle_sim.physics.urdf import vec
 
@@ -52,8 +51,8 @@ def sensor_links_urdf(sensors, prefix=''):
     for spec in mounted(sensors):
         frame = spec.frame_id(prefix)
         parts.append(_fixed_joint(f'{frame}_joint', base, frame, spec.pose.xyz, spec.pose.rpy))
-        if isinstance(spec, CameraSpec):
-            optical = spec.optical_frame_id(prefix)
+        optical = spec.optical_frame_id(prefix)
+        if optical is not None:
             parts.append(_fixed_joint(f'{optical}_joint', frame, optical, (0.0, 0.0, 0.0),
                                       OPTICAL_RPY))
     return ''.join(parts)

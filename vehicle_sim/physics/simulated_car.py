@@ -23,8 +23,8 @@ class SimulatedCar:
     """
     CarLogic + CarBody, stepped by the World.
 
-    Each world step, before the physics: read the joints, run the driver step (wbu_driver_step of
-    Webots' driver.c) with the time before the step, and apply the resulting commands.
+    Each world step, before the physics: read the joints, run the driver step (Webots'
+    §3.1) with the time before the step, and apply the resulting commands.
     """
 
     def __init__(self, world, params, position=(0.0, 0.0, 0.0), name=None):
@@ -62,7 +62,7 @@ class SimulatedCar:
         physics left it in. CarLogic.reset gives the start state of every command and
         estimate; simulated time goes on.
         """
-        self.body.rebuild(self.spawn)
+        self.body.reset()
         self.logic.reset()
 
     def teleport(self, position):
@@ -74,7 +74,7 @@ class SimulatedCar:
 
         :raises InvalidPoseError: when the car would be inside another body (nothing moved).
         """
-        self.world.try_place(self.body.body_id, lambda: self.body.place(position))
+        self.body.teleport(position)
         self.logic.come_to_rest()
 
     def destroy(self):

@@ -40,7 +40,7 @@ KNUCKLE_MASS_KG = 0.5
 KNUCKLE_INERTIA_KGM2 = 0.005
 # Suspension travel either side of the static position (joint limit).
 SUSPENSION_TRAVEL_M = 0.25
-# Steering motor speed limit of Webots' default RotationalMotor node.
+# Steering motor speed limit of Webots' default RotationalMotor (Webots' RotationalMotor).
 STEER_MAX_VELOCITY_RADPS = 10.0
 
 

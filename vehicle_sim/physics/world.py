@@ -29,18 +29,21 @@ for collision reports (``body_name``) and gives ray sensors a mask that skips th
 """
 
 from contextlib import contextmanager
+import ctypes
 import math
 import os
+import select
 import sys
 import tempfile
+import time
 
 import pybullet
 
 from vehicle_sim.core.errors import InvalidPoseError
 
 # Tyre-road friction coefficient of the ground (Bullet multiplies the two materials' values; car
-# wheels have 1.0). 0-100 km/h in time0To100 needs about 1.1 on the driven axle (TeslaModel3 is
-# the hardest); Webots' vehicle worlds use coulombFriction 8.
+# wheels have 1.0). 0-100 km/h in time0To100 needs about 1.1 on the driven axle (docs/physics.md
+# "Grip"; TeslaModel3 is the hardest); Webots' vehicle worlds use coulombFriction 8.
 DEFAULT_FRICTION = 1.5
 DEFAULT_TIME_STEP_S = 0.010
 DEFAULT_SUBSTEPS = 1
@@ -96,23 +99,63 @@ def _vehicle_body(registered):
     return body
 
 
+_LIBC = ctypes.CDLL(None)     # fflush for _quiet_stdout
+
+
 @contextmanager
-def _quiet_stdout():
-    """Silence C-level stdout (PyBullet prints some notices with printf)."""
+def _quiet_stdout(settle_on=None, settle_s=0.2, max_wait_s=2.0):
+    """
+    Silence C-level stdout (PyBullet prints some notices with printf).
+
+    :param settle_on: bytes that another thread of PyBullet prints shortly after the block (the
+        GUI window's first frames print ``ven = <GL vendor>``): stdout stays silenced until they
+        have come and nothing more came for ``settle_s``, at most ``max_wait_s`` after the block.
+    """
     try:
         sys.stdout.flush()
         saved = os.dup(1)
     except (OSError, ValueError, AttributeError):
         yield
         return
+    read_end, write_end = os.pipe()
     try:
-        with open(os.devnull, 'w') as devnull:
-            os.dup2(devnull.fileno(), 1)
+        os.dup2(write_end, 1)
+        try:
             yield
+        finally:
+            # printf buffers in the C library when stdout is not a terminal: flush it while
+            # fd 1 still goes to the pipe, or the notices come out later.
+            _LIBC.fflush(None)
+            _drain(read_end, settle_on, settle_s, max_wait_s)
+            _LIBC.fflush(None)
     finally:
         os.dup2(saved, 1)
         os.close(saved)
+        os.close(write_end)
+        _drain(read_end, None, 0.0, 0.0)
+        os.close(read_end)
 
+
+def _drain(read_end, settle_on, settle_s, max_wait_s):
+    # Read (and drop) what the pipe holds; with settle_on, wait for it as _quiet_stdout says.
+    seen = settle_on is None
+    start = last = time.monotonic()
+    while True:
+        now = time.monotonic()
+        if seen and now - last >= settle_s or now - start >= max_wait_s:
+            timeout_s = 0.0
+        else:
+            timeout_s = min(0.05, max_wait_s - (now - start))
+        ready, _, _ = select.select([read_end], [], [], timeout_s)
+        if not ready:
+            if timeout_s == 0.0:
+                return
+            continue
+        data = os.read(read_end, 65536)
+        if not data:
+            return
+        last = time.monotonic()
+        seen = seen or settle_on in data
 
 
 def point_velocity(com_pos, linear, angular, point):
@@ -198,10 +241,17 @@ class World:
             if client_id < 0:
                 raise RuntimeError('PyBullet could not start a physics client')
             return client_id
-        from vehicle_sim.physics.gui import check_gui_available, GuiUnavailableError
+        from vehicle_sim.physics.gui import (
+            check_gui_available,
+            GuiUnavailableError,
+            screen_size,
+            window_size,
+        )
         check_gui_available()   # PyBullet would end the process without an X server
-        with _quiet_stdout():   # the window's start-up notices
-            client_id = pybullet.connect(pybullet.GUI)
+        width, height = window_size(screen_size())
+        with _quiet_stdout(settle_on=b'ven = '):   # the window's start-up notices
+            client_id = pybullet.connect(pybullet.GUI,
+                                         options=f'--width={width} --height={height}')
         if client_id < 0:
             raise GuiUnavailableError('PyBullet could not open its window: one is open in this '
                                       'process already (PyBullet allows one per process)')
@@ -555,7 +605,8 @@ class World:
             self._bodies.clear()
             self._rebuild_hooks()
             try:
-                pybullet.disconnect(physicsClientId=self.client_id)
+                with _quiet_stdout():   # a GUI client's shutdown notices ('destroy semaphore')
+                    pybullet.disconnect(physicsClientId=self.client_id)
             except pybullet.error:
                 pass
 

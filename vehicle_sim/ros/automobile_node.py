@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-The ``automobile`` node: Webots' ``ros_automobile`` interface for simulated cars.
+The ``automobile`` node: Webots' ``ros_automobile`` interface (docs/ros_interface.md).
 
 The node class, :class:`~vehicle_sim.ros.car_sim.AutomobileNode`, lives in :mod:`.car_sim`
 (``autoware_automobile`` composes it too); this module is the executable, and

@@ -20,7 +20,7 @@ Rows are :mod:`.endpoints` rows. The bridge (``ackermann_to_differential``) and
 control-mode service, the six ``/vehicle/status`` reports); the bridge adds the vehicle side;
 the robot (``diff_robot``) has its own rows. Nodes, tests, the launch file and docs/autoware.md
 (:func:`autoware_side_markdown`, :func:`vehicle_side_markdown`, :func:`robot_markdown`) read
-these tables (one per name). Names are absolute except the robot's, which are private names of
+these tables. Names are absolute except the robot's, which are private names of
 the robot node (default ``/diff_robot``). ``/clock``, ``/tf`` and ``/tf_static`` are the shared
 rows of :mod:`.endpoints`; the bridge reads ``/clock`` best effort, as rclpy's TimeSource does.
 

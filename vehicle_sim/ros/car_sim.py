@@ -33,14 +33,15 @@ Reset, teleport and pause (``reset``, ``set_pose``, ``/sim/reset``,
 ``/sim/pause``, ``/initialpose``): :mod:`.sim_control`; a paused node skips its step timer.
 """
 
+from dataclasses import replace
 from types import SimpleNamespace
 from typing import Callable, Dict, List, Optional
 
-from vehicle_sim.config import load_car
 from vehicle_sim.core.drive_input import CarDriveInput
 from vehicle_sim.core.errors import InvalidCommandError
-from vehicle_sim.physics import SimulatedCar, World
+from vehicle_sim.physics import SimulatedCar
 from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
+from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.physics.sensors import SensorFeed
 from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.ros.car_context import CarContext
@@ -85,8 +86,9 @@ class AutomobileNode:
     Simulated cars behind Webots' ros_automobile interface.
 
     In-process API (tests, benchmarks): :meth:`step_once`, :meth:`step`, :meth:`reset` (as
-    /sim/reset), :attr:`paused`, :attr:`world`, :attr:`vehicles` (namespace -> SimulatedCar),
-    :attr:`settings`, :meth:`close`.
+    /sim/reset), :attr:`paused`, :attr:`world`, :attr:`scene` (the Scene the scene builder
+    made: vehicles by name with body, car and sensor feed), :attr:`vehicles` (namespace ->
+    SimulatedCar), :attr:`settings`, :meth:`close`.
     """
 
     def __init__(self, args=None, *, transport: Optional[str] = None,
@@ -126,27 +128,34 @@ class AutomobileNode:
     def _build(self):
         node = self.node
         self._logger = node.get_logger()
+        self._warn_setter_note = ThrottledWarning(self._logger)
         self.settings = settings = declare_parameters(node)
-        scene = world_spec(settings)
-        self.world = World(time_step_s=settings.time_step_s, friction=settings.friction,
-                           gui=settings.gui)
-        for obstacle in scene.obstacles:
-            self.world.add_obstacle(obstacle)
+        spec = self._with_sensor_parameter(world_spec(settings))
+        # Collisions are watched when there is something besides the ground to hit.
+        collisions = bool(spec.obstacles) or len(spec.vehicles) > 1
+
+        def feed(vehicle, scene):
+            # Each vehicle's sensors at their rates, and its collisions (ros: their topics).
+            return SensorFeed(scene.world, vehicle.body, vehicle.spec.sensors, scene.origin,
+                              collisions)
+
+        self.scene = build_scene(spec, time_step_s=settings.time_step_s,
+                                 friction=settings.friction, gui=settings.gui, mount=feed)
+        self.world = self.scene.world
         self._publish_every = settings.publish_every_steps
         self._stamp = stamp_builder(node.msg)
         # One queue for every vehicle's robot/time_step: they all advance the one world.
         self._time_step = TimeStepService(node, settings.time_step_ms, self.step_once,
                                           settings.synchronous)
         self._vehicles: List[CarContext] = []
-        self._taken_names = self._interface_names(scene)
-        self._scene_source = scene.source or node.get_fully_qualified_name()
-        for spec in scene.vehicles:
-            car = SimulatedCar(self.world, load_car(spec.model), (spec.x_m, spec.y_m,
-                                                                  spec.yaw_rad), name=spec.name)
-            vehicle = CarContext(spec, car, self._vehicle_sensors(spec))
+        self._taken_names = self._interface_names(spec)
+        self._scene_source = spec.source or node.get_fully_qualified_name()
+        for built in self.scene.vehicles.values():
+            vehicle = CarContext(built.spec, built.car, built.spec.sensors)
+            vehicle.feed = built.sensors
             self._wire_vehicle(vehicle)
             self._vehicles.append(vehicle)
-        self._start_sensors(scene)
+        self._sensing = [v for v in self._vehicles if v.feed.active]
         if settings.gui and self._vehicles:
             ChaseCamera(self.world, [v.car for v in self._vehicles])
             self._logger.info(f'PyBullet window open; keys: {shortcuts_text()}')
@@ -154,7 +163,7 @@ class AutomobileNode:
         # /sim/reset, /sim/pause, /initialpose (ros/sim_control.py).
         self._control = WorldControl(
             node, self.world, self._vehicles, settings.synchronous,
-            self._vehicles[initialpose_index(settings, scene)])
+            self._vehicles[initialpose_index(settings, spec)])
         self._publish_latched()
         self._publish_step(self.world.time_s)
         if not settings.synchronous:
@@ -171,11 +180,15 @@ class AutomobileNode:
 
     # ------------------------------------------------------------------------------ wiring
 
-    def _vehicle_sensors(self, spec):
-        # The vehicle's sensors: the world's, plus the presets' the sensors parameter mounts.
-        source = f'{self.node.get_fully_qualified_name()}: parameter sensors, vehicle ' \
-                 f'{spec.name!r}'
-        return mounted_sensors(spec, self.settings.sensors, source)
+    def _with_sensor_parameter(self, spec):
+        # The world's vehicles with their sensors: the world's, plus the presets' the sensors
+        # parameter mounts.
+        fqn = self.node.get_fully_qualified_name()
+        return replace(spec, vehicles=tuple(
+            replace(vehicle, sensors=mounted_sensors(
+                vehicle, self.settings.sensors,
+                f'{fqn}: parameter sensors, vehicle {vehicle.name!r}'))
+            for vehicle in spec.vehicles))
 
     def _full_name(self, vehicle_namespace):
         # row name -> its fully-qualified name on this node (remaps aside).
@@ -201,15 +214,6 @@ class AutomobileNode:
         where = f'{self._scene_source}: vehicle {vehicle.spec.name!r}'
         check_names(rows, self._taken_names, self._full_name(vehicle.spec.namespace), where)
         return rows
-
-    def _start_sensors(self, scene):
-        # After every body is in the world: each vehicle's sensors at their rates, and its
-        # collisions when there is something besides the ground to hit.
-        collisions = bool(scene.obstacles) or len(self._vehicles) > 1
-        for vehicle in self._vehicles:
-            vehicle.feed = SensorFeed(self.world, vehicle.body, vehicle.sensors, scene.origin,
-                                      collisions)
-        self._sensing = [v for v in self._vehicles if v.feed.active]
 
     def _wire_vehicle(self, vehicle):
         node = self.node
@@ -281,13 +285,16 @@ class AutomobileNode:
     def _handle_setter(self, spec, vehicle, name, request, response):
         value = request.value
         try:
-            getattr(vehicle.logic, spec.core)(_to_core(spec.value, value))
+            note = getattr(vehicle.logic, spec.core)(_to_core(spec.value, value))
         except InvalidCommandError as error:
-            # Odd input on a service: success=false, nothing changed, the reason logged.
+            # Odd input, ROS column (docs/deviations.md): success=false, nothing changed, the
+            # reason logged.
             self._logger.warn(f'{name}: refused {value!r}: {error}; nothing changed')
             response.success = False
         else:
             response.success = True
+            if note is not None:    # taken, but without effect now (e.g. a brake in SPEED mode)
+                self._warn_setter_note.warn(f'{name}: {note}')
             if spec.name in itf.LONGITUDINAL_SERVICES:
                 # A later service call wins over the last cmd_vel/drive command: the watchdog
                 # lets it stand until the next command arrives (docs/drive.md, precedence).

@@ -51,14 +51,16 @@ from vehicle_sim.core.diff_drive import integrate_pose, twist_from_wheel_speeds
 from vehicle_sim.core.drive_input import DiffDriveInput
 from vehicle_sim.core.errors import InvalidCommandError, VehicleSimError
 from vehicle_sim.core.frames import pose_in_frame, quaternion_from_yaw, rpy_from_quaternion
+from vehicle_sim.core.geodesy import GeodeticOrigin
 from vehicle_sim.core.param_spec import ParamSpec
 from vehicle_sim.core.placement import WORLD_EXTENT_M
 from vehicle_sim.core.sensor_sets import enable_sensors, selected_sensors, static_transforms
-from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
+from vehicle_sim.core.world_params import RobotSpec, WorldSpec
+from vehicle_sim.physics.diff_robot import load_robot
 from vehicle_sim.physics.gui import ChaseCamera, shortcuts_text
+from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.physics.sensor_urdf import with_sensor_links
 from vehicle_sim.physics.sensors import SensorFeed
-from vehicle_sim.physics.world import World
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros.endpoints import (
     CMD_VEL_INPUTS,
@@ -142,10 +144,22 @@ class DiffRobotNode:
         values = declare_parameters(node, ROBOT_NODE_PARAMETERS)
         self.params = load_robot(values['robot'])
         self._owns_world = world is None
-        self.world = World(time_step_s=values['time_step_ms'] / 1000.0,
-                           gui=values['gui']) if world is None else world
-        self.robot = DiffRobotBody(self.world, self.params,
-                                   (values['x'], values['y'], values['yaw']))
+        self.sensors = self._sensors(values['sensors'])
+        robot = RobotSpec(self.params.model, self.params.model, values['x'], values['y'],
+                          values['yaw'])
+
+        def feed(vehicle, scene):
+            # Its sensors at their rates; collisions only in a shared world (its own holds
+            # nothing but the ground and the robot).
+            return SensorFeed(scene.world, vehicle.body, self.sensors, scene.origin,
+                              collisions=world is not None)
+
+        scene = build_scene(WorldSpec(GeodeticOrigin(), (), ()), world,
+                            time_step_s=values['time_step_ms'] / 1000.0, gui=values['gui'],
+                            robots=(robot,), params={robot.name: self.params}, mount=feed)
+        self.world = scene.world
+        self.robot = scene.vehicles[robot.name].body
+        self._feed = scene.vehicles[robot.name].sensors
         self._gui_closed = False
         if values['gui'] and self._owns_world:
             ChaseCamera(self.world, [self.robot], ChaseSettings(distance_m=3.0, pitch_deg=-25.0,
@@ -177,12 +191,7 @@ class DiffRobotNode:
         self._time_step_name = (f'{node.get_fully_qualified_name().rstrip("/")}/'
                                 f'{bi.ROBOT_TIME_STEP.name}')
         self.frame_prefix = prefix
-        self.sensors = self._sensors(values['sensors'])
         self._wire()
-        # Its sensors at their rates; collisions only in a shared world (its own holds nothing
-        # but the ground and the robot).
-        self._feed = SensorFeed(self.world, self.robot, self.sensors,
-                                collisions=not self._owns_world)
         # /sim/reset, /sim/pause and /initialpose belong to the node that steps the world.
         self._control = WorldControl(node, self.world, (self,), self.synchronous, self) \
             if self._owns_world else None

@@ -120,7 +120,8 @@ class Service:
     :param webots: True for Webots' own names, False for our additions.
     :param observed_by: the getter service or topic that reports what a setter changed.
     :param example: a valid, non-default request value (tests).
-    :param invalid: values the node must refuse with success=false, nothing changed.
+    :param invalid: values the node must refuse with success=false (docs/deviations.md, ROS
+    column).
     :param doc: one-line description.
     :param switch: the bool parameter that enables the row (None: always served).
     :param qos: the service QoS profile.
@@ -229,7 +230,7 @@ def converter(builder, values, constants=None):
 # [(xyz, q)] in tf_frames order (None: nothing to publish).
 
 # Reliable, depth 1: rclpy's best-effort TimeSource reader and reliable readers both match
-# (the same profile for every node that publishes it).
+# (docs/ros_interface.md, for every node that publishes it).
 QOS_CLOCK_PUBLISHER = QosProfile(depth=1)
 
 CLOCK = Topic(

@@ -13,14 +13,14 @@
 # limitations under the License.
 
 """
-The automobile node's interface table: every topic and service of a simulated car.
+The automobile node's interface table: every topic and service of a car (docs/ros_interface.md).
 
 Rows are :mod:`.endpoints` rows. Names are relative to the vehicle namespace ``ns`` (empty for
 the default car): ``automobile/x`` becomes ``/<ns>/automobile/x``; names with a leading ``/``
 are global and published once for all vehicles (``/clock``, ``/tf``, ``/tf_static``, defined in
 :mod:`.endpoints`). The automobile node wires and publishes these rows, its tests iterate them,
 and ``docs/ros_interface.md`` embeds :func:`interface_table_markdown`, so a name cannot diverge
-between them: one definition per name.
+between them.
 
 Converter contexts of the per-vehicle rows: wiring ``w`` = the vehicle (``base_frame``,
 ``odom_frame``, ``joint_names``, ``frame_prefix``); call ``ctx`` = the same vehicle after
@@ -265,13 +265,16 @@ POSE_SERVICES = vehicle_services(
 SERVICES = AUTOMOBILE_SERVICES + ROBOT_SERVICES + POSE_SERVICES
 # Served and read once per node (global names): /sim/reset, /sim/pause and /initialpose.
 # WORLD_SERVICES, WORLD_INPUTS: imported above from ros/sim_control.py.
+# Every service row of an automobile node: each vehicle's, then the node's world services
+# (what the docs list and what a client such as vehicle_sim.testing may call).
+NODE_SERVICES = SERVICES + WORLD_SERVICES
 
 # Setters of the car's speed: a call after a cmd_vel/drive command holds until the next command
 # (the watchdog stands down); steering setters win over the last command's steering only.
 LONGITUDINAL_SERVICES = ('automobile/set_cruising_speed', 'automobile/set_throttle',
                          'automobile/set_brake_intensity')
 
-# Names of Webots' ros_automobile that are deliberately not served (documented in the docs).
+# Webots ros_automobile names that are deliberately not served (documented in the docs).
 NOT_SERVED = ('automobile/get_throttle', 'automobile/get_brake_intensity', 'automobile/get_rpm',
               'automobile/set_brake')
 
@@ -332,7 +335,7 @@ def interface_table_markdown() -> str:
                                   _docs_name, first='input').rstrip('\n'), '',
              '| service | type | maps to | value | unit | refused (success=false) | notes |',
              '|---|---|---|---|---|---|---|']
-    for spec in SERVICES + WORLD_SERVICES:
+    for spec in NODE_SERVICES:
         if spec.kind in (SETTER, GETTER):
             target = f'CarLogic.{spec.core}'
         elif spec.kind == DIMENSIONS:

@@ -18,9 +18,9 @@ The sensor rows of a vehicle, its collision row, and the ``sensors`` node parame
 A vehicle's sensors come from its configuration (docs/sensors.md), so their rows are made per
 vehicle by :func:`sensor_rows`: one :class:`~.endpoints.Topic` per topic of each mounted sensor
 (a camera has two), named by the sensor's ``topics`` (relative to the vehicle namespace),
-reliable, depth 5, cadence EACH_SAMPLE. ``SENSOR_ROWS`` maps a sensor type to the function
-making its rows; adding a sensor type is one entry here, one builder in :mod:`.messages` and its
-physics (docs/sensors.md, "Adding a sensor type").
+reliable, depth 5, cadence EACH_SAMPLE. ``SENSOR_ROWS`` is the ROS registration: core sensor
+type -> the function making its rows and the configurations its docs rows show (checked
+against the core types when imported; docs/sensors.md, "Adding a sensor type").
 
 Converter contexts. Wiring ``w``: ``frame_prefix`` (``<p>``) and, for :data:`COLLISION`,
 ``base_frame``. Call ``ctx``: ``readings`` ({sensor name: reading} of one sampled step) and
@@ -29,12 +29,12 @@ without a reading in ``readings``; ``event`` (a core CollisionEvent) and ``event
 time) for :data:`COLLISION`, published once per event (cadence ON_EVENT).
 """
 
-from dataclasses import replace
-from typing import Dict, Iterable, Sequence, Tuple
+from dataclasses import dataclass, replace
+from typing import Callable, Dict, Iterable, Sequence, Tuple
 
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.param_spec import ParamSpec
-from vehicle_sim.core.sensor_params import sensor_from_dict, SensorSpec
+from vehicle_sim.core.sensor_params import check_layer, sensor_from_dict, SensorSpec
 from vehicle_sim.core.sensor_sets import mounted
 from vehicle_sim.ros import messages as m
 from vehicle_sim.ros.endpoints import converter, EACH_SAMPLE, ON_EVENT, Topic
@@ -109,21 +109,35 @@ def _camera_rows(spec):
                  '<p><name>_optical', optical=True))
 
 
-# Sensor type -> the function making the rows of one SensorSpec of that type.
+@dataclass(frozen=True)
+class SensorRows:
+    """
+    The ROS part of a sensor type: its rows, and the configurations the docs table shows.
+
+    :param rows: ``rows(spec)`` -> the Topic rows of one SensorSpec of the type.
+    :param doc_examples: the non-default keys of each docs example (``{}``: the defaults).
+    """
+
+    rows: Callable
+    doc_examples: Tuple[Dict, ...] = ({},)
+
+
+# The ROS registration: core sensor type -> its SensorRows.
 SENSOR_ROWS = {
-    'lidar': _lidar_rows,
-    'imu': _imu_rows,
-    'gnss': _gnss_rows,
-    'distance': _distance_rows,
-    'camera': _camera_rows,
+    'lidar': SensorRows(_lidar_rows, ({}, {'layers': 16, 'vertical_fov': 0.5})),
+    'imu': SensorRows(_imu_rows),
+    'gnss': SensorRows(_gnss_rows),
+    'distance': SensorRows(_distance_rows),
+    'camera': SensorRows(_camera_rows),
 }
+check_layer('ROS SENSOR_ROWS (ros/sensor_interfaces.py)', SENSOR_ROWS)
 
 
 def sensor_rows(specs: Iterable[SensorSpec]) -> Tuple[Topic, ...]:
     """Return the rows of the mounted sensors, in sensor order."""
     rows = []
     for spec in mounted(specs):
-        rows.extend(SENSOR_ROWS[spec.sensor_type](spec))
+        rows.extend(SENSOR_ROWS[spec.sensor_type].rows(spec))
     return tuple(rows)
 
 
@@ -172,7 +186,7 @@ SENSORS_PARAMETER = ParamSpec(
 
 def sensor_topic_rows() -> Tuple[Topic, ...]:
     """Return the rows of one sensor of each type, default topics, named ``<name>`` (docs)."""
-    examples = ({'type': 'lidar'}, {'type': 'lidar', 'layers': 16, 'vertical_fov': 0.5},
-                {'type': 'imu'}, {'type': 'gnss'}, {'type': 'distance'}, {'type': 'camera'})
-    return sensor_rows(replace(sensor_from_dict(dict(data, name='x'), 'docs'), name='<name>')
+    examples = (dict(example, type=sensor_type, name='x')
+                for sensor_type, row in SENSOR_ROWS.items() for example in row.doc_examples)
+    return sensor_rows(replace(sensor_from_dict(data, 'docs'), name='<name>')
                        for data in examples)

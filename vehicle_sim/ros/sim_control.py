@@ -118,7 +118,8 @@ def serve_vehicle(node, rows, vehicle, resolve: Callable[[str], str]):
             place = ground_pose((p.x, p.y, p.z), (q.x, q.y, q.z, q.w))
             vehicle.teleport(place)
         except InvalidPoseError as error:
-            # Odd input on a service: success=false, nothing changed, the reason logged.
+            # Odd input, ROS column (docs/deviations.md): success=false, nothing changed, the
+            # reason logged.
             response.success = False
             response.message = f'refused: {error}; nothing moved'
             logger.warn(f'{vehicle.label}: set_pose {response.message}')

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-The automobile node's parameters, declared once, in one table.
+The automobile node's parameters, declared once (one ParamSpec table).
 
 :data:`AUTOMOBILE_PARAMETERS` is a core ParamSpec table; the node declares it through
 ``ros/node_support.py``, and ``config/automobile.yaml`` and the table in
@@ -43,31 +43,25 @@ from vehicle_sim.ros.endpoints import CMD_VEL_STAMPED_PARAMETER, CMD_VEL_TIMEOUT
 from vehicle_sim.ros.sensor_interfaces import SENSORS_PARAMETER
 
 
-def _car_model(value):
-    try:
-        find_config('cars', value)
-    except InvalidParameterError:
-        return f'unknown car model; known: {", ".join(car_names())} (or a path to a .yaml file)'
-    return None
-
-
-def _world(value):
-    if value == '':
+def _config_file(subdir):
+    def check(value):
+        if value == '' and subdir == 'worlds':
+            return None
+        try:
+            find_config(subdir, value)
+        except InvalidParameterError as error:
+            return str(error)
         return None
-    try:
-        find_config('worlds', value)
-    except InvalidParameterError as error:
-        return str(error)
-    return None
+    return check
 
 
 AUTOMOBILE_PARAMETERS: Tuple[ParamSpec, ...] = (
     ParamSpec('car_model', kind='str', default='Car',
               doc='car preset name (config/cars) or path to a preset .yaml; model of the default '
-                  'vehicle and of world entries that give none', check=_car_model),
+                  'vehicle and of world entries that give none', check=_config_file('cars')),
     ParamSpec('world', kind='str', default='', empty=True,
               doc="world name (config/worlds) or path to a world .yaml; '' = one car 'Car' "
-                  'with no namespace at the initial pose', check=_world),
+                  'with no namespace at the initial pose', check=_config_file('worlds')),
     ParamSpec('initial_x', kind='float', default=0.0, unit='m',
               doc='initial x of the default vehicle in the world frame'),
     ParamSpec('initial_y', kind='float', default=0.0, unit='m',

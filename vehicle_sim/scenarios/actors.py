@@ -104,8 +104,8 @@ class CarActor:
     def control(self):
         """Set the car's commands for the coming step."""
         logic = self.car.logic
-        pose = self.car.body.pose()
-        x, y, yaw = pose[0], pose[1], yaw_from_quaternion(pose[3:])
+        x, y, _, qx, qy, qz, qw = self.car.body.pose()
+        yaw = yaw_from_quaternion(qx, qy, qz, qw)
         command = self.follower.command(x, y, yaw)
         if command is None:
             logic.set_cruising_speed_kmh(0.0)
@@ -135,8 +135,8 @@ class RobotActor:
 
     def control(self):
         """Set the robot's wheel speeds for the coming step."""
-        pose = self.robot.pose()
-        x, y, yaw = pose[0], pose[1], yaw_from_quaternion(pose[3:])
+        x, y, _, qx, qy, qz, qw = self.robot.pose()
+        yaw = yaw_from_quaternion(qx, qy, qz, qw)
         command = self.follower.command(x, y, yaw)
         if command is None:
             self.robot.set_wheel_velocities(0.0, 0.0)

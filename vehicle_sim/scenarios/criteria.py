@@ -35,17 +35,6 @@ from vehicle_sim.scenarios.yaml_lines import line_of
 
 
 @dataclass(frozen=True)
-class CriterionSpec:
-    """One pass criterion: its kind, test name, vehicle and validated values."""
-
-    kind: str
-    name: str
-    vehicle: str
-    values: Dict[str, Any]
-    line: Optional[int] = None
-
-
-@dataclass(frozen=True)
 class Sample:
     """A vehicle's ground truth after a step: time [s], x, y [m], yaw [rad], speed [m/s]."""
 
@@ -89,11 +78,23 @@ def common_specs():
     )
 
 
+@dataclass(frozen=True)
+class CriterionSpec:
+    """One pass criterion: its kind, test name, vehicle and validated values."""
+
+    kind: str
+    name: str
+    vehicle: str
+    values: Dict[str, Any]
+    line: Optional[int] = None
+
+
 class Criterion:
     """Base: a criterion of one vehicle; subclasses set KIND, UNIT and SPECS."""
 
     KIND = ''
     UNIT = ''
+    UNIT_OF_ONE = None          # a counted unit's singular ('collision' for a value of 1)
     SPECS: Tuple[ParamSpec, ...] = ()
 
     def __init__(self, name, vehicle, values: Dict[str, Any], duration_s):
@@ -118,7 +119,8 @@ class Criterion:
         raise NotImplementedError
 
     def _result(self, passed, value, detail):
-        return CriterionResult(self.name, self.KIND, bool(passed), value, self.UNIT, detail)
+        unit = self.UNIT_OF_ONE if self.UNIT_OF_ONE and value == 1 else self.UNIT
+        return CriterionResult(self.name, self.KIND, bool(passed), value, unit, detail)
 
 
 class ReachGoal(Criterion):
@@ -142,14 +144,22 @@ class ReachGoal(Criterion):
         super().__init__(*args)
         self.reached_s = None
         self.closest_m = math.inf
+        self.entered_s = None           # first time inside the region, at any speed
+        self.slowest_inside = None      # (speed [m/s], time [s]) slowest while inside
 
     def observe(self, sample):
         gx, gy = self.values['goal']
         distance = math.hypot(sample.x_m - gx, sample.y_m - gy)
         self.closest_m = min(self.closest_m, distance)
-        slow = (self.values['max_speed_mps'] is None
-                or abs(sample.speed_mps) <= self.values['max_speed_mps'])
-        if self.reached_s is None and distance <= self.values['radius_m'] and slow:
+        if distance > self.values['radius_m']:
+            return
+        speed_mps = abs(sample.speed_mps)
+        if self.entered_s is None:
+            self.entered_s = sample.time_s
+        if self.slowest_inside is None or speed_mps < self.slowest_inside[0]:
+            self.slowest_inside = (speed_mps, sample.time_s)
+        slow = self.values['max_speed_mps'] is None or speed_mps <= self.values['max_speed_mps']
+        if self.reached_s is None and slow:
             self.reached_s = sample.time_s
 
     def result(self):
@@ -158,6 +168,14 @@ class ReachGoal(Criterion):
                f'{self.values["radius_m"]:g} m'
         if self.values['max_speed_mps'] is not None:
             goal += f' below {self.values["max_speed_mps"]:g} m/s'
+        if self.reached_s is None and self.entered_s is not None:
+            # In the region, but never slow enough there: say so, with the speed it had.
+            speed_mps, at_s = self.slowest_inside
+            return self._result(False, None, f'{goal} entered at {self.entered_s:.2f} s but '
+                                              f'never below the limit there (slowest '
+                                              f'{speed_mps:.3g} m/s at {at_s:.2f} s, '
+                                              f'{speed_mps - self.values["max_speed_mps"]:.3g} '
+                                              f'm/s above it); deadline {within:g} s')
         if self.reached_s is None:
             return self._result(False, None, f'{goal} not reached (closest '
                                               f'{self.closest_m:.3f} m); deadline {within:g} s')
@@ -172,6 +190,7 @@ class NoCollision(Criterion):
 
     KIND = 'no_collision'
     UNIT = 'collisions'
+    UNIT_OF_ONE = 'collision'
     SPECS = (
         ParamSpec('ignore', 'ignore', 'raw', (), doc='names of bodies it may touch',
                   check=lambda v: None if isinstance(v, (list, tuple)) and all(
@@ -191,7 +210,8 @@ class NoCollision(Criterion):
         if not count:
             return self._result(True, 0, 'no collision')
         first = ', '.join(f'{e.other} at {e.time_s:.2f} s' for e in self.events[:3])
-        return self._result(False, count, f'{count} collision(s): {first}')
+        counted = f'{count} {self.UNIT_OF_ONE if count == 1 else self.UNIT}'
+        return self._result(False, count, f'{counted}: {first}')
 
 
 class StayOnPath(Criterion):
@@ -427,6 +447,8 @@ def criteria_from_list(ctx, data, names, default_vehicle):
     for index, entry in enumerate(data):
         where = path + (index,)
         kind = entry.get('kind') if isinstance(entry, dict) else None
+        if isinstance(entry, dict) and 'kind' not in entry:
+            raise ctx.fail(where, "a criterion needs 'kind': one of " + ', '.join(CRITERIA))
         if kind not in CRITERIA:
             raise ctx.fail(where + ('kind',) if isinstance(entry, dict) else where,
                            f'criterion kind {brief(kind)}: valid kinds: ' + ', '.join(CRITERIA))

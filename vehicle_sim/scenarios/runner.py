@@ -80,6 +80,8 @@ class ScenarioResult:
         processes).
     :param spread: with repeated runs, {criterion name: (min, max)} of the measured values.
     :param collisions: {vehicle name: its CollisionEvents (with the contact point)}.
+    :param notes: scripted commands that were taken but had no effect when given (a brake while
+        cruise control holds a speed), each once per run, with its time and file line.
     """
 
     spec: ScenarioSpec
@@ -94,6 +96,7 @@ class ScenarioResult:
     spread: Optional[Dict[str, tuple]] = None
     runs: int = 1
     collisions: Dict[str, List[CollisionEvent]] = field(default_factory=dict)
+    notes: List[str] = field(default_factory=list)
 
     @property
     def passed(self):
@@ -134,6 +137,8 @@ class Director:
         self.digest = hashlib.sha256()
         self._commands = list(spec.driver.commands)
         self._next = 0
+        self.notes = []             # ScenarioResult.notes
+        self._noted = set()         # the setters a note was taken of
 
     def attach(self, sim):
         """Bind to the built simulation: vehicles, actors, collision monitors."""
@@ -142,7 +147,7 @@ class Director:
         for actor in self.spec.actors:
             handle = self.vehicles[actor.vehicle]
             self.actors.append(CarActor(actor, handle.car) if handle.is_car
-                               else RobotActor(actor, handle.robot))
+                               else RobotActor(actor, handle.body))
         for name, handle in self.vehicles.items():   # every vehicle: the plot marks them
             monitor = CollisionMonitor(self.world, handle.body)
             self.world.remove(monitor)      # stepped from post_step, after the physics
@@ -174,11 +179,15 @@ class Director:
         logic = self.vut.car.logic
         for core_setter, value, webots_name in command.setters:
             try:
-                getattr(logic, core_setter)(value)
+                note = getattr(logic, core_setter)(value)
             except InvalidCommandError as error:
                 raise ScenarioError(self.spec.source, command.line,
                                     f'command at t = {command.t_s:g} s: {webots_name}'
                                     f'({value!r}) refused: {error}') from None
+            if note is not None and webots_name not in self._noted:    # once per run
+                self._noted.add(webots_name)
+                self.notes.append(f'{self.spec.source}:{command.line}: command at t = '
+                                  f'{command.t_s:g} s: {webots_name}({value!r}): {note}')
 
     def post_step(self):
         """World hook: collisions, odometry, criteria, progress."""
@@ -294,7 +303,7 @@ def _run_once(spec, gui, progress, transport):
     return ScenarioResult(spec, spec.seed, [c.result() for c in criteria], sim_time_s,
                           time.monotonic() - start, director.tracks,
                           director.digest.hexdigest(), not served or kind != 'processes',
-                          error, collisions=director.collisions)
+                          error, collisions=director.collisions, notes=director.notes)
 
 
 # ---------------------------------------------------------------------------- in-process

@@ -42,19 +42,8 @@ from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.param_spec import ParamSpec, REQUIRED, validate_table
 from vehicle_sim.core.sensor_sets import enable_sensors, selected_sensors
 from vehicle_sim.core.value_text import brief
-from vehicle_sim.core.world_params import (
-    obstacles_from_list,
-    origin_from_dict,
-    used_twice,
-    WORLD_KEYS,
-    WorldSpec,
-)
-from vehicle_sim.scenarios.criteria import (
-    common_specs,
-    CRITERIA,
-    criteria_from_list,
-    CriterionSpec,
-)
+from vehicle_sim.core.world_params import RobotSpec, used_twice, WorldSpec
+from vehicle_sim.scenarios.criteria import criteria_from_list, CriterionSpec
 from vehicle_sim.scenarios.yaml_lines import error_at, line_of, load_with_lines, ScenarioError
 from vehicle_sim.webots.api_table import CAR_API, DRIVER_API
 
@@ -148,18 +137,6 @@ DRIVER_SPECS = (
 # wrapper (api_table ``prop``), applied through the strict core setter.
 COMMAND_ROWS = {row.prop: row for row in DRIVER_API + CAR_API
                 if row.setter is not None and row.prop is not None}
-
-
-@dataclass(frozen=True)
-class RobotSpec:
-    """A differential-drive robot of the scenario: name, preset and spawn pose."""
-
-    name: str
-    model: str
-    x_m: float = 0.0
-    y_m: float = 0.0
-    yaw_rad: float = 0.0
-    sensors: Tuple[str, ...] = ()     # names to mount, ('all',) for every one; () none
 
 
 @dataclass(frozen=True)
@@ -337,30 +314,20 @@ def scenario_from_data(data, lines, source) -> ScenarioSpec:
 
 
 def _world(ctx, value, cars_optional):
+    # A world name or file, or an inline world: a world file's mapping, read by the same
+    # parser; without cars when the scenario's vehicles are all robots.
     path = ('world',)
     try:
         if isinstance(value, str):
             file = ctx.relative(value)
             return config.load_world(file), str(config.world_path(file))
-        if isinstance(value, dict) and cars_optional and not value.get('vehicles'):
-            return _world_without_cars(ctx, value), None
         if isinstance(value, dict):
-            return config.world_from_data(value, f'{ctx.source}: world'), None
+            return config.world_from_data(value, f'{ctx.source}: world',
+                                          vehicles_required=not cars_optional), None
     except InvalidParameterError as error:
         raise error_at(ctx.source, ctx.lines, path, error) from None
     raise ctx.fail(path, f'world = {brief(value)}: give a world name, a path to a world .yaml or '
                          'an inline world mapping')
-
-
-def _world_without_cars(ctx, value):
-    # Robots only: the world's origin and obstacles, validated as a world file's.
-    source = f'{ctx.source}: world'
-    unknown = sorted(set(value) - set(WORLD_KEYS))
-    if unknown:
-        raise InvalidParameterError(f'{source}: unknown key(s) {brief(unknown)}; valid: '
-                                    + ', '.join(WORLD_KEYS))
-    return WorldSpec(origin_from_dict(value.get('origin'), f'{source}: origin'), (),
-                     obstacles_from_list(value.get('obstacles'), f'{source}: obstacles'), source)
 
 
 def _robots(ctx, value):
@@ -556,6 +523,7 @@ def _processes(ctx, value):
 def schema_markdown():
     """Return the key tables of docs/scenarios.md (the file format), generated from the specs."""
     from vehicle_sim.core.param_spec import parameter_table_markdown
+    from vehicle_sim.scenarios.criteria import common_specs, CRITERIA
     parts = ['#### Top level\n\n', parameter_table_markdown(SCENARIO_SPECS, 'key'),
              '\n#### `robots` entries\n\n', parameter_table_markdown(ROBOT_SPECS, 'key'),
              '\n#### `actors` entries\n\n', parameter_table_markdown(ACTOR_SPECS, 'key'),

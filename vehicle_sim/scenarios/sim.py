@@ -22,7 +22,8 @@ The simulation a scenario runs in: a World with the scenario's vehicles, plain o
   node per robot sharing that world (the first robot owns it when there is no car). External
   controllers (subprocesses) and topic criteria need it.
 
-Both give a :class:`VehicleHandle` per vehicle name and call a ``director`` (the runner's
+Both build their world through the scene builder (physics/scene.py; the served one inside the
+nodes) and give a :class:`VehicleHandle` per vehicle name and call a ``director`` (the runner's
 per-step hooks) from the world's step.
 """
 
@@ -32,12 +33,8 @@ import tempfile
 
 import yaml
 
-from vehicle_sim.config import load_car, load_robot
-from vehicle_sim.core.footprint import car_outline, robot_outline
 from vehicle_sim.core.geometry import yaw_from_quaternion
-from vehicle_sim.physics.diff_robot import DiffRobotBody
-from vehicle_sim.physics.simulated_car import SimulatedCar
-from vehicle_sim.physics.world import World
+from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.scenarios.criteria import Sample
 
 # One odometry row: time, pose (x, y, z, qx, qy, qz, qw), linear and angular velocity (world).
@@ -46,18 +43,19 @@ ODOMETRY_ROW = struct.Struct('<14d')
 
 class VehicleHandle:
     """
-    One vehicle of a scenario: a car (``car``: SimulatedCar) or a robot (``robot``).
+    One vehicle of a scenario: its body (the VehicleBody contract), and a car's SimulatedCar.
 
     :param name: its name in the scenario.
+    :param body: its VehicleBody (CarBody, DiffRobotBody).
+    :param car: the SimulatedCar of a car; None for a robot.
     :param sensors: its SensorSpecs (cars; the in-process controller's devices).
     """
 
-    def __init__(self, name, car=None, robot=None, sensors=()):
+    def __init__(self, name, body, car=None, sensors=()):
         self.name = name
+        self.body = body
         self.car = car
-        self.robot = robot
         self.sensors = sensors
-        self.body = car.body if car is not None else robot
 
     @property
     def is_car(self):
@@ -66,9 +64,7 @@ class VehicleHandle:
     @property
     def outline(self):
         """Return its footprint rectangle in base_link (core Outline), from its parameters."""
-        if self.car is not None:
-            return car_outline(self.car.params)
-        return robot_outline(self.robot.params)
+        return self.body.outline
 
     def odometry_row(self, time_s):
         """Return the packed ground-truth odometry row (ODOMETRY_ROW) at ``time_s``."""
@@ -79,11 +75,8 @@ class VehicleHandle:
     def sample(self, time_s):
         """Return the criteria's Sample: position, heading, forward speed."""
         x, y, _, qx, qy, qz, qw = self.body.pose()
-        if self.car is not None:
-            speed = self.body.forward_speed_mps()
-        else:
-            speed = self.robot.body_twist()[0][0]
-        return Sample(time_s, x, y, yaw_from_quaternion((qx, qy, qz, qw)), speed)
+        return Sample(time_s, x, y, yaw_from_quaternion(qx, qy, qz, qw),
+                      self.body.forward_speed_mps())
 
 
 def _seeded(sensors, seed):
@@ -105,27 +98,20 @@ class LocalSim:
     served = False
 
     def __init__(self, spec, director, seed, gui=False):
-        self.world = world = World(time_step_s=spec.time_step_ms / 1000.0, gui=gui)
-        try:
-            world.add_body(director)
-            for obstacle in spec.world.obstacles:
-                world.add_obstacle(obstacle)
-            self.vehicles = {}
-            for vehicle in spec.world.vehicles:
-                car = SimulatedCar(world, load_car(vehicle.model),
-                                   (vehicle.x_m, vehicle.y_m, vehicle.yaw_rad), name=vehicle.name)
-                self.vehicles[vehicle.name] = VehicleHandle(
-                    vehicle.name, car=car, sensors=_seeded(vehicle.sensors, seed))
-            for robot in spec.robots:
-                body = DiffRobotBody(world, load_robot(robot.model),
-                                     (robot.x_m, robot.y_m, robot.yaw_rad), name=robot.name)
-                self.vehicles[robot.name] = VehicleHandle(robot.name, robot=body)
-            if gui:
+        self.scene = scene = build_scene(spec.world, time_step_s=spec.time_step_ms / 1000.0,
+                                         gui=gui, robots=spec.robots, hooks=(director,))
+        self.world = world = scene.world
+        self.vehicles = {
+            name: VehicleHandle(name, built.body, built.car,
+                                _seeded(built.spec.sensors, seed) if built.car is not None else ())
+            for name, built in scene.vehicles.items()}
+        if gui:
+            try:
                 from vehicle_sim.physics.gui import ChaseCamera
-                ChaseCamera(world, [v.car or v.robot for v in self.vehicles.values()])
-        except BaseException:
-            world.close()
-            raise
+                ChaseCamera(world, [built.vehicle for built in scene.vehicles.values()])
+            except BaseException:
+                world.close()
+                raise
 
     def step(self):
         """Advance one basic step; return the time [s]."""
@@ -164,10 +150,10 @@ class ServedSim:
                     'world': self._world_file(spec), 'synchronous': True,
                     'time_step_ms': step_ms, 'gui': gui})
                 world = self.automobile.world
-                cars = self.automobile.vehicles
                 for vehicle in spec.world.vehicles:
+                    built = self.automobile.scene.vehicles[vehicle.name]
                     self.vehicles[vehicle.name] = VehicleHandle(
-                        vehicle.name, car=cars[vehicle.namespace], sensors=vehicle.sensors)
+                        vehicle.name, built.body, built.car, sensors=vehicle.sensors)
             else:
                 world = None
             for robot in spec.robots:
@@ -181,9 +167,8 @@ class ServedSim:
                 self.robot_nodes.append(node)
                 if world is None:
                     world = node.world
-                    for obstacle in spec.world.obstacles:
-                        world.add_obstacle(obstacle)
-                self.vehicles[robot.name] = VehicleHandle(robot.name, robot=node.robot)
+                    build_scene(spec.world, world)     # the obstacles (no car: no vehicles)
+                self.vehicles[robot.name] = VehicleHandle(robot.name, node.robot)
             self.world = world
             world.add_body(director)
         except BaseException:

@@ -20,6 +20,8 @@ Subcommands (``vehicle-sim <command> --help`` for details)::
     run                 start the automobile node (embedded transport) with a live status line
     list                nodes, topics and services seen on the graph
     echo TOPIC          print the messages of a topic (like ``ros2 topic echo``)
+    pub TOPIC [TYPE] V  publish to a topic (like ``ros2 topic pub``)
+    hz TOPIC            the rate of a topic (like ``ros2 topic hz``)
     call SERVICE VALUE  call a service (like ``ros2 service call``)
     param get|set|list  the rcl_interfaces parameter services of a node (like ``ros2 param``)
     export-interfaces   write the vehicle_msgs ament package for a ROS workspace
@@ -32,7 +34,7 @@ Everything talks over the embedded Cyclone DDS transport, with ``ROS_DOMAIN_ID``
 Exit codes: 0 success, 1 runtime failure (unknown name, timeout, rejected value), 2 usage error.
 
 This module parses the command line and dispatches; each command lives in its own module of
-:mod:`vehicle_sim.tools` (``graph_commands``, ``run_command``, ``demo``).
+:mod:`vehicle_sim.tools` (``graph_commands``, ``topic_commands``, ``run_command``, ``demo``).
 """
 
 import argparse
@@ -42,6 +44,7 @@ from typing import List, Optional
 
 from vehicle_sim.tools.command import CliError, EXIT_FAILURE, EXIT_OK
 from vehicle_sim.tools.graph_commands import (
+    add_topic_arguments,
     cmd_call,
     cmd_echo,
     cmd_list,
@@ -51,6 +54,13 @@ from vehicle_sim.tools.graph_commands import (
     DEFAULT_LIST_WAIT_S,
 )
 from vehicle_sim.tools.run_command import cmd_run
+from vehicle_sim.tools.topic_commands import (
+    add_hz_arguments,
+    add_pub_arguments,
+    cmd_hz,
+    cmd_pub,
+    PUB_USAGE,
+)
 
 # --------------------------------------------------------------------------------------------
 # export-interfaces, demo
@@ -110,15 +120,24 @@ def build_parser() -> argparse.ArgumentParser:
     lst.set_defaults(func=cmd_list)
 
     echo = sub.add_parser('echo', help='print the messages of a topic')
-    echo.add_argument('topic', metavar='TOPIC')
-    echo.add_argument('--type', metavar='T', help='message type (default: from the graph)')
+    add_topic_arguments(echo)
     echo.add_argument('--once', action='store_true', help='print one message and exit')
     echo.add_argument('--count', type=int, metavar='N', help='print N messages and exit')
+    echo.add_argument('--field', metavar='A.B',
+                      help='print only this field of each message (e.g. data, twist.linear)')
+    echo.add_argument('--rate', type=float, metavar='HZ',
+                      help='print at most HZ messages a second (the others are skipped)')
     echo.add_argument('--timeout', type=float, metavar='S',
                       help='fail when the messages did not come within S seconds')
-    echo.add_argument('--wait', type=float, default=DEFAULT_DISCOVERY_WAIT_S, metavar='S',
-                      help='how long to look for the topic')
     echo.set_defaults(func=cmd_echo)
+
+    pub = sub.add_parser('pub', help='publish a message to a topic', usage=PUB_USAGE)
+    add_pub_arguments(pub)
+    pub.set_defaults(func=cmd_pub)
+
+    hz = sub.add_parser('hz', help="print a topic's rate")
+    add_hz_arguments(hz)
+    hz.set_defaults(func=cmd_hz)
 
     call = sub.add_parser('call', help='call a service',
                           description='VALUE is the single request field of the Set*/Get* '

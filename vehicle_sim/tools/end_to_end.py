@@ -37,7 +37,7 @@ import math
 from typing import Callable, List, Optional, Sequence, Tuple
 
 from vehicle_sim.core.diff_drive import integrate_pose, SpeedLimiter
-from vehicle_sim.core.geometry import yaw_from_quaternion
+from vehicle_sim.core.geometry import wrap_angle_rad, yaw_from_quaternion
 from vehicle_sim.core.units import kmh_to_mps
 
 DT_S = 0.010                 # basic time step [s]
@@ -226,7 +226,7 @@ class Track:
 def _unwrap(angles):
     out = [angles[0]]
     for angle in angles[1:]:
-        delta = math.atan2(math.sin(angle - out[-1]), math.cos(angle - out[-1]))
+        delta = wrap_angle_rad(angle - out[-1])
         out.append(out[-1] + delta)
     return out
 
@@ -263,12 +263,15 @@ def run_robots(stream, robots=ROBOTS, bridge_overrides=None, transport='dds',
     :param record_every: record wheel speeds every n steps.
     :return: {preset: Track}.
     """
-    from vehicle_sim.physics.world import World
+    from vehicle_sim.core.geodesy import GeodeticOrigin
+    from vehicle_sim.core.world_params import WorldSpec
+    from vehicle_sim.physics.scene import build_scene
     from vehicle_sim.ros import bridge_interfaces as bi
     from vehicle_sim.ros.bridge_node import AckermannToDifferentialNode
     from vehicle_sim.ros.diff_robot_node import DiffRobotNode
 
-    world = World(time_step_s=DT_S)
+    # An empty world the robot nodes fill (each through the scene builder).
+    world = build_scene(WorldSpec(GeodeticOrigin(), (), ()), time_step_s=DT_S).world
     rigs = []
     try:
         for index, preset in enumerate(robots):
@@ -333,7 +336,7 @@ def _bounds_or_none(stream, name):
 
 def _record_pose(track, time_s, pose):
     track.time_s.append(time_s)
-    track.pose.append((pose[0], pose[1], yaw_from_quaternion(pose[3:7])))
+    track.pose.append((pose[0], pose[1], yaw_from_quaternion(*pose[3:7])))
 
 
 def _robot_control(rig, command, now_s, msg_type):

@@ -25,8 +25,20 @@ import sys
 import time
 from typing import Optional
 
-from vehicle_sim.tools.command import CliError, EXIT_OK, EXIT_USAGE, install_stop_handlers
-from vehicle_sim.tools.message_yaml import build_request, format_message
+from vehicle_sim.tools.command import (
+    CliError,
+    EXIT_FAILURE,
+    EXIT_OK,
+    EXIT_USAGE,
+    install_stop_handlers,
+)
+from vehicle_sim.tools.message_yaml import (
+    build_request,
+    field_path,
+    format_message,
+    format_plain,
+    pick_field,
+)
 
 DEFAULT_DISCOVERY_WAIT_S = 3.0
 DEFAULT_LIST_WAIT_S = 1.5
@@ -36,7 +48,7 @@ DEFAULT_CALL_TIMEOUT_S = 5.0
 # --------------------------------------------------------------------------------------------
 # Shared helpers of the graph commands
 
-def _absolute(name: str) -> str:
+def absolute_name(name: str) -> str:
     return name if name.startswith('/') else '/' + name
 
 
@@ -44,15 +56,33 @@ def _hidden(name: str) -> bool:
     return any(token.startswith('_') for token in name.split('/') if token)
 
 
-def _not_found(kind: str, name: str, candidates, wait_s: float) -> CliError:
+def _not_found(kind: str, name: str, graph, candidates, wait_s: float,
+               hint: str = '', status: int = EXIT_FAILURE) -> CliError:
     from vehicle_sim.graph import close_names
     close = close_names(name, candidates)
-    hint = f'; did you mean: {", ".join(close)}' if close else ''
+    hint = (f'; did you mean: {", ".join(close)}' if close else '') + hint
+    if not graph.participants():
+        hint += '; ' + _nothing_found(graph.domain_id)
     return CliError(f'{kind} {name!r} not found on the graph after {wait_s:g} s '
-                    f'(ROS_DOMAIN_ID={os.environ.get("ROS_DOMAIN_ID", "0")}){hint}')
+                    f'(ROS_DOMAIN_ID={graph.domain_id}){hint}', status)
 
 
-class _Session:
+def _nothing_found(domain_id: int) -> str:
+    """Say which domain and discovery range saw no other participant at all, and the rule."""
+    from vehicle_sim.transport import dds_config
+    discovery = dds_config.discovery_range()
+    if dds_config.localhost_only():
+        setting = f'ROS_LOCALHOST_ONLY=1 ({discovery})'
+    elif os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE', '').strip():
+        setting = f'ROS_AUTOMATIC_DISCOVERY_RANGE={discovery}'
+    else:
+        setting = f'ROS_AUTOMATIC_DISCOVERY_RANGE unset ({discovery})'
+    return (f'no other DDS participant seen at all on domain {domain_id} with {setting}: '
+            'both sides must use the same ROS_DOMAIN_ID and the same discovery range '
+            '(README, "Try it")')
+
+
+class GraphSession:
     """The CLI's graph view and (created on demand) its hidden helper node."""
 
     def __init__(self):
@@ -76,17 +106,39 @@ class _Session:
             self._node.shutdown()
         self.graph.close()
 
-    def service_type(self, service: str, given: Optional[str], wait_s: float) -> str:
-        if given:
-            return _check_service_type(given)
-        found = self.graph.wait_until(lambda: service in self.graph.services(), wait_s)
-        if not found:
-            raise _not_found('service', service, self.graph.services(), wait_s)
-        types = sorted(self.graph.services()[service])
-        if len(types) > 1:
-            raise CliError(f'service {service} has several types ({", ".join(types)}); '
+    def resolve_type(self, kind: str, name: str, given: Optional[str], wait_s: float,
+                     must_exist: bool = True, hint: str = '',
+                     status: int = EXIT_FAILURE) -> str:
+        """
+        Return a topic's or service's type: ``given`` (checked against the graph) or the graph's.
+
+        :param kind: ``'topic'`` or ``'service'``.
+        :param given: the user's ``--type`` / TYPE, or None.
+        :param must_exist: fail when the name is not on the graph after ``wait_s``; else a
+            given type is used as it is (a topic whose publisher comes later).
+        :param hint: added to the not-found error, raised with ``status``.
+        :raises CliError: the name is not on the graph, has several types, or has another type
+            than the one given (naming both, at once).
+        """
+        graph = self.graph
+        types_of = graph.services if kind == 'service' else graph.topics
+        check = _check_service_type if kind == 'service' else _check_message_type
+        wanted = check(given) if given else None
+        look_s = wait_s if wanted is None or must_exist else min(wait_s, 1.0)
+        if not graph.wait_until(lambda: name in types_of(), look_s):
+            if wanted is not None and not must_exist:
+                return wanted
+            raise _not_found(kind, name, graph, types_of(), wait_s, hint, status)
+        on_graph = sorted(types_of()[name])
+        if wanted is not None:
+            if wanted not in on_graph:
+                raise CliError(f'{kind} {name} has type {" and ".join(on_graph)} on the graph, '
+                               f'not {wanted} (the type given)')
+            return wanted
+        if len(on_graph) > 1:
+            raise CliError(f'{kind} {name} has several types ({", ".join(on_graph)}); '
                            'pick one with --type')
-        return _check_service_type(types[0])
+        return check(on_graph[0])
 
 
 def _check_service_type(srv_type: str) -> str:
@@ -134,7 +186,7 @@ def _call(node, srv_type: str, service: str, request, timeout_s: float):
 # list
 
 def cmd_list(args) -> int:
-    session = _Session()
+    session = GraphSession()
     try:
         session.graph.wait(args.wait)
         graph = session.graph
@@ -180,7 +232,21 @@ def _print_list(graph, show_all: bool) -> None:
 # --------------------------------------------------------------------------------------------
 # echo
 
-def cmd_echo(args) -> int:
+def add_topic_arguments(parser) -> None:
+    """Add what every topic command takes: TOPIC, ``--type`` and ``--wait``."""
+    parser.add_argument('topic', metavar='TOPIC')
+    parser.add_argument('--type', metavar='T', help='message type (default: from the graph)')
+    parser.add_argument('--wait', type=float, default=DEFAULT_DISCOVERY_WAIT_S, metavar='S',
+                        help='how long to look for the topic')
+
+
+def subscribe(session: 'GraphSession', args, on_message):
+    """
+    Subscribe the helper node to ``args.topic`` (type from ``args.type`` or the graph).
+
+    QoS like ``ros2 topic echo``: reliable / transient local only when every publisher offers
+    it. :return: the topic's absolute name.
+    """
     from vehicle_sim.transport.port import (
         BEST_EFFORT,
         QosProfile,
@@ -188,43 +254,66 @@ def cmd_echo(args) -> int:
         TRANSIENT_LOCAL,
         VOLATILE,
     )
-    topic = _absolute(args.topic)
+    topic = absolute_name(args.topic)
+    graph = session.graph
+    ros_type = session.resolve_type('topic', topic, args.type, args.wait, must_exist=False)
+    graph.wait_until(lambda: bool(graph.publishers(topic)), min(args.wait, 1.0))
+    publishers = graph.publishers(topic)
+    qos = QosProfile(
+        depth=10,
+        reliability=RELIABLE if all(p.reliable for p in publishers) else BEST_EFFORT,
+        durability=(TRANSIENT_LOCAL if publishers and all(p.transient_local
+                                                          for p in publishers)
+                    else VOLATILE))
+    field = None
+    if getattr(args, 'field', None):
+        from vehicle_msgs_py import types as msg_types
+        field = field_path(msg_types.message_type(ros_type), args.field)
+    session.node.create_subscription(ros_type, topic, lambda msg: on_message(msg, field), qos)
+    return topic
+
+
+class PrintRate:
+    """
+    Print at most ``rate_hz`` times a second (``echo --rate``); None prints every message.
+
+    :meth:`due` takes the time, so a test steps it.
+    """
+
+    def __init__(self, rate_hz: Optional[float]):
+        self._period_s = 1.0 / rate_hz if rate_hz else 0.0
+        self._last_s = None
+
+    def due(self, now_s: float) -> bool:
+        """Return True (and remember ``now_s``) when a message may be printed at ``now_s``."""
+        if self._last_s is not None and now_s - self._last_s < self._period_s:
+            return False
+        self._last_s = now_s
+        return True
+
+
+def cmd_echo(args) -> int:
     count = 1 if args.once else args.count
     if count is not None and count < 1:
         raise CliError('--count must be >= 1', EXIT_USAGE)
-    session = _Session()
+    if args.rate is not None and not args.rate > 0.0:
+        raise CliError(f'--rate must be > 0 Hz, got {args.rate:g}', EXIT_USAGE)
+    session = GraphSession()
     try:
-        graph = session.graph
-        if args.type:
-            ros_type = _check_message_type(args.type)
-            graph.wait_until(lambda: bool(graph.publishers(topic)), min(args.wait, 1.0))
-        else:
-            if not graph.wait_until(lambda: topic in graph.topics(), args.wait):
-                raise _not_found('topic', topic, graph.topics(), args.wait)
-            types = sorted(graph.topics()[topic])
-            if len(types) > 1:
-                raise CliError(f'topic {topic} has several types ({", ".join(types)}); '
-                               'pick one with --type')
-            ros_type = _check_message_type(types[0])
-        # ros2 topic echo: reliable / transient local only when every publisher offers it.
-        publishers = graph.publishers(topic)
-        qos = QosProfile(
-            depth=10,
-            reliability=RELIABLE if all(p.reliable for p in publishers) else BEST_EFFORT,
-            durability=(TRANSIENT_LOCAL if publishers and all(p.transient_local
-                                                              for p in publishers)
-                        else VOLATILE))
         received = []
+        rate = PrintRate(args.rate)
 
-        def on_message(msg):
-            if count is not None and len(received) >= count:
+        def on_message(msg, field):
+            if (count is not None and len(received) >= count) or not rate.due(time.monotonic()):
                 return
             received.append(msg)
-            sys.stdout.write(format_message(msg) + '---\n')
+            text = format_message(msg) if field is None else format_plain(
+                pick_field(msg, field))
+            sys.stdout.write(text + '---\n')
             sys.stdout.flush()
 
+        topic = subscribe(session, args, on_message)
         node = session.node
-        node.create_subscription(ros_type, topic, on_message, qos)
         stop = install_stop_handlers()
         deadline = None if args.timeout is None else time.monotonic() + args.timeout
         while not stop.is_set() and (count is None or len(received) < count):
@@ -239,19 +328,24 @@ def cmd_echo(args) -> int:
     return EXIT_OK
 
 
-
 # --------------------------------------------------------------------------------------------
 # call
 
 def cmd_call(args) -> int:
     from vehicle_msgs_py import service_types
-    service = _absolute(args.service)
-    session = _Session()
+    from vehicle_sim.tools.call_log import CallLog
+    service = absolute_name(args.service)
+    session = GraphSession()
     try:
-        srv_type = session.service_type(service, args.type, args.wait)
+        srv_type = session.resolve_type('service', service, args.type, args.wait)
         request = build_request(service_types(srv_type).request, args.value)
+        log = CallLog(session.node, session.graph, service)   # subscribed before the call
+        log.start()
         response = _call(session.node, srv_type, service, request, args.timeout)
+        log.stop()
         sys.stdout.write(format_message(response))
+        for line in log.lines():
+            sys.stdout.write(line + '\n')
     finally:
         session.close()
     return EXIT_OK
@@ -268,11 +362,11 @@ _PARAM_LABELS = {
 }
 
 
-def _param_node(session: _Session, name: str, wait_s: float) -> str:
-    fqn = _absolute(name)
+def _param_node(session: GraphSession, name: str, wait_s: float) -> str:
+    fqn = absolute_name(name)
     graph = session.graph
     if not graph.wait_until(lambda: graph.find_node(fqn) is not None, wait_s):
-        raise _not_found('node', fqn, graph.node_names(), wait_s)
+        raise _not_found('node', fqn, graph, graph.node_names(), wait_s)
     return fqn
 
 
@@ -281,7 +375,7 @@ def cmd_param(args) -> int:
     from vehicle_sim.transport.dds import param_messages
     from vehicle_sim.transport.params import parse_parameter_value
     from vehicle_sim.transport.port import TransportError
-    session = _Session()
+    session = GraphSession()
     try:
         fqn = _param_node(session, args.node, args.wait)
         node = session.node

@@ -23,11 +23,11 @@ field's type and integer range.
 import dataclasses
 import math
 import typing
-from typing import Any, Optional, Sequence
+from typing import Any, List, Optional, Sequence
 
 import yaml
 
-from vehicle_sim.tools.command import CliError
+from vehicle_sim.tools.command import CliError, EXIT_USAGE
 
 # Fields generated for empty messages (rosidl); never shown, never set.
 _HIDDEN_FIELDS = ('structure_needs_at_least_one_member',)
@@ -83,8 +83,46 @@ def format_message(msg: Any) -> str:
     plain = to_plain(msg)
     if not isinstance(plain, dict):
         plain = {'data': plain}
-    return yaml.dump(plain, Dumper=_OrderedDumper, default_flow_style=False, sort_keys=False,
+    return format_plain(plain)
+
+
+def format_plain(plain: Any) -> str:
+    """Return plain data as YAML; a lone scalar as its YAML text (``30.0``), no end marker."""
+    text = yaml.dump(plain, Dumper=_OrderedDumper, default_flow_style=False, sort_keys=False,
                      allow_unicode=True, width=1000)
+    return text[:-len('...\n')] if text.endswith('\n...\n') else text
+
+
+def format_line(msg: Any) -> str:
+    """Return a message as one line of flow-style YAML (``{linear: {x: 1.0, ...}, ...}``)."""
+    return yaml.dump(to_plain(msg), Dumper=_OrderedDumper, default_flow_style=True,
+                     sort_keys=False, allow_unicode=True, width=float('inf')).strip()
+
+
+def field_path(cls, path: str) -> List[str]:
+    """
+    Return the field names of ``path`` (``twist.linear``), checked against a message class.
+
+    :raises CliError: (usage) for a name the message has not, listing the fields it has.
+    """
+    names = path.split('.')
+    plain = to_plain(cls())
+    for depth, name in enumerate(names):
+        where = '.'.join(names[:depth]) or cls.__ros_type__
+        if not isinstance(plain, dict) or name not in plain:
+            fields = ', '.join(plain) if isinstance(plain, dict) else '(none: not a message)'
+            raise CliError(f'--field {path}: {where} has no field {name!r}; fields: {fields}',
+                           EXIT_USAGE)
+        plain = plain[name]
+    return names
+
+
+def pick_field(msg: Any, names: Sequence[str]) -> Any:
+    """Return the plain value of the field at ``names`` (from :func:`field_path`) of ``msg``."""
+    plain = to_plain(msg)
+    for name in names:
+        plain = plain[name]
+    return plain
 
 
 def _field_shape(annotation) -> tuple:
@@ -167,12 +205,13 @@ def from_plain(cls, data: Any, where: str = 'request'):
     return cls(**values)
 
 
-def build_request(request_cls, value_text: Optional[str]):
+def build_request(request_cls, value_text: Optional[str], where: str = 'request'):
     """
     Build a service request from the command-line VALUE.
 
     A YAML mapping (``"{value: 30}"``) sets fields by name; any other value sets the request's
     single field (``30`` for SetFloat, ``true`` for SetBool); no VALUE gives the defaults.
+    A topic message is built the same way (``where='message'`` names it in errors).
     """
     fields = [f.name for f in dataclasses.fields(request_cls) if f.name not in _HIDDEN_FIELDS]
     if value_text is None:
@@ -182,7 +221,7 @@ def build_request(request_cls, value_text: Optional[str]):
     except yaml.YAMLError as exc:
         raise CliError(f'VALUE {value_text!r} is not valid YAML: {exc}') from None
     if isinstance(value, dict):
-        return from_plain(request_cls, value)
+        return from_plain(request_cls, value, where)
     if len(fields) != 1:
         raise CliError(
             f'{request_cls.__ros_type__} has {len(fields)} fields ({", ".join(fields)}); '
@@ -191,4 +230,4 @@ def build_request(request_cls, value_text: Optional[str]):
     shape = _field_shape(hints[fields[0]])
     if shape[0] == 'scalar' and shape[1] is str:
         value = value_text  # keep the text verbatim for string fields
-    return from_plain(request_cls, {fields[0]: value})
+    return from_plain(request_cls, {fields[0]: value}, where)

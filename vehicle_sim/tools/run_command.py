@@ -160,6 +160,40 @@ class _AroundStatus:
         return getattr(self._stream, name)
 
 
+def _ros_arguments(after):
+    """
+    Return the ROS arguments given after ``--``; anything else there is refused.
+
+    The node would ignore it without a word (``-- -p friction:=2`` sets nothing: ``-p`` is a
+    ROS argument only inside ``--ros-args``).
+    """
+    from vehicle_sim.transport import TransportError
+    from vehicle_sim.transport.params import parse_ros_args
+    ros_args = list(after or [])
+    if ros_args and ros_args[0] == '--':
+        ros_args = ros_args[1:]
+    try:
+        stray = parse_ros_args(ros_args).non_ros_args
+    except TransportError as error:
+        raise CliError(str(error), EXIT_USAGE) from None
+    if stray:
+        raise CliError(f"arguments after '--' must be ROS arguments after --ros-args, e.g. "
+                       f"'-- --ros-args -p friction:=2'; not understood: {' '.join(stray)}",
+                       EXIT_USAGE)
+    return ros_args
+
+
+def _config_file(subdir, option, value):
+    """Check ``--car``/``--world`` before the node joins the graph; return the value."""
+    from vehicle_sim.config import find_config
+    from vehicle_sim.core.errors import InvalidParameterError
+    try:
+        find_config(subdir, value)
+    except InvalidParameterError as error:
+        raise CliError(f'{option} {value}: {error}', EXIT_USAGE) from None
+    return value
+
+
 def cmd_run(args) -> int:
     """
     Run the automobile node through the transport's ``run_node``, as the node mains do.
@@ -171,14 +205,12 @@ def cmd_run(args) -> int:
     from vehicle_sim.core.errors import VehicleSimError
     from vehicle_sim.ros.car_sim import AutomobileNode
     from vehicle_sim.transport import run_node
-    ros_args = list(args.ros_args or [])
-    if ros_args and ros_args[0] == '--':
-        ros_args = ros_args[1:]
+    ros_args = _ros_arguments(args.ros_args)
     overrides: Dict[str, Any] = {}
     if args.car:
-        overrides['car_model'] = args.car
+        overrides['car_model'] = _config_file('cars', '--car', args.car)
     if args.world:
-        overrides['world'] = args.world
+        overrides['world'] = _config_file('worlds', '--world', args.world)
     if args.real_time_factor is not None:
         overrides['real_time_factor'] = float(args.real_time_factor)
     if args.synchronous:

@@ -21,6 +21,7 @@ when one fails or the run itself failed (a controller raised, a process died), 2
 error, an invalid scenario file or ``--plot`` without matplotlib.
 """
 
+import os
 import signal
 import sys
 import threading
@@ -94,6 +95,7 @@ def report_lines(result):
             low, high = result.spread[criterion.name]
             line += f' [over {result.runs} runs: min {_shown(low)}, max {_shown(high)}]'
         lines.append(line)
+    lines.extend(f'  note: {note}' for note in result.notes)
     if result.error:
         lines.append(f'  ERROR run: {result.error}')
     passed = sum(c.passed for c in result.criteria)
@@ -105,6 +107,27 @@ def report_lines(result):
         lines.append('note: an external controller drives this scenario: runs are not '
                      'deterministic (use --repeat N for the spread)')
     return lines
+
+
+def prepare_output(path, option):
+    """
+    Make ``path``'s folder (as pytest's ``--junitxml`` does) before the run, or refuse at once.
+
+    :param path: the file ``--junit`` or ``--plot`` will write.
+    :param option: the option's name, for the message.
+    :raises CliError: (exit 2) when the file cannot be written there; nothing has run yet.
+    """
+    folder = os.path.dirname(os.path.abspath(path))
+    if os.path.isdir(path):
+        raise CliError(f'{option} {path}: is a folder, not a file', EXIT_USAGE)
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except OSError as error:
+        raise CliError(f'{option} {path}: cannot create its folder: {error.strerror}',
+                       EXIT_USAGE) from None
+    if not os.access(folder, os.W_OK | os.X_OK) or (
+            os.path.exists(path) and not os.access(path, os.W_OK)):
+        raise CliError(f'{option} {path}: not writable', EXIT_USAGE)
 
 
 def _exit_on_sigterm():
@@ -133,6 +156,9 @@ def cmd_scenario(args) -> int:
         spec = load_scenario(args.file)
     except ScenarioError as error:
         raise CliError(str(error), EXIT_USAGE) from None
+    for option, path in (('--junit', args.junit), ('--plot', args.plot)):
+        if path:
+            prepare_output(path, option)
     seed = spec.seed if args.seed is None else args.seed
     print(f'scenario {spec.name} ({args.file}), seed {seed}, {spec.duration_s:g} s, driver: '
           f'{spec.driver.kind}')

@@ -16,8 +16,8 @@
 Every use of cyclonedds-python internals by the embedded transport, in one place.
 
 Written against cyclonedds 11.0.1 (the version setup.py pins);
-test/test_transport_cyclone_private.py pins the behaviour each function relies on, so an
-upgrade that changes it fails there first. Why each internal is needed:
+test/test_transport_cyclone_private.py pins the behaviour each function relies on, so an upgrade
+that changes it fails there first. Why each internal is needed:
 
 * :func:`take_serialized` / :func:`take` (``cyclonedds._clayer.ddspy_take``): the public
   ``DataReader.take()`` deserializes the whole batch inside the call, so one sample that cannot

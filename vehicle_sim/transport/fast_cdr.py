@@ -20,8 +20,8 @@ Each ``<type>`` factory here takes the same constants as its message builder in
 so a row's converter can use either one (:data:`SERIALIZERS`, by ROS type). The bytes are plain
 XCDR1 little endian with the 4-byte encapsulation header, what ``DdsPublisher.publish_serialized``
 writes and what rclpy's ``Publisher.publish`` takes as bytes (``rcl_publish_serialized_message``);
-test/test_transport_fast_cdr.py checks them equal to rosbags' and cyclonedds-python's CDR.
-Both transports use them; this module needs nothing but ``struct``.
+test/test_transport_fast_cdr.py checks them equal to rosbags' and cyclonedds-python's CDR. Both
+transports use them; this module needs nothing but ``struct``.
 
 Layout: after the encapsulation header, offsets count from 0; a primitive is aligned to its
 size; a string is its uint32 length (NUL included), its bytes and the NUL. A Header-led type has

@@ -246,6 +246,27 @@ def parameter_type_of(value: Any) -> int:
     raise TransportError(f'value {value!r} cannot be a ROS parameter')
 
 
+# rclcpp's to_string(ParameterType) names, as `ros2 param describe` prints them
+PARAMETER_TYPE_NAMES = ('not set', 'bool', 'integer', 'double', 'string', 'byte_array',
+                        'bool_array', 'integer_array', 'double_array', 'string_array')
+
+
+def wrong_type_reason(name: str, expected: int, value: Any) -> Optional[str]:
+    """
+    Return why ``value`` cannot be set on a parameter of type ``expected``, or None if it can.
+
+    rclcpp's wording ("Wrong parameter type, parameter {x} is of type {integer}, setting it to
+    {string} is not allowed."), with the types named and the value quoted, on both transports.
+    """
+    kind = parameter_type_of(value)
+    if kind == expected:
+        return None
+    shown = repr(value) if len(repr(value)) <= 80 else repr(value)[:77] + '...'
+    return (f'Wrong parameter type, parameter {{{name}}} is of type '
+            f'{{{PARAMETER_TYPE_NAMES[expected]}}}, setting it to '
+            f'{{{PARAMETER_TYPE_NAMES[kind]}}} {shown} is not allowed.')
+
+
 def normalize_parameter_value(value: Any) -> Any:
     """Return the canonical Python form of a parameter value (lists, bytes, floats in arrays)."""
     kind = parameter_type_of(value)
@@ -323,6 +344,10 @@ class Time:
 
 # --------------------------------------------------------------------------------------------
 # The port
+
+# Severity names of rcutils' console output, by level.
+LOG_LEVEL_NAMES = {10: 'DEBUG', 20: 'INFO', 30: 'WARN', 40: 'ERROR', 50: 'FATAL'}
+
 
 class Logger(abc.ABC):
     """A node logger: rcutils-like console output plus /rosout."""

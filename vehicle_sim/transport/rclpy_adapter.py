@@ -305,7 +305,9 @@ class RclpyNode(port.NodePort):
                 # '-p gain:=2' for a double, as on the embedded transport
                 override = RclpyParameter(name, value=float(override.value))
                 self.node._parameter_overrides[name] = override
-            reason = port.run_validator(validator, override.value)
+            reason = (port.wrong_type_reason(name, port.parameter_type_of(default),
+                                             override.value)
+                      or port.run_validator(validator, override.value))
             if reason:
                 raise TransportError(
                     f'parameter {name!r} override {override.value!r} rejected: {reason}')

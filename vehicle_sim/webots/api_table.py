@@ -13,10 +13,11 @@
 # limitations under the License.
 
 """
-The one table of the Webots driver and car library API: each name is defined here only.
+The one table of the Webots driver and car library API.
 
 Each row names the Webots Python method(s), the CarLogic member behind them, the value kind,
-how the facade treats odd input (Webots semantics, a warning), and what the round-trip test needs
+how the facade treats odd input (docs/deviations.md, facade column), and what the round-trip test
+needs
 (valid sample values, settling steps and a tolerance where the getter reports a measured value).
 The facade's methods and snake_case properties are generated from these rows, and the tests
 iterate them, so a name cannot diverge (the lesson of the Webots wrapper slips).
@@ -183,6 +184,8 @@ class DeviceRow:
     spec_getters: Tuple[Tuple[str, str, type], ...] = ()
 
 
+# The Webots registration: every device class of webots/devices.py under the core sensor type
+# it serves (one or more rows per type).
 DEVICE_API = (
     DeviceRow('Lidar', 'lidar', 'device', 'getLidar', (
         ('getHorizontalResolution', 'horizontal_resolution', int),
@@ -205,8 +208,9 @@ DEVICE_API = (
 )
 
 # Robot / Supervisor functions that exist in Webots but not here (no other devices are
-# simulated; the sensor devices of DEVICE_API are, through getDevice).
-UNSUPPORTED_ROBOT_API = (
+# simulated; the sensor devices of DEVICE_API are, through getDevice): a device getter that a
+# DEVICE_API row serves drops out of this list by itself.
+UNSUPPORTED_ROBOT_API = tuple(name for name in (
     'getKeyboard', 'getJoystick',
     'getMouse', 'getSelf', 'getRoot', 'getFromDef', 'getFromId', 'getFromDevice',
     'getDisplay',
@@ -215,4 +219,4 @@ UNSUPPORTED_ROBOT_API = (
     'getEmitter', 'simulationSetMode', 'simulationReset', 'simulationQuit', 'worldReload',
     'wwiSendText', 'wwiReceiveText', 'getCustomData', 'setCustomData', 'getUrdf',
     'batterySensorEnable', 'waitForUserInputEvent', 'exportImage',
-)
+) if name not in {row.robot_getter for row in DEVICE_API})

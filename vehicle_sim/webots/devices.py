@@ -34,6 +34,7 @@ SensorSpec's ``rate_hz`` is for the ROS topics only.
 import math
 import numbers
 
+from vehicle_sim.core.sensor_params import check_layer
 from vehicle_sim.webots.api_table import DEVICE_API
 from vehicle_sim.webots.webots_warning import warn
 
@@ -371,8 +372,10 @@ def _make_spec_getter(name, attr, kind):
     return getter
 
 
-DEVICE_CLASSES = {cls.__name__: cls for cls in (Lidar, Camera, GPS, InertialUnit, Gyro,
-                                                Accelerometer, DistanceSensor)}
+# The Webots registration is DEVICE_API (webots/api_table.py): each row names a device class of
+# this module and the core sensor type it serves; checked against the core types when imported.
+check_layer('Webots DEVICE_API (webots/api_table.py)', {row.sensor_type for row in DEVICE_API})
+DEVICE_CLASSES = {row.device_class: globals()[row.device_class] for row in DEVICE_API}
 for _row in DEVICE_API:
     for _name, _attr, _kind in _row.spec_getters:
         setattr(DEVICE_CLASSES[_row.device_class], _name, _make_spec_getter(_name, _attr, _kind))

@@ -13,13 +13,14 @@
 # limitations under the License.
 
 """
-Webots-compatible ``Driver`` and ``Car`` classes on top of the strict core (invalid values raise).
+Webots-compatible ``Driver`` and ``Car`` classes on top of the strict core.
 
 A Webots Python controller runs unchanged apart from its import::
 
     from vehicle_sim.webots import Driver   # Webots: from vehicle import Driver
 
-Odd input follows Webots' own semantics (its driver.c and car.c), each case
+Odd input follows the facade column of the odd-input table (docs/deviations.md): Webots semantics,
+each case
 reported with a ``WebotsWarning``: NaN/inf ignored, throttle/brake/steering/gear clamped, a
 cruising speed beyond the top speed stored as given (the wheel motors saturate),
 undefined enums and indicator periods below 1 ms ignored, wheel index outside 0..3 returns 0,
@@ -33,6 +34,7 @@ looked up by its device name. Sensors are mounted by a world file (``world_file=
 car preset's sensors, which carry the Webots car PROTOs' device names).
 """
 
+from dataclasses import replace
 import math
 import numbers
 import os
@@ -42,9 +44,9 @@ from vehicle_sim.config import load_car, load_world
 from vehicle_sim.core.drivetrain import ControlMode
 from vehicle_sim.core.geodesy import GeodeticOrigin
 from vehicle_sim.core.sensor_sets import enable_sensors
+from vehicle_sim.core.world_params import VehicleSpec, WorldSpec
+from vehicle_sim.physics.scene import build_scene, mount_suite
 from vehicle_sim.physics.sensors import SensorSuite
-from vehicle_sim.physics.simulated_car import SimulatedCar
-from vehicle_sim.physics.world import World
 from vehicle_sim.webots.api_table import (
     CAR_API,
     CAR_WHEEL_API,
@@ -180,6 +182,7 @@ class Driver:
 
     def __init__(self, car=None, world=None, position=None, gui=False,
                  time_step_ms=None, duration_s=None, name=None, world_file=None, sensors=None):
+        self._last_note = None     # the last setter note shown (see _make_setter)
         host = current_host()
         if host is not None:
             self._bind(host, sensors)
@@ -187,8 +190,8 @@ class Driver:
         car = car if car is not None else os.environ.get('VEHICLE_SIM_CAR', 'Car')
         if world is None and world_file is None:
             world_file = os.environ.get('VEHICLE_SIM_WORLD') or None
-        scene = load_world(world_file, car) if world is None and world_file else None
-        vehicle = scene.vehicles[0] if scene is not None else None
+        spec = load_world(world_file, car) if world is None and world_file else None
+        vehicle = spec.vehicles[0] if spec is not None else None
         params = load_car(vehicle.model if vehicle is not None else car)
         if position is None:
             position = ((vehicle.x_m, vehicle.y_m, vehicle.yaw_rad) if vehicle is not None
@@ -199,25 +202,26 @@ class Driver:
         if sensors is not None:
             specs = enable_sensors(specs, sensors, 'Driver(sensors=...)')
         self._owns_world = world is None
-        if world is None:
-            step_s = 0.010 if time_step_ms is None else time_step_ms / 1000.0
-            world = World(time_step_s=step_s, gui=gui)
-        elif time_step_ms is not None and abs(time_step_ms / 1000.0 - world.time_step_s) > 1e-12:
+        if world is not None and time_step_ms is not None and \
+                abs(time_step_ms / 1000.0 - world.time_step_s) > 1e-12:
             raise ValueError(f"time_step_ms={time_step_ms} differs from the shared world's "
                              f'{world.time_step_s * 1000.0:g} ms')
-        self.world = world
-        self._others = []
-        if scene is not None:
-            for obstacle in scene.obstacles:
-                world.add_obstacle(obstacle)
-            name = name or vehicle.name
-            self._others = [SimulatedCar(world, load_car(other.model),
-                                         (other.x_m, other.y_m, other.yaw_rad), name=other.name)
-                            for other in scene.vehicles[1:]]
-        self.simulated_car = SimulatedCar(world, params, position, name=name)
+        # This Driver's car: the world file's first vehicle (its name, pose and sensors as
+        # given here), added after the others, which stand held where the file puts them.
+        name = name or (vehicle.name if vehicle is not None else params.model)
+        x_m, y_m, yaw_rad = position
+        driven = VehicleSpec(name, '', params.model, x_m, y_m, yaw_rad, specs)
+        spec = (replace(spec, vehicles=spec.vehicles[1:] + (driven,)) if spec is not None
+                else WorldSpec(GeodeticOrigin(), (driven,), ()))
+        scene = build_scene(
+            spec, world, time_step_s=0.010 if time_step_ms is None else time_step_ms / 1000.0,
+            gui=gui, params={name: params},
+            mount=lambda built, scene: mount_suite(built, scene) if built.name == name else None)
+        self.world = world = scene.world
+        self._others = [scene.vehicles[other.name].car for other in spec.vehicles[:-1]]
+        self.simulated_car = scene.vehicles[name].car
         self.logic = self.simulated_car.logic
-        self.sensors = SensorSuite(world, self.simulated_car.body, specs,
-                                   scene.origin if scene is not None else GeodeticOrigin())
+        self.sensors = scene.vehicles[name].sensors
         self._devices = devices_of(self.sensors)
         self._duration_s = duration_s
         self._sync = _WorldSync.of(world)
@@ -390,7 +394,12 @@ def _make_setter(row):
                     clamped = min(max(value, low), high)
                     _warn(f'{row.setter}({value!r}): {valid}; used {clamped:g} instead')
                     value = type(value)(clamped)
-        getattr(self.logic, core_setter)(value)
+        note = getattr(self.logic, core_setter)(value)
+        # Taken, but without effect now (a brake while cruise control holds a speed): said once
+        # until the situation changes, not at every step of a controller that keeps braking.
+        if note is not None and note != self._last_note:
+            _warn(f'{row.setter}({value!r}): {note}')
+        self._last_note = note
 
     setter.__name__ = row.setter
     setter.__doc__ = f'Webots {row.setter}(){": " + row.doc if row.doc else ""}' + (

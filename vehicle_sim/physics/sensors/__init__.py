@@ -26,7 +26,8 @@ from vehicle_sim.physics.sensors.distance import DistanceSensor
 from vehicle_sim.physics.sensors.feed import SensorFeed
 from vehicle_sim.physics.sensors.inertial import GnssSensor, ImuSensor
 from vehicle_sim.physics.sensors.lidar import LidarSensor
+from vehicle_sim.physics.sensors.sensor import Sensor
 from vehicle_sim.physics.sensors.suite import SENSOR_CLASSES, SensorSuite
 
 __all__ = ['CameraSensor', 'CollisionMonitor', 'DistanceSensor', 'GnssSensor', 'ImuSensor',
-           'LidarSensor', 'SENSOR_CLASSES', 'SensorFeed', 'SensorSuite']
+           'LidarSensor', 'SENSOR_CLASSES', 'Sensor', 'SensorFeed', 'SensorSuite']

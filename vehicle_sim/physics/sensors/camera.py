@@ -31,26 +31,25 @@ import numpy as np
 import pybullet
 
 from vehicle_sim.core.sensor_readings import camera_matrices, CameraReading
-from vehicle_sim.physics.sensors.mount import Mount
+from vehicle_sim.physics.sensors.sensor import Sensor
 
 # A fixed sun: from above, slightly from the front-left of the world x axis, so that vertical
 # faces that look at -x (towards a car driving along +x) are lit.
 LIGHT_DIRECTION = (-0.4, 0.3, 1.0)
 
 
-class CameraSensor:
+class CameraSensor(Sensor):
     """
     An RGB camera on a vehicle body.
 
     :param world: the World.
     :param body: the vehicle body.
     :param spec: core CameraSpec.
+    :param plane: unused (the one constructor shape of physics/sensors/sensor.py).
     """
 
-    def __init__(self, world, body, spec):
-        self.world = world
-        self.spec = spec
-        self.mount = Mount(body, spec.pose)
+    def __init__(self, world, body, spec, plane=None):
+        super().__init__(world, body, spec, plane)
         world.show_ground()
         self._projection = pybullet.computeProjectionMatrixFOV(
             math.degrees(spec.vertical_fov_rad), spec.width / spec.height, spec.near_m,

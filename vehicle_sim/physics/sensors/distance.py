@@ -28,8 +28,8 @@ import numpy as np
 
 from vehicle_sim.core.noise import GaussianNoise
 from vehicle_sim.core.sensor_readings import RADIATION_TYPE, RangeReading
-from vehicle_sim.physics.sensors.mount import Mount
 from vehicle_sim.physics.sensors.rays import cast_rays
+from vehicle_sim.physics.sensors.sensor import Sensor
 
 
 def cone_directions(rays, aperture_rad):
@@ -49,19 +49,18 @@ def cone_directions(rays, aperture_rad):
     return np.array(directions)
 
 
-class DistanceSensor:
+class DistanceSensor(Sensor):
     """
     A distance sensor on a vehicle body.
 
     :param world: the World.
     :param body: the vehicle body.
     :param spec: core DistanceSpec.
+    :param plane: unused (the one constructor shape of physics/sensors/sensor.py).
     """
 
-    def __init__(self, world, body, spec):
-        self.world = world
-        self.spec = spec
-        self.mount = Mount(body, spec.pose)
+    def __init__(self, world, body, spec, plane=None):
+        super().__init__(world, body, spec, plane)
         self.table = spec.table()
         self._mask = world.ray_mask_excluding(body.body_id)
         self._ray_vectors = cone_directions(spec.rays, spec.aperture_rad) * spec.max_range_m

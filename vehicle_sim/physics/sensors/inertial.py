@@ -30,7 +30,6 @@ ellipsoidal altitude (core/geodesy.py). Webots' local GPS values are the (noisy)
 import numpy as np
 
 from vehicle_sim.core.frames import quaternion_from_rpy, rpy_from_quaternion
-from vehicle_sim.core.geodesy import LocalTangentPlane
 from vehicle_sim.core.noise import GaussianNoise
 from vehicle_sim.core.sensor_readings import (
     COVARIANCE_TYPE_DIAGONAL_KNOWN,
@@ -40,26 +39,27 @@ from vehicle_sim.core.sensor_readings import (
     ImuReading,
     ZERO_COVARIANCE,
 )
-from vehicle_sim.physics.sensors.mount import Mount
+from vehicle_sim.physics.sensors.sensor import Sensor
 
 
 def _covariance(sigma):
     return diagonal_covariance(sigma) if sigma > 0.0 else ZERO_COVARIANCE
 
 
-class ImuSensor:
+class ImuSensor(Sensor):
     """
     An IMU on a vehicle body.
 
     :param world: the World (gravity, time step).
     :param body: the vehicle body.
     :param spec: core ImuSpec.
+    :param plane: unused (the one constructor shape of physics/sensors/sensor.py).
     """
 
-    def __init__(self, world, body, spec):
-        self.world = world
-        self.spec = spec
-        self.mount = Mount(body, spec.pose)
+    tracks_motion = True
+
+    def __init__(self, world, body, spec, plane=None):
+        super().__init__(world, body, spec, plane)
         self._gravity = np.array((0.0, 0.0, world.gravity))
         self._previous = None          # (step, velocity of the mount point)
         stream = spec.name
@@ -109,7 +109,7 @@ class ImuSensor:
                           tuple(float(v) for v in specific_force), *self._covariances)
 
 
-class GnssSensor:
+class GnssSensor(Sensor):
     """
     A GNSS antenna on a vehicle body.
 
@@ -120,10 +120,7 @@ class GnssSensor:
     """
 
     def __init__(self, world, body, spec, plane=None):
-        self.world = world
-        self.spec = spec
-        self.mount = Mount(body, spec.pose)
-        self.plane = plane if plane is not None else LocalTangentPlane()
+        super().__init__(world, body, spec, plane)
         self._noise = GaussianNoise(spec.noise_m, spec.seed, spec.name)
         self._covariance = _covariance(spec.noise_m)
         self._covariance_type = (COVARIANCE_TYPE_DIAGONAL_KNOWN if spec.noise_m > 0.0

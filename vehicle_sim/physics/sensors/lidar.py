@@ -27,8 +27,8 @@ import numpy as np
 
 from vehicle_sim.core.noise import GaussianNoise
 from vehicle_sim.core.sensor_readings import LidarReading
-from vehicle_sim.physics.sensors.mount import Mount
 from vehicle_sim.physics.sensors.rays import cast_rays
+from vehicle_sim.physics.sensors.sensor import Sensor
 
 
 def ray_directions(azimuths_rad, elevations_rad):
@@ -46,19 +46,18 @@ def ray_directions(azimuths_rad, elevations_rad):
                                         np.sin(elevation) + 0.0 * azimuth), axis=-1)
 
 
-class LidarSensor:
+class LidarSensor(Sensor):
     """
     A lidar on a vehicle body.
 
     :param world: the World.
     :param body: the vehicle body (CarBody, DiffRobotBody).
     :param spec: core LidarSpec.
+    :param plane: unused (the one constructor shape of physics/sensors/sensor.py).
     """
 
-    def __init__(self, world, body, spec):
-        self.world = world
-        self.spec = spec
-        self.mount = Mount(body, spec.pose)
+    def __init__(self, world, body, spec, plane=None):
+        super().__init__(world, body, spec, plane)
         self._mask = world.ray_mask_excluding(body.body_id)
         azimuths = spec.angle_min_rad + spec.angle_increment_rad * np.arange(
             spec.horizontal_resolution)

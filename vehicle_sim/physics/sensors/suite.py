@@ -32,12 +32,15 @@ from typing import Dict, List
 
 from vehicle_sim.core.geodesy import GeodeticOrigin, LocalTangentPlane
 from vehicle_sim.core.sampling import SampleSchedule, Scheduler
+from vehicle_sim.core.sensor_params import check_layer
 from vehicle_sim.core.sensor_sets import mounted
 from vehicle_sim.physics.sensors.camera import CameraSensor
 from vehicle_sim.physics.sensors.distance import DistanceSensor
 from vehicle_sim.physics.sensors.inertial import GnssSensor, ImuSensor
 from vehicle_sim.physics.sensors.lidar import LidarSensor
 
+# The physics registration: core sensor type -> its Sensor class (physics/sensors/sensor.py),
+# built as cls(world, body, spec, plane); checked against the core types when imported.
 SENSOR_CLASSES = {
     'lidar': LidarSensor,
     'imu': ImuSensor,
@@ -45,6 +48,7 @@ SENSOR_CLASSES = {
     'distance': DistanceSensor,
     'camera': CameraSensor,
 }
+check_layer('physics SENSOR_CLASSES (physics/sensors/suite.py)', SENSOR_CLASSES)
 
 
 class SensorSuite:
@@ -64,11 +68,9 @@ class SensorSuite:
         plane = LocalTangentPlane(origin)
         self.sensors = {}
         for name, spec in self.specs.items():
-            cls = SENSOR_CLASSES[spec.sensor_type]
-            self.sensors[name] = (cls(world, body, spec, plane) if cls is GnssSensor
-                                  else cls(world, body, spec))
+            self.sensors[name] = SENSOR_CLASSES[spec.sensor_type](world, body, spec, plane)
         self._trackers = {name for name, sensor in self.sensors.items()
-                          if hasattr(sensor, 'track')}
+                          if sensor.tracks_motion}
         self._scheduler = Scheduler()
         self._sensor_of: Dict[str, str] = {}      # schedule key -> sensor name
         self._latest: Dict[str, object] = {}      # schedule key or sensor name -> reading

@@ -69,14 +69,12 @@ class DdsLogger(port.Logger):
             self._publisher = node.create_publisher(
                 'rcl_interfaces/msg/Log', '/rosout', port.QOS_ROSOUT)
 
-    _NAMES = {10: 'DEBUG', 20: 'INFO', 30: 'WARN', 40: 'ERROR', 50: 'FATAL'}
-
     def log(self, level: int, message: str) -> None:
         if level < self.level:
             return
         now_ns = time.time_ns()
         if self._to_stdout:
-            sys.stderr.write(f'[{self._NAMES.get(level, level)}] [{now_ns / 1e9:.9f}] '
+            sys.stderr.write(f'[{port.LOG_LEVEL_NAMES.get(level, level)}] [{now_ns / 1e9:.9f}] '
                              f'[{self.name}]: {message}\n')
         if self._to_rosout and self._publisher is not None and self._node.ok():
             frame = sys._getframe(2) if level != 0 else None

@@ -106,13 +106,10 @@ class ParameterStore:
 
     def _check_value(self, name: str, entry: _ParamEntry, value: Any) -> Optional[str]:
         try:
-            kind = port.parameter_type_of(value)
+            wrong_type = port.wrong_type_reason(name, entry.type_, value)
         except TransportError as exc:
             return str(exc)
-        if kind != entry.type_:
-            return (f'Wrong parameter type, parameter {{{name}}} is of type {{{entry.type_}}}, '
-                    f'setting it to {{{kind}}} is not allowed.')
-        return port.run_validator(entry.validator, value)
+        return wrong_type or port.run_validator(entry.validator, value)
 
     def get_parameter(self, name: str) -> Any:
         try:

@@ -28,7 +28,7 @@ from vehicle_sim.transport import dds
 
 pytestmark = pytest.mark.transport
 
-# rmw_dds_common/msg/ParticipantEntitiesInfo on a real Jazzy graph (test_vehicle_msgs_py).
+# rmw_dds_common/msg/ParticipantEntitiesInfo on a real Jazzy graph (test_msgs_vehicle_msgs_py).
 INFO_USER_DATA = (b'typehash=RIHS01_91a0593bacdcc50ea9bdcf849a938b128412cc1ea821245c663bcd26f83c29'
                   b'5e;')
 WAIT_S = 30.0

@@ -80,7 +80,7 @@ def subscriptions(config):
 def test_fixed_frame_is_world_and_the_view_follows_base_link(config):
     manager = config['Visualization Manager']
     assert manager['Global Options']['Fixed Frame'] == 'world'
-    # The default car's frames: <p>odom -> <p>base_link with p = ''.
+    # The default car's frames: <p>odom -> <p>base_link with p = '' (docs/ros_interface.md).
     assert manager['Views']['Current']['Target Frame'] == itf.frame_prefix('') + 'base_link'
 
 

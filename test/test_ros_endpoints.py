@@ -20,7 +20,7 @@ The nodes are built in-process on the embedded transport (never spun) while the 
 ``create_*`` calls are recorded, leaving out the transport's own endpoints (parameter services,
 /rosout, /parameter_events). The recorded endpoints must be exactly the rows of the node's
 tables (name as resolved, type, QoS), once each. /clock, /tf and /tf_static are one row each for
-every node (/clock reliable, depth 1).
+every node (docs/ros_interface.md: /clock reliable, depth 1).
 """
 
 import ast
@@ -167,7 +167,8 @@ def test_bridge_endpoints_are_its_rows_that_its_switches_enable(created, overrid
 
 @pytest.mark.parametrize('build', ['automobile', 'diff_robot'])
 def test_clock_is_published_reliable_with_depth_1_by_every_node(created, build):
-    # One /clock definition; rclpy's best-effort TimeSource reader matches it.
+    # docs/ros_interface.md: one /clock definition; rclpy's best-effort TimeSource reader matches
+    # it.
     if build == 'automobile':
         app, close = _build_automobile('')
     else:

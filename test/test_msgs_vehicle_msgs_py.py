@@ -151,7 +151,7 @@ def test_every_known_type_builds_with_defaults_and_matches_rosbags(ros_type):
 @pytest.mark.parametrize('srv_type', OWN_SERVICES)
 def test_service_wire_types_are_header_then_plain_fields(srv_type):
     types = service_types(srv_type)
-    client_id = -5  # a signed instance handle (rmw_cyclonedds' rmw_node.cpp) is masked to uint64
+    client_id = -5  # a signed instance handle (signed in cyclonedds-python) is masked to uint64
     for plain, to_wire, from_wire in (
             (sample_message(srv_type + '_Request'), types.request_to_wire,
              types.request_from_wire),
@@ -181,7 +181,7 @@ def test_known_services_include_own_parameter_and_std_services():
         assert f'rcl_interfaces/srv/{name}' in known_services()
 
 
-# Worked examples of CDR message bytes (verified against rosbags).
+# Worked XCDR1 examples (alignment and padding), checked against rosbags.
 def test_float64_example_matches_reference_bytes():
     data = message_type('std_msgs/msg/Float64')(data=27.5).serialize()
     assert data == bytes.fromhex('00 01 00 00 00 00 00 00 00 80 3b 40')
@@ -220,7 +220,7 @@ def test_setbool_response_layout_matches_reference_offsets():
 
 
 def test_participant_entities_info_matches_real_sample_layout():
-    # Byte layout of one real sample (ParticipantEntitiesInfo): node /speed_node, one writer.
+    # Byte layout of one real sample (rmw_dds_common): node /speed_node, one writer.
     gid_type = message_type('rmw_dds_common/msg/Gid')
     participant = bytes(range(16))
     writer = bytes(range(100, 116))
@@ -253,7 +253,7 @@ def test_message_class_carries_the_mangled_dds_type_name(ros_type):
     assert message_type(ros_type).__idl__.idl_transformed_typename == dds_type_name(ros_type)
 
 
-# Type hashes (REP 2011); ParticipantEntitiesInfo is the value seen on a real Jazzy graph.
+# rmw_dds_common's graph messages; ParticipantEntitiesInfo is the value seen on a real Jazzy graph.
 @pytest.mark.parametrize('ros_type, digest', [
     ('std_msgs/msg/Float64', '705ba9c3d1a09df43737eb67095534de36fd426c0587779bda2bc51fe790182a'),
     ('std_msgs/msg/String', 'df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18'),

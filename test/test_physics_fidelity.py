@@ -41,7 +41,7 @@ def _ground_speed_mps(car):
 def test_speed_mode_zero_to_hundred_matches_time0to100_within_ten_percent(model):
     # SPEED mode ramps the driven wheels at (100/3.6)/time0To100 m/s^2 at the tyre (Car.proto
     # motor acceleration), so ground truth reaches a target v after time0To100 * v / 100 km/h.
-    # Cars slower than 100 km/h are measured to 90 % of their top speed (DEFAULT_FRICTION grip).
+    # Cars slower than 100 km/h are measured to 90 % of their top speed (docs/physics.md, grip).
     params = load_car(model)
     top_kmh = params.max_velocity_mps * 3.6
     target_kmh = 100.0 if top_kmh > 100.0 else 0.9 * top_kmh

@@ -77,6 +77,28 @@ def test_run_gui_under_xvfb_opens_the_window_and_steps(tmp_path):
     times = [float(line.split()[1]) for line in result.stdout.splitlines()
              if line.startswith('t ')]
     assert times and times[-1] > 0.0, result.stdout[-3000:]   # the world steps
+    # Only our status lines: none of PyBullet's OpenGL and thread notices ('ven = Mesa/X.org',
+    # 'destroy semaphore', ...), which it prints with printf.
+    assert [line for line in result.stdout.splitlines() if not line.startswith('t ')] == []
+
+
+def test_run_gui_window_fits_a_1280_by_720_screen(tmp_path):
+    require_xvfb()
+    if shutil.which('xwininfo') is None:
+        pytest.skip('xwininfo not found: the window size cannot be read '
+                    '(Debian/Ubuntu: apt-get install x11-utils)')
+    log = tmp_path / 'node.log'
+    script = (f'"{sys.executable}" -m vehicle_sim run --gui --no-status --duration 60 -- '
+              f'--ros-args -r __ns:=/gui_fit 2> {log} & node=$!; '
+              f'for i in $(seq 600); do grep -q "automobile ready" {log} && break; sleep 0.2; '
+              'done; xwininfo -root -tree | grep "Bullet Physics"; kill -INT $node; wait $node')
+    result = xvfb_run(['sh', '-c', script], RUN_TIMEOUT_S, tmp_path,
+                      screen='-screen 0 1280x720x24 -nolisten tcp')
+    assert result.returncode == 0, result.stderr[-3000:]
+    # e.g. '0x200002 "Bullet Physics ExampleBrowser ...": ()  1024x620+0+0  +0+0'
+    size = [word for word in result.stdout.split() if 'x' in word and '+' in word][0]
+    width, height = (int(part) for part in size.split('+')[0].split('x'))
+    assert (width, height) == (1024, 720 - 100)     # PyBullet's width; the height fits
 
 
 def test_a_closed_window_shuts_the_node_down_instead_of_raising(monkeypatch):

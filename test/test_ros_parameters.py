@@ -49,7 +49,7 @@ from vehicle_sim.ros.node_support import node_parameter_table, USE_SIM_TIME
 from vehicle_sim.transport import TransportError
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
-NAMESPACE = '/test_parameters'
+NAMESPACE = '/test_ros_parameters'
 
 NODE_TABLES = {
     'automobile': sim_params.AUTOMOBILE_PARAMETERS,
@@ -312,7 +312,8 @@ def test_node_declares_every_parameter_of_its_table(name):
     ('ackermann_to_differential', {'wheel_joints': ['a_joint', 'b_joint']},
      'must contain exactly one of "left" or "right"'),
     ('automobile', {'time_step_ms': 0}, 'time_step_ms = 0: must be in 1 .. 1000'),
-    ('automobile', {'car_model': 'NoSuchCar'}, "car_model = 'NoSuchCar': unknown car model"),
+    ('automobile', {'car_model': 'NoSuchCar'},
+     "car_model = 'NoSuchCar': unknown car 'NoSuchCar'; known: BmwX5"),
     ('autoware_automobile', {'status_rate_hz': -1.0}, 'status_rate_hz = -1.0: must be > 0'),
     ('autoware_automobile', {'timeout_action': 'stop'},
      "timeout_action = 'stop': must be one of brake, coast, hold"),

@@ -1,0 +1,171 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+The scene builder: the one place a WorldSpec becomes a filled World.
+
+Every world of the simulator is built here: the automobile node's, the robot node's, the Webots
+Driver's, the scenario runner's (and the coming Gym environment's). :func:`build_scene` adds, in
+this order (the world calls its step hooks in registration order, so the order is part of the
+contract):
+
+1. the World (its own physics client and the ground), or the given World to add to;
+2. ``hooks``: step hooks that act before every vehicle (a scenario's director);
+3. the obstacles (ObstacleSpec), then the cars (SimulatedCar, in file order), then the robots
+   (DiffRobotBody); the World refuses a vehicle that starts inside an obstacle;
+4. the scene ``parts``, in order (see below);
+5. each vehicle's sensors, through ``mount`` (SensorSuite or SensorFeed, as the caller needs).
+
+Extension points: a *scene part* is any object with ``name`` and ``build(world, spec)``; it adds
+what the WorldSpec asks of it (a map layer's ground and walls, traffic vehicles) once the
+obstacles and vehicles are in, and returns what callers read later, kept in
+:attr:`Scene.parts` under its name. No part exists yet; the map and traffic issues add theirs.
+
+It returns a :class:`Scene`: the World, the vehicles by name (:class:`SceneVehicle`: body, car,
+sensors), the obstacles by name and the geodetic origin, which callers read instead of building
+anything themselves (a test over the package checks that nothing outside ``physics`` loads a body
+or adds an obstacle).
+"""
+
+from dataclasses import dataclass, field
+from typing import Callable, Dict, Mapping, Optional, Protocol, Sequence
+
+from vehicle_sim.config import load_car, load_robot
+from vehicle_sim.core.geodesy import GeodeticOrigin
+from vehicle_sim.core.world_params import RobotSpec, WorldSpec
+from vehicle_sim.physics.diff_robot import DiffRobotBody
+from vehicle_sim.physics.gui import GuiClosedError
+from vehicle_sim.physics.sensors import SensorSuite
+from vehicle_sim.physics.simulated_car import SimulatedCar
+from vehicle_sim.physics.vehicle_body import VehicleBody
+from vehicle_sim.physics.world import DEFAULT_FRICTION, DEFAULT_TIME_STEP_S, World
+
+
+class ScenePart(Protocol):
+    """An extension of the scene (a map layer, traffic): built after the vehicles."""
+
+    name: str
+
+    def build(self, world: World, spec: WorldSpec) -> object:
+        """Add this part's bodies to ``world`` as ``spec`` asks; return what callers read."""
+
+
+@dataclass
+class SceneVehicle:
+    """
+    One vehicle of a scene.
+
+    :param name: its name in the world.
+    :param spec: its VehicleSpec (a car) or RobotSpec (a robot).
+    :param body: its VehicleBody (CarBody, DiffRobotBody): pose, twist, reset, outline.
+    :param car: the SimulatedCar driving a car's body (None for a robot).
+    :param sensors: what ``mount`` returned for it (SensorSuite, SensorFeed), or None.
+    """
+
+    name: str
+    spec: object
+    body: VehicleBody
+    car: Optional[SimulatedCar] = None
+    sensors: object = None
+
+    @property
+    def vehicle(self):
+        """What the world steps and a reset resets: the SimulatedCar, or the robot's body."""
+        return self.car if self.car is not None else self.body
+
+
+@dataclass
+class Scene:
+    """A built world: the World, its vehicles and obstacles by name, the geodetic origin."""
+
+    world: World
+    spec: WorldSpec
+    vehicles: Dict[str, SceneVehicle] = field(default_factory=dict)
+    obstacles: Dict[str, int] = field(default_factory=dict)
+    parts: Dict[str, object] = field(default_factory=dict)
+
+    @property
+    def origin(self) -> GeodeticOrigin:
+        """The geodetic origin of the world frame (GNSS)."""
+        return self.spec.origin
+
+    @property
+    def cars(self) -> Dict[str, SimulatedCar]:
+        """{name: SimulatedCar} of the cars, in world file order."""
+        return {name: v.car for name, v in self.vehicles.items() if v.car is not None}
+
+
+Mount = Callable[[SceneVehicle, Scene], object]
+
+
+def mount_suite(vehicle: SceneVehicle, scene: Scene) -> SensorSuite:
+    """Mount a car's sensors (its spec's mounted SensorSpecs) as a SensorSuite."""
+    return SensorSuite(scene.world, vehicle.body, vehicle.spec.sensors, scene.origin)
+
+
+def build_scene(spec: WorldSpec, world: Optional[World] = None, *,
+                time_step_s: float = DEFAULT_TIME_STEP_S, friction: float = DEFAULT_FRICTION,
+                gui: bool = False, robots: Sequence[RobotSpec] = (), params: Mapping = None,
+                hooks: Sequence = (), mount: Optional[Mount] = None,
+                parts: Sequence[ScenePart] = ()) -> Scene:
+    """
+    Build a WorldSpec into a World (see the module text for the order).
+
+    :param spec: the WorldSpec: origin, obstacles, cars (VehicleSpec).
+    :param world: a World to add to (shared); None = a new one from ``time_step_s``,
+        ``friction`` and ``gui``, closed again if the building fails.
+    :param robots: RobotSpecs of differential-drive robots to add after the cars.
+    :param params: {vehicle name: CarParams or RobotParams} taking the place of the spec's
+        model (a Driver given CarParams, a robot node given a preset file).
+    :param hooks: step hooks registered before every body.
+    :param mount: (SceneVehicle, Scene) -> its sensors, for each vehicle once every body is in;
+        None mounts none.
+    :param parts: scene parts (map layer, traffic), built in order after the vehicles.
+    :raises InvalidPoseError: for a vehicle that starts inside an obstacle.
+    """
+    params = params or {}
+    owned = world is None
+    if owned:
+        world = World(time_step_s=time_step_s, friction=friction, gui=gui)
+    scene = Scene(world, spec)
+    try:
+        for hook in hooks:
+            world.add_body(hook)
+        for obstacle in spec.obstacles:
+            scene.obstacles[obstacle.name] = world.add_obstacle(obstacle)
+        for car_spec in spec.vehicles:
+            car = SimulatedCar(world, params.get(car_spec.name) or load_car(car_spec.model),
+                               (car_spec.x_m, car_spec.y_m, car_spec.yaw_rad),
+                               name=car_spec.name)
+            scene.vehicles[car_spec.name] = SceneVehicle(car_spec.name, car_spec, car.body, car)
+        for robot in robots:
+            body = DiffRobotBody(world, params.get(robot.name) or load_robot(robot.model),
+                                 (robot.x_m, robot.y_m, robot.yaw_rad), name=robot.name)
+            scene.vehicles[robot.name] = SceneVehicle(robot.name, robot, body)
+        for part in parts:
+            scene.parts[part.name] = part.build(world, spec)
+        if mount is not None:
+            for vehicle in scene.vehicles.values():
+                vehicle.sensors = mount(vehicle, scene)
+    except BaseException as error:
+        if not owned:
+            raise
+        # The window closed while the world was being built: say so, not PyBullet's error.
+        window_closed = world.gui_closed
+        world.close()
+        if window_closed and not isinstance(error, GuiClosedError):
+            raise GuiClosedError('the PyBullet window was closed during start-up') from None
+        raise
+    return scene

@@ -1,0 +1,178 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+The contract of a vehicle body in a World, shared by CarBody and DiffRobotBody.
+
+A vehicle body is one URDF loaded into the World (:meth:`World.load_urdf`) with its
+``base_link`` as the base. What every caller needs of it, whatever the vehicle, is here once:
+
+- ``name``, ``params``, ``urdf``, ``body_id``, ``spawn`` (the pose it was built at) and
+  ``mount_frame``, the link sensors mount on (``base_link``; mount poses are in it);
+- ground truth: :meth:`pose`, :meth:`velocity`, :meth:`body_twist`, :meth:`forward_speed_mps`,
+  :meth:`yaw_rad`;
+- :meth:`reset` (loaded afresh at its spawn pose, :meth:`World.reload_urdf`) and
+  :meth:`teleport` (at rest at a pose, refused inside another body);
+- :attr:`outline`, its footprint rectangle in base_link (core Outline), from its parameters.
+
+A subclass gives its URDF, its footprint function (``OUTLINE``), its spawn height
+(``SPAWN_CLEARANCE_M``), the joints a teleport zeroes or stops, and :meth:`_configure`
+(dynamics and commands of a freshly loaded body).
+"""
+
+
+import pybullet
+
+from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.geometry import yaw_from_quaternion
+
+
+class VehicleBody:
+    """A vehicle's body in a World: pose, twist, reset, teleport, footprint, sensor mount."""
+
+    mount_frame = 'base_link'
+    SPAWN_CLEARANCE_M = 0.0
+    OUTLINE = None      # params -> core Outline (set by each subclass)
+
+    def _load(self, world, params, urdf, position, name):
+        # Load the URDF at ``position`` and keep what every vehicle body needs.
+        self.world = world
+        self.params = params
+        self.name = name
+        self.urdf = urdf
+        self.spawn = position
+        cid = self._cid = world.client_id
+        self.body_id, self._joint = world.load_urdf(urdf, position, self.SPAWN_CLEARANCE_M)
+        info = pybullet.getDynamicsInfo(self.body_id, -1, physicsClientId=cid)
+        # pybullet reports the base at its (principal-axes) inertial frame; keep its inverse.
+        self._link_to_com = (info[3], info[4])
+        self._com_to_link = pybullet.invertTransform(info[3], info[4])
+        return self._joint
+
+    def _configure(self):
+        """Set the dynamics and clear the commands of a freshly loaded body."""
+        raise NotImplementedError
+
+    def _teleport_joints(self):
+        """Return (joints set to 0, joints whose velocity is stopped) for a teleport."""
+        raise NotImplementedError
+
+    # ---------------------------------------------------------------- reset and teleport
+    def rebuild(self, position):
+        """
+        Load the body afresh at a pose, as it was built (a reset).
+
+        Whatever state the physics left the old body in (one Bullet took out of the simulation
+        falls through the ground after any reset of its pose), the new one is as built: at
+        rest, joints at 0, no command. Same URDF, so the same joint indices.
+
+        :param position: base_link pose, as the constructor takes it.
+        """
+        self.body_id, _ = self.world.reload_urdf(self.body_id, self.urdf, position,
+                                                 self.SPAWN_CLEARANCE_M)
+        self._configure()
+
+    def reset(self):
+        """Put the body back as it was built: spawn pose, at rest, joints at 0, no command."""
+        self.rebuild(self.spawn)
+
+    def place(self, position):
+        """
+        Put the body at a pose, at rest (a teleport without the overlap check).
+
+        :param position: base_link pose, as the constructor takes it; the (x, y, yaw) form puts
+            base_link on the ground, level, as at spawn.
+        """
+        zero, stop = self._teleport_joints()
+        self.world.place_at_rest(self.body_id, self._link_to_com, position,
+                                 self.SPAWN_CLEARANCE_M, zero_joints=zero, stop_joints=stop)
+
+    def teleport(self, position):
+        """
+        Put the body at rest at a pose; its commands stay.
+
+        :raises InvalidPoseError: when it would be inside another body (nothing moved).
+        """
+        self.world.try_place(self.body_id, lambda: self.place(position))
+
+    # ---------------------------------------------------------------- ground truth
+    @property
+    def outline(self):
+        """Its footprint rectangle in base_link (core Outline), from its parameters."""
+        return type(self).OUTLINE(self.params)
+
+    def pose(self):
+        """Ground-truth pose of base_link in the world: (x, y, z [m], qx, qy, qz, qw)."""
+        com_pos, com_orn = pybullet.getBasePositionAndOrientation(self.body_id,
+                                                                  physicsClientId=self._cid)
+        pos, orn = pybullet.multiplyTransforms(com_pos, com_orn, *self._com_to_link)
+        return tuple(pos) + tuple(orn)
+
+    def yaw_rad(self):
+        """Ground-truth heading of base_link [rad] (REP 103)."""
+        _, _, _, qx, qy, qz, qw = self.pose()
+        return yaw_from_quaternion(qx, qy, qz, qw)
+
+    def velocity(self):
+        """
+        Ground-truth velocity of base_link in the world frame.
+
+        :return: ((vx, vy, vz) [m/s], (wx, wy, wz) [rad/s]).
+        """
+        return self.world.base_link_velocity(self.body_id, self.pose()[:3])
+
+    def _axes(self, pose):
+        # The body's x (heading) and z (up) axes in the world frame.
+        matrix = pybullet.getMatrixFromQuaternion(pose[3:], physicsClientId=self._cid)
+        return (matrix[0], matrix[3], matrix[6]), (matrix[2], matrix[5], matrix[8])
+
+    def body_twist(self):
+        """
+        Ground-truth twist of base_link in base_link axes.
+
+        :return: ((vx, vy, vz) [m/s], (wx, wy, wz) [rad/s]), forward speed = vx, yaw rate = wz.
+        """
+        linear, angular = self.velocity()
+        matrix = pybullet.getMatrixFromQuaternion(self.pose()[3:], physicsClientId=self._cid)
+        # columns of the rotation matrix are the body axes in the world frame
+        axes = [(matrix[0 + c], matrix[3 + c], matrix[6 + c]) for c in range(3)]
+        return (tuple(sum(a * b for a, b in zip(axis, linear)) for axis in axes),
+                tuple(sum(a * b for a, b in zip(axis, angular)) for axis in axes))
+
+    def forward_speed_mps(self):
+        """Speed of base_link along its heading (x axis) [m/s]; negative when reversing."""
+        linear, _ = self.velocity()
+        heading, _ = self._axes(self.pose())
+        return sum(a * b for a, b in zip(linear, heading))
+
+    def yaw_rate_radps(self):
+        """Angular velocity about the body's z axis [rad/s] (positive = left, REP 103)."""
+        _, angular = self.velocity()
+        _, up = self._axes(self.pose())
+        return sum(a * b for a, b in zip(angular, up))
+
+    def joint_index(self, name):
+        """PyBullet index of a joint by its URDF name."""
+        try:
+            return self._joint[name]
+        except KeyError:
+            raise InvalidParameterError(
+                f'unknown joint {name!r}; joints: {", ".join(sorted(self._joint))}') from None
+
+    def destroy(self):
+        """Remove the body from the physics (World.remove calls this)."""
+        if self.body_id is not None and not self.world.closed:
+            pybullet.removeBody(self.body_id, physicsClientId=self._cid)
+        self.body_id = None
