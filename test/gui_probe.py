@@ -26,7 +26,6 @@ does) and one more step is tried. Usage: ``gui_probe.py OUT_DIR``.
 """
 
 import json
-import math
 import os
 import shutil
 import struct
@@ -37,6 +36,7 @@ import time
 import numpy as np
 
 from vehicle_sim.config import load_car
+from vehicle_sim.core.geometry import yaw_from_quaternion
 from vehicle_sim.physics import SimulatedCar, World
 from vehicle_sim.physics._pybullet import pybullet
 from vehicle_sim.physics.gui import ChaseCamera
@@ -118,8 +118,7 @@ def main(out_dir):
     body = car.body.body_id
     result = {
         'car_xy': pose[:2],
-        'car_yaw': math.atan2(2 * (pose[6] * pose[5] + pose[3] * pose[4]),
-                              1 - 2 * (pose[4] ** 2 + pose[5] ** 2)),
+        'car_yaw': yaw_from_quaternion(*pose[3:7]),
         'view': {'yaw_deg': camera.view.yaw_deg, 'pitch_deg': camera.view.pitch_deg,
                  'distance_m': camera.view.distance_m, 'target_m': camera.view.target_m},
         'window_camera': {'yaw_deg': info[8], 'pitch_deg': info[9], 'distance_m': info[10],

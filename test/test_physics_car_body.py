@@ -20,16 +20,12 @@ import xml.etree.ElementTree as ElementTree
 import pytest
 
 from vehicle_sim.config import car_names, load_car
+from vehicle_sim.core.geometry import yaw_from_quaternion
 from vehicle_sim.core.vehicle_io import Actuation, Measurement, Wheel, WheelMode
 from vehicle_sim.physics import CarBody, joint_names, World
 from vehicle_sim.physics.urdf import car_urdf
 
 G = 9.81
-
-
-def _yaw(pose):
-    qx, qy, qz, qw = pose[3:]
-    return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
 
 
 def _tilt_rad(pose):
@@ -96,7 +92,7 @@ def test_car_body_rests_on_its_wheels_with_a_small_static_sag(model):
         # millimetres (docs/physics.md): 0.5 mm above to 10 mm below, level within 0.3 deg.
         assert -0.010 < pose[2] < 0.0005
         assert pose[:2] == pytest.approx((3.0, -2.0), abs=1e-3)
-        assert _yaw(pose) == pytest.approx(0.7, abs=1e-3)
+        assert yaw_from_quaternion(*pose[3:]) == pytest.approx(0.7, abs=1e-3)
         assert _tilt_rad(pose) < math.radians(0.3)
         names, positions, velocities = car.joint_states()
         assert len(names) == len(positions) == len(velocities) == 10

@@ -25,8 +25,7 @@ driven axle (caster) or of the wheel rectangle (skid steer).
 from dataclasses import dataclass
 from typing import Optional, Tuple
 
-from vehicle_sim.core.param_spec import fail as _fail
-from vehicle_sim.core.param_spec import ParamSpec, validate_table
+from vehicle_sim.core.param_spec import fail, ParamSpec, validate_table
 from vehicle_sim.core.sensor_sets import SENSORS_KIND
 
 DRIVE_TYPES = ('caster', 'skid_steer')
@@ -122,25 +121,25 @@ def _check_relations(source, values):
     length, width, height = values['body_size_m']
     radius = values['wheel_radius_m']
     if height / 2.0 >= radius:
-        _fail(source, 'body_size', list(values['body_size_m']),
+        fail(source, 'body_size', list(values['body_size_m']),
               f'body height / 2 must be < wheel_radius ({radius:g} m) or the body drags')
     if width >= values['wheel_tread_m'] - values['wheel_width_m']:
-        _fail(source, 'body_size', list(values['body_size_m']),
+        fail(source, 'body_size', list(values['body_size_m']),
               'body width must be < wheel_tread - wheel_width (wheels outside the body)')
     if values['drive'] == 'caster':
         if values['wheel_base_m'] != 0.0:
-            _fail(source, 'wheel_base', values['wheel_base_m'],
+            fail(source, 'wheel_base', values['wheel_base_m'],
                   'must be 0 for a caster robot (it has one axle)')
         if values['caster_offset_m'] == 0.0:
-            _fail(source, 'caster_offset', 0.0, 'must be != 0 (the caster cannot sit on the axle)')
+            fail(source, 'caster_offset', 0.0, 'must be != 0 (the caster cannot sit on the axle)')
         if values['caster_radius_m'] >= radius:
-            _fail(source, 'caster_radius', values['caster_radius_m'],
+            fail(source, 'caster_radius', values['caster_radius_m'],
                   f'must be < wheel_radius ({radius:g} m)')
         if abs(values['caster_offset_m']) <= radius:
-            _fail(source, 'caster_offset', values['caster_offset_m'],
+            fail(source, 'caster_offset', values['caster_offset_m'],
                   f'|offset| must be > wheel_radius ({radius:g} m)')
     elif values['wheel_base_m'] <= 2.0 * radius:
-        _fail(source, 'wheel_base', values['wheel_base_m'],
+        fail(source, 'wheel_base', values['wheel_base_m'],
               f'must be > 2 x wheel_radius ({2.0 * radius:g} m) for a skid-steer robot')
 
 

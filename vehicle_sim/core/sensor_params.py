@@ -37,8 +37,8 @@ from typing import Dict, Optional, Tuple
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.frames import Pose
 from vehicle_sim.core.lookup_table import LookupTable
-from vehicle_sim.core.param_spec import fail as _fail
 from vehicle_sim.core.param_spec import (
+    fail,
     parameter_table_markdown,
     ParamSpec,
     REQUIRED,
@@ -193,14 +193,14 @@ class LidarSpec(SensorSpec):
 def _check_lidar(source, values):
     rays = values['horizontal_resolution'] * values['layers']
     if rays > MAX_LIDAR_RAYS:
-        _fail(source, 'layers', values['layers'],
+        fail(source, 'layers', values['layers'],
               f'{values["horizontal_resolution"]} rays x {values["layers"]} layers = {rays} '
               f'rays per scan; at most {MAX_LIDAR_RAYS}')
     if values['min_range_m'] >= values['max_range_m']:
-        _fail(source, 'min_range', values['min_range_m'],
+        fail(source, 'min_range', values['min_range_m'],
               f'must be < max_range ({values["max_range_m"]:g} m)')
     if values['layers'] > 1 and values['vertical_fov_rad'] <= 0.0:
-        _fail(source, 'vertical_fov', values['vertical_fov_rad'],
+        fail(source, 'vertical_fov', values['vertical_fov_rad'],
               f'must be > 0 with {values["layers"]} layers')
 
 
@@ -302,12 +302,12 @@ def _check_distance(source, values):
         try:
             LookupTable(table)
         except ValueError as error:
-            _fail(source, 'lookup_table', [list(r) for r in table], str(error))
+            fail(source, 'lookup_table', [list(r) for r in table], str(error))
     if values['max_range_m'] is None:
         values['max_range_m'] = (table[-1][0] if table is not None
                                  else DEFAULT_DISTANCE_RANGE_M)
     if values['min_range_m'] >= values['max_range_m']:
-        _fail(source, 'min_range', values['min_range_m'],
+        fail(source, 'min_range', values['min_range_m'],
               f'must be < max_range ({values["max_range_m"]:g} m)')
 
 
@@ -368,11 +368,11 @@ class CameraSpec(SensorSpec):
 def _check_camera(source, values):
     pixels = values['width'] * values['height']
     if pixels > MAX_CAMERA_PIXELS:
-        _fail(source, 'height', values['height'],
+        fail(source, 'height', values['height'],
               f'{values["width"]} x {values["height"]} = {pixels} pixels per frame; at most '
               f'{MAX_CAMERA_PIXELS} (1920 x 1080)')
     if values['near_m'] >= values['far_m']:
-        _fail(source, 'near', values['near_m'], f'must be < far ({values["far_m"]:g} m)')
+        fail(source, 'near', values['near_m'], f'must be < far ({values["far_m"]:g} m)')
 
 
 @dataclass(frozen=True)

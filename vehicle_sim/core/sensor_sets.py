@@ -24,8 +24,7 @@ from typing import Dict, Sequence, Tuple
 
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.frames import OPTICAL_QUATERNION
-from vehicle_sim.core.param_spec import fail as _fail
-from vehicle_sim.core.param_spec import register_kind, REQUIRED
+from vehicle_sim.core.param_spec import fail, register_kind, REQUIRED
 from vehicle_sim.core.sensor_params import sensor_from_dict, SensorSpec
 from vehicle_sim.core.value_text import brief
 
@@ -101,7 +100,7 @@ def merge_sensors(base: Sequence[SensorSpec], entries, source) -> Tuple[SensorSp
         if isinstance(name, str) and name in index_of:
             old = result[index_of[name]]
             if 'type' in entry and entry['type'] != old.sensor_type:
-                _fail(where, 'type', entry['type'],
+                fail(where, 'type', entry['type'],
                       f'the preset sensor {brief(name)} is a {old.sensor_type}')
             data = old.as_dict()
             data.update(entry)
