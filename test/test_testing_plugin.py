@@ -177,11 +177,13 @@ def test_client_calls_every_service_the_node_serves_sim_reset_and_sim_pause_too(
                     if demangle_service(e.dds_topic) == '/sim/pause'}
             served = {demangle_service(e.dds_topic) for e in readers
                       if e.participant in node} - {None}
-        parameter_services = {'/automobile/' + name for name in (
+        # Every ROS 2 node's own services: the rcl_interfaces parameter services, and on rclpy
+        # (Jazzy) type_description_interfaces' get_type_description.
+        node_services = {'/automobile/' + name for name in (
             'describe_parameters', 'get_parameters', 'get_parameter_types', 'list_parameters',
-            'set_parameters', 'set_parameters_atomically')}
-        assert parameter_services <= served
-        served -= parameter_services
+            'set_parameters', 'set_parameters_atomically', 'get_type_description')}
+        assert node_services - {'/automobile/get_type_description'} <= served
+        served -= node_services
         assert '/sim/reset' in served and '/automobile/set_gear' in served
         for name in served:
             assert car._find(name, car._itf.NODE_SERVICES, 'service')[1] == name
