@@ -82,16 +82,26 @@ def test_run_gui_under_xvfb_opens_the_window_and_steps(tmp_path):
     assert [line for line in result.stdout.splitlines() if not line.startswith('t ')] == []
 
 
-def test_run_gui_window_fits_a_1280_by_720_screen(tmp_path):
+def _require_tool(name, why, package):
     require_xvfb()
-    if shutil.which('xwininfo') is None:
-        pytest.skip('xwininfo not found: the window size cannot be read '
-                    '(Debian/Ubuntu: apt-get install x11-utils)')
+    if shutil.which(name) is None:
+        pytest.skip(f'{name} not found: {why} (Debian/Ubuntu: apt-get install {package})')
+
+
+def _once_ready(namespace, log, then):
+    # `vehicle-sim run --gui` in the background, then the shell commands `then` once it is ready
+    # ($node is its pid; a window closed during start-up is refused differently).
+    return (f'"{sys.executable}" -m vehicle_sim run --gui --no-status -- --ros-args '
+            f'-r __ns:={namespace} 2> {log} & node=$!; '
+            f'for i in $(seq 600); do grep -q "automobile ready" {log} && break; sleep 0.2; '
+            f'done; {then}')
+
+
+def test_run_gui_window_fits_a_1280_by_720_screen(tmp_path):
+    _require_tool('xwininfo', 'the window size cannot be read', 'x11-utils')
     log = tmp_path / 'node.log'
-    script = (f'"{sys.executable}" -m vehicle_sim run --gui --no-status --duration 60 -- '
-              f'--ros-args -r __ns:=/gui_fit 2> {log} & node=$!; '
-              f'for i in $(seq 600); do grep -q "automobile ready" {log} && break; sleep 0.2; '
-              'done; xwininfo -root -tree | grep "Bullet Physics"; kill -INT $node; wait $node')
+    script = _once_ready('/gui_fit', log, 'xwininfo -root -tree | grep "Bullet Physics"; '
+                                          'kill -INT $node; wait $node')
     result = xvfb_run(['sh', '-c', script], RUN_TIMEOUT_S, tmp_path,
                       screen='-screen 0 1280x720x24 -nolisten tcp')
     assert result.returncode == 0, result.stderr[-3000:]
@@ -143,17 +153,12 @@ def test_an_error_with_the_window_still_open_is_raised(monkeypatch):
 
 
 def test_escape_in_the_window_ends_vehicle_sim_run_with_status_0(tmp_path):
-    require_xvfb()
-    if shutil.which('xdotool') is None:
-        pytest.skip('xdotool not found: no key can be sent to the window '
-                    '(Debian/Ubuntu: apt-get install xdotool)')
+    _require_tool('xdotool', 'no key can be sent to the window', 'xdotool')
     log = tmp_path / 'node.log'
-    # Escape once the node is ready (a window closed during start-up is refused differently).
-    script = (f'"{sys.executable}" -m vehicle_sim run --gui --no-status -- --ros-args '
-              f'-r __ns:=/gui_escape 2> {log} & node=$!; '
-              f'for i in $(seq 600); do grep -q "automobile ready" {log} && break; sleep 0.2; '
-              'done; xdotool search --sync --name "Bullet Physics" windowfocus --sync; '
-              f'xdotool key Escape; wait $node; status=$?; cat {log} >&2; exit $status')
+    script = _once_ready('/gui_escape', log,
+                         'xdotool search --sync --name "Bullet Physics" windowfocus --sync; '
+                         f'xdotool key Escape; wait $node; status=$?; cat {log} >&2; '
+                         'exit $status')
     result = xvfb_run(['sh', '-c', script], RUN_TIMEOUT_S, tmp_path)
     assert result.returncode == 0, result.stderr[-3000:]
     assert 'the PyBullet window was closed: shutting down' in result.stderr
