@@ -244,3 +244,20 @@ def test_the_world_parser_reads_a_world_without_vehicles_when_asked():
         world_from_data(data, 'inline')
     with pytest.raises(InvalidParameterError, match=r"unknown key\(s\) \['map'\]"):
         world_from_data(dict(data, map='x'), 'inline', vehicles_required=False)
+
+
+def test_build_scene_refuses_two_vehicles_of_one_name_before_building():
+    first = VehicleSpec('A', '', 'Car', 0.0, 0.0, 0.0, ())
+    second = VehicleSpec('A', '/other', 'Car', 0.0, 10.0, 0.0, ())
+    with pytest.raises(InvalidParameterError, match=r"vehicle name\(s\) used twice: \['A'\]"):
+        build_scene(WorldSpec(ORIGIN, (first, second), ()))
+
+
+def test_a_driver_named_like_another_vehicle_of_its_world_file_is_refused(tmp_path):
+    # Driver(name=...) renames the file's first vehicle: it must not take a second one's name.
+    from vehicle_sim.webots import Driver
+    path = tmp_path / 'two.yaml'
+    path.write_text('vehicles:\n  - {name: ego}\n'
+                    '  - {name: other, namespace: /o, pose: {y: 10}}\n', encoding='utf-8')
+    with pytest.raises(InvalidParameterError, match=r"used twice: \['other'\]"):
+        Driver(world_file=str(path), name='other')

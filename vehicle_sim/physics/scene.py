@@ -43,8 +43,9 @@ from dataclasses import dataclass, field
 from typing import Callable, Dict, Mapping, Optional, Protocol, Sequence
 
 from vehicle_sim.config import load_car, load_robot
+from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.geodesy import GeodeticOrigin
-from vehicle_sim.core.world_params import RobotSpec, WorldSpec
+from vehicle_sim.core.world_params import RobotSpec, used_twice, WorldSpec
 from vehicle_sim.physics.diff_robot import DiffRobotBody
 from vehicle_sim.physics.gui import GuiClosedError
 from vehicle_sim.physics.sensors import SensorSuite
@@ -134,7 +135,12 @@ def build_scene(spec: WorldSpec, world: Optional[World] = None, *,
         None mounts none.
     :param parts: scene parts (map layer, traffic), built in order after the vehicles.
     :raises InvalidPoseError: for a vehicle that starts inside an obstacle.
+    :raises InvalidParameterError: for two vehicles (cars or robots) of one name; nothing is
+        built.
     """
+    twice = used_twice([v.name for v in spec.vehicles] + [r.name for r in robots])
+    if twice:   # names are how getDevice, /initialpose and scenarios find a vehicle
+        raise InvalidParameterError(f'vehicle name(s) used twice: {twice}')
     params = params or {}
     owned = world is None
     if owned:
