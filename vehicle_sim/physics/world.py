@@ -138,6 +138,8 @@ def _quiet_stdout(settle_on=None, settle_s=0.2, max_wait_s=2.0):
 
 def _drain(read_end, settle_on, settle_s, max_wait_s):
     # Read (and drop) what the pipe holds; with settle_on, wait for it as _quiet_stdout says.
+    if settle_on is None:
+        settle_s = 0.0          # nothing to wait for: take what is there and return
     seen = settle_on is None
     start = last = time.monotonic()
     while True:
