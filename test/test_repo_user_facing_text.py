@@ -35,7 +35,7 @@ SKIP_DIRS = {'.venv', 'build', 'install', 'log', '.git', '.pytest_cache', '.ruff
 NOT_USER_FACING = {'.ci/run'}
 OUTSIDE = '..' + '/shared'    # spelt in two parts so that this file does not match itself
 # Names of the working notes (a design file, reference notes, source documents).
-WORKING_NOTES = re.compile(r'DESIGN §|DESIGN\.md|STYLE\.md|ros2_wire|webots_spec|reference/|'
+WORKING_NOTES = re.compile(r'DESIGN[ ]§|DESIGN\.md|STYLE\.md|ros2_wire|webots[_]spec|reference/|'
                            r'seeds/|\bthe seed\b', re.IGNORECASE)
 
 
@@ -75,9 +75,10 @@ def test_user_docs_cite_no_working_note(path):
     assert offenders == []
 
 
-# The same notes as code and test comments name them ("DESIGN §4", "STYLE rule 9", "ros2_wire A6").
-NOTE_POINTERS = re.compile(r'DESIGN §|DESIGN\.md|\bDESIGN\b|STYLE\.md|\bSTYLE\b|ros2_wire|'
-                           r'webots_spec|reference/ros2|seeds/')
+# The same notes as code and test comments name them: a section sign after the design file's
+# name, a numbered style rule, a part of the wire notes.
+NOTE_POINTERS = re.compile(r'DESIGN[ ]§|DESIGN\.md|\bDESIGN\b|STYLE\.md|\bSTYLE\b|ros2_wire|'
+                           r'webots[_]spec|reference/ros2|seeds/')
 CODE_DIRS = ('vehicle_sim', 'vehicle_msgs_py', 'test', 'benchmarks', 'examples', 'launch',
              'config')
 
