@@ -40,6 +40,7 @@ import time
 import pybullet
 
 from vehicle_sim.core.errors import InvalidPoseError
+from vehicle_sim.physics.vehicle_body import VehicleBody
 
 # Tyre-road friction coefficient of the ground (Bullet multiplies the two materials' values; car
 # wheels have 1.0). 0-100 km/h in time0To100 needs about 1.1 on the driven axle (docs/physics.md
@@ -91,12 +92,10 @@ def pose_from(position, clearance_m=0.0):
 
 
 def _vehicle_body(registered):
-    # A vehicle's body among the registered objects: one with a body_id and a name (CarBody,
-    # DiffRobotBody), or an owner holding one as ``body`` (SimulatedCar); None otherwise.
+    # A named vehicle body among the registered objects: a VehicleBody (CarBody, DiffRobotBody)
+    # or the SimulatedCar holding one as ``body``; None for hooks and sensors.
     body = getattr(registered, 'body', registered)
-    if getattr(body, 'body_id', None) is None or not getattr(body, 'name', None):
-        return None
-    return body
+    return body if isinstance(body, VehicleBody) and body.name else None
 
 
 _LIBC = ctypes.CDLL(None)     # fflush for _quiet_stdout
@@ -520,8 +519,7 @@ class World:
         """
         Name of a body: an obstacle's name, a registered vehicle's name, or ``body<id>``.
 
-        Vehicles are the registered bodies with a ``body_id`` (or a ``body`` that has one) and a
-        ``name``.
+        Vehicles are the registered named VehicleBodies (or the SimulatedCars holding one).
         """
         name = self._names.get(body_id)
         if name is not None:
