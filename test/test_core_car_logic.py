@@ -190,13 +190,19 @@ def test_torque_to_speed_mode_ramp_starts_from_wheel_speeds():
     np.testing.assert_allclose(actuation.wheel_velocity_radps[:2], 20.0 - per_step, rtol=1e-12)
 
 
-@pytest.mark.parametrize('mode', ['undefined', 'speed', 'torque'])
-def test_brake_torque_is_intensity_times_coefficient_on_all_wheels(mode):
+def _car_in_mode(mode, cruising_kmh, throttle):
+    # A new car left in 'undefined' mode, or switched by a cruising speed or a throttle.
     car = CarLogic(DEFAULT_CAR)
     if mode == 'speed':
-        car.set_cruising_speed_kmh(10.0)
+        car.set_cruising_speed_kmh(cruising_kmh)
     elif mode == 'torque':
-        car.set_throttle(0.5)
+        car.set_throttle(throttle)
+    return car
+
+
+@pytest.mark.parametrize('mode', ['undefined', 'speed', 'torque'])
+def test_brake_torque_is_intensity_times_coefficient_on_all_wheels(mode):
+    car = _car_in_mode(mode, 10.0, 0.5)
     car.set_brake_intensity(0.5)
     actuation = car.step(Measurement(), 0.0, DT_S)
     np.testing.assert_allclose(actuation.brake_torque_nm, 0.5 * 700.0, rtol=1e-12)
@@ -206,11 +212,7 @@ def test_brake_torque_is_intensity_times_coefficient_on_all_wheels(mode):
 def test_brake_in_speed_mode_is_taken_and_returns_a_note_saying_what_to_do(mode):
     # Webots' driver.c takes the brake in any mode without a word; in SPEED mode the driven
     # wheels' motors hold the cruising speed, so the call says why nothing slows down.
-    car = CarLogic(DEFAULT_CAR)
-    if mode == 'speed':
-        car.set_cruising_speed_kmh(20.0)
-    elif mode == 'torque':
-        car.set_throttle(0.0)
+    car = _car_in_mode(mode, 20.0, 0.0)
     note = car.set_brake_intensity(1.0)
     assert car.brake_intensity == 1.0 and car.status().brake_lights
     if mode == 'speed':
