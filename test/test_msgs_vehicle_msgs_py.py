@@ -391,3 +391,23 @@ def test_collision_example_matches_hand_computed_bytes():
                 + struct.pack('<I', 5) + b'wall\x00' + bytes(7)         # 33 -> pad to 40
                 + struct.pack('<d', 1234.5))
     assert collision.serialize() == expected == rosbags_bytes(collision)
+
+
+def test_message_definition_is_the_ros2msg_text_with_its_dependencies():
+    from vehicle_msgs_py import message_definition
+    text = message_definition('geometry_msgs/msg/PoseStamped')
+    blocks = text.split('=' * 80 + '\n')
+    assert blocks[0] == 'std_msgs/Header header\ngeometry_msgs/Pose pose\n'
+    headers = [block.splitlines()[0] for block in blocks[1:]]
+    assert headers == ['MSG: std_msgs/Header', 'MSG: builtin_interfaces/Time',
+                       'MSG: geometry_msgs/Pose', 'MSG: geometry_msgs/Point',
+                       'MSG: geometry_msgs/Quaternion']
+    own = message_definition('vehicle_msgs/msg/Float64Stamped')
+    assert own.startswith('std_msgs/Header header\n')
+    assert 'MSG: builtin_interfaces/Time\nint32 sec\nuint32 nanosec' in own
+
+
+def test_message_definition_refuses_an_unknown_type():
+    from vehicle_msgs_py import message_definition
+    with pytest.raises(ValueError, match='nav_msgs/msg/NoSuchType'):
+        message_definition('nav_msgs/msg/NoSuchType')

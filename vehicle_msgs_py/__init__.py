@@ -33,6 +33,7 @@ __all__ = [
     'from_rosbags',
     'known_services',
     'known_types',
+    'message_definition',
     'message_type',
     'service_types',
     'ServiceTypes',

@@ -255,6 +255,22 @@ def type_hash(ros_type):
         return _hashes[name]
 
 
+
+def message_definition(ros_type):
+    """
+    Return a message's ``ros2msg`` schema text with every type it depends on appended.
+
+    This is the text rosbag2 stores as a topic's schema (and Foxglove reads): the message's own
+    fields, then for each dependency a line of 80 ``=`` signs, ``MSG: pkg/Name`` and its fields.
+    """
+    name = normalize_type_name(ros_type)
+    store = typestore()
+    if name not in store.fielddefs:
+        raise ValueError(f'unknown ROS type {name!r}')
+    with _lock:
+        text, _md5 = store.generate_msgdef(name, ros_version=2)
+    return text
+
 def _idl_annotation(desc):
     kind, rest = desc
     if kind == Nodetype.BASE:
