@@ -32,7 +32,7 @@ import statistics
 import time
 
 from vehicle_sim.config import load_car, load_world
-from vehicle_sim.core.sensor_sets import merge_sensors
+from vehicle_sim.core.sensors.sets import merge_sensors
 from vehicle_sim.physics import SimulatedCar, World
 from vehicle_sim.physics.sensors import CollisionMonitor, SensorSuite
 

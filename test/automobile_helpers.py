@@ -28,7 +28,7 @@ import time
 
 from conftest import peer_env
 
-from vehicle_sim.core.units import stamp_to_seconds
+from vehicle_sim.core.specs.units import stamp_to_seconds
 from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.transport.dds import DdsNode
 from vehicle_sim.transport.port import QOS_TF_STATIC_LISTENER

@@ -36,7 +36,7 @@ import time
 import numpy as np
 
 from vehicle_sim.config import load_car
-from vehicle_sim.core.geometry import yaw_from_quaternion
+from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.physics import SimulatedCar, World
 from vehicle_sim.physics._pybullet import pybullet
 from vehicle_sim.physics.gui import ChaseCamera

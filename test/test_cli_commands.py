@@ -200,7 +200,7 @@ def test_run_help_example_sets_a_parameter_the_node_declares(capsys):
 
 def test_status_line_shows_time_speed_rpm_gear_mode_and_indicator():
     from vehicle_sim.config import load_car
-    from vehicle_sim.core.car_logic import CarLogic
+    from vehicle_sim.core.car.logic import CarLogic
     from vehicle_sim.tools.run_command import status_line
     status = CarLogic(load_car('Car')).status()
     line = status_line(1.5, status)

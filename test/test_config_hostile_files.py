@@ -30,7 +30,7 @@ import sys
 from conftest import peer_env
 import pytest
 
-from vehicle_sim.core.value_text import brief
+from vehicle_sim.core.specs.value_text import brief
 from vehicle_sim.scenarios.yaml_lines import load_with_lines
 from vehicle_sim.yaml_files import MAX_ALIAS_NODES, MAX_DEPTH, parse, YamlFileError
 

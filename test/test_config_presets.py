@@ -19,8 +19,8 @@ import math
 import pytest
 
 from vehicle_sim.config import car_names, find_config, load_car, read_yaml
-from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.params import CAR_PARAM_SPECS, car_params_from_dict, DEFAULT_CAR
+from vehicle_sim.core.car.params import CAR_PARAM_SPECS, car_params_from_dict, DEFAULT_CAR
+from vehicle_sim.core.specs.errors import InvalidParameterError
 
 PRESETS = ['Car', 'BmwX5', 'CitroenCZero', 'ToyotaPrius', 'TeslaModel3', 'LincolnMKZ',
            'RangeRoverSportSVR', 'MercedesBenzSprinter']

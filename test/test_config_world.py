@@ -26,20 +26,20 @@ import pytest
 import yaml
 
 from vehicle_sim.config import load_car, load_robot, load_world, parse_world, world_from_data
-from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.frames import Pose
-from vehicle_sim.core.param_spec import parameter_table_markdown
-from vehicle_sim.core.params import car_params_from_dict, DEFAULT_CAR
-from vehicle_sim.core.robot_params import DEFAULT_ROBOT
-from vehicle_sim.core.sensor_params import (
+from vehicle_sim.core.car.params import car_params_from_dict, DEFAULT_CAR
+from vehicle_sim.core.diffdrive.params import DEFAULT_ROBOT
+from vehicle_sim.core.geometry.frames import Pose
+from vehicle_sim.core.sensors.params import (
     CameraSpec,
     LidarSpec,
     sensor_from_dict,
     SENSOR_TYPES,
     sensors_markdown,
 )
-from vehicle_sim.core.sensor_sets import enable_sensors, merge_sensors, mounted, static_transforms
-from vehicle_sim.core.world_params import obstacles_markdown, ORIGIN_SPECS, VEHICLE_SPECS
+from vehicle_sim.core.sensors.sets import enable_sensors, merge_sensors, mounted, static_transforms
+from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.specs.param_spec import parameter_table_markdown
+from vehicle_sim.core.world.params import obstacles_markdown, ORIGIN_SPECS, VEHICLE_SPECS
 from vehicle_sim.physics import diff_robot
 from vehicle_sim.ros import sim_params
 
@@ -328,7 +328,7 @@ def test_sensors_doc_contains_the_generated_key_tables():
 ])
 def test_automobile_node_refuses_a_bad_sensor_at_start_naming_file_and_field(
         tmp_path, entry, fragment):
-    from vehicle_sim.ros.automobile_node import AutomobileNode
+    from vehicle_sim.ros.automobile import AutomobileNode
     path = tmp_path / 'bad_world.yaml'
     path.write_text(f'vehicles: [{{name: Car, sensors: [{entry}]}}]\n')
     with pytest.raises(InvalidParameterError) as info:
@@ -338,7 +338,7 @@ def test_automobile_node_refuses_a_bad_sensor_at_start_naming_file_and_field(
 
 
 def test_automobile_node_refuses_a_bad_obstacle_at_start_naming_file_and_field(tmp_path):
-    from vehicle_sim.ros.automobile_node import AutomobileNode
+    from vehicle_sim.ros.automobile import AutomobileNode
     path = tmp_path / 'bad_world.yaml'
     path.write_text('vehicles: [{name: Car}]\nobstacles: [{name: a, shape: box, '
                     'size: [1, .nan, 1], position: [5, 0, 0.5]}]\n')

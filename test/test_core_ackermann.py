@@ -18,7 +18,7 @@ import math
 
 import pytest
 
-from vehicle_sim.core.ackermann import ackermann_angles
+from vehicle_sim.core.car.ackermann import ackermann_angles
 
 TRACK_M = 1.628    # Toyota Prius trackFront
 WHEELBASE_M = 2.8  # Toyota Prius wheelbase

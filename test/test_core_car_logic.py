@@ -22,14 +22,14 @@ import numpy as np
 import pytest
 
 from vehicle_sim.config import load_car
-from vehicle_sim.core.ackermann import ackermann_angles
-from vehicle_sim.core.car_logic import CarLogic, CarStatus
-from vehicle_sim.core.drivetrain import CarType, ControlMode
-from vehicle_sim.core.engines import EngineType
-from vehicle_sim.core.errors import InvalidCommandError
-from vehicle_sim.core.params import DEFAULT_CAR
-from vehicle_sim.core.signals import Indicator, WiperMode
-from vehicle_sim.core.vehicle_io import Measurement, Wheel, WheelMode
+from vehicle_sim.core.car.ackermann import ackermann_angles
+from vehicle_sim.core.car.drivetrain import CarType, ControlMode
+from vehicle_sim.core.car.engines import EngineType
+from vehicle_sim.core.car.logic import CarLogic, CarStatus
+from vehicle_sim.core.car.params import DEFAULT_CAR
+from vehicle_sim.core.car.signals import Indicator, WiperMode
+from vehicle_sim.core.car.vehicle_io import Measurement, Wheel, WheelMode
+from vehicle_sim.core.specs.errors import InvalidCommandError
 
 DT_S = 0.01
 FREE, VELOCITY, TORQUE = WheelMode.FREE, WheelMode.VELOCITY, WheelMode.TORQUE

@@ -12,14 +12,14 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Tests of the chase camera math (vehicle_sim.core.chase_camera)."""
+"""Tests of the chase camera math (vehicle_sim.core.geometry.chase_camera)."""
 
 import math
 
 import numpy as np
 import pytest
 
-from vehicle_sim.core.chase_camera import (
+from vehicle_sim.core.geometry.chase_camera import (
     bullet_yaw_deg,
     camera_forward,
     chase_view,
@@ -30,7 +30,7 @@ from vehicle_sim.core.chase_camera import (
     MAX_DISTANCE_M,
     MIN_DISTANCE_M,
 )
-from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.specs.errors import InvalidParameterError
 
 
 @pytest.mark.parametrize('heading_deg', [0.0, 30.0, 90.0, 179.0, -120.0])

@@ -12,34 +12,36 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Tests of the bridge kinematics (vehicle_sim.core.diff_drive, vehicle_sim.core.watchdog)."""
+"""Tests of the bridge kinematics (core/diffdrive, core/bridge) and the command watchdog."""
 
 import math
 
 import pytest
 
-from vehicle_sim.core.diff_drive import (
+from vehicle_sim.core.bridge.ackermann_mapping import (
     ackermann_to_wheel_speeds,
-    AckermannToDifferential,
+    equivalent_steering_rad,
+    STEERING_REPORT_SPEED_EPS_MPS,
+    turn_in_place_yaw_rate,
+    wheel_base_plausibility,
+)
+from vehicle_sim.core.bridge.converter import AckermannToDifferential, STOP_COMMAND
+from vehicle_sim.core.bridge.params import (
     BRIDGE_PARAM_SPECS,
     bridge_params_from_dict,
     DEFAULT_BRIDGE_PARAMS,
-    equivalent_steering_rad,
+)
+from vehicle_sim.core.bridge.speed_limiter import limit_wheel_speeds, SpeedLimiter
+from vehicle_sim.core.commands.watchdog import CommandWatchdog
+from vehicle_sim.core.diffdrive.kinematics import (
     integrate_pose,
-    limit_wheel_speeds,
-    SpeedLimiter,
-    STEERING_REPORT_SPEED_EPS_MPS,
-    STOP_COMMAND,
-    turn_in_place_yaw_rate,
     twist_from_wheel_speeds,
-    wheel_base_plausibility,
     wheel_mps_from_radps,
     wheel_radps_from_mps,
     wheel_speeds_from_twist,
     yaw_rate_from_steering,
 )
-from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
-from vehicle_sim.core.watchdog import CommandWatchdog
+from vehicle_sim.core.specs.errors import InvalidCommandError, InvalidParameterError
 
 TOL = 1e-12
 # tan(STEER_RAD) = 0.25 exactly enough for closed forms.

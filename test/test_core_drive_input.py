@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-cmd_vel and drive -> a car and a differential robot, ROS-free (core/drive_input.py).
+cmd_vel and drive -> a car and a differential robot, ROS-free (core/commands/drive_input.py).
 
 Closed forms: the bicycle model ω = v·tan(δ)/L and its inverse δ = atan(ω·L/v); REP 103 steering
 (+ left) is the opposite of Webots' (+ right); the rear axle of a front-driven car runs at
@@ -25,9 +25,10 @@ import math
 import pytest
 
 from vehicle_sim.config import load_car
-from vehicle_sim.core.car_logic import CarLogic
-from vehicle_sim.core.diff_drive import yaw_rate_from_steering
-from vehicle_sim.core.drive_input import (
+from vehicle_sim.core.car.drivetrain import ControlMode
+from vehicle_sim.core.car.logic import CarLogic
+from vehicle_sim.core.car.params import DEFAULT_CAR
+from vehicle_sim.core.commands.drive_input import (
     CarDriveInput,
     DiffDriveInput,
     rear_axle_speed_ratio,
@@ -35,10 +36,9 @@ from vehicle_sim.core.drive_input import (
     steering_from_yaw_rate,
     TIMEOUT_BRAKE_INTENSITY,
 )
-from vehicle_sim.core.drivetrain import ControlMode
-from vehicle_sim.core.errors import InvalidCommandError
-from vehicle_sim.core.params import DEFAULT_CAR
-from vehicle_sim.core.units import kmh_to_mps, ros_steering_to_webots, webots_steering_to_ros
+from vehicle_sim.core.diffdrive.kinematics import yaw_rate_from_steering
+from vehicle_sim.core.specs.errors import InvalidCommandError
+from vehicle_sim.core.specs.units import kmh_to_mps, ros_steering_to_webots, webots_steering_to_ros
 
 # ------------------------------------------------------------------------------ conversions
 

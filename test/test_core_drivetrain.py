@@ -19,8 +19,8 @@ import math
 import numpy as np
 import pytest
 
-from vehicle_sim.core.ackermann import ackermann_angles
-from vehicle_sim.core.drivetrain import (
+from vehicle_sim.core.car.ackermann import ackermann_angles
+from vehicle_sim.core.car.drivetrain import (
     central_ratio,
     cruise_wheel_targets,
     current_speed_mps,
@@ -35,7 +35,7 @@ from vehicle_sim.core.drivetrain import (
     wheel_acceleration_radps2,
     wheel_speeds,
 )
-from vehicle_sim.core.vehicle_io import Wheel
+from vehicle_sim.core.car.vehicle_io import Wheel
 
 L_M = 2.94      # wheelbase
 TF_M = 1.64     # front track

@@ -19,8 +19,8 @@ from types import SimpleNamespace
 
 import pytest
 
-from vehicle_sim.core.drivetrain import engine_rpm, output_torque_nm
-from vehicle_sim.core.engines import (
+from vehicle_sim.core.car.drivetrain import engine_rpm, output_torque_nm
+from vehicle_sim.core.car.engines import (
     CombustionEngine,
     ElectricEngine,
     ENGINE_MODELS,
@@ -29,8 +29,8 @@ from vehicle_sim.core.engines import (
     ParallelHybridEngine,
     PowerSplitHybridEngine,
 )
-from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.params import DEFAULT_CAR, ENGINE_TYPES
+from vehicle_sim.core.car.params import DEFAULT_CAR, ENGINE_TYPES
+from vehicle_sim.core.specs.errors import InvalidParameterError
 
 # Car defaults: a, b, c = 150 N·m, 0.1 N·m/rpm, 0; min 1000 rpm, max 4500 rpm; electric limits
 # 250 N·m and 50 kW; power split ratio 0.25 at 3000 rpm. c is made non-zero to test the square.

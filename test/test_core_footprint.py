@@ -19,7 +19,7 @@ import math
 import pytest
 
 from vehicle_sim.config import load_car, load_robot
-from vehicle_sim.core.footprint import (
+from vehicle_sim.core.geometry.footprint import (
     band_polygon,
     car_outline,
     circle_footprint,
@@ -32,7 +32,7 @@ from vehicle_sim.core.footprint import (
     RIM_POINTS,
     robot_outline,
 )
-from vehicle_sim.core.world_params import obstacle_from_dict
+from vehicle_sim.core.world.params import obstacle_from_dict
 
 TOL = 1e-9
 

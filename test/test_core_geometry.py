@@ -20,7 +20,7 @@ import re
 
 import pytest
 
-from vehicle_sim.core.geometry import wrap_angle_rad, yaw_from_quaternion
+from vehicle_sim.core.geometry.angles import wrap_angle_rad, yaw_from_quaternion
 
 PACKAGE = Path(__file__).resolve().parent.parent / 'vehicle_sim'
 
@@ -56,4 +56,4 @@ def test_the_yaw_formula_is_written_once_in_the_package():
     formula = re.compile(r'atan2\(\s*2(\.0)?\s*\*\s*\(\s*q?w\s*\*\s*q?z')
     found = [str(path.relative_to(PACKAGE)) for path in PACKAGE.rglob('*.py')
              if formula.search(path.read_text(encoding='utf-8'))]
-    assert found == ['core/geometry.py']
+    assert found == ['core/geometry/angles.py']

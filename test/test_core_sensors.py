@@ -24,14 +24,13 @@ import math
 import numpy as np
 import pytest
 
-from vehicle_sim.core.collision import CollisionDebouncer
-from vehicle_sim.core.frames import (
+from vehicle_sim.core.geometry.frames import (
     OPTICAL_QUATERNION,
     quaternion_from_rpy,
     rotation_matrix,
     rpy_from_quaternion,
 )
-from vehicle_sim.core.geodesy import (
+from vehicle_sim.core.geometry.geodesy import (
     ecef_to_geodetic,
     geodetic_to_ecef,
     GeodeticOrigin,
@@ -40,9 +39,10 @@ from vehicle_sim.core.geodesy import (
     WGS84_B_M,
     WGS84_E2,
 )
-from vehicle_sim.core.lookup_table import LookupTable
-from vehicle_sim.core.noise import GaussianNoise
-from vehicle_sim.core.sampling import due_steps, exact, SampleSchedule, Scheduler
+from vehicle_sim.core.sensors.lookup_table import LookupTable
+from vehicle_sim.core.sensors.noise import GaussianNoise
+from vehicle_sim.core.sensors.sampling import due_steps, exact, SampleSchedule, Scheduler
+from vehicle_sim.core.world.collision import CollisionDebouncer
 
 ORIGIN = GeodeticOrigin(48.0, 11.0, 500.0)
 

@@ -18,11 +18,10 @@ import math
 
 import pytest
 
-from vehicle_sim.core.car_logic import CarLogic
-from vehicle_sim.core.drivetrain import ControlMode
-from vehicle_sim.core.errors import InvalidCommandError
-from vehicle_sim.core.params import DEFAULT_CAR
-from vehicle_sim.core.signals import (
+from vehicle_sim.core.car.drivetrain import ControlMode
+from vehicle_sim.core.car.logic import CarLogic
+from vehicle_sim.core.car.params import DEFAULT_CAR
+from vehicle_sim.core.car.signals import (
     auto_disable_indicator,
     backwards_light_on,
     Indicator,
@@ -33,7 +32,8 @@ from vehicle_sim.core.signals import (
     WIPER_MAX_ANGLE_RAD,
     WiperMode,
 )
-from vehicle_sim.core.vehicle_io import Measurement
+from vehicle_sim.core.car.vehicle_io import Measurement
+from vehicle_sim.core.specs.errors import InvalidCommandError
 
 DT_S = 0.01
 

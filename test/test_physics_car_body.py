@@ -20,8 +20,8 @@ import xml.etree.ElementTree as ElementTree
 import pytest
 
 from vehicle_sim.config import car_names, load_car
-from vehicle_sim.core.geometry import yaw_from_quaternion
-from vehicle_sim.core.vehicle_io import Actuation, Measurement, Wheel, WheelMode
+from vehicle_sim.core.car.vehicle_io import Actuation, Measurement, Wheel, WheelMode
+from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.physics import CarBody, joint_names, World
 from vehicle_sim.physics.urdf import car_urdf
 

@@ -18,8 +18,8 @@ import math
 
 import pytest
 
-from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
-from vehicle_sim.core.robot_params import DEFAULT_ROBOT, robot_params_from_dict
+from vehicle_sim.core.diffdrive.params import DEFAULT_ROBOT, robot_params_from_dict
+from vehicle_sim.core.specs.errors import InvalidCommandError, InvalidParameterError
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot, robot_urdf
 from vehicle_sim.physics.world import World
 

@@ -26,7 +26,7 @@ import pybullet
 import pytest
 
 from vehicle_sim.config import load_car
-from vehicle_sim.core.units import kmh_to_mps, RPM_PER_RADPS
+from vehicle_sim.core.specs.units import kmh_to_mps, RPM_PER_RADPS
 from vehicle_sim.webots import Car, Driver
 
 PRESETS = ['Car', 'BmwX5', 'CitroenCZero', 'ToyotaPrius', 'TeslaModel3', 'LincolnMKZ',

@@ -24,7 +24,7 @@ import sys
 import pytest
 
 from vehicle_sim.config import load_car
-from vehicle_sim.core.chase_camera import eye_position
+from vehicle_sim.core.geometry.chase_camera import eye_position
 from vehicle_sim.physics import SimulatedCar, World
 from vehicle_sim.physics._pybullet import pybullet
 from vehicle_sim.physics.gui import (

@@ -26,19 +26,19 @@ import pybullet
 import pytest
 
 from vehicle_sim.config import load_car, load_world
-from vehicle_sim.core.car_logic import CarLogic
-from vehicle_sim.core.drivetrain import ControlMode
-from vehicle_sim.core.errors import InvalidPoseError
-from vehicle_sim.core.frames import (
+from vehicle_sim.core.car.drivetrain import ControlMode
+from vehicle_sim.core.car.logic import CarLogic
+from vehicle_sim.core.car.vehicle_io import Measurement
+from vehicle_sim.core.geometry.frames import (
     pose_from_frame,
     pose_in_frame,
     quaternion_from_rpy,
     quaternion_from_yaw,
     rpy_from_quaternion,
 )
-from vehicle_sim.core.placement import ground_pose, QUATERNION_NORM_TOLERANCE, WORLD_EXTENT_M
-from vehicle_sim.core.vehicle_io import Measurement
-from vehicle_sim.core.world_params import obstacle_from_dict
+from vehicle_sim.core.specs.errors import InvalidPoseError
+from vehicle_sim.core.world.params import obstacle_from_dict
+from vehicle_sim.core.world.placement import ground_pose, QUATERNION_NORM_TOLERANCE, WORLD_EXTENT_M
 from vehicle_sim.physics import SimulatedCar, World
 from vehicle_sim.physics.diff_robot import DiffRobotBody, SPAWN_CLEARANCE_M
 from vehicle_sim.physics.sensors import SensorFeed

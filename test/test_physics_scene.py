@@ -29,10 +29,10 @@ from pathlib import Path
 import pytest
 
 from vehicle_sim.config import load_car, load_robot, world_from_data
-from vehicle_sim.core.errors import InvalidParameterError, InvalidPoseError
-from vehicle_sim.core.footprint import car_outline, robot_outline
-from vehicle_sim.core.geodesy import GeodeticOrigin
-from vehicle_sim.core.world_params import obstacle_from_dict, RobotSpec, VehicleSpec, WorldSpec
+from vehicle_sim.core.geometry.footprint import car_outline, robot_outline
+from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
+from vehicle_sim.core.specs.errors import InvalidParameterError, InvalidPoseError
+from vehicle_sim.core.world.params import obstacle_from_dict, RobotSpec, VehicleSpec, WorldSpec
 from vehicle_sim.physics.car_body import CarBody
 from vehicle_sim.physics.diff_robot import DiffRobotBody
 from vehicle_sim.physics.scene import build_scene, mount_suite
@@ -90,7 +90,7 @@ def test_the_scan_sees_every_world_building_call(source, expected):
 
 def test_the_scan_covers_the_modules_that_built_worlds_before():
     scanned = {str(path.relative_to(PACKAGE)) for path in _outside_physics()}
-    assert {'ros/car_sim.py', 'ros/diff_robot_node.py', 'webots/driver.py',
+    assert {'ros/automobile.py', 'ros/diff_robot_node.py', 'webots/driver.py',
             'scenarios/sim.py', 'tools/end_to_end.py'} <= scanned
 
 

@@ -27,14 +27,14 @@ import pybullet
 import pytest
 
 from vehicle_sim.config import load_car, load_world, world_from_data
-from vehicle_sim.core.geodesy import LocalTangentPlane
-from vehicle_sim.core.sampling import due_steps
-from vehicle_sim.core.sensor_params import sensor_from_dict
-from vehicle_sim.core.sensor_readings import (
+from vehicle_sim.core.geometry.geodesy import LocalTangentPlane
+from vehicle_sim.core.sensors.params import sensor_from_dict
+from vehicle_sim.core.sensors.readings import (
     COVARIANCE_TYPE_DIAGONAL_KNOWN,
     COVARIANCE_TYPE_UNKNOWN,
 )
-from vehicle_sim.core.sensor_sets import merge_sensors
+from vehicle_sim.core.sensors.sampling import due_steps
+from vehicle_sim.core.sensors.sets import merge_sensors
 from vehicle_sim.physics import World
 from vehicle_sim.physics.diff_robot import DiffRobotBody
 from vehicle_sim.physics.sensor_urdf import with_sensor_links

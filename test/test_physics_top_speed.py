@@ -25,8 +25,8 @@ import numpy as np
 import pytest
 
 from vehicle_sim.config import car_names, load_car
-from vehicle_sim.core.units import mps_to_kmh, RPM_PER_RADPS
-from vehicle_sim.core.vehicle_io import Actuation, Wheel, WheelMode
+from vehicle_sim.core.car.vehicle_io import Actuation, Wheel, WheelMode
+from vehicle_sim.core.specs.units import mps_to_kmh, RPM_PER_RADPS
 from vehicle_sim.physics import CarBody, World
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
 from vehicle_sim.physics.world import MAX_COORDINATE_VELOCITY

@@ -23,7 +23,7 @@ from conftest import peer_env
 import pytest
 
 from vehicle_sim.config import load_car
-from vehicle_sim.core.vehicle_io import Actuation, WheelMode
+from vehicle_sim.core.car.vehicle_io import Actuation, WheelMode
 from vehicle_sim.physics import CarBody, World
 
 

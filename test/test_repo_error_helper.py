@@ -20,8 +20,8 @@ from pathlib import Path
 
 import pytest
 
-from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.param_spec import fail
+from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.specs.param_spec import fail
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -43,7 +43,7 @@ def test_the_helper_is_called_by_its_own_name():
         for path in sorted((ROOT / package).rglob('*.py')):
             for node in ast.walk(ast.parse(path.read_text(encoding='utf-8'))):
                 if isinstance(node, ast.ImportFrom) \
-                        and node.module == 'vehicle_sim.core.param_spec':
+                        and node.module == 'vehicle_sim.core.specs.param_spec':
                     aliases += [f'{path.relative_to(ROOT)}:{node.lineno}' for alias in node.names
                                 if alias.name == 'fail' and alias.asname]
     assert aliases == []

@@ -46,11 +46,11 @@ import pytest
 
 from vehicle_msgs_py import types as msg_types
 from vehicle_sim.config import load_car, read_yaml
-from vehicle_sim.core.car_logic import CarLogic
-from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.car.logic import CarLogic
+from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.ros import sim_params
-from vehicle_sim.ros.automobile_node import AutomobileNode
+from vehicle_sim.ros.automobile import AutomobileNode
 from vehicle_sim.transport import dds, port
 from vehicle_sim.transport.dds_config import domain_id
 

@@ -28,7 +28,15 @@ import sys
 from conftest import peer_env, sleeper_process, stop_processes
 import pytest
 
-from vehicle_sim.core.autoware import (
+from vehicle_sim.core.autoware.car import (
+    car_command,
+    CarLimits,
+    DRIVE,
+    NEUTRAL,
+    PARK,
+    REVERSE,
+)
+from vehicle_sim.core.autoware.codes import (
     DISABLE,
     ENABLE_LEFT,
     GEAR_DRIVE,
@@ -39,16 +47,8 @@ from vehicle_sim.core.autoware import (
     MODE_AUTONOMOUS,
     MODE_MANUAL,
 )
-from vehicle_sim.core.autoware_car import (
-    car_command,
-    CarLimits,
-    DRIVE,
-    NEUTRAL,
-    PARK,
-    REVERSE,
-)
-from vehicle_sim.core.errors import InvalidCommandError
-from vehicle_sim.core.units import mps_to_kmh
+from vehicle_sim.core.specs.errors import InvalidCommandError
+from vehicle_sim.core.specs.units import mps_to_kmh
 from vehicle_sim.ros import bridge_interfaces as bi
 
 WAIT_S = 30.0
@@ -249,8 +249,8 @@ def test_node_lights_and_control_mode_are_reported_from_the_car(aw):
 
 
 def _bridge_refuses(setter_name, value):
-    from vehicle_sim.core.bridge_controller import BridgeController
-    from vehicle_sim.core.diff_drive import DEFAULT_BRIDGE_PARAMS
+    from vehicle_sim.core.bridge.controller import BridgeController
+    from vehicle_sim.core.bridge.params import DEFAULT_BRIDGE_PARAMS
     try:
         getattr(BridgeController(DEFAULT_BRIDGE_PARAMS), setter_name)(value)
     except InvalidCommandError:
@@ -265,7 +265,8 @@ def _bridge_refuses(setter_name, value):
 ])
 def test_node_refuses_exactly_the_commands_the_bridge_refuses(aw, endpoint, handler,
                                                                bridge_setter):
-    # One validation (core/autoware.py) for both vehicle interfaces; a refusal changes nothing.
+    # One validation (core/autoware/codes.py) for both vehicle interfaces; a refusal changes
+    # nothing.
     msg = aw.node.msg(endpoint.ros_type)
     refused = []
     for value in list(range(0, 30)) + [255]:

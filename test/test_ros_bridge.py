@@ -32,16 +32,17 @@ from conftest import sleeper_process, stop_processes
 import numpy as np
 import pytest
 
-from vehicle_sim.core.autoware import (
+from vehicle_sim.core.autoware.codes import (
     GEAR_DRIVE,
     GEAR_PARK,
     GEAR_REVERSE,
     MODE_AUTONOMOUS,
     MODE_MANUAL,
 )
-from vehicle_sim.core.bridge_controller import BridgeController
-from vehicle_sim.core.diff_drive import bridge_params_from_dict, STOP_COMMAND
-from vehicle_sim.core.errors import InvalidCommandError
+from vehicle_sim.core.bridge.controller import BridgeController
+from vehicle_sim.core.bridge.converter import STOP_COMMAND
+from vehicle_sim.core.bridge.params import bridge_params_from_dict
+from vehicle_sim.core.specs.errors import InvalidCommandError
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros.endpoints import Topic
 from vehicle_sim.transport.port import QOS_ROSOUT
@@ -155,7 +156,7 @@ def test_controller_acceleration_ramp_follows_node_time():
 def test_bridge_config_and_docs_list_every_parameter():
     import yaml
 
-    from vehicle_sim.core.diff_drive import BRIDGE_PARAM_SPECS
+    from vehicle_sim.core.bridge.params import BRIDGE_PARAM_SPECS
     from vehicle_sim.ros.bridge_node import NODE_PARAMETERS
     with open(os.path.join(REPO_ROOT, 'config', 'bridge.yaml'), encoding='utf-8') as stream:
         values = yaml.safe_load(stream)['ackermann_to_differential']['ros__parameters']

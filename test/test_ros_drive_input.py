@@ -30,8 +30,8 @@ from automobile_helpers import NodeProcess, wait_for, WAIT_S
 import pytest
 
 from vehicle_sim.config import load_car
-from vehicle_sim.core.ackermann import ackermann_angles
-from vehicle_sim.core.units import kmh_to_mps
+from vehicle_sim.core.car.ackermann import ackermann_angles
+from vehicle_sim.core.specs.units import kmh_to_mps
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.testing import AutomobileSim, stamp_s

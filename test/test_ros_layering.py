@@ -17,10 +17,10 @@
 Node modules import core and the shared ROS modules, never each other.
 
 A node module is ``vehicle_sim/ros/*_node.py``. Shared code lives in core (ROS-free logic:
-``core/bridge_controller.py``, ``core/autoware.py``) or in a shared module of ``vehicle_sim/ros``
-(``node_support.py``: parameter declaration, ThrottledWarning, the main wrapper; ``car_sim.py``:
-the simulated cars that ``automobile`` runs and ``autoware_automobile`` composes), so no module
-of ``vehicle_sim/ros`` imports a node module.
+``core/bridge/controller.py``, ``core/autoware/codes.py``) or in a shared module of
+``vehicle_sim/ros`` (``node_support.py``: parameter declaration, ThrottledWarning, the main
+wrapper; ``automobile.py``: the simulated cars that ``automobile`` runs and
+``autoware_automobile`` composes), so no module of ``vehicle_sim/ros`` imports a node module.
 """
 
 import ast
@@ -74,7 +74,7 @@ def test_no_ros_module_imports_a_node_module(path):
     ('from .bridge_node import X', {'bridge_node'}),
     ('from . import automobile_node', {'automobile_node'}),
     ('def f():\n    from vehicle_sim.ros.bridge_node import X\n', {'bridge_node'}),
-    ('from vehicle_sim.core.autoware import GEAR_DRIVE', set()),
+    ('from vehicle_sim.core.autoware.codes import GEAR_DRIVE', set()),
 ])
 def test_the_import_scan_sees_every_import_form(source, expected):
     assert imported_ros_modules(source) & NODE_MODULES == expected

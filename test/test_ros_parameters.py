@@ -17,7 +17,8 @@
 Every parameter table: one core ParamSpec kind, declared through one helper, documented, shipped.
 
 The four nodes (automobile, ackermann_to_differential, autoware_automobile, diff_robot) and the
-car and robot presets use :class:`vehicle_sim.core.param_spec.ParamSpec`; every node declares its
+car and robot presets use :class:`vehicle_sim.core.specs.param_spec.ParamSpec`; every node
+declares its
 table through ``ros/node_support.declare_parameters``, refuses a bad value naming the parameter,
 its value and the valid range, and does not start. The docs tables are generated from the tables
 (``DOC_TABLES``) and ``config/*.yaml`` holds every parameter with its default, or a value whose
@@ -30,16 +31,16 @@ from pathlib import Path
 import pytest
 
 from vehicle_sim.config import read_yaml
-from vehicle_sim.core.diff_drive import BRIDGE_PARAM_SPECS
-from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.param_spec import (
+from vehicle_sim.core.bridge.params import BRIDGE_PARAM_SPECS
+from vehicle_sim.core.car.params import CAR_PARAM_SPECS
+from vehicle_sim.core.diffdrive.params import ROBOT_PARAM_SPECS
+from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.specs.param_spec import (
     parameter_table_markdown,
     ParamSpec,
     table_defaults,
     validate_table,
 )
-from vehicle_sim.core.params import CAR_PARAM_SPECS
-from vehicle_sim.core.robot_params import ROBOT_PARAM_SPECS
 from vehicle_sim.physics.diff_robot import load_robot
 from vehicle_sim.ros import sim_params
 from vehicle_sim.ros.autoware_automobile_node import AUTOWARE_PARAMETERS
@@ -253,7 +254,7 @@ SYNCHRONOUS = {'synchronous': True}
 
 
 def _automobile(overrides):
-    from vehicle_sim.ros.automobile_node import AutomobileNode
+    from vehicle_sim.ros.automobile import AutomobileNode
     return AutomobileNode(['x', '--ros-args', '-r', f'__ns:={NAMESPACE}'], transport='dds',
                           parameter_overrides={**SYNCHRONOUS, **overrides})
 

@@ -71,8 +71,12 @@ from automobile_helpers import (
 import pytest
 
 from vehicle_sim.config import load_car, load_world
-from vehicle_sim.core.car_logic import CarLogic
-from vehicle_sim.core.frames import pose_in_frame, quaternion_from_rpy, rpy_from_quaternion
+from vehicle_sim.core.car.logic import CarLogic
+from vehicle_sim.core.geometry.frames import (
+    pose_in_frame,
+    quaternion_from_rpy,
+    rpy_from_quaternion,
+)
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.ros.sensor_interfaces import sensor_rows

@@ -30,8 +30,8 @@ import pytest
 
 from vehicle_msgs_py import message_type, to_rosbags, typestore
 from vehicle_sim.config import load_car, load_world
-from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.sensor_sets import merge_sensors
+from vehicle_sim.core.sensors.sets import merge_sensors
+from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.physics import SimulatedCar, World
 from vehicle_sim.physics.sensors import CollisionMonitor, SensorFeed, SensorSuite
 from vehicle_sim.ros import sensor_interfaces as si
@@ -172,7 +172,7 @@ NAMESPACE = '/sensor_rows'
 
 
 def _automobile(**overrides):
-    from vehicle_sim.ros.automobile_node import AutomobileNode
+    from vehicle_sim.ros.automobile import AutomobileNode
     return AutomobileNode(['x', '--ros-args', '-r', f'__ns:={NAMESPACE}'], transport='dds',
                           parameter_overrides={'synchronous': True, **overrides})
 

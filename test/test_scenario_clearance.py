@@ -20,8 +20,8 @@ import re
 
 import pytest
 
-from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.footprint import circle_footprint, Outline, polygon_footprint
+from vehicle_sim.core.geometry.footprint import circle_footprint, Outline, polygon_footprint
+from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.scenarios.criteria import CRITERIA, Sample, validate_criterion
 from vehicle_sim.scenarios.runner import run_scenario
 from vehicle_sim.scenarios.scene import Scene

@@ -19,7 +19,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from vehicle_sim.core.collision import CollisionEvent
+from vehicle_sim.core.world.collision import CollisionEvent
 from vehicle_sim.scenarios.actors import WaypointFollower
 from vehicle_sim.scenarios.criteria import (
     CRITERIA,

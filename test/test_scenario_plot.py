@@ -26,13 +26,13 @@ import sys
 import pytest
 
 from vehicle_sim.config import load_car, load_robot
-from vehicle_sim.core.collision import CollisionEvent
-from vehicle_sim.core.footprint import (
+from vehicle_sim.core.geometry.footprint import (
     car_outline,
     distance_to_polyline,
     obstacle_footprint,
     robot_outline,
 )
+from vehicle_sim.core.world.collision import CollisionEvent
 from vehicle_sim.scenarios.criteria import build_criteria, Sample
 from vehicle_sim.scenarios.runner import run_scenario, ScenarioResult, Track
 from vehicle_sim.scenarios.scene import Scene

@@ -29,7 +29,7 @@ import warnings
 import numpy as np
 import pytest
 
-from vehicle_sim.core.errors import InvalidPoseError
+from vehicle_sim.core.specs.errors import InvalidPoseError
 from vehicle_sim.webots import Driver, WebotsWarning
 from vehicle_sim.webots.api_table import DEVICE_API
 from vehicle_sim.webots.devices import DEVICE_CLASSES

@@ -17,18 +17,18 @@ Finding and loading the YAML configuration files: car presets, robot presets and
 
 The one place where presets and worlds are read (the ROS nodes, the Webots facade and the CLI
 all come here). Kept outside ``core`` because it reads files with PyYAML; validation itself is
-core's (core/params.py, core/robot_params.py, core/world_params.py).
+core's (core/car/params.py, core/diffdrive/params.py, core/world/params.py).
 """
 
 import os
 from pathlib import Path
 from typing import Tuple
 
-from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.params import car_params_from_dict, CarParams
-from vehicle_sim.core.robot_params import robot_params_from_dict, RobotParams
-from vehicle_sim.core.value_text import brief
-from vehicle_sim.core.world_params import VehicleSpec, world_from_dict, WorldSpec
+from vehicle_sim.core.car.params import car_params_from_dict, CarParams
+from vehicle_sim.core.diffdrive.params import robot_params_from_dict, RobotParams
+from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.specs.value_text import brief
+from vehicle_sim.core.world.params import VehicleSpec, world_from_dict, WorldSpec
 from vehicle_sim.yaml_files import load_file
 
 __all__ = ['available', 'car_names', 'config_dirs', 'find_config', 'load_car', 'load_robot',

@@ -34,7 +34,7 @@ from typing import Any, Optional, Tuple
 
 import yaml
 
-from vehicle_sim.core.errors import InvalidParameterError
+from vehicle_sim.core.specs.errors import InvalidParameterError
 
 __all__ = ['load_file', 'MAX_ALIAS_NODES', 'MAX_DEPTH', 'parse', 'read_text', 'YamlFileError']
 

@@ -32,8 +32,8 @@ Mappings (derivations in docs/physics.md):
 
 import pybullet
 
-from vehicle_sim.core.footprint import car_outline
-from vehicle_sim.core.vehicle_io import as_floats, WHEEL_COUNT, WheelMode
+from vehicle_sim.core.car.vehicle_io import as_floats, WHEEL_COUNT, WheelMode
+from vehicle_sim.core.geometry.footprint import car_outline
 from vehicle_sim.physics.urdf import car_urdf, joint_names, STEER_MAX_VELOCITY_RADPS
 from vehicle_sim.physics.vehicle_body import VehicleBody
 from vehicle_sim.physics.world import point_velocity

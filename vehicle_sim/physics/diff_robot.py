@@ -41,8 +41,8 @@ from xml.sax.saxutils import escape
 import pybullet
 
 from vehicle_sim.config import load_robot  # noqa: F401  (loaded there; kept importable here)
-from vehicle_sim.core.errors import InvalidCommandError
-from vehicle_sim.core.footprint import robot_outline
+from vehicle_sim.core.geometry.footprint import robot_outline
+from vehicle_sim.core.specs.errors import InvalidCommandError
 from vehicle_sim.physics.urdf import geometry_block, inertial, num, vec, wheel_inertia_kgm2
 from vehicle_sim.physics.vehicle_body import VehicleBody
 

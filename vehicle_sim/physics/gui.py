@@ -25,7 +25,8 @@ nodes, a scenario runner, a script) enables it the same way::
     car = SimulatedCar(world, load_car('BmwX5'))
     ChaseCamera(world, [car])          # follows the first target; 'n' cycles through them
 
-The camera math lives in :mod:`vehicle_sim.core.chase_camera`; docs/drive.md lists the keys.
+The camera math lives in :mod:`vehicle_sim.core.geometry.chase_camera`; docs/drive.md lists the
+keys.
 """
 
 from contextlib import contextmanager
@@ -37,9 +38,9 @@ from typing import Dict, Optional, Sequence, Tuple
 
 import pybullet
 
-from vehicle_sim.core.chase_camera import chase_view, ChaseSettings, follow_heading
-from vehicle_sim.core.errors import VehicleSimError
-from vehicle_sim.core.geometry import yaw_from_quaternion
+from vehicle_sim.core.geometry.angles import yaw_from_quaternion
+from vehicle_sim.core.geometry.chase_camera import chase_view, ChaseSettings, follow_heading
+from vehicle_sim.core.specs.errors import VehicleSimError
 
 # Our keys (PyBullet's own shortcuts use a c d g i j k l o p s v w and Esc; see docs/drive.md).
 KEY_FOLLOW = 'f'

@@ -43,9 +43,9 @@ from dataclasses import dataclass, field
 from typing import Callable, Dict, Mapping, Optional, Protocol, Sequence
 
 from vehicle_sim.config import load_car, load_robot
-from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.geodesy import GeodeticOrigin
-from vehicle_sim.core.world_params import RobotSpec, used_twice, WorldSpec
+from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
+from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.world.params import RobotSpec, used_twice, WorldSpec
 from vehicle_sim.physics.diff_robot import DiffRobotBody
 from vehicle_sim.physics.gui import GuiClosedError
 from vehicle_sim.physics.sensors import SensorSuite

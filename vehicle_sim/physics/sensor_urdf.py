@@ -25,8 +25,8 @@ them (CarBody, DiffRobotBody), and only ``robot_description`` carries them.
 
 from xml.sax.saxutils import escape
 
-from vehicle_sim.core.frames import OPTICAL_RPY
-from vehicle_sim.core.sensor_sets import mounted
+from vehicle_sim.core.geometry.frames import OPTICAL_RPY
+from vehicle_sim.core.sensors.sets import mounted
 from vehicle_sim.physics.urdf import vec
 
 _END = '</robot>'

@@ -14,8 +14,8 @@
 
 """A simulated car: the core CarLogic driving a PyBullet CarBody inside a World."""
 
-from vehicle_sim.core.car_logic import CarLogic
-from vehicle_sim.core.vehicle_io import Measurement
+from vehicle_sim.core.car.logic import CarLogic
+from vehicle_sim.core.car.vehicle_io import Measurement
 from vehicle_sim.physics.car_body import CarBody
 
 

@@ -32,7 +32,7 @@ from xml.sax.saxutils import escape
 
 import numpy as np
 
-from vehicle_sim.core.vehicle_io import WHEEL_NAMES
+from vehicle_sim.core.car.vehicle_io import WHEEL_NAMES
 
 # Intermediate links (suspension carrier, steering knuckle): small but not tiny, so the
 # articulated-body solver stays well conditioned next to 5-150 kg wheels.

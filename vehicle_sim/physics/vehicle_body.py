@@ -35,8 +35,8 @@ A subclass gives its URDF, its footprint function (``OUTLINE``), its spawn heigh
 
 import pybullet
 
-from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.geometry import yaw_from_quaternion
+from vehicle_sim.core.geometry.angles import yaw_from_quaternion
+from vehicle_sim.core.specs.errors import InvalidParameterError
 
 
 class VehicleBody:

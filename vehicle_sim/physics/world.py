@@ -39,7 +39,7 @@ import time
 
 import pybullet
 
-from vehicle_sim.core.errors import InvalidPoseError
+from vehicle_sim.core.specs.errors import InvalidPoseError
 from vehicle_sim.physics.vehicle_body import VehicleBody
 
 # Tyre-road friction coefficient of the ground (Bullet multiplies the two materials' values; car

@@ -15,9 +15,9 @@
 """
 The ``automobile`` node: Webots' ``ros_automobile`` interface (docs/ros_interface.md).
 
-The node class, :class:`~vehicle_sim.ros.car_sim.AutomobileNode`, lives in :mod:`.car_sim`
-(``autoware_automobile`` composes it too); this module is the executable, and
-``from vehicle_sim.ros.automobile_node import AutomobileNode`` keeps working.
+This module is the executable; the node class, :class:`~vehicle_sim.ros.automobile.
+AutomobileNode`, lives in :mod:`.automobile` because ``autoware_automobile`` composes it too and
+node modules never import each other.
 
 Run: ``ros2 run vehicle_sim automobile --ros-args -p car_model:=ToyotaPrius`` or
 ``python -m vehicle_sim.ros.automobile_node --ros-args --params-file config/automobile.yaml``.
@@ -25,10 +25,10 @@ Run: ``ros2 run vehicle_sim automobile --ros-args -p car_model:=ToyotaPrius`` or
 
 import sys
 
-from vehicle_sim.ros.car_sim import AutomobileNode, NODE_NAME
+from vehicle_sim.ros.automobile import AutomobileNode, NODE_NAME
 from vehicle_sim.ros.node_support import run_main
 
-__all__ = ['AutomobileNode', 'main', 'NODE_NAME']
+__all__ = ['main']
 
 
 def main(args=None):

@@ -20,8 +20,8 @@ The same Autoware inputs as the bridge (``ros/bridge_interfaces.py``: the comman
 /control/control_mode_request) drive a car, and the same /vehicle/status/* reports come back from
 the car's own data. The node composes an :class:`AutomobileNode` on the same ROS node, so the
 car's /automobile/*, /robot/time_step (synchronous stepping), /clock, odometry and TF stay
-available; the mapping is ``core/autoware_car.py`` (units and signs through ``core/units.py``).
-Behaviour, parameters and the gear table: docs/end_to_end.md.
+available; the mapping is ``core/autoware/car.py`` (units and signs through
+``core/specs/units.py``). Behaviour, parameters and the gear table: docs/end_to_end.md.
 
 Run: ``ros2 run vehicle_sim autoware_automobile --ros-args -p car_model:=ToyotaPrius`` or
 ``python -m vehicle_sim.ros.autoware_automobile_node --ros-args -p synchronous:=true``.
@@ -31,7 +31,16 @@ import math
 import sys
 from types import SimpleNamespace
 
-from vehicle_sim.core.autoware import (
+from vehicle_sim.core.autoware.car import (
+    AutowareCar,
+    car_report,
+    gear_action_of_command,
+    GEAR_REPORT,
+    INDICATOR_OF_COMMAND,
+    INDICATOR_REPORT,
+    set_car_indicator,
+)
+from vehicle_sim.core.autoware.codes import (
     check_gear,
     check_hazard_lights,
     check_turn_indicators,
@@ -43,21 +52,16 @@ from vehicle_sim.core.autoware import (
     MODE_AUTONOMOUS,
     NO_COMMAND,
 )
-from vehicle_sim.core.autoware_car import (
-    AutowareCar,
-    car_report,
-    gear_action_of_command,
-    GEAR_REPORT,
-    INDICATOR_OF_COMMAND,
-    INDICATOR_REPORT,
-    set_car_indicator,
+from vehicle_sim.core.bridge.ackermann_mapping import equivalent_steering_rad
+from vehicle_sim.core.commands.watchdog import (
+    DEFAULT_TIMEOUT_ACTION,
+    DEFAULT_TIMEOUT_S,
+    TIMEOUT_ACTIONS,
 )
-from vehicle_sim.core.diff_drive import equivalent_steering_rad
-from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
-from vehicle_sim.core.param_spec import ParamSpec
-from vehicle_sim.core.watchdog import DEFAULT_TIMEOUT_ACTION, DEFAULT_TIMEOUT_S, TIMEOUT_ACTIONS
+from vehicle_sim.core.specs.errors import InvalidCommandError, InvalidParameterError
+from vehicle_sim.core.specs.param_spec import ParamSpec
 from vehicle_sim.ros import bridge_interfaces as bi
-from vehicle_sim.ros.car_sim import AutomobileNode  # composed on this node
+from vehicle_sim.ros.automobile import AutomobileNode  # composed on this node
 from vehicle_sim.ros.endpoints import EACH_STATUS, Outputs, serve, subscribe
 from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning
@@ -219,7 +223,7 @@ class AutowareAutomobileNode:
             self.car.logic.set_hazard_flashers(command == HAZARD_ENABLE)
 
     def _checked(self, check, value, name):
-        # The bridge's validation (core/autoware.py); a refused value changes nothing.
+        # The bridge's validation (core/autoware/codes.py); a refused value changes nothing.
         try:
             return check(value)
         except InvalidCommandError as error:

@@ -36,8 +36,8 @@ entry); call ``ctx.stamp`` and ``ctx.command`` (core DiffDriveCommand). Robot ro
 from dataclasses import dataclass
 from typing import Optional
 
-from vehicle_sim.core.param_spec import ParamSpec
-from vehicle_sim.core.units import stamp_to_seconds
+from vehicle_sim.core.specs.param_spec import ParamSpec
+from vehicle_sim.core.specs.units import stamp_to_seconds
 from vehicle_sim.ros import messages as m
 from vehicle_sim.ros.endpoints import (
     CLOCK,

@@ -15,9 +15,9 @@
 """
 Autoware Ackermann command → differential drive: the ``ackermann_to_differential`` node.
 
-Wiring only; the kinematics, limits and watchdog are core's (``core/diff_drive.py``,
-``core/watchdog.py``), the vehicle-interface state (gear, control mode, lights) is core's
-:class:`~vehicle_sim.core.bridge_controller.BridgeController` (ROS-free, time injected). Names,
+Wiring only; the kinematics, limits and watchdog are core's (``core/bridge/``,
+``core/commands/watchdog.py``), the vehicle-interface state (gear, control mode, lights) is core's
+:class:`~vehicle_sim.core.bridge.controller.BridgeController` (ROS-free, time injected). Names,
 types and QoS: ``ros/bridge_interfaces.py``; behaviour and parameters: ``docs/autoware.md``.
 
 Output is published on receipt of every accepted command (lowest latency) and on the control
@@ -29,16 +29,13 @@ import math
 import sys
 from types import SimpleNamespace
 
-from vehicle_sim.core.autoware import control_mode_refusal
-from vehicle_sim.core.bridge_controller import BridgeController
-from vehicle_sim.core.diff_drive import (
-    BRIDGE_PARAM_SPECS,
-    bridge_params_from_dict,
-    equivalent_steering_rad,
-    twist_from_wheel_speeds,
-)
-from vehicle_sim.core.errors import InvalidCommandError, InvalidParameterError
-from vehicle_sim.core.param_spec import ParamSpec
+from vehicle_sim.core.autoware.codes import control_mode_refusal
+from vehicle_sim.core.bridge.ackermann_mapping import equivalent_steering_rad
+from vehicle_sim.core.bridge.controller import BridgeController
+from vehicle_sim.core.bridge.params import BRIDGE_PARAM_SPECS, bridge_params_from_dict
+from vehicle_sim.core.diffdrive.kinematics import twist_from_wheel_speeds
+from vehicle_sim.core.specs.errors import InvalidCommandError, InvalidParameterError
+from vehicle_sim.core.specs.param_spec import ParamSpec
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros.endpoints import EACH_COMMAND, EACH_STATUS, Outputs, serve, subscribe
 from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning

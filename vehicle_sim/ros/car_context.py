@@ -22,9 +22,9 @@ asks. Reset and teleport of the car go through it (``ros/sim_control.py``), so t
 feed, its drive inputs and the listeners of composing nodes follow.
 """
 
-from vehicle_sim.core.drivetrain import ControlMode
-from vehicle_sim.core.frames import pose_in_frame, quaternion_from_yaw, twist_in_body
-from vehicle_sim.core.sensor_sets import static_transforms
+from vehicle_sim.core.car.drivetrain import ControlMode
+from vehicle_sim.core.geometry.frames import pose_in_frame, quaternion_from_yaw, twist_in_body
+from vehicle_sim.core.sensors.sets import static_transforms
 from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.ros.descriptions import vehicle_description
 

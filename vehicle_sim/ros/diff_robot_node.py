@@ -46,16 +46,20 @@ watchdog down until the next cmd_vel.
 import sys
 from types import SimpleNamespace
 
-from vehicle_sim.core.chase_camera import ChaseSettings
-from vehicle_sim.core.diff_drive import integrate_pose, twist_from_wheel_speeds
-from vehicle_sim.core.drive_input import DiffDriveInput
-from vehicle_sim.core.errors import InvalidCommandError, VehicleSimError
-from vehicle_sim.core.frames import pose_in_frame, quaternion_from_yaw, rpy_from_quaternion
-from vehicle_sim.core.geodesy import GeodeticOrigin
-from vehicle_sim.core.param_spec import ParamSpec
-from vehicle_sim.core.placement import WORLD_EXTENT_M
-from vehicle_sim.core.sensor_sets import enable_sensors, selected_sensors, static_transforms
-from vehicle_sim.core.world_params import RobotSpec, WorldSpec
+from vehicle_sim.core.commands.drive_input import DiffDriveInput
+from vehicle_sim.core.diffdrive.kinematics import integrate_pose, twist_from_wheel_speeds
+from vehicle_sim.core.geometry.chase_camera import ChaseSettings
+from vehicle_sim.core.geometry.frames import (
+    pose_in_frame,
+    quaternion_from_yaw,
+    rpy_from_quaternion,
+)
+from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
+from vehicle_sim.core.sensors.sets import enable_sensors, selected_sensors, static_transforms
+from vehicle_sim.core.specs.errors import InvalidCommandError, VehicleSimError
+from vehicle_sim.core.specs.param_spec import ParamSpec
+from vehicle_sim.core.world.params import RobotSpec, WorldSpec
+from vehicle_sim.core.world.placement import WORLD_EXTENT_M
 from vehicle_sim.physics.diff_robot import load_robot
 from vehicle_sim.physics.gui import ChaseCamera, shortcuts_text
 from vehicle_sim.physics.scene import build_scene

@@ -41,8 +41,8 @@ from dataclasses import dataclass
 import math
 from typing import Callable, Dict, Iterable, Optional, Tuple
 
-from vehicle_sim.core.param_spec import ParamSpec
-from vehicle_sim.core.watchdog import DEFAULT_TIMEOUT_S
+from vehicle_sim.core.commands.watchdog import DEFAULT_TIMEOUT_S
+from vehicle_sim.core.specs.param_spec import ParamSpec
 from vehicle_sim.ros import messages as m
 from vehicle_sim.transport.port import (
     QOS_DEFAULT,

@@ -31,7 +31,7 @@ from typing import Sequence, Tuple
 
 import numpy as np
 
-from vehicle_sim.core.units import seconds_to_stamp
+from vehicle_sim.core.specs.units import seconds_to_stamp
 
 TIME = 'builtin_interfaces/msg/Time'
 HEADER = 'std_msgs/msg/Header'
@@ -257,7 +257,7 @@ control_mode_report_builder = stamped_field_builder(CONTROL_MODE_REPORT, 'mode')
 
 
 # ---------------------------------------------------------------------------------------------
-# Sensors: ``build(stamp, reading)`` from a core reading (core/sensor_readings.py). Array fields
+# Sensors: ``build(stamp, reading)`` from a core reading (core/sensors/readings.py). Array fields
 # get ``array.array`` values: rclpy takes them without a per-element check, the embedded
 # transport packs them as it packs lists.
 

@@ -18,16 +18,16 @@ What every node module shares: parameter declaration, the throttled warning, the
 
 Node modules (``*_node.py``) import core, this module and the interface tables, never each
 other (a test scans the imports). Parameters: every node declares its core
-:class:`~vehicle_sim.core.param_spec.ParamSpec` table through :func:`declare_parameters`, so every
-parameter is declared on the transport port and validated the same way; a refused value stops
+:class:`~vehicle_sim.core.specs.param_spec.ParamSpec` table through :func:`declare_parameters`, so
+every parameter is declared on the transport port and validated the same way; a refused value stops
 the node with an error naming the parameter, its value and the valid range.
 """
 
 import gc
 import sys
 
-from vehicle_sim.core.errors import VehicleSimError
-from vehicle_sim.core.param_spec import (
+from vehicle_sim.core.specs.errors import VehicleSimError
+from vehicle_sim.core.specs.param_spec import (
     parameter_table_markdown,
     ParamSpec,
     validate_table,

@@ -32,10 +32,10 @@ time) for :data:`COLLISION`, published once per event (cadence ON_EVENT).
 from dataclasses import dataclass, replace
 from typing import Callable, Dict, Iterable, Sequence, Tuple
 
-from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.param_spec import ParamSpec
-from vehicle_sim.core.sensor_params import check_layer, sensor_from_dict, SensorSpec
-from vehicle_sim.core.sensor_sets import mounted
+from vehicle_sim.core.sensors.params import check_layer, sensor_from_dict, SensorSpec
+from vehicle_sim.core.sensors.sets import mounted
+from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.specs.param_spec import ParamSpec
 from vehicle_sim.ros import messages as m
 from vehicle_sim.ros.endpoints import converter, EACH_SAMPLE, ON_EVENT, Topic
 from vehicle_sim.transport.port import QosProfile

@@ -30,8 +30,8 @@ InvalidPoseError, nothing moved). Simulated time never goes backwards: no reset 
 
 from typing import Callable, Dict, Optional, Sequence
 
-from vehicle_sim.core.errors import InvalidPoseError
-from vehicle_sim.core.placement import ground_pose, GroundPose
+from vehicle_sim.core.specs.errors import InvalidPoseError
+from vehicle_sim.core.world.placement import ground_pose, GroundPose
 from vehicle_sim.ros.endpoints import IN, RECEIVED, serve, Service, subscribe, Topic
 from vehicle_sim.transport.port import QOS_DEFAULT, ThrottledWarning
 

@@ -34,9 +34,9 @@ from vehicle_sim.config import (  # noqa: F401 (re-exported)
     world_path,
     WorldSpec,
 )
-from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.geodesy import GeodeticOrigin
-from vehicle_sim.core.param_spec import ParamSpec, table_defaults
+from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
+from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.specs.param_spec import ParamSpec, table_defaults
 from vehicle_sim.physics import DEFAULT_FRICTION
 from vehicle_sim.ros import node_support
 from vehicle_sim.ros.endpoints import CMD_VEL_STAMPED_PARAMETER, CMD_VEL_TIMEOUT_PARAMETER

@@ -26,8 +26,8 @@ robot.
 
 import math
 
-from vehicle_sim.core.geometry import yaw_from_quaternion
-from vehicle_sim.core.units import mps_to_kmh, ros_steering_to_webots
+from vehicle_sim.core.geometry.angles import yaw_from_quaternion
+from vehicle_sim.core.specs.units import mps_to_kmh, ros_steering_to_webots
 
 # The aim point moves on once the vehicle is this close to it (its look-ahead), and the last
 # waypoint counts as reached within ARRIVE_M or one wheelbase (a robot: its tread), the smaller.

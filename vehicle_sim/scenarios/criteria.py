@@ -27,10 +27,10 @@ import math
 import operator
 from typing import Any, Dict, Optional, Tuple
 
-from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.footprint import clearance, distance_to_polyline
-from vehicle_sim.core.param_spec import ParamSpec, REQUIRED, validate_table
-from vehicle_sim.core.value_text import brief
+from vehicle_sim.core.geometry.footprint import clearance, distance_to_polyline
+from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.specs.param_spec import ParamSpec, REQUIRED, validate_table
+from vehicle_sim.core.specs.value_text import brief
 from vehicle_sim.scenarios.yaml_lines import line_of
 
 

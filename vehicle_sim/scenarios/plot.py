@@ -33,7 +33,7 @@ tells early, with the install hint, when it is missing.
 
 import math
 
-from vehicle_sim.core.footprint import band_polygon, obstacle_footprint
+from vehicle_sim.core.geometry.footprint import band_polygon, obstacle_footprint
 
 # outlines at most every this many of these seconds: about ten per run
 _NICE_INTERVALS_S = (0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 30.0, 60.0, 120.0, 300.0, 600.0)

@@ -36,9 +36,9 @@ import time
 import traceback
 from typing import Dict, List, Optional
 
-from vehicle_sim.core.collision import CollisionEvent
-from vehicle_sim.core.errors import InvalidCommandError
-from vehicle_sim.core.footprint import Outline
+from vehicle_sim.core.geometry.footprint import Outline
+from vehicle_sim.core.specs.errors import InvalidCommandError
+from vehicle_sim.core.world.collision import CollisionEvent
 from vehicle_sim.physics.sensors.collisions import CollisionMonitor
 from vehicle_sim.scenarios.actors import CarActor, RobotActor
 from vehicle_sim.scenarios.criteria import build_criteria, CriterionResult

@@ -23,7 +23,7 @@ once, movable obstacles' read from the world at each call. Criteria get it throu
 
 from typing import Callable, Dict, Iterable, Sequence
 
-from vehicle_sim.core.footprint import Footprint, obstacle_footprint, Outline
+from vehicle_sim.core.geometry.footprint import Footprint, obstacle_footprint, Outline
 
 
 class Scene:

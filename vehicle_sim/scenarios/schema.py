@@ -27,7 +27,7 @@ Top-level keys (docs/scenarios.md has the tables, generated from the ParamSpec r
     driver: {controller: ../examples/lidar_stop_controller.py}
     criteria: [{kind: no_collision}, {kind: max_speed, limit: 6.0}]
 
-The world keeps the schema of the node's ``world`` parameter (core/world_params.py); criteria
+The world keeps the schema of the node's ``world`` parameter (core/world/params.py); criteria
 are checked by :mod:`.criteria` (its ``CRITERIA`` registry gives each kind's table).
 """
 
@@ -38,11 +38,11 @@ import shlex
 from typing import Any, Dict, Optional, Tuple
 
 from vehicle_sim import config
-from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.param_spec import ParamSpec, REQUIRED, validate_table
-from vehicle_sim.core.sensor_sets import enable_sensors, selected_sensors
-from vehicle_sim.core.value_text import brief
-from vehicle_sim.core.world_params import RobotSpec, used_twice, WorldSpec
+from vehicle_sim.core.sensors.sets import enable_sensors, selected_sensors
+from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.specs.param_spec import ParamSpec, REQUIRED, validate_table
+from vehicle_sim.core.specs.value_text import brief
+from vehicle_sim.core.world.params import RobotSpec, used_twice, WorldSpec
 from vehicle_sim.scenarios.criteria import criteria_from_list, CriterionSpec
 from vehicle_sim.scenarios.yaml_lines import error_at, line_of, load_with_lines, ScenarioError
 from vehicle_sim.webots.api_table import CAR_API, DRIVER_API
@@ -522,7 +522,7 @@ def _processes(ctx, value):
 
 def schema_markdown():
     """Return the key tables of docs/scenarios.md (the file format), generated from the specs."""
-    from vehicle_sim.core.param_spec import parameter_table_markdown
+    from vehicle_sim.core.specs.param_spec import parameter_table_markdown
     from vehicle_sim.scenarios.criteria import common_specs, CRITERIA
     parts = ['#### Top level\n\n', parameter_table_markdown(SCENARIO_SPECS, 'key'),
              '\n#### `robots` entries\n\n', parameter_table_markdown(ROBOT_SPECS, 'key'),

@@ -33,7 +33,7 @@ import tempfile
 
 import yaml
 
-from vehicle_sim.core.geometry import yaw_from_quaternion
+from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.scenarios.criteria import Sample
 
@@ -145,7 +145,7 @@ class ServedSim:
         step_ms = spec.time_step_ms
         try:
             if spec.world.vehicles:
-                from vehicle_sim.ros.car_sim import AutomobileNode
+                from vehicle_sim.ros.automobile import AutomobileNode
                 self.automobile = AutomobileNode(transport=transport, parameter_overrides={
                     'world': self._world_file(spec), 'synchronous': True,
                     'time_step_ms': step_ms, 'gui': gui})

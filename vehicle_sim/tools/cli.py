@@ -217,7 +217,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         os.dup2(devnull, sys.stdout.fileno())
         return EXIT_OK
     except Exception as exc:  # noqa: BLE001 - transport errors are reported, not traced
-        from vehicle_sim.core.errors import VehicleSimError
+        from vehicle_sim.core.specs.errors import VehicleSimError
         if isinstance(exc, VehicleSimError):
             print(f'vehicle-sim {args.command}: {exc}', file=sys.stderr)
             return EXIT_FAILURE

@@ -36,9 +36,10 @@ from dataclasses import dataclass, field
 import math
 from typing import Callable, List, Optional, Sequence, Tuple
 
-from vehicle_sim.core.diff_drive import integrate_pose, SpeedLimiter
-from vehicle_sim.core.geometry import wrap_angle_rad, yaw_from_quaternion
-from vehicle_sim.core.units import kmh_to_mps
+from vehicle_sim.core.bridge.speed_limiter import SpeedLimiter
+from vehicle_sim.core.diffdrive.kinematics import integrate_pose
+from vehicle_sim.core.geometry.angles import wrap_angle_rad, yaw_from_quaternion
+from vehicle_sim.core.specs.units import kmh_to_mps
 
 DT_S = 0.010                 # basic time step [s]
 COMMAND_PERIOD_S = 0.020     # Autoware control command period [s] (50 Hz)
@@ -263,8 +264,8 @@ def run_robots(stream, robots=ROBOTS, bridge_overrides=None, transport='dds',
     :param record_every: record wheel speeds every n steps.
     :return: {preset: Track}.
     """
-    from vehicle_sim.core.geodesy import GeodeticOrigin
-    from vehicle_sim.core.world_params import WorldSpec
+    from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
+    from vehicle_sim.core.world.params import WorldSpec
     from vehicle_sim.physics.scene import build_scene
     from vehicle_sim.ros import bridge_interfaces as bi
     from vehicle_sim.ros.bridge_node import AckermannToDifferentialNode

@@ -35,7 +35,7 @@ def status_line(time_s: float, status) -> str:
     Return the one-line status of a car.
 
     :param time_s: simulated time [s].
-    :param status: a ``CarStatus`` (vehicle_sim.core.car_logic).
+    :param status: a ``CarStatus`` (vehicle_sim.core.car.logic).
     """
     mode = _MODES.get(int(status.control_mode), str(status.control_mode))
     if status.hazard_flashers:
@@ -186,7 +186,7 @@ def _ros_arguments(after):
 def _config_file(subdir, option, value):
     """Check ``--car``/``--world`` before the node joins the graph; return the value."""
     from vehicle_sim.config import find_config
-    from vehicle_sim.core.errors import InvalidParameterError
+    from vehicle_sim.core.specs.errors import InvalidParameterError
     try:
         find_config(subdir, value)
     except InvalidParameterError as error:
@@ -202,8 +202,8 @@ def cmd_run(args) -> int:
     abandons it and leaves nothing on the graph; a signal while running ends the spin and the
     node leaves the graph (exit 0). The status line and ``--duration`` are timers of the node.
     """
-    from vehicle_sim.core.errors import VehicleSimError
-    from vehicle_sim.ros.car_sim import AutomobileNode
+    from vehicle_sim.core.specs.errors import VehicleSimError
+    from vehicle_sim.ros.automobile import AutomobileNode
     from vehicle_sim.transport import run_node
     ros_args = _ros_arguments(args.ros_args)
     overrides: Dict[str, Any] = {}

@@ -79,7 +79,7 @@ class Teleop:
     """The teleop node: a cmd_vel publisher and the measured state it shows."""
 
     def __init__(self, namespace='', robot=False, stamped=False, transport=None):
-        from vehicle_sim.core.units import webots_steering_to_ros
+        from vehicle_sim.core.specs.units import webots_steering_to_ros
         from vehicle_sim.ros import interfaces as itf
         from vehicle_sim.transport.selection import create_node
         self._to_rep103 = webots_steering_to_ros

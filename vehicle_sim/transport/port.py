@@ -27,7 +27,7 @@ import re
 import time
 from typing import Any, Callable, List, Optional, Union
 
-from vehicle_sim.core.errors import VehicleSimError
+from vehicle_sim.core.specs.errors import VehicleSimError
 from vehicle_sim.transport import stop_signals
 
 

@@ -26,7 +26,7 @@ iterate them, so a name cannot diverge (the lesson of the Webots wrapper slips).
 from dataclasses import dataclass
 from typing import Callable, Optional, Tuple
 
-from vehicle_sim.core.signals import MIN_INDICATOR_PERIOD_S
+from vehicle_sim.core.car.signals import MIN_INDICATOR_PERIOD_S
 
 
 @dataclass(frozen=True)

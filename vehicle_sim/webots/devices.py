@@ -27,14 +27,14 @@ camera.md, gps.md, inertial_unit.md, gyro.md, accelerometer.md, distancesensor.m
 - Values are those of the mount frame (the sensor's ``pose``): Webots' device frame (x
   forward, y left, z up).
 
-Sampling follows the device's own period on the world's basic steps (core/sampling.py); the
+Sampling follows the device's own period on the world's basic steps (core/sensors/sampling.py); the
 SensorSpec's ``rate_hz`` is for the ROS topics only.
 """
 
 import math
 import numbers
 
-from vehicle_sim.core.sensor_params import check_layer
+from vehicle_sim.core.sensors.params import check_layer
 from vehicle_sim.webots.api_table import DEVICE_API
 from vehicle_sim.webots.webots_warning import warn
 

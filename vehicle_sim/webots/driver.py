@@ -41,10 +41,10 @@ import os
 import weakref
 
 from vehicle_sim.config import load_car, load_world
-from vehicle_sim.core.drivetrain import ControlMode
-from vehicle_sim.core.geodesy import GeodeticOrigin
-from vehicle_sim.core.sensor_sets import enable_sensors
-from vehicle_sim.core.world_params import VehicleSpec, WorldSpec
+from vehicle_sim.core.car.drivetrain import ControlMode
+from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
+from vehicle_sim.core.sensors.sets import enable_sensors
+from vehicle_sim.core.world.params import VehicleSpec, WorldSpec
 from vehicle_sim.physics.scene import build_scene, mount_suite
 from vehicle_sim.physics.sensors import SensorSuite
 from vehicle_sim.webots.api_table import (

@@ -27,7 +27,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any, Callable, List, Optional
 
-from vehicle_sim.core.geodesy import GeodeticOrigin
+from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 
 # step() calls tolerated after it returned -1 before the controller is stopped.
 CALLS_AFTER_END = 10

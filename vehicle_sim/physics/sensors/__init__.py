@@ -16,7 +16,7 @@
 """
 Simulated sensors on vehicle bodies: lidar, IMU, GNSS, distance, camera, collisions.
 
-Each sensor turns a core SensorSpec into readings (core/sensor_readings.py) from the PyBullet
+Each sensor turns a core SensorSpec into readings (core/sensors/readings.py) from the PyBullet
 state after a world step; SensorSuite schedules them. See docs/sensors.md.
 """
 

@@ -30,7 +30,7 @@ import math
 import numpy as np
 import pybullet
 
-from vehicle_sim.core.sensor_readings import camera_matrices, CameraReading
+from vehicle_sim.core.sensors.readings import camera_matrices, CameraReading
 from vehicle_sim.physics.sensors.sensor import Sensor
 
 # A fixed sun: from above, slightly from the front-left of the world x axis, so that vertical

@@ -28,7 +28,7 @@ from dataclasses import replace
 
 import pybullet
 
-from vehicle_sim.core.collision import CollisionDebouncer, DEFAULT_MIN_APART_S
+from vehicle_sim.core.world.collision import CollisionDebouncer, DEFAULT_MIN_APART_S
 
 _BODY_B, _POSITION_ON_B, _DISTANCE, _NORMAL_FORCE = 2, 6, 8, 9
 

@@ -26,8 +26,8 @@ import math
 
 import numpy as np
 
-from vehicle_sim.core.noise import GaussianNoise
-from vehicle_sim.core.sensor_readings import RADIATION_TYPE, RangeReading
+from vehicle_sim.core.sensors.noise import GaussianNoise
+from vehicle_sim.core.sensors.readings import RADIATION_TYPE, RangeReading
 from vehicle_sim.physics.sensors.rays import cast_rays
 from vehicle_sim.physics.sensors.sensor import Sensor
 

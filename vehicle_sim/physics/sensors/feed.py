@@ -23,7 +23,7 @@ and collision events until :meth:`SensorFeed.take`. A feed with no mounted senso
 registers nothing: a vehicle without sensors steps as fast as before.
 """
 
-from vehicle_sim.core.geodesy import GeodeticOrigin
+from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.physics.sensors.collisions import CollisionMonitor
 from vehicle_sim.physics.sensors.suite import SensorSuite
 

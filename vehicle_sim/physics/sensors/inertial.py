@@ -24,14 +24,14 @@ sample is due (``track``); a first sample without a previous velocity takes a = 
 
 GNSS: the antenna's world position (x east, y north, z up in the world's local tangent plane)
 with optional Gaussian noise per axis, converted exactly to WGS-84 latitude, longitude and
-ellipsoidal altitude (core/geodesy.py). Webots' local GPS values are the (noisy) position.
+ellipsoidal altitude (core/geometry/geodesy.py). Webots' local GPS values are the (noisy) position.
 """
 
 import numpy as np
 
-from vehicle_sim.core.frames import quaternion_from_rpy, rpy_from_quaternion
-from vehicle_sim.core.noise import GaussianNoise
-from vehicle_sim.core.sensor_readings import (
+from vehicle_sim.core.geometry.frames import quaternion_from_rpy, rpy_from_quaternion
+from vehicle_sim.core.sensors.noise import GaussianNoise
+from vehicle_sim.core.sensors.readings import (
     COVARIANCE_TYPE_DIAGONAL_KNOWN,
     COVARIANCE_TYPE_UNKNOWN,
     diagonal_covariance,

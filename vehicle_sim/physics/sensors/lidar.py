@@ -25,8 +25,8 @@ closer than min_range reads -inf (REP 117); Gaussian noise, if any, is added to 
 
 import numpy as np
 
-from vehicle_sim.core.noise import GaussianNoise
-from vehicle_sim.core.sensor_readings import LidarReading
+from vehicle_sim.core.sensors.noise import GaussianNoise
+from vehicle_sim.core.sensors.readings import LidarReading
 from vehicle_sim.physics.sensors.rays import cast_rays
 from vehicle_sim.physics.sensors.sensor import Sensor
 

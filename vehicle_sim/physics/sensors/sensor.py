@@ -22,7 +22,7 @@ differentiates motion over the step before a sample (the IMU) sets ``tracks_moti
 overrides ``track`` and ``restart``; the others inherit no-ops.
 """
 
-from vehicle_sim.core.geodesy import LocalTangentPlane
+from vehicle_sim.core.geometry.geodesy import LocalTangentPlane
 from vehicle_sim.physics.sensors.mount import Mount
 
 
@@ -46,7 +46,7 @@ class Sensor:
         self.plane = plane if plane is not None else LocalTangentPlane()
 
     def sample(self, time_s):
-        """Return the reading (core/sensor_readings.py) of the state now, stamped ``time_s``."""
+        """Return the reading (core/sensors/readings.py) of the state now, stamped ``time_s``."""
         raise NotImplementedError
 
     def track(self):

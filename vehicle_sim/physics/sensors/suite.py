@@ -18,8 +18,8 @@ The sensors of one vehicle: built from its mounted SensorSpecs, sampled after wo
 
 The suite registers a ``post_step`` hook with the World only while a sensor is scheduled, so a
 vehicle without sensors costs nothing. After each basic step n it samples the sensors due at n
-(core/sampling.py: the first step at or after each k / rate) and keeps the readings: ``fresh``
-(those sampled at the last step, one per sensor) and ``latest(key)``.
+(core/sensors/sampling.py: the first step at or after each k / rate) and keeps the readings:
+``fresh`` (those sampled at the last step, one per sensor) and ``latest(key)``.
 
 Schedules have keys: ``start()`` schedules each sensor under its own name at its ``rate_hz``
 (the ROS nodes); ``set_period_ms(name, ms, key)`` schedules it under another key, counted from
@@ -30,10 +30,10 @@ is sampled once.
 
 from typing import Dict, List
 
-from vehicle_sim.core.geodesy import GeodeticOrigin, LocalTangentPlane
-from vehicle_sim.core.sampling import SampleSchedule, Scheduler
-from vehicle_sim.core.sensor_params import check_layer
-from vehicle_sim.core.sensor_sets import mounted
+from vehicle_sim.core.geometry.geodesy import GeodeticOrigin, LocalTangentPlane
+from vehicle_sim.core.sensors.params import check_layer
+from vehicle_sim.core.sensors.sampling import SampleSchedule, Scheduler
+from vehicle_sim.core.sensors.sets import mounted
 from vehicle_sim.physics.sensors.camera import CameraSensor
 from vehicle_sim.physics.sensors.distance import DistanceSensor
 from vehicle_sim.physics.sensors.inertial import GnssSensor, ImuSensor

@@ -1,0 +1,325 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+World files: geodetic origin, vehicles (with their sensors) and obstacles, validated.
+
+The form (every key optional except ``vehicles``)::
+
+    origin: {latitude: 48.0, longitude: 11.0, altitude: 500.0}
+    vehicles:
+      - {name: Car, namespace: '', model: ToyotaPrius, pose: {x: 0.0, y: 0.0, yaw: 0.0},
+         sensors: [...]}
+    obstacles:
+      - {name: wall, shape: box, size: [1.0, 6.0, 2.0], position: [20.0, 0.0, 1.0], yaw: 0.0}
+
+Each mapping is checked against a ParamSpec table (core/specs/param_spec.py), so an unknown key, a
+wrong type, a NaN or an impossible value is refused with the file, the entry and the field. Reading
+the file and resolving car models are config.py's (this module touches no file).
+"""
+
+from dataclasses import dataclass, replace
+from typing import Callable, Optional, Sequence, Tuple
+
+from vehicle_sim.core.geometry.frames import Pose
+from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
+from vehicle_sim.core.sensors.params import SensorSpec
+from vehicle_sim.core.sensors.sets import merge_sensors
+from vehicle_sim.core.specs.errors import InvalidParameterError, InvalidPoseError
+from vehicle_sim.core.specs.param_spec import (
+    parameter_table_markdown,
+    ParamSpec,
+    REQUIRED,
+    validate_table,
+)
+from vehicle_sim.core.specs.value_text import brief
+from vehicle_sim.core.world.placement import check_in_world
+
+WORLD_KEYS = ('origin', 'vehicles', 'obstacles')
+
+ORIGIN_SPECS = (
+    ParamSpec('latitude', 'latitude_deg', 'float', 0.0, 'deg', 'WGS-84 latitude of the world '
+              'origin', ge=-90.0, le=90.0),
+    ParamSpec('longitude', 'longitude_deg', 'float', 0.0, 'deg', 'longitude of the world origin',
+              ge=-180.0, le=180.0),
+    ParamSpec('altitude', 'altitude_m', 'float', 0.0, 'm',
+              'height of the world origin above the WGS-84 ellipsoid'),
+)
+
+OBSTACLE_SHAPES = ('box', 'cylinder', 'sphere')
+# A default colour per shape (RGBA), so that the kinds tell apart in camera images.
+DEFAULT_COLORS = {
+    'box': (0.75, 0.3, 0.2, 1.0),        # brick red
+    'cylinder': (0.95, 0.6, 0.1, 1.0),   # orange, like a traffic pole
+    'sphere': (0.2, 0.4, 0.85, 1.0),     # blue
+}
+
+
+def _obstacle_common(shape):
+    return (
+        ParamSpec('name', 'name', 'ros_name', REQUIRED,
+                  doc='unique name; the "other" of collision events'),
+        ParamSpec('shape', 'shape', 'enum', shape, choices=OBSTACLE_SHAPES, doc='box, cylinder '
+                  'or sphere'),
+        ParamSpec('position', 'position_m', 'floats', REQUIRED, 'm',
+                  'centre of the shape in the world [x, y, z]', length=3),
+        ParamSpec('roll', 'roll_rad', 'float', 0.0, 'rad', 'rotation about x'),
+        ParamSpec('pitch', 'pitch_rad', 'float', 0.0, 'rad', 'rotation about y'),
+        ParamSpec('yaw', 'yaw_rad', 'float', 0.0, 'rad', 'rotation about z (+ = left)'),
+        ParamSpec('mass', 'mass_kg', 'float', 0.0, 'kg', '0 = static (fixed in the world)',
+                  ge=0.0),
+        ParamSpec('color', 'color_rgba', 'rgba', DEFAULT_COLORS[shape], '',
+                  '[red, green, blue, alpha] in [0, 1]'),
+    )
+
+
+OBSTACLE_SPECS = {
+    'box': _obstacle_common('box') + (
+        ParamSpec('size', 'size_m', 'vec3', REQUIRED, 'm', 'extents [x, y, z]', gt=0.0),
+    ),
+    'cylinder': _obstacle_common('cylinder') + (
+        ParamSpec('radius', 'radius_m', 'float', REQUIRED, 'm', 'radius', gt=0.0),
+        ParamSpec('height', 'height_m', 'float', REQUIRED, 'm', 'length along its z axis',
+                  gt=0.0),
+    ),
+    'sphere': _obstacle_common('sphere') + (
+        ParamSpec('radius', 'radius_m', 'float', REQUIRED, 'm', 'radius', gt=0.0),
+    ),
+}
+
+
+def obstacles_markdown():
+    """Return the key tables of the obstacles in docs/sensors.md: common keys, then per shape."""
+    shown = {'color': 'per shape', 'shape': REQUIRED}
+    common = tuple(replace(spec, default=shown[spec.key]) if spec.key in shown else spec
+                   for spec in _obstacle_common('box'))
+    parts = ['#### Keys of every obstacle\n\n', parameter_table_markdown(common, 'key')]
+    for shape, specs in OBSTACLE_SPECS.items():
+        color = DEFAULT_COLORS[shape]
+        parts.append(f'\n#### `{shape}` (default `color`: {list(color)})\n\n'
+                     + parameter_table_markdown(specs, 'key', skip=tuple(s.key for s in common)))
+    return ''.join(parts)
+
+
+@dataclass(frozen=True)
+class ObstacleSpec:
+    """
+    One obstacle: a box, a cylinder (axis along its z) or a sphere.
+
+    ``size_m`` is the full extent along the obstacle's own x, y, z axes for every shape.
+    """
+
+    name: str
+    shape: str
+    position_m: Tuple[float, float, float]
+    roll_rad: float
+    pitch_rad: float
+    yaw_rad: float
+    mass_kg: float
+    color_rgba: Tuple[float, float, float, float]
+    size_m: Tuple[float, float, float]
+    radius_m: Optional[float] = None
+    height_m: Optional[float] = None
+
+    @property
+    def pose(self) -> Pose:
+        x, y, z = self.position_m
+        return Pose(x, y, z, self.roll_rad, self.pitch_rad, self.yaw_rad)
+
+    @property
+    def static(self):
+        return self.mass_kg == 0.0
+
+
+def obstacle_from_dict(data, source) -> ObstacleSpec:
+    """
+    Validate one obstacle mapping.
+
+    :raises InvalidParameterError: naming source, field and value.
+    """
+    if not isinstance(data, dict):
+        raise InvalidParameterError(f'{source}: an obstacle must be a mapping, got {brief(data)}')
+    shape = data.get('shape', REQUIRED)
+    if shape is REQUIRED or not isinstance(shape, str) or shape not in OBSTACLE_SPECS:
+        what = 'is required' if shape is REQUIRED else f'= {brief(shape)}: unknown shape'
+        raise InvalidParameterError(f"{source}: field 'shape' {what}; valid: "
+                                    + ', '.join(OBSTACLE_SHAPES))
+    specs = OBSTACLE_SPECS[shape]
+    values = validate_table(specs, data, source, {s.key: s.default for s in specs},
+                            'an obstacle')
+    _check_in_world(source, 'position', *values['position_m'][:2])
+    if shape != 'box':
+        diameter = 2.0 * values['radius_m']
+        values['size_m'] = (diameter, diameter, values.get('height_m') or diameter)
+    return ObstacleSpec(**values)
+
+
+def _check_in_world(source, key, x_m, y_m):
+    try:
+        check_in_world(x_m, y_m, key)
+    except InvalidPoseError as error:
+        raise InvalidParameterError(f'{source}: field {key!r}: {error}') from None
+
+
+def obstacles_from_list(data, source) -> Tuple[ObstacleSpec, ...]:
+    """
+    Validate a world's ``obstacles:`` list (names unique).
+
+    :raises InvalidParameterError: naming source, entry and field.
+    """
+    if data is None:
+        return ()
+    if not isinstance(data, list):
+        raise InvalidParameterError(f'{source}: must be a list of obstacles, got {brief(data)}')
+    obstacles = tuple(obstacle_from_dict(item, f'{source}[{i}]') for i, item in enumerate(data))
+    twice = used_twice(o.name for o in obstacles)
+    if twice:
+        raise InvalidParameterError(f'{source}: two obstacles are named {brief(twice[0])}')
+    return obstacles
+
+
+def used_twice(names):
+    """Return the names that occur more than once, sorted."""
+    seen, twice = set(), set()
+    for name in names:
+        (twice if name in seen else seen).add(name)
+    return sorted(twice)
+
+
+def origin_from_dict(data, source) -> GeodeticOrigin:
+    """Validate a world's ``origin:`` (None = latitude 0, longitude 0, altitude 0)."""
+    if data is None:
+        return GeodeticOrigin()
+    values = validate_table(ORIGIN_SPECS, data, source, {s.key: s.default for s in ORIGIN_SPECS},
+                            'the origin')
+    return GeodeticOrigin(**values)
+
+
+VEHICLE_SPECS = (
+    ParamSpec('name', 'name', 'str', None, optional=True,
+              doc="robot name; null = 'vehicle<index>'"),
+    ParamSpec('namespace', 'namespace', 'namespace', '', doc="ROS namespace; '' = none"),
+    ParamSpec('model', 'model', 'str', None, optional=True,
+              doc='car preset; null = the car_model parameter'),
+    ParamSpec('pose', 'pose', 'pose', Pose(), 'm, rad', 'spawn pose of base_link {x, y, yaw}',
+              choices=('x', 'y', 'yaw')),
+    ParamSpec('sensors', 'sensors', 'raw', None, '',
+              "changes to the preset's sensors and new ones (docs/sensors.md)", optional=True),
+)
+
+
+@dataclass(frozen=True)
+class VehicleSpec:
+    """
+    One vehicle of a world: its name, namespace, car preset, spawn pose (REP 103) and sensors.
+
+    ``sensors`` holds every sensor of the vehicle (the preset's, changed by the world, and the
+    world's new ones); those with ``enabled`` are mounted.
+    """
+
+    name: str
+    namespace: str
+    model: str
+    x_m: float = 0.0
+    y_m: float = 0.0
+    yaw_rad: float = 0.0
+    sensors: Tuple[SensorSpec, ...] = ()
+
+
+@dataclass(frozen=True)
+class WorldSpec:
+    """A validated world: geodetic origin, vehicles and obstacles; ``source`` = its file."""
+
+    origin: GeodeticOrigin
+    vehicles: Tuple[VehicleSpec, ...]
+    obstacles: Tuple[ObstacleSpec, ...]
+    source: str = ''
+
+
+@dataclass(frozen=True)
+class RobotSpec:
+    """A differential-drive robot placed in a world: name, preset and spawn pose (REP 103)."""
+
+    name: str
+    model: str
+    x_m: float = 0.0
+    y_m: float = 0.0
+    yaw_rad: float = 0.0
+    sensors: Tuple[str, ...] = ()     # names to mount, ('all',) for every one; () none
+
+
+ModelResolver = Callable[[str], Sequence[SensorSpec]]
+
+
+def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
+                    vehicles_required=True) -> WorldSpec:
+    """
+    Validate a world mapping.
+
+    :param data: the YAML content.
+    :param source: file name quoted in errors.
+    :param default_model: model of the vehicles that give none.
+    :param preset_sensors: model name -> the preset's sensors; raises InvalidParameterError
+        for an unknown model (config.py reads the preset).
+    :param vehicles_required: refuse a world without vehicles (False: a scenario whose
+        vehicles are all robots gives only the origin and the obstacles).
+    :return: WorldSpec.
+    :raises InvalidParameterError: naming file, entry and field.
+    """
+    if not isinstance(data, dict):
+        raise InvalidParameterError(f'{source}: a world must be a mapping with "vehicles"')
+    unknown = sorted(set(data) - set(WORLD_KEYS))
+    if unknown:
+        raise InvalidParameterError(f'{source}: unknown key(s) {brief(unknown)}; valid: '
+                                    + ', '.join(WORLD_KEYS))
+    entries = data.get('vehicles')
+    if not entries and not vehicles_required:
+        entries = []
+    elif not isinstance(entries, list) or not entries:
+        raise InvalidParameterError(f'{source}: needs a non-empty list "vehicles"')
+    origin = origin_from_dict(data.get('origin'), f'{source}: origin')
+    vehicles = tuple(_vehicle(entry, f'{source}: vehicles[{index}]', index, default_model,
+                              preset_sensors) for index, entry in enumerate(entries))
+    # Names are how getDevice, /initialpose and scenarios find a vehicle: unique in the world,
+    # whatever the namespaces.
+    twice = used_twice(v.name for v in vehicles)
+    if twice:
+        raise InvalidParameterError(f'{source}: vehicle name(s) used twice: {brief(twice)}')
+    namespaces = [v.namespace for v in vehicles]
+    if len(set(namespaces)) != len(namespaces):
+        raise InvalidParameterError(f'{source}: two vehicles share a namespace: '
+                                    f'{brief(namespaces)}')
+    obstacles = obstacles_from_list(data.get('obstacles'), f'{source}: obstacles')
+    taken = {v.name for v in vehicles} & {o.name for o in obstacles}
+    if taken:
+        raise InvalidParameterError(f'{source}: obstacle and vehicle share a name: '
+                                    f'{brief(sorted(taken))}')
+    return WorldSpec(origin, vehicles, obstacles, source)
+
+
+def _vehicle(entry, where, index, default_model, preset_sensors):
+    if not isinstance(entry, dict):
+        raise InvalidParameterError(f'{where} must be a mapping')
+    values = validate_table(VEHICLE_SPECS, entry, where,
+                            {s.key: s.default for s in VEHICLE_SPECS}, 'a vehicle')
+    model = values['model'] or default_model
+    try:
+        base = preset_sensors(model)
+    except InvalidParameterError as error:
+        raise InvalidParameterError(f"{where}: field 'model': {error}") from None
+    sensors = merge_sensors(base, values['sensors'], f'{where}.sensors')
+    pose = values['pose']
+    _check_in_world(where, 'pose', pose.x_m, pose.y_m)
+    return VehicleSpec(values['name'] or f'vehicle{index}', values['namespace'], model,
+                       pose.x_m, pose.y_m, pose.yaw_rad, sensors)
