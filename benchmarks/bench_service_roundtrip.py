@@ -66,16 +66,17 @@ def _bare_endpoints(participant, service_name, writer_prefix, reader_prefix, typ
     from cyclonedds.sub import DataReader
     from cyclonedds.topic import Topic
 
-    from vehicle_sim.transport import dds, port
+    from vehicle_sim.transport import dds
+    from vehicle_sim.transport.qos import QOS_SERVICES
     wtype, rtype = types_pair
     wsuffix = 'Request' if writer_prefix == 'rq' else 'Reply'
     rsuffix = 'Request' if reader_prefix == 'rq' else 'Reply'
     writer = DataWriter(participant, Topic(participant, writer_prefix + service_name + wsuffix,
                                            wtype),
-                        qos=dds.dds_qos(port.QOS_SERVICES, b'', writer=True))
+                        qos=dds.dds_qos(QOS_SERVICES, b'', writer=True))
     reader = DataReader(participant, Topic(participant, reader_prefix + service_name + rsuffix,
                                            rtype),
-                        qos=dds.dds_qos(port.QOS_SERVICES, b'', writer=False))
+                        qos=dds.dds_qos(QOS_SERVICES, b'', writer=False))
     return writer, reader
 
 

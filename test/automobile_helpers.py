@@ -31,7 +31,7 @@ from conftest import peer_env
 from vehicle_sim.core.specs.units import stamp_to_seconds
 from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.transport.dds import DdsNode
-from vehicle_sim.transport.port import QOS_TF_STATIC_LISTENER
+from vehicle_sim.transport.qos import QOS_TF_STATIC_LISTENER
 
 WAIT_S = 60.0
 NODE_MODULE = 'vehicle_sim.ros.automobile_node'

@@ -32,9 +32,9 @@ import pytest
 
 from vehicle_sim.tools.graph_commands import PrintRate
 from vehicle_sim.tools.topic_commands import rate_report
-from vehicle_sim.transport import port
 from vehicle_sim.transport.dds import DdsNode
 from vehicle_sim.transport.dds_config import domain_id
+from vehicle_sim.transport.qos import QOS_ROSOUT
 
 NS = '/tp_topics'
 # The console script pip installed next to this interpreter: what a user types.
@@ -137,7 +137,7 @@ def test_refusal_reaches_rosout_as_rcl_log_with_its_call_site(automobile):
     try:
         records = []
         listener.create_subscription('rcl_interfaces/msg/Log', '/rosout', records.append,
-                                     port.QOS_ROSOUT)
+                                     QOS_ROSOUT)
         assert vehicle_sim('call', '/automobile/set_cruising_speed', '-500').returncode == 0
         found = wait_for(lambda: [r for r in records if 'refused -500.0' in r.msg],
                          spin=listener)

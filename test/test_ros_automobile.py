@@ -51,8 +51,10 @@ from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.ros import sim_params
 from vehicle_sim.ros.automobile import AutomobileNode
-from vehicle_sim.transport import dds, port
+from vehicle_sim.transport import dds
 from vehicle_sim.transport.dds_config import domain_id
+from vehicle_sim.transport.parameter_types import Parameter
+from vehicle_sim.transport.qos import QOS_DEFAULT, QOS_DISCOVERY_INFO_READER, QOS_SERVICES
 
 pytestmark = pytest.mark.transport
 
@@ -104,7 +106,7 @@ def raw():
     return DomainParticipant(domain_id())
 
 
-def _reader(raw, topic_name, data_type, qos=port.QOS_DEFAULT):
+def _reader(raw, topic_name, data_type, qos=QOS_DEFAULT):
     return DataReader(raw, Topic(raw, topic_name, data_type),
                       qos=dds.dds_qos(qos, b'', writer=False))
 
@@ -228,8 +230,8 @@ def _first_service_of_each_type():
 def test_service_bytes_equal_rosbags_cdr_after_the_16_byte_request_header(car, raw, spec):
     types = msg_types.service_types(spec.srv_type)
     name = car.name(spec.name)
-    requests = _reader(raw, f'rq{name}Request', types.request_wire, port.QOS_SERVICES)
-    replies = _reader(raw, f'rr{name}Reply', types.response_wire, port.QOS_SERVICES)
+    requests = _reader(raw, f'rq{name}Request', types.request_wire, QOS_SERVICES)
+    replies = _reader(raw, f'rr{name}Reply', types.response_wire, QOS_SERVICES)
     car.client(spec.name)        # its request writer, which the raw reader must match
     assert wait_for(lambda: requests.get_matched_publications() and
                     replies.get_matched_publications())
@@ -247,7 +249,7 @@ def test_service_bytes_equal_rosbags_cdr_after_the_16_byte_request_header(car, r
 
 def test_discovery_info_lists_the_node_with_every_table_endpoint(car, raw):
     info_type = msg_types.message_type('rmw_dds_common/msg/ParticipantEntitiesInfo')
-    info = _reader(raw, 'ros_discovery_info', info_type, port.QOS_DISCOVERY_INFO_READER)
+    info = _reader(raw, 'ros_discovery_info', info_type, QOS_DISCOVERY_INFO_READER)
     publications = BuiltinDataReader(raw, BuiltinTopicDcpsPublication)
     entries = []
     writers = {}
@@ -381,11 +383,11 @@ def test_parameters_are_read_only_at_run_time_except_use_sim_time():
                          parameter_overrides={'synchronous': True})
     try:
         node = app.node
-        (refused,) = node.set_parameters([port.Parameter('car_model', 'BmwX5')])
+        (refused,) = node.set_parameters([Parameter('car_model', 'BmwX5')])
         assert (refused.successful, refused.reason) == (
             False, 'Trying to set a read-only parameter: car_model.')
         assert node.get_parameter('car_model') == 'Car'
-        (accepted,) = node.set_parameters([port.Parameter('use_sim_time', True)])
+        (accepted,) = node.set_parameters([Parameter('use_sim_time', True)])
         assert accepted.successful and node.get_parameter('use_sim_time') is True
     finally:
         app.close()

@@ -45,7 +45,7 @@ from vehicle_sim.core.bridge.params import bridge_params_from_dict
 from vehicle_sim.core.specs.errors import InvalidCommandError
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros.endpoints import Topic
-from vehicle_sim.transport.port import QOS_ROSOUT
+from vehicle_sim.transport.qos import QOS_ROSOUT
 
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WAIT_S = 30.0
@@ -487,7 +487,7 @@ def test_bridge_sim_time_tick_behind_the_node_clock_does_not_trip_the_watchdog(m
     # any order). The command's receipt time and the tick must use one time source, else the
     # tick sees a command from "the future" (negative age: stale) and brakes.
     from vehicle_sim.ros.bridge_node import AckermannToDifferentialNode
-    from vehicle_sim.transport.port import Time
+    from vehicle_sim.transport.ros_time import Time
     bridge = AckermannToDifferentialNode(
         [], transport='dds', parameter_overrides={
             'wheel_base': L_M, 'wheel_tread': T_M, 'wheel_radius': R_M, 'use_sim_time': True,

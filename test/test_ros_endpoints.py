@@ -35,7 +35,8 @@ from vehicle_msgs_py import types as msg_types
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros import endpoints
 from vehicle_sim.ros import interfaces as itf
-from vehicle_sim.transport import dds, port
+from vehicle_sim.transport import dds
+from vehicle_sim.transport.qos import as_qos, QOS_CLOCK, RELIABLE, VOLATILE
 
 pytestmark = pytest.mark.transport
 
@@ -54,7 +55,7 @@ def created(monkeypatch):
             endpoint = original(self, ros_type, name, *args, **kwargs)
             caller = sys._getframe(1).f_globals.get('__name__', '')
             if not caller.startswith('vehicle_sim.transport'):
-                qos = None if kind == 'service' else port.as_qos(
+                qos = None if kind == 'service' else as_qos(
                     args[-1] if kind == 'subscription' and len(args) > 1 else
                     args[0] if kind == 'publisher' and args else kwargs.get('qos'))
                 calls.append((kind, getattr(endpoint, 'topic_name', None) or
@@ -180,7 +181,7 @@ def test_clock_is_published_reliable_with_depth_1_by_every_node(created, build):
         clocks = [qos for kind, name, _, qos in created
                   if kind == 'publisher' and name == '/clock']
         assert [(q.reliability, q.durability, q.depth) for q in clocks] == [
-            (port.RELIABLE, port.VOLATILE, 1)]
+            (RELIABLE, VOLATILE, 1)]
     finally:
         close()
 
@@ -205,7 +206,7 @@ def test_clock_tf_and_tf_static_are_defined_once_for_every_table(shared):
 
 def test_the_bridge_reads_clock_by_the_one_clock_row_best_effort():
     assert (bi.CLOCK_IN.name, bi.CLOCK_IN.ros_type) == (bi.CLOCK.name, bi.CLOCK.ros_type)
-    assert bi.CLOCK_IN.qos == port.QOS_CLOCK   # rclpy's TimeSource reader profile
+    assert bi.CLOCK_IN.qos == QOS_CLOCK   # rclpy's TimeSource reader profile
 
 
 def test_every_row_has_a_converter_and_every_service_a_type():

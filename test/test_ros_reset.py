@@ -81,7 +81,8 @@ from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.ros.sensor_interfaces import sensor_rows
 from vehicle_sim.ros.sim_control import INITIALPOSE
-from vehicle_sim.transport.port import QOS_DEFAULT, WARN_THROTTLE_S
+from vehicle_sim.transport.logger import WARN_THROTTLE_S
+from vehicle_sim.transport.qos import QOS_DEFAULT
 
 pytestmark = pytest.mark.transport
 

@@ -31,7 +31,7 @@ from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.ros.automobile import NODE_NAME
 from vehicle_sim.ros.sensor_interfaces import sensor_rows
 from vehicle_sim.ros.sim_params import load_world
-from vehicle_sim.transport.port import resolve_name
+from vehicle_sim.transport.names import resolve_name
 
 CONFIG = Path(__file__).resolve().parent.parent / 'config' / 'rviz' / 'vehicle_sim.rviz'
 # RViz display class -> the message type it subscribes to (rviz_default_plugins).

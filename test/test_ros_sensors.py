@@ -38,7 +38,7 @@ import pytest
 
 from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.ros.sensor_interfaces import QOS_SENSOR
-from vehicle_sim.transport.port import QOS_TF_STATIC_LISTENER
+from vehicle_sim.transport.qos import QOS_TF_STATIC_LISTENER
 
 pytestmark = pytest.mark.transport
 

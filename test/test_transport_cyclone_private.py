@@ -30,8 +30,9 @@ from cyclonedds.topic import Topic
 import pytest
 
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.transport import cyclone_private, dds, port
+from vehicle_sim.transport import cyclone_private, dds
 from vehicle_sim.transport.dds_config import domain_id
+from vehicle_sim.transport.qos import QOS_DEFAULT
 
 pytestmark = pytest.mark.transport
 
@@ -53,9 +54,9 @@ def participant():
 @pytest.fixture
 def endpoints(participant, request):
     topic = Topic(participant, f'rt/cyclone_private_{request.node.name[:40]}', STRING)
-    qos = dds.dds_qos(port.QOS_DEFAULT, b'', writer=False)
+    qos = dds.dds_qos(QOS_DEFAULT, b'', writer=False)
     reader = DataReader(participant, topic, qos=qos)
-    writer = DataWriter(participant, topic, qos=dds.dds_qos(port.QOS_DEFAULT, b'', True))
+    writer = DataWriter(participant, topic, qos=dds.dds_qos(QOS_DEFAULT, b'', True))
     assert wait_for(lambda: writer.get_matched_subscriptions())
     return reader, writer
 
@@ -119,8 +120,8 @@ def test_write_serialized_delivers_the_exact_bytes(endpoints):
 
 def test_serialized_writer_delivers_the_exact_bytes_and_refuses_after_delete(participant):
     topic = Topic(participant, 'rt/cyclone_private_bound_writer', STRING)
-    reader = DataReader(participant, topic, qos=dds.dds_qos(port.QOS_DEFAULT, b'', False))
-    writer = DataWriter(participant, topic, qos=dds.dds_qos(port.QOS_DEFAULT, b'', True))
+    reader = DataReader(participant, topic, qos=dds.dds_qos(QOS_DEFAULT, b'', False))
+    writer = DataWriter(participant, topic, qos=dds.dds_qos(QOS_DEFAULT, b'', True))
     assert wait_for(lambda: writer.get_matched_subscriptions())
     write = cyclone_private.serialized_writer(writer)
     write(GOOD)

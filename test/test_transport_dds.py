@@ -32,9 +32,22 @@ import pytest
 
 from vehicle_msgs_py import distro
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.transport import dds, port
+from vehicle_sim.transport import dds
 from vehicle_sim.transport.dds import DdsNode
 from vehicle_sim.transport.dds_config import domain_id
+from vehicle_sim.transport.parameter_types import (
+    Parameter,
+    PARAMETER_DOUBLE,
+    PARAMETER_NOT_SET,
+    PARAMETER_STRING,
+)
+from vehicle_sim.transport.qos import (
+    QOS_CLOCK,
+    QOS_DISCOVERY_INFO_READER,
+    QOS_PARAMETER_EVENTS,
+    QOS_ROSOUT,
+    QOS_SERVICES,
+)
 
 pytestmark = pytest.mark.transport
 
@@ -69,7 +82,7 @@ def discovery_reader(raw_participant):
     info_type = msg_types.message_type('rmw_dds_common/msg/ParticipantEntitiesInfo')
     topic = Topic(raw_participant, 'ros_discovery_info', info_type)
     return DataReader(raw_participant, topic, qos=dds.dds_qos(
-        port.QOS_DISCOVERY_INFO_READER, b'', writer=False))
+        QOS_DISCOVERY_INFO_READER, b'', writer=False))
 
 
 def test_topic_string_round_trips_both_directions(node, peer):
@@ -91,7 +104,7 @@ def test_topic_string_round_trips_both_directions(node, peer):
 def test_service_set_int_round_trip_echoes_request_header(node, peer, raw):
     types = msg_types.service_types('vehicle_msgs/srv/SetInt')
     tap = DataReader(raw, Topic(raw, 'rr' + NS + '/set_intReply', types.response_wire),
-                     qos=dds.dds_qos(port.QOS_SERVICES, b'', writer=False))
+                     qos=dds.dds_qos(QOS_SERVICES, b'', writer=False))
     client = node.create_client('vehicle_msgs/srv/SetInt', NS + '/set_int')
     assert client.wait_for_service(WAIT_S)
     request = node.srv('vehicle_msgs/srv/SetInt').Request
@@ -112,7 +125,7 @@ def test_client_ignores_replies_for_other_clients_and_sequences(node, peer, raw)
     client = node.create_client('vehicle_msgs/srv/SetInt', NS + '/set_int')
     assert client.wait_for_service(WAIT_S)
     forger = DataWriter(raw, Topic(raw, 'rr' + NS + '/set_intReply', types.response_wire),
-                        qos=dds.dds_qos(port.QOS_SERVICES, b'', writer=True))
+                        qos=dds.dds_qos(QOS_SERVICES, b'', writer=True))
     assert wait_for(lambda: client._reader.get_matched_publications()
                     and len(client._reader.get_matched_publications()) >= 2)
     request = node.srv('vehicle_msgs/srv/SetInt').Request
@@ -130,7 +143,7 @@ def test_late_client_reply_reader_does_not_block_the_server(node, peer, raw):
     token = 'late-client-token'
     late_writer = DataWriter(
         raw, Topic(raw, 'rq' + NS + '/set_intRequest', types.request_wire),
-        qos=dds.dds_qos(port.QOS_SERVICES, f'clientid={token};'.encode(), writer=True))
+        qos=dds.dds_qos(QOS_SERVICES, f'clientid={token};'.encode(), writer=True))
     assert wait_for(lambda: late_writer.get_matched_subscriptions())
     late_writer.write(types.request_to_wire(types.request(value=8), 424242, 1))
     # While that reply waits (up to 120 s) for a reply reader that does not exist yet, the
@@ -142,7 +155,7 @@ def test_late_client_reply_reader_does_not_block_the_server(node, peer, raw):
     # The reply reader appears late and still gets its queued reply.
     late_reader = DataReader(
         raw, Topic(raw, 'rr' + NS + '/set_intReply', types.response_wire),
-        qos=dds.dds_qos(port.QOS_SERVICES, f'clientid={token};'.encode(), writer=False))
+        qos=dds.dds_qos(QOS_SERVICES, f'clientid={token};'.encode(), writer=False))
     replies = []
     wait_for(lambda: replies.extend(
         s for s in late_reader.take(N=64) if s.sample_info.valid_data and s.client_id == 424242)
@@ -215,20 +228,20 @@ def _parameter_client(node, service, srv_type):
 
 def _double(node, value):
     return node.msg('rcl_interfaces/msg/ParameterValue')(
-        type=port.PARAMETER_DOUBLE, double_value=value)
+        type=PARAMETER_DOUBLE, double_value=value)
 
 
 def _get_gain(node):
     client, request = _parameter_client(node, 'get_parameters', 'GetParameters')
     (value,) = client.call(request(names=['gain']), WAIT_S).values
-    assert value.type == port.PARAMETER_DOUBLE
+    assert value.type == PARAMETER_DOUBLE
     return value.double_value
 
 
 def test_parameter_services_list_get_set_and_reject(node, peer):
     events = []
     node.create_subscription('rcl_interfaces/msg/ParameterEvent', '/parameter_events',
-                             events.append, port.QOS_PARAMETER_EVENTS)
+                             events.append, QOS_PARAMETER_EVENTS)
     lister, list_request = _parameter_client(node, 'list_parameters', 'ListParameters')
     names = lister.call(list_request(), WAIT_S).result.names
     assert {'gain', 'use_sim_time'} <= set(names)
@@ -246,7 +259,7 @@ def test_parameter_services_list_get_set_and_reject(node, peer):
     assert not rejected.successful and 'outside [0, 10]' in rejected.reason
     (wrong_type,) = setter.call(set_request(parameters=[parameter(
         name='gain', value=node.msg('rcl_interfaces/msg/ParameterValue')(
-            type=port.PARAMETER_STRING, string_value='high'))]), WAIT_S).results
+            type=PARAMETER_STRING, string_value='high'))]), WAIT_S).results
     assert not wrong_type.successful
     assert _get_gain(node) == 3.0  # unchanged by both rejected sets
 
@@ -258,7 +271,7 @@ def test_parameter_services_list_get_set_and_reject(node, peer):
 
     typer, types_request = _parameter_client(node, 'get_parameter_types', 'GetParameterTypes')
     assert list(typer.call(types_request(names=['gain', 'nope']), WAIT_S).types) == [
-        port.PARAMETER_DOUBLE, port.PARAMETER_NOT_SET]
+        PARAMETER_DOUBLE, PARAMETER_NOT_SET]
     describer, describe_request = _parameter_client(
         node, 'describe_parameters', 'DescribeParameters')
     (descriptor,) = describer.call(describe_request(names=['gain']), WAIT_S).descriptors
@@ -267,7 +280,7 @@ def test_parameter_services_list_get_set_and_reject(node, peer):
 
 def test_rosout_receives_the_peer_log(node, peer):
     logs = []
-    node.create_subscription('rcl_interfaces/msg/Log', '/rosout', logs.append, port.QOS_ROSOUT)
+    node.create_subscription('rcl_interfaces/msg/Log', '/rosout', logs.append, QOS_ROSOUT)
     found = wait_for(lambda: [m for m in logs if m.name == 'tp.peer' and
                               m.msg == 'peer ready'], spin=node)
     assert [(m.level, m.msg) for m in found] == [(20, 'peer ready')]
@@ -281,7 +294,7 @@ def test_rosout_receives_the_peer_log(node, peer):
 def test_use_sim_time_node_clock_follows_clock_topic(node):
     sim = DdsNode('sim_clock_user', '/tp_test', parameter_overrides={'use_sim_time': True})
     try:
-        clock = node.create_publisher('rosgraph_msgs/msg/Clock', '/clock', port.QOS_CLOCK)
+        clock = node.create_publisher('rosgraph_msgs/msg/Clock', '/clock', QOS_CLOCK)
         clock_msg = node.msg('rosgraph_msgs/msg/Clock')
         time_msg = node.msg('builtin_interfaces/msg/Time')
         assert sim.now().nanoseconds == 0
@@ -302,7 +315,7 @@ def test_read_only_parameter_set_is_refused_with_rclpy_wording_and_keeps_its_val
     node = DdsNode('read_only_user', '/tp_test')
     try:
         node.declare_parameter('model', 'Car', read_only=True)
-        (result,) = node.set_parameters([port.Parameter('model', 'BmwX5')])
+        (result,) = node.set_parameters([Parameter('model', 'BmwX5')])
         assert (result.successful, result.reason) == (
             False, 'Trying to set a read-only parameter: model.')
         assert node.get_parameter('model') == 'Car'

@@ -30,7 +30,7 @@ import pytest
 
 from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.transport import dds_config
-from vehicle_sim.transport.port import TransportError
+from vehicle_sim.transport.errors import TransportError
 
 RMW_LOCALHOST = (
     '<CycloneDDS><Domain><General><AllowMulticast>false</AllowMulticast></General>'

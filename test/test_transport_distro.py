@@ -40,9 +40,10 @@ from rosbags.typesys import get_typestore, Stores
 from vehicle_msgs_py import distro
 from vehicle_msgs_py import types as msg_types
 from vehicle_sim.graph import GraphView
-from vehicle_sim.transport import cyclone_private, dds, port
+from vehicle_sim.transport import cyclone_private, dds
 from vehicle_sim.transport.dds import DdsNode, discovery_info, peers, services
 from vehicle_sim.transport.dds_config import domain_id
+from vehicle_sim.transport.qos import QOS_DISCOVERY_INFO_READER
 
 GUID = bytes(range(1, 17))
 READER = bytes(range(0x20, 0x30))
@@ -251,7 +252,7 @@ def test_a_humble_and_a_jazzy_process_each_warn_once_and_keep_serving(monkeypatc
     raw = DomainParticipant(domain_id())
     info_type = msg_types.message_type('rmw_dds_common/msg/ParticipantEntitiesInfo')
     reader = DataReader(raw, Topic(raw, 'ros_discovery_info', info_type),
-                        qos=dds.dds_qos(port.QOS_DISCOVERY_INFO_READER, b'', writer=False))
+                        qos=dds.dds_qos(QOS_DISCOVERY_INFO_READER, b'', writer=False))
     jazzy = _peer('jazzy', '/distro_j', monkeypatch)
     try:
         assert 'speaking ROS 2 Humble' in ''.join(humble.stderr_lines)
@@ -405,7 +406,7 @@ class _FakeRequestWriter:
 def test_a_call_to_a_fast_dds_server_says_why_it_gets_no_answer(monkeypatch):
     # Measured on Jazzy with Fast DDS 2.14.5: the server's request reader matches, drops the
     # 24-byte request ("payload size larger than the history payload size") and never answers.
-    from vehicle_sim.transport.port import ServiceTimeoutError
+    from vehicle_sim.transport.errors import ServiceTimeoutError
     node = DdsNode('fast_dds_server_check', '/distro_test')
     try:
         client = node.create_client('std_srvs/srv/SetBool', '/distro_test/fast_srv')

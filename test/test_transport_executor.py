@@ -22,15 +22,15 @@ readers by Cyclone's local delivery before ``publish`` returns, so one ``spin_on
 from automobile_helpers import wait_for
 import pytest
 
-from vehicle_sim.transport import port
 from vehicle_sim.transport.dds import DdsNode
 from vehicle_sim.transport.dds.endpoints import TAKE_BATCH
+from vehicle_sim.transport.qos import QosProfile
 
 pytestmark = pytest.mark.transport
 
 STRING = 'std_msgs/msg/String'
 # Deep enough to keep every sample of the batch test.
-DEEP = port.QosProfile(depth=4 * TAKE_BATCH)
+DEEP = QosProfile(depth=4 * TAKE_BATCH)
 # Generous bound for one spin that has work waiting [s].
 SPIN_S = 5.0
 

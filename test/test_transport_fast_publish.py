@@ -26,6 +26,7 @@ from vehicle_sim.ros import endpoints
 from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.transport import port
 from vehicle_sim.transport.dds import DdsNode
+from vehicle_sim.transport.errors import TransportError
 
 SPEED = itf.topic('automobile/current_speed')
 ROWS = (endpoints.CLOCK, SPEED)
@@ -113,7 +114,7 @@ def test_a_transport_without_serializers_refuses_serialized_publishing():
         def publish(self, msg):
             pass
 
-    with pytest.raises(port.TransportError, match='messages only'):
+    with pytest.raises(TransportError, match='messages only'):
         MessagesOnly().publish_serialized(b'\0\1\0\0')
 
 

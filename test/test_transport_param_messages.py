@@ -32,9 +32,21 @@ import pytest
 
 from vehicle_msgs_py import types as msg_types
 import vehicle_sim
-from vehicle_sim.transport import port
 from vehicle_sim.transport.dds import param_messages
-from vehicle_sim.transport.port import Parameter, TransportError
+from vehicle_sim.transport.errors import TransportError
+from vehicle_sim.transport.parameter_types import (
+    Parameter,
+    PARAMETER_BOOL,
+    PARAMETER_BOOL_ARRAY,
+    PARAMETER_BYTE_ARRAY,
+    PARAMETER_DOUBLE,
+    PARAMETER_DOUBLE_ARRAY,
+    PARAMETER_INTEGER,
+    PARAMETER_INTEGER_ARRAY,
+    PARAMETER_NOT_SET,
+    PARAMETER_STRING,
+    PARAMETER_STRING_ARRAY,
+)
 
 PACKAGE = pathlib.Path(vehicle_sim.__file__).parent
 SHARED = PACKAGE / 'transport' / 'dds' / 'param_messages.py'
@@ -46,15 +58,15 @@ CLI_TIMEOUT_S = 60.0
 pytestmark = pytest.mark.transport
 
 VALUES = [
-    (True, port.PARAMETER_BOOL),
-    (-7, port.PARAMETER_INTEGER),
-    (2.5, port.PARAMETER_DOUBLE),
-    ('héllo', port.PARAMETER_STRING),
-    (b'\x00\xff', port.PARAMETER_BYTE_ARRAY),
-    ([True, False], port.PARAMETER_BOOL_ARRAY),
-    ([1, -2, 3], port.PARAMETER_INTEGER_ARRAY),
-    ([1.0, -2.5], port.PARAMETER_DOUBLE_ARRAY),
-    (['a', 'b'], port.PARAMETER_STRING_ARRAY),
+    (True, PARAMETER_BOOL),
+    (-7, PARAMETER_INTEGER),
+    (2.5, PARAMETER_DOUBLE),
+    ('héllo', PARAMETER_STRING),
+    (b'\x00\xff', PARAMETER_BYTE_ARRAY),
+    ([True, False], PARAMETER_BOOL_ARRAY),
+    ([1, -2, 3], PARAMETER_INTEGER_ARRAY),
+    ([1.0, -2.5], PARAMETER_DOUBLE_ARRAY),
+    (['a', 'b'], PARAMETER_STRING_ARRAY),
 ]
 
 
@@ -69,7 +81,7 @@ def test_each_value_type_survives_message_and_cdr_round_trip(value, kind):
 
 
 def test_not_set_is_none_both_ways_and_an_unknown_type_code_reads_as_none():
-    assert param_messages.to_value_msg(None).type == port.PARAMETER_NOT_SET
+    assert param_messages.to_value_msg(None).type == PARAMETER_NOT_SET
     assert param_messages.from_value_msg(param_messages.to_value_msg(None)) is None
     value_type = msg_types.message_type('rcl_interfaces/msg/ParameterValue')
     assert param_messages.from_value_msg(value_type(type=42)) is None
@@ -77,7 +89,7 @@ def test_not_set_is_none_both_ways_and_an_unknown_type_code_reads_as_none():
 
 def test_a_double_array_given_integers_is_sent_as_doubles():
     msg = param_messages.to_value_msg([3, 4.5])
-    assert msg.type == port.PARAMETER_DOUBLE_ARRAY
+    assert msg.type == PARAMETER_DOUBLE_ARRAY
     assert list(msg.double_array_value) == [3.0, 4.5]
     assert all(type(v) is float for v in msg.double_array_value)
 

@@ -16,9 +16,22 @@
 
 import pytest
 
-from vehicle_sim.transport import dds_config, params, port, selection
+from vehicle_sim.transport import dds_config, params, selection
+from vehicle_sim.transport.errors import TransportError
+from vehicle_sim.transport.names import resolve_name
+from vehicle_sim.transport.parameter_types import run_validator
 from vehicle_sim.transport.params import params_file_overrides, parse_ros_args
-from vehicle_sim.transport.port import resolve_name, TransportError
+from vehicle_sim.transport.qos import (
+    as_qos,
+    BEST_EFFORT,
+    QOS_CLOCK,
+    QOS_ROSOUT,
+    QOS_SENSOR_DATA,
+    QOS_TF,
+    QOS_TF_STATIC,
+    QosProfile,
+    TRANSIENT_LOCAL,
+)
 
 
 def test_ros_args_param_values_are_read_as_yaml_like_rcl():
@@ -98,17 +111,17 @@ def test_resolve_name_rejects_invalid_names(bad):
 
 
 def test_qos_presets_match_rmw_qos_profiles():
-    assert (port.QOS_ROSOUT.depth, port.QOS_ROSOUT.durability, port.QOS_ROSOUT.lifespan_s) == (
-        1000, port.TRANSIENT_LOCAL, 10.0)
-    assert (port.QOS_SENSOR_DATA.depth, port.QOS_SENSOR_DATA.reliability) == (
-        5, port.BEST_EFFORT)
-    assert (port.QOS_CLOCK.depth, port.QOS_CLOCK.reliability) == (1, port.BEST_EFFORT)
-    assert (port.QOS_TF_STATIC.depth, port.QOS_TF_STATIC.durability) == (
-        1, port.TRANSIENT_LOCAL)
-    assert port.as_qos(7) == port.QosProfile(depth=7)
-    assert port.as_qos('tf') is port.QOS_TF
+    assert (QOS_ROSOUT.depth, QOS_ROSOUT.durability, QOS_ROSOUT.lifespan_s) == (
+        1000, TRANSIENT_LOCAL, 10.0)
+    assert (QOS_SENSOR_DATA.depth, QOS_SENSOR_DATA.reliability) == (
+        5, BEST_EFFORT)
+    assert (QOS_CLOCK.depth, QOS_CLOCK.reliability) == (1, BEST_EFFORT)
+    assert (QOS_TF_STATIC.depth, QOS_TF_STATIC.durability) == (
+        1, TRANSIENT_LOCAL)
+    assert as_qos(7) == QosProfile(depth=7)
+    assert as_qos('tf') is QOS_TF
     with pytest.raises(TransportError, match='valid'):
-        port.as_qos('fast')
+        as_qos('fast')
 
 
 @pytest.mark.parametrize('read, env', [
@@ -137,13 +150,13 @@ def test_selection_auto_picks_dds_without_rclpy(monkeypatch):
 
 
 def test_parameter_validator_reasons():
-    assert port.run_validator(lambda v: None, 1.0) is None
-    assert port.run_validator(lambda v: 'too big', 1.0) == 'too big'
+    assert run_validator(lambda v: None, 1.0) is None
+    assert run_validator(lambda v: 'too big', 1.0) == 'too big'
 
     def raises(value):
         raise ValueError('bad value')
 
-    assert port.run_validator(raises, 1.0) == 'bad value'
+    assert run_validator(raises, 1.0) == 'bad value'
 
 
 def test_read_only_reason_is_worded_like_rclpy():

@@ -33,7 +33,10 @@ rclpy = pytest.importorskip(
 
 from rclpy.context import Context  # noqa: E402
 
-from vehicle_sim.transport import port  # noqa: E402
+from vehicle_sim.transport.errors import TransportError  # noqa: E402
+from vehicle_sim.transport.future import Future  # noqa: E402
+from vehicle_sim.transport.parameter_types import Parameter  # noqa: E402
+from vehicle_sim.transport.qos import QOS_ROSOUT, QosProfile  # noqa: E402
 from vehicle_sim.transport.rclpy_adapter import RclpyNode, to_rclpy_qos  # noqa: E402
 
 
@@ -47,7 +50,7 @@ def context():
 
 def test_rclpy_qos_conversion_keeps_rosout_profile():
     from rclpy.qos import DurabilityPolicy
-    qos = to_rclpy_qos(port.QOS_ROSOUT)
+    qos = to_rclpy_qos(QOS_ROSOUT)
     assert qos.depth == 1000 and qos.durability == DurabilityPolicy.TRANSIENT_LOCAL
 
 
@@ -56,7 +59,7 @@ def test_rclpy_node_parameter_validator_rejects_and_keeps_value(context):
     try:
         assert node.declare_parameter(
             'gain', 1.0, validator=lambda v: None if 0 <= v <= 10 else 'out of range') == 1.0
-        (result,) = node.set_parameters([port.Parameter('gain', 99.0)])
+        (result,) = node.set_parameters([Parameter('gain', 99.0)])
         assert not result.successful and 'out of range' in result.reason
         assert node.get_parameter('gain') == 1.0
     finally:
@@ -95,7 +98,7 @@ def test_rclpy_node_logger_reaches_rosout_as_rclpy_does_by_default(context):
     try:
         records = []
         listener.create_subscription('rcl_interfaces/msg/Log', '/rosout', records.append,
-                                     port.QOS_ROSOUT)
+                                     QOS_ROSOUT)
         talker.get_logger().warn('refused 300.0: outside the valid range')
         for _ in range(1000):
             if any(r.name == 'rt.logger' for r in records):
@@ -128,7 +131,7 @@ def test_rclpy_node_override_of_the_wrong_type_names_both_types_and_the_value(co
     # As on the embedded transport: rclcpp's type names and the value, not type codes.
     node = RclpyNode('typed_user', context=context, parameter_overrides={'time_step_ms': 'abc'})
     try:
-        with pytest.raises(port.TransportError) as error:
+        with pytest.raises(TransportError) as error:
             node.declare_parameter('time_step_ms', 10)
         assert str(error.value) == (
             "parameter 'time_step_ms' override 'abc' rejected: Wrong parameter type, parameter "
@@ -142,7 +145,7 @@ def test_rclpy_node_read_only_refusal_matches_the_embedded_transport(context):
     node = RclpyNode('read_only_user', context=context)
     try:
         node.declare_parameter('model', 'Car', read_only=True)
-        (result,) = node.set_parameters([port.Parameter('model', 'BmwX5')])
+        (result,) = node.set_parameters([Parameter('model', 'BmwX5')])
         assert (result.successful, result.reason) == (False, read_only_reason('model'))
     finally:
         node.shutdown()
@@ -164,7 +167,7 @@ def test_rclpy_node_deferred_reply_is_sent_when_its_future_completes(context):
 
         def handle_later(request, response):
             response.success = request.data
-            future = port.Future()
+            future = Future()
             pending.append((future, response))
             return future
 
@@ -354,7 +357,7 @@ def test_rclpy_spin_once_handles_every_message_already_received(context):
     publisher = RclpyNode('drain_pub', '/rdrain', context=context)
     reader = RclpyNode('drain_sub', '/rdrain', context=context)
     try:
-        qos = port.QosProfile(depth=50)
+        qos = QosProfile(depth=50)
         received = []
         reader.create_subscription('std_msgs/msg/Int32', 'n', lambda m: received.append(m.data),
                                    qos)

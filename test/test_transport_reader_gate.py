@@ -26,6 +26,7 @@ from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.ros.automobile import AutomobileNode
 from vehicle_sim.transport import port
 from vehicle_sim.transport.dds import DdsNode
+from vehicle_sim.transport.reader_gate import ALWAYS_OPEN
 
 SPEED = itf.topic('automobile/current_speed')
 SPEED_NAME = '/gate/automobile/current_speed'
@@ -96,7 +97,7 @@ def test_a_latched_row_is_written_without_a_reader_and_a_late_reader_gets_it(nod
     wiring = SimpleNamespace(static_transforms=[('world', 'odom', (1.0, 2.0, 0.0),
                                                  (0.0, 0.0, 0.0, 1.0))])
     outputs = endpoints.Outputs(node, (row,), wiring, resolve=lambda name: f'/gate{name}')
-    assert outputs.publishers[row].reader_gate is port.ALWAYS_OPEN
+    assert outputs.publishers[row].reader_gate is ALWAYS_OPEN
     outputs.publish(itf.ONCE_LATCHED, _Car(4, 0.0))     # before any reader
     reader, received = DdsNode('gate_late_reader', '/gate'), []
     try:
@@ -116,7 +117,7 @@ def test_publishers_of_other_transports_are_always_open():
         def publish(self, msg):
             pass
 
-    assert Other().reader_gate.open is True and Other().reader_gate is port.ALWAYS_OPEN
+    assert Other().reader_gate.open is True and Other().reader_gate is ALWAYS_OPEN
 
 
 class _Counted:

@@ -30,9 +30,16 @@ import pytest
 from vehicle_msgs_py import types as msg_types
 from vehicle_sim.graph import GraphView
 from vehicle_sim.ros import bridge_interfaces as bi
-from vehicle_sim.transport import cyclone_private, dds, port
+from vehicle_sim.transport import cyclone_private, dds
 from vehicle_sim.transport.dds import DdsNode
 from vehicle_sim.transport.dds_config import domain_id
+from vehicle_sim.transport.parameter_types import PARAMETER_BOOL, PARAMETER_STRING
+from vehicle_sim.transport.qos import (
+    QOS_DEFAULT,
+    QOS_DISCOVERY_INFO_WRITER,
+    QOS_PARAMETERS,
+    QOS_SERVICES,
+)
 
 pytestmark = pytest.mark.transport
 
@@ -68,9 +75,9 @@ def _raw_client(raw, service):
     types = msg_types.service_types(GET_PARAMETERS)
     user_data = f'clientid={CLIENT_TOKEN};'.encode()
     reader = DataReader(raw, Topic(raw, f'rr{service}Reply', types.response_wire),
-                        qos=dds.dds_qos(port.QOS_PARAMETERS, user_data, writer=False))
+                        qos=dds.dds_qos(QOS_PARAMETERS, user_data, writer=False))
     writer = DataWriter(raw, Topic(raw, f'rq{service}Request', types.request_wire),
-                        qos=dds.dds_qos(port.QOS_PARAMETERS, user_data, writer=True))
+                        qos=dds.dds_qos(QOS_PARAMETERS, user_data, writer=True))
     return types, writer, reader
 
 
@@ -124,7 +131,7 @@ def test_bridge_node_drops_a_joint_state_that_is_not_utf8_and_serves_on(raw, tes
         assert client.wait_for_service(WAIT_S)
         answer = client.call(tester.srv(GET_PARAMETERS).Request(names=['use_sim_time']),
                              WAIT_S)
-        assert [v.type for v in answer.values] == [port.PARAMETER_BOOL]
+        assert [v.type for v in answer.values] == [PARAMETER_BOOL]
         assert process.proc.poll() is None
         assert 'subscription /undecodable/joint_states (sensor_msgs/msg/JointState)' in (
             process.text())
@@ -140,7 +147,7 @@ def test_subscription_drops_the_undecodable_sample_and_keeps_the_rest_of_the_bat
         sub = node.create_subscription('std_msgs/msg/String', '/undecodable/strings',
                                        lambda m: received.append(m.data))
         writer = DataWriter(raw, Topic(raw, 'rt/undecodable/strings', string),
-                            qos=dds.dds_qos(port.QOS_DEFAULT, b'', writer=True))
+                            qos=dds.dds_qos(QOS_DEFAULT, b'', writer=True))
         assert wait_for(lambda: writer.get_matched_subscriptions())
         writer.write(string(data='before'))
         cyclone_private.write_serialized(writer, _with_bad_string(string(data='abc')))
@@ -158,9 +165,9 @@ def test_client_drops_an_undecodable_reply_and_takes_the_next(raw):
         service = '/undecodable/fake_get_parameters'
         types = msg_types.service_types(GET_PARAMETERS)
         server_requests = DataReader(raw, Topic(raw, f'rq{service}Request', types.request_wire),
-                                     qos=dds.dds_qos(port.QOS_SERVICES, b'', writer=False))
+                                     qos=dds.dds_qos(QOS_SERVICES, b'', writer=False))
         server_replies = DataWriter(raw, Topic(raw, f'rr{service}Reply', types.response_wire),
-                                    qos=dds.dds_qos(port.QOS_SERVICES, b'', writer=True))
+                                    qos=dds.dds_qos(QOS_SERVICES, b'', writer=True))
         client = node.create_client(GET_PARAMETERS, service)
         assert client.wait_for_service(WAIT_S)
         future = client.call_async(types.request(names=['x']))
@@ -168,7 +175,7 @@ def test_client_drops_an_undecodable_reply_and_takes_the_next(raw):
         assert wait_for(lambda: requests.extend(cyclone_private.take(server_requests, 4)[0])
                         or requests)
         value = msg_types.message_type('rcl_interfaces/msg/ParameterValue')
-        reply = types.response(values=[value(type=port.PARAMETER_STRING, string_value='abc')])
+        reply = types.response(values=[value(type=PARAMETER_STRING, string_value='abc')])
         cyclone_private.write_serialized(server_replies, _with_bad_string(
             types.response_to_wire(reply, client.client_id, future.sequence)))
         reply.values[0].string_value = 'fine'
@@ -185,7 +192,7 @@ def test_graph_view_drops_an_undecodable_discovery_sample_and_still_lists_nodes(
     node_info = msg_types.message_type('rmw_dds_common/msg/NodeEntitiesInfo')
     gid = msg_types.message_type('rmw_dds_common/msg/Gid')
     writer = DataWriter(raw, Topic(raw, 'ros_discovery_info', info_type),
-                        qos=dds.dds_qos(port.QOS_DISCOVERY_INFO_WRITER, b'', writer=True))
+                        qos=dds.dds_qos(QOS_DISCOVERY_INFO_WRITER, b'', writer=True))
     bad = info_type(gid=gid(data=b'\x01' * 16), node_entities_info_seq=[
         node_info(node_namespace='/', node_name='abc')])
     with GraphView() as view:

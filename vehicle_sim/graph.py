@@ -169,7 +169,8 @@ class GraphView:
         from cyclonedds.topic import Topic
 
         from vehicle_msgs_py import types as msg_types
-        from vehicle_sim.transport import dds, dds_config, port
+        from vehicle_sim.transport import dds, dds_config
+        from vehicle_sim.transport.qos import QOS_DISCOVERY_INFO_READER
 
         self.domain_id = dds_config.domain_id() if domain_id is None else domain_id
         dds.ensure_domain(self.domain_id)
@@ -186,7 +187,7 @@ class GraphView:
         # an rmw_cyclonedds node logs an error for a discovered reader without a type hash.
         self._info_reader = DataReader(
             self._participant, Topic(self._participant, DISCOVERY_TOPIC, info_type),
-            qos=dds.endpoint_qos(port.QOS_DISCOVERY_INFO_READER, info_type.__ros_type__,
+            qos=dds.endpoint_qos(QOS_DISCOVERY_INFO_READER, info_type.__ros_type__,
                                  writer=False))
         self._participants: Set[bytes] = set()
         self._endpoints: Dict[bytes, Endpoint] = {}

@@ -269,7 +269,7 @@ class AutomobileClient:
         full = self._full(spec.name)
         found = self._topics.get(full)
         if found is None:
-            from vehicle_sim.transport.port import QosProfile
+            from vehicle_sim.transport.qos import QosProfile
             found = _Topic(full, spec.ros_type,
                            lambda data, ros_type=spec.ros_type: self.node.deserialize(ros_type,
                                                                                         data))

@@ -62,7 +62,8 @@ from vehicle_sim.ros.sim_control import serve_vehicle, WorldControl
 from vehicle_sim.ros.sim_params import declare_parameters, initialpose_index, world_spec
 from vehicle_sim.ros.time_step import TimeStepService
 from vehicle_sim.transport import create_node
-from vehicle_sim.transport.port import resolve_name, ThrottledWarning
+from vehicle_sim.transport.logger import ThrottledWarning
+from vehicle_sim.transport.names import resolve_name
 
 NODE_NAME = 'automobile'
 # Timer period standing for "as fast as possible" (the port's timers need a period > 0).

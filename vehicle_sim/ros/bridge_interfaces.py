@@ -59,7 +59,7 @@ from vehicle_sim.ros.endpoints import (
 )
 from vehicle_sim.ros.sensor_interfaces import COLLISION
 from vehicle_sim.ros.sim_control import vehicle_services, WORLD_INPUTS, WORLD_SERVICES
-from vehicle_sim.transport.port import QOS_CLOCK, QOS_DEFAULT, QOS_LATCHED
+from vehicle_sim.transport.qos import QOS_CLOCK, QOS_DEFAULT, QOS_LATCHED
 
 
 def _input(name, ros_type, read, doc, qos=QOS_DEFAULT, unit='', switch=None):

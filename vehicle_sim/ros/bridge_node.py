@@ -39,7 +39,7 @@ from vehicle_sim.core.specs.param_spec import ParamSpec
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros.endpoints import EACH_COMMAND, EACH_STATUS, Outputs, serve, subscribe
 from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning
-from vehicle_sim.transport.port import Time
+from vehicle_sim.transport.ros_time import Time
 from vehicle_sim.transport.selection import create_node
 
 

@@ -88,7 +88,7 @@ from vehicle_sim.ros.sensor_interfaces import (
 )
 from vehicle_sim.ros.sim_control import serve_vehicle, WorldControl
 from vehicle_sim.ros.time_step import TimeStepService
-from vehicle_sim.transport.port import resolve_name
+from vehicle_sim.transport.names import resolve_name
 from vehicle_sim.transport.selection import create_node
 
 

@@ -44,13 +44,7 @@ from typing import Callable, Dict, Iterable, Optional, Tuple
 from vehicle_sim.core.commands.watchdog import DEFAULT_TIMEOUT_S
 from vehicle_sim.core.specs.param_spec import ParamSpec
 from vehicle_sim.ros import messages as m
-from vehicle_sim.transport.port import (
-    QOS_DEFAULT,
-    QOS_SERVICES,
-    QOS_TF,
-    QOS_TF_STATIC,
-    QosProfile,
-)
+from vehicle_sim.transport.qos import QOS_DEFAULT, QOS_SERVICES, QOS_TF, QOS_TF_STATIC, QosProfile
 
 # Direction of a topic row.
 OUT = 'out'

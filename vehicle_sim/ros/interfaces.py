@@ -65,7 +65,7 @@ from vehicle_sim.ros.sim_control import (
     WORLD_INPUTS,
     WORLD_SERVICES,
 )
-from vehicle_sim.transport.port import QOS_DEFAULT, QOS_LATCHED
+from vehicle_sim.transport.qos import QOS_DEFAULT, QOS_LATCHED
 
 FLOAT64_STAMPED = m.FLOAT64_STAMPED
 SET_FLOAT = 'vehicle_msgs/srv/SetFloat'

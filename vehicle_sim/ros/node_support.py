@@ -34,7 +34,6 @@ from vehicle_sim.core.specs.param_spec import (
     yaml_text,
 )
 from vehicle_sim.transport import run_node
-from vehicle_sim.transport.port import ThrottledWarning  # noqa: F401 (re-exported for nodes)
 
 # Declared by the transport port on every node (ROS standard); listed in the docs and yaml.
 USE_SIM_TIME = ParamSpec('use_sim_time', kind='bool', default=False,

@@ -38,7 +38,7 @@ from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec
 from vehicle_sim.ros import messages as m
 from vehicle_sim.ros.endpoints import converter, EACH_SAMPLE, ON_EVENT, Topic
-from vehicle_sim.transport.port import QosProfile
+from vehicle_sim.transport.qos import QosProfile
 
 # Reliable, volatile, depth 5 (issue: sensor topics); a best-effort sensor_data reader matches.
 QOS_SENSOR = QosProfile(depth=5)

@@ -33,7 +33,8 @@ from typing import Callable, Dict, Optional, Sequence
 from vehicle_sim.core.specs.errors import InvalidPoseError
 from vehicle_sim.core.world.placement import ground_pose, GroundPose
 from vehicle_sim.ros.endpoints import IN, RECEIVED, serve, Service, subscribe, Topic
-from vehicle_sim.transport.port import QOS_DEFAULT, ThrottledWarning
+from vehicle_sim.transport.logger import ThrottledWarning
+from vehicle_sim.transport.qos import QOS_DEFAULT
 
 TRIGGER = 'std_srvs/srv/Trigger'
 STD_SET_BOOL = 'std_srvs/srv/SetBool'

@@ -36,7 +36,7 @@ import collections
 import time
 from typing import Callable
 
-from vehicle_sim.transport.port import Future
+from vehicle_sim.transport.future import Future
 
 # Wall time of basic steps run at once before the node looks at its other work again [s].
 CHUNK_S = 0.02

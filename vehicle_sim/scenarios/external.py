@@ -31,7 +31,7 @@ import time
 
 from vehicle_sim.scenarios.criteria import TopicPredicate
 from vehicle_sim.scenarios.yaml_lines import ScenarioError
-from vehicle_sim.transport.port import BEST_EFFORT, QosProfile, RELIABLE
+from vehicle_sim.transport.qos import BEST_EFFORT, QosProfile, RELIABLE
 
 _EPS_S = 1e-9
 PROCESS_STOP_TIMEOUT_S = 5.0
@@ -50,7 +50,7 @@ class TopicWatcher:
 
     def __init__(self, sim, criteria, transport, sync=()):
         from vehicle_sim.transport import create_node
-        from vehicle_sim.transport.port import QOS_CLOCK
+        from vehicle_sim.transport.qos import QOS_CLOCK
         self.sim = sim
         self.node = create_node('scenario_runner', transport=transport)
         self.world = sim.world

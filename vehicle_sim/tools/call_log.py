@@ -38,7 +38,7 @@ def logger_name(fqn: str) -> str:
 
 def format_record(record) -> str:
     """Return a Log record as the node's console prints it (rcutils' default format)."""
-    from vehicle_sim.transport.port import LOG_LEVEL_NAMES
+    from vehicle_sim.transport.logger import LOG_LEVEL_NAMES
     level = LOG_LEVEL_NAMES.get(record.level, record.level)
     return (f'[{level}] [{record.stamp.sec}.{record.stamp.nanosec:09d}] '
             f'[{record.name}]: {record.msg}')
@@ -54,7 +54,7 @@ class CallLog:
     """
 
     def __init__(self, node, graph, service: str):
-        from vehicle_sim.transport.port import QOS_ROSOUT
+        from vehicle_sim.transport.qos import QOS_ROSOUT
         self._node = node
         self._graph = graph
         self._records = []

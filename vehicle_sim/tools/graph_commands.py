@@ -171,7 +171,7 @@ def _check_message_type(ros_type: str) -> str:
 
 
 def _call(node, srv_type: str, service: str, request, timeout_s: float):
-    from vehicle_sim.transport.port import ServiceTimeoutError
+    from vehicle_sim.transport.errors import ServiceTimeoutError
     client = node.create_client(srv_type, service)
     if not client.wait_for_service(timeout_s):
         raise CliError(f'service {service} is not available (no matched server within '
@@ -247,7 +247,7 @@ def subscribe(session: 'GraphSession', args, on_message):
     QoS like ``ros2 topic echo``: reliable / transient local only when every publisher offers
     it. :return: the topic's absolute name.
     """
-    from vehicle_sim.transport.port import (
+    from vehicle_sim.transport.qos import (
         BEST_EFFORT,
         QosProfile,
         RELIABLE,
@@ -373,8 +373,8 @@ def _param_node(session: GraphSession, name: str, wait_s: float) -> str:
 def cmd_param(args) -> int:
     from vehicle_msgs_py import service_types
     from vehicle_sim.transport.dds import param_messages
+    from vehicle_sim.transport.errors import TransportError
     from vehicle_sim.transport.params import parse_parameter_value
-    from vehicle_sim.transport.port import TransportError
     session = GraphSession()
     try:
         fqn = _param_node(session, args.node, args.wait)

@@ -84,7 +84,7 @@ def split_type_and_values(words: Sequence[str]):
 def _pub_qos():
     # Reliable and transient local: it matches reliable and best-effort, volatile and
     # transient-local subscribers alike, and one message reaches a subscriber matching late.
-    from vehicle_sim.transport.port import QosProfile, TRANSIENT_LOCAL
+    from vehicle_sim.transport.qos import QosProfile, TRANSIENT_LOCAL
     return QosProfile(depth=1, durability=TRANSIENT_LOCAL)
 
 

@@ -19,9 +19,10 @@ Nodes import :func:`create_node` / :func:`run_node` from here and are written ag
 :class:`NodePort`; docs/transport.md describes what users of the embedded one see.
 """
 
-from vehicle_sim.transport.port import (
-    NodePort,
-    Parameter,
+from vehicle_sim.transport.errors import ServiceTimeoutError, TransportError
+from vehicle_sim.transport.parameter_types import Parameter, SetParametersResult
+from vehicle_sim.transport.port import NodePort
+from vehicle_sim.transport.qos import (
     QOS_CLOCK,
     QOS_DEFAULT,
     QOS_LATCHED,
@@ -33,11 +34,8 @@ from vehicle_sim.transport.port import (
     QOS_TF,
     QOS_TF_STATIC,
     QosProfile,
-    ServiceTimeoutError,
-    SetParametersResult,
-    Time,
-    TransportError,
 )
+from vehicle_sim.transport.ros_time import Time
 from vehicle_sim.transport.selection import create_node, run_node, transport_name
 
 __all__ = [

@@ -57,7 +57,7 @@ from typing import List, Mapping, Optional
 from xml.etree import ElementTree
 from xml.sax.saxutils import quoteattr
 
-from vehicle_sim.transport.port import TransportError
+from vehicle_sim.transport.errors import TransportError
 
 RANGES = ('SUBNET', 'LOCALHOST', 'OFF', 'SYSTEM_DEFAULT')
 DEFAULT_RANGE = 'SUBNET'

@@ -32,13 +32,9 @@ from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
 
 import yaml
 
-from vehicle_sim.transport.port import (
-    normalize_namespace,
-    normalize_parameter_value,
-    parameter_type_of,
-    resolve_name,
-    TransportError,
-)
+from vehicle_sim.transport.errors import TransportError
+from vehicle_sim.transport.names import normalize_namespace, resolve_name
+from vehicle_sim.transport.parameter_types import normalize_parameter_value, parameter_type_of
 
 LOG_LEVELS = {'debug': 10, 'info': 20, 'warn': 30, 'warning': 30, 'error': 40, 'fatal': 50}
 _FLAGS_WITHOUT_VALUE = {

@@ -57,13 +57,19 @@ from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPo
 from rclpy.task import Future as RclpyFuture
 
 from vehicle_sim.transport import fast_cdr, port
-from vehicle_sim.transport.params import unknown_overrides_warning
-from vehicle_sim.transport.port import (
-    as_qos,
+from vehicle_sim.transport.errors import ServiceTimeoutError, TransportError
+from vehicle_sim.transport.future import Future
+from vehicle_sim.transport.logger import Logger
+from vehicle_sim.transport.parameter_types import (
     Parameter,
+    parameter_type_of,
+    run_validator,
     SetParametersResult,
-    TransportError,
+    wrong_type_reason,
 )
+from vehicle_sim.transport.params import unknown_overrides_warning
+from vehicle_sim.transport.qos import as_qos, KEEP_ALL, QOS_SERVICES, RELIABLE, TRANSIENT_LOCAL
+from vehicle_sim.transport.ros_time import Time
 from vehicle_sim.transport.stop_signals import StopSignals
 
 # The most callbacks one spin_once runs after the first (what was ready, not a flood).
@@ -83,13 +89,13 @@ def to_rclpy_qos(qos) -> QoSProfile:
     """Convert a port QoS (profile, depth or preset name) to an rclpy QoSProfile."""
     profile = as_qos(qos)
     kwargs = {
-        'history': (HistoryPolicy.KEEP_ALL if profile.history == port.KEEP_ALL
+        'history': (HistoryPolicy.KEEP_ALL if profile.history == KEEP_ALL
                     else HistoryPolicy.KEEP_LAST),
         'depth': profile.depth,
-        'reliability': (ReliabilityPolicy.RELIABLE if profile.reliability == port.RELIABLE
+        'reliability': (ReliabilityPolicy.RELIABLE if profile.reliability == RELIABLE
                         else ReliabilityPolicy.BEST_EFFORT),
         'durability': (DurabilityPolicy.TRANSIENT_LOCAL
-                       if profile.durability == port.TRANSIENT_LOCAL
+                       if profile.durability == TRANSIENT_LOCAL
                        else DurabilityPolicy.VOLATILE),
         'avoid_ros_namespace_conventions': profile.avoid_ros_namespace_conventions,
     }
@@ -100,7 +106,7 @@ def to_rclpy_qos(qos) -> QoSProfile:
     return QoSProfile(**kwargs)
 
 
-class _Logger(port.Logger):
+class _Logger(Logger):
     def __init__(self, logger):
         self._logger = logger
 
@@ -172,7 +178,7 @@ class _Client(port.Client):
         self._wrapper.executor.spin_until_future_complete(future, timeout_sec=timeout_s)
         if not future.done():
             self.client.remove_pending_request(future)
-            raise port.ServiceTimeoutError(
+            raise ServiceTimeoutError(
                 f'no reply from {self.service_name} within {timeout_s} s')
         return future.result()
 
@@ -243,12 +249,12 @@ class RclpyNode(port.NodePort):
         from rclpy.serialization import deserialize_message
         return deserialize_message(bytes(data), import_type(ros_type))
 
-    def create_service(self, srv_type: str, name: str, callback, qos=port.QOS_SERVICES):
+    def create_service(self, srv_type: str, name: str, callback, qos=QOS_SERVICES):
         executor = self.executor
 
         async def serve(request, response):
             result = callback(request, response)
-            if isinstance(result, port.Future):
+            if isinstance(result, Future):
                 waiting = RclpyFuture(executor=executor)
                 result.add_done_callback(lambda done: _complete(waiting, done))
                 result = await waiting
@@ -258,7 +264,7 @@ class RclpyNode(port.NodePort):
                                         qos_profile=to_rclpy_qos(qos),
                                         callback_group=self._services_group)
 
-    def create_client(self, srv_type: str, name: str, qos=port.QOS_SERVICES):
+    def create_client(self, srv_type: str, name: str, qos=QOS_SERVICES):
         client = self.node.create_client(import_type(srv_type), name,
                                          qos_profile=to_rclpy_qos(qos))
         return _Client(self, client, self.node.resolve_service_name(name))
@@ -266,14 +272,14 @@ class RclpyNode(port.NodePort):
     def create_timer(self, period_s: float, callback):
         return self.node.create_timer(period_s, callback, clock=self._steady)
 
-    def now(self) -> port.Time:
-        return port.Time(self.node.get_clock().now().nanoseconds)
+    def now(self) -> Time:
+        return Time(self.node.get_clock().now().nanoseconds)
 
-    def time_msg(self, t: Optional[port.Time] = None):
+    def time_msg(self, t: Optional[Time] = None):
         t = self.now() if t is None else t
         return TimeMsg(sec=t.sec, nanosec=t.nanosec)
 
-    def get_logger(self) -> port.Logger:
+    def get_logger(self) -> Logger:
         return self._logger
 
     # Parameters: validators and port callbacks run inside one rclpy on-set callback.
@@ -282,7 +288,7 @@ class RclpyNode(port.NodePort):
         if self._declaring:  # checked in declare_parameter (like the embedded transport)
             return RclSetParametersResult(successful=True)
         for param in params:
-            reason = port.run_validator(self._validators.get(param.name), param.value)
+            reason = run_validator(self._validators.get(param.name), param.value)
             if reason:
                 return RclSetParametersResult(successful=False, reason=reason)
         converted = [Parameter(p.name, p.value) for p in params]
@@ -305,9 +311,9 @@ class RclpyNode(port.NodePort):
                 # '-p gain:=2' for a double, as on the embedded transport
                 override = RclpyParameter(name, value=float(override.value))
                 self.node._parameter_overrides[name] = override
-            reason = (port.wrong_type_reason(name, port.parameter_type_of(default),
+            reason = (wrong_type_reason(name, parameter_type_of(default),
                                              override.value)
-                      or port.run_validator(validator, override.value))
+                      or run_validator(validator, override.value))
             if reason:
                 raise TransportError(
                     f'parameter {name!r} override {override.value!r} rejected: {reason}')
@@ -402,7 +408,7 @@ class RclpyNode(port.NodePort):
             self.node = None
 
 
-def _complete(waiting: RclpyFuture, done: port.Future) -> None:
+def _complete(waiting: RclpyFuture, done: Future) -> None:
     """Pass a port Future's outcome to the rclpy Future a service coroutine awaits."""
     if done.exception() is not None:
         waiting.set_exception(done.exception())

@@ -23,7 +23,8 @@ import importlib.util
 import os
 from typing import Any, Dict, Optional
 
-from vehicle_sim.transport.port import NodePort, TransportError
+from vehicle_sim.transport.errors import TransportError
+from vehicle_sim.transport.port import NodePort
 
 TRANSPORTS = ('auto', 'rclpy', 'dds')
 ENV_VAR = 'VEHICLE_SIM_TRANSPORT'

@@ -43,7 +43,7 @@ from vehicle_sim.transport.dds.executor import DdsTimer, run_dds_node
 from vehicle_sim.transport.dds.node import create_dds_node, DdsLogger, DdsNode
 from vehicle_sim.transport.dds.qos import dds_qos, endpoint_qos, endpoint_user_data
 from vehicle_sim.transport.dds.services import DdsClient, DdsService
-from vehicle_sim.transport.port import TransportError
+from vehicle_sim.transport.errors import TransportError
 
 __all__ = ['DdsClient', 'DdsLogger', 'DdsNode', 'DdsPublisher', 'DdsService', 'DdsSubscription',
            'DdsTimer', 'TransportError', 'create_dds_node', 'dds_qos', 'endpoint_qos',

@@ -36,10 +36,11 @@ from cyclonedds.topic import Topic
 
 from vehicle_msgs_py import distro
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.transport import cyclone_private, dds_config, port
+from vehicle_sim.transport import cyclone_private, dds_config
 from vehicle_sim.transport.dds import discovery_info, peers
 from vehicle_sim.transport.dds.qos import dds_qos, endpoint_user_data
-from vehicle_sim.transport.port import TransportError
+from vehicle_sim.transport.errors import TransportError
+from vehicle_sim.transport.qos import QOS_DISCOVERY_INFO_READER, QOS_DISCOVERY_INFO_WRITER
 
 DISCOVERY_TOPIC = 'ros_discovery_info'
 # How long a Jazzy process listens for Humble participants before it announces its nodes [s]:
@@ -114,11 +115,11 @@ class Context:
         user_data = endpoint_user_data(info_type.__ros_type__)
         self._discovery_writer = DataWriter(
             self.participant, self.topic(DISCOVERY_TOPIC, info_type),
-            qos=dds_qos(port.QOS_DISCOVERY_INFO_WRITER, user_data, True))
+            qos=dds_qos(QOS_DISCOVERY_INFO_WRITER, user_data, True))
         # Our own samples are not read back (as rmw_cyclonedds ignores its participant's).
         self.discovery_reader = DataReader(
             self.participant, self.topic(DISCOVERY_TOPIC, info_type),
-            qos=dds_qos(port.QOS_DISCOVERY_INFO_READER, user_data, False)
+            qos=dds_qos(QOS_DISCOVERY_INFO_READER, user_data, False)
             + Qos(Policy.IgnoreLocal.Participant))
         self._distro_announced = False
         self._warned = set()

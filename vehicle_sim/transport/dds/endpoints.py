@@ -21,7 +21,9 @@ from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
 
 from vehicle_sim.transport import cyclone_private, port
-from vehicle_sim.transport.port import TransportError
+from vehicle_sim.transport.errors import TransportError
+from vehicle_sim.transport.logger import ThrottledWarning
+from vehicle_sim.transport.reader_gate import ReaderGate
 
 # The most samples one take hands over; the rest stay in the reader for the next wake.
 TAKE_BATCH = 256
@@ -52,14 +54,14 @@ class Intake:
         for exc in errors:
             self.dropped += 1
             if self._warning is None:
-                self._warning = port.ThrottledWarning(self._node.get_logger())
+                self._warning = ThrottledWarning(self._node.get_logger())
             self._warning.warn(
                 f'{self.what}: dropped a sample that cannot be decoded '
                 f'({type(exc).__name__}: {exc}); {self.dropped} dropped so far')
         return samples
 
 
-def reader_gate_listener(gate: port.ReaderGate) -> Listener:
+def reader_gate_listener(gate: ReaderGate) -> Listener:
     """
     Return a Listener keeping ``gate.open`` = "the writer has a matched reader".
 
@@ -86,7 +88,7 @@ class DdsPublisher(port.Publisher):
     """
 
     def __init__(self, node, writer: DataWriter, msg_type, topic_name: str,
-                 reader_gate: Optional[port.ReaderGate] = None):
+                 reader_gate: Optional[ReaderGate] = None):
         if reader_gate is not None:
             self.reader_gate = reader_gate
         self._node = node

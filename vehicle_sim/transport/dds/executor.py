@@ -44,7 +44,7 @@ from vehicle_sim.transport.dds.services import (
     PENDING_REPLY_POLL_S,
     warn_unservable_clients,
 )
-from vehicle_sim.transport.port import TransportError
+from vehicle_sim.transport.errors import TransportError
 from vehicle_sim.transport.stop_signals import StopSignals
 
 # How long spin() may block before it looks at shutdown requests (signals) again.

@@ -42,17 +42,24 @@ from vehicle_sim.transport.dds.executor import DdsTimer, Executor, SPIN_SLICE_S
 from vehicle_sim.transport.dds.parameters import ParameterStore
 from vehicle_sim.transport.dds.qos import dds_qos, endpoint_user_data
 from vehicle_sim.transport.dds.services import DdsClient, DdsService
+from vehicle_sim.transport.errors import TransportError
+from vehicle_sim.transport.logger import LOG_LEVEL_NAMES, Logger
+from vehicle_sim.transport.names import resolve_name, validate_node_name
+from vehicle_sim.transport.parameter_types import Parameter, SetParametersResult
 from vehicle_sim.transport.params import parse_ros_args
-from vehicle_sim.transport.port import (
+from vehicle_sim.transport.qos import (
     as_qos,
-    Parameter,
-    resolve_name,
-    SetParametersResult,
-    TransportError,
+    QOS_CLOCK,
+    QOS_ROSOUT,
+    QOS_SERVICES,
+    QosProfile,
+    VOLATILE,
 )
+from vehicle_sim.transport.reader_gate import ReaderGate
+from vehicle_sim.transport.ros_time import Time
 
 
-class DdsLogger(port.Logger):
+class DdsLogger(Logger):
     """Console output like rcutils plus a ``rcl_interfaces/msg/Log`` on /rosout."""
 
     def __init__(self, node: 'DdsNode', name: str, level: int, to_rosout: bool,
@@ -67,19 +74,19 @@ class DdsLogger(port.Logger):
         if to_rosout:
             self._log_type = node.msg('rcl_interfaces/msg/Log')
             self._publisher = node.create_publisher(
-                'rcl_interfaces/msg/Log', '/rosout', port.QOS_ROSOUT)
+                'rcl_interfaces/msg/Log', '/rosout', QOS_ROSOUT)
 
     def log(self, level: int, message: str) -> None:
         if level < self.level:
             return
         now_ns = time.time_ns()
         if self._to_stdout:
-            sys.stderr.write(f'[{port.LOG_LEVEL_NAMES.get(level, level)}] [{now_ns / 1e9:.9f}] '
+            sys.stderr.write(f'[{LOG_LEVEL_NAMES.get(level, level)}] [{now_ns / 1e9:.9f}] '
                              f'[{self.name}]: {message}\n')
         if self._to_rosout and self._publisher is not None and self._node.ok():
             frame = sys._getframe(2) if level != 0 else None
             self._publisher.publish(self._log_type(
-                stamp=self._node.time_msg(port.Time(now_ns)), level=level, name=self.name,
+                stamp=self._node.time_msg(Time(now_ns)), level=level, name=self.name,
                 msg=str(message), file=frame.f_code.co_filename if frame else '',
                 function=frame.f_code.co_name if frame else '',
                 line=frame.f_lineno if frame else 0))
@@ -107,7 +114,7 @@ class DdsNode(port.NodePort):
                  reply_match_timeout_s: float = 1.0):
         ros_args = parse_ros_args(args)
         self._ros_args = ros_args
-        self._name = port.validate_node_name(ros_args.node_name(name))
+        self._name = validate_node_name(ros_args.node_name(name))
         self._namespace = ros_args.namespace(self._name, namespace)
         self.reply_match_timeout_s = reply_match_timeout_s
         overrides = ros_args.parameter_overrides(self._name, self._namespace)
@@ -210,7 +217,7 @@ class DdsNode(port.NodePort):
         if self._graph_visible:
             self._ctx.publish_graph()
 
-    def _dds_topic(self, ros_type: str, topic: str, profile: port.QosProfile):
+    def _dds_topic(self, ros_type: str, topic: str, profile: QosProfile):
         msg_type = self.msg(ros_type)
         fqn = topic if profile.avoid_ros_namespace_conventions else self.resolve(topic)
         dds_name = fqn if profile.avoid_ros_namespace_conventions else 'rt' + fqn
@@ -224,7 +231,7 @@ class DdsNode(port.NodePort):
         # A volatile writer without a matched reader delivers nothing: its gate lets the node
         # skip building such messages. A transient-local one keeps its last samples for readers
         # matching later, so it is always written.
-        gate = port.ReaderGate() if profile.durability == port.VOLATILE else None
+        gate = ReaderGate() if profile.durability == VOLATILE else None
         writer = DataWriter(self._ctx.participant, dds_topic,
                             qos=dds_qos(profile, user_data, True),
                             listener=reader_gate_listener(gate) if gate is not None else None)
@@ -256,7 +263,7 @@ class DdsNode(port.NodePort):
         return DdsSubscription(reader, fqn, intake)
 
     def create_service(self, srv_type: str, name: str, callback,
-                       qos=port.QOS_SERVICES) -> DdsService:
+                       qos=QOS_SERVICES) -> DdsService:
         self._check_ok()
         try:
             service = DdsService(self, self._ctx, srv_type, self.resolve(name), callback,
@@ -269,7 +276,7 @@ class DdsNode(port.NodePort):
         self._graph_changed()
         return service
 
-    def create_client(self, srv_type: str, name: str, qos=port.QOS_SERVICES) -> DdsClient:
+    def create_client(self, srv_type: str, name: str, qos=QOS_SERVICES) -> DdsClient:
         self._check_ok()
         try:
             client = DdsClient(self, self._ctx, srv_type, self.resolve(name), as_qos(qos))
@@ -286,12 +293,12 @@ class DdsNode(port.NodePort):
 
     # ---------------------------------------------------------------- clock and logging
 
-    def now(self) -> port.Time:
+    def now(self) -> Time:
         if self._clock_sub is not None:
-            return port.Time(self._sim_time_ns)
-        return port.Time(time.time_ns())
+            return Time(self._sim_time_ns)
+        return Time(time.time_ns())
 
-    def time_msg(self, t: Optional[port.Time] = None):
+    def time_msg(self, t: Optional[Time] = None):
         t = self.now() if t is None else t
         return self._time_type(sec=t.sec, nanosec=t.nanosec)
 
@@ -304,7 +311,7 @@ class DdsNode(port.NodePort):
     def _parameter_applied(self, name: str, value: Any) -> None:
         if name == 'use_sim_time' and value and self._clock_sub is None:
             self._clock_sub = self.create_subscription(
-                'rosgraph_msgs/msg/Clock', '/clock', self._on_clock, port.QOS_CLOCK)
+                'rosgraph_msgs/msg/Clock', '/clock', self._on_clock, QOS_CLOCK)
 
     # ---------------------------------------------------------------- parameters
 

@@ -15,38 +15,51 @@
 """
 Parameter values <-> ``rcl_interfaces`` messages, for the parameter services and the CLI.
 
-A value is the plain Python form the transport port uses (``port.parameter_type_of``): bool, int,
+A value is the plain Python form the transport port uses (``parameter_type_of``): bool, int,
 float, str, bytes and lists of bool, int, float or str; ``None`` is ``PARAMETER_NOT_SET``.
 """
 
 from typing import Any, Optional
 
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.transport import port
-from vehicle_sim.transport.port import Parameter
+from vehicle_sim.transport.parameter_types import (
+    normalize_parameter_value,
+    Parameter,
+    PARAMETER_BOOL,
+    PARAMETER_BOOL_ARRAY,
+    PARAMETER_BYTE_ARRAY,
+    PARAMETER_DOUBLE,
+    PARAMETER_DOUBLE_ARRAY,
+    PARAMETER_INTEGER,
+    PARAMETER_INTEGER_ARRAY,
+    PARAMETER_NOT_SET,
+    PARAMETER_STRING,
+    PARAMETER_STRING_ARRAY,
+    parameter_type_of,
+)
 
 # ParameterType code -> the ParameterValue field that holds the value.
 VALUE_FIELDS = {
-    port.PARAMETER_BOOL: 'bool_value',
-    port.PARAMETER_INTEGER: 'integer_value',
-    port.PARAMETER_DOUBLE: 'double_value',
-    port.PARAMETER_STRING: 'string_value',
-    port.PARAMETER_BYTE_ARRAY: 'byte_array_value',
-    port.PARAMETER_BOOL_ARRAY: 'bool_array_value',
-    port.PARAMETER_INTEGER_ARRAY: 'integer_array_value',
-    port.PARAMETER_DOUBLE_ARRAY: 'double_array_value',
-    port.PARAMETER_STRING_ARRAY: 'string_array_value',
+    PARAMETER_BOOL: 'bool_value',
+    PARAMETER_INTEGER: 'integer_value',
+    PARAMETER_DOUBLE: 'double_value',
+    PARAMETER_STRING: 'string_value',
+    PARAMETER_BYTE_ARRAY: 'byte_array_value',
+    PARAMETER_BOOL_ARRAY: 'bool_array_value',
+    PARAMETER_INTEGER_ARRAY: 'integer_array_value',
+    PARAMETER_DOUBLE_ARRAY: 'double_array_value',
+    PARAMETER_STRING_ARRAY: 'string_array_value',
 }
 _FROM_MSG = {
-    port.PARAMETER_BOOL: bool,
-    port.PARAMETER_INTEGER: int,
-    port.PARAMETER_DOUBLE: float,
-    port.PARAMETER_STRING: str,
-    port.PARAMETER_BYTE_ARRAY: bytes,
-    port.PARAMETER_BOOL_ARRAY: lambda values: [bool(v) for v in values],
-    port.PARAMETER_INTEGER_ARRAY: lambda values: [int(v) for v in values],
-    port.PARAMETER_DOUBLE_ARRAY: lambda values: [float(v) for v in values],
-    port.PARAMETER_STRING_ARRAY: list,
+    PARAMETER_BOOL: bool,
+    PARAMETER_INTEGER: int,
+    PARAMETER_DOUBLE: float,
+    PARAMETER_STRING: str,
+    PARAMETER_BYTE_ARRAY: bytes,
+    PARAMETER_BOOL_ARRAY: lambda values: [bool(v) for v in values],
+    PARAMETER_INTEGER_ARRAY: lambda values: [int(v) for v in values],
+    PARAMETER_DOUBLE_ARRAY: lambda values: [float(v) for v in values],
+    PARAMETER_STRING_ARRAY: list,
 }
 
 
@@ -58,9 +71,9 @@ def to_value_msg(value: Any):
     """
     value_type = msg_types.message_type('rcl_interfaces/msg/ParameterValue')
     if value is None:
-        return value_type(type=port.PARAMETER_NOT_SET)
-    kind = port.parameter_type_of(value)
-    return value_type(type=kind, **{VALUE_FIELDS[kind]: port.normalize_parameter_value(value)})
+        return value_type(type=PARAMETER_NOT_SET)
+    kind = parameter_type_of(value)
+    return value_type(type=kind, **{VALUE_FIELDS[kind]: normalize_parameter_value(value)})
 
 
 def from_value_msg(msg) -> Optional[Any]:

@@ -22,14 +22,24 @@ parameter services.
 import dataclasses
 from typing import Any, Callable, Dict, List, Mapping, Optional
 
-from vehicle_sim.transport import port
 from vehicle_sim.transport.dds.param_messages import (
     from_parameter_msg,
     to_parameter_msg,
     to_value_msg,
 )
+from vehicle_sim.transport.errors import TransportError
+from vehicle_sim.transport.parameter_types import (
+    normalize_parameter_value,
+    Parameter,
+    PARAMETER_DOUBLE,
+    PARAMETER_INTEGER,
+    parameter_type_of,
+    run_validator,
+    SetParametersResult,
+    wrong_type_reason,
+)
 from vehicle_sim.transport.params import read_only_reason, unknown_overrides_warning
-from vehicle_sim.transport.port import Parameter, SetParametersResult, TransportError
+from vehicle_sim.transport.qos import QOS_PARAMETER_EVENTS, QOS_PARAMETERS
 
 SERVICE_PREFIX = 'rcl_interfaces/srv/'
 
@@ -61,8 +71,8 @@ class ParameterStore:
         self._params: Dict[str, _ParamEntry] = {}
         self._on_set_callbacks: List[Callable] = []
         self._events = node.create_publisher(
-            'rcl_interfaces/msg/ParameterEvent', '/parameter_events', port.QOS_PARAMETER_EVENTS)
-        qos = port.QOS_PARAMETERS
+            'rcl_interfaces/msg/ParameterEvent', '/parameter_events', QOS_PARAMETER_EVENTS)
+        qos = QOS_PARAMETERS
         for srv, name, handler in (
                 ('ListParameters', '~/list_parameters', self._handle_list_parameters),
                 ('GetParameters', '~/get_parameters', self._handle_get_parameters),
@@ -86,14 +96,14 @@ class ParameterStore:
                           additional_constraints: str = '') -> Any:
         if name in self._params:
             raise TransportError(f'parameter {name!r} already declared')
-        default = port.normalize_parameter_value(default)
-        entry = _ParamEntry(default, port.parameter_type_of(default), description, validator,
+        default = normalize_parameter_value(default)
+        entry = _ParamEntry(default, parameter_type_of(default), description, validator,
                             read_only, additional_constraints)
         value = default
         if name in self._overrides:
-            value = port.normalize_parameter_value(self._overrides[name])
-            if entry.type_ == port.PARAMETER_DOUBLE and port.parameter_type_of(value) == \
-                    port.PARAMETER_INTEGER:
+            value = normalize_parameter_value(self._overrides[name])
+            if entry.type_ == PARAMETER_DOUBLE and parameter_type_of(value) == \
+                    PARAMETER_INTEGER:
                 value = float(value)  # '-p gain:=2' for a double, as the YAML reader gives int
             reason = self._check_value(name, entry, value)
             if reason:
@@ -106,10 +116,10 @@ class ParameterStore:
 
     def _check_value(self, name: str, entry: _ParamEntry, value: Any) -> Optional[str]:
         try:
-            wrong_type = port.wrong_type_reason(name, entry.type_, value)
+            wrong_type = wrong_type_reason(name, entry.type_, value)
         except TransportError as exc:
             return str(exc)
-        return wrong_type or port.run_validator(entry.validator, value)
+        return wrong_type or run_validator(entry.validator, value)
 
     def get_parameter(self, name: str) -> Any:
         try:
@@ -144,12 +154,12 @@ class ParameterStore:
         return SetParametersResult(True)
 
     def set_parameters(self, parameters: List[Parameter]) -> List[SetParametersResult]:
-        return [self._try_set([Parameter(p.name, port.normalize_parameter_value(p.value))])
+        return [self._try_set([Parameter(p.name, normalize_parameter_value(p.value))])
                 for p in parameters]
 
     def set_parameters_atomically(self, parameters: List[Parameter]) -> SetParametersResult:
         return self._try_set(
-            [Parameter(p.name, port.normalize_parameter_value(p.value)) for p in parameters])
+            [Parameter(p.name, normalize_parameter_value(p.value)) for p in parameters])
 
     def _publish_event(self, new=(), changed=()) -> None:
         node = self._node

@@ -23,8 +23,7 @@ from typing import Any, Dict, Optional
 from cyclonedds.qos import Policy, Qos
 
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.transport import port
-from vehicle_sim.transport.port import QosProfile
+from vehicle_sim.transport.qos import KEEP_ALL, QosProfile, RELIABLE, TRANSIENT_LOCAL
 
 INFINITE_NS = 0x7FFFFFFFFFFFFFFF
 ZERO_HASH = 'RIHS01_' + '0' * 64
@@ -64,18 +63,18 @@ def endpoint_user_data(ros_type: str, **tokens: Any) -> bytes:
 
 def dds_qos(profile: QosProfile, user_data: bytes, writer: bool) -> Qos:
     """Map a ROS QoS profile to DDS QoS like rmw_cyclonedds ``create_readwrite_qos``."""
-    if profile.history == port.KEEP_ALL:
+    if profile.history == KEEP_ALL:
         history = Policy.History.KeepAll
     else:
         history = Policy.History.KeepLast(max(1, profile.depth))
     policies = [
         history,
         (Policy.Reliability.Reliable(max_blocking_time=INFINITE_NS)
-         if profile.reliability == port.RELIABLE else Policy.Reliability.BestEffort),
+         if profile.reliability == RELIABLE else Policy.Reliability.BestEffort),
         Policy.DataRepresentation(use_cdrv0_representation=True),
         Policy.Userdata(data=user_data),
     ]
-    if profile.durability == port.TRANSIENT_LOCAL:
+    if profile.durability == TRANSIENT_LOCAL:
         policies += [
             Policy.Durability.TransientLocal,
             Policy.DurabilityService(cleanup_delay=0, history=history, max_samples=-1,

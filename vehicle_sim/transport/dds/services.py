@@ -43,7 +43,9 @@ from vehicle_sim.transport import cyclone_private, fast_cdr, port
 from vehicle_sim.transport.dds import peers
 from vehicle_sim.transport.dds.endpoints import Intake
 from vehicle_sim.transport.dds.qos import dds_qos, endpoint_user_data, userdata_tokens
-from vehicle_sim.transport.port import QosProfile, TransportError
+from vehicle_sim.transport.errors import ServiceTimeoutError, TransportError
+from vehicle_sim.transport.future import Future
+from vehicle_sim.transport.qos import QosProfile
 
 UINT64_MASK = 0xFFFFFFFFFFFFFFFF
 # How often the executor wakes while replies wait for their client's reply reader to match [s].
@@ -219,7 +221,7 @@ class DdsService(port.Service):
                 self._node.get_logger().error(
                     f'service {self.service_name} callback raised {type(exc).__name__}: {exc}')
                 continue
-            if isinstance(result, port.Future):
+            if isinstance(result, Future):
                 # A deferred reply (port.NodePort.create_service): sent once the future is done.
                 result.add_done_callback(
                     lambda done, c=client_id, s=sequence, h=handle: self._on_deferred(
@@ -227,7 +229,7 @@ class DdsService(port.Service):
             else:
                 self._reply(result, client_id, sequence, handle)
 
-    def _on_deferred(self, done: port.Future, client_id: int, sequence: int,
+    def _on_deferred(self, done: Future, client_id: int, sequence: int,
                      handle: int) -> None:
         if self._node.shut_down:
             return
@@ -314,7 +316,7 @@ class DdsClient(port.Client):
             qos=dds_qos(qos, endpoint_user_data(request, clientid=self.token), True))
         self._write = _wire_writer(self._writer, _WireCodec.of(self._types, 'request'))
         self.client_id = self._writer.get_instance_handle() & UINT64_MASK
-        self._pending: Dict[int, port.Future] = {}
+        self._pending: Dict[int, Future] = {}
         self._endpoint_tokens: Dict[int, str] = {}
         self._warned_servers = set()
 
@@ -370,13 +372,13 @@ class DdsClient(port.Client):
                     peers.foreign_server_note(self.service_name, vendor, participant))
         return True
 
-    def call_async(self, request) -> port.Future:
+    def call_async(self, request) -> Future:
         if not isinstance(request, self._types.request):
             raise TransportError(
                 f'{self.service_name} takes {self._types.request.__ros_type__}, '
                 f'got {type(request).__name__}')
         sequence = self._ctx.next_sequence()
-        future = port.Future()
+        future = Future()
         future.sequence = sequence
         self._pending[sequence] = future
         self._write(self._types.request_to_wire(request, self.client_id, sequence))
@@ -388,7 +390,7 @@ class DdsClient(port.Client):
             self._pending.pop(future.sequence, None)
             why = ''.join(f'; {peers.foreign_server_note(self.service_name, vendor, participant)}'
                           for participant, vendor in self.foreign_servers())
-            raise port.ServiceTimeoutError(
+            raise ServiceTimeoutError(
                 f'no reply from {self.service_name} within {timeout_s:g} s{why}')
         return future.result()
 

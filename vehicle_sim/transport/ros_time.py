@@ -1,0 +1,36 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""A node-clock instant (rclpy.time.Time's role): integer nanoseconds."""
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Time:
+    """A node-clock instant in integer nanoseconds (wall time, or sim time under use_sim_time)."""
+
+    nanoseconds: int
+
+    @property
+    def seconds(self) -> float:
+        return self.nanoseconds * 1e-9
+
+    @property
+    def sec(self) -> int:
+        return self.nanoseconds // 1_000_000_000
+
+    @property
+    def nanosec(self) -> int:
+        return self.nanoseconds % 1_000_000_000
