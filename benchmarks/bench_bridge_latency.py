@@ -38,6 +38,7 @@ sys.path.insert(0, REPO_ROOT)
 os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
 os.environ.setdefault('ROS_DOMAIN_ID', str(102 + os.getpid() % 100))
 
+from vehicle_sim.ros import autoware_interfaces as awi  # noqa: E402
 from vehicle_sim.ros import bridge_interfaces as bi  # noqa: E402
 from vehicle_sim.ros.bridge_node import AckermannToDifferentialNode  # noqa: E402
 from vehicle_sim.transport.dds import DdsNode  # noqa: E402
@@ -59,7 +60,7 @@ def in_process(samples):
          f'{bi.WHEEL_VELOCITIES_OUT.name}:=/bench_local/wheel_velocities', '-p',
          'vehicle_status:=false', '-r', '/control/command/control_cmd:=/bench_local/cmd'],
         transport='dds')
-    msg = bridge.node.msg(bi.CONTROL)()
+    msg = bridge.node.msg(awi.CONTROL)()
     msg.longitudinal.velocity, msg.lateral.steering_tire_angle = 0.4, 0.1
     times = []
     try:
@@ -115,7 +116,7 @@ def cross_process(samples):
     ]
     try:
         got_cmd, got_echo = [], []
-        cmd_pub = node.create_publisher(bi.CONTROL, '/bench/cmd')
+        cmd_pub = node.create_publisher(awi.CONTROL, '/bench/cmd')
         node.create_subscription(bi.DIFFERENTIAL_COMMAND_OUT.ros_type, '/bench/out',
                                  got_cmd.append)
         echo_pub = node.create_publisher('std_msgs/msg/String', '/bench_echo/echo_in')
@@ -124,7 +125,7 @@ def cross_process(samples):
                                and echo_pub.get_subscription_count() > 0, WAIT_S):
             raise RuntimeError('bridge or echo peer did not start')
         node.spin_until(lambda: False, 1.0)     # let discovery settle
-        control = node.msg(bi.CONTROL)
+        control = node.msg(awi.CONTROL)
         string = node.msg('std_msgs/msg/String')
 
         def make_control(i):

@@ -49,7 +49,7 @@ from vehicle_sim.core.autoware.codes import (
 )
 from vehicle_sim.core.specs.errors import InvalidCommandError
 from vehicle_sim.core.specs.units import mps_to_kmh
-from vehicle_sim.ros import bridge_interfaces as bi
+from vehicle_sim.ros import autoware_interfaces as awi
 
 WAIT_S = 30.0
 CAR = 'ToyotaPrius'          # wheelbase 2.8 m, steering limits ±1 rad (docs/end_to_end.md)
@@ -103,7 +103,7 @@ def aw():
 
 
 def control(node, speed, steering):
-    msg = node.node.msg(bi.CONTROL)()
+    msg = node.node.msg(awi.CONTROL)()
     msg.longitudinal.velocity = speed
     msg.lateral.steering_tire_angle = steering
     return msg
@@ -118,7 +118,7 @@ def drive(node, speed, steering, seconds):
 
 
 def gear(node, value):
-    node.handle_gear(node.node.msg(bi.GEAR_COMMAND.ros_type)(command=value))
+    node.handle_gear(node.node.msg(awi.GEAR_COMMAND.ros_type)(command=value))
 
 
 def test_node_left_command_turns_the_car_left_at_18_kmh(aw):
@@ -130,11 +130,11 @@ def test_node_left_command_turns_the_car_left_at_18_kmh(aw):
     # steady turn: yaw rate ≈ v tan δ / L (low speed, high grip)
     assert body.yaw_rate_radps() == pytest.approx(5.0 * math.tan(0.1) / 2.8, rel=0.05)
     reports = aw.status_messages()
-    assert reports[bi.VELOCITY_STATUS].longitudinal_velocity == pytest.approx(5.0, rel=0.01)
-    assert reports[bi.VELOCITY_STATUS].heading_rate > 0.0
-    assert reports[bi.STEERING_STATUS].steering_tire_angle == pytest.approx(0.1, abs=0.005)
-    assert reports[bi.GEAR_STATUS].report == GEAR_DRIVE
-    assert reports[bi.CONTROL_MODE_STATUS].mode == MODE_AUTONOMOUS
+    assert reports[awi.VELOCITY_STATUS].longitudinal_velocity == pytest.approx(5.0, rel=0.01)
+    assert reports[awi.VELOCITY_STATUS].heading_rate > 0.0
+    assert reports[awi.STEERING_STATUS].steering_tire_angle == pytest.approx(0.1, abs=0.005)
+    assert reports[awi.GEAR_STATUS].report == GEAR_DRIVE
+    assert reports[awi.CONTROL_MODE_STATUS].mode == MODE_AUTONOMOUS
 
 
 def test_node_reverse_gear_moves_backwards_and_reports_reverse(aw):
@@ -143,8 +143,8 @@ def test_node_reverse_gear_moves_backwards_and_reports_reverse(aw):
     assert aw.car.body.forward_speed_mps() == pytest.approx(-2.0, rel=0.05)
     assert aw.car.logic.backwards_lights
     reports = aw.status_messages()
-    assert reports[bi.GEAR_STATUS].report == GEAR_REVERSE
-    assert reports[bi.VELOCITY_STATUS].longitudinal_velocity < -1.9
+    assert reports[awi.GEAR_STATUS].report == GEAR_REVERSE
+    assert reports[awi.VELOCITY_STATUS].longitudinal_velocity < -1.9
 
 
 def test_node_park_stops_the_car_and_holds_it(aw):
@@ -153,7 +153,7 @@ def test_node_park_stops_the_car_and_holds_it(aw):
     drive(aw, 3.0, 0.0, 3.0)      # commands keep coming; PARK wins
     assert abs(aw.car.body.forward_speed_mps()) < 0.01
     assert aw.car.logic.brake_intensity == 1.0
-    assert aw.status_messages()[bi.GEAR_STATUS].report == GEAR_PARK
+    assert aw.status_messages()[awi.GEAR_STATUS].report == GEAR_PARK
 
 
 def test_node_neutral_coasts(aw):
@@ -162,7 +162,7 @@ def test_node_neutral_coasts(aw):
     drive(aw, 3.0, 0.0, 1.0)
     speed = aw.car.body.forward_speed_mps()
     assert 2.0 < speed < 3.0     # rolling on, slowly losing speed (no drive, no brake)
-    assert aw.status_messages()[bi.GEAR_STATUS].report == GEAR_NEUTRAL
+    assert aw.status_messages()[awi.GEAR_STATUS].report == GEAR_NEUTRAL
 
 
 @pytest.mark.parametrize('speed, steering', [(float('nan'), 0.0), (3.0, float('nan')),
@@ -193,14 +193,14 @@ def test_node_watchdog_stops_the_car_after_the_timeout_of_sim_time(aw):
 @pytest.mark.parametrize('how', ['sim_reset', 'vehicle_reset'])
 def test_node_reset_puts_the_autoware_interface_back_in_its_start_state(aw, how):
     def reported(messages):
-        return (messages[bi.GEAR_STATUS].report, messages[bi.TURN_INDICATORS_STATUS].report,
-                messages[bi.HAZARD_LIGHTS_STATUS].report, messages[bi.CONTROL_MODE_STATUS].mode)
+        return (messages[awi.GEAR_STATUS].report, messages[awi.TURN_INDICATORS_STATUS].report,
+                messages[awi.HAZARD_LIGHTS_STATUS].report, messages[awi.CONTROL_MODE_STATUS].mode)
 
     start = reported(aw.status_messages())
     assert start[0] == GEAR_DRIVE
     gear(aw, GEAR_REVERSE)
     drive(aw, 2.0, 0.2, 2.0)
-    assert aw.status_messages()[bi.GEAR_STATUS].report == GEAR_REVERSE
+    assert aw.status_messages()[awi.GEAR_STATUS].report == GEAR_REVERSE
     if how == 'sim_reset':
         aw.automobile.reset()                                  # as /sim/reset
     else:
@@ -221,27 +221,27 @@ def test_node_reset_keeps_manual_mode_and_forgets_the_gear(aw):
     aw.automobile.reset()
     assert aw.state.action == DRIVE and not aw.state.autonomous
     reports = aw.status_messages()
-    assert reports[bi.CONTROL_MODE_STATUS].mode == MODE_MANUAL   # the operator's choice stays
-    assert reports[bi.GEAR_STATUS].report == GEAR_DRIVE
+    assert reports[awi.CONTROL_MODE_STATUS].mode == MODE_MANUAL   # the operator's choice stays
+    assert reports[awi.GEAR_STATUS].report == GEAR_DRIVE
 
 
 def test_node_lights_and_control_mode_are_reported_from_the_car(aw):
-    turn = aw.node.msg(bi.TURN_INDICATORS_COMMAND.ros_type)
-    hazard = aw.node.msg(bi.HAZARD_LIGHTS_COMMAND.ros_type)
+    turn = aw.node.msg(awi.TURN_INDICATORS_COMMAND.ros_type)
+    hazard = aw.node.msg(awi.HAZARD_LIGHTS_COMMAND.ros_type)
     aw.handle_turn_indicators(turn(command=ENABLE_LEFT))
     aw.handle_hazard_lights(hazard(command=HAZARD_ENABLE))
     assert aw.car.logic.indicator == 2 and aw.car.logic.hazard_flashers   # Webots LEFT = 2
     reports = aw.status_messages()
-    assert reports[bi.TURN_INDICATORS_STATUS].report == ENABLE_LEFT
-    assert reports[bi.HAZARD_LIGHTS_STATUS].report == HAZARD_ENABLE
+    assert reports[awi.TURN_INDICATORS_STATUS].report == ENABLE_LEFT
+    assert reports[awi.HAZARD_LIGHTS_STATUS].report == HAZARD_ENABLE
     aw.handle_turn_indicators(turn(command=DISABLE))
-    assert aw.status_messages()[bi.TURN_INDICATORS_STATUS].report == DISABLE
+    assert aw.status_messages()[awi.TURN_INDICATORS_STATUS].report == DISABLE
     drive(aw, 3.0, 0.0, 2.0)
     assert aw.request_control_mode(MODE_MANUAL)
     assert aw.car.logic.target_cruising_speed_kmh == 0.0           # one stop on MANUAL
     aw.handle_command(control(aw, 3.0, 0.0))
     assert aw.car.logic.target_cruising_speed_kmh == 0.0           # MANUAL: ignored
-    assert aw.status_messages()[bi.CONTROL_MODE_STATUS].mode == MODE_MANUAL
+    assert aw.status_messages()[awi.CONTROL_MODE_STATUS].mode == MODE_MANUAL
     assert not aw.request_control_mode(2)
     assert aw.request_control_mode(MODE_AUTONOMOUS)
     aw.handle_command(control(aw, 3.0, 0.0))
@@ -259,9 +259,9 @@ def _bridge_refuses(setter_name, value):
 
 
 @pytest.mark.parametrize('endpoint, handler, bridge_setter', [
-    (bi.GEAR_COMMAND, 'handle_gear', 'set_gear'),
-    (bi.TURN_INDICATORS_COMMAND, 'handle_turn_indicators', 'set_turn_indicators'),
-    (bi.HAZARD_LIGHTS_COMMAND, 'handle_hazard_lights', 'set_hazard_lights'),
+    (awi.GEAR_COMMAND, 'handle_gear', 'set_gear'),
+    (awi.TURN_INDICATORS_COMMAND, 'handle_turn_indicators', 'set_turn_indicators'),
+    (awi.HAZARD_LIGHTS_COMMAND, 'handle_hazard_lights', 'set_hazard_lights'),
 ])
 def test_node_refuses_exactly_the_commands_the_bridge_refuses(aw, endpoint, handler,
                                                                bridge_setter):
@@ -270,12 +270,12 @@ def test_node_refuses_exactly_the_commands_the_bridge_refuses(aw, endpoint, hand
     msg = aw.node.msg(endpoint.ros_type)
     refused = []
     for value in list(range(0, 30)) + [255]:
-        before = (aw.rejected, aw.status_messages()[bi.GEAR_STATUS].report,
+        before = (aw.rejected, aw.status_messages()[awi.GEAR_STATUS].report,
                   aw.car.logic.indicator, aw.car.logic.hazard_flashers)
         getattr(aw, handler)(msg(command=value))
         if aw.rejected != before[0]:
             refused.append(value)
-            assert (aw.status_messages()[bi.GEAR_STATUS].report, aw.car.logic.indicator,
+            assert (aw.status_messages()[awi.GEAR_STATUS].report, aw.car.logic.indicator,
                     aw.car.logic.hazard_flashers) == before[1:]
         assert (value in refused) == _bridge_refuses(bridge_setter, value), value
     assert refused and refused[-1] == 255
@@ -330,14 +330,14 @@ def test_node_and_tester_stop_the_subprocess_when_the_test_node_fails(monkeypatc
 def test_node_subprocess_control_over_dds_drives_the_car_and_reports_velocity():
     with node_and_tester() as (proc, node):
         reports = []
-        node.create_subscription(bi.VELOCITY_STATUS.ros_type, bi.VELOCITY_STATUS.name,
-                                 reports.append, bi.VELOCITY_STATUS.qos)
-        publisher = node.create_publisher(bi.CONTROL, bi.BRIDGE_INPUTS[bi.CONTROL].name)
+        node.create_subscription(awi.VELOCITY_STATUS.ros_type, awi.VELOCITY_STATUS.name,
+                                 reports.append, awi.VELOCITY_STATUS.qos)
+        publisher = node.create_publisher(awi.CONTROL, awi.BRIDGE_INPUTS[awi.CONTROL].name)
         step = node.create_client('vehicle_msgs/srv/SetInt', '/robot/time_step')
         assert node.spin_until(lambda: step.service_is_ready()
                                and publisher.get_subscription_count() > 0, WAIT_S), \
             proc.stderr.read() if proc.poll() is not None else 'node did not come up'
-        msg = node.msg(bi.CONTROL)()
+        msg = node.msg(awi.CONTROL)()
         msg.longitudinal.velocity, msg.lateral.steering_tire_angle = 5.0, 0.1
         request = node.srv('vehicle_msgs/srv/SetInt').Request(value=100)
         for _ in range(60):                 # 6 s of sim time, a command every 0.1 s

@@ -43,7 +43,9 @@ from vehicle_sim.core.bridge.controller import BridgeController
 from vehicle_sim.core.bridge.converter import STOP_COMMAND
 from vehicle_sim.core.bridge.params import bridge_params_from_dict
 from vehicle_sim.core.specs.errors import InvalidCommandError
+from vehicle_sim.ros import autoware_interfaces as awi
 from vehicle_sim.ros import bridge_interfaces as bi
+from vehicle_sim.ros import robot_interfaces as ri
 from vehicle_sim.ros.endpoints import Topic
 from vehicle_sim.transport.qos import QOS_ROSOUT
 
@@ -59,7 +61,7 @@ BRIDGE_ARGS = [
     '-p', 'max_decel_mps2:=0.0', '-p', f'command_timeout_s:={TIMEOUT_S}',
     '-p', f'control_rate_hz:={CONTROL_HZ}']
 # The other input types, each in its own bridge with its own topics.
-OTHER_INPUTS = (bi.AUTO_ACKERMANN, bi.ACKERMANN_DRIVE, bi.TWIST_STAMPED)
+OTHER_INPUTS = (awi.AUTO_ACKERMANN, awi.ACKERMANN_DRIVE, awi.TWIST_STAMPED)
 
 
 def f32(value):
@@ -212,27 +214,27 @@ def running_system():
             procs.append(_spawn(
                 'vehicle_sim.ros.bridge_node', *BRIDGE_ARGS, '-r', f'__node:=bridge_in{i}',
                 '-p', f'input_type:={input_type}', '-p', 'vehicle_status:=false',
-                '-r', f'{bi.BRIDGE_INPUTS[input_type].name}:=/in{i}/command',
+                '-r', f'{awi.BRIDGE_INPUTS[input_type].name}:=/in{i}/command',
                 '-r', f'{bi.DIFFERENTIAL_COMMAND_OUT.name}:=/in{i}/differential_command',
                 '-r', f'{bi.WHEEL_VELOCITIES_OUT.name}:=/in{i}/wheel_velocities'))
         node = DdsNode('bridge_tester', '/bridge_test')
         env = {'node': node, 'procs': procs}
-        env['diff'] = Collector(node, bi.ROBOT_DIFFERENTIAL_COMMAND,
+        env['diff'] = Collector(node, ri.ROBOT_DIFFERENTIAL_COMMAND,
                                 '/diff_robot/differential_command')
         env['array'] = Collector(node, bi.WHEEL_VELOCITIES_OUT)
         env['twist'] = Collector(node, bi.TWIST_OUT)
         env['rosout'] = Collector(node, Topic('/rosout', 'rcl_interfaces/msg/Log', QOS_ROSOUT))
         env['clock'] = Collector(node, bi.CLOCK)
-        for spec in bi.STATUS_TOPICS:
+        for spec in awi.STATUS_TOPICS:
             env[spec.name] = Collector(node, spec)
-        env['control'] = node.create_publisher(bi.CONTROL, bi.BRIDGE_INPUTS[bi.CONTROL].name)
-        env['time_step'] = node.create_client(bi.ROBOT_TIME_STEP.ros_type,
+        env['control'] = node.create_publisher(awi.CONTROL, awi.BRIDGE_INPUTS[awi.CONTROL].name)
+        env['time_step'] = node.create_client(ri.ROBOT_TIME_STEP.ros_type,
                                               '/diff_robot/robot/time_step')
-        env['mode'] = node.create_client(bi.CONTROL_MODE_REQUEST.ros_type,
-                                         bi.CONTROL_MODE_REQUEST.name)
+        env['mode'] = node.create_client(awi.CONTROL_MODE_REQUEST.ros_type,
+                                         awi.CONTROL_MODE_REQUEST.name)
         for i, input_type in enumerate(OTHER_INPUTS):
             env[f'in{i}'] = node.create_publisher(input_type, f'/in{i}/command')
-            env[f'out{i}'] = Collector(node, bi.ROBOT_DIFFERENTIAL_COMMAND,
+            env[f'out{i}'] = Collector(node, ri.ROBOT_DIFFERENTIAL_COMMAND,
                                        f'/in{i}/differential_command')
         ready = node.spin_until(
             lambda: env['time_step'].service_is_ready() and env['mode'].service_is_ready()
@@ -278,7 +280,7 @@ def test_system_fixture_stops_its_processes_when_its_own_node_fails(monkeypatch)
 
 
 def send_control(env, speed, steering):
-    msg = env['node'].msg(bi.CONTROL)()
+    msg = env['node'].msg(awi.CONTROL)()
     msg.longitudinal.velocity = speed
     msg.lateral.steering_tire_angle = steering
     env['control'].publish(msg)
@@ -296,7 +298,7 @@ def wait_new(env, collector, count, predicate=lambda m: True, timeout_s=WAIT_S):
 
 
 def step_ms(env, value_ms):
-    request = env['node'].srv(bi.ROBOT_TIME_STEP.ros_type).Request(value=value_ms)
+    request = env['node'].srv(ri.ROBOT_TIME_STEP.ros_type).Request(value=value_ms)
     assert env['time_step'].call(request, timeout_s=WAIT_S).success
 
 
@@ -352,10 +354,10 @@ def test_bridge_feedback_reports_follow_the_measured_robot(system):
         send_control(system, speed, steering)
         system['node'].spin_once(0.01)
         step_ms(system, 100)
-    count = len(system[bi.VELOCITY_STATUS.name].msgs)
-    velocity = wait_new(system, system[bi.VELOCITY_STATUS.name], count)
-    steer = wait_new(system, system[bi.STEERING_STATUS.name],
-                     len(system[bi.STEERING_STATUS.name].msgs))
+    count = len(system[awi.VELOCITY_STATUS.name].msgs)
+    velocity = wait_new(system, system[awi.VELOCITY_STATUS.name], count)
+    steer = wait_new(system, system[awi.STEERING_STATUS.name],
+                     len(system[awi.STEERING_STATUS.name].msgs))
     print(f'feedback: v {velocity.longitudinal_velocity:.4f} m/s, yaw rate '
           f'{velocity.heading_rate:.4f} rad/s, steering {steer.steering_tire_angle:.4f} rad')
     assert velocity.longitudinal_velocity == pytest.approx(speed, rel=0.03)
@@ -392,37 +394,37 @@ def _report(env, spec, predicate):
 
 def test_bridge_reports_reflect_gear_lights_and_control_mode_requests(system):
     node = system['node']
-    gear_pub = node.create_publisher(bi.GEAR_COMMAND.ros_type, bi.GEAR_COMMAND.name)
-    turn_pub = node.create_publisher(bi.TURN_INDICATORS_COMMAND.ros_type,
-                                     bi.TURN_INDICATORS_COMMAND.name)
-    hazard_pub = node.create_publisher(bi.HAZARD_LIGHTS_COMMAND.ros_type,
-                                       bi.HAZARD_LIGHTS_COMMAND.name)
+    gear_pub = node.create_publisher(awi.GEAR_COMMAND.ros_type, awi.GEAR_COMMAND.name)
+    turn_pub = node.create_publisher(awi.TURN_INDICATORS_COMMAND.ros_type,
+                                     awi.TURN_INDICATORS_COMMAND.name)
+    hazard_pub = node.create_publisher(awi.HAZARD_LIGHTS_COMMAND.ros_type,
+                                       awi.HAZARD_LIGHTS_COMMAND.name)
     assert node.spin_until(lambda: gear_pub.get_subscription_count() > 0
                            and turn_pub.get_subscription_count() > 0
                            and hazard_pub.get_subscription_count() > 0, WAIT_S)
-    gear = node.msg(bi.GEAR_COMMAND.ros_type)
-    turn = node.msg(bi.TURN_INDICATORS_COMMAND.ros_type)
-    hazard = node.msg(bi.HAZARD_LIGHTS_COMMAND.ros_type)
+    gear = node.msg(awi.GEAR_COMMAND.ros_type)
+    turn = node.msg(awi.TURN_INDICATORS_COMMAND.ros_type)
+    hazard = node.msg(awi.HAZARD_LIGHTS_COMMAND.ros_type)
     gear_pub.publish(gear(command=gear.REVERSE))
     turn_pub.publish(turn(command=turn.ENABLE_LEFT))
     hazard_pub.publish(hazard(command=hazard.ENABLE))
-    assert _report(system, bi.GEAR_STATUS, lambda m: m.report == gear.REVERSE)
-    assert _report(system, bi.TURN_INDICATORS_STATUS, lambda m: m.report == turn.ENABLE_LEFT)
-    assert _report(system, bi.HAZARD_LIGHTS_STATUS, lambda m: m.report == hazard.ENABLE)
+    assert _report(system, awi.GEAR_STATUS, lambda m: m.report == gear.REVERSE)
+    assert _report(system, awi.TURN_INDICATORS_STATUS, lambda m: m.report == turn.ENABLE_LEFT)
+    assert _report(system, awi.HAZARD_LIGHTS_STATUS, lambda m: m.report == hazard.ENABLE)
     # REVERSE: the same forward command now backs the robot.
     count = len(system['diff'].msgs)
     send_control(system, 0.25, 0.0)
     back = wait_new(system, system['diff'], count, lambda m: m.left_wheel.velocity != 0.0)
     assert back.left_wheel.velocity == pytest.approx(-f32(0.25))
     gear_pub.publish(gear(command=gear.DRIVE))
-    assert _report(system, bi.GEAR_STATUS, lambda m: m.report == gear.DRIVE)
-    srv = node.srv(bi.CONTROL_MODE_REQUEST.ros_type)
+    assert _report(system, awi.GEAR_STATUS, lambda m: m.report == gear.DRIVE)
+    srv = node.srv(awi.CONTROL_MODE_REQUEST.ros_type)
     assert system['mode'].call(srv.Request(mode=MODE_MANUAL), timeout_s=WAIT_S).success
-    assert _report(system, bi.CONTROL_MODE_STATUS, lambda m: m.mode == MODE_MANUAL)
+    assert _report(system, awi.CONTROL_MODE_STATUS, lambda m: m.mode == MODE_MANUAL)
     assert not system['mode'].call(srv.Request(mode=2), timeout_s=WAIT_S).success
     assert system['mode'].call(srv.Request(mode=MODE_AUTONOMOUS), timeout_s=WAIT_S).success
-    count = len(system[bi.CONTROL_MODE_STATUS.name].msgs)
-    assert wait_new(system, system[bi.CONTROL_MODE_STATUS.name], count,
+    count = len(system[awi.CONTROL_MODE_STATUS.name].msgs)
+    assert wait_new(system, system[awi.CONTROL_MODE_STATUS.name], count,
                     lambda m: m.mode == MODE_AUTONOMOUS) is not None
 
 
@@ -431,10 +433,10 @@ def test_bridge_each_input_type_drives_the_wheels(system, index, input_type):
     node = system['node']
     msg = node.msg(input_type)()
     v, second = 0.3, 0.25
-    if input_type == bi.AUTO_ACKERMANN:
+    if input_type == awi.AUTO_ACKERMANN:
         msg.longitudinal.speed, msg.lateral.steering_tire_angle = v, second
         expected = closed_form(f32(v), f32(second))
-    elif input_type == bi.ACKERMANN_DRIVE:
+    elif input_type == awi.ACKERMANN_DRIVE:
         msg.drive.speed, msg.drive.steering_angle = v, second
         expected = closed_form(f32(v), f32(second))
     else:                                   # TwistStamped: v and yaw rate straight through
@@ -470,7 +472,7 @@ def test_bridge_node_on_rclpy_gives_closed_form_outputs():
             parameter_overrides={'wheel_base': L_M, 'wheel_tread': T_M, 'wheel_radius': R_M,
                                  'max_accel_mps2': 0.0, 'max_decel_mps2': 0.0})
         try:
-            msg = bridge.node.msg(bi.CONTROL)()
+            msg = bridge.node.msg(awi.CONTROL)()
             msg.longitudinal.velocity, msg.lateral.steering_tire_angle = f32(0.3), f32(0.2)
             out = bridge.handle_command(msg, now_s=1.0)
             assert (out.left_mps, out.right_mps) == pytest.approx(
@@ -503,7 +505,7 @@ def test_bridge_sim_time_tick_behind_the_node_clock_does_not_trip_the_watchdog(m
         bridge._on_clock(clock(2.28))
         # the node clock has seen 2.31 already; the tick's /clock message says 2.30
         monkeypatch.setattr(bridge.node, 'now', lambda: Time(2_310_000_000))
-        command = bridge.node.msg(bi.CONTROL)()
+        command = bridge.node.msg(awi.CONTROL)()
         command.longitudinal.velocity, command.lateral.steering_tire_angle = f32(0.3), f32(0.0)
         bridge.handle_command(command)
         bridge._on_clock(clock(2.30))

@@ -32,8 +32,8 @@ import pytest
 from vehicle_sim.config import load_car
 from vehicle_sim.core.car.ackermann import ackermann_angles
 from vehicle_sim.core.specs.units import kmh_to_mps
-from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import robot_interfaces as ri
 from vehicle_sim.testing import AutomobileSim, stamp_s
 
 pytestmark = pytest.mark.transport
@@ -259,11 +259,11 @@ class Robot:
         self.cmd_vel = node.create_publisher(itf.CMD_VEL_INPUTS[stamped].ros_type,
                                              f'{namespace}/diff_robot/cmd_vel')
         self.odom = []
-        self.sub = node.create_subscription(bi.ROBOT_GROUND_TRUTH_ODOM.ros_type,
+        self.sub = node.create_subscription(ri.ROBOT_GROUND_TRUTH_ODOM.ros_type,
                                             f'{namespace}/diff_robot/ground_truth/odom',
                                             self.odom.append)
         self.time_s = 0.0
-        self.time_step = node.create_client(bi.ROBOT_TIME_STEP.ros_type,
+        self.time_step = node.create_client(ri.ROBOT_TIME_STEP.ros_type,
                                             f'{namespace}/diff_robot/robot/time_step')
         assert node.spin_until(lambda: self.time_step.service_is_ready() and
                                self.cmd_vel.get_subscription_count() > 0 and
@@ -271,7 +271,7 @@ class Robot:
             self.process.text()
 
     def step(self, ms):
-        request = self.node.srv(bi.ROBOT_TIME_STEP.ros_type).Request()
+        request = self.node.srv(ri.ROBOT_TIME_STEP.ros_type).Request()
         request.value = int(ms)
         assert self.time_step.call(request, WAIT_S).success
         self.time_s += ms / 1000.0

@@ -32,9 +32,11 @@ from conftest import REPO_ROOT
 import pytest
 
 from vehicle_msgs_py import types as msg_types
+from vehicle_sim.ros import autoware_interfaces as awi
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros import endpoints
 from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import robot_interfaces as ri
 from vehicle_sim.transport import dds
 from vehicle_sim.transport.qos import as_qos, QOS_CLOCK, RELIABLE, VOLATILE
 
@@ -119,8 +121,8 @@ def test_autoware_automobile_endpoints_are_the_car_rows_and_the_autoware_side_ro
     app = AutowareAutomobileNode(['x', '--ros-args', '-r', f'__ns:={NAMESPACE}'],
                                  transport='dds', parameter_overrides=SYNCHRONOUS)
     try:
-        autoware = (bi.STATUS_TOPICS + (bi.BRIDGE_INPUTS[bi.DEFAULT_INPUT_TYPE],) +
-                    bi.COMMAND_INPUTS + (bi.CONTROL_MODE_REQUEST,))
+        autoware = (awi.STATUS_TOPICS + (awi.BRIDGE_INPUTS[awi.DEFAULT_INPUT_TYPE],) +
+                    awi.COMMAND_INPUTS + (awi.CONTROL_MODE_REQUEST,))
         # Autoware's command drives the car: no cmd_vel or drive of the car.
         expected = _expected_of(_automobile_rows([''], inputs=())) + _expected(autoware,
                                                                                 lambda n: n)
@@ -134,10 +136,10 @@ def test_diff_robot_endpoints_are_its_rows_under_its_name(created):
     robot = DiffRobotNode(transport='dds', namespace=NAMESPACE, parameter_overrides=SYNCHRONOUS)
     try:
         # It owns its world: /sim/reset, /sim/pause and /initialpose too.
-        rows = (bi.ROBOT_INPUTS + bi.ROBOT_OUTPUTS + bi.ROBOT_SERVICES + itf.WORLD_SERVICES
+        rows = (ri.ROBOT_INPUTS + ri.ROBOT_OUTPUTS + ri.ROBOT_SERVICES + itf.WORLD_SERVICES
                 + itf.WORLD_INPUTS)
         assert sorted(created, key=repr) == _expected(
-            rows, _global_or(f'{NAMESPACE}/{bi.ROBOT_NODE_NAME}'))
+            rows, _global_or(f'{NAMESPACE}/{ri.ROBOT_NODE_NAME}'))
     finally:
         robot.destroy()
 
@@ -146,7 +148,7 @@ def test_diff_robot_endpoints_are_its_rows_under_its_name(created):
     {},
     {'publish_differential_command': False, 'publish_wheel_velocities': False,
      'publish_twist': True, 'publish_twist_stamped': True, 'vehicle_status': False,
-     'use_sim_time': True, 'input_type': bi.ACKERMANN_DRIVE},
+     'use_sim_time': True, 'input_type': awi.ACKERMANN_DRIVE},
 ], ids=['defaults', 'switched'])
 def test_bridge_endpoints_are_its_rows_that_its_switches_enable(created, overrides):
     from vehicle_sim.ros.bridge_node import AckermannToDifferentialNode
@@ -157,9 +159,9 @@ def test_bridge_endpoints_are_its_rows_that_its_switches_enable(created, overrid
                     'publish_twist': False, 'publish_twist_stamped': False,
                     'vehicle_status': True, 'use_sim_time': False}
         switches.update({k: v for k, v in overrides.items() if k in switches})
-        rows = (bi.BRIDGE_OUTPUTS + bi.STATUS_TOPICS + bi.COMMAND_INPUTS +
-                (bi.JOINT_STATES_IN, bi.CLOCK_IN, bi.CONTROL_MODE_REQUEST))
-        rows = (bi.BRIDGE_INPUTS[overrides.get('input_type', bi.DEFAULT_INPUT_TYPE)],) + tuple(
+        rows = (bi.BRIDGE_OUTPUTS + awi.STATUS_TOPICS + awi.COMMAND_INPUTS +
+                (bi.JOINT_STATES_IN, bi.CLOCK_IN, awi.CONTROL_MODE_REQUEST))
+        rows = (awi.BRIDGE_INPUTS[overrides.get('input_type', awi.DEFAULT_INPUT_TYPE)],) + tuple(
             row for row in rows if row.switch is None or switches[row.switch])
         assert sorted(created, key=repr) == _expected(rows, lambda n: n)
     finally:
@@ -301,18 +303,18 @@ def test_rpm_converter_gives_nothing_outside_torque_mode():
 def test_status_rows_skip_velocity_and_steering_until_measured():
     stamp = _msg('builtin_interfaces/msg/Time')(sec=2, nanosec=0)
     outputs = {row: row.converter(_kit(), SimpleNamespace(frame_id='base_link'))
-               for row in bi.STATUS_TOPICS}
-    unmeasured = bi.VehicleReport(stamp, None, None, None, 2, 1, 1, 1)
+               for row in awi.STATUS_TOPICS}
+    unmeasured = awi.VehicleReport(stamp, None, None, None, 2, 1, 1, 1)
     assert [row for row, convert in outputs.items() if convert(unmeasured) is not None] == \
-        [bi.GEAR_STATUS, bi.TURN_INDICATORS_STATUS, bi.HAZARD_LIGHTS_STATUS,
-         bi.CONTROL_MODE_STATUS]
-    measured = bi.VehicleReport(stamp, 1.5, 0.25, 0.1, 20, 2, 2, 4)
-    velocity = outputs[bi.VELOCITY_STATUS](measured)
+        [awi.GEAR_STATUS, awi.TURN_INDICATORS_STATUS, awi.HAZARD_LIGHTS_STATUS,
+         awi.CONTROL_MODE_STATUS]
+    measured = awi.VehicleReport(stamp, 1.5, 0.25, 0.1, 20, 2, 2, 4)
+    velocity = outputs[awi.VELOCITY_STATUS](measured)
     assert (velocity.header.frame_id, velocity.longitudinal_velocity,
             velocity.heading_rate) == ('base_link', 1.5, 0.25)
-    assert outputs[bi.STEERING_STATUS](measured).steering_tire_angle == pytest.approx(0.1)
-    assert (outputs[bi.GEAR_STATUS](measured).report,
-            outputs[bi.CONTROL_MODE_STATUS](measured).mode) == (20, 4)
+    assert outputs[awi.STEERING_STATUS](measured).steering_tire_angle == pytest.approx(0.1)
+    assert (outputs[awi.GEAR_STATUS](measured).report,
+            outputs[awi.CONTROL_MODE_STATUS](measured).mode) == (20, 4)
 
 
 def test_wheel_velocities_follow_the_wheel_joints_sides():
@@ -329,7 +331,7 @@ def test_wheel_velocities_follow_the_wheel_joints_sides():
 def test_autoware_doc_embeds_the_tables_generated_from_the_rows():
     with open(Path(REPO_ROOT) / 'docs' / 'autoware.md', encoding='utf-8') as stream:
         text = stream.read()
-    for table in (bi.autoware_side_markdown(), bi.vehicle_side_markdown(), bi.robot_markdown()):
+    for table in (awi.autoware_side_markdown(), bi.vehicle_side_markdown(), ri.robot_markdown()):
         assert table in text
 
 
@@ -338,9 +340,9 @@ def test_autoware_automobile_with_a_twist_stamped_input_owns_cmd_vel_alone(creat
     # which would be a second type on one topic (refused by DDS in one process).
     from vehicle_sim.ros.autoware_automobile_node import AutowareAutomobileNode
     app = AutowareAutomobileNode(transport='dds', parameter_overrides={
-        **SYNCHRONOUS, 'input_type': bi.TWIST_STAMPED})
+        **SYNCHRONOUS, 'input_type': awi.TWIST_STAMPED})
     try:
         cmd_vel = [(kind, ros_type) for kind, name, ros_type, _ in created if name == '/cmd_vel']
-        assert cmd_vel == [('subscription', bi.TWIST_STAMPED)]
+        assert cmd_vel == [('subscription', awi.TWIST_STAMPED)]
     finally:
         app.close()

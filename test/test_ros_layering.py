@@ -18,7 +18,7 @@ Node modules import core and the shared ROS modules, never each other.
 
 A node module is ``vehicle_sim/ros/*_node.py``. Shared code lives in core (ROS-free logic:
 ``core/bridge/controller.py``, ``core/autoware/codes.py``) or in a shared module of
-``vehicle_sim/ros`` (``node_support.py``: parameter declaration, ThrottledWarning, the main
+``vehicle_sim/ros`` (``node_support.py``: parameter declaration, the main
 wrapper; ``automobile.py``: the simulated cars that ``automobile`` runs and
 ``autoware_automobile`` composes), so no module of ``vehicle_sim/ros`` imports a node module.
 """

@@ -77,8 +77,8 @@ from vehicle_sim.core.geometry.frames import (
     quaternion_from_rpy,
     rpy_from_quaternion,
 )
-from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import robot_interfaces as ri
 from vehicle_sim.ros.sensor_interfaces import sensor_rows
 from vehicle_sim.ros.sim_control import INITIALPOSE
 from vehicle_sim.transport.logger import WARN_THROTTLE_S
@@ -458,14 +458,14 @@ def robot(tester):
                           f'y:={y}', '-p', f'yaw:={yaw}', module='vehicle_sim.ros.diff_robot_node')
     latest = {}
     subs = [tester.create_subscription(
-        row.ros_type, f'/{bi.ROBOT_NODE_NAME}/{row.name}',
+        row.ros_type, f'/{ri.ROBOT_NODE_NAME}/{row.name}',
         lambda msg, key=row.name: latest.__setitem__(key, msg), QOS_DEFAULT)
-        for row in (bi.ROBOT_ODOM, bi.ROBOT_GROUND_TRUTH_ODOM)]
+        for row in (ri.ROBOT_ODOM, ri.ROBOT_GROUND_TRUTH_ODOM)]
     clients = {}
 
     def call(name, srv_type, **fields):
         if name not in clients:
-            full = name if name.startswith('/') else f'/{bi.ROBOT_NODE_NAME}/{name}'
+            full = name if name.startswith('/') else f'/{ri.ROBOT_NODE_NAME}/{name}'
             clients[name] = tester.create_client(srv_type, full)
             assert clients[name].wait_for_service(WAIT_S), full
         request = tester.srv(srv_type).Request()

@@ -33,7 +33,7 @@ from automobile_helpers import (
 )
 import pytest
 
-from vehicle_sim.ros import bridge_interfaces as bi
+from vehicle_sim.ros import robot_interfaces as ri
 from vehicle_sim.ros.time_step import TimeStepService
 
 pytestmark = pytest.mark.transport
@@ -121,9 +121,9 @@ def test_diff_robot_serves_and_stops_while_a_huge_time_step_runs(tester):
                           module='vehicle_sim.ros.diff_robot_node')
     try:
         joint_states = []
-        tester.create_subscription(bi.ROBOT_JOINT_STATES.ros_type,
+        tester.create_subscription(ri.ROBOT_JOINT_STATES.ros_type,
                                    '/ts_robot/diff_robot/joint_states', joint_states.append,
-                                   bi.ROBOT_JOINT_STATES.qos)
+                                   ri.ROBOT_JOINT_STATES.qos)
         step, request = _time_step_client(tester, '/ts_robot/diff_robot/robot/time_step')
         huge = step.call_async(request(value=HUGE_MS))
         assert wait_for(lambda: joint_states and stamp_of(joint_states[-1]) > 0.5,

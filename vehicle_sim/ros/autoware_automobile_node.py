@@ -15,7 +15,7 @@
 """
 The ``autoware_automobile`` node: Autoware's vehicle interface on a simulated Webots car.
 
-The same Autoware inputs as the bridge (``ros/bridge_interfaces.py``: the command of
+The same Autoware inputs as the bridge (``ros/autoware_interfaces.py``: the command of
 ``input_type`` on /control/command/control_cmd by default, gear, turn indicators, hazard lights,
 /control/control_mode_request) drive a car, and the same /vehicle/status/* reports come back from
 the car's own data. The node composes an :class:`AutomobileNode` on the same ROS node, so the
@@ -60,18 +60,19 @@ from vehicle_sim.core.commands.watchdog import (
 )
 from vehicle_sim.core.specs.errors import InvalidCommandError, InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec
-from vehicle_sim.ros import bridge_interfaces as bi
+from vehicle_sim.ros import autoware_interfaces as awi
 from vehicle_sim.ros.automobile import AutomobileNode  # composed on this node
 from vehicle_sim.ros.endpoints import EACH_STATUS, Outputs, serve, subscribe
 from vehicle_sim.ros.messages import stamp_builder
-from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning
+from vehicle_sim.ros.node_support import declare_parameters, run_main
 from vehicle_sim.transport import create_node
+from vehicle_sim.transport.logger import ThrottledWarning
 
 NODE_NAME = 'autoware_automobile'
 
 # The node's own parameters (the car and world ones are the automobile node's).
 AUTOWARE_PARAMETERS = (
-    bi.INPUT_TYPE_PARAMETER,
+    awi.INPUT_TYPE_PARAMETER,
     ParamSpec('vehicle_namespace', kind='str', default='', empty=True,
               doc="namespace of the world's vehicle to drive ('' = the default car)"),
     ParamSpec('command_timeout_s', kind='float', default=DEFAULT_TIMEOUT_S, unit='s', ge=0.0,
@@ -153,19 +154,19 @@ class AutowareAutomobileNode:
             f'{values["command_timeout_s"]:g} s ({values["timeout_action"]})')
 
     def _wire(self):
-        # The Autoware-side rows of bridge_interfaces (the same as the bridge's).
+        # The Autoware-side rows of autoware_interfaces (the same as the bridge's).
         node = self.node
         self._stamp = stamp_builder(node.msg)
-        self._status = Outputs(node, bi.STATUS_TOPICS, SimpleNamespace(frame_id=self._frame_id))
-        self._input = bi.BRIDGE_INPUTS[self.input_type]
+        self._status = Outputs(node, awi.STATUS_TOPICS, SimpleNamespace(frame_id=self._frame_id))
+        self._input = awi.BRIDGE_INPUTS[self.input_type]
         self._read_command = self._input.converter
         self._subs = subscribe(node, {
             self._input: self.handle_command,
-            bi.GEAR_COMMAND: self.handle_gear,
-            bi.TURN_INDICATORS_COMMAND: self.handle_turn_indicators,
-            bi.HAZARD_LIGHTS_COMMAND: self.handle_hazard_lights})
+            awi.GEAR_COMMAND: self.handle_gear,
+            awi.TURN_INDICATORS_COMMAND: self.handle_turn_indicators,
+            awi.HAZARD_LIGHTS_COMMAND: self.handle_hazard_lights})
         self._services = serve(node, {
-            bi.CONTROL_MODE_REQUEST: self._handle_control_mode_request})
+            awi.CONTROL_MODE_REQUEST: self._handle_control_mode_request})
 
     # ---------------------------------------------------------------- time
     def now_s(self):
@@ -190,7 +191,7 @@ class AutowareAutomobileNode:
         now_s = self.now_s() if now_s is None else now_s
         speed, second = self._read_command(msg)
         try:
-            if self.input_type == bi.TWIST_STAMPED:
+            if self.input_type == awi.TWIST_STAMPED:
                 # (v, yaw rate) -> the bicycle steering that gives that yaw rate on this car
                 if not (math.isfinite(speed) and math.isfinite(second)):
                     raise InvalidCommandError(f'twist ({speed!r} m/s, {second!r} rad/s): '
@@ -204,20 +205,20 @@ class AutowareAutomobileNode:
 
     def handle_gear(self, msg):
         """Apply a GearCommand (NONE keeps the gear; undefined values are rejected)."""
-        gear = self._checked(check_gear, bi.GEAR_COMMAND.converter(msg), 'gear_cmd')
+        gear = self._checked(check_gear, awi.GEAR_COMMAND.converter(msg), 'gear_cmd')
         if gear is not None and gear != GEAR_NONE:
             self.state.set_gear_action(gear_action_of_command(gear))
 
     def handle_turn_indicators(self, msg):
         """Apply a TurnIndicatorsCommand to the car's indicator (NO_COMMAND keeps it)."""
         command = self._checked(check_turn_indicators,
-                                bi.TURN_INDICATORS_COMMAND.converter(msg), 'turn_indicators_cmd')
+                                awi.TURN_INDICATORS_COMMAND.converter(msg), 'turn_indicators_cmd')
         if command is not None and command != NO_COMMAND:
             set_car_indicator(self.car.logic, INDICATOR_OF_COMMAND[command])
 
     def handle_hazard_lights(self, msg):
         """Apply a HazardLightsCommand to the car's hazard flashers (NO_COMMAND keeps them)."""
-        command = self._checked(check_hazard_lights, bi.HAZARD_LIGHTS_COMMAND.converter(msg),
+        command = self._checked(check_hazard_lights, awi.HAZARD_LIGHTS_COMMAND.converter(msg),
                                 'hazard_lights_cmd')
         if command is not None and command != NO_COMMAND:
             self.car.logic.set_hazard_flashers(command == HAZARD_ENABLE)
@@ -250,7 +251,7 @@ class AutowareAutomobileNode:
     def status_report(self):
         """Return the VehicleReport of the status rows, from the car's own data."""
         report = car_report(self.car.logic)
-        return bi.VehicleReport(
+        return awi.VehicleReport(
             self._stamp(self.now_s()), report.speed_mps, report.heading_rate_radps,
             report.steering_tire_rad, GEAR_REPORT[report.gear_action],
             INDICATOR_REPORT[report.indicator], HAZARD_ENABLE if report.hazard else DISABLE,

@@ -18,7 +18,8 @@ Autoware Ackermann command → differential drive: the ``ackermann_to_differenti
 Wiring only; the kinematics, limits and watchdog are core's (``core/bridge/``,
 ``core/commands/watchdog.py``), the vehicle-interface state (gear, control mode, lights) is core's
 :class:`~vehicle_sim.core.bridge.controller.BridgeController` (ROS-free, time injected). Names,
-types and QoS: ``ros/bridge_interfaces.py``; behaviour and parameters: ``docs/autoware.md``.
+types and QoS: ``ros/autoware_interfaces.py`` and ``ros/bridge_interfaces.py``; behaviour and
+parameters: ``docs/autoware.md``.
 
 Output is published on receipt of every accepted command (lowest latency) and on the control
 tick (ramps, watchdog): a wall timer at ``control_rate_hz``, or, with ``use_sim_time``, every
@@ -36,9 +37,11 @@ from vehicle_sim.core.bridge.params import BRIDGE_PARAM_SPECS, bridge_params_fro
 from vehicle_sim.core.diffdrive.kinematics import twist_from_wheel_speeds
 from vehicle_sim.core.specs.errors import InvalidCommandError, InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec
+from vehicle_sim.ros import autoware_interfaces as awi
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros.endpoints import EACH_COMMAND, EACH_STATUS, Outputs, serve, subscribe
-from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning
+from vehicle_sim.ros.node_support import declare_parameters, run_main
+from vehicle_sim.transport.logger import ThrottledWarning
 from vehicle_sim.transport.ros_time import Time
 from vehicle_sim.transport.selection import create_node
 
@@ -65,7 +68,7 @@ def _wheel_joints(value):
 
 # The node's own parameters; the kinematic ones are core's BRIDGE_PARAM_SPECS.
 NODE_PARAMETERS = (
-    bi.INPUT_TYPE_PARAMETER,
+    awi.INPUT_TYPE_PARAMETER,
     # The output switches are the rows' ``switch`` (bridge_interfaces.BRIDGE_OUTPUTS).
     ParamSpec('publish_differential_command', kind='bool', default=True,
               doc=f'publish {bi.DIFFERENTIAL_COMMAND_OUT.ros_type} on '
@@ -123,7 +126,7 @@ class AckermannToDifferentialNode:
             {spec.key: values[spec.attr] for spec in BRIDGE_PARAM_SPECS},
             source=node.get_fully_qualified_name())
         self.input_type = values['input_type']
-        twist_input = self.input_type == bi.TWIST_STAMPED
+        twist_input = self.input_type == awi.TWIST_STAMPED
         self.controller = BridgeController(self.params, twist_input=twist_input)
         self.wheel_joints = tuple(values['wheel_joints'])
         self._sides = _joint_sides(self.wheel_joints)
@@ -148,24 +151,24 @@ class AckermannToDifferentialNode:
             f'({self.params.timeout_action}){", sim time" if self._use_sim_time else ""}')
 
     def _wire(self, values):
-        # Rows of bridge_interfaces, switched by the node's parameters; the wiring context of
-        # the output and status rows is self._wiring.
+        # Rows of autoware_interfaces and bridge_interfaces, switched by the node's parameters;
+        # the wiring context of the output and status rows is self._wiring.
         node = self.node
         switches = dict(values, use_sim_time=self._use_sim_time)
         self._wiring = SimpleNamespace(frame_id=self._frame_id, wheel_sides=self._sides)
         self._outputs = Outputs(node, bi.BRIDGE_OUTPUTS, self._wiring, switches=switches)
-        self._status = Outputs(node, bi.STATUS_TOPICS, self._wiring, switches=switches)
-        self._input = bi.BRIDGE_INPUTS[self.input_type]
+        self._status = Outputs(node, awi.STATUS_TOPICS, self._wiring, switches=switches)
+        self._input = awi.BRIDGE_INPUTS[self.input_type]
         self._read_command = self._input.converter
         self._subs = subscribe(node, {
             self._input: self._on_command,
-            bi.GEAR_COMMAND: self._on_gear_cmd,
-            bi.TURN_INDICATORS_COMMAND: self._on_turn_indicators_cmd,
-            bi.HAZARD_LIGHTS_COMMAND: self._on_hazard_lights_cmd,
+            awi.GEAR_COMMAND: self._on_gear_cmd,
+            awi.TURN_INDICATORS_COMMAND: self._on_turn_indicators_cmd,
+            awi.HAZARD_LIGHTS_COMMAND: self._on_hazard_lights_cmd,
             bi.JOINT_STATES_IN: self.handle_joint_states,
             bi.CLOCK_IN: self._on_clock}, switches=switches)
         self._services = serve(node, {
-            bi.CONTROL_MODE_REQUEST: self._handle_control_mode_request}, switches=switches)
+            awi.CONTROL_MODE_REQUEST: self._handle_control_mode_request}, switches=switches)
         self._status_timer = None
         if values['vehicle_status']:
             self._status_timer = node.create_timer(1.0 / values['status_rate_hz'],
@@ -300,7 +303,7 @@ class AckermannToDifferentialNode:
         if self._measured is not None:
             speed, yaw_rate = self._measured
             steering = equivalent_steering_rad(speed, yaw_rate, self.params.wheel_base_m)
-        return bi.VehicleReport(self._stamp(self.now_s()), speed, yaw_rate, steering,
+        return awi.VehicleReport(self._stamp(self.now_s()), speed, yaw_rate, steering,
                                 controller.gear, controller.turn_indicators,
                                 controller.hazard_lights, controller.control_mode)
 

@@ -17,7 +17,7 @@ The simulated differential-drive robot as a ROS 2 node (``/diff_robot``).
 
 Owns a World and one DiffRobotBody (or shares a World built in-process). Its topics and its
 service are private names of the node (``~/odom``), so they live under the node's own name;
-frames are prefixed with it. Topics, types and QoS: ``ros/bridge_interfaces.py``; summary
+frames are prefixed with it. Topics, types and QoS: ``ros/robot_interfaces.py``; summary
 (``<ns>`` = /diff_robot, ``<p>`` = ``diff_robot/``; ``-r __ns:=/fleet`` gives /fleet/diff_robot
 and ``fleet/diff_robot/``):
 
@@ -65,7 +65,7 @@ from vehicle_sim.physics.gui import ChaseCamera, shortcuts_text
 from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.physics.sensor_urdf import with_sensor_links
 from vehicle_sim.physics.sensors import SensorFeed
-from vehicle_sim.ros import bridge_interfaces as bi
+from vehicle_sim.ros import robot_interfaces as ri
 from vehicle_sim.ros.endpoints import (
     CMD_VEL_INPUTS,
     CMD_VEL_STAMPED_PARAMETER,
@@ -80,7 +80,7 @@ from vehicle_sim.ros.endpoints import (
     subscribe,
 )
 from vehicle_sim.ros.messages import stamp_builder
-from vehicle_sim.ros.node_support import declare_parameters, run_main, ThrottledWarning
+from vehicle_sim.ros.node_support import declare_parameters, run_main
 from vehicle_sim.ros.sensor_interfaces import (
     check_names,
     sensor_rows,
@@ -88,6 +88,7 @@ from vehicle_sim.ros.sensor_interfaces import (
 )
 from vehicle_sim.ros.sim_control import serve_vehicle, WorldControl
 from vehicle_sim.ros.time_step import TimeStepService
+from vehicle_sim.transport.logger import ThrottledWarning
 from vehicle_sim.transport.names import resolve_name
 from vehicle_sim.transport.selection import create_node
 
@@ -133,7 +134,7 @@ class DiffRobotNode:
     """
 
     def __init__(self, args=None, world=None, parameter_overrides=None, transport=None,
-                 node_name=bi.ROBOT_NODE_NAME, namespace=''):
+                 node_name=ri.ROBOT_NODE_NAME, namespace=''):
         node = self.node = create_node(node_name, namespace, args=args,
                                        parameter_overrides=parameter_overrides,
                                        transport=transport)
@@ -193,7 +194,7 @@ class DiffRobotNode:
         self._time_step = TimeStepService(node, self.world.time_step_s * 1000.0, self.step,
                                           self.synchronous)
         self._time_step_name = (f'{node.get_fully_qualified_name().rstrip("/")}/'
-                                f'{bi.ROBOT_TIME_STEP.name}')
+                                f'{ri.ROBOT_TIME_STEP.name}')
         self.frame_prefix = prefix
         self._wire()
         # /sim/reset, /sim/pause and /initialpose belong to the node that steps the world.
@@ -222,13 +223,13 @@ class DiffRobotNode:
             return resolve_name(_private(row_name), node.get_namespace(), node.get_name())
 
         taken = {full_name(row.name): f"the robot's {row.name!r}" for row in
-                 bi.ROBOT_INPUTS + bi.ROBOT_OUTPUTS + bi.ROBOT_SERVICES}
+                 ri.ROBOT_INPUTS + ri.ROBOT_OUTPUTS + ri.ROBOT_SERVICES}
         check_names(self._sensor_rows, taken, full_name,
                     f'{node.get_fully_qualified_name()}: robot {self.params.model!r}')
         return specs
 
     def _wire(self):
-        # Rows of bridge_interfaces and the sensor rows; self._ctx is their wiring and call
+        # Rows of robot_interfaces and the sensor rows; self._ctx is their wiring and call
         # context.
         node = self.node
         x, y, yaw = self._spawn
@@ -245,22 +246,22 @@ class DiffRobotNode:
                 for t in static_transforms(self.sensors, prefix)],
             stamp=self._stamp(self.world.time_s), joints=None, odom=None, ground_truth=None,
             tf_poses=None, readings={}, sample_stamp=None, event=None, event_stamp=None)
-        self._outputs = Outputs(node, bi.ROBOT_OUTPUTS + self._sensor_rows, ctx, _private)
+        self._outputs = Outputs(node, ri.ROBOT_OUTPUTS + self._sensor_rows, ctx, _private)
         self._pub = self._outputs.publishers
         self._subs = subscribe(node, {
-            bi.ROBOT_DIFFERENTIAL_COMMAND: self._on_differential_command,
-            bi.ROBOT_WHEEL_VELOCITIES: self._on_wheel_velocities,
+            ri.ROBOT_DIFFERENTIAL_COMMAND: self._on_differential_command,
+            ri.ROBOT_WHEEL_VELOCITIES: self._on_wheel_velocities,
             self._cmd_vel: self._on_cmd_vel}, _private)
-        self._time_step_srv = serve(node, {bi.ROBOT_TIME_STEP: self._handle_time_step},
-                                    _private)[bi.ROBOT_TIME_STEP]
-        self._pose_srvs = serve_vehicle(node, bi.ROBOT_POSE_SERVICES, self, _private)
+        self._time_step_srv = serve(node, {ri.ROBOT_TIME_STEP: self._handle_time_step},
+                                    _private)[ri.ROBOT_TIME_STEP]
+        self._pose_srvs = serve_vehicle(node, ri.ROBOT_POSE_SERVICES, self, _private)
         self._outputs.publish(ONCE_LATCHED, ctx)
 
     # ---------------------------------------------------------------- commands
     def _on_differential_command(self, msg):
         radius = self.params.wheel_radius_m
         try:
-            left, right = bi.ROBOT_DIFFERENTIAL_COMMAND.converter(msg)
+            left, right = ri.ROBOT_DIFFERENTIAL_COMMAND.converter(msg)
             self.robot.set_wheel_velocities(left / radius, right / radius)
         except (InvalidCommandError, TypeError, ZeroDivisionError) as error:
             self._warn.warn(f'differential_command rejected: {error}')
@@ -268,7 +269,7 @@ class DiffRobotNode:
             self._drive.override()
 
     def _on_wheel_velocities(self, msg):
-        values = bi.ROBOT_WHEEL_VELOCITIES.converter(msg)
+        values = ri.ROBOT_WHEEL_VELOCITIES.converter(msg)
         if len(values) != len(self.wheel_joints):
             self._warn.warn(
                 f'wheel_velocities rejected: {len(values)} entries, {len(self.wheel_joints)} '
@@ -416,7 +417,7 @@ def main(args=None):
         return app['robot'].node
 
     try:
-        return run_main(bi.ROBOT_NODE_NAME, factory, args)
+        return run_main(ri.ROBOT_NODE_NAME, factory, args)
     finally:
         if 'robot' in app and app['robot']._owns_world:
             app['robot'].world.close()

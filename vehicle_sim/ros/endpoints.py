@@ -17,8 +17,9 @@ The one kind of ROS interface table: every topic and service of every node is a 
 
 A :class:`Topic` row is a name, a ROS type, a QoS profile, a cadence (when it is published) and
 its converter; a :class:`Service` row is a name, a service type and what the node maps it to.
-The tables are ``ros/interfaces.py`` (the automobile node) and ``ros/bridge_interfaces.py`` (the
-bridge, the simulated robot, and the Autoware side that ``autoware_automobile`` shares); the
+The tables are ``ros/interfaces.py`` (the automobile node), ``ros/bridge_interfaces.py`` (the
+bridge's vehicle side), ``ros/autoware_interfaces.py`` (the Autoware side of the bridge and
+``autoware_automobile``) and ``ros/robot_interfaces.py`` (the simulated robot); the
 rows every node shares, ``/clock``, ``/tf`` and ``/tf_static``, are defined once, here. Nodes
 wire rows with :class:`Outputs`, :func:`subscribe` and :func:`serve` (the only calls that create
 publishers, subscriptions and services in the ROS layer; a test checks it), and the docs' tables
@@ -236,6 +237,20 @@ TF = Topic(
               lambda ctx: None if ctx.tf_poses is None else (ctx.stamp, ctx.tf_poses),
               lambda w: (tuple(w.tf_frames),)),
     doc='<p>odom -> <p>base_link of every vehicle, one message')
+
+
+def input_topic(name, ros_type, read, doc, qos=QOS_DEFAULT, unit='', switch=None):
+    """Return an input row: ``read(msg)`` turns each received message into the node's command."""
+    return Topic(name, ros_type, qos, RECEIVED, read, IN, unit=unit, doc=doc, switch=switch)
+
+
+def frame_id_wiring(w):
+    """Wiring constants of a stamped row whose header names the node's ``frame_id``."""
+    return (w.frame_id,)
+
+
+# The columns of the bridge's, the robot's and the Autoware side's docs tables.
+DOC_COLUMNS = ('type', 'direction', 'QoS', 'published', 'switch', 'notes')
 
 
 def _static_transforms(kit, w):

@@ -38,7 +38,7 @@ positive = right, throttle and brake in [0, 1]. Standard ROS outputs are SI / RE
 from operator import attrgetter
 
 from vehicle_sim.ros import messages as m
-from vehicle_sim.ros.bridge_interfaces import ACKERMANN_DRIVE
+from vehicle_sim.ros.autoware_interfaces import ACKERMANN_DRIVE
 from vehicle_sim.ros.endpoints import (  # noqa: F401 - the cadences are part of this table
     CLOCK,
     CMD_VEL,

@@ -267,7 +267,7 @@ def run_robots(stream, robots=ROBOTS, bridge_overrides=None, transport='dds',
     from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
     from vehicle_sim.core.world.params import WorldSpec
     from vehicle_sim.physics.scene import build_scene
-    from vehicle_sim.ros import bridge_interfaces as bi
+    from vehicle_sim.ros import autoware_interfaces as awi
     from vehicle_sim.ros.bridge_node import AckermannToDifferentialNode
     from vehicle_sim.ros.diff_robot_node import DiffRobotNode
 
@@ -302,7 +302,7 @@ def run_robots(stream, robots=ROBOTS, bridge_overrides=None, transport='dds',
             now_s = world.time_s
             command = stream.command_at(now_s) if _due(now_s, COMMAND_PERIOD_S) else None
             for rig in rigs:
-                _robot_control(rig, command, now_s, bi.CONTROL)
+                _robot_control(rig, command, now_s, awi.CONTROL)
             world.step()
             for rig in rigs:
                 robot = rig.robot.robot
@@ -377,7 +377,7 @@ def run_car(stream, car_model=DEFAULT_CAR, transport='dds', record_every=5):
     :param car_model: car preset (config/cars).
     :return: Track (wheel speeds: the four wheels [rad/s], FR FL RR RL).
     """
-    from vehicle_sim.ros import bridge_interfaces as bi
+    from vehicle_sim.ros import autoware_interfaces as awi
     from vehicle_sim.ros.autoware_automobile_node import AutowareAutomobileNode
 
     node = AutowareAutomobileNode([], transport=transport, parameter_overrides={
@@ -402,7 +402,7 @@ def run_car(stream, car_model=DEFAULT_CAR, transport='dds', record_every=5):
             now_s = automobile.world.time_s
             command = stream.command_at(now_s) if _due(now_s, COMMAND_PERIOD_S) else None
             if command is not None:
-                node.handle_command(_control_msg(node.node, bi.CONTROL, *command), now_s=now_s)
+                node.handle_command(_control_msg(node.node, awi.CONTROL, *command), now_s=now_s)
                 track.last_command_s = now_s
                 track.command_times_s.append(now_s)
             automobile.step_once()

@@ -65,12 +65,12 @@ def add_arguments(parser):
 
 def topic_names(namespace, robot):
     """Return (cmd_vel, odom, steering or None) topic names of the vehicle."""
-    from vehicle_sim.ros import bridge_interfaces as bi
     from vehicle_sim.ros import interfaces as itf
+    from vehicle_sim.ros import robot_interfaces as ri
     prefix = '/' + namespace.strip('/') if namespace.strip('/') else ''
     if robot:
-        base = f'{prefix}/{bi.ROBOT_NODE_NAME}'
-        return f'{base}/{itf.CMD_VEL.name}', f'{base}/{bi.ROBOT_ODOM.name}', None
+        base = f'{prefix}/{ri.ROBOT_NODE_NAME}'
+        return f'{base}/{itf.CMD_VEL.name}', f'{base}/{ri.ROBOT_ODOM.name}', None
     return (f'{prefix}/{itf.CMD_VEL.name}', f'{prefix}/{itf.ODOM.name}',
             f'{prefix}/{itf.topic("automobile/steering_angle").name}')
 
