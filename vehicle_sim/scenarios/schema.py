@@ -28,14 +28,13 @@ Top-level keys (docs/scenarios.md has the tables, generated from the ParamSpec r
     criteria: [{kind: no_collision}, {kind: max_speed, limit: 6.0}]
 
 The world keeps the schema of the node's ``world`` parameter (core/world/params.py); criteria
-are checked by :mod:`.criteria` (its ``CRITERIA`` registry gives each kind's table).
+are checked by :mod:`.criteria` (its ``CRITERIA`` registry gives each kind's table); the
+``driver`` section is :mod:`.driver_schema`'s.
 """
 
 from dataclasses import dataclass, field
-import os
 from pathlib import Path
-import shlex
-from typing import Any, Dict, Optional, Tuple
+from typing import Dict, Optional, Tuple
 
 from vehicle_sim import config
 from vehicle_sim.core.sensors.sets import enable_sensors, selected_sensors
@@ -44,14 +43,15 @@ from vehicle_sim.core.specs.param_spec import ParamSpec, REQUIRED, validate_tabl
 from vehicle_sim.core.specs.value_text import brief
 from vehicle_sim.core.world.params import RobotSpec, used_twice, WorldSpec
 from vehicle_sim.scenarios.criteria import criteria_from_list, CriterionSpec
+from vehicle_sim.scenarios.driver_schema import (
+    COMMAND_ROWS,
+    driver_from_data,
+    DRIVER_KINDS,
+    DRIVER_SPECS,
+    DriverSpec,
+    MAX_DURATION_S,
+)
 from vehicle_sim.scenarios.yaml_lines import error_at, line_of, load_with_lines, ScenarioError
-from vehicle_sim.webots.api_table import CAR_API, DRIVER_API
-
-DRIVER_KINDS = ('commands', 'controller', 'processes')
-# The longest a scenario may run (simulated) and wait (wall clock): a file cannot keep the runner
-# busy for ever.
-MAX_DURATION_S = 86400.0
-MAX_WAIT_S = 3600.0
 
 SCENARIO_SPECS = (
     ParamSpec('name', 'name', 'str', '', doc="test name; '' = the file name without .yaml",
@@ -102,43 +102,6 @@ ACTOR_SPECS = (
               '(else stop there)'),
 )
 
-DRIVER_SPECS = (
-    ParamSpec('commands', 'commands', 'raw', None, optional=True,
-              doc='[{t: s, <setter>: value, ...}, ...] in time order (Webots driver setters)'),
-    ParamSpec('controller', 'controller', 'str', None, optional=True,
-              doc='Webots-API controller script (.py, relative to the scenario file), run in '
-                  "the runner's process"),
-    ParamSpec('args', 'args', 'raw', (), doc="the controller's sys.argv[1:] (strings)",
-              check=lambda v: None if isinstance(v, (list, tuple)) and all(
-                  isinstance(a, str) for a in v) else 'must be a list of strings'),
-    ParamSpec('processes', 'processes', 'raw', None, optional=True,
-              doc='command lines started as subprocesses (ROS 2 nodes, built-ins; the '
-                  "program 'python' is the runner's interpreter); the simulation is served "
-                  'over ROS with /clock'),
-    ParamSpec('real_time_factor', 'real_time_factor', 'float', 1.0, '',
-              'processes: simulated seconds per wall-clock second; 0 = as fast as possible; '
-              f'duration / real_time_factor at most {MAX_DURATION_S:g} s', ge=0.0),
-    ParamSpec('sync', 'sync', 'raw', (), doc='processes: lockstep topics [{topic, type}, ...]: '
-              'after every sync_period the runner waits until each has a new message (the '
-              "controller's answer to that /clock)"),
-    ParamSpec('sync_period', 'sync_period_s', 'float', 0.0, 's', 'processes: simulated time '
-              'between lockstep waits; 0 = every basic step', ge=0.0),
-    ParamSpec('sync_timeout', 'sync_timeout_s', 'float', 5.0, 's', 'processes: longest '
-              'lockstep wait (wall clock); a longer one ends the run with an error', gt=0.0,
-              le=MAX_WAIT_S),
-    ParamSpec('clock_subscribers', 'clock_subscribers', 'int', -1, '',
-              'processes: time starts once /clock has this many subscribers; -1 = one per '
-              'process', ge=-1),
-    ParamSpec('startup_timeout', 'startup_timeout_s', 'float', 60.0, 's',
-              'processes: how long to wait for them (wall clock)', gt=0.0, le=MAX_WAIT_S),
-)
-
-# Webots driver-level setters a command may hold: the snake_case names of the 2023 Python
-# wrapper (api_table ``prop``), applied through the strict core setter.
-COMMAND_ROWS = {row.prop: row for row in DRIVER_API + CAR_API
-                if row.setter is not None and row.prop is not None}
-
-
 @dataclass(frozen=True)
 class Waypoint:
     """A point to drive to [m] and the speed on the way to it [m/s]."""
@@ -157,32 +120,6 @@ class ActorSpec:
     lookahead_m: float
     loop: bool
     line: Optional[int] = None
-
-
-@dataclass(frozen=True)
-class Command:
-    """Setters applied at time ``t_s``: ((core setter, value, Webots name), ...)."""
-
-    t_s: float
-    setters: Tuple[Tuple[str, Any, str], ...]
-    line: Optional[int] = None
-
-
-@dataclass(frozen=True)
-class DriverSpec:
-    """What drives the vehicle under test: ``kind`` is one of DRIVER_KINDS."""
-
-    kind: str
-    commands: Tuple[Command, ...] = ()
-    controller: Optional[str] = None
-    args: Tuple[str, ...] = ()
-    processes: Tuple[Tuple[str, ...], ...] = ()
-    real_time_factor: float = 1.0
-    clock_subscribers: int = -1
-    startup_timeout_s: float = 60.0
-    sync: Tuple[Tuple[str, str], ...] = ()
-    sync_period_s: float = 0.0
-    sync_timeout_s: float = 5.0
 
 
 @dataclass(frozen=True)
@@ -290,7 +227,7 @@ def scenario_from_data(data, lines, source) -> ScenarioSpec:
         raise ctx.fail(('vehicle',), f'vehicle {brief(vehicle)}: not in the world; vehicles: '
                                      f'{", ".join(names)}')
     actors = _actors(ctx, values['actors'], names, vehicle)
-    driver = _driver(ctx, values['driver'], vehicle in cars)
+    driver = driver_from_data(ctx, values['driver'], vehicle in cars)
     paced = driver.kind == 'processes' and driver.real_time_factor > 0.0
     if paced and values['duration_s'] / driver.real_time_factor > MAX_DURATION_S:
         raise ctx.fail(('driver', 'real_time_factor'),
@@ -406,118 +343,6 @@ def _waypoints(ctx, value, path, speed_mps):
         points.append(Waypoint(float(point[0]), float(point[1]),
                                float(point[2]) if len(point) == 3 else speed_mps))
     return tuple(points)
-
-
-def _driver(ctx, value, drives_car):
-    path = ('driver',)
-    values = ctx.validated(DRIVER_SPECS, value, path, 'the driver')
-    given = [kind for kind in DRIVER_KINDS if values[kind] is not None]
-    if len(given) != 1:
-        raise ctx.fail(path, f'driver: give exactly one of {", ".join(DRIVER_KINDS)} '
-                             f'(got {", ".join(given) or "none"})')
-    kind = given[0]
-    if kind == 'commands':
-        if not drives_car:
-            raise ctx.fail(path + ('commands',), 'commands drive a car (Webots driver '
-                                                 'setters); a robot takes processes')
-        return DriverSpec(kind, commands=_commands(ctx, values['commands']))
-    if kind == 'controller':
-        if not drives_car:
-            raise ctx.fail(path + ('controller',), 'a Webots controller drives a car')
-        script = ctx.relative(values['controller'])
-        if not os.path.isfile(script):
-            raise ctx.fail(path + ('controller',), f'controller {brief(values["controller"])}: no '
-                                                   f'such file (relative to {ctx.folder})')
-        return DriverSpec(kind, controller=script, args=tuple(values['args']))
-    return DriverSpec(kind, processes=_processes(ctx, values['processes']),
-                      real_time_factor=values['real_time_factor'],
-                      clock_subscribers=values['clock_subscribers'],
-                      startup_timeout_s=values['startup_timeout_s'],
-                      sync=_sync(ctx, values['sync']), sync_period_s=values['sync_period_s'],
-                      sync_timeout_s=values['sync_timeout_s'])
-
-
-def _sync(ctx, value):
-    path = ('driver', 'sync')
-    if not isinstance(value, (list, tuple)):
-        raise ctx.fail(path, 'sync must be a list of {topic, type}')
-    topics = []
-    for index, entry in enumerate(value):
-        if not (isinstance(entry, dict) and set(entry) == {'topic', 'type'}
-                and all(isinstance(v, str) and v for v in entry.values())):
-            raise ctx.fail(path + (index,), f'sync entry {brief(entry)}: must be {{topic: /name, '
-                                            'type: pkg/msg/Type}')
-        topics.append((entry['topic'], entry['type']))
-    return tuple(topics)
-
-
-def _commands(ctx, value):
-    path = ('driver', 'commands')
-    if not isinstance(value, list) or not value:
-        raise ctx.fail(path, 'commands must be a non-empty list of {t: s, <setter>: value}')
-    commands, last_t = [], 0.0
-    for index, entry in enumerate(value):
-        where = path + (index,)
-        if not isinstance(entry, dict) or 't' not in entry:
-            raise ctx.fail(where, f'command {brief(entry)}: must be a mapping with t (s) and '
-                                  'setters')
-        t_s = entry['t']
-        if isinstance(t_s, bool) or not isinstance(t_s, (int, float)) or not 0 <= t_s < 1e12:
-            raise ctx.fail(where + ('t',), f't = {brief(t_s)}: must be a finite time >= 0 s')
-        if t_s < last_t:
-            raise ctx.fail(where + ('t',), f't = {brief(t_s)}: commands must be in time order '
-                                           f'(previous t = {brief(last_t)})')
-        last_t = t_s
-        setters = []
-        for key, item in entry.items():
-            if key == 't':
-                continue
-            row = COMMAND_ROWS.get(key)
-            if row is None:
-                raise ctx.fail(where + (key,), f'unknown setter {brief(key)}; valid: '
-                                               + ', '.join(sorted(COMMAND_ROWS)))
-            setters.append((row.core_setter, _command_value(ctx, where + (key,), row, item),
-                            row.setter))
-        if not setters:
-            raise ctx.fail(where, 'a command needs at least one setter besides t')
-        commands.append(Command(float(t_s), tuple(setters), line_of(ctx.lines, where)))
-    return tuple(commands)
-
-
-def _command_value(ctx, path, row, value):
-    # The type only: ranges depend on the car and are the core setter's (checked at run start).
-    number = isinstance(value, (int, float)) and not isinstance(value, bool)
-    if row.kind == 'bool' and isinstance(value, bool):
-        return value
-    if row.kind in ('int', 'enum') and number and float(value).is_integer():
-        return int(value)
-    if row.kind == 'float' and number and abs(value) < float('inf'):
-        return float(value)
-    want = {'bool': 'true or false', 'int': 'an integer', 'enum': 'an integer',
-            'float': 'a finite number'}[row.kind]
-    raise ctx.fail(path, f'{path[-1]} = {brief(value)}: must be {want} ({row.setter}, '
-                         f'{row.unit or "no unit"})')
-
-
-def _processes(ctx, value):
-    path = ('driver', 'processes')
-    if isinstance(value, str):
-        value = [value]
-    if not isinstance(value, list) or not value:
-        raise ctx.fail(path, 'processes must be a command line or a list of them')
-    commands = []
-    for index, entry in enumerate(value):
-        if isinstance(entry, str):
-            argv = shlex.split(entry)
-        elif isinstance(entry, list) and all(isinstance(a, str) for a in entry):
-            argv = list(entry)
-        else:
-            argv = []
-        if not argv:
-            raise ctx.fail(path + (index,), f'process {brief(entry)}: a command line (a string or '
-                                            'a list of strings)')
-        commands.append(tuple(argv))
-    return tuple(commands)
 
 
 def schema_markdown():
