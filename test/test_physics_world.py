@@ -183,15 +183,15 @@ def test_quiet_import_drops_a_banner_left_in_the_c_stdout_buffer(tmp_path):
 def test_quieting_pybullet_stdout_waits_only_for_an_awaited_notice(monkeypatch):
     # A DIRECT world silences one printf notice: drain what is there, never wait for more (a
     # settle wait on every World cost 0.2 s each); only the GUI waits for its window's notices.
-    from vehicle_sim.physics import world as world_module
+    from vehicle_sim.physics import pybullet_stdout
     timeouts = []
-    real_select = world_module.select.select
+    real_select = pybullet_stdout.select.select
 
     def spy(read, write, error, timeout):
         timeouts.append(timeout)
         return real_select(read, write, error, timeout)
 
-    monkeypatch.setattr(world_module.select, 'select', spy)
-    with world_module._quiet_stdout():
+    monkeypatch.setattr(pybullet_stdout.select, 'select', spy)
+    with pybullet_stdout.quiet_stdout():
         pass
     assert timeouts and set(timeouts) == {0.0}

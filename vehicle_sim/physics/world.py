@@ -28,18 +28,14 @@ for collision reports (``body_name``) and gives ray sensors a mask that skips th
 (``ray_mask_excluding``).
 """
 
-from contextlib import contextmanager
-import ctypes
 import math
 import os
-import select
-import sys
 import tempfile
-import time
 
 import pybullet
 
 from vehicle_sim.core.specs.errors import InvalidPoseError
+from vehicle_sim.physics.pybullet_stdout import quiet_stdout
 from vehicle_sim.physics.vehicle_body import VehicleBody
 
 # Tyre-road friction coefficient of the ground (Bullet multiplies the two materials' values; car
@@ -96,67 +92,6 @@ def _vehicle_body(registered):
     # or the SimulatedCar holding one as ``body``; None for hooks and sensors.
     body = getattr(registered, 'body', registered)
     return body if isinstance(body, VehicleBody) and body.name else None
-
-
-_LIBC = ctypes.CDLL(None)     # fflush for _quiet_stdout
-
-
-@contextmanager
-def _quiet_stdout(settle_on=None, settle_s=0.2, max_wait_s=2.0):
-    """
-    Silence C-level stdout (PyBullet prints some notices with printf).
-
-    :param settle_on: bytes that another thread of PyBullet prints shortly after the block (the
-        GUI window's first frames print ``ven = <GL vendor>``): stdout stays silenced until they
-        have come and nothing more came for ``settle_s``, at most ``max_wait_s`` after the block.
-    """
-    try:
-        sys.stdout.flush()
-        saved = os.dup(1)
-    except (OSError, ValueError, AttributeError):
-        yield
-        return
-    read_end, write_end = os.pipe()
-    try:
-        os.dup2(write_end, 1)
-        try:
-            yield
-        finally:
-            # printf buffers in the C library when stdout is not a terminal: flush it while
-            # fd 1 still goes to the pipe, or the notices come out later.
-            _LIBC.fflush(None)
-            _drain(read_end, settle_on, settle_s, max_wait_s)
-            _LIBC.fflush(None)
-    finally:
-        os.dup2(saved, 1)
-        os.close(saved)
-        os.close(write_end)
-        _drain(read_end, None, 0.0, 0.0)
-        os.close(read_end)
-
-
-def _drain(read_end, settle_on, settle_s, max_wait_s):
-    # Read (and drop) what the pipe holds; with settle_on, wait for it as _quiet_stdout says.
-    if settle_on is None:
-        settle_s = 0.0          # nothing to wait for: take what is there and return
-    seen = settle_on is None
-    start = last = time.monotonic()
-    while True:
-        now = time.monotonic()
-        if seen and now - last >= settle_s or now - start >= max_wait_s:
-            timeout_s = 0.0
-        else:
-            timeout_s = min(0.05, max_wait_s - (now - start))
-        ready, _, _ = select.select([read_end], [], [], timeout_s)
-        if not ready:
-            if timeout_s == 0.0:
-                return
-            continue
-        data = os.read(read_end, 65536)
-        if not data:
-            return
-        last = time.monotonic()
-        seen = seen or settle_on in data
 
 
 def point_velocity(com_pos, linear, angular, point):
@@ -224,7 +159,7 @@ class World:
         # The direct (Dantzig) MLCP solver converges exactly where PGS leaves light wheels
         # sandwiched between a heavy chassis and the ground under-resolved (suspensions sagged
         # by up to 6 cm with 50 PGS iterations); it is also cheaper for a car-sized island.
-        with _quiet_stdout():   # the switch is announced with printf
+        with quiet_stdout():   # the switch is announced with printf
             pybullet.setPhysicsEngineParameter(
                 constraintSolverType=pybullet.CONSTRAINT_SOLVER_LCP_DANTZIG, physicsClientId=cid)
         pybullet.setGravity(0.0, 0.0, -self.gravity, physicsClientId=cid)
@@ -250,7 +185,7 @@ class World:
         )
         check_gui_available()   # PyBullet would end the process without an X server
         width, height = window_size(screen_size())
-        with _quiet_stdout(settle_on=b'ven = '):   # the window's start-up notices
+        with quiet_stdout(settle_on=b'ven = '):   # the window's start-up notices
             client_id = pybullet.connect(pybullet.GUI,
                                          options=f'--width={width} --height={height}')
         if client_id < 0:
@@ -605,7 +540,7 @@ class World:
             self._bodies.clear()
             self._rebuild_hooks()
             try:
-                with _quiet_stdout():   # a GUI client's shutdown notices ('destroy semaphore')
+                with quiet_stdout():   # a GUI client's shutdown notices ('destroy semaphore')
                     pybullet.disconnect(physicsClientId=self.client_id)
             except pybullet.error:
                 pass
