@@ -27,13 +27,8 @@ from typing import Optional, Tuple
 
 from vehicle_sim.core.sensors.sets import SENSORS_KIND
 from vehicle_sim.core.specs.errors import InvalidParameterError
-from vehicle_sim.core.specs.param_spec import (
-    CollisionBox,
-    fail,
-    ParamSpec,
-    table_defaults,
-    validate_table,
-)
+from vehicle_sim.core.specs.param_spec import fail, ParamSpec, table_defaults, validate_table
+from vehicle_sim.core.specs.value_kinds import CollisionBox
 
 CAR_TYPES = ('traction', 'propulsion', '4x4')
 ENGINE_TYPES = ('combustion', 'electric', 'parallel hybrid', 'power-split hybrid')

@@ -25,7 +25,8 @@ from typing import Dict, Sequence, Tuple
 from vehicle_sim.core.geometry.frames import OPTICAL_QUATERNION
 from vehicle_sim.core.sensors.params import sensor_from_dict, SensorSpec
 from vehicle_sim.core.specs.errors import InvalidParameterError
-from vehicle_sim.core.specs.param_spec import fail, register_kind, REQUIRED
+from vehicle_sim.core.specs.param_spec import fail, REQUIRED
+from vehicle_sim.core.specs.value_kinds import register_kind
 from vehicle_sim.core.specs.value_text import brief
 
 # Topics of the vehicle that sensors may not take (docs/ros_interface.md).
