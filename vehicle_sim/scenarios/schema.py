@@ -44,6 +44,7 @@ from vehicle_sim.core.sensor_sets import enable_sensors, selected_sensors
 from vehicle_sim.core.value_text import brief
 from vehicle_sim.core.world_params import RobotSpec, used_twice, WorldSpec
 from vehicle_sim.scenarios.criteria import criteria_from_list, CriterionSpec
+import vehicle_sim.scenarios.lane_criteria  # noqa: F401  (registers the lane criteria)
 from vehicle_sim.scenarios.yaml_lines import error_at, line_of, load_with_lines, ScenarioError
 from vehicle_sim.webots.api_table import CAR_API, DRIVER_API
 
