@@ -254,3 +254,14 @@ def test_crossing_at_a_joint_of_two_segments_counts_once_and_virtual_lines_never
     detector.reset()
     detector.update(110.0, -1.0, 0.2)
     assert detector.update(110.0, -8.0, 0.3) == ()   # the intersection's lines are virtual
+
+
+def test_lanes_doc_contains_the_generated_key_tables():
+    from pathlib import Path
+
+    from vehicle_sim.core.map.lanelet2_params import LANELET2_SPECS
+    from vehicle_sim.core.map.road_segments import roads_markdown
+    from vehicle_sim.core.param_spec import parameter_table_markdown
+    text = (Path(__file__).resolve().parent.parent / 'docs' / 'lanes.md').read_text('utf-8')
+    assert roads_markdown() in text
+    assert parameter_table_markdown(LANELET2_SPECS, 'key') in text
