@@ -29,7 +29,11 @@ import pytest
 from vehicle_msgs_py import message_definition, message_type, type_hash, typestore
 from vehicle_sim.core.map.lane_invasion import LaneInvasion
 from vehicle_sim.core.map.lane_state import LaneState, OFF_LANE
-from vehicle_sim.ros.lane_messages import lane_invasion_builder, lane_state_builder
+from vehicle_sim.ros.lane_messages import (
+    lane_invasion_builder,
+    lane_markers_builder,
+    lane_state_builder,
+)
 
 pytestmark = pytest.mark.skipif(sys.byteorder != 'little', reason='examples are little-endian')
 
@@ -102,3 +106,29 @@ def test_message_definition_carries_the_header_and_point():
 def _rosbags(message):
     from vehicle_msgs_py import to_rosbags
     return to_rosbags(message)
+
+
+def test_lane_markers_draw_the_surface_every_boundary_and_every_centreline():
+    from vehicle_sim.core.map.road_segments import lane_graph_from_roads, roads_from_list
+    from vehicle_sim.ros.lane_messages import LINE_LIST, LINE_STRIP, TRIANGLE_LIST
+    graph = lane_graph_from_roads(roads_from_list(
+        [{'lanes': 2, 'backward_lanes': 1, 'segments': [{'type': 'straight', 'length': 30.0}]}],
+        'roads'), 'roads')
+    array = lane_markers_builder(message_type, 'map')(_stamp(), graph)
+    by_ns = {}
+    for marker in array.markers:
+        by_ns.setdefault(marker.ns, []).append(marker)
+    (surface,) = by_ns['road_surface']
+    assert surface.type == TRIANGLE_LIST and len(surface.points) == 3 * 2 * 3   # 3 lanes
+    boundaries = {m.id: m for m in by_ns['lane_boundaries']}
+    assert sorted(boundaries) == [100028, 100029, 100030, 100031]
+    dashed = boundaries[100029]              # between the forward lanes, y = -3.5
+    # dashes at 0, 9, 18, 27 m: four (start, end) pairs
+    assert dashed.type == LINE_LIST
+    assert [(p.x, p.y) for p in dashed.points] == [
+        (0.0, -3.5), (3.0, -3.5), (9.0, -3.5), (12.0, -3.5), (18.0, -3.5), (21.0, -3.5),
+        (27.0, -3.5), (30.0, -3.5)]
+    assert boundaries[100030].type == LINE_STRIP and len(by_ns['centrelines']) == 3
+    assert all(m.header.frame_id == 'map' for m in array.markers)
+    data = array.serialize()       # (colours are float32: compare bytes, not values)
+    assert type(array).deserialize(data).serialize() == data
