@@ -22,11 +22,13 @@ Road lane ids: road r (1-based), segment j, forward lane i: r * 100000 + j * 100
 
 import math
 
+import numpy as np
 import pytest
 
 from vehicle_sim.config import load_world
 from vehicle_sim.core.map.lane_invasion import LaneInvasionDetector
 from vehicle_sim.core.map.lane_state import LaneTracker
+from vehicle_sim.core.map.road_intersections import CONNECTOR_ID
 from vehicle_sim.core.map.road_segments import lane_graph_from_roads
 
 
@@ -97,3 +99,35 @@ def test_city_block_cross_streets_run_through_five_intersections(x, y, yaw, road
     events = [e for step in range(-6, 7) for e in
               detector.update(x + dx * step, y + dy * step, step + 6.0)]
     assert events == []
+
+
+def test_city_block_intersections_have_a_right_and_a_left_turn_from_every_approach():
+    _, graph = _graph('city_block')
+    turns = [lane for lane in graph.lanes.values() if lane.id >= CONNECTOR_ID]
+    assert len(turns) == 5 * 4 * 2        # 5 crossings x 4 approaches x (right, left)
+    assert all(lane.left.line_type == lane.right.line_type == 'virtual' for lane in turns)
+    # right from east_west eastbound (road 3, segment 2, lane 0: ends at (-6, -1.75)) onto
+    # north_south southbound (road 2, segment 2, backward lane 0: starts at (-1.75, -6)): a
+    # quarter circle of radius 4.25 m about (-6, -6), as a Bezier within 0.03 % of it
+    (right,) = [graph.lanes[i] for i in graph.lanes[300201].successors if i >= CONNECTOR_ID
+                and graph.lanes[i].successors == (200251,)]
+    radii = np.hypot(right.centerline[:, 0] + 6.0, right.centerline[:, 1] + 6.0)
+    assert radii == pytest.approx(np.full(len(radii), 4.25), abs=0.002)
+    assert right.length_m == pytest.approx(math.pi / 2 * 4.25, abs=0.01)
+    assert right.speed_limit_mps == pytest.approx(8.3)
+
+
+def test_a_car_turning_right_is_on_the_turn_lane_then_on_the_street_it_turned_into():
+    _, graph = _graph('city_block')
+    (right,) = [i for i in graph.lanes[300201].successors if i >= CONNECTOR_ID
+                and graph.lanes[i].successors == (200251,)]
+    tracker = LaneTracker(graph)
+    seen = []
+    for lane_id, start in ((300201, 80.0), (right, 0.0), (200251, 0.0)):
+        lane = graph.lanes[lane_id]
+        for step in range(20):
+            s_m = start + (min(lane.length_m, start + 20.0) - start) * step / 20.0
+            state = tracker.update(*graph.pose_at(lane_id, s_m))
+            if not seen or seen[-1] != state.lane_id:
+                seen.append(state.lane_id)
+    assert seen == [300201, right, 200251]

@@ -82,12 +82,17 @@ class LaneTracker:
         lane = self._lane
         if lane is not None:
             k, t, offset = lane.walk(x_m, y_m, self._k)
-            if self._keep(lane, k, t, offset, x_m, y_m, yaw_rad):
-                return self.state
+            fit = self._fit(lane, k, t, offset, yaw_rad)
+            if fit is not None:
+                return self._commit(lane, k, fit[1])
+            best = None             # where lanes fork, the one the vehicle fits best
             for other, near_s in self._nearby(lane, k, t, offset):
                 k, t, offset = other.walk(x_m, y_m, other.segment_at(near_s))
-                if self._keep(other, k, t, offset, x_m, y_m, yaw_rad, turn_limit=_HALF_TURN):
-                    return self.state
+                fit = self._fit(other, k, t, offset, yaw_rad, turn_limit=_HALF_TURN)
+                if fit is not None and (best is None or fit[0] < best[0]):
+                    best = (fit[0], other, k, fit[1])
+            if best is not None:
+                return self._commit(best[1], best[2], best[3])
         found = self.graph.locate(x_m, y_m, yaw_rad)
         if found is None:
             self._lane = None
@@ -100,25 +105,30 @@ class LaneTracker:
                                found.heading_error_rad, found.width_m, found.speed_limit_mps)
         return self.state
 
-    def _keep(self, lane, k, t, offset, x_m, y_m, yaw_rad, turn_limit=None):
+    def _commit(self, lane, k, state):
+        self._lane, self._k, self.state = lane, k, state
+        return state
+
+    @staticmethod
+    def _fit(lane, k, t, offset, yaw_rad, turn_limit=None):
+        """Return (how badly it fits, LaneState) when the pose is on ``lane``, else None."""
         lengths = lane.seg_len
         if (k == 0 and t < -1e-6) or (k == len(lengths) - 1 and t > lengths[k] + 1e-6):
-            return False
+            return None
         tc = t if t <= lengths[k] else lengths[k]
         if tc < 0.0:
             tc = 0.0
         w0 = lane.widths[k]
         width = w0 + (lane.widths[k + 1] - w0) * (tc / lengths[k])
         if abs(offset) > 0.5 * width + 1e-6:
-            return False
+            return None
         heading = lane.vertex_headings[k] + lane.turns[k] * (tc / lengths[k])
         error = wrap_angle_rad(yaw_rad - heading)
         if turn_limit is not None and abs(error) > turn_limit:
-            return False
-        self._lane, self._k = lane, k
-        self.state = LaneState(True, lane.id, lane.s0[k] + tc, offset, error, width,
-                               lane.speed_limit_mps)
-        return True
+            return None
+        return (abs(offset) / width + abs(error),
+                LaneState(True, lane.id, lane.s0[k] + tc, offset, error, width,
+                          lane.speed_limit_mps))
 
     def _nearby(self, lane, k, t, offset):
         """Yield (lane, arc length to search from) for a vehicle leaving ``lane``."""

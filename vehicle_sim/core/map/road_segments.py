@@ -44,7 +44,8 @@ line outwards. Every lane of a segment continues in the same lane of the next se
 Ids: road ``r`` (1-based), segment ``j`` (0-based): forward lane ``i`` is
 ``r * 100000 + j * 100 + 1 + i``, backward lane ``i`` is ``... + 51 + i``, the boundary at
 ``m`` lane widths left of the reference line ``... + 30 + m``. A boundary's points run along the
-chain.
+chain. Where intersection segments of two roads share their centre, turn lanes connect them
+(core/map/road_intersections.py: ids from 1e9).
 """
 
 from dataclasses import dataclass
@@ -62,6 +63,7 @@ from vehicle_sim.core.map.lane_graph import (
     line_crossable,
     LINE_TYPES,
 )
+from vehicle_sim.core.map.road_intersections import Approach, connector_lanes
 from vehicle_sim.core.param_spec import (
     parameter_table_markdown,
     ParamSpec,
@@ -309,4 +311,27 @@ def lane_graph_from_roads(roads, source='roads') -> LaneGraph:
     lanes = []
     for index, road in enumerate(roads):
         lanes.extend(_road_lanes(road, index + 1, source))
-    return LaneGraph(lanes, source)
+    by_id = {lane.id: lane for lane in lanes}
+    approaches = [approach for index, road in enumerate(roads)
+                  for approach in _approaches(road, index + 1, by_id)]
+    return LaneGraph(lanes + connector_lanes(approaches, by_id), source)
+
+
+def _approaches(road, r, lanes):
+    """Yield the Approaches (both directions) of a road's intersection segments."""
+    count = len(road.segments)
+    for j, segment in enumerate(road.segments):
+        if segment.type != 'intersection':
+            continue
+        reference = lanes[_lane_id(r, j, False, 0)].left.points     # the reference line
+        (x0, y0), (x1, y1) = reference[0], reference[-1]
+        centre, heading = (0.5 * (x0 + x1), 0.5 * (y0 + y1)), math.atan2(y1 - y0, x1 - x0)
+        prv = (j - 1) % count if (road.closed or j > 0) else None
+        nxt = (j + 1) % count if (road.closed or j + 1 < count) else None
+
+        def ids(k, backward, n):
+            return () if k is None else tuple(_lane_id(r, k, backward, i) for i in range(n))
+        yield Approach(r, centre, heading, ids(prv, False, road.lanes),
+                       ids(nxt, False, road.lanes))
+        yield Approach(r, centre, heading + math.pi, ids(nxt, True, road.backward_lanes),
+                       ids(prv, True, road.backward_lanes))
