@@ -265,3 +265,31 @@ def test_lanes_doc_contains_the_generated_key_tables():
     text = (Path(__file__).resolve().parent.parent / 'docs' / 'lanes.md').read_text('utf-8')
     assert roads_markdown() in text
     assert parameter_table_markdown(LANELET2_SPECS, 'key') in text
+
+
+def test_a_vehicle_placed_by_lane_gets_the_pose_on_it():
+    from vehicle_sim.core.map.lane_placement import is_lane_pose, pose_on_lane
+    graph = straight_then_left()
+    assert is_lane_pose({'lanelet': 100001}) and not is_lane_pose({'x': 1.0})
+    x, y, yaw = pose_on_lane({'lanelet': 100001, 's': 10.0, 'offset': 0.5}, graph, 'w: pose')
+    assert (x, y, yaw) == (pytest.approx(10.0), pytest.approx(-1.25), pytest.approx(0.0))
+
+
+@pytest.mark.parametrize('data, match', [
+    ({'lanelet': 5}, 'w.yaml: vehicles.0..pose: lane 5 is not in the map'),
+    ({'lanelet': 100001, 's': 100.5}, r'lane 100001: s = 100.5 m is not on it \(0 .. 100.000'),
+    ({'lanelet': 100001, 'offset': -2.0}, 'offset = -2.0 m is off the lane'),
+    ({'lanelet': 100001, 's': -1.0}, "field 's' = -1.0: must be >= 0"),
+    ({'lanelet': 100001, 'yaw': 1.0}, "unknown field 'yaw'"),
+])
+def test_placing_off_every_lane_is_refused_naming_the_field(data, match):
+    from vehicle_sim.core.map.lane_placement import pose_on_lane
+    with pytest.raises(InvalidParameterError, match=match):
+        pose_on_lane(data, straight_then_left(), 'w.yaml: vehicles[0].pose')
+
+
+def test_placing_by_lane_in_a_world_without_lanes_is_refused():
+    from vehicle_sim.core.map.lane_placement import pose_on_lane
+    with pytest.raises(InvalidParameterError, match='placed on lanelet 7, but the world has no '
+                                                    'lane map'):
+        pose_on_lane({'lanelet': 7}, None, 'w.yaml: vehicles[0].pose')
