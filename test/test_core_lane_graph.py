@@ -293,3 +293,37 @@ def test_placing_by_lane_in_a_world_without_lanes_is_refused():
     with pytest.raises(InvalidParameterError, match='placed on lanelet 7, but the world has no '
                                                     'lane map'):
         pose_on_lane({'lanelet': 7}, None, 'w.yaml: vehicles[0].pose')
+
+
+def test_invasions_found_through_the_grid_equal_a_test_of_every_boundary_segment():
+    import random
+    graph = straight_then_left(lanes=3)
+    segments = [(b.id, b.line_type, a, c) for b in graph.boundaries()
+                for a, c in zip(b.points[:-1].tolist(), b.points[1:].tolist())]
+
+    def brute(p, q):
+        crossed = set()
+        rx, ry = q[0] - p[0], q[1] - p[1]
+        for boundary_id, line_type, a, c in segments:
+            sx, sy = c[0] - a[0], c[1] - a[1]
+            denom = rx * sy - ry * sx
+            if denom == 0.0 or line_type in ('virtual', 'none'):
+                continue
+            qx, qy = a[0] - p[0], a[1] - p[1]
+            t, u = (qx * sy - qy * sx) / denom, (qx * ry - qy * rx) / denom
+            if 0.0 < t <= 1.0 and 0.0 <= u < 1.0:
+                crossed.add(boundary_id)
+        return crossed
+
+    rng = random.Random(7)
+    detector = LaneInvasionDetector(graph, cell_m=5.0)
+    point, total = (50.0, -3.0), 0
+    detector.update(*point, 0.0)
+    for step in range(3000):      # a random walk over the road and its bend, steps up to 4 m
+        nxt = (min(max(point[0] + rng.uniform(-4.0, 4.0), -5.0), 160.0),
+               min(max(point[1] + rng.uniform(-4.0, 4.0), -15.0), 80.0))
+        found = {e.boundary_id for e in detector.update(*nxt, step * 0.1)}
+        assert found == brute(point, nxt)
+        total += len(found)
+        point = nxt
+    assert total > 100

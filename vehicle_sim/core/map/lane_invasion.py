@@ -81,11 +81,14 @@ class LaneInvasionDetector:
         length = math.hypot(bx - ax, by - ay)
         pieces = max(1, math.ceil(length / (0.5 * self.cell_m)))
         cells = set()
-        for n in range(pieces + 1):       # the cells along the segment (and their neighbours)
-            f = n / pieces
-            cx = math.floor((ax + f * (bx - ax)) / self.cell_m)
-            cy = math.floor((ay + f * (by - ay)) / self.cell_m)
-            cells.update((cx + i, cy + j) for i in (-1, 0, 1) for j in (-1, 0, 1))
+        size = self.cell_m
+        for n in range(pieces):           # the cells each piece's bounding box overlaps
+            x0, y0 = ax + n / pieces * (bx - ax), ay + n / pieces * (by - ay)
+            x1, y1 = ax + (n + 1) / pieces * (bx - ax), ay + (n + 1) / pieces * (by - ay)
+            for cx in range(math.floor(min(x0, x1) / size), math.floor(max(x0, x1) / size) + 1):
+                for cy in range(math.floor(min(y0, y1) / size),
+                                math.floor(max(y0, y1) / size) + 1):
+                    cells.add((cx, cy))
         for cell in cells:
             self._grid.setdefault(cell, []).append(index)
 
