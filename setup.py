@@ -46,9 +46,11 @@ setup(
     ],
     install_requires=['setuptools', 'numpy', 'pybullet', 'PyYAML', 'cyclonedds==11.0.1',
                       'rosbags>=0.10'],
-    # matplotlib draws the plots of `vehicle-sim demo` and `vehicle-sim scenario --plot`.
-    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib'],
-                    'plot': ['matplotlib']},
+    # matplotlib draws the plots of `vehicle-sim demo` and `vehicle-sim scenario --plot`;
+    # lanelet2 reads Lanelet2 .osm lane maps (vehicle_sim/maps/lanelet2_map.py).
+    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib', 'lanelet2'],
+                    'plot': ['matplotlib'],
+                    'lanelet2': ['lanelet2']},
     zip_safe=True,
     maintainer='vehicle_sim maintainers',
     maintainer_email='maintainers@vehicle-sim.example.org',

@@ -34,7 +34,7 @@ CATKIN_EMAIL = re.compile(
 
 EXPECTED_FILES = {
     'msg/Float64Stamped.msg', 'msg/WheelCommand.msg', 'msg/DifferentialCommand.msg',
-    'msg/Collision.msg',
+    'msg/Collision.msg', 'msg/LaneState.msg', 'msg/LaneInvasion.msg',
     'srv/SetFloat.srv', 'srv/GetFloat.srv', 'srv/SetInt.srv', 'srv/GetInt.srv',
     'srv/SetBool.srv', 'srv/GetBool.srv', 'srv/GetDimensions.srv', 'srv/SetPose.srv',
 }
@@ -66,6 +66,7 @@ def test_exported_files_parse_and_name_every_type(package_dir):
     assert names == {
         'vehicle_msgs/msg/Float64Stamped', 'vehicle_msgs/msg/WheelCommand',
         'vehicle_msgs/msg/DifferentialCommand', 'vehicle_msgs/msg/Collision',
+        'vehicle_msgs/msg/LaneState', 'vehicle_msgs/msg/LaneInvasion',
         *(f'vehicle_msgs/msg/{srv}_{part}'
           for srv in ('SetFloat', 'GetFloat', 'SetInt', 'GetInt', 'SetBool', 'GetBool',
                       'GetDimensions', 'SetPose')

@@ -51,6 +51,7 @@ from vehicle_sim.scenarios.driver_schema import (
     DriverSpec,
     MAX_DURATION_S,
 )
+import vehicle_sim.scenarios.lane_criteria  # noqa: F401  (registers the lane criteria)
 from vehicle_sim.scenarios.yaml_lines import error_at, line_of, load_with_lines, ScenarioError
 
 SCENARIO_SPECS = (

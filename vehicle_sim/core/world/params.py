@@ -23,6 +23,8 @@ The form (every key optional except ``vehicles``)::
          sensors: [...]}
     obstacles:
       - {name: wall, shape: box, size: [1.0, 6.0, 2.0], position: [20.0, 0.0, 1.0], yaw: 0.0}
+    roads:        # lanes from road segments: core/map/road_segments.py
+      - {lanes: 2, segments: [{type: straight, length: 200.0}]}
 
 Each mapping is checked against a ParamSpec table (core/specs/param_spec.py), so an unknown key, a
 wrong type, a NaN or an impossible value is refused with the file, the entry and the field. Reading
@@ -34,6 +36,7 @@ from typing import Callable, Optional, Sequence, Tuple
 
 from vehicle_sim.core.geometry.frames import Pose
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
+from vehicle_sim.core.map.road_segments import roads_from_list, RoadSpec
 from vehicle_sim.core.sensors.params import SensorSpec
 from vehicle_sim.core.sensors.sets import merge_sensors
 from vehicle_sim.core.specs.errors import InvalidParameterError, InvalidPoseError
@@ -46,7 +49,7 @@ from vehicle_sim.core.specs.param_spec import (
 from vehicle_sim.core.specs.value_text import brief
 from vehicle_sim.core.world.placement import check_in_world
 
-WORLD_KEYS = ('origin', 'vehicles', 'obstacles')
+WORLD_KEYS = ('origin', 'vehicles', 'obstacles', 'roads')
 
 ORIGIN_SPECS = (
     ParamSpec('latitude', 'latitude_deg', 'float', 0.0, 'deg', 'WGS-84 latitude of the world '
@@ -239,12 +242,13 @@ class VehicleSpec:
 
 @dataclass(frozen=True)
 class WorldSpec:
-    """A validated world: geodetic origin, vehicles and obstacles; ``source`` = its file."""
+    """A validated world: origin, vehicles, obstacles, roads (core/map); ``source`` = its file."""
 
     origin: GeodeticOrigin
     vehicles: Tuple[VehicleSpec, ...]
     obstacles: Tuple[ObstacleSpec, ...]
     source: str = ''
+    roads: Tuple[RoadSpec, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -305,7 +309,9 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
     if taken:
         raise InvalidParameterError(f'{source}: obstacle and vehicle share a name: '
                                     f'{brief(sorted(taken))}')
-    return WorldSpec(origin, vehicles, obstacles, source)
+    roads = data.get('roads')
+    roads = () if roads is None else roads_from_list(roads, f'{source}: roads')
+    return WorldSpec(origin, vehicles, obstacles, source, roads)
 
 
 def _vehicle(entry, where, index, default_model, preset_sensors):

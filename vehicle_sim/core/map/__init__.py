@@ -1,0 +1,22 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+Lane maps, ROS-free: the lane graph, road segments, per-vehicle lane state and lane invasion.
+
+Every lane map kind (a Lanelet2 ``.osm`` file, the ``roads:`` segments of a world file) becomes
+one :class:`~vehicle_sim.core.map.lane_graph.LaneGraph`; what builds on lanes (lane state,
+lane invasion, the lane criteria of scenarios) reads only that.
+"""

@@ -1,0 +1,60 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+Placing a vehicle by lane: ``pose: {lanelet: <id>, s: <m along its centreline>, offset: <m>}``.
+
+Besides x/y/yaw, a vehicle of a world with a lane map may be placed on a lane: at arc length
+``s`` along the lane's centreline, ``offset`` to its left (+) or right (-), heading along the
+lane. A lane that is not in the map, an ``s`` beyond the lane or an offset off it is refused,
+naming the source and the field.
+"""
+
+from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.specs.param_spec import ParamSpec, REQUIRED, validate_table
+
+LANE_POSE_SPECS = (
+    ParamSpec('lanelet', 'lanelet', 'int', REQUIRED, doc="the lane's id (a lanelet id, or a "
+              "road segment lane's id)"),
+    ParamSpec('s', 's_m', 'float', 0.0, 'm', 'arc length along its centreline', ge=0.0),
+    ParamSpec('offset', 'offset_m', 'float', 0.0, 'm', 'lateral offset from the centreline, '
+              '+ = left'),
+)
+
+
+def is_lane_pose(data):
+    """Return whether a ``pose:`` mapping places by lane (it names a ``lanelet``)."""
+    return isinstance(data, dict) and 'lanelet' in data
+
+
+def pose_on_lane(data, graph, source):
+    """
+    Return the world pose (x, y, yaw) of a ``pose: {lanelet, s, offset}`` mapping.
+
+    :param data: the mapping.
+    :param graph: the world's LaneGraph (None: the world has no lane map, refused).
+    :param source: where the pose is written ('w.yaml: vehicles[0].pose').
+    :raises InvalidParameterError: naming the source and the field.
+    """
+    values = validate_table(LANE_POSE_SPECS, data, source, what='a pose on a lane')
+    if graph is None:
+        raise InvalidParameterError(f'{source}: placed on lanelet {values["lanelet"]}, but the '
+                                    f'world has no lane map (map: of type lanelet2, or roads:)')
+    try:
+        return graph.pose_at(values['lanelet'], values['s_m'], values['offset_m'])
+    except InvalidParameterError as error:
+        reason, prefix = str(error), graph.source + ': '
+        reason = reason[len(prefix):] if reason.startswith(prefix) else reason
+        raise InvalidParameterError(f'{source}: {reason}') from None

@@ -1,0 +1,125 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+Message builders of the lane topics: ``<ns>/lane_state``, ``<ns>/lane_invasion``, ``/map/lanes``.
+
+Same form as ros/messages.py's builders: ``<type>_builder(msg, frame_id)`` resolves the classes
+once; the ``build`` it returns makes one message from a stamp and a core value
+(core/map/lane_state.LaneState, core/map/lane_invasion.LaneInvasion, a LaneGraph).
+"""
+
+import numpy as np
+
+from vehicle_sim.core.map.lane_geometry import DASH_M, GAP_M, surface_mesh
+
+HEADER = 'std_msgs/msg/Header'
+POINT = 'geometry_msgs/msg/Point'
+LANE_STATE = 'vehicle_msgs/msg/LaneState'
+LANE_INVASION = 'vehicle_msgs/msg/LaneInvasion'
+MARKER = 'visualization_msgs/msg/Marker'
+MARKER_ARRAY = 'visualization_msgs/msg/MarkerArray'
+COLOR = 'std_msgs/msg/ColorRGBA'
+
+LINE_STRIP, LINE_LIST, TRIANGLE_LIST = 4, 5, 11      # visualization_msgs/Marker types
+# marker colours (RGBA) of the line types; virtual and none lines are drawn faint
+LINE_COLORS = {
+    'solid': (1.0, 1.0, 1.0, 1.0), 'solid_solid': (1.0, 1.0, 1.0, 1.0),
+    'dashed': (1.0, 1.0, 1.0, 1.0), 'dashed_dashed': (1.0, 1.0, 1.0, 1.0),
+    'dashed_solid': (1.0, 1.0, 1.0, 1.0), 'solid_dashed': (1.0, 1.0, 1.0, 1.0),
+    'curbstone': (0.6, 0.6, 0.6, 1.0), 'road_border': (0.6, 0.6, 0.6, 1.0),
+    'wall': (0.8, 0.3, 0.2, 1.0), 'virtual': (0.5, 0.5, 0.5, 0.3), 'none': (0.5, 0.5, 0.5, 0.3),
+}
+CENTRELINE_COLOR = (0.2, 0.6, 1.0, 0.8)
+SURFACE_COLOR = (0.25, 0.25, 0.25, 1.0)
+
+
+def lane_state_builder(msg, frame_id: str):
+    """Return ``build(stamp, state)``: vehicle_msgs/LaneState of a core LaneState."""
+    header_type, state_type = msg(HEADER), msg(LANE_STATE)
+
+    def build(stamp, state):
+        return state_type(header=header_type(stamp=stamp, frame_id=frame_id),
+                          on_lane=bool(state.on_lane), lane_id=int(state.lane_id),
+                          s=float(state.s_m), offset=float(state.offset_m),
+                          heading_error=float(state.heading_error_rad),
+                          width=float(state.width_m), speed_limit=float(state.speed_limit_mps))
+    return build
+
+
+def lane_invasion_builder(msg, frame_id: str):
+    """Return ``build(stamp, event)``: vehicle_msgs/LaneInvasion of a core LaneInvasion."""
+    header_type, invasion_type, point_type = msg(HEADER), msg(LANE_INVASION), msg(POINT)
+
+    def build(stamp, event):
+        return invasion_type(header=header_type(stamp=stamp, frame_id=frame_id),
+                             boundary_id=int(event.boundary_id), line_type=event.line_type,
+                             position=point_type(x=float(event.x_m), y=float(event.y_m), z=0.0))
+    return build
+
+
+def lane_markers_builder(msg, frame_id: str):
+    """
+    Return ``build(stamp, graph)``: visualization_msgs/MarkerArray of a LaneGraph (/map/lanes).
+
+    Namespaces: ``road_surface`` (one triangle list), ``lane_boundaries`` (one marker per
+    boundary, its id the boundary's modulo 2^31: a line strip, dashes as a line list, coloured by
+    line type), ``centrelines`` (one line strip per lane, in lane order).
+    """
+    marker_type, array_type = msg(MARKER), msg(MARKER_ARRAY)
+    header_type, point_type, color_type = msg(HEADER), msg(POINT), msg(COLOR)
+
+    def points(xy, z=0.01):
+        return [point_type(x=float(x), y=float(y), z=z) for x, y in xy]
+
+    def marker(stamp, ns, marker_id, kind, pts, rgba, width):
+        r, g, b, a = rgba
+        item = marker_type(header=header_type(stamp=stamp, frame_id=frame_id), ns=ns,
+                           id=marker_id, type=kind, action=0, points=pts,
+                           color=color_type(r=r, g=g, b=b, a=a))
+        item.pose.orientation.w = 1.0
+        item.scale.x = width
+        if kind == TRIANGLE_LIST:
+            item.scale.x = item.scale.y = item.scale.z = 1.0
+        return item
+
+    def build(stamp, graph):
+        mesh = surface_mesh(graph)
+        surface = [point_type(x=float(v[0]), y=float(v[1]), z=0.0)
+                   for v in mesh.vertices[mesh.triangles.reshape(-1)]]
+        markers = [marker(stamp, 'road_surface', 0, TRIANGLE_LIST, surface, SURFACE_COLOR, 1.0)]
+        for boundary in graph.boundaries():
+            rgba = LINE_COLORS[boundary.line_type]
+            if 'dashed' in boundary.line_type:
+                pts = points(_dash_ends(boundary.points))
+                kind = LINE_LIST
+            else:
+                pts, kind = points(boundary.points), LINE_STRIP
+            markers.append(marker(stamp, 'lane_boundaries', boundary.id % 2 ** 31, kind, pts,
+                                  rgba, 0.15))
+        for index, lane in enumerate(graph.lanes.values()):
+            markers.append(marker(stamp, 'centrelines', index, LINE_STRIP,
+                                  points(lane.centerline, 0.02), CENTRELINE_COLOR, 0.05))
+        return array_type(markers=markers)
+    return build
+
+
+def _dash_ends(points):
+    """Return the start and end point of each dash along a polyline (DASH_M on, GAP_M off)."""
+    s = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(points, axis=0).T))))
+    starts = np.arange(0.0, s[-1], DASH_M + GAP_M)
+    ends = np.minimum(starts + DASH_M, s[-1])
+    at = np.column_stack((starts, ends)).reshape(-1)
+    return np.column_stack((np.interp(at, s, points[:, 0]), np.interp(at, s, points[:, 1])))
