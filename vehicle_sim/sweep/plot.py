@@ -23,16 +23,23 @@ optional (the ``plot`` extra): without it no plot is written and the sweep says 
 """
 
 import os
+import warnings
 
 from vehicle_sim.scenarios.plot import PlotUnavailable, require
 
 PLOT = 'summary.png'
+LABEL_CHARS = 24
 
 __all__ = ['plot_summary', 'PlotUnavailable', 'PLOT']
 
 
 def _label(value):
-    return str(value) if not isinstance(value, float) else f'{value:g}'
+    if isinstance(value, float):
+        return f'{value:g}'
+    text = str(value)
+    if isinstance(value, str) and '/' in text:
+        text = text.rsplit('/', 1)[-1]          # a file: its name
+    return text if len(text) <= LABEL_CHARS else text[:LABEL_CHARS - 1] + '…'
 
 
 def _axis_values(records, key):
@@ -101,7 +108,9 @@ def plot_summary(out_dir, records, keys, name):
     axes.set_title(title, fontsize=10)
     figure.colorbar(pyplot.cm.ScalarMappable(cmap=colours), ax=axes,
                     label='share of cases passed')
-    figure.tight_layout()
+    with warnings.catch_warnings():     # long labels: the layout does what it can
+        warnings.simplefilter('ignore')
+        figure.tight_layout()
     path = os.path.join(out_dir, PLOT)
     figure.savefig(path, dpi=100)
     pyplot.close(figure)
