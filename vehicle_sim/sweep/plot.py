@@ -15,7 +15,8 @@
 """
 The summary plot of a sweep (summary.png): the share of passing cases over the grid.
 
-Two or more swept keys: a grid of cells, the first key across and the second up, each cell
+The keys given more than one value span the plot (a key with one value is named in the title).
+Two or more such keys: a grid of cells, the first key across and the second up, each cell
 coloured by the share of its cases that passed (red 0 .. green 1) and labelled ``passed/cases``
 (the seeds and any further keys pooled in a cell); errors are counted as not passing and shown
 as ``E``. One key: a row of cells over its values. No key: a row over the seeds. matplotlib is
@@ -55,7 +56,7 @@ def grid_counts(records, keys):
     """
     Return the cells of the plot: (x values, y values, {(i, j): (passed, errors, cases)}).
 
-    x is the first key (the seed when there is none), y the second (a single row when there is
+    x is the first key (the seeds when there is none), y the second (a single row when there is
     none).
     """
     x_key = keys[0] if keys else None
@@ -80,10 +81,12 @@ def plot_summary(out_dir, records, keys, name):
     require()
     from matplotlib import pyplot
     from matplotlib.colors import LinearSegmentedColormap
+    fixed = [k for k in keys if len(_axis_values(records, k)) == 1]
+    keys = [k for k in keys if k not in fixed]
     xs, ys, cells = grid_counts(records, keys)
     colours = LinearSegmentedColormap.from_list('pass_share', ['#d73027', '#fee08b', '#1a9850'])
-    width = min(16.0, 2.5 + 0.7 * len(xs))
-    height = min(12.0, 2.0 + 0.6 * len(ys))
+    width = min(16.0, max(6.5, 2.5 + 0.7 * len(xs)))
+    height = min(12.0, max(3.5, 2.0 + 0.6 * len(ys)))
     figure, axes = pyplot.subplots(figsize=(width, height))
     for (i, j), (passed, errors, total) in cells.items():
         share = passed / total
@@ -104,7 +107,10 @@ def plot_summary(out_dir, records, keys, name):
     pooled = (['seeds'] if keys and len(seeds) > 1 else []) + list(keys[2:])
     title = f'{name}: {passed}/{len(records)} cases passed'
     if pooled:
-        title += f' (cells pool {", ".join(pooled)})'
+        title += f'\ncells pool {", ".join(pooled)}'
+    if fixed:
+        overrides = dict((k, v) for k, v in records[0]['overrides'])
+        title += '\n' + ', '.join(f'{k}={_label(overrides[k])}' for k in fixed)
     axes.set_title(title, fontsize=10)
     figure.colorbar(pyplot.cm.ScalarMappable(cmap=colours), ax=axes,
                     label='share of cases passed')
