@@ -31,7 +31,9 @@ from vehicle_sim.sweep import run_sweep, SweepError
 from vehicle_sim.sweep.grid import build_cases, parse_seeds, parse_set
 from vehicle_sim.sweep.plot import grid_counts
 from vehicle_sim.sweep.progress import Progress
+from vehicle_sim.sweep.results import table_columns
 from vehicle_sim.sweep.run import plan, SweepResult
+from vehicle_sim.sweep.worker import DomainClaim
 
 REPO = Path(__file__).resolve().parent.parent
 SCENARIO = str(REPO / 'scenarios' / 'stop_before_obstacle.yaml')
@@ -110,8 +112,9 @@ def test_sweep_command_exits_2_on_a_bad_set_and_writes_nothing(tmp_path):
 
 
 def test_api_takes_a_mapping_of_values_and_a_list_of_seeds():
-    _, _, axes, cases, specs = plan(SCENARIO, {'duration': [2, 3], 'criteria.2.limit': 6.5},
-                                    seeds=[4, 9])
+    planned = plan(SCENARIO, {'duration': [2, 3], 'criteria.2.limit': 6.5}, seeds=[4, 9])
+    cases, specs = planned.cases, planned.specs
+    assert planned.name == 'stop_before_obstacle' and planned.seeds == [4, 9]
     assert [c.label for c in cases] == ['duration=2 criteria.2.limit=6.5 seed=4',
                                         'duration=2 criteria.2.limit=6.5 seed=9',
                                         'duration=3 criteria.2.limit=6.5 seed=4',
@@ -142,13 +145,12 @@ class _Terminal(io.StringIO):
 
 
 def test_progress_is_a_bar_on_a_terminal_and_lines_elsewhere():
-    result = SweepResult('out', [], 4, ['a'])
     for stream in (_Terminal(), io.StringIO()):
+        result = SweepResult('out', [], 4, ['a'])
         progress = Progress(stream, total=4)
-        result.records = []
         for status in ('pass', 'fail'):
             record = {'status': status, 'label': f'a={status}'}
-            result.records.append(record)
+            result.add(record)
             progress(record, result)
         progress.done()
         text = stream.getvalue()
@@ -169,3 +171,43 @@ def test_results_folder_of_another_file_is_refused(tmp_path):
     with pytest.raises(SweepError, match='holds the results of another sweep'):
         run_sweep(other, ['duration=0.5'], out_dir=str(out), resume=True)
     assert os.listdir(out / 'cases') and len(os.listdir(out / 'cases')) == 1
+
+
+def test_table_columns_are_typed_for_parquet():
+    records = [
+        {'case_id': 'a', 'overrides': [['k', 1], ['m', 'x']], 'seed': 0, 'status': 'pass',
+         'criteria': [{'name': 'c', 'value': 2, 'passed': True}], 'error': None,
+         'odometry_sha256': 'h'},
+        {'case_id': 'b', 'overrides': [['k', 2.5], ['m', 3]], 'seed': 1, 'status': 'error',
+         'criteria': [], 'error': 'boom\nmore', 'odometry_sha256': ''}]
+    columns = table_columns(records, ['k', 'm'])
+    assert list(columns) == ['case', 'k', 'm', 'seed', 'status', 'c', 'c.passed', 'error',
+                             'odometry_sha256']
+    assert columns['m'] == ['x', '3']            # mixed types: text
+    assert columns['c'] == [2.0, None] and columns['c.passed'] == [True, None]
+    assert columns['error'] == ['', 'boom']
+
+
+def test_sweep_writes_parquet_when_pyarrow_imports(tmp_path):
+    pyarrow_parquet = pytest.importorskip(
+        'pyarrow.parquet', reason='pyarrow is not installed: results.parquet is not written')
+    result = run_sweep(SCENARIO, ['duration=0.5', 'criteria.2.limit=1,7'], out_dir=str(tmp_path),
+                       workers=1)
+    table = pyarrow_parquet.read_table(result.files['parquet']).to_pydict()
+    assert table['criteria.2.limit'] == [1, 7] and table['status'] == ['fail', 'fail']
+    assert table['max_speed.passed'] == [False, True]       # 0.5 s: reach_goal fails in both
+    assert all(isinstance(v, float) and 0.0 < v < 7.0 for v in table['max_speed'])
+
+
+def test_served_cases_hold_distinct_ros_domains(monkeypatch):
+    monkeypatch.setenv('VEHICLE_SIM_SWEEP_DOMAIN_BASE', '200')
+    monkeypatch.setenv('ROS_DOMAIN_ID', '7')
+    with DomainClaim(True):
+        first = os.environ['ROS_DOMAIN_ID']
+        with DomainClaim(True):          # another case on this machine meanwhile
+            second = os.environ['ROS_DOMAIN_ID']
+        assert os.environ['ROS_DOMAIN_ID'] == first
+    assert int(first) >= 200 and int(second) > int(first)
+    assert os.environ['ROS_DOMAIN_ID'] == '7'
+    with DomainClaim(False):                 # not served: the domain is left alone
+        assert os.environ['ROS_DOMAIN_ID'] == '7'

@@ -48,7 +48,7 @@ class Progress:
         self.start = time.monotonic()
 
     def __call__(self, record, result):
-        done = len(result.records)
+        done = result.done
         ran = done - self.skipped
         elapsed = time.monotonic() - self.start
         left = self.total - done

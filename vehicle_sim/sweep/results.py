@@ -175,11 +175,36 @@ def write_table(out_dir, records, keys):
         import pyarrow.parquet
     except ImportError:
         return written
-    columns = {name: [row[i] for row in rows[1:]] for i, name in enumerate(rows[0])}
     parquet = os.path.join(out_dir, PARQUET)
-    pyarrow.parquet.write_table(pyarrow.table(columns), parquet)
+    pyarrow.parquet.write_table(pyarrow.table(table_columns(records, keys)), parquet)
     written.append(parquet)
     return written
+
+
+def table_columns(records, keys):
+    """
+    Return the table's columns, typed, as {name: values} (for Parquet).
+
+    The CSV's columns: a swept key's values keep their type when all have the same one (text
+    otherwise), measured values are floats (None where none), verdicts booleans.
+    """
+    columns = {'case': [r['case_id'] for r in records]}
+    for key in keys:
+        values = [dict((k, v) for k, v in r['overrides'])[key] for r in records]
+        kinds = {type(v) for v in values if v is not None}
+        if len(kinds) > 1:
+            values = [None if v is None else _cell(v) for v in values]
+        columns[key] = values
+    columns['seed'] = [r['seed'] for r in records]
+    columns['status'] = [r['status'] for r in records]
+    for name in criterion_names(records):
+        found = [next((c for c in r['criteria'] if c['name'] == name), None) for r in records]
+        columns[name] = [None if c is None or c['value'] is None else float(c['value'])
+                         for c in found]
+        columns[f'{name}.passed'] = [None if c is None else c['passed'] for c in found]
+    columns['error'] = [(r['error'] or '').strip().split('\n')[0] for r in records]
+    columns['odometry_sha256'] = [r['odometry_sha256'] for r in records]
+    return columns
 
 
 def write_junit(out_dir, records, scenario_name, source):

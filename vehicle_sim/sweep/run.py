@@ -22,12 +22,13 @@ A scenario runs for every combination of values and seeds, in parallel, with mer
 from dataclasses import dataclass, field
 import hashlib
 import os
-from typing import Dict, List
+from typing import Dict, List, Optional
 
 from vehicle_sim.sweep import results
 from vehicle_sim.sweep.grid import (
     Axis,
     build_cases,
+    Case,
     check_variants,
     key_path,
     parse_seeds,
@@ -47,7 +48,7 @@ class SweepResult:
     The outcome of a sweep.
 
     :param records: every finished case's record (dict), in grid order; this run's and, with
-        resume, the earlier ones'.
+        resume, the earlier ones' (filled at the end; ``done`` and ``count`` while it runs).
     :param total: the number of cases in the grid.
     :param interrupted: Ctrl-C stopped it (the finished cases are in ``records`` and on disk).
     :param files: {'table': path, 'parquet': path, 'junit': path, 'plot': path} written.
@@ -62,14 +63,22 @@ class SweepResult:
     files: Dict[str, str] = field(default_factory=dict)
     skipped: int = 0
     notes: List[str] = field(default_factory=list)
+    done: int = 0
+    counts: Dict[str, int] = field(default_factory=dict)
+
+    def add(self, record):
+        """Count a finished case (its record goes in ``records`` at the end)."""
+        self.done += 1
+        self.counts[record['status']] = self.counts.get(record['status'], 0) + 1
 
     def count(self, status):
-        return sum(1 for r in self.records if r['status'] == status)
+        """Return how many finished cases have this status ('pass', 'fail', 'error')."""
+        return self.counts.get(status, 0)
 
     @property
     def passed(self):
-        """Every case of the grid ran and passed."""
-        return len(self.records) == self.total and self.count('pass') == self.total
+        """Tell whether every case of the grid ran and passed."""
+        return self.done == self.total and self.count('pass') == self.total
 
 
 def _axes(sets):
@@ -93,11 +102,23 @@ def _seeds(seeds):
     return parse_seeds(','.join(str(s) for s in seeds)) if seeds else parse_seeds('')
 
 
-def plan(scenario, sets=(), seeds=None):
-    """
-    Read the scenario and validate every variant; nothing runs.
+@dataclass
+class Plan:
+    """A validated sweep: the scenario (absolute path, text, name), axes, seeds and cases."""
 
-    :return: (source, content, axes, cases, {case_id: ScenarioSpec}).
+    source: str
+    content: str
+    name: str
+    axes: List[Axis]
+    seeds: Optional[List[int]]
+    cases: List[Case]
+    specs: Dict[str, object]
+
+
+def plan(scenario, sets=(), seeds=None) -> Plan:
+    """
+    Read the scenario and validate its variants (grid.check_variants); nothing runs.
+
     :raises SweepError: an unreadable or invalid scenario, a bad ``--set`` or ``--seeds``.
     """
     from vehicle_sim.scenarios.schema import scenario_from_data
@@ -116,14 +137,15 @@ def plan(scenario, sets=(), seeds=None):
     except ScenarioError as error:
         raise SweepError(str(error)) from None
     axes = _axes(sets)
-    cases = build_cases(axes, _seeds(seeds), base.seed)
+    seed_list = _seeds(seeds)
+    cases = build_cases(axes, seed_list, base.seed)
     specs = check_variants(data, lines, source, axes, cases, scenario_from_data)
-    return source, content, axes, cases, specs
+    return Plan(source, content, base.name, axes, seed_list, cases, specs)
 
 
 def run_sweep(scenario, sets=(), seeds=None, out_dir='sweep', workers=None, backend='local',
               ray_address=None, timeout_s=DEFAULT_TIMEOUT_S, resume=False, progress=None,
-              plot=True) -> SweepResult:
+              plot=True, started=None) -> SweepResult:
     """
     Run a scenario for every combination of ``sets`` and ``seeds``; write the merged results.
 
@@ -143,6 +165,7 @@ def run_sweep(scenario, sets=(), seeds=None, out_dir='sweep', workers=None, back
     :param progress: ``progress(record, result)`` after each case (``result`` a SweepResult so
         far), e.g. :class:`~.progress.Progress`.
     :param plot: write summary.png when matplotlib imports.
+    :param started: ``started(result)`` once the input is valid, before the first case runs.
     :raises SweepError: bad input (nothing has run).
     """
     if backend not in BACKENDS:
@@ -156,27 +179,31 @@ def run_sweep(scenario, sets=(), seeds=None, out_dir='sweep', workers=None, back
     if backend == 'ray':
         from vehicle_sim.sweep.ray_tasks import require_ray
         require_ray()
-    source, content, axes, cases, specs = plan(scenario, sets, seeds)
-    name = next(iter(specs.values())).name
-    keys = [axis.key for axis in axes]
+    planned = plan(scenario, sets, seeds)
+    source, content, cases = planned.source, planned.content, planned.cases
+    keys = [axis.key for axis in planned.axes]
     manifest = {'scenario': source,
                 'scenario_sha256': hashlib.sha256(content.encode()).hexdigest(),
-                'sets': [[axis.key, list(axis.values)] for axis in axes],
-                'seeds': [case.seed for case in cases] if seeds is not None else None}
+                'sets': [[axis.key, list(axis.values)] for axis in planned.axes],
+                'seeds': planned.seeds}
     existing = results.prepare(out_dir, manifest, resume)
     ids = {case.case_id for case in cases}
     done_records = {i: r for i, r in existing.items() if i in ids}
     result = SweepResult(out_dir, [], len(cases), keys, skipped=len(done_records))
-    result.records = _ordered(cases, done_records)
+    for record in done_records.values():
+        result.add(record)
     todo = [payload(case, source, content) for case in cases
             if case.case_id not in done_records]
 
     def finished(record):
         results.save_record(out_dir, record)
         done_records[record['case_id']] = record
-        result.records = _ordered(cases, done_records)
+        result.add(record)
         if progress is not None:
             progress(record, result)
+
+    if started is not None:
+        started(result)
 
     def case_log(work):
         return results.log_path(out_dir, work['case_id'])
@@ -190,7 +217,8 @@ def run_sweep(scenario, sets=(), seeds=None, out_dir='sweep', workers=None, back
             run_ray(todo, workers, timeout_s, ray_address, case_log, finished)
     except KeyboardInterrupt:
         result.interrupted = True
-    _write_reports(result, name, source, plot)
+    result.records = _ordered(cases, done_records)
+    _write_reports(result, planned.name, source, plot)
     return result
 
 

@@ -84,7 +84,7 @@ def run_case(work):
         for key, value in work['overrides']:
             apply_override(data, Axis(key, key_path(key), (value,)), value)
         spec = scenario_from_data(data, lines, work['source'])
-        with _domain_claimed(spec.served):
+        with DomainClaim(spec.served):
             result = run_scenario(spec, seed=work['seed'])
     except Exception as error:  # noqa: BLE001 - the case's error, the other cases go on
         return error_record(work, f'{type(error).__name__}: {error}\n'
@@ -97,7 +97,7 @@ def run_case(work):
                    float(result.sim_time_s), time.monotonic() - start, result.deterministic)
 
 
-class _domain_claimed:
+class DomainClaim:
     """
     A served scenario's ROS domain: the first free id from VEHICLE_SIM_SWEEP_DOMAIN_BASE up.
 

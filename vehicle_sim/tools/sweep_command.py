@@ -61,11 +61,7 @@ def cmd_sweep(args) -> int:
     """Run ``vehicle-sim sweep``."""
     from vehicle_sim.sweep.grid import SweepError
     from vehicle_sim.sweep.progress import Progress
-    from vehicle_sim.sweep.run import plan, run_sweep
-    try:
-        _, _, _, cases, _ = plan(args.scenario, args.sets, args.seeds)
-    except SweepError as error:
-        raise CliError(str(error), EXIT_USAGE) from None
+    from vehicle_sim.sweep.run import run_sweep
     shown = None
 
     def progress(record, result):
@@ -74,18 +70,20 @@ def cmd_sweep(args) -> int:
             shown = Progress(sys.stderr, result.total, result.skipped)
         shown(record, result)
 
-    print(f'sweep {args.scenario}: {len(cases)} cases, backend {args.backend}')
+    def started(result):
+        print(f'sweep {args.scenario}: {result.total} cases, backend {args.backend}'
+              + (f'; {result.skipped} done already (--resume)' if result.skipped else ''),
+              flush=True)
+
     try:
         result = run_sweep(args.scenario, args.sets, args.seeds, args.out, args.workers,
                            args.backend, args.ray_address, args.timeout, args.resume,
-                           None if args.no_progress else progress)
+                           None if args.no_progress else progress, started=started)
     except SweepError as error:
         raise CliError(str(error), EXIT_USAGE) from None
     finally:
         if shown is not None:
             shown.done()
-    if result.skipped:
-        print(f'resumed: {result.skipped} case(s) were done already')
     print(f'{result.count("pass")} passed, {result.count("fail")} failed, '
           f'{result.count("error")} errors of {result.total} cases')
     for record in result.records:
