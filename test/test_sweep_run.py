@@ -138,3 +138,22 @@ def test_sweep_command_prints_plain_progress_lines_and_exits_1_on_a_failing_case
     assert 'FAIL  duration=3 criteria.2.limit=5.5 seed=0' in done.stderr
     assert '1 passed, 1 failed, 0 errors of 2 cases' in done.stdout
     assert f'wrote {out}/results.csv' in done.stdout
+
+
+def test_sweep_of_a_served_scenario_gives_each_running_case_a_domain_of_its_own(tmp_path,
+                                                                                 monkeypatch):
+    # A topic criterion serves the car over ROS (embedded DDS): each case claims a domain from
+    # the base up; this test's base keeps clear of the domains the test configuration picks.
+    base = 120 + int(os.environ['ROS_DOMAIN_ID']) % 100
+    monkeypatch.setenv('VEHICLE_SIM_SWEEP_DOMAIN_BASE', str(base))
+    served = str(REPO / 'test' / 'scenarios' / 'served_topic.yaml')
+    result = run_sweep(served, ['driver.commands.0.cruising_speed=10,30'], out_dir=str(tmp_path),
+                       workers=2, timeout_s=120.0)
+    assert [r['status'] for r in result.records] == ['fail', 'pass']
+    first = result.records[0]['criteria'][0]
+    assert first['name'] == 'topic' and 9.0 < first['value'] < 10.0     # eventually > 15 km/h
+    for record in result.records:
+        with open(os.path.join(tmp_path, 'logs', f'{record["case_id"]}.log'),
+                  encoding='utf-8') as log:
+            text = log.read()
+        assert any(f'on domain {d} ' in text for d in (base, base + 1)), text
