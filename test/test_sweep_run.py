@@ -157,3 +157,19 @@ def test_sweep_of_a_served_scenario_gives_each_running_case_a_domain_of_its_own(
                   encoding='utf-8') as log:
             text = log.read()
         assert any(f'on domain {d} ' in text for d in (base, base + 1)), text
+
+
+def test_run_sweep_works_from_a_script_without_a_main_guard(tmp_path):
+    # The workers are programs of their own: the caller's script is not run again in them (as
+    # multiprocessing's spawn would, starting workers from every worker).
+    script = tmp_path / 'notebook_like.py'
+    script.write_text(
+        'from vehicle_sim.sweep import run_sweep\n'
+        f'result = run_sweep({SCENARIO!r}, ["duration=1,2"], out_dir={str(tmp_path / "o")!r},\n'
+        '                   workers=2, timeout_s=60)\n'
+        'print("STATUSES", [r["status"] for r in result.records], result.count("error"))\n')
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                          timeout=120, cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert 'STATUSES' in done.stdout and done.stdout.count('STATUSES') == 1
+    assert done.stdout.strip().endswith('0'), done.stdout     # no errors

@@ -15,19 +15,25 @@
 """
 The local backend: N worker processes on this machine, one case at a time each.
 
-Each worker is a spawned Python process (:func:`~.worker.worker_loop`) that runs the cases it
-is sent in its own process, its output in the case's log. The parent waits on the workers'
-pipes and process handles together: a record comes back as the case's result; a worker that
-dies (a segfault, ``os._exit``) or runs past the per-case timeout is killed and its case
-becomes an error record with the end of its log; a fresh worker takes its place for the cases
-left.
+Each worker is a Python interpreter started as ``python -m vehicle_sim.sweep.worker FD``
+(:func:`~.worker.worker_main`): a program of its own, so that the caller's main script is never
+run again in it (as multiprocessing's spawn would), in a session of its own, so that a Ctrl-C
+at the terminal reaches only the sweep, which stops it. It talks to the sweep over a socket
+pair (multiprocessing's Connection: pickled messages) and runs the cases it is sent in its own
+process, its output in the case's log. The sweep waits on the workers' sockets: a record comes
+back as the case's result; a worker whose socket closes (it died: a segfault, ``os._exit``) or
+that runs past the per-case timeout is killed and its case becomes an error record with the end
+of its log; a fresh worker takes its place for the cases left.
 """
 
-import multiprocessing
-from multiprocessing.connection import wait
+from multiprocessing.connection import Connection, wait
+import os
+import socket
+import subprocess
+import sys
 import time
 
-from vehicle_sim.sweep.worker import error_record, worker_loop
+from vehicle_sim.sweep.worker import error_record
 
 LOG_TAIL_CHARS = 4000       # the end of a dead worker's log, quoted in the case's error
 KILL_WAIT_S = 5.0
@@ -43,14 +49,28 @@ def log_tail(path):
     return text[-LOG_TAIL_CHARS:]
 
 
+def _environment():
+    # The worker imports this vehicle_sim, installed or not.
+    import vehicle_sim
+    root = os.path.dirname(os.path.dirname(os.path.abspath(vehicle_sim.__file__)))
+    env = dict(os.environ)
+    env['PYTHONPATH'] = os.pathsep.join(p for p in (root, env.get('PYTHONPATH')) if p)
+    return env
+
+
 class _Worker:
     """One worker process and the case it runs (None when idle)."""
 
-    def __init__(self, context):
-        self.connection, child = context.Pipe()
-        self.process = context.Process(target=worker_loop, args=(child,), daemon=True)
-        self.process.start()
-        child.close()
+    def __init__(self, env):
+        ours, theirs = socket.socketpair()
+        try:
+            self.process = subprocess.Popen(
+                [sys.executable, '-m', 'vehicle_sim.sweep.worker', str(theirs.fileno())],
+                pass_fds=(theirs.fileno(),), stdin=subprocess.DEVNULL, env=env,
+                start_new_session=True)
+        finally:
+            theirs.close()
+        self.connection = Connection(ours.detach())
         self.work = None
         self.log_path = None
         self.started = 0.0
@@ -59,23 +79,36 @@ class _Worker:
         self.work, self.log_path, self.started = work, log_path, time.monotonic()
         self.connection.send((work, log_path))
 
+    def receive(self):
+        """Return the record sent back, or None when the worker died (its socket closed)."""
+        try:
+            return self.connection.recv()
+        except (EOFError, OSError):
+            return None
+
     def kill(self):
-        if self.process.is_alive():
+        if self.process.poll() is None:
             self.process.kill()
-        self.process.join(KILL_WAIT_S)
+        try:
+            self.process.wait(KILL_WAIT_S)
+        except subprocess.TimeoutExpired:
+            pass
         self.connection.close()
 
     def stop(self):
         try:
             self.connection.send(None)
-        except OSError:
+            self.process.wait(KILL_WAIT_S)
+        except (OSError, subprocess.TimeoutExpired):
             pass
-        self.process.join(KILL_WAIT_S)
         self.kill()
 
 
 def _died(worker):
-    code = worker.process.exitcode
+    try:
+        code = worker.process.wait(KILL_WAIT_S)
+    except subprocess.TimeoutExpired:
+        code = None
     how = (f'killed by signal {-code}' if code is not None and code < 0 else
            f'exited with status {code}')
     tail = log_tail(worker.log_path)
@@ -91,60 +124,48 @@ def run_local(works, workers, timeout_s, log_path, done):
     :param log_path: ``log_path(work)`` -> the case's log file.
     :param done: called in this process with each record, in the order they finish.
     """
-    context = multiprocessing.get_context('spawn')
+    env = _environment()
     pending = list(reversed(works))
     pool = []
     try:
-        while pending or any(w.work is not None for w in pool):
+        while pending or pool:
+            while len(pool) < min(workers, len(pool) + len(pending)):
+                pool.append(_Worker(env))
             for worker in pool:
                 if worker.work is None and pending:
                     work = pending.pop()
                     worker.send(work, log_path(work))
-            while len(pool) < workers and pending:
-                worker = _Worker(context)
-                work = pending.pop()
-                worker.send(work, log_path(work))
-                pool.append(worker)
-            busy = [w for w in pool if w.work is not None]
+            for worker in [w for w in pool if w.work is None]:    # nothing left for it
+                worker.stop()
+                pool.remove(worker)
+            if not pool:
+                break
             wait_s = None
             if timeout_s is not None:
-                now = time.monotonic()
-                wait_s = max(0.0, min(w.started + timeout_s - now for w in busy))
-            ready = wait([w.connection for w in busy] + [w.process.sentinel for w in busy],
-                         wait_s)
+                wait_s = max(0.0, min(w.started + timeout_s for w in pool) - time.monotonic())
+            ready = wait([w.connection for w in pool], wait_s)
             now = time.monotonic()
-            for worker in busy:
-                record = None
-                if worker.connection in ready or worker.process.sentinel in ready:
-                    try:
-                        if worker.connection.poll():
-                            record = worker.connection.recv()
-                    except (EOFError, OSError):
-                        record = None
-                    if record is None and not worker.process.is_alive():
+            for worker in list(pool):
+                if worker.connection in ready:
+                    record = worker.receive()
+                    if record is None:
                         record = error_record(worker.work, _died(worker), now - worker.started)
-                        _replace(pool, worker, context)
-                if record is None and timeout_s is not None and (
-                        now - worker.started >= timeout_s):
+                        worker.kill()
+                        pool.remove(worker)
+                elif timeout_s is not None and now - worker.started >= timeout_s:
                     worker.kill()
+                    pool.remove(worker)
                     record = error_record(
                         worker.work, f'timed out: still running after {timeout_s:g} s (the '
                         f'worker process was killed); its log ends:\n{log_tail(worker.log_path)}',
                         now - worker.started)
-                    _replace(pool, worker, context)
-                if record is not None:
-                    worker.work = None
-                    done(record)
+                else:
+                    continue
+                worker.work = None
+                done(record)
     finally:
         for worker in pool:
             if worker.work is not None:
                 worker.kill()
             else:
                 worker.stop()
-
-
-def _replace(pool, worker, context):
-    # A dead or killed worker's place goes to a fresh one when there is work for it.
-    worker.kill()
-    worker.work = None
-    pool.remove(worker)

@@ -35,7 +35,6 @@ from vehicle_sim.sweep.grid import (
     parse_set,
     SweepError,
 )
-from vehicle_sim.sweep.worker import payload
 
 BACKENDS = ('local', 'ray')
 DEFAULT_TIMEOUT_S = 600.0
@@ -192,6 +191,7 @@ def run_sweep(scenario, sets=(), seeds=None, out_dir='sweep', workers=None, back
     result = SweepResult(out_dir, [], len(cases), keys, skipped=len(done_records))
     for record in done_records.values():
         result.add(record)
+    from vehicle_sim.sweep.worker import payload
     todo = [payload(case, source, content) for case in cases
             if case.case_id not in done_records]
 

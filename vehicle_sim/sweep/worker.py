@@ -165,7 +165,7 @@ def worker_loop(connection):
     """
     Run a local worker process: receive (case, log path), send back its record; None ends it.
 
-    Ctrl-C is the parent's to handle (it stops the workers); a fatal signal's traceback goes
+    Ctrl-C is the sweep's to handle (it stops the workers); a fatal signal's traceback goes
     to the case's log (faulthandler writes to file descriptor 2).
     """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
@@ -179,3 +179,18 @@ def worker_loop(connection):
             return
         work, log_path = message
         connection.send(run_case_logged(work, log_path))
+
+
+def worker_main(argv=None):
+    """``python -m vehicle_sim.sweep.worker FD``: the worker loop on the socket FD (local.py)."""
+    from multiprocessing.connection import Connection
+    argv = sys.argv[1:] if argv is None else argv
+    connection = Connection(int(argv[0]))
+    try:
+        worker_loop(connection)
+    finally:
+        connection.close()
+
+
+if __name__ == '__main__':
+    worker_main()
