@@ -75,11 +75,11 @@ def run_ray(works, workers, timeout_s, address, log_path, done):
         else:
             ray.init(num_cpus=workers or os.cpu_count() or 1, include_dashboard=False,
                      log_to_driver=False)
+    flight = {}         # ref -> (work, submitted at)
     try:
         capacity = workers or max(1, int(ray.cluster_resources().get('CPU', 1)))
         task = ray.remote(num_cpus=1, max_retries=0)(ray_case)
         pending = list(reversed(works))
-        flight = {}         # ref -> (work, submitted at)
         while pending or flight:
             while pending and len(flight) < capacity:
                 work = pending.pop()
@@ -103,7 +103,7 @@ def run_ray(works, workers, timeout_s, address, log_path, done):
                             'task was cancelled, its worker killed); its log ends:\n'
                             + log_tail(log_path(work)), now - submitted))
     except KeyboardInterrupt:
-        for ref in list(locals().get('flight', {})):
+        for ref in flight:
             ray.cancel(ref, force=True)
         raise
     finally:
