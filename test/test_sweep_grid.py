@@ -81,6 +81,11 @@ def test_cases_are_every_combination_first_axis_slowest_then_seeds():
     ([], '5:2', '--seeds 5:2: no seeds'),
     ([], 'a:b', r"--seeds 'a:b': give A:B \(seeds A to B-1\) or N\[,N...\], integers"),
     ([], '-1,2', '--seeds -1,2: seeds must be >= 0'),
+    ([], '0:1000000000', '--seeds 0:1000000000: 1000000000 seeds; at most 100000'),
+    (['criteria.-1.limit=1'], None, "--set criteria.-1.limit: 'criteria.-1': a list of 4 "
+                                    r'entries \(index 0 .. 3\)'),
+    (['duration=1,2,3', 'criteria.2.limit=1,2,3,4,5,6,7,8,9,10'], '0:4000',
+     '120000 variants: at most 100000'),
 ])
 def test_bad_sweep_input_is_refused_naming_the_key_before_anything_runs(tmp_path, sets, seeds,
                                                                          message):

@@ -127,7 +127,11 @@ def parse_seeds(text):
     try:
         if ':' in text:
             start, _, stop = text.partition(':')
-            seeds = list(range(int(start), int(stop)))
+            span = range(int(start), int(stop))
+            if len(span) > MAX_CASES:
+                raise SweepError(f'--seeds {text}: {len(span)} seeds; at most {MAX_CASES} in one '
+                                 'sweep')
+            seeds = list(span)
         else:
             seeds = [int(item) for item in text.split(',')]
     except ValueError:
@@ -161,7 +165,7 @@ def apply_override(data, axis, value):
                                  + ', '.join(str(k) for k in node))
             node = node[part]
         elif isinstance(node, list):
-            if not isinstance(part, int) or not -len(node) <= part < len(node):
+            if not isinstance(part, int) or not 0 <= part < len(node):
                 raise SweepError(f'--set {axis.key}: {where!r}: a list of {len(node)} entries '
                                  f'(index 0 .. {len(node) - 1})')
             if last:
