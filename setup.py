@@ -46,11 +46,16 @@ setup(
     ],
     install_requires=['setuptools', 'numpy', 'pybullet', 'PyYAML', 'cyclonedds==11.0.1',
                       'rosbags>=0.10'],
-    # matplotlib draws the plots of `vehicle-sim demo` and `vehicle-sim scenario --plot`;
-    # lanelet2 reads Lanelet2 .osm lane maps (vehicle_sim/maps/lanelet2_map.py).
-    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib', 'lanelet2'],
+    # Optional parts, each an extra named in its error when missing: matplotlib draws the plots
+    # of `vehicle-sim demo` and `vehicle-sim scenario --plot`; lanelet2 reads Lanelet2 .osm lane
+    # maps (vehicle_sim/maps/lanelet2_map.py); ray runs sweeps on a cluster (vehicle_sim/sweep).
+    # `test` installs every one of them, so that the tests of each run (pyarrow: a sweep's
+    # results.parquet, written when it imports).
+    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib', 'lanelet2',
+                             'ray', 'pyarrow'],
                     'plot': ['matplotlib'],
-                    'lanelet2': ['lanelet2']},
+                    'lanelet2': ['lanelet2'],
+                    'ray': ['ray']},
     zip_safe=True,
     maintainer='vehicle_sim maintainers',
     maintainer_email='maintainers@vehicle-sim.example.org',

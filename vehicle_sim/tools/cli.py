@@ -28,6 +28,7 @@ Subcommands (``vehicle-sim <command> --help`` for details)::
     demo                run the end-to-end scenario and write a PNG of the paths
     teleop              drive the car (or --robot) from the keyboard through cmd_vel
     scenario FILE       run a scenario file headless: criteria, JUnit XML, plot, exit status
+    sweep SCENARIO      run a scenario over a grid of values and seeds, in parallel (local or Ray)
 
 Everything talks over the embedded Cyclone DDS transport, with ``ROS_DOMAIN_ID`` and
 ``ROS_AUTOMATIC_DISCOVERY_RANGE`` honoured like a ROS 2 node does (docs/transport.md).
@@ -191,6 +192,13 @@ def build_parser() -> argparse.ArgumentParser:
     from vehicle_sim.tools.scenario_command import cmd_scenario
     add_scenario_arguments(scenario)
     scenario.set_defaults(func=cmd_scenario)
+
+    sweep = sub.add_parser('sweep', help='run a scenario over a grid of values and seeds, in '
+                                         'parallel (docs/sweeps.md)')
+    from vehicle_sim.tools.sweep_command import add_arguments as add_sweep_arguments
+    from vehicle_sim.tools.sweep_command import cmd_sweep
+    add_sweep_arguments(sweep)
+    sweep.set_defaults(func=cmd_sweep)
     return parser
 
 

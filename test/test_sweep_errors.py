@@ -1,0 +1,158 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Errors of single cases, --resume and Ctrl-C.
+
+A crashing, a hanging and a raising variant become their cases' errors, with their logs, and
+the other cases complete (local workers and Ray); --resume; Ctrl-C keeps what finished.
+"""
+
+import csv
+import os
+from pathlib import Path
+import signal
+import subprocess
+import sys
+from xml.etree import ElementTree
+
+import pytest
+
+from vehicle_sim.sweep import run_sweep, SweepError
+
+REPO = Path(__file__).resolve().parent.parent
+SCENARIO = str(REPO / 'scenarios' / 'stop_before_obstacle.yaml')
+GOOD = '../examples/lidar_stop_controller.py'
+TIMEOUT_S = 8.0     # well above a 2 s case's run (about 0.1 s, 1 s with a fresh worker's imports)
+
+
+@pytest.fixture
+def controllers(tmp_path):
+    """Write controllers that crash the process, hang, and raise."""
+    scripts = {
+        'crash': 'import os\nprint("about to abort", flush=True)\nos.abort()\n',
+        'hang': 'import time\nprint("about to hang", flush=True)\ntime.sleep(3600)\n',
+        'raise': 'raise RuntimeError("this controller fails on purpose")\n',
+    }
+    paths = {}
+    for name, text in scripts.items():
+        path = tmp_path / f'{name}.py'
+        path.write_text(text)
+        paths[name] = str(path)
+    return paths
+
+
+def _sets(controllers):
+    names = ','.join([controllers['crash'], GOOD, controllers['hang'], controllers['raise'],
+                      '../examples/blind_controller.py'])
+    return ['duration=2', f'driver.controller={names}']
+
+
+def _by_script(result):
+    return {dict(r['overrides'])['driver.controller'].rsplit('/', 1)[-1]: r
+            for r in result.records}
+
+
+def _check_errors(result, out):
+    assert len(result.records) == 5
+    by = _by_script(result)
+    assert by['lidar_stop_controller.py']['status'] == 'fail'      # reach_goal needs 2.77 s
+    assert by['blind_controller.py']['status'] == 'fail'
+    crash, hang, raised = by['crash.py'], by['hang.py'], by['raise.py']
+    assert crash['status'] == hang['status'] == raised['status'] == 'error'
+    assert 'died' in crash['error'] or 'WorkerCrashedError' in crash['error'], crash['error']
+    assert 'about to abort' in crash['error']               # the end of its log
+    assert hang['error'].startswith(f'timed out: still running after {TIMEOUT_S:g} s')
+    assert 'about to hang' in hang['error']
+    assert 'this controller fails on purpose' in raised['error']
+    suite = ElementTree.parse(os.path.join(out, 'junit.xml')).getroot().find('testsuite')
+    assert suite.get('errors') == '3'
+    errors = [c for c in suite.findall('testcase') if c.find('error') is not None]
+    assert [c.get('name') for c in errors] == ['run'] * 3
+    with open(os.path.join(out, 'results.csv'), encoding='utf-8') as file:
+        rows = list(csv.DictReader(file))
+    assert [r['status'] for r in rows] == ['error', 'fail', 'error', 'error', 'fail']
+    assert rows[2]['error'].startswith('timed out')
+
+
+def test_sweep_reports_crashing_hanging_and_raising_variants_as_errors(controllers, tmp_path):
+    out = str(tmp_path / 'out')
+    result = run_sweep(SCENARIO, _sets(controllers), out_dir=out, workers=2,
+                       timeout_s=TIMEOUT_S)
+    _check_errors(result, out)
+    crash = _by_script(result)['crash.py']
+    assert 'killed by signal 6' in crash['error']
+    with open(os.path.join(out, 'logs', f'{crash["case_id"]}.log'), encoding='utf-8') as log:
+        assert 'Fatal Python error: Aborted' in log.read()      # faulthandler's traceback
+
+
+def test_sweep_on_ray_reports_crashing_and_hanging_variants_as_errors(controllers, tmp_path):
+    try:
+        import ray
+    except ImportError:
+        pytest.skip("ray is not installed (pip install 'vehicle_sim[ray]'): the Ray backend is "
+                    'not tested')
+    out = str(tmp_path / 'out')
+    try:
+        result = run_sweep(SCENARIO, _sets(controllers), out_dir=out, workers=2,
+                           backend='ray', timeout_s=TIMEOUT_S)
+    finally:
+        if ray.is_initialized():
+            ray.shutdown()
+    _check_errors(result, out)
+
+
+def test_sweep_resume_runs_only_the_missing_cases(tmp_path):
+    out = str(tmp_path / 'out')
+    sets = ['duration=2', 'criteria.2.limit=5,6,7']
+    first = run_sweep(SCENARIO, sets, out_dir=out, workers=1)
+    with open(os.path.join(out, 'results.csv'), encoding='utf-8') as file:
+        table = file.read()
+    os.remove(os.path.join(out, 'cases', f'{first.records[1]["case_id"]}.json'))
+    with pytest.raises(SweepError, match='holds 2 finished case.*--resume'):
+        run_sweep(SCENARIO, sets, out_dir=out, workers=1)
+    ran = []
+    again = run_sweep(SCENARIO, sets, out_dir=out, workers=1, resume=True,
+                      progress=lambda record, result: ran.append(record['label']))
+    assert ran == ['duration=2 criteria.2.limit=6 seed=0']
+    assert again.skipped == 2 and len(again.records) == 3
+    with open(os.path.join(out, 'results.csv'), encoding='utf-8') as file:
+        assert file.read() == table
+    with pytest.raises(SweepError, match='another sweep'):
+        run_sweep(SCENARIO, ['duration=2', 'criteria.2.limit=5,8'], out_dir=out, resume=True)
+
+
+def test_sweep_command_ctrl_c_keeps_the_finished_cases(controllers, tmp_path):
+    out = tmp_path / 'out'
+    names = ','.join([GOOD, '../examples/blind_controller.py', controllers['hang']])
+    command = [sys.executable, '-m', 'vehicle_sim', 'sweep', SCENARIO, '--set', 'duration=2',
+               '--set', f'driver.controller={names}', '--workers', '1', '--out', str(out)]
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               text=True)
+    try:
+        for line in process.stderr:         # plain progress lines: not a terminal
+            if line.startswith('[2/3]'):
+                break
+        process.send_signal(signal.SIGINT)  # the third case hangs: stop the sweep there
+        stdout, stderr = process.communicate(timeout=60)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+    assert process.returncode == 130, stderr
+    assert 'interrupted: 2 of 3 cases kept; --resume runs the others' in stderr
+    with open(out / 'results.csv', encoding='utf-8') as file:
+        rows = list(csv.DictReader(file))
+    assert [r['status'] for r in rows] == ['fail', 'fail']
+    assert len(os.listdir(out / 'cases')) == 2
