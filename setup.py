@@ -47,8 +47,9 @@ setup(
     install_requires=['setuptools', 'numpy', 'pybullet', 'PyYAML', 'cyclonedds==11.0.1',
                       'rosbags>=0.10'],
     # matplotlib draws the plots of `vehicle-sim demo` and `vehicle-sim scenario --plot`.
-    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib'],
-                    'plot': ['matplotlib']},
+    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib', 'Pillow'],
+                    'plot': ['matplotlib'],
+                    'maps': ['Pillow']},
     zip_safe=True,
     maintainer='vehicle_sim maintainers',
     maintainer_email='maintainers@vehicle-sim.example.org',

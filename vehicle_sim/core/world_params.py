@@ -23,6 +23,8 @@ The form (every key optional except ``vehicles``)::
          sensors: [...]}
     obstacles:
       - {name: wall, shape: box, size: [1.0, 6.0, 2.0], position: [20.0, 0.0, 1.0], yaw: 0.0}
+    map: {type: occupancy_grid, file: maps/track.yaml}
+
 
 Each mapping is checked against a ParamSpec table (core/param_spec.py), so an unknown key, a wrong
 type, a NaN or an impossible value is refused with the file, the entry and the field. Reading
@@ -30,11 +32,13 @@ the file and resolving car models are config.py's (this module touches no file).
 """
 
 from dataclasses import dataclass, replace
+import os
 from typing import Callable, Optional, Sequence, Tuple
 
 from vehicle_sim.core.errors import InvalidParameterError, InvalidPoseError
 from vehicle_sim.core.frames import Pose
 from vehicle_sim.core.geodesy import GeodeticOrigin
+from vehicle_sim.core.map.kinds import map_from_dict
 from vehicle_sim.core.param_spec import (
     parameter_table_markdown,
     ParamSpec,
@@ -46,7 +50,7 @@ from vehicle_sim.core.sensor_params import SensorSpec
 from vehicle_sim.core.sensor_sets import merge_sensors
 from vehicle_sim.core.value_text import brief
 
-WORLD_KEYS = ('origin', 'vehicles', 'obstacles')
+WORLD_KEYS = ('origin', 'vehicles', 'obstacles', 'map')
 
 ORIGIN_SPECS = (
     ParamSpec('latitude', 'latitude_deg', 'float', 0.0, 'deg', 'WGS-84 latitude of the world '
@@ -239,12 +243,17 @@ class VehicleSpec:
 
 @dataclass(frozen=True)
 class WorldSpec:
-    """A validated world: geodetic origin, vehicles and obstacles; ``source`` = its file."""
+    """
+    A validated world: geodetic origin, vehicles and obstacles; ``source`` = its file.
+
+    ``map`` is its map layer's spec (core/map/kinds.py: e.g. an OccupancyMapSpec), or None.
+    """
 
     origin: GeodeticOrigin
     vehicles: Tuple[VehicleSpec, ...]
     obstacles: Tuple[ObstacleSpec, ...]
     source: str = ''
+    map: Optional[object] = None
 
 
 @dataclass(frozen=True)
@@ -263,7 +272,7 @@ ModelResolver = Callable[[str], Sequence[SensorSpec]]
 
 
 def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
-                    vehicles_required=True) -> WorldSpec:
+                    vehicles_required=True, base_dir=None) -> WorldSpec:
     """
     Validate a world mapping.
 
@@ -274,6 +283,8 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
         for an unknown model (config.py reads the preset).
     :param vehicles_required: refuse a world without vehicles (False: a scenario whose
         vehicles are all robots gives only the origin and the obstacles).
+    :param base_dir: folder the files a world names (its map) are resolved in; None = the
+        folder of ``source``.
     :return: WorldSpec.
     :raises InvalidParameterError: naming file, entry and field.
     """
@@ -305,7 +316,9 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
     if taken:
         raise InvalidParameterError(f'{source}: obstacle and vehicle share a name: '
                                     f'{brief(sorted(taken))}')
-    return WorldSpec(origin, vehicles, obstacles, source)
+    base_dir = os.path.dirname(source) if base_dir is None else base_dir
+    world_map = map_from_dict(data.get('map'), f'{source}: map', base_dir)
+    return WorldSpec(origin, vehicles, obstacles, source, world_map)
 
 
 def _vehicle(entry, where, index, default_model, preset_sensors):

@@ -213,6 +213,7 @@ class World:
         self._names = {}              # body id -> name (obstacles)
         self.obstacles = {}           # obstacle name -> body id
         self._obstacle_specs = {}     # obstacle name -> its ObstacleSpec (reset_obstacles)
+        self._static_names = set()    # names of static geometry (a map's walls): add_static
         self._ray_masks = {}          # body id -> ray mask excluding that body
         self._ground_visual = False
         self._broadphase_stale = True   # bodies added since the last step: rays miss them
@@ -287,7 +288,8 @@ class World:
             return body
         vehicle = _vehicle_body(body)
         if vehicle is not None:
-            inside = [name for name in self.overlaps(vehicle.body_id) if name in self.obstacles]
+            inside = [name for name in self.overlaps(vehicle.body_id)
+                      if name in self.obstacles or name in self._static_names]
             if inside:
                 destroy = getattr(body, 'destroy', None)
                 if destroy is not None:
@@ -402,6 +404,32 @@ class World:
         self._names[body_id] = spec.name
         self._broadphase_stale = True
         return body_id
+
+    def add_static(self, name, body_ids):
+        """
+        Name static bodies built elsewhere (a map's walls): collisions and rays see them.
+
+        :param name: the name collision events and refusals give them ('map').
+        :param body_ids: the bodies, already created in this world's client.
+        :raises InvalidPoseError: when a vehicle is inside one (the bodies are removed).
+        """
+        body_ids = list(body_ids)
+        vehicles = {v.body_id: v.name for v in map(_vehicle_body, self._bodies) if v is not None}
+        cid = self.client_id
+        inside = sorted(name_ for vehicle_id, name_ in vehicles.items()
+                        if any(point[8] < -OVERLAP_TOLERANCE_M for body_id in body_ids
+                               for point in pybullet.getClosestPoints(vehicle_id, body_id, 0.0,
+                                                                      physicsClientId=cid)))
+        if inside:
+            for body_id in body_ids:
+                pybullet.removeBody(body_id, physicsClientId=self.client_id)
+            raise InvalidPoseError(
+                f'vehicle {", ".join(repr(n) for n in inside)} starts inside {name!r}: '
+                'its start pose must be clear of every wall (as set_pose requires)')
+        for body_id in body_ids:
+            self._names[body_id] = name
+        self._static_names.add(name)
+        self._broadphase_stale = True
 
     def reset_obstacles(self):
         """

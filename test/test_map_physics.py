@@ -1,0 +1,135 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+An occupancy map's walls in the physics world: lidar, collisions, spawn and teleport checks.
+
+The map is the room with a pillar of test/map_helpers.py (20 x 12 m, 0.1 m cells); the car
+stands at the world origin, heading +x. The lidar's golden values are a ray march over the same
+grid (core/map/occupancy.py), from the lidar's own position.
+"""
+
+import math
+
+from map_helpers import ORIGIN, RESOLUTION_M, world_data, write_map
+import numpy as np
+import pytest
+
+from vehicle_sim.config import world_from_data
+from vehicle_sim.core.errors import InvalidParameterError, InvalidPoseError
+from vehicle_sim.core.map.occupancy import ray_march
+from vehicle_sim.physics.scene import build_scene, mount_suite
+from vehicle_sim.physics.sensors import CollisionMonitor
+
+LIDAR = {'name': 'lidar', 'type': 'lidar', 'pose': {'x': 1.0, 'z': 0.5}, 'fov': 1.5 * math.pi,
+         'horizontal_resolution': 1080, 'max_range': 30.0, 'min_range': 0.1}
+SETTLE_STEPS = 100
+
+
+@pytest.fixture
+def scenes():
+    built = []
+
+    def build(data, source='/tmp/world.yaml', **kwargs):
+        scene = build_scene(world_from_data(data, source), **kwargs)
+        built.append(scene)
+        return scene
+    yield build
+    for scene in built:
+        scene.world.close()
+
+
+@pytest.mark.parametrize('grid_yaw, world_in_map', [
+    (0.0, None),
+    (0.3, None),                                    # a rotated grid
+    (0.0, {'x': 1.5, 'y': -0.5, 'yaw': -0.2}),      # map -> world not the identity
+])
+def test_lidar_ranges_equal_a_ray_march_over_the_image_within_one_cell(
+        tmp_path, scenes, grid_yaw, world_in_map):
+    path = write_map(tmp_path, origin=[ORIGIN[0], ORIGIN[1], grid_yaw])
+    extra = {} if world_in_map is None else {'world_in_map': world_in_map}
+    scene = scenes(world_data(path, sensors=[LIDAR], **extra), mount=mount_suite)
+    for _ in range(SETTLE_STEPS):
+        scene.world.step()
+    car = scene.vehicles['car']
+    scan = car.sensors.sample('lidar')
+    x, y, _, qx, qy, qz, qw = car.body.pose()
+    yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+    built = scene.parts['map']
+    placement = built.spec.world_in_map
+    lidar_x, lidar_y = placement.to_map(x + math.cos(yaw), y + math.sin(yaw))
+    angles = scan.angle_min_rad + scan.angle_increment_rad * np.arange(scan.scan.size)
+    marched = np.array([ray_march(built.grid, built.walls, lidar_x, lidar_y,
+                                  yaw + placement.yaw_rad + angle, 30.0, RESOLUTION_M / 20.0)
+                        for angle in angles])
+    assert scan.scan.size == 1080
+    assert np.all(np.isfinite(marched))           # a closed room: every ray hits a wall
+    assert np.max(np.abs(scan.scan - marched)) <= RESOLUTION_M
+    # the pillar is seen: some rays stop well short of the room's walls
+    assert np.min(scan.scan) < 6.0
+
+
+def test_walls_are_few_merged_bodies_named_map(tmp_path, scenes):
+    scene = scenes(world_data(write_map(tmp_path)))
+    built = scene.parts['map']
+    assert len(built.rectangles) == 5               # four walls and the pillar
+    assert {scene.world.body_name(body) for body in built.body_ids} == {'map'}
+
+
+def test_driving_at_a_wall_of_the_map_gives_exactly_one_collision(tmp_path, scenes):
+    scene = scenes(world_data(write_map(tmp_path)))
+    car = scene.vehicles['car']
+    monitor = CollisionMonitor(scene.world, car.body)
+    car.car.logic.set_cruising_speed_kmh(20.0)
+    events = []
+    for _ in range(800):     # 8 s: the front (x = 4.5 m) reaches the wall face at 9.7 m
+        scene.world.step()
+        events.extend(monitor.fresh)
+    assert [e.other for e in events] == ['map']
+    assert car.body.pose()[0] + 4.5 == pytest.approx(10.0 - 0.3, abs=0.1)
+
+
+def test_teleport_into_a_wall_is_refused_and_the_car_stays(tmp_path, scenes):
+    scene = scenes(world_data(write_map(tmp_path)))
+    car = scene.vehicles['car']
+    before = car.body.pose()
+    with pytest.raises(InvalidPoseError, match='map'):
+        car.car.teleport((5.0, 2.4, 0.0))          # across the pillar
+    assert car.body.pose() == pytest.approx(before)
+    car.car.teleport((-5.0, -2.0, 0.0))             # free space: taken
+    assert car.body.pose()[:2] == pytest.approx((-5.0, -2.0), abs=1e-6)
+
+
+def test_spawn_on_an_occupied_cell_is_refused_naming_the_world_file_and_field(tmp_path, scenes):
+    with pytest.raises(InvalidParameterError) as refused:
+        scenes(world_data(write_map(tmp_path), pose=(6.4, 2.4, 0.0)), source='/w/room.yaml')
+    text = str(refused.value)
+    assert "/w/room.yaml: vehicles[0] (car): field 'pose'" in text
+    assert 'occupied cell' in text and 'room.yaml' in text
+
+
+def test_spawn_whose_outline_overlaps_a_wall_is_refused(tmp_path, scenes):
+    # base_link in free space, the car's nose (4.5 m ahead) in the east wall
+    with pytest.raises(InvalidPoseError, match="'car' starts inside 'map'"):
+        scenes(world_data(write_map(tmp_path), pose=(7.0, -4.0, 0.0)))
+
+
+def test_unknown_cells_become_walls_when_asked(tmp_path, scenes):
+    pixels = np.full((60, 100), 128, dtype=np.uint8)     # unknown: occ 0.498 in 0.25 .. 0.65
+    pixels[:, :80] = 254                                 # x -2 .. 6 m free
+    path = write_map(tmp_path, pixels=pixels, origin=[-2.0, -3.0, 0.0])
+    free = scenes(world_data(path))
+    assert free.parts['map'].body_ids == ()
+    walls = scenes(world_data(path, unknown='occupied'))
+    assert len(walls.parts['map'].rectangles) == 1

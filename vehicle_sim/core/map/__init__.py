@@ -1,0 +1,22 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The map layer's math: map kinds of world files, occupancy grids, merged wall rectangles.
+
+ROS-, PyBullet- and file-free (numbers in, numbers out): ``kinds`` (the ``map:`` key of world
+files, one registry of map kinds), ``occupancy`` (nav2 map_server's YAML and thresholding, cells,
+a ray march for tests), ``rectangles`` (wall cells merged into few boxes). Files are read by
+``vehicle_sim/map_files.py``; the physics part is ``physics/map_layer.py``.
+"""
