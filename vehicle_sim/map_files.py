@@ -103,6 +103,8 @@ def read_image(map_yaml: MapYaml) -> Tuple[np.ndarray, Optional[np.ndarray]]:
                         'bits per channel (grey, grey + alpha, RGB or RGBA)')
                 image = image.convert(mode)
             pixels = np.asarray(image)
+    except InvalidParameterError:
+        raise
     except FileNotFoundError:
         raise InvalidParameterError(f'{where}: does not exist') from None
     except Image.DecompressionBombError as error:

@@ -122,7 +122,7 @@ def map_yaml_from_dict(data, source, base_dir='') -> MapYaml:
     if not values['occupied_thresh'] > values['free_thresh']:
         raise InvalidParameterError(
             f"{source}: field 'occupied_thresh' = {values['occupied_thresh']:g}: must be > "
-            f"free_thresh ({values['free_thresh']:g}), or no cell could be both")
+            f"free_thresh ({values['free_thresh']:g})")
     values['negate'] = bool(values['negate'])
     values['image'] = os.path.normpath(os.path.join(base_dir, values['image']))
     return MapYaml(source=source, **values)
