@@ -42,6 +42,8 @@ setup(
         ('share/' + package_name + '/config/cars', _data('config/cars/*.yaml')),
         ('share/' + package_name + '/config/robots', _data('config/robots/*.yaml')),
         ('share/' + package_name + '/config/worlds', _data('config/worlds/*.yaml')),
+        ('share/' + package_name + '/config/maps',
+         _data('config/maps/*.yaml') + _data('config/maps/*.png')),
         ('share/' + package_name + '/config/rviz', _data('config/rviz/*.rviz')),
     ],
     install_requires=['setuptools', 'numpy', 'pybullet', 'PyYAML', 'cyclonedds==11.0.1',

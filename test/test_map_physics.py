@@ -26,7 +26,7 @@ from map_helpers import ORIGIN, RESOLUTION_M, world_data, write_map
 import numpy as np
 import pytest
 
-from vehicle_sim.config import world_from_data
+from vehicle_sim.config import load_world, world_from_data
 from vehicle_sim.core.errors import InvalidParameterError, InvalidPoseError
 from vehicle_sim.core.map.occupancy import ray_march
 from vehicle_sim.physics.scene import build_scene, mount_suite
@@ -133,3 +133,21 @@ def test_unknown_cells_become_walls_when_asked(tmp_path, scenes):
     assert free.parts['map'].body_ids == ()
     walls = scenes(world_data(path, unknown='occupied'))
     assert len(walls.parts['map'].rectangles) == 1
+
+
+def test_the_shipped_race_track_puts_the_car_between_walls_its_lidar_sees():
+    scene = build_scene(load_world('race_track'), mount=mount_suite)
+    try:
+        for _ in range(SETTLE_STEPS):
+            scene.world.step()
+        scan = scene.vehicles['Car'].sensors.sample('lidar')
+        assert scan.scan.size == 1080
+        assert scan.angle_max_rad - scan.angle_min_rad == pytest.approx(1.5 * math.pi, abs=0.01)
+        # the track is 7 m wide, the car in its middle: the walls 3.5 m to either side
+        angles = scan.angle_min_rad + scan.angle_increment_rad * np.arange(scan.scan.size)
+        left = scan.scan[np.argmin(np.abs(angles - math.pi / 2))]
+        right = scan.scan[np.argmin(np.abs(angles + math.pi / 2))]
+        assert (left, right) == pytest.approx((3.5, 3.5), abs=0.15)
+        assert scene.parts['map'].map_yaml.resolution_m == 0.1
+    finally:
+        scene.world.close()
