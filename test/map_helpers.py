@@ -35,9 +35,27 @@ FREE_GREY = 254
 WALL_GREY = 0
 
 
-def room_pixels():
-    """uint8 (height, width) image of the room, top row first (as stored in the file)."""
+def room_pixels(studs=0):
+    """
+    uint8 (height, width) image of the room, top row first (as stored in the file).
+
+    :param studs: this many more small square pillars (2 to 4 cells), seeded, none within
+        1.5 m of the car's box (x -1.5 .. 6 m, |y| < 2.5 m).
+    """
     image = np.full((ROOM_HEIGHT, ROOM_WIDTH), FREE_GREY, dtype=np.uint8)
+    rng = np.random.default_rng(18)
+    placed = 0
+    while placed < studs:
+        side = int(rng.integers(2, 5))
+        row = int(rng.integers(WALL_CELLS, ROOM_HEIGHT - WALL_CELLS - side))
+        column = int(rng.integers(WALL_CELLS, ROOM_WIDTH - WALL_CELLS - side))
+        x = ORIGIN[0] + column * RESOLUTION_M
+        y = ORIGIN[1] + row * RESOLUTION_M
+        if -3.0 < x < 7.5 and -4.0 < y < 4.0:
+            continue
+        top = ROOM_HEIGHT - row - side
+        image[top:top + side, column:column + side] = WALL_GREY
+        placed += 1
     image[:WALL_CELLS, :] = WALL_GREY
     image[-WALL_CELLS:, :] = WALL_GREY
     image[:, :WALL_CELLS] = WALL_GREY

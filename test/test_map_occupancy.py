@@ -137,7 +137,11 @@ def test_ray_march_stops_at_the_first_wall_cell_face():
     data[:, 7] = 100
     grid = OccupancyGrid(data, 1.0, (0.0, 0.0, 0.0))
     walls = wall_mask(grid)
-    assert ray_march(grid, walls, 0.5, 2.5, 0.0, 20.0) == pytest.approx(6.5, abs=0.1)
+    assert ray_march(grid, walls, 0.5, 2.5, 0.0, 20.0) == pytest.approx(6.5)
+    # 45 degrees from (4.5, 0.5): enters the wall column at x = 7, y = 3
+    assert ray_march(grid, walls, 4.5, 0.5, math.pi / 4, 20.0) == pytest.approx(2.5 * 2 ** 0.5)
+    # from (0.5, 0.5) it leaves the grid (y = 5) before x = 7: nothing to hit
+    assert ray_march(grid, walls, 0.5, 0.5, math.pi / 4, 20.0) == math.inf
     assert ray_march(grid, walls, 0.5, 2.5, math.pi, 20.0) == math.inf
 
 

@@ -23,10 +23,14 @@ what the builder returns, which callers read as ``scene.parts['map']`` (the ROS 
 
 An occupancy grid (:func:`build_occupancy_grid`) becomes static walls: its wall cells (value
 100, and unknown cells with ``unknown: occupied``) merged into rectangles
-(core/map/rectangles.py), each a box from the ground up to ``wall_height``, grouped by area into
-compound bodies of at most :data:`BOXES_PER_BODY` boxes. The World names them ``map``
+(core/map/rectangles.py), each a box from the ground up to ``wall_height`` (its four sides and
+its top), ordered by area into static triangle meshes of at most :data:`BOXES_PER_BODY` boxes
+(Bullet's BVH meshes: a ray or a contact finds its triangles through a tree, and static meshes
+cost nothing against the ground or each other, so a large map leaves the step as it was;
+PyBullet's compound shapes would hold at most 16 boxes each). The World names them ``map``
 (``World.add_static``): lidar, distance sensors and cameras see them, collisions report
-``other: map``, and a teleport into one is refused like one into an obstacle. A vehicle whose
+``other: map``, and a teleport into one is refused like one into an obstacle (also one that
+would put the body's centre inside a thick wall, where it touches no face). A vehicle whose
 start position lies on a wall cell is refused before anything is built, naming the world file's
 field; one whose outline touches a wall is refused by the World.
 """
@@ -39,7 +43,6 @@ import numpy as np
 import pybullet
 
 from vehicle_sim.core.errors import InvalidParameterError
-from vehicle_sim.core.frames import quaternion_from_yaw
 from vehicle_sim.core.map.kinds import OccupancyMapSpec
 from vehicle_sim.core.map.occupancy import MapYaml, OccupancyGrid, wall_mask
 from vehicle_sim.core.map.rectangles import COLUMN, COLUMNS, merge_rectangles, ROW, ROWS
@@ -47,9 +50,10 @@ from vehicle_sim.core.world_params import WorldSpec
 from vehicle_sim.map_files import load_occupancy_grid
 
 MAP_BODY_NAME = 'map'
-# Boxes of one compound body, and the side of the square of cells they are grouped by.
-BOXES_PER_BODY = 256
-TILE_CELLS = 64
+# Boxes of one static mesh body, and the side of the square of cells they are ordered by.
+# PyBullet takes at most 131072 vertices per mesh: 8 per box.
+BOXES_PER_BODY = 8192
+TILE_CELLS = 256
 WALL_COLOR = (0.55, 0.55, 0.6, 1.0)     # concrete grey
 
 
@@ -63,7 +67,7 @@ class OccupancyMap:
     :param grid: the cell values (as map_server publishes them) and their place.
     :param walls: bool (height, width) mask of the wall cells.
     :param rectangles: the merged wall rectangles (core/map/rectangles.py's rows).
-    :param body_ids: the compound bodies holding the walls.
+    :param body_ids: the static mesh bodies holding the walls.
     """
 
     spec: OccupancyMapSpec
@@ -91,59 +95,62 @@ def _check_spawns(spec: WorldSpec, built: OccupancyMap):
                 'place it in free space')
 
 
-def _wall_boxes(grid: OccupancyGrid, rectangles: np.ndarray, spec: OccupancyMapSpec):
-    # Centres (world frame), half extents and the yaw of every rectangle's box.
-    resolution = grid.resolution_m
-    u = rectangles[:, COLUMN] + rectangles[:, COLUMNS] / 2.0
-    v = rectangles[:, ROW] + rectangles[:, ROWS] / 2.0
+# The faces of a box from its 8 corners (0..3 at the ground, 4..7 on top, counter-clockwise
+# seen from above): four sides and the top, two triangles each, facing out.
+_BOX_TRIANGLES = np.array([0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6,
+                           3, 0, 4, 3, 4, 7, 4, 5, 6, 4, 6, 7], dtype=np.int64)
+
+
+def _wall_corners(grid: OccupancyGrid, rectangles: np.ndarray, spec: OccupancyMapSpec):
+    # float (n, 8, 3): the corners of every rectangle's box in the world frame.
+    u0 = rectangles[:, COLUMN].astype(float)
+    v0 = rectangles[:, ROW].astype(float)
+    u1, v1 = u0 + rectangles[:, COLUMNS], v0 + rectangles[:, ROWS]
+    us = np.stack([u0, u1, u1, u0], axis=1)
+    vs = np.stack([v0, v0, v1, v1], axis=1)
     ox, oy, grid_yaw = grid.origin
     c, s = math.cos(grid_yaw), math.sin(grid_yaw)
-    map_x = ox + (c * u - s * v) * resolution
-    map_y = oy + (s * u + c * v) * resolution
+    resolution = grid.resolution_m
+    map_x = ox + (c * us - s * vs) * resolution
+    map_y = oy + (s * us + c * vs) * resolution
     placement = spec.world_in_map
     pc, ps = math.cos(placement.yaw_rad), math.sin(placement.yaw_rad)
     dx, dy = map_x - placement.x_m, map_y - placement.y_m
-    centres = np.stack([pc * dx + ps * dy, -ps * dx + pc * dy,
-                        np.full(len(u), spec.wall_height_m / 2.0)], axis=1)
-    halves = np.stack([rectangles[:, COLUMNS] * (resolution / 2.0),
-                       rectangles[:, ROWS] * (resolution / 2.0),
-                       np.full(len(u), spec.wall_height_m / 2.0)], axis=1)
-    tiles = (v // TILE_CELLS).astype(np.int64) * (grid.width // TILE_CELLS + 1) \
-        + (u // TILE_CELLS).astype(np.int64)
-    return centres, halves, grid_yaw - placement.yaw_rad, tiles
+    corners = np.empty((len(rectangles), 8, 3))
+    corners[:, :4, 0] = corners[:, 4:, 0] = pc * dx + ps * dy
+    corners[:, :4, 1] = corners[:, 4:, 1] = -ps * dx + pc * dy
+    corners[:, :4, 2] = 0.0
+    corners[:, 4:, 2] = spec.wall_height_m
+    return corners
 
 
-def _groups(tiles):
-    # Index groups: rectangles of one tile, at most BOXES_PER_BODY each.
-    order = np.argsort(tiles, kind='stable')
-    sorted_tiles = tiles[order]
-    bounds = np.flatnonzero(np.diff(sorted_tiles)) + 1
-    for chunk in np.split(order, bounds):
-        for start in range(0, len(chunk), BOXES_PER_BODY):
-            yield chunk[start:start + BOXES_PER_BODY]
+def _spatial_order(rectangles, width):
+    # Rectangles sorted by the tile their first cell lies in, so that each body is compact.
+    tiles = (rectangles[:, ROW] // TILE_CELLS) * (width // TILE_CELLS + 1) \
+        + rectangles[:, COLUMN] // TILE_CELLS
+    return np.argsort(tiles, kind='stable')
 
 
 def _create_walls(world, grid, rectangles, spec) -> Tuple[int, ...]:
+    # Static triangle meshes (Bullet's BVH triangle mesh: rays and contacts find the triangles
+    # they meet through a tree), at most BOXES_PER_BODY boxes each.
     if len(rectangles) == 0:
         return ()
     cid = world.client_id
-    centres, halves, yaw, tiles = _wall_boxes(grid, rectangles, spec)
-    q = list(quaternion_from_yaw(yaw))
+    corners = _wall_corners(grid, rectangles, spec)[_spatial_order(rectangles, grid.width)]
     body_ids = []
-    for group in _groups(tiles):
-        count = len(group)
-        positions = centres[group].tolist()
-        extents = halves[group].tolist()
-        orientations = [q] * count
-        collision = pybullet.createCollisionShapeArray(
-            [pybullet.GEOM_BOX] * count, halfExtents=extents, collisionFramePositions=positions,
-            collisionFrameOrientations=orientations, physicsClientId=cid)
-        visual = pybullet.createVisualShapeArray(
-            [pybullet.GEOM_BOX] * count, halfExtents=extents, visualFramePositions=positions,
-            visualFrameOrientations=orientations, physicsClientId=cid)
-        body = pybullet.createMultiBody(0.0, collision, visual, physicsClientId=cid)
-        pybullet.changeVisualShape(body, -1, rgbaColor=list(WALL_COLOR), physicsClientId=cid)
-        body_ids.append(body)
+    for start in range(0, len(corners), BOXES_PER_BODY):
+        chunk = corners[start:start + BOXES_PER_BODY]
+        vertices = chunk.reshape(-1, 3).tolist()
+        indices = (_BOX_TRIANGLES[None, :]
+                   + 8 * np.arange(len(chunk))[:, None]).ravel().tolist()
+        collision = pybullet.createCollisionShape(
+            pybullet.GEOM_MESH, vertices=vertices, indices=indices,
+            flags=pybullet.GEOM_FORCE_CONCAVE_TRIMESH, physicsClientId=cid)
+        visual = pybullet.createVisualShape(
+            pybullet.GEOM_MESH, vertices=vertices, indices=indices,
+            rgbaColor=list(WALL_COLOR), physicsClientId=cid)
+        body_ids.append(pybullet.createMultiBody(0.0, collision, visual, physicsClientId=cid))
     return tuple(body_ids)
 
 
@@ -162,7 +169,7 @@ def build_occupancy_grid(world, spec: WorldSpec) -> OccupancyMap:
     built = OccupancyMap(map_spec, map_yaml, grid, walls, rectangles, ())
     _check_spawns(spec, built)
     built.body_ids = _create_walls(world, grid, rectangles, map_spec)
-    world.add_static(MAP_BODY_NAME, built.body_ids)
+    world.add_static(MAP_BODY_NAME, built.body_ids, built.wall_at)
     return built
 
 

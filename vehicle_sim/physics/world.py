@@ -214,6 +214,7 @@ class World:
         self.obstacles = {}           # obstacle name -> body id
         self._obstacle_specs = {}     # obstacle name -> its ObstacleSpec (reset_obstacles)
         self._static_names = set()    # names of static geometry (a map's walls): add_static
+        self._blocked = []            # (name, blocked(x, y)) of static geometry: add_static
         self._ray_masks = {}          # body id -> ray mask excluding that body
         self._ground_visual = False
         self._broadphase_stale = True   # bodies added since the last step: rays miss them
@@ -405,21 +406,28 @@ class World:
         self._broadphase_stale = True
         return body_id
 
-    def add_static(self, name, body_ids):
+    def add_static(self, name, body_ids, blocked=None):
         """
         Name static bodies built elsewhere (a map's walls): collisions and rays see them.
 
         :param name: the name collision events and refusals give them ('map').
         :param body_ids: the bodies, already created in this world's client.
+        :param blocked: ``blocked(x, y)`` -> True where a point of the ground is inside them
+            (None: never). Hollow shapes (a triangle mesh's walls) need it: a body entirely
+            inside one touches none of its faces, so its centre of mass is checked too.
         :raises InvalidPoseError: when a vehicle is inside one (the bodies are removed).
         """
         body_ids = list(body_ids)
         vehicles = {v.body_id: v.name for v in map(_vehicle_body, self._bodies) if v is not None}
         cid = self.client_id
-        inside = sorted(name_ for vehicle_id, name_ in vehicles.items()
-                        if any(point[8] < -OVERLAP_TOLERANCE_M for body_id in body_ids
-                               for point in pybullet.getClosestPoints(vehicle_id, body_id, 0.0,
-                                                                      physicsClientId=cid)))
+
+        def inside_of(vehicle_id):
+            if blocked is not None and blocked(*self._centre(vehicle_id)):
+                return True
+            return any(point[8] < -OVERLAP_TOLERANCE_M for body_id in body_ids
+                       for point in pybullet.getClosestPoints(vehicle_id, body_id, 0.0,
+                                                              physicsClientId=cid))
+        inside = sorted(name_ for vehicle_id, name_ in vehicles.items() if inside_of(vehicle_id))
         if inside:
             for body_id in body_ids:
                 pybullet.removeBody(body_id, physicsClientId=self.client_id)
@@ -429,7 +437,14 @@ class World:
         for body_id in body_ids:
             self._names[body_id] = name
         self._static_names.add(name)
+        if blocked is not None:
+            self._blocked.append((name, blocked))
         self._broadphase_stale = True
+
+    def _centre(self, body_id):
+        # (x, y) of a body's centre of mass.
+        return pybullet.getBasePositionAndOrientation(body_id,
+                                                      physicsClientId=self.client_id)[0][:2]
 
     def reset_obstacles(self):
         """
@@ -528,6 +543,10 @@ class World:
         saved = self.body_state(body_id)
         place()
         blocking = self.overlaps(body_id)
+        if self._blocked:
+            centre = self._centre(body_id)
+            blocking += [name for name, blocked in self._blocked
+                         if blocked(*centre) and name not in blocking]
         if blocking:
             self.restore_body_state(body_id, saved)
             raise InvalidPoseError(f'that place is inside {", ".join(blocking)}')
