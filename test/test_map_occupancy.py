@@ -242,3 +242,18 @@ def test_unknown_map_yaml_key_is_refused_naming_it():
         map_yaml_from_dict({'image': 'a.pgm', 'resolution': 0.05, 'origin': [0, 0, 0],
                             'negate': 0, 'occupied_thresh': 0.65, 'free_thresh': 0.196,
                             'colour': 1}, 'm.yaml')
+
+
+def test_docs_maps_embeds_the_tables_generated_from_the_rows():
+    from pathlib import Path
+
+    from vehicle_sim.core.map.kinds import OCCUPANCY_GRID_SPECS
+    from vehicle_sim.core.map.occupancy import MAP_YAML_SPECS
+    from vehicle_sim.core.param_spec import parameter_table_markdown
+    from vehicle_sim.ros.endpoints import topic_table_markdown
+    from vehicle_sim.ros.map_interfaces import MAP_TOPICS
+    text = (Path(__file__).resolve().parent.parent / 'docs' / 'maps.md').read_text()
+    for table in (parameter_table_markdown(OCCUPANCY_GRID_SPECS, 'key'),
+                  parameter_table_markdown(MAP_YAML_SPECS, 'key'),
+                  topic_table_markdown(MAP_TOPICS['occupancy_grid'])):
+        assert table in text
