@@ -162,3 +162,19 @@ def test_the_shipped_race_track_puts_the_car_between_walls_its_lidar_sees():
         assert scene.parts['map'].map_yaml.resolution_m == 0.1
     finally:
         scene.world.close()
+
+
+def test_a_camera_sees_the_wall_ahead_in_the_walls_colour(tmp_path, scenes):
+    camera = {'name': 'camera', 'type': 'camera', 'pose': {'x': 1.5, 'z': 0.5}, 'width': 64,
+              'height': 48, 'fov': 0.5}
+    data = world_data(write_map(tmp_path), sensors=[camera])
+    centres = []
+    for world in (data, {k: v for k, v in data.items() if k != 'map'}):
+        scene = scenes(world, mount=mount_suite)
+        scene.world.step()
+        image = scene.vehicles['car'].sensors.sample('camera')
+        pixels = np.frombuffer(bytes(image.data), np.uint8).reshape(image.height, image.width, 3)
+        centres.append(pixels[image.height // 2, image.width // 2].astype(int))
+    wall, open_plane = centres
+    assert not np.array_equal(wall, open_plane)
+    assert wall[2] > wall[0] == wall[1]          # the walls' grey is a little blue (0.55, 0.6)
