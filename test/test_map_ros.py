@@ -142,3 +142,16 @@ def test_driving_at_a_wall_of_the_map_gives_exactly_one_collision_message(car):
     assert wait_for(lambda: collisions, spin=car.node)
     assert not wait_for(lambda: len(collisions) > 1, timeout_s=2.0, spin=car.node)
     assert collisions[0].other == 'map' and collisions[0].normal_force > 0.0
+
+
+def test_a_pose_in_the_map_frame_lands_where_world_in_map_puts_it():
+    # /initialpose in frame map: the node takes it through map_in_world (ros/sim_control.py)
+    from vehicle_sim.core.frames import quaternion_from_yaw
+    from vehicle_sim.core.map.kinds import map_from_dict
+    from vehicle_sim.core.placement import ground_pose
+    from vehicle_sim.ros.map_interfaces import map_in_world
+    spec = map_from_dict({'type': 'occupancy_grid', 'file': 'm.yaml',
+                          'world_in_map': WORLD_IN_MAP}, 'w.yaml: map')
+    place = ground_pose((3.0, -2.0, 0.0), quaternion_from_yaw(0.4), *map_in_world(spec))
+    assert (place.x_m, place.y_m) == pytest.approx(spec.world_in_map.to_world(3.0, -2.0))
+    assert place.yaw_rad == pytest.approx(0.4 - WORLD_IN_MAP['yaw'])
