@@ -19,7 +19,7 @@ The map layer: the scene part that builds a world's ``map:`` into the World.
 WorldSpec has a map. It looks the map's ``type`` up in :data:`MAP_BUILDERS` (one builder per
 kind of core/map/kinds.py's ``MAP_KINDS``; a test checks both list the same kinds) and returns
 what the builder returns, which callers read as ``scene.parts['map']`` (the ROS node publishes
-``/map`` from it).
+``/map`` from it and logs its ``describe()``).
 
 An occupancy grid (:func:`build_occupancy_grid`) becomes static walls: its wall cells (value
 100, and unknown cells with ``unknown: occupied``) merged into rectangles
@@ -44,7 +44,7 @@ import pybullet
 
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.map.kinds import OccupancyMapSpec
-from vehicle_sim.core.map.occupancy import MapYaml, OccupancyGrid, wall_mask
+from vehicle_sim.core.map.occupancy import describe_size, MapYaml, OccupancyGrid, wall_mask
 from vehicle_sim.core.map.rectangles import COLUMN, COLUMNS, merge_rectangles, ROW, ROWS
 from vehicle_sim.core.world_params import WorldSpec
 from vehicle_sim.map_files import load_occupancy_grid
@@ -76,6 +76,11 @@ class OccupancyMap:
     walls: np.ndarray
     rectangles: np.ndarray
     body_ids: Tuple[int, ...]
+
+    def describe(self) -> str:
+        """One line for logs: the file, its size, its walls (every built map has one)."""
+        return (f'{self.map_yaml.source}: {describe_size(self.grid)}, '
+                f'{len(self.rectangles)} wall rectangles')
 
     def wall_at(self, x_m: float, y_m: float) -> bool:
         """Return True when the world-frame point lies on a wall cell."""

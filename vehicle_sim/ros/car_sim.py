@@ -280,6 +280,8 @@ class AutomobileNode:
         self._fleet_outputs = Outputs(self.node, itf.WORLD_TOPICS, self._fleet)
         # /map and its kin (ros/map_interfaces.py), for a world with a map.
         self._map_outputs = MapOutputs(self.node, self.scene.parts.get('map'))
+        if self._map_outputs.summary:
+            self._logger.info(self._map_outputs.summary)
 
     @staticmethod
     def _bind(handler, spec, vehicle, name):

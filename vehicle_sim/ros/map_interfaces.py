@@ -87,6 +87,9 @@ class MapOutputs:
         self._context = SimpleNamespace(map_frame=MAP_FRAME, stamp=None,
                                         grid=getattr(built, 'grid', None))
         self.outputs = Outputs(node, rows, self._context) if rows else None
+        # One line for the node's log: what was loaded ('' without a map).
+        self.summary = '' if built is None else (
+            f'map {built.describe()}; publishing ' + ', '.join(row.name for row in rows))
 
     def publish_latched(self, stamp):
         """Publish the map's latched rows with ``stamp`` (the time the map was loaded)."""
