@@ -178,3 +178,20 @@ def test_a_camera_sees_the_wall_ahead_in_the_walls_colour(tmp_path, scenes):
     wall, open_plane = centres
     assert not np.array_equal(wall, open_plane)
     assert wall[2] > wall[0] == wall[1]          # the walls' grey is a little blue (0.55, 0.6)
+
+
+def test_a_scenario_with_a_map_next_to_it_fails_no_collision_at_the_map_s_wall(tmp_path):
+    from vehicle_sim.scenarios.runner import run_scenario
+    from vehicle_sim.scenarios.schema import load_scenario
+    write_map(tmp_path)
+    path = tmp_path / 'scenario_room.yaml'
+    path.write_text(
+        'name: room\nduration: 8.0\ndriver: {commands: [{t: 0.0, cruising_speed: 20.0}]}\n'
+        'world:\n  vehicles: [{name: Car}]\n'
+        '  map: {type: occupancy_grid, file: room.yaml}\n'
+        'criteria:\n  - kind: no_collision\n', encoding='utf-8')
+    assert load_scenario(path).world.map.file == str(tmp_path / 'room.yaml')
+    result = run_scenario(path)
+    assert not result.passed
+    assert not result.criterion('no_collision').passed
+    assert 'map' in result.criterion('no_collision').detail
