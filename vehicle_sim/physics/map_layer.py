@@ -55,6 +55,9 @@ MAP_BODY_NAME = 'map'
 BOXES_PER_BODY = 8192
 TILE_CELLS = 256
 WALL_COLOR = (0.55, 0.55, 0.6, 1.0)     # concrete grey
+# Ray sensors in a world with walls cast each ray up to this distance first, then on from there
+# only where that part hit nothing (World.ray_split_m).
+RAY_SPLIT_M = 8.0
 
 
 @dataclass(eq=False)
@@ -175,6 +178,8 @@ def build_occupancy_grid(world, spec: WorldSpec) -> OccupancyMap:
     _check_spawns(spec, built)
     built.body_ids = _create_walls(world, grid, rectangles, map_spec)
     world.add_static(MAP_BODY_NAME, built.body_ids, built.wall_at)
+    if built.body_ids:
+        world.ray_split_m = RAY_SPLIT_M
     return built
 
 

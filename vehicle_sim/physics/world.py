@@ -215,6 +215,9 @@ class World:
         self._obstacle_specs = {}     # obstacle name -> its ObstacleSpec (reset_obstacles)
         self._static_names = set()    # names of static geometry (a map's walls): add_static
         self._blocked = []            # (name, blocked(x, y)) of static geometry: add_static
+        # Ray sensors cast near then far beyond this distance [m] (physics/sensors/rays.py);
+        # None: in one go. A map layer sets it: its meshes cost per metre of ray.
+        self.ray_split_m = None
         self._ray_masks = {}          # body id -> ray mask excluding that body
         self._ground_visual = False
         self._broadphase_stale = True   # bodies added since the last step: rays miss them
