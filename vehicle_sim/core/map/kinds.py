@@ -70,7 +70,8 @@ class MapPlacement:
 
 
 COMMON_MAP_SPECS = (
-    ParamSpec('type', 'type', 'str', REQUIRED, '', 'the map kind: ' + 'occupancy_grid'),
+    ParamSpec('type', 'type', 'str', REQUIRED, '',
+              'the map kind, a name of MAP_KINDS: occupancy_grid'),
     ParamSpec('world_in_map', 'world_in_map', 'pose', Pose(), 'm, rad',
               'pose {x, y, yaw} of the world frame in the map frame (the map -> world '
               'transform on /tf_static); default identity', choices=('x', 'y', 'yaw')),
