@@ -42,18 +42,22 @@ setup(
         ('share/' + package_name + '/config/cars', _data('config/cars/*.yaml')),
         ('share/' + package_name + '/config/robots', _data('config/robots/*.yaml')),
         ('share/' + package_name + '/config/worlds', _data('config/worlds/*.yaml')),
+        ('share/' + package_name + '/config/maps',
+         _data('config/maps/*.yaml') + _data('config/maps/*.png')),
         ('share/' + package_name + '/config/rviz', _data('config/rviz/*.rviz')),
     ],
     install_requires=['setuptools', 'numpy', 'pybullet', 'PyYAML', 'cyclonedds==11.0.1',
                       'rosbags>=0.10'],
     # Optional parts, each an extra named in its error when missing: matplotlib draws the plots
-    # of `vehicle-sim demo` and `vehicle-sim scenario --plot`; lanelet2 reads Lanelet2 .osm lane
-    # maps (vehicle_sim/maps/lanelet2_map.py); ray runs sweeps on a cluster (vehicle_sim/sweep).
+    # of `vehicle-sim demo` and `vehicle-sim scenario --plot`; Pillow reads occupancy-grid map
+    # images (vehicle_sim/maps); lanelet2 reads Lanelet2 .osm lane maps
+    # (vehicle_sim/maps/lanelet2_map.py); ray runs sweeps on a cluster (vehicle_sim/sweep).
     # `test` installs every one of them, so that the tests of each run (pyarrow: a sweep's
     # results.parquet, written when it imports).
-    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib', 'lanelet2',
-                             'ray', 'pyarrow'],
+    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib', 'Pillow',
+                             'lanelet2', 'ray', 'pyarrow'],
                     'plot': ['matplotlib'],
+                    'maps': ['Pillow'],
                     'lanelet2': ['lanelet2'],
                     'ray': ['ray']},
     zip_safe=True,

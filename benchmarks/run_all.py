@@ -105,6 +105,7 @@ def matched_write_us(count=3000):
 
 def collect(quick):
     """Run every benchmark; return (rows, floors)."""
+    import bench_maps
     import bench_plugin
     import bench_ros_sync
     import bench_service_roundtrip
@@ -131,6 +132,7 @@ def collect(quick):
     during = bench_service_roundtrip.during_time_step(200 if quick else 400)
     plugin = bench_plugin.figures(1000 if quick else 6000)
     plugin_subset = bench_plugin.figures(1000 if quick else 6000, bench_plugin.SUBSET)
+    maps = bench_maps.figures(quick)
     found['write_us'] = bare_write_us()
     found['matched_write_us'] = matched_write_us()
     bare_p50, bare_p99 = service['bare']
@@ -153,6 +155,12 @@ def collect(quick):
         ('service p50, simulation running / bare cyclonedds p50', sim_p50 / bare_p50, '<=',
          1.3, 'x'),
         ('10 cars in one world, per-car cost / one car', ten, '<=', 1.2, 'x'),
+        (f'occupancy map {bench_maps.WIDTH} x {bench_maps.HEIGHT} cells: load time',
+         maps['load_s'], '<=', 2.0, 's'),
+        ('  same: RSS added by loading it', maps['rss_mb'], '<=', 300.0, 'MB'),
+        ('  same: in-process step with the map / without', maps['step_ratio'], '<=', 1.1, 'x'),
+        ('  same: lidar 1080 rays, 270 deg, 40 Hz on the map, share of one core',
+         maps['lidar_share'] * 100.0, '<=', 15.0, '%'),
     ]
     floors = [
         f'raw PyBullet stepSimulation (BmwX5): {raw_us:.1f} us per basic step; Driver.step '
@@ -182,6 +190,9 @@ def collect(quick):
         f'{raw_share * 100:.1f} %, and with one raw write per topic of bytes serialized once '
         f'(no Python logic) {write_floor * 100:.1f} % (/clock messages received: '
         f'{counts.get("/clock", 0)})',
+        f'occupancy map: {maps["rectangles"]} wall rectangles in {maps["bodies"]} static mesh '
+        f'bodies; step {maps["step_mapped_us"]:.0f} us with it, {maps["step_plain_us"]:.0f} us '
+        f'without; lidar {maps["lidar_ms"]:.2f} ms per sample (CPU)',
     ]
     return rows, floors
 

@@ -242,8 +242,8 @@ def test_the_world_parser_reads_a_world_without_vehicles_when_asked():
     assert spec.origin.latitude_deg == 48.0 and spec.source == 'inline'
     with pytest.raises(InvalidParameterError, match='needs a non-empty list "vehicles"'):
         world_from_data(data, 'inline')
-    with pytest.raises(InvalidParameterError, match=r"unknown key\(s\) \['map'\]"):
-        world_from_data(dict(data, map='x'), 'inline', vehicles_required=False)
+    with pytest.raises(InvalidParameterError, match=r"unknown key\(s\) \['terrain'\]"):
+        world_from_data(dict(data, terrain='x'), 'inline', vehicles_required=False)
 
 
 def test_build_scene_refuses_two_vehicles_of_one_name_before_building():

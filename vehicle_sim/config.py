@@ -171,7 +171,8 @@ def _car_sensors(model):
     return load_car(model).sensor_set
 
 
-def world_from_data(data, source, default_model='Car', vehicles_required=True) -> WorldSpec:
+def world_from_data(data, source, default_model='Car', vehicles_required=True,
+                    base_dir=None) -> WorldSpec:
     """
     Validate a world mapping; car models are resolved in config/cars.
 
@@ -179,9 +180,12 @@ def world_from_data(data, source, default_model='Car', vehicles_required=True) -
     :param source: file name quoted in errors.
     :param default_model: model of the vehicles that give none.
     :param vehicles_required: refuse a world without vehicles (see world_from_dict).
+    :param base_dir: folder the files the world names (its map) are resolved in; None = the
+        folder of ``source``.
     :raises InvalidParameterError: naming file, entry and field.
     """
-    return world_from_dict(data, source, default_model, _car_sensors, vehicles_required)
+    return world_from_dict(data, source, default_model, _car_sensors, vehicles_required,
+                           base_dir)
 
 
 def load_world(name_or_path, default_model='Car') -> WorldSpec:
@@ -194,7 +198,7 @@ def load_world(name_or_path, default_model='Car') -> WorldSpec:
     :raises InvalidParameterError: naming file, entry and field.
     """
     path = world_path(name_or_path)
-    return world_from_data(read_yaml(path), str(path), default_model)
+    return world_from_data(read_yaml(path), str(path), default_model, base_dir=str(path.parent))
 
 
 def parse_world(data, source, default_model) -> Tuple[VehicleSpec, ...]:

@@ -13,4 +13,4 @@
 # limitations under the License.
 
 
-"""Map files read with optional packages (Lanelet2): each becomes a core map type."""
+"""Map files (occupancy grids with Pillow, Lanelet2 with lanelet2), each into a core map type."""

@@ -31,7 +31,9 @@ contract):
 Extension points: a *scene part* is any object with ``name`` and ``build(world, spec)``; it adds
 what the WorldSpec asks of it (a map layer's ground and walls, traffic vehicles) once the
 obstacles and vehicles are in, and returns what callers read later, kept in
-:attr:`Scene.parts` under its name. No part exists yet; the map and traffic issues add theirs.
+:attr:`Scene.parts` under its name. A WorldSpec with a ``map`` gets the map layer
+(physics/map_layer.py) as its first part, ``scene.parts['map']``; a world without one gets no
+part and pays nothing.
 
 It returns a :class:`Scene`: the World, the vehicles by name (:class:`SceneVehicle`: body, car,
 sensors), the obstacles by name and the geodetic origin, which callers read instead of building
@@ -48,6 +50,7 @@ from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.world.params import RobotSpec, used_twice, WorldSpec
 from vehicle_sim.physics.diff_robot import DiffRobotBody
 from vehicle_sim.physics.gui import GuiClosedError
+from vehicle_sim.physics.map_layer import MapLayer
 from vehicle_sim.physics.sensors import SensorSuite
 from vehicle_sim.physics.simulated_car import SimulatedCar
 from vehicle_sim.physics.vehicle_body import VehicleBody
@@ -133,7 +136,8 @@ def build_scene(spec: WorldSpec, world: Optional[World] = None, *,
     :param hooks: step hooks registered before every body.
     :param mount: (SceneVehicle, Scene) -> its sensors, for each vehicle once every body is in;
         None mounts none.
-    :param parts: scene parts (map layer, traffic), built in order after the vehicles.
+    :param parts: scene parts (traffic), built in order after the vehicles (and after the map
+        layer, which a spec with a map gets first).
     :raises InvalidPoseError: for a vehicle that starts inside an obstacle.
     :raises InvalidParameterError: for two vehicles (cars or robots) of one name; nothing is
         built.
@@ -142,6 +146,8 @@ def build_scene(spec: WorldSpec, world: Optional[World] = None, *,
     if twice:   # names are how getDevice, /initialpose and scenarios find a vehicle
         raise InvalidParameterError(f'vehicle name(s) used twice: {twice}')
     params = params or {}
+    if spec.map is not None:
+        parts = (MapLayer(),) + tuple(parts)
     owned = world is None
     if owned:
         world = World(time_step_s=time_step_s, friction=friction, gui=gui)

@@ -148,6 +148,11 @@ class World:
         self._names = {}              # body id -> name (obstacles)
         self.obstacles = {}           # obstacle name -> body id
         self._obstacle_specs = {}     # obstacle name -> its ObstacleSpec (reset_obstacles)
+        self._static_names = set()    # names of static geometry (a map's walls): add_static
+        self._blocked = []            # (name, blocked(x, y)) of static geometry: add_static
+        # Ray sensors cast near then far beyond this distance [m] (physics/sensors/rays.py);
+        # None: in one go. A map layer sets it: its meshes cost per metre of ray.
+        self.ray_split_m = None
         self._ray_masks = {}          # body id -> ray mask excluding that body
         self._ground_visual = False
         self._broadphase_stale = True   # bodies added since the last step: rays miss them
@@ -222,7 +227,8 @@ class World:
             return body
         vehicle = _vehicle_body(body)
         if vehicle is not None:
-            inside = [name for name in self.overlaps(vehicle.body_id) if name in self.obstacles]
+            inside = [name for name in self.overlaps(vehicle.body_id)
+                      if name in self.obstacles or name in self._static_names]
             if inside:
                 destroy = getattr(body, 'destroy', None)
                 if destroy is not None:
@@ -338,6 +344,46 @@ class World:
         self._broadphase_stale = True
         return body_id
 
+    def add_static(self, name, body_ids, blocked=None):
+        """
+        Name static bodies built elsewhere (a map's walls): collisions and rays see them.
+
+        :param name: the name collision events and refusals give them ('map').
+        :param body_ids: the bodies, already created in this world's client.
+        :param blocked: ``blocked(x, y)`` -> True where a point of the ground is inside them
+            (None: never). Hollow shapes (a triangle mesh's walls) need it: a body entirely
+            inside one touches none of its faces, so its centre of mass is checked too.
+        :raises InvalidPoseError: when a vehicle is inside one (the bodies are removed).
+        """
+        body_ids = list(body_ids)
+        vehicles = {v.body_id: v.name for v in map(_vehicle_body, self._bodies) if v is not None}
+        cid = self.client_id
+
+        def inside_of(vehicle_id):
+            if blocked is not None and blocked(*self._centre(vehicle_id)):
+                return True
+            return any(point[8] < -OVERLAP_TOLERANCE_M for body_id in body_ids
+                       for point in pybullet.getClosestPoints(vehicle_id, body_id, 0.0,
+                                                              physicsClientId=cid))
+        inside = sorted(name_ for vehicle_id, name_ in vehicles.items() if inside_of(vehicle_id))
+        if inside:
+            for body_id in body_ids:
+                pybullet.removeBody(body_id, physicsClientId=self.client_id)
+            raise InvalidPoseError(
+                f'vehicle {", ".join(repr(n) for n in inside)} starts inside {name!r}: '
+                'its start pose must be clear of every wall (as set_pose requires)')
+        for body_id in body_ids:
+            self._names[body_id] = name
+        self._static_names.add(name)
+        if blocked is not None:
+            self._blocked.append((name, blocked))
+        self._broadphase_stale = True
+
+    def _centre(self, body_id):
+        # (x, y) of a body's centre of mass.
+        return pybullet.getBasePositionAndOrientation(body_id,
+                                                      physicsClientId=self.client_id)[0][:2]
+
     def reset_obstacles(self):
         """
         Put every movable obstacle (mass > 0) back at its initial pose, at rest.
@@ -435,6 +481,10 @@ class World:
         saved = self.body_state(body_id)
         place()
         blocking = self.overlaps(body_id)
+        if self._blocked:
+            centre = self._centre(body_id)
+            blocking += [name for name, blocked in self._blocked
+                         if blocked(*centre) and name not in blocking]
         if blocking:
             self.restore_body_state(body_id, saved)
             raise InvalidPoseError(f'that place is inside {", ".join(blocking)}')

@@ -56,6 +56,7 @@ from vehicle_sim.ros.endpoints import (
     serve,
     subscribe,
 )
+from vehicle_sim.ros.map_interfaces import map_in_world, map_static_transform, MapOutputs
 from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.sensor_interfaces import check_names, sensor_rows
 from vehicle_sim.ros.sim_control import serve_vehicle, WorldControl
@@ -133,7 +134,7 @@ class AutomobileNode:
         self.settings = settings = declare_parameters(node)
         spec = self._with_sensor_parameter(world_spec(settings))
         # Collisions are watched when there is something besides the ground to hit.
-        collisions = bool(spec.obstacles) or len(spec.vehicles) > 1
+        collisions = bool(spec.obstacles) or len(spec.vehicles) > 1 or spec.map is not None
 
         def feed(vehicle, scene):
             # Each vehicle's sensors at their rates, and its collisions (ros: their topics).
@@ -164,7 +165,8 @@ class AutomobileNode:
         # /sim/reset, /sim/pause, /initialpose (ros/sim_control.py).
         self._control = WorldControl(
             node, self.world, self._vehicles, settings.synchronous,
-            self._vehicles[initialpose_index(settings, spec)])
+            self._vehicles[initialpose_index(settings, spec)],
+            map_in_world=None if spec.map is None else map_in_world(spec.map))
         self._publish_latched()
         self._publish_step(self.world.time_s)
         if not settings.synchronous:
@@ -273,7 +275,14 @@ class AutomobileNode:
             tf_frames=[(v.odom_frame, v.base_frame) for v in vehicles],
             static_transforms=[t for v in vehicles for t in v.static_transforms()],
             stamp=None, tf_poses=None)
+        world_map = self.scene.spec.map
+        if world_map is not None:     # map -> world, the root of the tree (docs/maps.md)
+            self._fleet.static_transforms.insert(0, map_static_transform(world_map))
         self._fleet_outputs = Outputs(self.node, itf.WORLD_TOPICS, self._fleet)
+        # /map and its kin (ros/map_interfaces.py), for a world with a map.
+        self._map_outputs = MapOutputs(self.node, self.scene.parts.get('map'))
+        if self._map_outputs.summary:
+            self._logger.info(self._map_outputs.summary)
 
     @staticmethod
     def _bind(handler, spec, vehicle, name):
@@ -410,6 +419,7 @@ class AutomobileNode:
         fleet = self._fleet
         fleet.stamp = self._stamp(self.world.time_s)
         self._fleet_outputs.publish(ONCE_LATCHED, fleet)
+        self._map_outputs.publish_latched(fleet.stamp)
         for vehicle in self._vehicles:
             vehicle.sample(fleet.stamp)
             vehicle.outputs.publish(ONCE_LATCHED, vehicle)

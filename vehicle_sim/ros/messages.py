@@ -27,6 +27,7 @@ embedded transport.
 """
 
 from array import array
+import math
 from typing import Sequence, Tuple
 
 import numpy as np
@@ -61,6 +62,8 @@ RANGE = 'sensor_msgs/msg/Range'
 IMAGE = 'sensor_msgs/msg/Image'
 CAMERA_INFO = 'sensor_msgs/msg/CameraInfo'
 COLLISION = 'vehicle_msgs/msg/Collision'
+OCCUPANCY_GRID = 'nav_msgs/msg/OccupancyGrid'
+MAP_META_DATA = 'nav_msgs/msg/MapMetaData'
 
 Vector = Tuple[float, float, float]
 Quaternion = Tuple[float, float, float, float]
@@ -405,6 +408,46 @@ def collision_builder(msg, frame_id: str):
     def build(stamp, event):
         return collision_type(header=header_type(stamp=stamp, frame_id=frame_id),
                               other=event.other, normal_force=float(event.normal_force_n))
+    return build
+
+
+def _map_info(info, load_stamp, grid):
+    # nav_msgs/MapMetaData of a core OccupancyGrid (its origin: the lower-left cell's corner).
+    x, y, yaw = grid.origin
+    info.map_load_time = load_stamp
+    info.resolution = float(grid.resolution_m)
+    info.width, info.height = int(grid.width), int(grid.height)
+    info.origin.position.x, info.origin.position.y = float(x), float(y)
+    info.origin.orientation.z, info.origin.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
+
+
+def map_meta_data_builder(msg):
+    """Return ``build(stamp, grid)``: nav_msgs/MapMetaData of a core OccupancyGrid."""
+    info_type = msg(MAP_META_DATA)
+
+    def build(stamp, grid):
+        info = info_type()
+        _map_info(info, stamp, grid)
+        return info
+    return build
+
+
+def occupancy_grid_builder(msg, frame_id: str):
+    """
+    Return ``build(stamp, grid)``: nav_msgs/OccupancyGrid of a core OccupancyGrid.
+
+    As nav2 map_server publishes it: ``info.map_load_time`` and the header's stamp are the
+    loading time, ``data`` the cell values row by row from the bottom row.
+    """
+    grid_type = msg(OCCUPANCY_GRID)
+
+    def build(stamp, grid):
+        message = grid_type()
+        message.header.stamp = stamp
+        message.header.frame_id = frame_id
+        _map_info(message.info, stamp, grid)
+        message.data = array('b', grid.data.tobytes())
+        return message
     return build
 
 

@@ -47,8 +47,8 @@ TELEPORT = 'set_pose'
 SIM_RESET_KIND = 'sim_reset'
 SIM_PAUSE_KIND = 'sim_pause'
 
-# Frames an /initialpose may name for the world frame ('' is RViz's "no frame"; a map frame is
-# the world here: the simulator has no localisation offset).
+# Frames an /initialpose may name for the world frame ('' is RViz's "no frame"; 'map' is the
+# world unless the world's map places it elsewhere: then the pose is taken in the map frame).
 WORLD_FRAMES = ('', 'world', 'map')
 
 SIM_RESET = Service('/sim/reset', TRIGGER, SIM_RESET_KIND, value='',
@@ -142,10 +142,12 @@ class WorldControl:
     :param vehicles: the world's Movables, in order.
     :param synchronous: the world moves only by robot/time_step (pause is refused).
     :param initialpose_vehicle: the Movable that /initialpose moves; None: no /initialpose.
+    :param map_in_world: (xyz, q) of the ``map`` frame in the world (a world with a map whose
+        map -> world transform is not the identity); None: ``map`` is the world.
     """
 
     def __init__(self, node, world, vehicles: Sequence, synchronous: bool,
-                 initialpose_vehicle=None):
+                 initialpose_vehicle=None, map_in_world=None):
         self._world = world
         self._vehicles = tuple(vehicles)
         self._synchronous = synchronous
@@ -157,6 +159,7 @@ class WorldControl:
         self.services = serve(node, {SIM_RESET: self._on_reset, SIM_PAUSE: self._on_pause})
         self._target = initialpose_vehicle
         self._frames: Dict[str, object] = {v.odom_frame: v for v in self._vehicles}
+        self._map_in_world = map_in_world
         self.subscriptions = [] if initialpose_vehicle is None else subscribe(
             node, {INITIALPOSE: self._on_initialpose})
 
@@ -215,6 +218,8 @@ class WorldControl:
             return
         frame = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0)) if owner is None else \
             (owner.spawn_xyz, owner.spawn_q)
+        if frame_id == 'map' and self._map_in_world is not None:
+            frame = self._map_in_world
         try:
             place = ground_pose(xyz, q, *frame)
             target.teleport(place)

@@ -261,7 +261,8 @@ def _world(ctx, value, cars_optional):
             return config.load_world(file), str(config.world_path(file))
         if isinstance(value, dict):
             return config.world_from_data(value, f'{ctx.source}: world',
-                                          vehicles_required=not cars_optional), None
+                                          vehicles_required=not cars_optional,
+                                          base_dir=str(ctx.folder)), None
     except InvalidParameterError as error:
         raise error_at(ctx.source, ctx.lines, path, error) from None
     raise ctx.fail(path, f'world = {brief(value)}: give a world name, a path to a world .yaml or '

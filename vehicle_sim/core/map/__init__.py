@@ -12,11 +12,15 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-
 """
-Lane maps, ROS-free: the lane graph, road segments, per-vehicle lane state and lane invasion.
+Maps, ROS-, PyBullet- and file-free (numbers in, numbers out).
 
-Every lane map kind (a Lanelet2 ``.osm`` file, the ``roads:`` segments of a world file) becomes
-one :class:`~vehicle_sim.core.map.lane_graph.LaneGraph`; what builds on lanes (lane state,
-lane invasion, the lane criteria of scenarios) reads only that.
+The map layer: ``kinds`` (the ``map:`` key of world files, one registry of map kinds),
+``occupancy`` (nav2 map_server's YAML and thresholding, cells, a ray march for tests),
+``rectangles`` (wall cells merged into few boxes). Files are read by ``vehicle_sim/maps``; the
+physics part is ``physics/map_layer.py``.
+
+Lanes: every lane map kind (a Lanelet2 ``.osm`` file, the ``roads:`` segments of a world file)
+becomes one :class:`~vehicle_sim.core.map.lane_graph.LaneGraph`; what builds on lanes (lane
+state, lane invasion, the lane criteria of scenarios) reads only that.
 """

@@ -25,6 +25,8 @@ The form (every key optional except ``vehicles``)::
       - {name: wall, shape: box, size: [1.0, 6.0, 2.0], position: [20.0, 0.0, 1.0], yaw: 0.0}
     roads:        # lanes from road segments: core/map/road_segments.py
       - {lanes: 2, segments: [{type: straight, length: 200.0}]}
+    map: {type: occupancy_grid, file: maps/track.yaml}
+
 
 Each mapping is checked against a ParamSpec table (core/specs/param_spec.py), so an unknown key, a
 wrong type, a NaN or an impossible value is refused with the file, the entry and the field. Reading
@@ -32,10 +34,12 @@ the file and resolving car models are config.py's (this module touches no file).
 """
 
 from dataclasses import dataclass, replace
+import os
 from typing import Callable, Optional, Sequence, Tuple
 
 from vehicle_sim.core.geometry.frames import Pose
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
+from vehicle_sim.core.map.kinds import map_from_dict
 from vehicle_sim.core.map.road_segments import roads_from_list, RoadSpec
 from vehicle_sim.core.sensors.params import SensorSpec
 from vehicle_sim.core.sensors.sets import merge_sensors
@@ -49,7 +53,7 @@ from vehicle_sim.core.specs.param_spec import (
 from vehicle_sim.core.specs.value_text import brief
 from vehicle_sim.core.world.placement import check_in_world
 
-WORLD_KEYS = ('origin', 'vehicles', 'obstacles', 'roads')
+WORLD_KEYS = ('origin', 'vehicles', 'obstacles', 'roads', 'map')
 
 ORIGIN_SPECS = (
     ParamSpec('latitude', 'latitude_deg', 'float', 0.0, 'deg', 'WGS-84 latitude of the world '
@@ -242,13 +246,19 @@ class VehicleSpec:
 
 @dataclass(frozen=True)
 class WorldSpec:
-    """A validated world: origin, vehicles, obstacles, roads (core/map); ``source`` = its file."""
+    """
+    A validated world: geodetic origin, vehicles, obstacles, roads; ``source`` = its file.
+
+    ``roads`` are its road segments (core/map/road_segments.py); ``map`` is its map layer's spec
+    (core/map/kinds.py: e.g. an OccupancyMapSpec), or None.
+    """
 
     origin: GeodeticOrigin
     vehicles: Tuple[VehicleSpec, ...]
     obstacles: Tuple[ObstacleSpec, ...]
     source: str = ''
     roads: Tuple[RoadSpec, ...] = ()
+    map: Optional[object] = None
 
 
 @dataclass(frozen=True)
@@ -267,7 +277,7 @@ ModelResolver = Callable[[str], Sequence[SensorSpec]]
 
 
 def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
-                    vehicles_required=True) -> WorldSpec:
+                    vehicles_required=True, base_dir=None) -> WorldSpec:
     """
     Validate a world mapping.
 
@@ -278,6 +288,8 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
         for an unknown model (config.py reads the preset).
     :param vehicles_required: refuse a world without vehicles (False: a scenario whose
         vehicles are all robots gives only the origin and the obstacles).
+    :param base_dir: folder the files a world names (its map) are resolved in; None = the
+        folder of ``source``.
     :return: WorldSpec.
     :raises InvalidParameterError: naming file, entry and field.
     """
@@ -311,7 +323,9 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
                                     f'{brief(sorted(taken))}')
     roads = data.get('roads')
     roads = () if roads is None else roads_from_list(roads, f'{source}: roads')
-    return WorldSpec(origin, vehicles, obstacles, source, roads)
+    base_dir = os.path.dirname(source) if base_dir is None else base_dir
+    world_map = map_from_dict(data.get('map'), f'{source}: map', base_dir)
+    return WorldSpec(origin, vehicles, obstacles, source, roads=roads, map=world_map)
 
 
 def _vehicle(entry, where, index, default_model, preset_sensors):

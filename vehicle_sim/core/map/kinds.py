@@ -1,0 +1,180 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The world file's ``map:`` key: one registry of map kinds, dispatched by ``type``.
+
+A map kind is a :class:`MapKind` row in :data:`MAP_KINDS`: its ``type`` name, the ParamSpec
+table of its keys (besides the keys every map has, :data:`COMMON_MAP_SPECS`) and the function
+that turns the validated values into its spec. :func:`map_from_dict` validates a world's
+``map:`` mapping against the table of its ``type`` and returns that spec; the physics layer
+(``physics/map_layer.py``) has a builder registered under the same name, and a test checks that
+both registries list the same kinds. Adding a kind (Lanelet2 maps, road segments) is one row
+here, one builder there.
+
+Every map spec carries ``type``, ``world_in_map`` (:class:`MapPlacement`: the map -> world
+transform, identity unless the world file says otherwise) and ``source`` (where it was
+written, quoted in errors). File names are resolved against the world file's folder; nothing
+here reads a file.
+"""
+
+from dataclasses import dataclass
+import math
+import os
+from typing import Callable, Dict, Tuple
+
+from vehicle_sim.core.geometry.frames import Pose
+from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.specs.param_spec import ParamSpec, REQUIRED, validate_table
+from vehicle_sim.core.specs.value_text import brief
+
+
+@dataclass(frozen=True)
+class MapPlacement:
+    """
+    The pose of the ``world`` frame in the ``map`` frame (the map -> world transform).
+
+    :param x_m: x of the world origin in the map frame [m]; likewise ``y_m``.
+    :param yaw_rad: yaw of the world frame's x axis in the map frame [rad].
+    """
+
+    x_m: float = 0.0
+    y_m: float = 0.0
+    yaw_rad: float = 0.0
+
+    @property
+    def identity(self) -> bool:
+        return self.x_m == 0.0 and self.y_m == 0.0 and self.yaw_rad == 0.0
+
+    def to_map(self, x_m: float, y_m: float) -> Tuple[float, float]:
+        """Return a world-frame point in the map frame."""
+        c, s = math.cos(self.yaw_rad), math.sin(self.yaw_rad)
+        return self.x_m + c * x_m - s * y_m, self.y_m + s * x_m + c * y_m
+
+    def to_world(self, x_m: float, y_m: float) -> Tuple[float, float]:
+        """Return a map-frame point in the world frame."""
+        c, s = math.cos(self.yaw_rad), math.sin(self.yaw_rad)
+        dx, dy = x_m - self.x_m, y_m - self.y_m
+        return c * dx + s * dy, -s * dx + c * dy
+
+
+COMMON_MAP_SPECS = (
+    ParamSpec('type', 'type', 'str', REQUIRED, '',
+              'the map kind, a name of MAP_KINDS: occupancy_grid'),
+    ParamSpec('world_in_map', 'world_in_map', 'pose', Pose(), 'm, rad',
+              'pose {x, y, yaw} of the world frame in the map frame (the map -> world '
+              'transform on /tf_static); default identity', choices=('x', 'y', 'yaw')),
+)
+
+UNKNOWN_CHOICES = ('free', 'occupied')
+
+OCCUPANCY_GRID_SPECS = COMMON_MAP_SPECS + (
+    ParamSpec('file', 'file', 'str', REQUIRED, '',
+              "the map's YAML file (nav2 map_server's format), relative to the world file"),
+    ParamSpec('wall_height', 'wall_height_m', 'float', 1.0, 'm',
+              'height of the walls built on occupied cells', gt=0.0, le=100.0),
+    ParamSpec('unknown', 'unknown', 'enum', 'free', '',
+              'what unknown cells (-1) are: free (no wall) or occupied (a wall)',
+              choices=UNKNOWN_CHOICES),
+)
+
+
+@dataclass(frozen=True)
+class OccupancyMapSpec:
+    """
+    An occupancy-grid map of a world file (``type: occupancy_grid``).
+
+    :param file: the map YAML's path, resolved against the world file's folder.
+    :param wall_height_m: height of the walls on occupied cells [m].
+    :param unknown: 'free' or 'occupied': what an unknown cell is.
+    """
+
+    type: str
+    world_in_map: MapPlacement
+    file: str
+    wall_height_m: float = 1.0
+    unknown: str = 'free'
+    source: str = ''
+
+
+def _placement(pose: Pose) -> MapPlacement:
+    return MapPlacement(pose.x_m, pose.y_m, pose.yaw_rad)
+
+
+def _resolved(base_dir, name):
+    return os.path.normpath(os.path.join(base_dir, name))
+
+
+def _occupancy_grid(values, source, base_dir) -> OccupancyMapSpec:
+    return OccupancyMapSpec(values['type'], _placement(values['world_in_map']),
+                            _resolved(base_dir, values['file']), values['wall_height_m'],
+                            values['unknown'], source)
+
+
+@dataclass(frozen=True)
+class MapKind:
+    """
+    One kind of map: its ``type`` name, its key table and its spec maker.
+
+    :param name: the ``type`` value in world files.
+    :param specs: the ParamSpec table of its keys (:data:`COMMON_MAP_SPECS` included).
+    :param make: ``make(values, source, base_dir)`` -> the kind's spec (values validated).
+    :param doc: one line for docs/maps.md.
+    """
+
+    name: str
+    specs: Tuple[ParamSpec, ...]
+    make: Callable
+    doc: str = ''
+
+
+MAP_KINDS: Dict[str, MapKind] = {}
+
+
+def register_map_kind(kind: MapKind) -> MapKind:
+    """Add a map kind to :data:`MAP_KINDS` (its name must be new)."""
+    if kind.name in MAP_KINDS:
+        raise ValueError(f'map kind {kind.name!r} is registered already')
+    MAP_KINDS[kind.name] = kind
+    return kind
+
+
+register_map_kind(MapKind('occupancy_grid', OCCUPANCY_GRID_SPECS, _occupancy_grid,
+                          'a nav2 map_server map (YAML + PGM/PNG image): walls on occupied '
+                          'cells, /map'))
+
+
+def map_from_dict(data, source, base_dir=''):
+    """
+    Validate a world's ``map:`` mapping against the table of its ``type``.
+
+    :param data: the mapping (None: no map).
+    :param source: where it is written ('world.yaml: map'), quoted in errors.
+    :param base_dir: folder the map's files are resolved in (the world file's).
+    :return: the kind's spec (e.g. :class:`OccupancyMapSpec`), or None.
+    :raises InvalidParameterError: naming the source and the field.
+    """
+    if data is None:
+        return None
+    if not isinstance(data, dict):
+        raise InvalidParameterError(f'{source}: must be a mapping with a "type", got '
+                                    f'{brief(data)}')
+    kind_name = data.get('type', REQUIRED)
+    if not isinstance(kind_name, str) or kind_name not in MAP_KINDS:
+        what = 'is required' if kind_name is REQUIRED else f'= {brief(kind_name)}: unknown'
+        raise InvalidParameterError(f"{source}: field 'type' {what}; valid: "
+                                    + ', '.join(sorted(MAP_KINDS)))
+    kind = MAP_KINDS[kind_name]
+    values = validate_table(kind.specs, data, source, what='a map')
+    return kind.make(values, source, base_dir)

@@ -1,0 +1,98 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The topics of a world's map: rows per map kind, and the map -> world transform.
+
+A node whose scene has a map (``scene.parts['map']``, physics/map_layer.py) wires the rows
+:func:`map_rows` gives for its kind with :class:`MapOutputs` and publishes them once, latched,
+with its other latched rows. An occupancy grid publishes ``/map`` and ``/map_metadata`` as nav2
+map_server does (transient-local, reliable, depth 1; frame ``map``). Every map adds the
+``map -> world`` transform to ``/tf_static`` (:func:`map_static_transform`): identity unless the
+world file's ``world_in_map`` says otherwise.
+
+Wiring context: ``map_frame``; call context: ``stamp`` (the loading time) and ``grid`` (the
+core OccupancyGrid).
+"""
+
+import math
+from types import SimpleNamespace
+from typing import Dict, Tuple
+
+from vehicle_sim.core.geometry.frames import quaternion_from_yaw
+from vehicle_sim.ros import messages as m
+from vehicle_sim.ros.endpoints import converter, ONCE_LATCHED, Outputs, Topic
+from vehicle_sim.transport.qos import QOS_LATCHED
+
+MAP_FRAME = 'map'
+WORLD_FRAME = 'world'
+
+MAP = Topic('/map', m.OCCUPANCY_GRID, QOS_LATCHED, ONCE_LATCHED,
+            converter(m.occupancy_grid_builder, lambda ctx: (ctx.stamp, ctx.grid),
+                      lambda w: (w.map_frame,)),
+            unit='m', doc='the occupancy grid as nav2 map_server publishes it (0 / 100 / -1 in '
+                          'trinary mode), frame map')
+MAP_METADATA = Topic('/map_metadata', m.MAP_META_DATA, QOS_LATCHED, ONCE_LATCHED,
+                     converter(m.map_meta_data_builder, lambda ctx: (ctx.stamp, ctx.grid)),
+                     unit='m', doc="the grid's size, resolution and origin")
+
+# map kind (core/map/kinds.py MAP_KINDS) -> its rows.
+MAP_TOPICS: Dict[str, Tuple[Topic, ...]] = {
+    'occupancy_grid': (MAP, MAP_METADATA),
+}
+
+
+def map_rows(built) -> Tuple[Topic, ...]:
+    """Return the rows of a built map (``scene.parts['map']``); () for no map."""
+    return () if built is None else MAP_TOPICS[built.spec.type]
+
+
+def map_static_transform(map_spec):
+    """Return the ``/tf_static`` entry (parent, child, xyz, q) of ``map -> world``."""
+    placement = map_spec.world_in_map
+    return (MAP_FRAME, WORLD_FRAME, (placement.x_m, placement.y_m, 0.0),
+            quaternion_from_yaw(placement.yaw_rad))
+
+
+def map_in_world(map_spec):
+    """Return the pose (xyz, q) of the map frame in the world frame (/initialpose in 'map')."""
+    placement = map_spec.world_in_map
+    c, s = math.cos(placement.yaw_rad), math.sin(placement.yaw_rad)
+    x, y = -(c * placement.x_m + s * placement.y_m), s * placement.x_m - c * placement.y_m
+    return (x, y, 0.0), quaternion_from_yaw(-placement.yaw_rad)
+
+
+class MapOutputs:
+    """
+    The publishers of a scene's map rows (none for a scene without a map).
+
+    :param node: a transport NodePort.
+    :param built: ``scene.parts.get('map')``.
+    """
+
+    def __init__(self, node, built):
+        self._built = built
+        rows = map_rows(built)
+        self._context = SimpleNamespace(map_frame=MAP_FRAME, stamp=None,
+                                        grid=getattr(built, 'grid', None))
+        self.outputs = Outputs(node, rows, self._context) if rows else None
+        # One line for the node's log: what was loaded ('' without a map).
+        self.summary = '' if built is None else (
+            f'map {built.describe()}; publishing ' + ', '.join(row.name for row in rows))
+
+    def publish_latched(self, stamp):
+        """Publish the map's latched rows with ``stamp`` (the time the map was loaded)."""
+        if self.outputs is not None:
+            self._context.stamp = stamp
+            self.outputs.publish(ONCE_LATCHED, self._context)
