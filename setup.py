@@ -46,9 +46,12 @@ setup(
     ],
     install_requires=['setuptools', 'numpy', 'pybullet', 'PyYAML', 'cyclonedds==11.0.1',
                       'rosbags>=0.10'],
-    # matplotlib draws the plots of `vehicle-sim demo` and `vehicle-sim scenario --plot`.
-    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib'],
-                    'plot': ['matplotlib']},
+    # matplotlib draws the plots of `vehicle-sim demo` and `vehicle-sim scenario --plot`;
+    # foxglove-sdk serves the live view of `vehicle-sim run --foxglove` (docs/foxglove.md).
+    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib',
+                             'foxglove-sdk>=0.30,<0.31'],
+                    'plot': ['matplotlib'],
+                    'foxglove': ['foxglove-sdk>=0.30,<0.31']},
     zip_safe=True,
     maintainer='vehicle_sim maintainers',
     maintainer_email='maintainers@vehicle-sim.example.org',

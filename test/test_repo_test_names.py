@@ -24,7 +24,7 @@ repository as a whole (repo: licence headers, packaging, text, cross-layer regis
 from pathlib import Path
 
 AREAS = ('core', 'physics', 'webots', 'ros', 'transport', 'scenario', 'tools', 'testing', 'cli',
-         'config', 'msgs', 'repo')
+         'config', 'msgs', 'repo', 'foxglove')
 TEST_DIR = Path(__file__).resolve().parent
 
 

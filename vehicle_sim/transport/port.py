@@ -25,7 +25,7 @@ import abc
 from dataclasses import dataclass
 import re
 import time
-from typing import Any, Callable, List, Optional, Union
+from typing import Any, Callable, List, Optional, Tuple, Union
 
 from vehicle_sim.core.errors import VehicleSimError
 from vehicle_sim.transport import stop_signals
@@ -497,6 +497,71 @@ class Publisher(abc.ABC):
         return 0
 
 
+class PublishTap:
+    """
+    Sees what a node sends: the bytes of every message its publishers write, and its services.
+
+    A live view (``vehicle_sim.foxglove``) or an in-process recorder attaches one with
+    :meth:`NodePort.add_publish_tap` before the node creates its endpoints; the publishers
+    created after that hand it the serialized message (CDR with its 4-byte encapsulation
+    header) that the transport writes, so nothing is encoded twice. Both methods run on the
+    node's thread.
+    """
+
+    def topic(self, topic_name: str, ros_type: str, qos: 'QosProfile'):
+        """
+        Return the sink of a new publisher's messages, or None to leave the topic alone.
+
+        A sink has ``open`` (read before each message: False skips building it unless a DDS
+        reader wants it) and ``write(data)``.
+        """
+        return None
+
+    def service(self, service_name: str, srv_type: str, callback) -> None:
+        """Hear of a service the node created (its fully-qualified name and its callback)."""
+
+
+class TappedGate:
+    """A publisher's reader gate widened by its tap sinks: open while any of them wants it."""
+
+    __slots__ = ('_gate', '_sinks')
+
+    def __init__(self, gate: ReaderGate, sinks):
+        self._gate = gate
+        self._sinks = tuple(sinks)
+
+    @property
+    def open(self) -> bool:
+        return self._gate.open or any(sink.open for sink in self._sinks)
+
+
+def tap_publisher(publisher: 'Publisher', sinks, serialize: Callable[[Any], bytes]) -> None:
+    """
+    Make ``publisher`` hand every message's bytes to ``sinks`` too.
+
+    :param serialize: ``serialize(msg)`` -> the bytes the transport would write for ``msg``;
+        ``publish(msg)`` then serializes once and writes those bytes itself.
+    """
+    sinks = tuple(sinks)
+    write = publisher.publish_serialized
+    check = getattr(publisher, 'check_message', None)
+
+    def publish_serialized(data) -> None:
+        write(data)
+        for sink in sinks:
+            if sink.open:
+                sink.write(data)
+
+    def publish(msg) -> None:
+        if check is not None:
+            check(msg)
+        publish_serialized(serialize(msg))
+
+    publisher.publish_serialized = publish_serialized
+    publisher.publish = publish
+    publisher.reader_gate = TappedGate(publisher.reader_gate, sinks)
+
+
 class Subscription(abc.ABC):
     topic_name: str
 
@@ -587,6 +652,38 @@ class NodePort(abc.ABC):
     @abc.abstractmethod
     def create_publisher(self, ros_type: str, topic: str, qos=None) -> Publisher: ...
 
+    _publish_taps: Tuple[PublishTap, ...] = ()
+
+    def add_publish_tap(self, tap: PublishTap) -> None:
+        """
+        Attach ``tap`` to the publishers and services created from now on (see PublishTap).
+
+        :raises TransportError: for a transport that cannot hand over its messages' bytes.
+        """
+        self._publish_taps = tuple(self._publish_taps) + (tap,)
+
+    def _tap(self, publisher: Publisher, ros_type: str, qos, serialize) -> Publisher:
+        # For the adapters' create_publisher: hand the publisher's messages to the taps.
+        sinks = [sink for sink in (tap.topic(publisher.topic_name, ros_type, as_qos(qos))
+                                   for tap in self._publish_taps) if sink is not None]
+        if sinks:
+            tap_publisher(publisher, sinks, serialize)
+        return publisher
+
+    def _tap_service(self, service_name: str, srv_type: str, callback) -> None:
+        # For the adapters' create_service.
+        for tap in self._publish_taps:
+            tap.service(service_name, srv_type, callback)
+
+    def call_soon(self, callback: Callable[[], None]) -> None:
+        """
+        Run ``callback()`` on the node's thread at its next spin (or ``serve_pending``).
+
+        The one method of the port that another thread may call: a server running its own
+        threads (the Foxglove live view) hands the node its requests this way.
+        """
+        raise TransportError('this transport cannot run callbacks from another thread')
+
     @abc.abstractmethod
     def create_subscription(self, ros_type: str, topic: str, callback, qos=None, *,
                             raw: bool = False) -> Subscription:
@@ -601,6 +698,14 @@ class NodePort(abc.ABC):
     def deserialize(self, ros_type: str, data: bytes):
         """Return the message of ``ros_type`` whose serialized bytes are ``data``."""
         return self.msg(ros_type).deserialize(bytes(data))
+
+    def deserialize_as(self, message_class, data: bytes):
+        """Return the message of ``message_class`` (a ``msg()`` or ``srv()`` class) in ``data``."""
+        return message_class.deserialize(bytes(data))
+
+    def serialize(self, msg) -> bytes:
+        """Return the serialized bytes of ``msg`` (CDR with its 4-byte encapsulation header)."""
+        return bytes(msg.serialize())
 
     @abc.abstractmethod
     def create_service(self, srv_type: str, name: str, callback) -> Service:
