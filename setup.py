@@ -43,6 +43,7 @@ setup(
         ('share/' + package_name + '/config/robots', _data('config/robots/*.yaml')),
         ('share/' + package_name + '/config/worlds', _data('config/worlds/*.yaml')),
         ('share/' + package_name + '/config/rviz', _data('config/rviz/*.rviz')),
+        ('share/' + package_name + '/config/foxglove', _data('config/foxglove/*.json')),
     ],
     install_requires=['setuptools', 'numpy', 'pybullet', 'PyYAML', 'cyclonedds==11.0.1',
                       'rosbags>=0.10'],
