@@ -171,3 +171,19 @@ def test_missing_sdk_names_the_extra(monkeypatch):
 def test_stamps_are_whole_nanoseconds_of_simulated_time(time_s, sec, nsec):
     stamp = scene_messages.timestamp(fox_sdk.load_sdk().messages, time_s)
     assert (stamp.sec, stamp.nsec) == (sec, nsec)
+
+
+def test_a_topic_is_built_only_while_a_client_subscribes(app):
+    view = app._live
+    sink = view.topics.sinks['/automobile/current_speed']
+    (publisher,) = [p for vehicle in app._vehicles for row, p in vehicle.outputs.publishers.items()
+                    if p.topic_name == '/automobile/current_speed']
+    channel_id = sink.channel.id()
+    assert (sink.open, publisher.reader_gate.open) == (False, False)   # no client, no reader
+    view.subscribed(channel_id)
+    view.subscribed(channel_id)             # a second client
+    assert (sink.open, publisher.reader_gate.open) == (True, True)
+    view.unsubscribed(channel_id)
+    assert sink.open is True                # one client left
+    view.unsubscribed(channel_id)
+    assert (sink.open, publisher.reader_gate.open) == (False, False)

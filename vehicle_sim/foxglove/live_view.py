@@ -50,6 +50,9 @@ def _listener(sdk, view: 'LiveView'):
         def on_subscribe(self, client, channel) -> None:
             view.subscribed(channel.id)
 
+        def on_unsubscribe(self, client, channel) -> None:
+            view.unsubscribed(channel.id)
+
         def on_get_parameters(self, client, param_names, request_id=None):
             return view.parameters.get(param_names)
 
@@ -88,6 +91,9 @@ class LiveView(PublishTap):
         self._scene_channel = sdk.channels.SceneUpdateChannel(SCENE_TOPIC, context=self.context)
         self._transforms_channel = sdk.channels.FrameTransformsChannel(TRANSFORMS_TOPIC,
                                                                         context=self.context)
+        # Subscribers of the scene and transforms channels, by channel id (the SDK's callbacks
+        # keep them; reading them costs nothing at each publish).
+        self._own = {self._scene_channel.id(): 0, self._transforms_channel.id(): 0}
         self.scene = None
         self._next_scene_s = 0.0
         warning = exposure_warning(host, self.server.port)
@@ -110,9 +116,16 @@ class LiveView(PublishTap):
 
     def subscribed(self, channel_id: int) -> None:
         """Replay latched topics and send the scene at once to a new subscriber (SDK thread)."""
-        if channel_id == self._scene_channel.id():
+        if channel_id in self._own:
+            self._own[channel_id] += 1
             self._next_scene_s = 0.0
         self.topics.subscribed(channel_id)
+
+    def unsubscribed(self, channel_id: int) -> None:
+        """Count a subscriber gone (SDK thread)."""
+        if channel_id in self._own:
+            self._own[channel_id] = max(0, self._own[channel_id] - 1)
+        self.topics.unsubscribed(channel_id)
 
     # ------------------------------------------------------------------ the scene
     def show(self, scene) -> None:
@@ -130,13 +143,14 @@ class LiveView(PublishTap):
         :param transforms: ``transforms()`` -> the tree now (called only when wanted).
         """
         messages = self._sdk.messages
-        if self.scene is not None and self._scene_channel.has_sinks():
+        own = self._own
+        if self.scene is not None and own[self._scene_channel.id()]:
             now = time.monotonic()
             if now >= self._next_scene_s:
                 self._next_scene_s = now + SCENE_PERIOD_S
                 self._scene_channel.log(scene_messages.scene_update(
                     messages, scene_entities(self.scene), time_s))
-        if transforms is not None and self._transforms_channel.has_sinks():
+        if transforms is not None and own[self._transforms_channel.id()]:
             self._transforms_channel.log(
                 scene_messages.frame_transforms(messages, transforms(), time_s))
 

@@ -35,19 +35,26 @@ class ChannelSink:
     """
     A publish tap's sink for one topic: open while a Foxglove client subscribes to it.
 
+    ``open`` is a plain attribute kept by the server's subscribe and unsubscribe callbacks
+    (:meth:`TopicChannels.subscribed`), read by the node before building each message: asking
+    the SDK instead cost about 0.6 us per topic and publish.
+
     :param channel: the SDK channel of the topic.
     """
 
-    __slots__ = ('channel', 'write')
+    __slots__ = ('channel', 'write', 'open', 'subscribers')
 
     def __init__(self, channel):
         self.channel = channel
         # The bytes go to the SDK's log() as they are (it copies them into its own buffer).
         self.write = channel.log
+        self.open = False
+        self.subscribers = 0
 
-    @property
-    def open(self) -> bool:
-        return self.channel.has_sinks()
+    def count(self, change: int) -> None:
+        """Add ``change`` (+1 subscribe, -1 unsubscribe) to the subscriptions."""
+        self.subscribers = max(0, self.subscribers + change)
+        self.open = self.subscribers > 0
 
 
 class LatchedChannelSink:
@@ -113,7 +120,15 @@ class TopicChannels:
         return sink
 
     def subscribed(self, channel_id: int) -> None:
-        """Replay a transient-local topic's kept messages to a new subscriber."""
+        """Open a topic to a new subscriber; replay a transient-local topic's kept messages."""
         sink = self._by_id.get(channel_id)
         if isinstance(sink, LatchedChannelSink):
             sink.replay()
+        elif sink is not None:
+            sink.count(+1)
+
+    def unsubscribed(self, channel_id: int) -> None:
+        """Close a topic whose last subscriber went (unsubscribed or disconnected)."""
+        sink = self._by_id.get(channel_id)
+        if isinstance(sink, ChannelSink):
+            sink.count(-1)

@@ -532,7 +532,12 @@ class TappedGate:
 
     @property
     def open(self) -> bool:
-        return self._gate.open or any(sink.open for sink in self._sinks)
+        if self._gate.open:
+            return True
+        for sink in self._sinks:
+            if sink.open:
+                return True
+        return False
 
 
 def tap_publisher(publisher: 'Publisher', sinks, serialize: Callable[[Any], bytes]) -> None:

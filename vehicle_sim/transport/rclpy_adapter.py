@@ -282,7 +282,8 @@ class RclpyNode(port.NodePort):
         service = self.node.create_service(import_type(srv_type), name, serve,
                                            qos_profile=to_rclpy_qos(qos),
                                            callback_group=self._services_group)
-        self._tap_service(service.srv_name, srv_type, callback)
+        if self._publish_taps:
+            self._tap_service(self.node.resolve_service_name(name), srv_type, callback)
         return service
 
     def create_client(self, srv_type: str, name: str, qos=port.QOS_SERVICES):
