@@ -21,8 +21,9 @@
 // Usage: node foxglove_client.js URL SPEED_TOPIC SCENE_TOPIC SERVICE CRUISING_KMH
 // It subscribes to SPEED_TOPIC (a ROS 2 channel, cdr + ros2msg) and SCENE_TOPIC (a
 // foxglove.SceneUpdate, protobuf), calls SERVICE (vehicle_msgs/srv/SetFloat) with
-// CRUISING_KMH once both decoded, and exits 0 once the decoded speed has risen by 1 km/h since
-// the call. Each event is one JSON line on stdout; a failure is a line {"event": "error"} and
+// CRUISING_KMH once both decoded; once the decoded speed has risen by 1 km/h since the call, it
+// gets two parameters, sets use_sim_time (writable) and then time_step_ms (read-only: refused),
+// and exits 0. Each event is one JSON line on stdout; a failure is a line {"event": "error"} and
 // exit code 1.
 
 const { FoxgloveClient } = require('@foxglove/ws-protocol');
@@ -40,9 +41,19 @@ function say(event) {
   process.stdout.write(JSON.stringify(event) + '\n');
 }
 
+// process.exit drops what a pipe has not taken yet: exit once stdout has written everything.
+let finished = false;
+
+function finish(code) {
+  if (finished) return;
+  finished = true;
+  process.stdout.write('', () => process.exit(code));
+}
+
 function fail(reason) {
+  if (finished) return;
   say({ event: 'error', reason });
-  process.exit(1);
+  finish(1);
 }
 
 // The library leaves the subprotocol to the caller ("a subprotocol which is compatible with the
@@ -59,6 +70,7 @@ let speedAtCall = null;
 let lastSpeed = null;
 let sawScene = false;
 let called = false;
+let risen = false;
 
 function protobufDecoder(channel) {
   const set = descriptor.FileDescriptorSet.decode(Buffer.from(channel.schema, 'base64'));
@@ -85,10 +97,11 @@ function maybeSubscribe() {
   decoders.set(client.subscribe(speed.id), (data) => {
     lastSpeed = decodeSpeed(data).data;
     say({ event: 'speed', value: lastSpeed });
-    if (speedAtCall !== null && lastSpeed >= speedAtCall + RISE_KMH) {
+    if (speedAtCall !== null && lastSpeed >= speedAtCall + RISE_KMH && !risen) {
+      risen = true;
       say({ event: 'risen', from: speedAtCall, to: lastSpeed });
-      client.close();
-      process.exit(0);
+      // Then the parameter capability: read two, set the writable one, try a read-only one.
+      client.getParameters(['time_step_ms', 'cmd_vel_timeout_s'], 'get');
     }
   });
   const decodeScene = protobufDecoder(scene);
@@ -113,7 +126,7 @@ function maybeCall() {
 }
 
 client.on('error', (error) => fail(`connection: ${error && error.message}`));
-client.on('close', () => { if (speedAtCall === null || lastSpeed < speedAtCall + RISE_KMH) fail('closed'); });
+client.on('close', () => fail('the server closed the connection'));
 client.on('advertise', (list) => {
   for (const channel of list) channels.set(channel.id, channel);
   maybeSubscribe();
@@ -135,6 +148,18 @@ client.on('serviceCallResponse', (response) => {
   if (!decoded.success) fail('the service refused the value');
   speedAtCall = lastSpeed;
 });
+client.on('parameterValues', ({ parameters, id }) => {
+  say({ event: 'parameters', id, parameters });
+  if (id === 'get') {
+    client.setParameters([{ name: 'use_sim_time', value: true }], 'set');
+  } else if (id === 'set') {
+    client.setParameters([{ name: 'time_step_ms', value: 20 }], 'refused');
+  } else if (id === 'refused') {
+    finish(0);
+  }
+});
+client.on('status', (status) => say({ event: 'status', level: status.level,
+  message: status.message }));
 client.on('serviceCallFailure', (failure) => fail(`service call failed: ${failure.message}`));
 setTimeout(() => fail(`timed out; speed ${lastSpeed}, scene ${sawScene}, called ${called}`),
   60000);

@@ -96,7 +96,7 @@ def run_client(app, node_modules, port, *args):
     return proc.returncode, events, err
 
 
-def test_foxglove_client_decodes_speed_and_scene_and_drives_through_the_service(node_modules):
+def test_foxglove_client_decodes_speed_and_scene_drives_and_sets_parameters(node_modules):
     port = free_port()
     app = AutomobileNode(transport='dds', parameter_overrides={
         'foxglove': port, 'real_time_factor': 0.0})
@@ -105,6 +105,7 @@ def test_foxglove_client_decodes_speed_and_scene_and_drives_through_the_service(
                                        '/foxglove/scene', '/automobile/set_cruising_speed',
                                        str(CRUISING_KMH))
         cruising = app.vehicles[''].logic.status().target_cruising_speed_kmh
+        use_sim_time = app.node.get_parameter('use_sim_time')
     finally:
         app.close()
     by_kind = {}
@@ -134,3 +135,14 @@ def test_foxglove_client_decodes_speed_and_scene_and_drives_through_the_service(
     assert cruising == CRUISING_KMH
     risen = by_kind['risen'][0]
     assert risen['to'] >= risen['from'] + 1.0
+    # The parameter capability: values as the node holds them (a float tagged float64), the
+    # writable use_sim_time set, the read-only time_step_ms refused with a warning status.
+    replies = {event['id']: event['parameters'] for event in by_kind['parameters']}
+    assert replies['get'] == [{'name': 'time_step_ms', 'value': 10},
+                              {'name': 'cmd_vel_timeout_s', 'type': 'float64', 'value': 0.5}]
+    assert replies['set'] == [{'name': 'use_sim_time', 'value': True}]
+    assert use_sim_time is True
+    assert replies['refused'] == [{'name': 'time_step_ms', 'value': 10}]
+    assert by_kind['status'][0]['message'] == (
+        'parameter time_step_ms: Trying to set a read-only parameter: time_step_ms; '
+        'nothing changed')

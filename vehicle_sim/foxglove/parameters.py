@@ -95,7 +95,7 @@ class NodeParameters:
         results = on_node_thread(self._node, lambda: self.apply(wanted))
         for name, reason in results:
             if reason is not None:
-                self._warn(f'parameter {name}: {reason}; nothing changed')
+                self._warn(f'parameter {name}: {str(reason).rstrip(".")}; nothing changed')
         return self.get([name for name, _ in wanted])
 
     def apply(self, wanted) -> List[Tuple[str, object]]:
