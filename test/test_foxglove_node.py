@@ -72,6 +72,9 @@ def test_every_published_topic_is_a_cdr_channel_with_its_ros2msg_schema(app):
                  vehicle.outputs.publishers.items()}
     published.update({publisher.topic_name: row.ros_type
                       for row, publisher in app._fleet_outputs.publishers.items()})
+    # The node's rows, and its own log and parameter events.
+    published.update({'/rosout': 'rcl_interfaces/msg/Log',
+                      '/parameter_events': 'rcl_interfaces/msg/ParameterEvent'})
     assert set(view.topics.sinks) == set(published)
     for topic, ros_type in published.items():
         channel = view.topics.sinks[topic].channel

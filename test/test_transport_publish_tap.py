@@ -116,8 +116,21 @@ def test_tap_hears_of_services_and_latched_topics(nodes):
     def callback(request, response):
         return response
     publisher_node.create_service('std_srvs/srv/Trigger', 'poke', callback)
-    assert tap.topics == [('/tap/latched', FLOAT64, port.TRANSIENT_LOCAL)]
+    # The node's own publishers, created with it, are tapped when the tap is attached.
+    assert tap.topics == [('/rosout', 'rcl_interfaces/msg/Log', port.TRANSIENT_LOCAL),
+                          ('/parameter_events', 'rcl_interfaces/msg/ParameterEvent',
+                           port.VOLATILE),
+                          ('/tap/latched', FLOAT64, port.TRANSIENT_LOCAL)]
     assert tap.services == [('/poke', 'std_srvs/srv/Trigger', callback)]
+
+
+def test_a_tap_attached_later_gets_the_node_log(nodes):
+    node, _ = nodes
+    sink = Sink()
+    node.add_publish_tap(Tap(sink))
+    node.get_logger().info('hello tap')
+    (data,) = sink.data
+    assert node.deserialize('rcl_interfaces/msg/Log', data).msg == 'hello tap'
 
 
 def test_call_soon_runs_on_the_spinning_thread(nodes):

@@ -661,19 +661,33 @@ class NodePort(abc.ABC):
 
     def add_publish_tap(self, tap: PublishTap) -> None:
         """
-        Attach ``tap`` to the publishers and services created from now on (see PublishTap).
+        Attach ``tap`` to the node's publishers and to the services created from now on.
 
-        :raises TransportError: for a transport that cannot hand over its messages' bytes.
+        Publishers created before (the node's own ``/rosout`` and ``/parameter_events``) are
+        tapped too, but a row whose reader gate a node read at wiring keeps that gate: attach
+        the tap before the node creates its endpoints (see PublishTap).
         """
         self._publish_taps = tuple(self._publish_taps) + (tap,)
+        for publisher, ros_type, qos, serialize in getattr(self, '_tappable', ()):
+            self._apply_taps((tap,), publisher, ros_type, qos, serialize)
 
     def _tap(self, publisher: Publisher, ros_type: str, qos, serialize) -> Publisher:
-        # For the adapters' create_publisher: hand the publisher's messages to the taps.
-        sinks = [sink for sink in (tap.topic(publisher.topic_name, ros_type, as_qos(qos))
-                                   for tap in self._publish_taps) if sink is not None]
+        # For the adapters' create_publisher: remember the publisher (a tap attached later
+        # taps it too) and hand its messages to the taps attached so far.
+        qos = as_qos(qos)
+        if '_tappable' not in self.__dict__:
+            self._tappable = []
+        self._tappable.append((publisher, ros_type, qos, serialize))
+        if self._publish_taps:
+            self._apply_taps(self._publish_taps, publisher, ros_type, qos, serialize)
+        return publisher
+
+    @staticmethod
+    def _apply_taps(taps, publisher, ros_type, qos, serialize) -> None:
+        sinks = [sink for sink in (tap.topic(publisher.topic_name, ros_type, qos)
+                                   for tap in taps) if sink is not None]
         if sinks:
             tap_publisher(publisher, sinks, serialize)
-        return publisher
 
     def _tap_service(self, service_name: str, srv_type: str, callback) -> None:
         # For the adapters' create_service.

@@ -121,6 +121,12 @@ class _Logger(port.Logger):
             self._logger.fatal(message)
 
 
+def _serialize_message(msg) -> bytes:
+    # rclpy's own serialization: the bytes its publish() would write for msg.
+    from rclpy.serialization import serialize_message
+    return serialize_message(msg)
+
+
 class _Publisher(port.Publisher):
     """
     An rclpy publisher; ``publish_serialized`` hands bytes to rclpy's ``publish``.
@@ -237,10 +243,7 @@ class RclpyNode(port.NodePort):
     def create_publisher(self, ros_type: str, topic: str, qos=None):
         publisher = _Publisher(self.node.create_publisher(import_type(ros_type), topic,
                                                           to_rclpy_qos(qos)))
-        if not self._publish_taps:
-            return publisher
-        from rclpy.serialization import serialize_message
-        return self._tap(publisher, ros_type, qos, serialize_message)
+        return self._tap(publisher, ros_type, qos, _serialize_message)
 
     def call_soon(self, callback) -> None:
         # A guard condition is rclpy's thread-safe way to wake its executor.
