@@ -19,12 +19,13 @@
 // checked by an implementation that is not ours.
 //
 // Usage: node foxglove_client.js URL SPEED_TOPIC SCENE_TOPIC SERVICE CRUISING_KMH
-// It subscribes to SPEED_TOPIC (a ROS 2 channel, cdr + ros2msg) and SCENE_TOPIC (a
-// foxglove.SceneUpdate, protobuf), calls SERVICE (vehicle_msgs/srv/SetFloat) with
-// CRUISING_KMH once both decoded; once the decoded speed has risen by 1 km/h since the call, it
-// gets two parameters, sets use_sim_time (writable) and then time_step_ms (read-only: refused),
-// and exits 0. Each event is one JSON line on stdout; a failure is a line {"event": "error"} and
-// exit code 1.
+// It subscribes to SPEED_TOPIC (a ROS 2 channel, cdr + ros2msg), SCENE_TOPIC (a
+// foxglove.SceneUpdate, protobuf) and /foxglove/transforms (foxglove.FrameTransforms); once the
+// speed and the scene are decoded it calls SERVICE (vehicle_msgs/srv/SetFloat) with
+// CRUISING_KMH; once the speed has risen by 1 km/h over the speed when the request left (the
+// answer may come when the car is already faster), it gets two parameters, sets use_sim_time
+// (writable) and then time_step_ms (read-only: refused), and exits 0. Each event is one JSON line
+// on stdout; a failure is a line {"event": "error"} and exit code 1.
 
 const { FoxgloveClient } = require('@foxglove/ws-protocol');
 const { MessageReader, MessageWriter } = require('@foxglove/rosmsg2-serialization');
@@ -67,6 +68,8 @@ const decoders = new Map();        // subscription id -> (data) -> event
 let service = null;
 let subscribed = false;
 let speedAtCall = null;
+let speedBeforeCall = null;
+let speeds = 0;
 let lastSpeed = null;
 let sawScene = false;
 let called = false;
@@ -96,14 +99,22 @@ function maybeSubscribe() {
   const decodeSpeed = ros2Decoder(speed.schema);
   decoders.set(client.subscribe(speed.id), (data) => {
     lastSpeed = decodeSpeed(data).data;
-    say({ event: 'speed', value: lastSpeed });
-    if (speedAtCall !== null && lastSpeed >= speedAtCall + RISE_KMH && !risen) {
-      risen = true;
-      say({ event: 'risen', from: speedAtCall, to: lastSpeed });
-      // Then the parameter capability: read two, set the writable one, try a read-only one.
-      client.getParameters(['time_step_ms', 'cmd_vel_timeout_s'], 'get');
-    }
+    speeds += 1;
+    if (speeds <= 5) say({ event: 'speed', value: lastSpeed });   // the first ones only
+    checkRisen();
   });
+  const transforms = byTopic.get('/foxglove/transforms');
+  if (transforms) {
+    const decodeTransforms = protobufDecoder(transforms);
+    let sawTransforms = false;
+    decoders.set(client.subscribe(transforms.id), (data) => {
+      if (sawTransforms) return;
+      sawTransforms = true;
+      say({ event: 'transforms', transforms: decodeTransforms(data).transforms.map((t) => ({
+        parent: t.parent_frame_id ?? t.parentFrameId, child: t.child_frame_id ?? t.childFrameId,
+        translation: t.translation, rotation: t.rotation })) });
+    });
+  }
   const decodeScene = protobufDecoder(scene);
   decoders.set(client.subscribe(scene.id), (data) => {
     if (sawScene) return;
@@ -115,6 +126,14 @@ function maybeSubscribe() {
   });
 }
 
+function checkRisen() {
+  if (speedAtCall === null || risen || lastSpeed < speedAtCall + RISE_KMH) return;
+  risen = true;
+  say({ event: 'risen', from: speedAtCall, to: lastSpeed });
+  // Then the parameter capability: read two, set the writable one, try a read-only one.
+  client.getParameters(['time_step_ms', 'cmd_vel_timeout_s'], 'get');
+}
+
 function maybeCall() {
   if (called || lastSpeed === null || !sawScene) return;
   called = true;
@@ -122,6 +141,8 @@ function maybeCall() {
   const data = request.writeMessage({ value: cruisingKmh });
   say({ event: 'call', service: service.name, type: service.type,
     requestSchemaName: service.request.schemaName, value: cruisingKmh });
+  // The speed when the request leaves: the car is at rest until the node runs it.
+  speedBeforeCall = lastSpeed;
   client.sendServiceCallRequest({ serviceId: service.id, callId: 1, encoding: 'cdr', data });
 }
 
@@ -146,7 +167,8 @@ client.on('serviceCallResponse', (response) => {
     response.data.byteLength));
   say({ event: 'response', encoding: response.encoding, success: decoded.success });
   if (!decoded.success) fail('the service refused the value');
-  speedAtCall = lastSpeed;
+  speedAtCall = speedBeforeCall;
+  checkRisen();
 });
 client.on('parameterValues', ({ parameters, id }) => {
   say({ event: 'parameters', id, parameters });

@@ -25,6 +25,7 @@ import os
 import shutil
 import socket
 import subprocess
+import threading
 import time
 
 import pytest
@@ -52,14 +53,16 @@ def free_port() -> int:
 
 
 @pytest.fixture(scope='module')
-def node_modules(request):
+def node_modules(request, tmp_path_factory):
     """Return the node_modules directory holding NPM_PACKAGES (installed once per cache)."""
     node, npm = shutil.which('node'), shutil.which('npm')
     if node is None or npm is None:
         reason = "node and npm are needed to run Foxglove's client library (not found on PATH)"
         print(f'SKIP: {reason}')
         pytest.skip(reason)
-    prefix = str(request.config.cache.mkdir('foxglove_npm'))
+    cache = getattr(request.config, 'cache', None)     # None with -p no:cacheprovider
+    prefix = str(cache.mkdir('foxglove_npm') if cache is not None
+                 else tmp_path_factory.mktemp('foxglove_npm'))
     stamp = os.path.join(prefix, 'installed.txt')
     wanted = '\n'.join(NPM_PACKAGES)
     if not os.path.exists(stamp) or open(stamp, encoding='utf-8').read() != wanted:
@@ -84,6 +87,12 @@ def run_client(app, node_modules, port, *args):
     env = dict(os.environ, NODE_PATH=node_modules)
     proc = subprocess.Popen(['node', CLIENT_SCRIPT, f'ws://127.0.0.1:{port}', *args],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    # Read its output while it runs: a full pipe would stall the client.
+    output = {}
+    readers = [threading.Thread(target=lambda name=name: output.__setitem__(
+        name, getattr(proc, name).read()), daemon=True) for name in ('stdout', 'stderr')]
+    for reader in readers:
+        reader.start()
     deadline = time.monotonic() + CLIENT_TIMEOUT_S
     try:
         while proc.poll() is None and time.monotonic() < deadline:
@@ -91,9 +100,11 @@ def run_client(app, node_modules, port, *args):
     finally:
         if proc.poll() is None:
             proc.kill()
-        out, err = proc.communicate()
-    events = [json.loads(line) for line in out.splitlines() if line.startswith('{')]
-    return proc.returncode, events, err
+        proc.wait()
+        for reader in readers:
+            reader.join()
+    events = [json.loads(line) for line in output['stdout'].splitlines() if line.startswith('{')]
+    return proc.returncode, events, output['stderr']
 
 
 def test_foxglove_client_decodes_speed_and_scene_drives_and_sets_parameters(node_modules):
@@ -111,7 +122,8 @@ def test_foxglove_client_decodes_speed_and_scene_drives_and_sets_parameters(node
     by_kind = {}
     for event in events:
         by_kind.setdefault(event['event'], []).append(event)
-    assert code == 0, f'client failed: {events[-3:]} {err[-2000:]}'
+    assert code == 0, (f'client failed: {[e for e in events if e["event"] != "speed"]}, last '
+                       f'speed {events[-1:]}; stderr: {err[-2000:]}')
     # The topic's channel: the CDR bytes of the transport, with its ros2msg schema.
     channels = by_kind['channels'][0]
     assert channels['speed'] == {'encoding': 'cdr', 'schemaEncoding': 'ros2msg',
@@ -128,13 +140,18 @@ def test_foxglove_client_decodes_speed_and_scene_drives_and_sets_parameters(node
     assert cube['size'] == pytest.approx({'x': 5.0, 'y': 1.7, 'z': 1.0})
     assert cube['pose']['position']['x'] == pytest.approx(2.0, abs=1e-3)
     assert cube['pose']['position']['y'] == pytest.approx(0.0, abs=1e-3)
+    # The transforms: the tree of /tf_static and /tf as foxglove.FrameTransforms.
+    tree = {(t['parent'], t['child']): t for t in by_kind['transforms'][0]['transforms']}
+    assert set(tree) == {('world', 'odom'), ('odom', 'base_link')}
+    assert tree[('world', 'odom')]['rotation'] == pytest.approx(
+        {'x': 0.0, 'y': 0.0, 'z': 0.0, 'w': 1.0})
     # The service call went to the node's handler: success, the cruising speed set, the car
     # faster by the client's 1 km/h.
     assert by_kind['call'][0]['requestSchemaName'] == 'vehicle_msgs/srv/SetFloat_Request'
     assert by_kind['response'][0]['success'] is True
     assert cruising == CRUISING_KMH
     risen = by_kind['risen'][0]
-    assert risen['to'] >= risen['from'] + 1.0
+    assert abs(risen['from']) < 1e-6 and risen['to'] >= 1.0   # at rest when the request left
     # The parameter capability: values as the node holds them (a float tagged float64), the
     # writable use_sim_time set, the read-only time_step_ms refused with a warning status.
     replies = {event['id']: event['parameters'] for event in by_kind['parameters']}
