@@ -22,6 +22,7 @@ The app's side (Foxglove's own client library) is test_foxglove_live_view.py.
 import socket
 import sys
 import threading
+from types import SimpleNamespace
 
 import pytest
 
@@ -190,3 +191,52 @@ def test_a_topic_is_built_only_while_a_client_subscribes(app):
     assert sink.open is True                # one client left
     view.unsubscribed(channel_id)
     assert (sink.open, publisher.reader_gate.open) == (False, False)
+
+
+def call_service(app, name, payload, encoding='cdr'):
+    """Call a live-view service's handler as the SDK does (from its thread)."""
+    handler = app._live.services.services[name].handler
+    request = SimpleNamespace(service_name=name, client_id=1, call_id=1, encoding=encoding,
+                              payload=payload)
+    return on_helper_thread(app, lambda: _outcome(lambda: handler(request)))
+
+
+def _outcome(call):
+    try:
+        return call()
+    except Exception as error:  # noqa: BLE001 - handed back to the test
+        return error
+
+
+def test_services_run_the_ros_handler_with_its_odd_input_policy(app):
+    node = app.node
+    srv = node.srv('vehicle_msgs/srv/SetFloat')
+    logic = app.vehicles[''].logic
+    name = '/automobile/set_cruising_speed'
+    reply = call_service(app, name, node.serialize(srv.Request(value=30.0)))
+    assert node.deserialize_as(srv.Response, reply).success is True
+    assert logic.status().target_cruising_speed_kmh == 30.0
+    # NaN: the ROS column of the odd-input policy, success false and nothing changed.
+    reply = call_service(app, name, node.serialize(srv.Request(value=float('nan'))))
+    assert node.deserialize_as(srv.Response, reply).success is False
+    assert logic.status().target_cruising_speed_kmh == 30.0
+
+
+@pytest.mark.parametrize('payload, encoding, message', [
+    (b'\x00\x01\x00\x00\x00', 'cdr', 'the request is not a CDR SetFloat_Request'),
+    (b'{"value": 50}', 'json', "request encoding 'json'; this server takes 'cdr'"),
+])
+def test_a_malformed_request_is_refused_and_changes_nothing(app, payload, encoding, message):
+    logic = app.vehicles[''].logic
+    before = logic.status().target_cruising_speed_kmh
+    error = call_service(app, '/automobile/set_cruising_speed', payload, encoding)
+    assert isinstance(error, LiveViewError) and message in str(error)
+    assert str(error).startswith('/automobile/set_cruising_speed: ')
+    assert logic.status().target_cruising_speed_kmh == before
+
+
+def test_reset_pause_and_set_pose_are_offered(app):
+    offered = app._live.services.services
+    assert {'/automobile/set_cruising_speed', '/reset', '/set_pose', '/sim/pause',
+            '/sim/reset'} <= set(offered)
+    assert not [name for name in offered if 'parameter' in name]   # via the capability
