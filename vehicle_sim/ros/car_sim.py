@@ -59,18 +59,27 @@ from vehicle_sim.ros.endpoints import (
 from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.sensor_interfaces import check_names, sensor_rows
 from vehicle_sim.ros.sim_control import serve_vehicle, WorldControl
-from vehicle_sim.ros.sim_params import declare_parameters, initialpose_index, world_spec
+from vehicle_sim.ros.sim_params import (
+    declare_parameters,
+    initialpose_index,
+    parameter_names,
+    world_spec,
+)
 from vehicle_sim.ros.time_step import TimeStepService
 from vehicle_sim.transport import create_node
 from vehicle_sim.transport.port import resolve_name, ThrottledWarning
 
 NODE_NAME = 'automobile'
 
+# Timer period standing for "as fast as possible" (the port's timers need a period > 0).
+AS_FAST_AS_POSSIBLE_PERIOD_S = 1e-6
+
+_FROM_CORE = {'float': float, 'int': int, 'bool': bool}
+
 
 def start_live_view(node, settings):
     """Start the Foxglove live view of the ``foxglove`` parameter (docs/foxglove.md)."""
     from vehicle_sim.foxglove.live_view import LiveView
-    from vehicle_sim.ros.sim_params import parameter_names
     return LiveView(node, host=settings.foxglove_host, port=settings.foxglove,
                     parameter_names=parameter_names())
 
@@ -79,10 +88,6 @@ def live_transform(parent, child, xyz, q):
     """Return one transform of the tree for the live view."""
     from vehicle_sim.foxglove.scene import Transform
     return Transform(parent, child, tuple(xyz), tuple(q))
-# Timer period standing for "as fast as possible" (the port's timers need a period > 0).
-AS_FAST_AS_POSSIBLE_PERIOD_S = 1e-6
-
-_FROM_CORE = {'float': float, 'int': int, 'bool': bool}
 
 
 def _to_core(kind, value):

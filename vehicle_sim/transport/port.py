@@ -562,6 +562,8 @@ def tap_publisher(publisher: 'Publisher', sinks, serialize: Callable[[Any], byte
             check(msg)
         publish_serialized(serialize(msg))
 
+    if hasattr(write, 'count'):     # the embedded transport's count of serialized writes
+        publish_serialized.count = write.count
     publisher.publish_serialized = publish_serialized
     publisher.publish = publish
     publisher.reader_gate = TappedGate(publisher.reader_gate, sinks)
