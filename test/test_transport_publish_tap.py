@@ -147,3 +147,19 @@ def test_call_soon_runs_on_the_spinning_thread(nodes):
     assert ran_on == []             # nothing runs until the node spins
     node.serve_pending()
     assert done.is_set() and ran_on == [threading.get_ident()]
+
+
+def test_function_taps_and_a_live_view_tap_share_a_publisher(nodes):
+    node, _ = nodes
+    recorded = []
+    node.tap_publishers(lambda topic, ros_type, qos: recorded.append if topic == TOPIC else None)
+    watched = Sink(open_=False)
+    node.add_publish_tap(Tap(watched))
+    publisher = node.create_publisher(FLOAT64, TOPIC)
+    assert publisher.reader_gate.open is True       # the recorder takes every message
+    publisher.publish(node.msg(FLOAT64)(data=4.0))
+    assert recorded == [b'\x00\x01\x00\x00' + struct.pack('<d', 4.0)]
+    assert watched.data == []                        # nobody watching
+    watched.open = True
+    publisher.publish(node.msg(FLOAT64)(data=5.0))
+    assert recorded[1] == watched.data[0] == b'\x00\x01\x00\x00' + struct.pack('<d', 5.0)

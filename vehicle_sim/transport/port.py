@@ -521,6 +521,25 @@ class PublishTap:
         """Hear of a service the node created (its fully-qualified name and its callback)."""
 
 
+class _AlwaysOpenSink:
+    """A sink taking every message: the ``write`` of :meth:`NodePort.tap_publishers`."""
+
+    __slots__ = ('write',)
+    open = True
+
+    def __init__(self, write):
+        self.write = write
+
+
+class _FunctionTap(PublishTap):
+    def __init__(self, tap):
+        self._tap = tap
+
+    def topic(self, topic_name, ros_type, qos):
+        write = self._tap(topic_name, ros_type, qos)
+        return None if write is None else _AlwaysOpenSink(write)
+
+
 class TappedGate:
     """A publisher's reader gate widened by its tap sinks: open while any of them wants it."""
 
@@ -672,6 +691,19 @@ class NodePort(abc.ABC):
         self._publish_taps = tuple(self._publish_taps) + (tap,)
         for publisher, ros_type, qos, serialize in getattr(self, '_tappable', ()):
             self._apply_taps((tap,), publisher, ros_type, qos, serialize)
+
+    def tap_publishers(self, tap: Callable[[str, str, 'QosProfile'], Optional[Callable]]) -> None:
+        """
+        Hand every message this node publishes to ``tap`` too, as its CDR bytes (a recorder).
+
+        The function form of :meth:`add_publish_tap`: ``tap(topic, ros_type, qos)`` is called
+        once for each publisher of the node, those created before and after, and returns
+        ``write(data)`` (called with the bytes of each message, after it is sent) or None to
+        leave that publisher alone. A tapped publisher's gate stays open: every message is
+        built, whether a subscriber is matched or not. Several taps may be attached (a recorder
+        and a live view).
+        """
+        self.add_publish_tap(_FunctionTap(tap))
 
     def _tap(self, publisher: Publisher, ros_type: str, qos, serialize) -> Publisher:
         # For the adapters' create_publisher: remember the publisher (a tap attached later
