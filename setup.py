@@ -24,6 +24,20 @@ def _data(pattern):
     return [path for path in glob(pattern) if os.path.isfile(path)]
 
 
+# Optional parts, each an extra that its error names when the package is missing. `test`
+# installs all of them, so that every test runs on a fresh machine.
+EXTRAS = {
+    'plot': ['matplotlib'],                        # `vehicle-sim demo` and `scenario --plot`
+    'maps': ['Pillow'],                            # occupancy-grid images (vehicle_sim/maps)
+    'lanelet2': ['lanelet2'],                      # Lanelet2 .osm lane maps
+    'ray': ['ray'],                                # sweeps on a Ray cluster (vehicle_sim/sweep)
+    'foxglove': ['foxglove-sdk>=0.30,<0.31'],      # the live view (docs/foxglove.md)
+}
+# pyarrow: a sweep writes results.parquet when it imports.
+EXTRAS['test'] = (['pytest', 'pytest-timeout', 'ruff', 'pyarrow']
+                  + sorted({req for reqs in EXTRAS.values() for req in reqs}))
+
+
 setup(
     name=package_name,
     version='0.1.0',
@@ -45,21 +59,11 @@ setup(
         ('share/' + package_name + '/config/maps',
          _data('config/maps/*.yaml') + _data('config/maps/*.png')),
         ('share/' + package_name + '/config/rviz', _data('config/rviz/*.rviz')),
+        ('share/' + package_name + '/config/foxglove', _data('config/foxglove/*.json')),
     ],
     install_requires=['setuptools', 'numpy', 'pybullet', 'PyYAML', 'cyclonedds==11.0.1',
                       'rosbags>=0.10'],
-    # Optional parts, each an extra named in its error when missing: matplotlib draws the plots
-    # of `vehicle-sim demo` and `vehicle-sim scenario --plot`; Pillow reads occupancy-grid map
-    # images (vehicle_sim/maps); lanelet2 reads Lanelet2 .osm lane maps
-    # (vehicle_sim/maps/lanelet2_map.py); ray runs sweeps on a cluster (vehicle_sim/sweep).
-    # `test` installs every one of them, so that the tests of each run (pyarrow: a sweep's
-    # results.parquet, written when it imports).
-    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib', 'Pillow',
-                             'lanelet2', 'ray', 'pyarrow'],
-                    'plot': ['matplotlib'],
-                    'maps': ['Pillow'],
-                    'lanelet2': ['lanelet2'],
-                    'ray': ['ray']},
+    extras_require=EXTRAS,
     zip_safe=True,
     maintainer='vehicle_sim maintainers',
     maintainer_email='maintainers@vehicle-sim.example.org',

@@ -25,8 +25,8 @@ registrations).
 
 from pathlib import Path
 
-AREAS = ('core', 'physics', 'webots', 'ros', 'transport', 'scenario', 'sweep', 'tools',
-         'testing', 'cli', 'config', 'msgs', 'map', 'repo')
+AREAS = ('core', 'physics', 'webots', 'ros', 'transport', 'scenario', 'sweep', 'foxglove',
+         'tools', 'testing', 'cli', 'config', 'msgs', 'map', 'repo')
 TEST_DIR = Path(__file__).resolve().parent
 
 

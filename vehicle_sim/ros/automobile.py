@@ -60,17 +60,36 @@ from vehicle_sim.ros.map_interfaces import map_in_world, map_static_transform, M
 from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.sensor_interfaces import check_names, sensor_rows
 from vehicle_sim.ros.sim_control import serve_vehicle, WorldControl
-from vehicle_sim.ros.sim_params import declare_parameters, initialpose_index, world_spec
+from vehicle_sim.ros.sim_params import (
+    declare_parameters,
+    initialpose_index,
+    parameter_names,
+    world_spec,
+)
 from vehicle_sim.ros.time_step import TimeStepService
 from vehicle_sim.transport import create_node
 from vehicle_sim.transport.logger import ThrottledWarning
 from vehicle_sim.transport.names import resolve_name
 
 NODE_NAME = 'automobile'
+
 # Timer period standing for "as fast as possible" (the port's timers need a period > 0).
 AS_FAST_AS_POSSIBLE_PERIOD_S = 1e-6
 
 _FROM_CORE = {'float': float, 'int': int, 'bool': bool}
+
+
+def start_live_view(node, settings):
+    """Start the Foxglove live view of the ``foxglove`` parameter (docs/foxglove.md)."""
+    from vehicle_sim.foxglove.live_view import LiveView
+    return LiveView(node, host=settings.foxglove_host, port=settings.foxglove,
+                    parameter_names=parameter_names())
+
+
+def live_transform(parent, child, xyz, q):
+    """Return one transform of the tree for the live view."""
+    from vehicle_sim.foxglove.scene import Transform
+    return Transform(parent, child, tuple(xyz), tuple(q))
 
 
 def _to_core(kind, value):
@@ -117,6 +136,7 @@ class AutomobileNode:
         self._control = None
         self._sensing = []
         self._gui_closed = False
+        self._live = None
         try:
             self._build()
         except BaseException as error:
@@ -132,6 +152,9 @@ class AutomobileNode:
         self._logger = node.get_logger()
         self._warn_setter_note = ThrottledWarning(self._logger)
         self.settings = settings = declare_parameters(node)
+        if settings.foxglove:
+            # Before any endpoint: the live view sees every publisher and service created.
+            self._live = start_live_view(node, settings)
         spec = self._with_sensor_parameter(world_spec(settings))
         # Collisions are watched when there is something besides the ground to hit.
         collisions = bool(spec.obstacles) or len(spec.vehicles) > 1 or spec.map is not None
@@ -144,6 +167,8 @@ class AutomobileNode:
         self.scene = build_scene(spec, time_step_s=settings.time_step_s,
                                  friction=settings.friction, gui=settings.gui, mount=feed)
         self.world = self.scene.world
+        if self._live is not None:
+            self._live.show(self.scene)
         self._publish_every = settings.publish_every_steps
         self._stamp = stamp_builder(node.msg)
         # One queue for every vehicle's robot/time_step: they all advance the one world.
@@ -400,6 +425,8 @@ class AutomobileNode:
                     serve_pending()
             fleet.tf_poses = tf_poses
             outputs.publish(EACH_PUBLISH, fleet)
+            if self._live is not None:
+                self._live.publish(time_s, self._transforms)
         for vehicle in self._sensing:
             self._publish_sensors(vehicle)
 
@@ -423,6 +450,14 @@ class AutomobileNode:
         for vehicle in self._vehicles:
             vehicle.sample(fleet.stamp)
             vehicle.outputs.publish(ONCE_LATCHED, vehicle)
+
+    def _transforms(self):
+        # The tree /tf_static and /tf carry (world -> odom -> base_link -> sensors), for the
+        # live view's FrameTransforms.
+        found = [live_transform(*t) for t in self._fleet.static_transforms]
+        found += [live_transform(v.odom_frame, v.base_frame, *v.odom[:2])
+                  for v in self._vehicles]
+        return found
 
     # ------------------------------------------------------------------------------ access
 
@@ -463,6 +498,8 @@ class AutomobileNode:
 
     def close(self):
         """Stop stepping, leave the graph and free the physics (idempotent)."""
+        if self._live is not None:
+            self._live.close()
         if self._timer is not None:
             self._timer.cancel()
             self._timer = None

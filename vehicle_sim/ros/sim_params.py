@@ -89,6 +89,13 @@ AUTOMOBILE_PARAMETERS: Tuple[ParamSpec, ...] = (
     ParamSpec('gui', kind='bool', default=False,
               doc="open PyBullet's window, a chase camera following the first vehicle (needs "
                   'an X display; docs/drive.md)'),
+    ParamSpec('foxglove', kind='int', default=0, unit='', ge=0, le=65535,
+              doc='TCP port of a Foxglove WebSocket server showing the node live (topics, 3D '
+                  "scene, services, parameters; the 'foxglove' extra; docs/foxglove.md); "
+                  '0 = none'),
+    ParamSpec('foxglove_host', kind='str', default='127.0.0.1',
+              doc='address the Foxglove server listens on; beyond loopback anyone who reaches '
+                  'it can call the services (the protocol has no authentication)'),
 )
 
 
@@ -100,6 +107,11 @@ def defaults():
     """
     return {key: list(value) if isinstance(value, tuple) else value for key, value in
             table_defaults(AUTOMOBILE_PARAMETERS + (node_support.USE_SIM_TIME,)).items()}
+
+
+def parameter_names() -> Tuple[str, ...]:
+    """Return the node's parameter names (use_sim_time included)."""
+    return tuple(spec.key for spec in AUTOMOBILE_PARAMETERS + (node_support.USE_SIM_TIME,))
 
 
 @dataclass(frozen=True)
@@ -121,6 +133,8 @@ class SimSettings:
     cmd_vel_timeout_s: float = CMD_VEL_TIMEOUT_PARAMETER.default
     initialpose_vehicle: str = ''
     gui: bool = False
+    foxglove: int = 0
+    foxglove_host: str = '127.0.0.1'
 
     @property
     def time_step_s(self) -> float:

@@ -225,7 +225,7 @@ class Director:
 
 
 def run_scenario(spec_or_path, seed=None, gui=False, progress=None, repeat=1,
-                 transport=None) -> ScenarioResult:
+                 transport=None, foxglove=None) -> ScenarioResult:
     """
     Run a scenario and return its result.
 
@@ -235,6 +235,8 @@ def run_scenario(spec_or_path, seed=None, gui=False, progress=None, repeat=1,
     :param progress: ``progress(time_s, duration_s)`` after each step.
     :param repeat: run this many times (external processes: the spread of the values).
     :param transport: the served nodes' transport (None = VEHICLE_SIM_TRANSPORT).
+    :param foxglove: (host, port) of a live Foxglove view of the automobile node (the scenario
+        is then served); None: none.
     :raises ScenarioError: for an invalid file or a refused scripted command.
     """
     spec = spec_or_path if isinstance(spec_or_path, ScenarioSpec) else load_scenario(
@@ -243,7 +245,7 @@ def run_scenario(spec_or_path, seed=None, gui=False, progress=None, repeat=1,
         spec = spec.with_seed(seed)
     if repeat < 1:
         raise ValueError(f'repeat = {repeat!r}: must be >= 1')
-    results = [_run_once(spec, gui, progress, transport) for _ in range(repeat)]
+    results = [_run_once(spec, gui, progress, transport, foxglove) for _ in range(repeat)]
     result = results[-1]
     if repeat > 1:
         result.runs = repeat
@@ -264,12 +266,13 @@ def _spread(results):
     return spread
 
 
-def _run_once(spec, gui, progress, transport):
+def _run_once(spec, gui, progress, transport, foxglove=None):
     criteria = build_criteria(spec.criteria, spec.duration_s)
     director = Director(spec, criteria, progress)
-    served = spec.served
+    # The live view shows the automobile node: a scenario watched is served.
+    served = spec.served or foxglove is not None
     start = time.monotonic()
-    sim = (ServedSim(spec, director, spec.seed, gui, transport) if served
+    sim = (ServedSim(spec, director, spec.seed, gui, transport, foxglove) if served
            else LocalSim(spec, director, spec.seed, gui))
     error = None
     watcher = None

@@ -36,6 +36,7 @@ import yaml
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.scenarios.criteria import Sample
+from vehicle_sim.scenarios.yaml_lines import ScenarioError
 
 # One odometry row: time, pose (x, y, z, qx, qy, qz, qw), linear and angular velocity (world).
 ODOMETRY_ROW = struct.Struct('<14d')
@@ -132,11 +133,12 @@ class ServedSim:
     :param director: registered with the world once it exists (after the served vehicles: their
         commands of a step are those set before it).
     :param transport: the nodes' transport (None = VEHICLE_SIM_TRANSPORT).
+    :param foxglove: (host, port) of the automobile node's live Foxglove view, or None.
     """
 
     served = True
 
-    def __init__(self, spec, director, seed, gui=False, transport=None):
+    def __init__(self, spec, director, seed, gui=False, transport=None, foxglove=None):
         from vehicle_sim.ros.diff_robot_node import DiffRobotNode
         self.automobile = None
         self.robot_nodes = []
@@ -144,11 +146,16 @@ class ServedSim:
         self.vehicles = {}
         step_ms = spec.time_step_ms
         try:
+            if foxglove is not None and not spec.world.vehicles:
+                raise ScenarioError('--foxglove shows the automobile node: this scenario has '
+                                    'no car')
             if spec.world.vehicles:
                 from vehicle_sim.ros.automobile import AutomobileNode
+                live_view = {} if foxglove is None else {
+                    'foxglove_host': foxglove[0], 'foxglove': foxglove[1]}
                 self.automobile = AutomobileNode(transport=transport, parameter_overrides={
                     'world': self._world_file(spec), 'synchronous': True,
-                    'time_step_ms': step_ms, 'gui': gui})
+                    'time_step_ms': step_ms, 'gui': gui, **live_view})
                 world = self.automobile.world
                 for vehicle in spec.world.vehicles:
                     built = self.automobile.scene.vehicles[vehicle.name]

@@ -44,6 +44,7 @@ import sys
 from typing import List, Optional
 
 from vehicle_sim.tools.command import CliError, EXIT_FAILURE, EXIT_OK
+from vehicle_sim.tools.foxglove_options import add_arguments as add_foxglove_arguments
 from vehicle_sim.tools.graph_commands import (
     add_topic_arguments,
     cmd_call,
@@ -109,6 +110,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument('--gui', action='store_true',
                      help="open PyBullet's window with a chase camera following the first "
                           'vehicle (needs an X display; keys: docs/drive.md)')
+    add_foxglove_arguments(run)
     run.add_argument('ros_args', nargs=argparse.REMAINDER,
                      help='ROS arguments after --')
     run.set_defaults(func=cmd_run)

@@ -204,6 +204,7 @@ def cmd_run(args) -> int:
     """
     from vehicle_sim.core.specs.errors import VehicleSimError
     from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.tools.foxglove_options import live_view_address
     from vehicle_sim.transport import run_node
     ros_args = _ros_arguments(args.ros_args)
     overrides: Dict[str, Any] = {}
@@ -223,6 +224,9 @@ def cmd_run(args) -> int:
         if reason is not None:
             raise CliError(f'--gui: {reason}', EXIT_USAGE)
         overrides['gui'] = True
+    live_view = live_view_address(args)   # before the node joins the graph
+    if live_view is not None:
+        overrides['foxglove_host'], overrides['foxglove'] = live_view
     # The CLI runs on the embedded transport unless the user asked for another one.
     transport = os.environ.get('VEHICLE_SIM_TRANSPORT') or 'dds'
     output = _StatusOutput(not args.no_status)

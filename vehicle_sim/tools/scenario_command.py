@@ -28,6 +28,8 @@ import threading
 import time
 
 from vehicle_sim.tools.command import CliError, EXIT_FAILURE, EXIT_OK, EXIT_USAGE
+from vehicle_sim.tools.foxglove_options import add_arguments as add_foxglove_arguments
+from vehicle_sim.tools.foxglove_options import live_view_address
 
 BAR_WIDTH = 30
 BAR_PERIOD_S = 0.1          # a tty progress bar redraws at most this often (wall clock)
@@ -46,6 +48,7 @@ def add_arguments(parser):
                         help='run N times and report the spread of the measured values '
                              '(external processes are not deterministic)')
     parser.add_argument('--no-progress', action='store_true', help='no progress display')
+    add_foxglove_arguments(parser)
 
 
 class Progress:
@@ -159,6 +162,7 @@ def cmd_scenario(args) -> int:
     for option, path in (('--junit', args.junit), ('--plot', args.plot)):
         if path:
             prepare_output(path, option)
+    live_view = live_view_address(args)
     seed = spec.seed if args.seed is None else args.seed
     print(f'scenario {spec.name} ({args.file}), seed {seed}, {spec.duration_s:g} s, driver: '
           f'{spec.driver.kind}')
@@ -166,7 +170,7 @@ def cmd_scenario(args) -> int:
     _exit_on_sigterm()      # so that the driver's processes are stopped on the way out
     try:
         result = run_scenario(spec, seed=args.seed, gui=args.gui, progress=progress,
-                              repeat=args.repeat)
+                              repeat=args.repeat, foxglove=live_view)
     except ScenarioError as error:
         raise CliError(str(error), EXIT_FAILURE) from None
     finally:

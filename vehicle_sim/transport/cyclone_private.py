@@ -29,6 +29,8 @@ that changes it fails there first. Why each internal is needed:
   ``transport/fast_cdr.py``; the public ``DataWriter.write`` type-checks and serializes a
   message object itself), a malformed
   sample in a test, or recorded bytes re-published unchanged.
+* :func:`sample_serializer` (``DataWriter._use_version_2``): the bytes ``DataWriter.write``
+  would write for a message, for a publisher whose messages a publish tap also receives.
 * :func:`delete_entity` / :func:`delete_participant` (``Entity._entities``, ``Entity._delete``,
   ``Entity._ref``): the public API deletes an entity only when Python collects it (and not at
   all at interpreter exit); a node must leave the graph at once, as an rclpy node does, so
@@ -127,6 +129,22 @@ def serialized_writer(writer):
         count[0] += 1
     write.count = count
     return write
+
+
+def sample_serializer(writer):
+    """
+    Return ``serialize(sample)`` -> the bytes ``writer.write(sample)`` would write.
+
+    As ``DataWriter.write`` makes them (its private ``_use_version_2``, padded to 4 bytes), so
+    that a publisher whose messages are also handed on (a publish tap) serializes each message
+    once and writes those bytes with :func:`serialized_writer`.
+    """
+    use_version_2 = writer._use_version_2
+
+    def serialize(sample) -> bytes:
+        data = sample.serialize(use_version_2=use_version_2)
+        return data.ljust((len(data) + 3) & ~3, b'\0')
+    return serialize
 
 
 def delete_entity(entity: Entity) -> None:

@@ -25,7 +25,7 @@ as rclpy splits them: ``errors``, ``qos``, ``names``, ``parameter_types``, ``ros
 
 import abc
 import time
-from typing import Any, Callable, List, Optional
+from typing import Any, Callable, List, Optional, Tuple
 
 from vehicle_sim.transport import stop_signals
 from vehicle_sim.transport.errors import TransportError
@@ -38,6 +38,8 @@ from vehicle_sim.transport.parameter_types import (
     SetParametersResult,
     Validator,
 )
+from vehicle_sim.transport.publish_tap import FunctionTap, PublishTap, tap_publisher
+from vehicle_sim.transport.qos import as_qos, QosProfile
 from vehicle_sim.transport.reader_gate import ALWAYS_OPEN, ReaderGate
 from vehicle_sim.transport.ros_time import Time
 
@@ -153,6 +155,65 @@ class NodePort(abc.ABC):
     @abc.abstractmethod
     def create_publisher(self, ros_type: str, topic: str, qos=None) -> Publisher: ...
 
+    _publish_taps: Tuple[PublishTap, ...] = ()
+
+    def add_publish_tap(self, tap: PublishTap) -> None:
+        """
+        Attach ``tap`` to the node's publishers and to the services created from now on.
+
+        Publishers created before (the node's own ``/rosout`` and ``/parameter_events``) are
+        tapped too, but a row whose reader gate a node read at wiring keeps that gate: attach
+        the tap before the node creates its endpoints (see PublishTap).
+        """
+        self._publish_taps = tuple(self._publish_taps) + (tap,)
+        for publisher, ros_type, qos, serialize in getattr(self, '_tappable', ()):
+            self._apply_taps((tap,), publisher, ros_type, qos, serialize)
+
+    def tap_publishers(self, tap: Callable[[str, str, 'QosProfile'], Optional[Callable]]) -> None:
+        """
+        Hand every message this node publishes to ``tap`` too, as its CDR bytes (a recorder).
+
+        The function form of :meth:`add_publish_tap`: ``tap(topic, ros_type, qos)`` is called
+        once for each publisher of the node, those created before and after, and returns
+        ``write(data)`` (called with the bytes of each message, after it is sent) or None to
+        leave that publisher alone. A tapped publisher's gate stays open: every message is
+        built, whether a subscriber is matched or not. Several taps may be attached (a recorder
+        and a live view).
+        """
+        self.add_publish_tap(FunctionTap(tap))
+
+    def _tap(self, publisher: Publisher, ros_type: str, qos, serialize) -> Publisher:
+        # For the adapters' create_publisher: remember the publisher (a tap attached later
+        # taps it too) and hand its messages to the taps attached so far.
+        qos = as_qos(qos)
+        if '_tappable' not in self.__dict__:
+            self._tappable = []
+        self._tappable.append((publisher, ros_type, qos, serialize))
+        if self._publish_taps:
+            self._apply_taps(self._publish_taps, publisher, ros_type, qos, serialize)
+        return publisher
+
+    @staticmethod
+    def _apply_taps(taps, publisher, ros_type, qos, serialize) -> None:
+        sinks = [sink for sink in (tap.topic(publisher.topic_name, ros_type, qos)
+                                   for tap in taps) if sink is not None]
+        if sinks:
+            tap_publisher(publisher, sinks, serialize)
+
+    def _tap_service(self, service_name: str, srv_type: str, callback) -> None:
+        # For the adapters' create_service.
+        for tap in self._publish_taps:
+            tap.service(service_name, srv_type, callback)
+
+    def call_soon(self, callback: Callable[[], None]) -> None:
+        """
+        Run ``callback()`` on the node's thread at its next spin (or ``serve_pending``).
+
+        The one method of the port that another thread may call: a server running its own
+        threads (the Foxglove live view) hands the node its requests this way.
+        """
+        raise TransportError('this transport cannot run callbacks from another thread')
+
     @abc.abstractmethod
     def create_subscription(self, ros_type: str, topic: str, callback, qos=None, *,
                             raw: bool = False) -> Subscription:
@@ -167,6 +228,14 @@ class NodePort(abc.ABC):
     def deserialize(self, ros_type: str, data: bytes):
         """Return the message of ``ros_type`` whose serialized bytes are ``data``."""
         return self.msg(ros_type).deserialize(bytes(data))
+
+    def deserialize_as(self, message_class, data: bytes):
+        """Return the message of ``message_class`` (a ``msg()`` or ``srv()`` class) in ``data``."""
+        return message_class.deserialize(bytes(data))
+
+    def serialize(self, msg) -> bytes:
+        """Return the serialized bytes of ``msg`` (CDR with its 4-byte encapsulation header)."""
+        return bytes(msg.serialize())
 
     @abc.abstractmethod
     def create_service(self, srv_type: str, name: str, callback) -> Service:

@@ -32,6 +32,7 @@ a service's group for as long as its callback runs, so in the node's default mut
 group a waiting callback would stop the timer that completes it (and every other callback).
 """
 
+import collections
 import importlib
 import signal
 import threading
@@ -126,6 +127,12 @@ class _Logger(Logger):
             self._logger.fatal(message)
 
 
+def _serialize_message(msg) -> bytes:
+    # rclpy's own serialization: the bytes its publish() would write for msg.
+    from rclpy.serialization import serialize_message
+    return serialize_message(msg)
+
+
 class _Publisher(port.Publisher):
     """
     An rclpy publisher; ``publish_serialized`` hands bytes to rclpy's ``publish``.
@@ -217,6 +224,9 @@ class RclpyNode(port.NodePort):
         self._logger = _Logger(self.node.get_logger())
         self._steady = Clock(clock_type=ClockType.STEADY_TIME)
         self._services_group = ReentrantCallbackGroup()
+        # call_soon's queue, run by the executor when the guard condition fires.
+        self._soon = collections.deque()
+        self._soon_guard = self.node.create_guard_condition(self._run_soon)
         # One executor per node, so that nodes of a private Context (tests) spin too.
         self.executor = SingleThreadedExecutor(context=context)
         self.executor.add_node(self.node)
@@ -237,8 +247,18 @@ class RclpyNode(port.NodePort):
         return fast_cdr.SERIALIZERS.get(ros_type)
 
     def create_publisher(self, ros_type: str, topic: str, qos=None):
-        return _Publisher(self.node.create_publisher(import_type(ros_type), topic,
-                                                     to_rclpy_qos(qos)))
+        publisher = _Publisher(self.node.create_publisher(import_type(ros_type), topic,
+                                                          to_rclpy_qos(qos)))
+        return self._tap(publisher, ros_type, qos, _serialize_message)
+
+    def call_soon(self, callback) -> None:
+        # A guard condition is rclpy's thread-safe way to wake its executor.
+        self._soon.append(callback)
+        self._soon_guard.trigger()
+
+    def _run_soon(self) -> None:
+        while self._soon:
+            self._soon.popleft()()
 
     def create_subscription(self, ros_type: str, topic: str, callback, qos=None, *,
                             raw: bool = False):
@@ -248,6 +268,14 @@ class RclpyNode(port.NodePort):
     def deserialize(self, ros_type: str, data: bytes):
         from rclpy.serialization import deserialize_message
         return deserialize_message(bytes(data), import_type(ros_type))
+
+    def deserialize_as(self, message_class, data: bytes):
+        from rclpy.serialization import deserialize_message
+        return deserialize_message(bytes(data), message_class)
+
+    def serialize(self, msg) -> bytes:
+        from rclpy.serialization import serialize_message
+        return serialize_message(msg)
 
     def create_service(self, srv_type: str, name: str, callback, qos=QOS_SERVICES):
         executor = self.executor
@@ -260,9 +288,12 @@ class RclpyNode(port.NodePort):
                 result = await waiting
             return result
 
-        return self.node.create_service(import_type(srv_type), name, serve,
-                                        qos_profile=to_rclpy_qos(qos),
-                                        callback_group=self._services_group)
+        service = self.node.create_service(import_type(srv_type), name, serve,
+                                           qos_profile=to_rclpy_qos(qos),
+                                           callback_group=self._services_group)
+        if self._publish_taps:
+            self._tap_service(self.node.resolve_service_name(name), srv_type, callback)
+        return service
 
     def create_client(self, srv_type: str, name: str, qos=QOS_SERVICES):
         client = self.node.create_client(import_type(srv_type), name,

@@ -99,10 +99,14 @@ class DdsPublisher(port.Publisher):
         self.publish_serialized = cyclone_private.serialized_writer(writer)
 
     def publish(self, msg) -> None:
+        self.check_message(msg)
+        self._writer.write(msg)
+
+    def check_message(self, msg) -> None:
+        """Refuse a message of another type than the topic's."""
         if type(msg) is not self._type:
             raise TransportError(
                 f'{self.topic_name} takes {self._type.__ros_type__}, got {type(msg).__name__}')
-        self._writer.write(msg)
 
     def publish_serialized(self, data: bytes) -> None:  # noqa: F811 - replaced per instance
         """Write CDR bytes (with the encapsulation header) of this topic's type, unchecked."""

@@ -29,6 +29,7 @@ the wait, wakes the next wait at once. A node with services also wakes every ``C
 to look for newly matched clients it cannot serve (``services.warn_unservable_clients``).
 """
 
+import collections
 import signal
 import sys
 import threading
@@ -106,6 +107,8 @@ class Executor:
         # The services holding replies whose client reply reader has not matched yet.
         self._waiting: List = []
         self._next_client_check = 0.0
+        # Callbacks other threads handed over (call_soon), run by the next spin.
+        self._soon = collections.deque()
         self._attach(self._guard)
 
     def _attach(self, condition) -> None:
@@ -136,6 +139,18 @@ class Executor:
             self._timers.append(timer)
         self._guard.set(True)
 
+    def call_soon(self, callback: Callable[[], None]) -> None:
+        """Run ``callback()`` from the next ``spin_once``/``serve_pending`` (thread-safe)."""
+        self._soon.append(callback)
+        self.wake()
+
+    def _run_soon(self) -> None:
+        soon = self._soon
+        while soon:
+            soon.popleft()()
+            if self.stopped():
+                return
+
     def wake(self) -> None:
         """Make the current or next wait return (signal-handler safe)."""
         try:
@@ -165,6 +180,8 @@ class Executor:
                 entry.handler()
                 if self.stopped():
                     return
+        if self._soon:
+            self._run_soon()
         now = time.monotonic()
         if self._waiting:
             for service in list(self._waiting):
@@ -196,6 +213,8 @@ class Executor:
                 entry.handler()
                 if self.stopped():
                     return
+        if self._soon:
+            self._run_soon()
 
     def _fired(self, count: int) -> List[_Entry]:
         """Return the ``count`` triggered entries (fewer if some went quiet), in attach order."""

@@ -237,7 +237,8 @@ class DdsNode(port.NodePort):
                             listener=reader_gate_listener(gate) if gate is not None else None)
         self._add_writer(writer)
         self._graph_changed()
-        return DdsPublisher(self, writer, msg_type, fqn, gate)
+        return self._tap(DdsPublisher(self, writer, msg_type, fqn, gate), ros_type, profile,
+                         cyclone_private.sample_serializer(writer))
 
     def create_subscription(self, ros_type: str, topic: str, callback,
                             qos=None, *, raw: bool = False) -> DdsSubscription:
@@ -274,6 +275,7 @@ class DdsNode(port.NodePort):
         self._add_writer(service._writer)
         self._executor.add_service(service)
         self._graph_changed()
+        self._tap_service(service.service_name, srv_type, callback)
         return service
 
     def create_client(self, srv_type: str, name: str, qos=QOS_SERVICES) -> DdsClient:
@@ -352,6 +354,9 @@ class DdsNode(port.NodePort):
     def serve_pending(self) -> None:
         if not self._shutdown:
             self._executor.serve_pending()
+
+    def call_soon(self, callback) -> None:
+        self._executor.call_soon(callback)
 
     def spin(self) -> None:
         while self.ok():

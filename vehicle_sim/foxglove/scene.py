@@ -1,0 +1,211 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+The 3D scene of a running world as Foxglove scene entities, from a registry of entity sources.
+
+What is drawn is described here with plain values (:class:`Primitive`, :class:`Entity`,
+:class:`Transform`), SDK-free so that the geometry is tested on its own;
+:mod:`.scene_messages` turns them into ``foxglove.SceneUpdate`` and ``foxglove.FrameTransforms``.
+
+Every entity is in the ``world`` frame and posed from the ground truth of the physics, so the
+scene does not depend on the transforms. An entity source is a function ``source(scene)`` ->
+entities of the scene builder's ``Scene``; :func:`register_entity_source` adds one, which is
+where a map layer, lanes or traffic plug in (each its own name, e.g. ``'map'``), next to the
+two built in: ``'vehicles'`` (each vehicle's chassis boxes, posed at each publish) and
+``'obstacles'`` (the world's cubes, cylinders and spheres).
+"""
+
+from dataclasses import dataclass
+from typing import Callable, Dict, Iterable, List, Optional, Tuple
+
+from vehicle_sim.core.geometry.frames import pose_from_frame, quaternion_from_rpy
+
+WORLD_FRAME = 'world'
+# The colour of vehicle boxes (RGBA): a translucent blue, so that sensors inside show.
+VEHICLE_COLOR = (0.2, 0.45, 0.85, 0.8)
+# The height of a vehicle drawn from its footprint alone (a body with no boxes of its own) [m].
+FOOTPRINT_BOX_HEIGHT_M = 1.0
+# The obstacle shapes of the world files -> the Foxglove primitive drawing them.
+PRIMITIVE_OF_SHAPE = {'box': 'cube', 'cylinder': 'cylinder', 'sphere': 'sphere'}
+
+Vector = Tuple[float, float, float]
+Quaternion = Tuple[float, float, float, float]
+IDENTITY = (0.0, 0.0, 0.0, 1.0)
+
+
+@dataclass(frozen=True)
+class Primitive:
+    """
+    One shape: ``kind`` 'cube', 'cylinder' (axis along its z) or 'sphere'.
+
+    :param position_m: its centre in the entity's frame [m].
+    :param orientation: (x, y, z, w).
+    :param size_m: its full extents along its own x, y, z [m].
+    :param color_rgba: [0, 1] each.
+    """
+
+    kind: str
+    position_m: Vector
+    orientation: Quaternion
+    size_m: Vector
+    color_rgba: Tuple[float, float, float, float]
+
+
+@dataclass(frozen=True)
+class Entity:
+    """A scene entity: its id (unique in the scene), frame and shapes."""
+
+    id: str
+    frame_id: str
+    primitives: Tuple[Primitive, ...]
+
+
+@dataclass(frozen=True)
+class Transform:
+    """One transform of the tree: ``child`` in ``parent`` (translation [m], rotation)."""
+
+    parent: str
+    child: str
+    translation_m: Vector
+    rotation: Quaternion
+
+
+# ------------------------------------------------------------------------------ vehicles
+
+def vehicle_boxes(params, outline) -> List[Tuple[Vector, Quaternion, Vector]]:
+    """
+    Return a vehicle's body boxes in its base_link: (centre [m], orientation, size [m]).
+
+    A car: its chassis collision boxes (preset ``collisionBoxes``: size, position, pitch). A
+    differential robot: its body box, centred on the axle height. Anything else: its footprint
+    rectangle, :data:`FOOTPRINT_BOX_HEIGHT_M` high, on the ground.
+    """
+    boxes = getattr(params, 'collision_boxes', None)
+    if boxes:
+        return [(tuple(box.position_m), quaternion_from_rpy(0.0, box.pitch_rad, 0.0),
+                 tuple(box.size_m)) for box in boxes]
+    body = getattr(params, 'body_size_m', None)
+    if body is not None:
+        return [((0.0, 0.0, params.wheel_radius_m), IDENTITY, tuple(body))]
+    return [(((outline.x_min_m + outline.x_max_m) / 2.0, (outline.y_min_m + outline.y_max_m) / 2.0,
+              FOOTPRINT_BOX_HEIGHT_M / 2.0), IDENTITY,
+             (outline.length_m, outline.width_m, FOOTPRINT_BOX_HEIGHT_M))]
+
+
+def vehicle_entity(name: str, pose, boxes, color_rgba=VEHICLE_COLOR) -> Entity:
+    """
+    Return a vehicle's entity in the world frame.
+
+    :param pose: base_link in the world: (x, y, z [m], qx, qy, qz, qw).
+    :param boxes: :func:`vehicle_boxes`.
+    """
+    xyz, q = tuple(pose[:3]), tuple(pose[3:])
+    primitives = []
+    for centre, orientation, size in boxes:
+        position, rotation = pose_from_frame(xyz, q, centre, orientation)
+        primitives.append(Primitive('cube', position, rotation, size, tuple(color_rgba)))
+    return Entity(f'vehicle/{name}', WORLD_FRAME, tuple(primitives))
+
+
+def vehicle_entities(scene) -> List[Entity]:
+    """Return every vehicle of the scene, posed now (the entity source ``'vehicles'``)."""
+    found = []
+    for name, vehicle in scene.vehicles.items():
+        body = vehicle.body
+        found.append(vehicle_entity(name, body.pose(), vehicle_boxes(body.params, body.outline)))
+    return found
+
+
+# ------------------------------------------------------------------------------ obstacles
+
+def obstacle_entity(spec, position_m: Optional[Vector] = None,
+                    orientation: Optional[Quaternion] = None) -> Entity:
+    """
+    Return an obstacle's entity from its world-file spec (ObstacleSpec).
+
+    :param position_m: where it is now (a movable obstacle); None: its spec's position.
+    :param orientation: its orientation now; None: the spec's roll, pitch and yaw.
+    """
+    kind = PRIMITIVE_OF_SHAPE.get(spec.shape)
+    if kind is None:
+        raise ValueError(f'obstacle {spec.name!r}: shape {spec.shape!r} has no Foxglove '
+                         f'primitive; known: {", ".join(PRIMITIVE_OF_SHAPE)}')
+    if position_m is None:
+        position_m = tuple(spec.position_m)
+    if orientation is None:
+        orientation = quaternion_from_rpy(spec.roll_rad, spec.pitch_rad, spec.yaw_rad)
+    primitive = Primitive(kind, tuple(position_m), tuple(orientation), tuple(spec.size_m),
+                          tuple(spec.color_rgba))
+    return Entity(f'obstacle/{spec.name}', WORLD_FRAME, (primitive,))
+
+
+def obstacle_entities(scene) -> List[Entity]:
+    """
+    Return the obstacles of the scene (the entity source ``'obstacles'``).
+
+    Static ones where the world file put them, movable ones (``mass`` > 0) where the physics
+    has them now.
+    """
+    found = []
+    for spec in scene.spec.obstacles:
+        if spec.mass_kg > 0.0 and spec.name in scene.obstacles:
+            (position, orientation), *_ = scene.world.body_state(scene.obstacles[spec.name])
+            found.append(obstacle_entity(spec, tuple(position), tuple(orientation)))
+        else:
+            found.append(obstacle_entity(spec))
+    return found
+
+
+# ------------------------------------------------------------------------------ the registry
+
+EntitySource = Callable[[object], Iterable[Entity]]
+ENTITY_SOURCES: Dict[str, EntitySource] = {}
+
+
+def register_entity_source(name: str, source: EntitySource) -> None:
+    """
+    Add an entity source under ``name`` (a map layer, lanes, traffic).
+
+    :raises ValueError: for a name already registered.
+    """
+    if name in ENTITY_SOURCES:
+        raise ValueError(f'entity source {name!r} is already registered; registered: '
+                         f'{", ".join(ENTITY_SOURCES)}')
+    ENTITY_SOURCES[name] = source
+
+
+register_entity_source('vehicles', vehicle_entities)
+register_entity_source('obstacles', obstacle_entities)
+
+
+def scene_entities(scene, sources: Optional[Iterable[str]] = None) -> List[Entity]:
+    """
+    Return the entities of every registered source (or of ``sources``), in registry order.
+
+    :raises ValueError: for an unknown source name, or two entities of one id.
+    """
+    names = list(ENTITY_SOURCES) if sources is None else list(sources)
+    found, seen = [], set()
+    for name in names:
+        if name not in ENTITY_SOURCES:
+            raise ValueError(f'unknown entity source {name!r}; registered: '
+                             f'{", ".join(ENTITY_SOURCES)}')
+        for entity in ENTITY_SOURCES[name](scene):
+            if entity.id in seen:
+                raise ValueError(f'entity id {entity.id!r} given twice (source {name!r})')
+            seen.add(entity.id)
+            found.append(entity)
+    return found
