@@ -47,8 +47,13 @@ setup(
     install_requires=['setuptools', 'numpy', 'pybullet', 'PyYAML', 'cyclonedds==11.0.1',
                       'rosbags>=0.10'],
     # matplotlib draws the plots of `vehicle-sim demo` and `vehicle-sim scenario --plot`.
-    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib'],
-                    'plot': ['matplotlib']},
+    # gymnasium: vehicle_sim.gym and its tests (docs/gym.md).
+    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib',
+                             'gymnasium>=1.0'],
+                    'plot': ['matplotlib'],
+                    # vehicle_sim.gym (docs/gym.md); the benchmark compares with highway-env
+                    'gym': ['gymnasium>=1.0'],
+                    'gym-bench': ['gymnasium>=1.0', 'highway-env']},
     zip_safe=True,
     maintainer='vehicle_sim maintainers',
     maintainer_email='maintainers@vehicle-sim.example.org',
@@ -67,5 +72,8 @@ setup(
         # Named after the module, so that '-p vehicle_sim.testing' and pytest_plugins =
         # ['vehicle_sim.testing'] find the installed plugin instead of registering it twice.
         'pytest11': ['vehicle_sim.testing = vehicle_sim.testing'],
+        # Gymnasium releases that load environment plugins call this; importing
+        # vehicle_sim.gym registers the same ids (vehicle_sim/gym/registration.py).
+        'gymnasium.envs': ['vehicle_sim = vehicle_sim.gym.registration:register_envs'],
     },
 )

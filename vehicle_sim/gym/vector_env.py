@@ -1,0 +1,221 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+Many worlds in one process: N independent DriveSims stepped in one call, a Gymnasium VectorEnv.
+
+Each world has its own PyBullet DIRECT client (PyBullet allows many in one process), its own
+bodies and its own seeded generator, so nothing one world does reaches another
+(test/test_gym_vector.py crashes world 0 and compares world 1 with a lone run). ``step``
+steps every world in turn and stacks the results into preallocated arrays; there is no
+inter-process traffic, which is why it beats AsyncVectorEnv on a few cores (docs/gym.md).
+
+Autoreset follows Gymnasium's modes: ``next_step`` (the default, as SyncVectorEnv: a world
+that ended is reset by the next ``step``, whose action for it is ignored and whose reward is
+0), ``same_step`` (reset at once; the last observation and info are in ``info['final_obs']``,
+``info['final_info']``) or ``disabled``.
+"""
+
+from gymnasium.vector import AutoresetMode, VectorEnv  # noqa: E402 (after the clear error)
+from gymnasium.vector.utils import batch_space  # noqa: E402
+import numpy as np
+
+from vehicle_sim.gym.drive_env import RENDER_MODES
+from vehicle_sim.gym.drive_sim import DriveSim
+from vehicle_sim.gym.require import gymnasium
+from vehicle_sim.gym.spaces import action_space, observation_space
+
+
+def _stack_infos(infos):
+    # Gymnasium's vector info layout: {key: array over worlds, '_key': mask}; dicts nest.
+    out = {}
+    for key in infos[0]:
+        values = [info[key] for info in infos]
+        if isinstance(values[0], dict):
+            out[key] = _stack_infos(values)
+        else:
+            out[key] = np.array(values, dtype=object if isinstance(values[0], str) else None)
+        out['_' + key] = np.ones(len(infos), dtype=bool)
+    return out
+
+
+class DriveVectorEnv(VectorEnv):
+    """
+    N worlds of ``vehicle_sim/Drive-v0`` in this process.
+
+    :param num_envs: number of worlds, >= 1.
+    :param world: as DriveEnv (every world the same).
+    :param scenario: as DriveEnv.
+    :param render_mode: None or 'rgb_array' (``render()`` returns one picture per world).
+    :param autoreset_mode: 'next_step' (default), 'same_step' or 'disabled' (AutoresetMode).
+    :param reward_fn: as DriveEnv.
+    :param options: the environment's options (gym/options.py).
+    """
+
+    metadata = {'render_modes': ['rgb_array'], 'autoreset_mode': AutoresetMode.NEXT_STEP}
+
+    def __init__(self, num_envs=1, world=None, scenario=None, render_mode=None,
+                 autoreset_mode=AutoresetMode.NEXT_STEP, reward_fn=None, **options):
+        if isinstance(num_envs, bool) or not isinstance(num_envs, int) or num_envs < 1:
+            raise ValueError(f'num_envs = {num_envs!r}: must be an integer >= 1')
+        if render_mode not in (None, 'rgb_array'):
+            raise ValueError(f"render_mode = {render_mode!r}: None or 'rgb_array' (the "
+                             "window shows one world: use DriveEnv for 'human')")
+        assert set(RENDER_MODES) >= {'rgb_array'}
+        self.autoreset_mode = AutoresetMode(autoreset_mode)
+        self.metadata = dict(self.metadata, autoreset_mode=self.autoreset_mode)
+        self.render_mode = render_mode
+        self.reward_fn = reward_fn
+        self.num_envs = num_envs
+        self.sims = []
+        try:
+            for _ in range(num_envs):
+                self.sims.append(DriveSim(world, scenario, options))
+        except BaseException:
+            self.close()
+            raise
+        first = self.sims[0]
+        self.single_action_space = action_space(first.control)
+        self.single_observation_space = observation_space(first.spaces)
+        self.action_space = batch_space(self.single_action_space, num_envs)
+        self.observation_space = batch_space(self.single_observation_space, num_envs)
+        self._keys = list(first.spaces)
+        self._obs = {key: np.zeros((num_envs,) + space.shape, dtype=space.dtype)
+                     for key, space in self.single_observation_space.spaces.items()}
+        self._rngs = [None] * num_envs
+        self._ended = np.zeros(num_envs, dtype=bool)
+        self._images = None
+
+    # ---------------------------------------------------------------- seeding
+    def _seed(self, index, seed):
+        generator, _ = gymnasium.utils.seeding.np_random(seed)
+        self._rngs[index] = generator
+
+    def _rng(self, index):
+        if self._rngs[index] is None:
+            self._seed(index, None)
+        return self._rngs[index]
+
+    def _put(self, index, obs):
+        for key in self._keys:
+            self._obs[key][index] = obs[key]
+
+    def _observations(self):
+        return {key: array.copy() for key, array in self._obs.items()}
+
+    # ---------------------------------------------------------------- the API
+    def reset(self, *, seed=None, options=None):
+        """
+        Reset worlds: all, or those of ``options['reset_mask']``.
+
+        :param seed: None, an int (world i gets seed + i) or a list of one per world.
+        """
+        if seed is None:
+            seeds = [None] * self.num_envs
+        elif isinstance(seed, int):
+            seeds = [seed + i for i in range(self.num_envs)]
+        else:
+            seeds = list(seed)
+            if len(seeds) != self.num_envs:
+                raise ValueError(f'{len(seeds)} seeds for {self.num_envs} worlds')
+        mask = np.ones(self.num_envs, dtype=bool)
+        if options and 'reset_mask' in options:
+            mask = np.asarray(options['reset_mask'], dtype=bool)
+            if mask.shape != (self.num_envs,):
+                raise ValueError(f"options['reset_mask'] of shape {mask.shape}: expected "
+                                 f'({self.num_envs},)')
+        infos = []
+        for i, sim in enumerate(self.sims):
+            if not mask[i]:
+                continue
+            if seeds[i] is not None or self._rngs[i] is None:
+                self._seed(i, seeds[i])
+            obs, info = sim.reset(self._rngs[i])
+            self._put(i, obs)
+            self._ended[i] = False
+            infos.append(info)
+        return self._observations(), _stack_infos(infos) if mask.all() else \
+            self._masked(infos, mask)
+
+    def _masked(self, infos, mask):
+        stacked = _stack_infos(infos)
+        out = {}
+        for key, value in stacked.items():
+            if key.startswith('_'):
+                out[key] = mask.copy()
+            elif isinstance(value, dict):
+                out[key] = value
+            else:
+                full = np.zeros(self.num_envs, dtype=value.dtype)
+                full[mask] = value
+                out[key] = full
+        return out
+
+    def step(self, actions):
+        """Step every world with its row of ``actions``; return the batched results."""
+        actions = np.asarray(actions)
+        if actions.shape != self.action_space.shape:
+            raise ValueError(f'actions of shape {actions.shape}: expected '
+                             f'{self.action_space.shape} (one row per world)')
+        rewards = np.zeros(self.num_envs, dtype=np.float64)
+        terminated = np.zeros(self.num_envs, dtype=bool)
+        truncated = np.zeros(self.num_envs, dtype=bool)
+        infos = []
+        finals = {}
+        mode = self.autoreset_mode
+        for i, sim in enumerate(self.sims):
+            if self._ended[i] and mode == AutoresetMode.NEXT_STEP:
+                obs, info = sim.reset(self._rng(i))
+                self._ended[i] = False
+            elif self._ended[i] and mode == AutoresetMode.DISABLED:
+                raise RuntimeError(f'world {i} ended: reset it (reset_mask) before stepping '
+                                   "it again (autoreset_mode 'disabled')")
+            else:
+                obs, _, terminated[i], truncated[i], info = sim.step(actions[i])
+                rewards[i] = info['reward_default'] if self.reward_fn is None else \
+                    float(self.reward_fn(obs, actions[i], info))
+                if terminated[i] or truncated[i]:
+                    if mode == AutoresetMode.SAME_STEP:
+                        finals[i] = (obs, info)
+                        obs, info = sim.reset(self._rng(i))
+                    else:
+                        self._ended[i] = True
+            self._put(i, obs)
+            infos.append(info)
+        stacked = _stack_infos(infos)
+        if finals:
+            mask = np.zeros(self.num_envs, dtype=bool)
+            final_obs = np.empty(self.num_envs, dtype=object)
+            final_info = np.empty(self.num_envs, dtype=object)
+            for i, (obs, info) in finals.items():
+                mask[i] = True
+                final_obs[i], final_info[i] = obs, info
+            stacked.update(final_obs=final_obs, _final_obs=mask, final_info=final_info,
+                           _final_info=mask.copy())
+        return self._observations(), rewards, terminated, truncated, stacked
+
+    def render(self):
+        """'rgb_array': a tuple of one chase-camera picture per world."""
+        if self.render_mode != 'rgb_array':
+            return None
+        if self._images is None:
+            from vehicle_sim.physics.chase_image import ChaseImage
+            self._images = [ChaseImage(sim.world, sim.ego.body, sim.options['render_width'],
+                                       sim.options['render_height']) for sim in self.sims]
+        return tuple(image.render() for image in self._images)
+
+    def close_extras(self, **kwargs):
+        for sim in self.sims:
+            sim.close()
