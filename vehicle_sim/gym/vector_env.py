@@ -32,10 +32,22 @@ from gymnasium.vector import AutoresetMode, VectorEnv  # noqa: E402 (after the c
 from gymnasium.vector.utils import batch_space  # noqa: E402
 import numpy as np
 
-from vehicle_sim.gym.drive_env import RENDER_MODES
 from vehicle_sim.gym.drive_sim import DriveSim
 from vehicle_sim.gym.require import gymnasium
 from vehicle_sim.gym.spaces import action_space, observation_space
+
+
+# Gymnasium's values ('NextStep') and the snake-case names ('next_step') of AutoresetMode.
+_MODES = {**{mode.value: mode for mode in AutoresetMode},
+          **{mode.name.lower(): mode for mode in AutoresetMode}}
+
+
+def _autoreset_mode(value):
+    if isinstance(value, AutoresetMode):
+        return value
+    if value not in _MODES:
+        raise ValueError(f'autoreset_mode = {value!r}: one of ' + ', '.join(_MODES))
+    return _MODES[value]
 
 
 def _stack_infos(infos):
@@ -73,8 +85,7 @@ class DriveVectorEnv(VectorEnv):
         if render_mode not in (None, 'rgb_array'):
             raise ValueError(f"render_mode = {render_mode!r}: None or 'rgb_array' (the "
                              "window shows one world: use DriveEnv for 'human')")
-        assert set(RENDER_MODES) >= {'rgb_array'}
-        self.autoreset_mode = AutoresetMode(autoreset_mode)
+        self.autoreset_mode = _autoreset_mode(autoreset_mode)
         self.metadata = dict(self.metadata, autoreset_mode=self.autoreset_mode)
         self.render_mode = render_mode
         self.reward_fn = reward_fn
