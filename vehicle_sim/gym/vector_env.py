@@ -28,14 +28,15 @@ that ended is reset by the next ``step``, whose action for it is ignored and who
 ``info['final_info']``) or ``disabled``.
 """
 
-from gymnasium.vector import AutoresetMode, VectorEnv  # noqa: E402 (after the clear error)
-from gymnasium.vector.utils import batch_space  # noqa: E402
 import numpy as np
 
 from vehicle_sim.gym.drive_sim import DriveSim
 from vehicle_sim.gym.require import gymnasium
 from vehicle_sim.gym.spaces import action_space, observation_space
 
+AutoresetMode = gymnasium.vector.AutoresetMode
+VectorEnv = gymnasium.vector.VectorEnv
+batch_space = gymnasium.vector.utils.batch_space
 
 # Gymnasium's values ('NextStep') and the snake-case names ('next_step') of AutoresetMode.
 _MODES = {**{mode.value: mode for mode in AutoresetMode},
