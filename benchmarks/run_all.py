@@ -13,7 +13,9 @@
 # limitations under the License.
 
 """
-Every performance figure of issue 10 in one table: measured, target, met or missed.
+Every performance figure of issues 10 and 20 in one table: measured, target, met or missed.
+
+Issue 20's are the Gymnasium environment's (bench_gym.py).
 
 ``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
 also run alone and say more); each ratio is measured in this run, its two sides interleaved or
@@ -103,6 +105,15 @@ def matched_write_us(count=3000):
         reader.wait()
 
 
+def _gym_figures(quick):
+    # The Gymnasium environment's figures (bench_gym.py); gymnasium is in the test extra.
+    try:
+        import bench_gym
+        return bench_gym.figures(quick)
+    except ImportError as error:
+        return [], [f'gym figures skipped: {error}']
+
+
 def collect(quick):
     """Run every benchmark; return (rows, floors)."""
     import bench_plugin
@@ -121,6 +132,7 @@ def collect(quick):
     overhead, raw_us, full_us, substeps, _ = bench_step.measure_overhead(
         5 if quick else 15, 200 if quick else 400)
     ten = bench_step.measure_ten_cars(5 if quick else 15, 200 if quick else 400)
+    gym_rows, gym_context = _gym_figures(quick)
     ros = bench_ros_sync.figures(steps=1000, repeats=3 if quick else 5)
     share, _, counts = bench_topics_cpu.measure_node(4.0 if quick else 10.0, 10)
     clock_only, _, _ = bench_topics_cpu.measure_node(4.0 if quick else 10.0, 10, False)
@@ -153,7 +165,7 @@ def collect(quick):
         ('service p50, simulation running / bare cyclonedds p50', sim_p50 / bare_p50, '<=',
          1.3, 'x'),
         ('10 cars in one world, per-car cost / one car', ten, '<=', 1.2, 'x'),
-    ]
+    ] + gym_rows
     floors = [
         f'raw PyBullet stepSimulation (BmwX5): {raw_us:.1f} us per basic step; Driver.step '
         f'{full_us:.1f} us',
@@ -182,7 +194,7 @@ def collect(quick):
         f'{raw_share * 100:.1f} %, and with one raw write per topic of bytes serialized once '
         f'(no Python logic) {write_floor * 100:.1f} % (/clock messages received: '
         f'{counts.get("/clock", 0)})',
-    ]
+    ] + gym_context
     return rows, floors
 
 

@@ -65,10 +65,21 @@ class OdometryPart:
         pass
 
     def read(self, out):
-        x, y, _, qx, qy, qz, qw = self.body.pose()
-        (vx, vy, _), (_, _, wz) = self.body.body_twist()
+        body = self.body
+        pose = body.pose()
+        x, y, _, qx, qy, qz, qw = pose
+        (vx, vy, vz), (wx, wy, wz) = body.world.base_link_velocity(body.body_id, pose[:3])
+        # the body's x, y, z axes in the world (columns of the rotation of the quaternion)
+        ax = (1.0 - 2.0 * (qy * qy + qz * qz), 2.0 * (qx * qy + qz * qw),
+              2.0 * (qx * qz - qy * qw))
+        ay = (2.0 * (qx * qy - qz * qw), 1.0 - 2.0 * (qx * qx + qz * qz),
+              2.0 * (qy * qz + qx * qw))
+        az = (2.0 * (qx * qz + qy * qw), 2.0 * (qy * qz - qx * qw),
+              1.0 - 2.0 * (qx * qx + qy * qy))
         out['pose'] = np.array((x, y, yaw_from_quaternion(qx, qy, qz, qw)), dtype=np.float32)
-        out['twist'] = np.array((vx, vy, wz), dtype=np.float32)
+        out['twist'] = np.array((vx * ax[0] + vy * ax[1] + vz * ax[2],
+                                 vx * ay[0] + vy * ay[1] + vz * ay[2],
+                                 wx * az[0] + wy * az[1] + wz * az[2]), dtype=np.float32)
 
 
 class LidarPart:

@@ -64,6 +64,43 @@ def _stack_infos(infos):
     return out
 
 
+class _InfoTable:
+    """
+    The step infos of every world in preallocated arrays (Gymnasium's vector info layout).
+
+    Every world's step info has the same keys (DriveSim), one level of dicts at most: filled in
+    place world by world, then copied out once per step, which costs less than building arrays
+    from lists each step. The masks are all true and shared (read-only).
+    """
+
+    def __init__(self, info, num_envs):
+        self.entries = []           # (key, sub key or None, column)
+        for key, value in info.items():
+            for sub, item in (value.items() if isinstance(value, dict) else ((None, value),)):
+                dtype = object if isinstance(item, str) else np.asarray(item).dtype
+                self.entries.append((key, sub, np.zeros(num_envs, dtype=dtype)))
+        self.mask = np.ones(num_envs, dtype=bool)
+        self.mask.flags.writeable = False
+
+    def put(self, index, info):
+        for key, sub, column in self.entries:
+            column[index] = info[key] if sub is None else info[key][sub]
+
+    def table(self):
+        out = {}
+        mask = self.mask
+        for key, sub, column in self.entries:
+            if sub is None:
+                out[key] = column.copy()
+            else:
+                if key not in out:
+                    out[key] = {}
+                out[key][sub] = column.copy()
+                out[key]['_' + sub] = mask
+            out['_' + key] = mask
+        return out
+
+
 class DriveVectorEnv(VectorEnv):
     """
     N worlds of ``vehicle_sim/Drive-v0`` in this process.
@@ -109,6 +146,7 @@ class DriveVectorEnv(VectorEnv):
         self._rngs = [None] * num_envs
         self._ended = np.zeros(num_envs, dtype=bool)
         self._images = None
+        self._infos = None
 
     # ---------------------------------------------------------------- seeding
     def _seed(self, index, seed):
@@ -184,7 +222,7 @@ class DriveVectorEnv(VectorEnv):
         rewards = np.zeros(self.num_envs, dtype=np.float64)
         terminated = np.zeros(self.num_envs, dtype=bool)
         truncated = np.zeros(self.num_envs, dtype=bool)
-        infos = []
+        table = self._infos
         finals = {}
         mode = self.autoreset_mode
         for i, sim in enumerate(self.sims):
@@ -205,8 +243,10 @@ class DriveVectorEnv(VectorEnv):
                     else:
                         self._ended[i] = True
             self._put(i, obs)
-            infos.append(info)
-        stacked = _stack_infos(infos)
+            if table is None:
+                table = self._infos = _InfoTable(info, self.num_envs)
+            table.put(i, info)
+        stacked = table.table()
         if finals:
             mask = np.zeros(self.num_envs, dtype=bool)
             final_obs = np.empty(self.num_envs, dtype=object)
