@@ -17,7 +17,8 @@
 The Gymnasium environment vehicle_sim/Drive-v0.
 
 Gymnasium's own checker, determinism, episode ends (collision, goal, scenario criteria), reward
-terms, refused input, registration, rendering and Gymnasium's vector wrappers.
+terms, refused input, registration and Gymnasium's vector wrappers (rendering:
+test_gym_render.py).
 """
 
 import warnings
@@ -252,14 +253,6 @@ def test_the_id_resolves_through_the_module_prefix_and_the_entry_point_is_declar
     setup = (ROOT / 'setup.py').read_text()
     assert "'gymnasium.envs': ['vehicle_sim = vehicle_sim.gym.registration:register_envs']" \
         in setup
-
-
-def test_rgb_array_renders_the_chase_camera_picture(make):
-    env = make(render_mode='rgb_array', render_width=64, render_height=48)
-    env.reset(seed=0)
-    picture = env.render()
-    assert picture.shape == (48, 64, 3) and picture.dtype == np.uint8
-    assert picture.std() > 5.0            # not a blank picture: ground, sky, the car
 
 
 def test_gymnasium_sync_and_async_vector_envs_run_it(make):
