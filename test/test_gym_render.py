@@ -14,9 +14,10 @@
 
 
 """
-Rendering of the Gymnasium environment: 'rgb_array' (the chase camera by the CPU renderer) and
-'human' (PyBullet's window, on a virtual X display), and Gymnasium's checker with its render
-checks on.
+Rendering of the Gymnasium environment.
+
+'rgb_array' (the chase camera by the CPU renderer) and 'human' (PyBullet's window, on a virtual
+X display), and Gymnasium's checker with its render checks on.
 """
 
 import json
@@ -31,7 +32,7 @@ from xvfb_helpers import require_xvfb, xvfb_run  # noqa: E402
 
 from vehicle_sim.gym import DriveEnv, DriveVectorEnv  # noqa: E402
 
-HUMAN = r'''
+HUMAN = r"""
 import json, warnings
 import numpy as np
 import gymnasium
@@ -54,7 +55,7 @@ view = env.unwrapped._chase.view
 out['target_x'] = view.target_m[0]
 env.close()
 print('RESULT ' + json.dumps(out))
-'''
+"""
 
 
 def test_rgb_array_pictures_follow_the_car():
