@@ -216,6 +216,10 @@ def test_an_action_outside_the_space_is_refused_naming_the_entry(make):
     with pytest.raises(ValueError, match=r'shape \(3,\)'):
         env.step([0.0, 1.0, 2.0])
     assert env.unwrapped.sim.world.step_count == before       # nothing stepped
+    # float rounding at a bound (RescaleAction's -1 gives -5.0000002 m/s) is the bound
+    rescaled = gymnasium.wrappers.RescaleAction(env, -1.0, 1.0)
+    rescaled.step(np.array([-1.0, -1.0], dtype=np.float32))
+    assert env.unwrapped.sim.world.step_count == before + 1
 
 
 @pytest.mark.parametrize('kwargs, message', [

@@ -18,7 +18,7 @@ The action layouts of the Gym environment: what each entry of the action Box mea
 
 Every layout is a continuous Box in physical units (bounds from the vehicle's parameters); an
 action outside the Box, of the wrong shape or not finite is refused with a ValueError naming
-the entry (nothing is clipped here: wrap the environment in ``gymnasium.wrappers.ClipAction``
+the entry (nothing is clipped here, beyond float rounding at a bound: wrap the environment in ``gymnasium.wrappers.ClipAction``
 to clip a policy's samples, or ``RescaleAction`` for [-1, 1]).
 
 - ``speed_steering`` (car): [steering angle [rad], + = left (REP 103); cruising speed [m/s],
@@ -35,6 +35,9 @@ import numpy as np
 from vehicle_sim.core.diff_drive import limit_wheel_speeds, wheel_speeds_from_twist
 from vehicle_sim.core.units import mps_to_kmh, ros_steering_to_webots
 
+# Relative float rounding taken as the bound (float32 epsilon is 1.2e-7; a rescaled bound is a
+# few of them off).
+ROUNDING_TOLERANCE = 1.0e-6
 # The car's default largest speed action [m/s] (72 km/h) when the top speed is higher.
 DEFAULT_MAX_SPEED_MPS = 20.0
 
@@ -53,18 +56,27 @@ class Control:
         """
         Return the action as float64, or raise ValueError naming the first bad entry.
 
-        Bounds are those of the Box (float32), compared in float64.
+        Bounds are those of the Box (float32), compared in float64. A value past a bound by
+        float rounding only (ROUNDING_TOLERANCE of the bound: what RescaleAction's arithmetic
+        gives for -1 and 1) is taken as the bound.
         """
-        values = np.asarray(action, dtype=np.float64)
+        values = np.array(action, dtype=np.float64)
         if values.shape != self.low.shape:
             raise ValueError(f'action of shape {values.shape}: expected {self.low.shape} '
                              f'({", ".join(self.names)})')
         for i, value in enumerate(values):
             low, high = float(self.low[i]), float(self.high[i])
             if not low <= value <= high:      # NaN fails too
-                raise ValueError(f'action[{i}] ({self.names[i]}) = {float(value)!r} '
-                                 f'{self.units[i]}: outside [{low:g}, {high:g}] (the action '
-                                 'space; gymnasium.wrappers.ClipAction clips)')
+                slack_low = ROUNDING_TOLERANCE * max(1.0, abs(low))
+                slack_high = ROUNDING_TOLERANCE * max(1.0, abs(high))
+                if low - slack_low <= value < low:
+                    values[i] = low
+                elif high < value <= high + slack_high:
+                    values[i] = high
+                else:
+                    raise ValueError(f'action[{i}] ({self.names[i]}) = {float(value)!r} '
+                                     f'{self.units[i]}: outside [{low:g}, {high:g}] (the '
+                                     'action space; gymnasium.wrappers.ClipAction clips)')
         return values
 
     def apply(self, action):
