@@ -18,8 +18,8 @@ The action layouts of the Gym environment: what each entry of the action Box mea
 
 Every layout is a continuous Box in physical units (bounds from the vehicle's parameters); an
 action outside the Box, of the wrong shape or not finite is refused with a ValueError naming
-the entry (nothing is clipped here, beyond float rounding at a bound: wrap the environment in ``gymnasium.wrappers.ClipAction``
-to clip a policy's samples, or ``RescaleAction`` for [-1, 1]).
+the entry. Nothing is clipped here beyond float rounding at a bound: wrap the environment in
+``gymnasium.wrappers.ClipAction`` to clip a policy's samples, or ``RescaleAction`` for [-1, 1].
 
 - ``speed_steering`` (car): [steering angle [rad], + = left (REP 103); cruising speed [m/s],
   negative = reverse]. The car's speed controller (Webots' cruising speed) tracks the speed.
