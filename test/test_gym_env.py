@@ -274,3 +274,8 @@ def test_gymnasium_sync_and_async_vector_envs_run_it(make):
             assert obs['twist'][0][0] > obs['twist'][1][0] >= -1e-3
         finally:
             vector.close()
+
+
+def test_the_docs_show_the_options_table():
+    from vehicle_sim.gym.options import options_markdown
+    assert options_markdown() in (ROOT / 'docs' / 'gym.md').read_text()
