@@ -42,7 +42,7 @@ from vehicle_sim.core.world_params import RobotSpec, WorldSpec
 from vehicle_sim.gym.controls import make_control
 from vehicle_sim.gym.episode import check_criteria, CriteriaWatch
 from vehicle_sim.gym.observations import ego_parts, PART_FACTORIES, sensor_spec
-from vehicle_sim.gym.options import SOURCE, validate_options
+from vehicle_sim.gym.options import CAMERA, LIDAR, SOURCE, validate_options
 from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.physics.sensors.collisions import CollisionMonitor
 from vehicle_sim.physics.world import DEFAULT_TIME_STEP_S
@@ -167,8 +167,8 @@ class DriveSim:
         if vehicle.name != self.ego_name:
             return None
         opts = self.options
-        lidar = sensor_spec(opts['lidar'], 'lidar', vehicle, SOURCE)
-        camera = sensor_spec(opts['camera'], 'camera', vehicle, SOURCE)
+        lidar = sensor_spec(opts[LIDAR], LIDAR, vehicle, SOURCE)
+        camera = sensor_spec(opts[CAMERA], CAMERA, vehicle, SOURCE)
         self._parts = ego_parts(scene.world, vehicle, lidar, camera)
         return self._parts
 

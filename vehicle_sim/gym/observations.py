@@ -39,6 +39,7 @@ import numpy as np
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.geometry import yaw_from_quaternion
 from vehicle_sim.core.sensor_params import sensor_from_dict
+from vehicle_sim.gym.options import CAMERA, LIDAR
 from vehicle_sim.physics.sensors.camera import CameraSensor
 from vehicle_sim.physics.sensors.lidar import LidarSensor
 
@@ -94,7 +95,7 @@ class LidarPart:
             (spec.layers, spec.horizontal_resolution)
 
     def spaces(self):
-        return {'lidar': (0.0, self.spec.max_range_m, self._shape, np.float32)}
+        return {LIDAR: (0.0, self.spec.max_range_m, self._shape, np.float32)}
 
     def reseed(self, seed):
         """Give the lidar a new noise generator (same rays) from ``seed`` (a reset's seed)."""
@@ -108,7 +109,7 @@ class LidarPart:
     def read(self, out):
         ranges = self.sensor.sample(self.world.time_s).ranges_m.reshape(self._shape)
         ranges = np.where(ranges == INF, self.spec.max_range_m, ranges)
-        out['lidar'] = np.clip(ranges, 0.0, self.spec.max_range_m).astype(np.float32)
+        out[LIDAR] = np.clip(ranges, 0.0, self.spec.max_range_m).astype(np.float32)
 
 
 class CameraPart:
@@ -120,13 +121,13 @@ class CameraPart:
         self.sensor = CameraSensor(world, body, spec)
 
     def spaces(self):
-        return {'camera': (0, 255, (self.spec.height, self.spec.width, 3), np.uint8)}
+        return {CAMERA: (0, 255, (self.spec.height, self.spec.width, 3), np.uint8)}
 
     def reset(self):
         pass
 
     def read(self, out):
-        out['camera'] = self.sensor.sample(self.world.time_s).rgb
+        out[CAMERA] = self.sensor.sample(self.world.time_s).rgb
 
 
 def sensor_spec(option, kind, vehicle, source):
@@ -135,7 +136,7 @@ def sensor_spec(option, kind, vehicle, source):
 
     :param option: None/False (none), True (the default one), a sensor name of the ego's
         world entry, or a mapping of the type's keys (docs/sensors.md).
-    :param kind: 'lidar' or 'camera'.
+    :param kind: LIDAR or CAMERA (the type names).
     :param vehicle: the ego's SceneVehicle.
     :raises InvalidParameterError: for an unknown name or a bad key, naming the option.
     """
@@ -152,7 +153,7 @@ def sensor_spec(option, kind, vehicle, source):
                                     f'{kind} of that name; its {kind}s: {names}')
     height = CAR_SENSOR_HEIGHT_M if vehicle.car is not None else ROBOT_SENSOR_HEIGHT_M
     data = {'type': kind, 'name': f'gym_{kind}', 'pose': {'z': height}}
-    if kind == 'camera':
+    if kind == CAMERA:
         data.update(DEFAULT_CAMERA)
     if isinstance(option, dict):
         data.update(option)

@@ -23,11 +23,20 @@ naming the key and the rule, before anything is built. docs/gym.md shows the tab
 """
 
 from vehicle_sim.core.param_spec import parameter_table_markdown, ParamSpec, validate_table
+from vehicle_sim.core.sensor_params import CameraSpec, LidarSpec, SENSOR_TYPES
 
 CONTROLS = ('auto', 'speed_steering', 'throttle_steering', 'twist')
-CAR_CONTROLS = ('speed_steering', 'throttle_steering')
-ROBOT_CONTROLS = ('twist',)
 SOURCE = 'vehicle_sim/Drive-v0'
+
+
+def registered_type(spec_class):
+    """Return the core type name a SensorSpec class is registered under (SENSOR_TYPES)."""
+    return next(name for name, row in SENSOR_TYPES.items() if row.spec_class is spec_class)
+
+
+# The sensor options and observation keys are named after their sensor types.
+LIDAR = registered_type(LidarSpec)
+CAMERA = registered_type(CameraSpec)
 
 
 def _sensor_option(value):
@@ -64,11 +73,11 @@ OPTION_SPECS = (
                   '20 m/s)'),
     ParamSpec('max_reverse_speed', kind='float', default=5.0, unit='m/s', ge=0.0,
               doc='speed_steering: largest reverse speed action'),
-    ParamSpec('lidar', kind='raw', default=None, optional=True, check=_sensor_option,
+    ParamSpec(LIDAR, kind='raw', default=None, optional=True, check=_sensor_option,
               doc="lidar observation: null = none, true = a 1080-ray 270 deg lidar, a name = "
                   "that lidar of the ego's world entry, a mapping = lidar keys "
                   '(docs/sensors.md)'),
-    ParamSpec('camera', kind='raw', default=None, optional=True, check=_sensor_option,
+    ParamSpec(CAMERA, kind='raw', default=None, optional=True, check=_sensor_option,
               doc='camera observation: as lidar (true = 84 x 84 px)'),
     ParamSpec('goal', kind='floats', default=None, unit='m', length=2, optional=True,
               doc="goal [x, y]: progress toward it, episode ends inside 'goal_radius'; null = "
