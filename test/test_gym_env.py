@@ -192,6 +192,22 @@ def test_a_scenario_criterion_that_fails_ends_the_episode(make):
     assert not info['goal_reached']
 
 
+def test_a_robot_scenario_gives_its_robot_as_ego_and_leaves_out_topic_criteria(make):
+    with pytest.warns(UserWarning, match=r"criteria 'topic' \(topic\) read ROS messages"):
+        env = make(scenario=str(ROOT / 'scenarios' / 'bridge_s_curve.yaml'))
+    obs, info = env.reset(seed=0)
+    assert env.unwrapped.sim.ego_name == 'diff_robot'
+    assert set(info['criteria']) == {'stay_on_path', 'reach_goal', 'max_speed'}
+    assert env.action_space.shape == (2,)            # twist
+    for _ in range(1000):
+        obs, reward, terminated, truncated, info = env.step([0.9, 0.0])
+        if terminated:
+            break
+    # straight on: the S-curve path turns left after 1.3 m, so stay_on_path (0.15 m) fails
+    assert terminated and info['criteria']['stay_on_path'] == 'failed'
+    assert 1.3 < obs['pose'][0] < 3.0
+
+
 def test_a_user_reward_replaces_the_default_and_sees_the_terms(make):
     seen = []
 

@@ -40,7 +40,7 @@ from vehicle_sim.core.learning.progress import GoalProgress, HeadingProgress, Pa
 from vehicle_sim.core.learning.reward import reward_terms, RewardWeights, total
 from vehicle_sim.core.world_params import RobotSpec, WorldSpec
 from vehicle_sim.gym.controls import make_control
-from vehicle_sim.gym.episode import check_criteria, CriteriaWatch
+from vehicle_sim.gym.episode import CriteriaWatch, judged_criteria
 from vehicle_sim.gym.observations import ego_parts, PART_FACTORIES, sensor_spec
 from vehicle_sim.gym.options import CAMERA, LIDAR, SOURCE, validate_options
 from vehicle_sim.physics.scene import build_scene
@@ -112,9 +112,9 @@ class DriveSim:
                                            else DEFAULT_TIME_STEP_S * 1000.0)
         criteria = ()
         if self.scenario is not None:
-            criteria = tuple(c for c in self.scenario.criteria
-                             if c.vehicle in ('', self.ego_name))
-            check_criteria(criteria, self.ego_name, self.scenario.source)
+            criteria = judged_criteria([c for c in self.scenario.criteria
+                                        if c.vehicle in ('', self.ego_name)],
+                                       self.scenario.source)
         self._criteria_specs = criteria
         self.episode_s = opts['max_episode_s'] or (self.scenario.duration_s if self.scenario
                                                    else DEFAULT_EPISODE_S)

@@ -27,12 +27,13 @@ step); :func:`verdict_now` says whether a criterion is already decided:
 
 The episode is *terminated* when a criterion failed, or when every ``reach_goal`` criterion
 passed (there is at least one); it is *truncated* at the scenario's duration. ``topic``
-criteria read ROS messages and have no place in an environment without ROS: refused.
+criteria read ROS messages, which an environment without ROS has none of: left out, with a
+warning naming them.
 """
 
 import math
+import warnings
 
-from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.scenarios.criteria import build_criteria, Sample
 from vehicle_sim.scenarios.scene import world_scene
 
@@ -40,17 +41,19 @@ PASSED, FAILED, UNDECIDED = 'passed', 'failed', 'undecided'
 _EPS_S = 1e-9
 
 
-def check_criteria(specs, ego, source):
+def judged_criteria(specs, source):
     """
-    Refuse criteria an in-process episode cannot judge (topic criteria) or of another vehicle.
+    Return the criteria an in-process episode judges: all but the ``topic`` ones.
 
-    :raises InvalidParameterError: naming the scenario and the criterion.
+    A topic criterion reads ROS messages, which an environment without ROS has none of: it is
+    left out with a warning naming it (the scenario runner judges it).
     """
-    for spec in specs:
-        if spec.kind == 'topic':
-            raise InvalidParameterError(
-                f'{source}: criterion {spec.name!r} (topic) reads ROS messages; the Gym '
-                'environment runs without ROS: use the scenario runner for it')
+    skipped = [spec.name for spec in specs if spec.kind == 'topic']
+    if skipped:
+        warnings.warn(f'{source}: criteria {", ".join(repr(n) for n in skipped)} (topic) read '
+                      'ROS messages: not judged in the Gym environment, which runs without ROS '
+                      '(the scenario runner judges them)', stacklevel=3)
+    return tuple(spec for spec in specs if spec.kind != 'topic')
 
 
 def verdict_now(criterion, elapsed_s):
