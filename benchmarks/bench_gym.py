@@ -24,7 +24,8 @@ Figures, each in env steps per second (one step = one action, action_repeat 1, 1
    second over the single environment's, blocks of the two interleaved (target >= 0.9x: a world
    in the vector costs no more than a lone environment);
 3. Gymnasium's AsyncVectorEnv with 2 processes (steps of both per second);
-4. creating an environment (16 in a row, each with its own physics client; target <= 0.2 s);
+4. creating an environment (16 in a row, each with its own physics client; target <= 0.2 s),
+   and a reset;
 5. highway-env's ``highway-fast-v0`` and ``racetrack-v0`` (if the package is installed:
    ``pip install 'vehicle_sim[gym-bench]'``; skipped with a line otherwise).
 
@@ -190,6 +191,20 @@ def creation_s(count=16):
     return each, per_world
 
 
+def reset_ms(count=100):
+    """Return the milliseconds of one reset (in place: every body reloaded, same client)."""
+    gymnasium = _gym()
+    env = gymnasium.make(ENV_ID, lidar=True)
+    try:
+        env.reset(seed=0)
+        start = time.perf_counter()
+        for seed in range(count):
+            env.reset(seed=seed)
+        return (time.perf_counter() - start) / count * 1000.0
+    finally:
+        env.close()
+
+
 def highway_rates(seconds):
     """Return {id: steps/s} of highway-env's environments, or None without the package."""
     try:
@@ -239,6 +254,7 @@ def figures(quick=False):
     vectors = {n: vector_ratio(n, blocks, max(steps, 4 * n)) for n in (1, 8, 32)}
     asynchronous = async_rate(200 if quick else 1000)
     each_s, per_world_s = creation_s()
+    reset = reset_ms(30 if quick else 100)
     highway = highway_rates(2.0 if quick else 5.0)
     rows = [
         ('gym: one Drive-v0, state observations (obstacle_course car)', state, '>=',
@@ -254,7 +270,8 @@ def figures(quick=False):
                f'world), one env alone in the same blocks {lone:.0f} steps/s'
                for n, (many, lone, _) in vectors.items()]
     context.append(f'gym: AsyncVectorEnv, 2 processes: {asynchronous:.0f} steps/s of both')
-    context.append(f'gym: a world of DriveVectorEnv(16): {per_world_s * 1000:.1f} ms to create')
+    context.append(f'gym: a world of DriveVectorEnv(16): {per_world_s * 1000:.1f} ms to create; '
+                   f"a reset (with the lidar's first scan) {reset:.1f} ms")
     if highway is None:
         context.append("gym: highway-env not installed (pip install 'vehicle_sim[gym-bench]'): "
                        'its figures skipped')
