@@ -278,20 +278,23 @@ class DriveSim:
         world = self.world
         monitor = self._monitor
         watch = self._watch
-        goal = self._goal
+        # the goal circle checked each basic step: the option's, else the scenario's when
+        # it has no reach_goal criterion to judge it; none once reached
+        circle = None if self._goal_reached or (watch is not None and watch.goals) \
+            else self._goal
         hits = []
         reached_now = False
         for _ in range(repeat):
             world.step()
             if monitor.fresh:
                 hits.extend(monitor.fresh)
-            if watch is not None or goal is not None:
+            if watch is not None or circle is not None:
                 x, y, yaw = self._ego_state()
                 if watch is not None:
                     watch.observe(self.elapsed_s, x, y, yaw, self.ego.body.forward_speed_mps(),
                                   monitor.fresh)
-                if goal is not None and not self._goal_reached and \
-                        math.hypot(x - goal.goal[0], y - goal.goal[1]) <= goal.radius_m:
+                if circle is not None and math.hypot(x - circle.goal[0],
+                                                     y - circle.goal[1]) <= circle.radius_m:
                     reached_now = True
             if hits and self.options['terminate_on_collision']:
                 break
@@ -301,9 +304,9 @@ class DriveSim:
         if watch is not None:
             ended, reached_all = watch.decide(self.elapsed_s)
             terminated = terminated or ended
-            reached_now = reached_now or (reached_all and not self._goal_reached)
-        elif reached_now:
-            terminated = True
+            if watch.goals:     # the scenario's reach_goal criteria say when (speed, deadline)
+                reached_now = reached_all and not self._goal_reached
+        terminated = terminated or reached_now
         self._goal_reached = self._goal_reached or reached_now
         terms = reward_terms(self.weights, progress_m, bool(hits), reached_now)
         truncated = not terminated and self.elapsed_s >= self.episode_s - 1e-9
