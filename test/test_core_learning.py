@@ -21,7 +21,7 @@ import pytest
 
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.learning.progress import GoalProgress, HeadingProgress, PathProgress
-from vehicle_sim.core.learning.reward import RewardWeights, reward_terms, TERMS, total
+from vehicle_sim.core.learning.reward import reward_terms, RewardWeights, TERMS, total
 
 
 def test_path_progress_is_the_change_of_the_arc_length_of_the_nearest_point():
