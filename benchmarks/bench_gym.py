@@ -21,8 +21,10 @@ Figures, each in env steps per second (one step = one action, action_repeat 1, 1
 1. one ``vehicle_sim/Drive-v0`` (``gymnasium.make``, world obstacle_course, a car), state
    observations only (target >= 3000/s), and with a 1080-ray lidar (target >= 500/s);
 2. the in-process vector environment with 1, 8 and 32 worlds: its steps of all worlds per
-   second over the single environment's, blocks of the two interleaved (target >= 0.9x: a world
-   in the vector costs no more than a lone environment);
+   CPU second of this process over the single environment's, short blocks of the two
+   interleaved, every world taking the lone environment's actions in a world without episode
+   ends (target >= 0.9x: a world in the vector costs no more than a lone environment);
+   wall-clock rates printed beside;
 3. Gymnasium's AsyncVectorEnv with 2 processes (steps of both per second);
 4. creating an environment (16 in a row, each with its own physics client; target <= 0.2 s),
    and a reset;
@@ -55,6 +57,8 @@ TARGET_LIDAR = 500.0
 TARGET_VECTOR = 0.9
 TARGET_CREATE_S = 0.2
 ENV_ID = 'vehicle_sim/Drive-v0'
+# The vector ratio's world: the default world (one car, nothing to hit), no time limit.
+RATIO_WORLD = {'world': 'default', 'max_episode_s': 1.0e6}
 
 
 def _gym():
@@ -127,29 +131,46 @@ def single_rate(blocks, steps, **options):
         env.close()
 
 
+def _cpu_block(runner, steps):
+    # (world steps, CPU seconds of this process): CPU time moves much less than wall time
+    # with other people's processes on the machine's cores.
+    start = time.process_time()
+    rate = runner.block(steps)
+    cpu_s = time.process_time() - start
+    worlds = getattr(runner.env, 'num_envs', 1)
+    return steps * worlds, cpu_s, rate
+
+
 def vector_ratio(num_envs, blocks, steps):
     """
-    Return (vector steps/s of all worlds, single steps/s, median ratio) in interleaved blocks.
+    Return (vector world steps/s, single steps/s, ratio) from interleaved blocks.
 
-    The vector block steps ``steps / num_envs`` times (the same number of world steps).
+    The vector block steps ``steps / num_envs`` times (the same number of world steps). The
+    ratio is that of the world steps per CPU second of this process, summed over the blocks;
+    the rates are the median wall-clock ones. Both sides drive in RATIO_WORLD, where no episode
+    ends during the blocks: resets run the same code on both sides, but the vector's worlds
+    (all taking the same actions) would end together, a burst that short blocks sample
+    unevenly.
     """
     gymnasium = _gym()
     from vehicle_sim.gym import DriveVectorEnv
-    single = gymnasium.make(ENV_ID)
-    vector = DriveVectorEnv(num_envs)
+    single = gymnasium.make(ENV_ID, **RATIO_WORLD)
+    vector = DriveVectorEnv(num_envs, **RATIO_WORLD)
     try:
         lone, many = _Runner(single), _VectorRunner(vector)
         lone.block(50)
         many.block(max(1, 50 // num_envs))
-        ratios, lone_rates, many_rates = [], [], []
+        totals = {'lone': [0, 0.0, []], 'many': [0, 0.0, []]}
         for _ in range(blocks):
-            a = lone.block(steps)
-            b = many.block(max(1, steps // num_envs))
-            lone_rates.append(a)
-            many_rates.append(b)
-            ratios.append(b / a)
-        return statistics.median(many_rates), statistics.median(lone_rates), \
-            statistics.median(ratios)
+            for key, runner, count in (('lone', lone, steps),
+                                       ('many', many, max(1, steps // num_envs))):
+                done, cpu_s, rate = _cpu_block(runner, count)
+                totals[key][0] += done
+                totals[key][1] += cpu_s
+                totals[key][2].append(rate)
+        per_cpu = {key: done / cpu_s for key, (done, cpu_s, _) in totals.items()}
+        return statistics.median(totals['many'][2]), statistics.median(totals['lone'][2]), \
+            per_cpu['many'] / per_cpu['lone']
     finally:
         single.close()
         vector.close()
@@ -248,9 +269,10 @@ def figures(quick=False):
     """Run every measurement; return (rows, context lines) in run_all.py's row form."""
     blocks = 3 if quick else 7
     steps = 400 if quick else 1000
+    vector_blocks = 6 if quick else 20
     state = single_rate(blocks, steps)
     lidar = single_rate(blocks, max(100, steps // 4), lidar=True)
-    vectors = {n: vector_ratio(n, blocks, max(steps, 4 * n)) for n in (1, 8, 32)}
+    vectors = {n: vector_ratio(n, vector_blocks, max(320, 4 * n)) for n in (1, 8, 32)}
     asynchronous = async_rate(200 if quick else 1000)
     each_s, per_world_s = creation_s()
     reset = reset_ms(30 if quick else 100)
