@@ -123,6 +123,18 @@ def test_one_seed_and_one_action_list_give_bit_identical_episodes(make):
     assert other[0]['pose'].tobytes() != first[0]['pose'].tobytes()   # the seed matters
 
 
+def test_start_noise_never_puts_the_ego_inside_an_obstacle(make):
+    # the wall's face is at x = 19.5 m and the car 4.5 m long: offsets up to 18 m reach into it
+    env = make(start_noise=[18.0, 2.0, 0.2])
+    sim = env.unwrapped.sim
+    starts = set()
+    for seed in range(30):
+        obs, _ = env.reset(seed=seed)
+        assert sim.world.overlaps(sim.ego.body.body_id) == []
+        starts.add(round(float(obs['pose'][0]), 3))
+    assert len(starts) == 30 and max(starts) > 10.0
+
+
 def test_a_collision_ends_the_episode_with_its_penalty_in_the_terms(make):
     env = make()
     env.reset(seed=0)

@@ -37,7 +37,7 @@ from vehicle_sim.config import read_yaml, world_from_data, world_path
 from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.geometry import yaw_from_quaternion
 from vehicle_sim.core.learning.progress import GoalProgress, HeadingProgress, PathProgress
-from vehicle_sim.core.learning.reward import reward_terms, RewardWeights, total
+from vehicle_sim.core.learning.reward import reward_terms, RewardWeights, TERMS, total
 from vehicle_sim.core.world_params import RobotSpec, WorldSpec
 from vehicle_sim.gym.controls import make_control
 from vehicle_sim.gym.episode import CriteriaWatch, judged_criteria
@@ -53,6 +53,8 @@ from vehicle_sim.scenarios.sim import VehicleHandle
 DEFAULT_WORLD = 'obstacle_course'
 DEFAULT_EPISODE_S = 60.0
 EGO_ROBOT_NAME = 'ego'
+# Start poses drawn at most per reset when start_noise puts the ego inside another body.
+START_DRAWS = 100
 
 
 class _ActorHook:
@@ -220,11 +222,8 @@ class DriveSim:
         for vehicle in self.scene.vehicles.values():
             vehicle.vehicle.reset()
         self.world.reset_obstacles()
-        noise = self.options['start_noise']
-        if any(noise):
-            offset = rng.uniform(-np.asarray(noise), np.asarray(noise))
-            x, y, yaw = self.ego.body.spawn[:3]
-            self.ego.body.rebuild((x + offset[0], y + offset[1], yaw + offset[2]))
+        if any(self.options['start_noise']):
+            self._offset_start(rng)
         for part in self._parts:
             reseed = getattr(part, 'reseed', None)
             if reseed is not None:
@@ -241,8 +240,22 @@ class DriveSim:
         x, y, yaw = self._ego_state()
         self._progress.start(x, y, yaw)
         self._goal_reached = False
-        return self.observe(), self._info(0.0, {k: 0.0 for k in ('progress', 'collision',
-                                                                  'goal')}, '', False)
+        return self.observe(), self._info(0.0, dict.fromkeys(TERMS, 0.0), '', False)
+
+    def _offset_start(self, rng):
+        # The ego at its spawn pose plus a uniform offset; an offset that puts it inside
+        # another body is drawn again (the same draws for the same seed).
+        half = np.asarray(self.options['start_noise'])
+        body = self.ego.body
+        x, y, yaw = body.spawn[:3]
+        for _ in range(START_DRAWS):
+            dx, dy, dyaw = rng.uniform(-half, half)
+            body.rebuild((x + dx, y + dy, yaw + dyaw))
+            if not self.world.overlaps(body.body_id):
+                return
+        raise InvalidParameterError(
+            f"{SOURCE}: option 'start_noise' = {list(half)}: {START_DRAWS} start poses drawn "
+            f'around the spawn pose of {self.ego_name!r} were all inside another body')
 
     def _actors(self):
         if self.scenario is None:
