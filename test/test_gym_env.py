@@ -307,3 +307,23 @@ def test_gymnasium_sync_and_async_vector_envs_run_it(make):
 def test_the_docs_show_the_options_table():
     from vehicle_sim.gym.options import options_markdown
     assert options_markdown() in (ROOT / 'docs' / 'gym.md').read_text()
+
+
+def test_registering_again_or_inside_a_plugin_namespace_keeps_one_id():
+    from gymnasium.envs.registration import namespace, registry
+
+    from vehicle_sim.gym.registration import register_envs
+    before = dict(registry)
+    with warnings.catch_warnings():
+        warnings.simplefilter('error')         # gymnasium warns when an id is overridden
+        register_envs()
+        with namespace('vehicle_sim'):          # how plugin-loading Gymnasium releases call it
+            register_envs()
+    assert dict(registry) == before and 'vehicle_sim/Drive-v0' in registry
+    spec = registry.pop('vehicle_sim/Drive-v0')
+    try:
+        with namespace('vehicle_sim'):
+            register_envs()
+        assert registry['vehicle_sim/Drive-v0'].entry_point == spec.entry_point
+    finally:
+        registry['vehicle_sim/Drive-v0'] = spec

@@ -39,7 +39,6 @@ def register_envs():
     registry = gymnasium.envs.registration
     in_plugin = getattr(registry, 'current_namespace', None) is not None
     for name, kwargs in ENVS.items():
-        env_id = name if in_plugin else f'{NAMESPACE}/{name}'
-        if env_id in registry.registry:
+        if f'{NAMESPACE}/{name}' in registry.registry:
             continue
-        gymnasium.register(id=env_id, **kwargs)
+        gymnasium.register(id=name if in_plugin else f'{NAMESPACE}/{name}', **kwargs)
