@@ -32,10 +32,13 @@ EXTRAS = {
     'lanelet2': ['lanelet2'],                      # Lanelet2 .osm lane maps
     'ray': ['ray'],                                # sweeps on a Ray cluster (vehicle_sim/sweep)
     'foxglove': ['foxglove-sdk>=0.30,<0.31'],      # the live view (docs/foxglove.md)
+    'gym': ['gymnasium>=1.0'],                     # vehicle_sim.gym (docs/gym.md)
 }
 # pyarrow: a sweep writes results.parquet when it imports.
 EXTRAS['test'] = (['pytest', 'pytest-timeout', 'ruff', 'pyarrow']
                   + sorted({req for reqs in EXTRAS.values() for req in reqs}))
+# Benchmark only (bench_gym.py compares with highway-env), not in `test`.
+EXTRAS['gym-bench'] = ['gymnasium>=1.0', 'highway-env']
 
 
 setup(
@@ -82,5 +85,8 @@ setup(
         # Named after the module, so that '-p vehicle_sim.testing' and pytest_plugins =
         # ['vehicle_sim.testing'] find the installed plugin instead of registering it twice.
         'pytest11': ['vehicle_sim.testing = vehicle_sim.testing'],
+        # Gymnasium releases that load environment plugins call this; importing
+        # vehicle_sim.gym registers the same ids (vehicle_sim/gym/registration.py).
+        'gymnasium.envs': ['vehicle_sim = vehicle_sim.gym.registration:register_envs'],
     },
 )

@@ -13,7 +13,9 @@
 # limitations under the License.
 
 """
-Every performance figure of issue 10 in one table: measured, target, met or missed.
+Every performance figure of issues 10 and 20 in one table: measured, target, met or missed.
+
+Issue 20's are the Gymnasium environment's (bench_gym.py).
 
 ``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
 also run alone and say more); each ratio is measured in this run, its two sides interleaved or
@@ -103,6 +105,15 @@ def matched_write_us(count=3000):
         reader.wait()
 
 
+def _gym_figures(quick):
+    # The Gymnasium environment's figures (bench_gym.py); gymnasium is in the test extra.
+    try:
+        import bench_gym
+        return bench_gym.figures(quick)
+    except ImportError as error:
+        return [], [f'gym figures skipped: {error}']
+
+
 def collect(quick):
     """Run every benchmark; return (rows, floors)."""
     import bench_maps
@@ -122,6 +133,7 @@ def collect(quick):
     overhead, raw_us, full_us, substeps, _ = bench_step.measure_overhead(
         5 if quick else 15, 200 if quick else 400)
     ten = bench_step.measure_ten_cars(5 if quick else 15, 200 if quick else 400)
+    gym_rows, gym_context = _gym_figures(quick)
     ros = bench_ros_sync.figures(steps=1000, repeats=3 if quick else 5)
     share, _, counts = bench_topics_cpu.measure_node(4.0 if quick else 10.0, 10)
     clock_only, _, _ = bench_topics_cpu.measure_node(4.0 if quick else 10.0, 10, False)
@@ -161,7 +173,7 @@ def collect(quick):
         ('  same: in-process step with the map / without', maps['step_ratio'], '<=', 1.1, 'x'),
         ('  same: lidar 1080 rays, 270 deg, 40 Hz on the map, share of one core',
          maps['lidar_share'] * 100.0, '<=', 15.0, '%'),
-    ]
+    ] + gym_rows
     floors = [
         f'raw PyBullet stepSimulation (BmwX5): {raw_us:.1f} us per basic step; Driver.step '
         f'{full_us:.1f} us',
@@ -193,7 +205,7 @@ def collect(quick):
         f'occupancy map: {maps["rectangles"]} wall rectangles in {maps["bodies"]} static mesh '
         f'bodies; step {maps["step_mapped_us"]:.0f} us with it, {maps["step_plain_us"]:.0f} us '
         f'without; lidar {maps["lidar_ms"]:.2f} ms per sample (CPU)',
-    ]
+    ] + gym_context
     return rows, floors
 
 

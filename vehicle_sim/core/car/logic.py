@@ -526,7 +526,8 @@ class CarLogic:
         # The wheel motors saturate at maxVelocity / r (WbMotor; Webots warns). A stored speed
         # near the float limit overflows to ±inf (saturated too), and inf·0 = NaN on a wheel
         # the differential gives no share: that wheel's target is 0.
-        np.nan_to_num(self._cruise_target, copy=False, nan=0.0)
+        target = self._cruise_target
+        target[np.isnan(target)] = 0.0      # (np.nan_to_num costs 5x more on 4 wheels)
         np.clip(self._cruise_target, -self._max_wheel_radps, self._max_wheel_radps,
                 out=self._cruise_target)
 

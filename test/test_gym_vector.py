@@ -1,0 +1,142 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+The native vector environment: N worlds in one process, independent, stepped in one call.
+
+A crash in world 0 changes nothing in world 1 (bit-identical to a lone run); episodes end on a
+collision and on the goal; autoreset in Gymnasium's modes; the id's vector entry point.
+"""
+
+import numpy as np
+import pytest
+
+gymnasium = pytest.importorskip('gymnasium', reason="needs the 'gym' extra (gymnasium)")
+
+from gymnasium.vector import AutoresetMode  # noqa: E402
+
+from vehicle_sim.gym import DriveEnv, DriveVectorEnv  # noqa: E402
+
+FAST = np.array([0.0, 10.0], dtype=np.float32)     # into the wall at x = 19.5 m
+GENTLE = np.array([0.2, 2.0], dtype=np.float32)
+
+
+@pytest.fixture
+def vector():
+    made = []
+
+    def _make(num_envs, **kwargs):
+        env = DriveVectorEnv(num_envs, **kwargs)
+        made.append(env)
+        return env
+
+    yield _make
+    for env in made:
+        env.close()
+
+
+def test_a_crash_in_world_0_changes_nothing_in_world_1(vector):
+    env = vector(2, lidar={'horizontal_resolution': 120})
+    lone = DriveEnv(lidar={'horizontal_resolution': 120})
+    try:
+        obs, _ = env.reset(seed=[11, 22])
+        alone, _ = lone.reset(seed=22)
+        crashed = False
+        for _ in range(400):
+            obs, reward, terminated, truncated, info = env.step(np.stack([FAST, GENTLE]))
+            alone, *_ = lone.step(GENTLE)
+            crashed = crashed or bool(terminated[0] and info['collision'][0])
+            for key in ('pose', 'twist', 'lidar'):
+                assert obs[key][1].tobytes() == alone[key].tobytes(), key
+            assert not terminated[1] and not info['collision'][1]
+        assert crashed          # world 0 hit its wall (and was reset by the next step)
+    finally:
+        lone.close()
+
+
+def test_episodes_end_on_a_collision_and_on_the_goal(vector):
+    turn = np.array([-0.3, 5.0], dtype=np.float32)          # a right turn
+    lone = DriveEnv()
+    try:
+        lone.reset(seed=0)
+        for _ in range(400):
+            obs, *_ = lone.step(turn)
+    finally:
+        lone.close()
+    goal = [float(obs['pose'][0]), float(obs['pose'][1])]      # on the turning car's way only
+    assert abs(goal[1]) > 4.0
+    env = vector(2, goal=goal, goal_radius=1.0)
+    env.reset(seed=0)
+    ends = {}
+    for _ in range(1000):
+        obs, reward, terminated, truncated, info = env.step(np.stack([FAST, turn]))
+        for i in np.flatnonzero(terminated):
+            ends.setdefault(int(i), (bool(info['collision'][i]), bool(info['goal_reached'][i]),
+                                     float(reward[i])))
+        if len(ends) == 2:
+            break
+    assert ends[0][:2] == (True, False)          # world 0: the wall
+    assert ends[1][:2] == (False, True)          # world 1: the goal
+    assert ends[0][2] < -9.0 and ends[1][2] > 10.0
+
+
+def test_next_step_autoreset_resets_an_ended_world_on_the_following_step(vector):
+    env = vector(2, max_episode_s=0.05)
+    obs, _ = env.reset(seed=0)
+    start = obs['pose'].copy()
+    for _ in range(5):
+        obs, reward, terminated, truncated, _ = env.step(np.stack([FAST, FAST]))
+    assert truncated.all() and not terminated.any()
+    obs, reward, terminated, truncated, info = env.step(np.stack([FAST, FAST]))
+    assert (reward == 0.0).all() and not truncated.any()
+    assert np.array_equal(obs['pose'], start) and (info['time_s'] == 0.0).all()
+
+
+def test_same_step_autoreset_reports_the_final_observation(vector):
+    env = vector(1, max_episode_s=0.05, autoreset_mode='same_step')
+    obs, _ = env.reset(seed=0)
+    start = obs['pose'].copy()
+    for _ in range(5):
+        obs, reward, terminated, truncated, info = env.step(FAST[None])
+    assert truncated[0] and info['_final_obs'][0]
+    assert np.array_equal(obs['pose'], start)
+    assert info['final_obs'][0]['pose'][0] > start[0][0]
+
+
+def test_it_is_a_gymnasium_vector_env_made_by_the_vector_entry_point():
+    env = gymnasium.make_vec('vehicle_sim/Drive-v0', num_envs=3,
+                             vectorization_mode='vector_entry_point', world='default')
+    try:
+        assert isinstance(env.unwrapped, DriveVectorEnv)
+        assert isinstance(env.unwrapped, gymnasium.vector.VectorEnv)
+        obs, info = env.reset(seed=5)
+        assert obs['pose'].shape == (3, 3) and env.action_space.shape == (3, 2)
+        assert env.metadata['autoreset_mode'] == AutoresetMode.NEXT_STEP
+        obs, reward, terminated, truncated, info = env.step(env.action_space.sample())
+        assert reward.shape == (3,) and info['reward_terms']['progress'].shape == (3,)
+        assert env.observation_space.contains(obs)
+    finally:
+        env.close()
+
+
+def test_bad_arguments_are_refused(vector):
+    with pytest.raises(ValueError, match='num_envs = 0'):
+        DriveVectorEnv(0)
+    with pytest.raises(ValueError, match="render_mode = 'human'"):
+        DriveVectorEnv(1, render_mode='human')
+    env = vector(2)
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match=r'shape \(2,\)'):
+        env.step(FAST)

@@ -1,0 +1,180 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+The action layouts of the Gym environment: what each entry of the action Box means.
+
+Every layout is a continuous Box in physical units (bounds from the vehicle's parameters); an
+action outside the Box, of the wrong shape or not finite is refused with a ValueError naming
+the entry. Nothing is clipped here beyond float rounding at a bound: wrap the environment in
+``gymnasium.wrappers.ClipAction`` to clip a policy's samples, or ``RescaleAction`` for [-1, 1].
+
+- ``speed_steering`` (car): [steering angle [rad], + = left (REP 103); cruising speed [m/s],
+  negative = reverse]. The car's speed controller (Webots' cruising speed) tracks the speed.
+- ``throttle_steering`` (car): [steering angle [rad], + = left; throttle [0, 1]; brake
+  [0, 1]]. The car's engine model gives the torque (Webots' throttle and brake).
+- ``twist`` (robot): [forward speed [m/s]; yaw rate [rad/s], + = left]. The wheel speeds are
+  v -+ w t / 2; where one would exceed max_wheel_speed both are scaled by one factor (the
+  turning radius is kept, core diff_drive.limit_wheel_speeds).
+"""
+
+import numpy as np
+
+from vehicle_sim.core.bridge.speed_limiter import limit_wheel_speeds
+from vehicle_sim.core.diffdrive.kinematics import wheel_speeds_from_twist
+from vehicle_sim.core.specs.units import mps_to_kmh, ros_steering_to_webots
+
+# Relative float rounding taken as the bound (float32 epsilon is 1.2e-7; a rescaled bound is a
+# few of them off).
+ROUNDING_TOLERANCE = 1.0e-6
+# The car's default largest speed action [m/s] (72 km/h) when the top speed is higher.
+DEFAULT_MAX_SPEED_MPS = 20.0
+
+
+class Control:
+    """One action layout: ``names``, ``units``, ``low``, ``high`` and ``apply(action)``."""
+
+    names = ()
+    units = ()
+
+    def __init__(self, low, high):
+        self.low = np.asarray(low, dtype=np.float32)
+        self.high = np.asarray(high, dtype=np.float32)
+
+    def check(self, action):
+        """
+        Return the action as float64, or raise ValueError naming the first bad entry.
+
+        Bounds are those of the Box (float32), compared in float64. A value past a bound by
+        float rounding only (ROUNDING_TOLERANCE of the bound: what RescaleAction's arithmetic
+        gives for -1 and 1) is taken as the bound.
+        """
+        values = np.array(action, dtype=np.float64)
+        if values.shape != self.low.shape:
+            raise ValueError(f'action of shape {values.shape}: expected {self.low.shape} '
+                             f'({", ".join(self.names)})')
+        for i, value in enumerate(values):
+            low, high = float(self.low[i]), float(self.high[i])
+            if not low <= value <= high:      # NaN fails too
+                slack_low = ROUNDING_TOLERANCE * max(1.0, abs(low))
+                slack_high = ROUNDING_TOLERANCE * max(1.0, abs(high))
+                if low - slack_low <= value < low:
+                    values[i] = low
+                elif high < value <= high + slack_high:
+                    values[i] = high
+                else:
+                    raise ValueError(f'action[{i}] ({self.names[i]}) = {float(value)!r} '
+                                     f'{self.units[i]}: outside [{low:g}, {high:g}] (the '
+                                     'action space; gymnasium.wrappers.ClipAction clips)')
+        return values
+
+    def apply(self, action):
+        """Command the vehicle (a checked action)."""
+        raise NotImplementedError
+
+    def stop(self):
+        """Command the vehicle to stand still (the state after a reset)."""
+
+
+class SpeedSteering(Control):
+    """Car: [steering angle [rad] (+ left), cruising speed [m/s]]."""
+
+    names = ('steering_angle', 'speed')
+    units = ('rad', 'm/s')
+
+    def __init__(self, car, max_speed_mps, max_reverse_mps):
+        logic = car.logic
+        self.logic = logic
+        top = logic.max_cruising_speed_kmh / 3.6 if logic.max_cruising_speed_kmh > 0 else \
+            DEFAULT_MAX_SPEED_MPS
+        if max_speed_mps is None:
+            max_speed_mps = min(top, DEFAULT_MAX_SPEED_MPS)
+        # REP 103 (+ left) = -(Webots, + right): the bounds swap.
+        left = -logic.min_steering_angle_rad
+        right = -logic.max_steering_angle_rad
+        super().__init__((right, -max_reverse_mps), (left, max_speed_mps))
+
+    def apply(self, action):
+        self.logic.set_steering_angle(ros_steering_to_webots(float(action[0])))
+        self.logic.set_cruising_speed_kmh(mps_to_kmh(float(action[1])))
+
+
+class ThrottleSteering(Control):
+    """Car: [steering angle [rad] (+ left), throttle [0, 1], brake [0, 1]]."""
+
+    names = ('steering_angle', 'throttle', 'brake')
+    units = ('rad', '', '')
+
+    def __init__(self, car):
+        logic = car.logic
+        self.logic = logic
+        super().__init__((-logic.max_steering_angle_rad, 0.0, 0.0),
+                         (-logic.min_steering_angle_rad, 1.0, 1.0))
+
+    def apply(self, action):
+        logic = self.logic
+        logic.set_steering_angle(ros_steering_to_webots(float(action[0])))
+        logic.set_throttle(float(action[1]))
+        logic.set_brake_intensity(float(action[2]))
+
+
+class Twist(Control):
+    """Robot: [forward speed [m/s], yaw rate [rad/s] (+ left)]."""
+
+    names = ('speed', 'yaw_rate')
+    units = ('m/s', 'rad/s')
+
+    def __init__(self, robot):
+        params = robot.params
+        self.robot = robot
+        self._tread = params.wheel_tread_m
+        self._radius = params.wheel_radius_m
+        self._max_mps = params.max_wheel_speed_mps
+        top = self._max_mps
+        super().__init__((-top, -2.0 * top / self._tread), (top, 2.0 * top / self._tread))
+
+    def apply(self, action):
+        left, right = wheel_speeds_from_twist(float(action[0]), float(action[1]), self._tread)
+        left, right = limit_wheel_speeds(left, right, self._max_mps)
+        # rounding may put a scaled wheel a hair above the limit: the body refuses that
+        limit = self.robot.params.max_wheel_speed_radps
+        self.robot.set_wheel_velocities(min(max(left / self._radius, -limit), limit),
+                                        min(max(right / self._radius, -limit), limit))
+
+    def stop(self):
+        self.robot.set_wheel_velocities(0.0, 0.0)
+
+
+def make_control(name, vehicle, max_speed_mps=None, max_reverse_mps=5.0):
+    """
+    Return the Control of a layout for the ego.
+
+    :param name: 'auto', 'speed_steering', 'throttle_steering' or 'twist'.
+    :param vehicle: the ego's SceneVehicle (``car`` is None for a robot).
+    :raises ValueError: for a car layout on a robot or the robot layout on a car.
+    """
+    is_car = vehicle.car is not None
+    if name == 'auto':
+        name = 'speed_steering' if is_car else 'twist'
+    if is_car and name == 'speed_steering':
+        return SpeedSteering(vehicle.car, max_speed_mps, max_reverse_mps)
+    if is_car and name == 'throttle_steering':
+        return ThrottleSteering(vehicle.car)
+    if not is_car and name == 'twist':
+        return Twist(vehicle.body)
+    kind = 'car' if is_car else 'robot'
+    valid = 'speed_steering, throttle_steering' if is_car else 'twist'
+    raise ValueError(f'control {name!r} does not fit the ego {vehicle.name!r}, a {kind}; '
+                     f'valid: {valid}')

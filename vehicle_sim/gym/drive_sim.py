@@ -1,0 +1,341 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+One driving world for learning: the scene, its ego vehicle, and an episode's step and reset.
+
+:class:`DriveSim` holds what a Gym environment needs of the simulator, without Gymnasium: the
+world built by the scene builder (physics/scene.py) from a world or scenario file, the ego's
+action layout (controls.py), observation parts (observations.py), progress measure and reward
+terms (core/learning), collisions and a scenario's criteria (episode.py). ``DriveEnv`` wraps
+one, ``DriveVectorEnv`` holds several, each with its own physics client, in one process.
+
+A reset puts every vehicle back at its spawn pose (each body loaded afresh in the same client,
+``VehicleBody.reset``) and every movable obstacle at its start: no new physics client, a few
+milliseconds. Simulated time goes on across episodes (the World's clock never goes back); the
+episode's time is counted from its reset. With the same seed and the same actions two episodes
+give bit-identical observations (test/test_gym_env.py).
+"""
+
+import math
+
+import numpy as np
+
+from vehicle_sim.config import read_yaml, world_from_data, world_path
+from vehicle_sim.core.geometry.angles import yaw_from_quaternion
+from vehicle_sim.core.learning.progress import GoalProgress, HeadingProgress, PathProgress
+from vehicle_sim.core.learning.reward import reward_terms, RewardWeights, TERMS, total
+from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.world.params import RobotSpec, WorldSpec
+from vehicle_sim.gym.controls import make_control
+from vehicle_sim.gym.episode import CriteriaWatch, judged_criteria
+from vehicle_sim.gym.observations import ego_parts, PART_FACTORIES, sensor_spec
+from vehicle_sim.gym.options import CAMERA, LIDAR, SOURCE, validate_options
+from vehicle_sim.physics.scene import build_scene
+from vehicle_sim.physics.sensors.collisions import CollisionMonitor
+from vehicle_sim.physics.world import DEFAULT_TIME_STEP_S
+from vehicle_sim.scenarios.actors import CarActor, RobotActor
+from vehicle_sim.scenarios.schema import load_scenario, ScenarioSpec
+from vehicle_sim.scenarios.sim import VehicleHandle
+
+DEFAULT_WORLD = 'obstacle_course'
+DEFAULT_EPISODE_S = 60.0
+EGO_ROBOT_NAME = 'ego'
+# Start poses drawn at most per reset when start_noise puts the ego inside another body.
+START_DRAWS = 100
+
+
+class _ActorHook:
+    """World hook registered before the vehicles: the scenario's actors act each basic step."""
+
+    def __init__(self):
+        self.actors = []
+
+    def pre_step(self):
+        for actor in self.actors:
+            actor.control()
+
+
+def _world_spec(world, vehicles_required):
+    if isinstance(world, WorldSpec):
+        return world
+    if isinstance(world, dict):
+        return world_from_data(world, f'{SOURCE}: world mapping',
+                               vehicles_required=vehicles_required)
+    path = world_path(world)
+    return world_from_data(read_yaml(path), str(path), vehicles_required=vehicles_required)
+
+
+def _load(world, scenario, robot):
+    # -> (WorldSpec, robots, ScenarioSpec or None)
+    if world is not None and scenario is not None:
+        raise InvalidParameterError(f'{SOURCE}: give a world or a scenario, not both')
+    if scenario is not None:
+        spec = scenario if isinstance(scenario, ScenarioSpec) else load_scenario(scenario)
+        return spec.world, tuple(spec.robots), spec
+    return _world_spec(DEFAULT_WORLD if world is None else world, not robot), (), None
+
+
+class DriveSim:
+    """
+    One world with an ego vehicle, stepped by actions (see the module text).
+
+    :param world: a world name (config/worlds), a path to a world .yaml, a world mapping or a
+        WorldSpec; None = 'obstacle_course' (unless ``scenario``).
+    :param scenario: a scenario .yaml path or a ScenarioSpec (its world, robots, vehicle under
+        test as the ego, actors, criteria, duration and time step).
+    :param options: the environment's options (options.py), validated here.
+    :param gui: build the world in PyBullet's window (render_mode 'human').
+    :param observation_parts: more observation parts (observations.py), after the built-in.
+    :raises InvalidParameterError: for a bad option, world or scenario; nothing is built.
+    """
+
+    def __init__(self, world=None, scenario=None, options=None, gui=False,
+                 observation_parts=()):
+        opts = self.options = validate_options(options or {})
+        world_spec, robots, self.scenario = _load(world, scenario, opts['robot'])
+        if opts['robot']:
+            x, y, yaw = opts['start']
+            robots = robots + (RobotSpec(EGO_ROBOT_NAME, opts['robot'], x, y, yaw),)
+        self.ego_name = self._ego_name(world_spec, robots, opts)
+        step_ms = opts['time_step_ms'] or (self.scenario.time_step_ms if self.scenario
+                                           else DEFAULT_TIME_STEP_S * 1000.0)
+        criteria = ()
+        if self.scenario is not None:
+            criteria = judged_criteria([c for c in self.scenario.criteria
+                                        if c.vehicle in ('', self.ego_name)],
+                                       self.scenario.source)
+        self._criteria_specs = criteria
+        self.episode_s = opts['max_episode_s'] or (self.scenario.duration_s if self.scenario
+                                                   else DEFAULT_EPISODE_S)
+        self.weights = RewardWeights(opts['progress_weight'], opts['collision_penalty'],
+                                     opts['goal_reward'])
+        self._hook = _ActorHook()
+        self._parts = []
+        self.scene = build_scene(world_spec, time_step_s=step_ms / 1000.0, gui=gui,
+                                 robots=robots, hooks=(self._hook,), mount=self._mount)
+        try:
+            self.world = self.scene.world
+            self.ego = self.scene.vehicles[self.ego_name]
+            self.control = make_control(opts['control'], self.ego, opts['max_speed'],
+                                        opts['max_reverse_speed'])
+            self._parts.extend(p for p in (factory(self) for factory in PART_FACTORIES)
+                               if p is not None)
+            self._parts.extend(observation_parts)
+            self.spaces = {}
+            for part in self._parts:
+                self.spaces.update(part.spaces())
+            self._handles = {name: VehicleHandle(name, v.body, v.car)
+                             for name, v in self.scene.vehicles.items()}
+            self._progress, self._goal = self._measures()
+            self._monitor = None
+            self._watch = None
+            self._step0 = self.world.step_count
+            self._goal_reached = False
+        except BaseException:
+            self.close()
+            raise
+
+    # ---------------------------------------------------------------- building
+    @staticmethod
+    def _ego_name(world_spec, robots, opts):
+        names = [v.name for v in world_spec.vehicles] + [r.name for r in robots]
+        wanted = opts['vehicle']
+        if not wanted:
+            if opts['robot']:
+                wanted = EGO_ROBOT_NAME
+            elif names:
+                wanted = names[0]
+        if wanted not in names:
+            raise InvalidParameterError(
+                f"{SOURCE}: option 'vehicle' = {wanted!r}: no such vehicle in the world; "
+                f'vehicles: {", ".join(names) or "none"}')
+        return wanted
+
+    def _mount(self, vehicle, scene):
+        # The scene builder's mount step: the ego's observation parts (sensors) only.
+        if vehicle.name != self.ego_name:
+            return None
+        opts = self.options
+        lidar = sensor_spec(opts[LIDAR], LIDAR, vehicle, SOURCE)
+        camera = sensor_spec(opts[CAMERA], CAMERA, vehicle, SOURCE)
+        self._parts = ego_parts(scene.world, vehicle, lidar, camera)
+        return self._parts
+
+    def _scenario_goal(self):
+        for spec in self._criteria_specs:
+            if spec.kind == 'reach_goal':
+                return spec.values['goal'], spec.values['radius_m']
+        return None
+
+    def _scenario_path(self):
+        for spec in self._criteria_specs:
+            if spec.kind == 'stay_on_path':
+                return spec.values['path']
+        return None
+
+    def _measures(self):
+        # -> (progress measure, GoalProgress or None)
+        opts = self.options
+        goal = None
+        if opts['goal'] is not None:
+            goal = GoalProgress(opts['goal'], opts['goal_radius'])
+        elif self._scenario_goal() is not None:
+            goal = GoalProgress(*self._scenario_goal())
+        path = opts['path'] if opts['path'] is not None else self._scenario_path()
+        if path is not None:
+            try:
+                return PathProgress(path), goal
+            except InvalidParameterError as error:
+                raise InvalidParameterError(f"{SOURCE}: option 'path': {error}") from None
+        return (goal if goal is not None else HeadingProgress()), goal
+
+    # ---------------------------------------------------------------- episode
+    @property
+    def elapsed_s(self):
+        """Simulated time since the last reset [s]."""
+        return (self.world.step_count - self._step0) * self.world.time_step_s
+
+    def _ego_state(self):
+        x, y, _, qx, qy, qz, qw = self.ego.body.pose()
+        return x, y, yaw_from_quaternion(qx, qy, qz, qw)
+
+    def reset(self, rng):
+        """
+        Start an episode: every vehicle and movable obstacle as built; return (obs, info).
+
+        :param rng: numpy Generator (the environment's seeded ``np_random``): the ego's start
+            offset (option start_noise) and the lidar noise seed are drawn from it.
+        """
+        for vehicle in self.scene.vehicles.values():
+            vehicle.vehicle.reset()
+        self.world.reset_obstacles()
+        if any(self.options['start_noise']):
+            self._offset_start(rng)
+        for part in self._parts:
+            reseed = getattr(part, 'reseed', None)
+            if reseed is not None:
+                reseed(rng.integers(2 ** 31))
+            part.reset()
+        if self._monitor is not None:
+            self._monitor.close()
+        self._monitor = CollisionMonitor(self.world, self.ego.body)
+        self._hook.actors = self._actors()
+        self._step0 = self.world.step_count
+        if self._criteria_specs:
+            self._watch = CriteriaWatch(self._criteria_specs, self.episode_s, self.world,
+                                        self._handles, self.scene.spec.obstacles)
+        x, y, yaw = self._ego_state()
+        self._progress.start(x, y, yaw)
+        self._goal_reached = False
+        return self.observe(), self._info(0.0, dict.fromkeys(TERMS, 0.0), '', False)
+
+    def _offset_start(self, rng):
+        # The ego at its spawn pose plus a uniform offset; an offset that puts it inside
+        # another body is drawn again (the same draws for the same seed).
+        half = np.asarray(self.options['start_noise'])
+        body = self.ego.body
+        x, y, yaw = body.spawn[:3]
+        for _ in range(START_DRAWS):
+            dx, dy, dyaw = rng.uniform(-half, half)
+            body.rebuild((x + dx, y + dy, yaw + dyaw))
+            if not self.world.overlaps(body.body_id):
+                return
+        raise InvalidParameterError(
+            f"{SOURCE}: option 'start_noise' = {list(half)}: {START_DRAWS} start poses drawn "
+            f'around the spawn pose of {self.ego_name!r} were all inside another body')
+
+    def _actors(self):
+        if self.scenario is None:
+            return []
+        actors = []
+        for spec in self.scenario.actors:
+            vehicle = self.scene.vehicles[spec.vehicle]
+            actors.append(CarActor(spec, vehicle.car) if vehicle.car is not None
+                          else RobotActor(spec, vehicle.body))
+        return actors
+
+    def observe(self):
+        """Return the observation dict now."""
+        out = {}
+        for part in self._parts:
+            part.read(out)
+        return out
+
+    def step(self, action, action_repeat=None):
+        """
+        Apply an action for ``action_repeat`` basic steps.
+
+        :return: (obs, reward terms, terminated, truncated, info).
+
+        :raises ValueError: for an action outside the action space (nothing stepped).
+        :raises RuntimeError: before the first reset.
+        """
+        if self._monitor is None:
+            raise RuntimeError('step() before reset(): call reset() first')
+        values = self.control.check(action)
+        self.control.apply(values)
+        repeat = action_repeat or self.options['action_repeat']
+        world = self.world
+        monitor = self._monitor
+        watch = self._watch
+        # the goal circle checked each basic step: the option's, else the scenario's when
+        # it has no reach_goal criterion to judge it; none once reached
+        circle = None if self._goal_reached or (watch is not None and watch.goals) \
+            else self._goal
+        hits = []
+        reached_now = False
+        for _ in range(repeat):
+            world.step()
+            if monitor.fresh:
+                hits.extend(monitor.fresh)
+            if watch is not None or circle is not None:
+                x, y, yaw = self._ego_state()
+                if watch is not None:
+                    watch.observe(self.elapsed_s, x, y, yaw, self.ego.body.forward_speed_mps(),
+                                  monitor.fresh)
+                if circle is not None and math.hypot(x - circle.goal[0],
+                                                     y - circle.goal[1]) <= circle.radius_m:
+                    reached_now = True
+            if hits and self.options['terminate_on_collision']:
+                break
+        x, y, yaw = self._ego_state()
+        progress_m = self._progress.advance(x, y, yaw)
+        terminated = bool(hits) and self.options['terminate_on_collision']
+        if watch is not None:
+            ended, reached_all = watch.decide(self.elapsed_s)
+            terminated = terminated or ended
+            if watch.goals:     # the scenario's reach_goal criteria say when (speed, deadline)
+                reached_now = reached_all and not self._goal_reached
+        terminated = terminated or reached_now
+        self._goal_reached = self._goal_reached or reached_now
+        terms = reward_terms(self.weights, progress_m, bool(hits), reached_now)
+        truncated = not terminated and self.elapsed_s >= self.episode_s - 1e-9
+        other = ','.join(sorted({event.other for event in hits}))
+        return self.observe(), terms, terminated, truncated, self._info(progress_m, terms,
+                                                                         other, bool(hits))
+
+    def _info(self, progress_m, terms, collided_with, collision):
+        info = {'time_s': self.elapsed_s, 'progress_m': float(progress_m),
+                'reward_terms': dict(terms), 'reward_default': total(terms),
+                'collision': collision, 'collided_with': collided_with,
+                'goal_reached': self._goal_reached}
+        if self._watch is not None:
+            info['criteria'] = dict(self._watch.verdicts)
+        return info
+
+    def close(self):
+        """Disconnect the physics client (idempotent)."""
+        self.scene.world.close()

@@ -1,0 +1,24 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""Gymnasium, the optional dependency of vehicle_sim.gym: imported here with a clear error."""
+
+try:
+    import gymnasium
+except ImportError as error:      # pragma: no cover - the 'gym' extra is missing
+    raise ImportError("vehicle_sim.gym needs Gymnasium: pip install 'vehicle_sim[gym]'") \
+        from error
+
+__all__ = ['gymnasium']
