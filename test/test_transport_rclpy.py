@@ -371,3 +371,61 @@ def test_rclpy_spin_once_handles_every_message_already_received(context):
     finally:
         reader.shutdown()
         publisher.shutdown()
+
+
+def test_rclpy_publish_tap_gets_the_bytes_a_raw_subscription_receives(context):
+    import struct
+
+    from vehicle_sim.transport.publish_tap import PublishTap
+
+    class Sink:
+        open = True
+
+        def __init__(self):
+            self.data = []
+
+        def write(self, data):
+            self.data.append(bytes(data))
+
+    class Tap(PublishTap):
+        def __init__(self, sink):
+            self.sink = sink
+
+        def topic(self, topic_name, ros_type, qos):
+            return self.sink if topic_name == '/rtap/value' else None
+
+    sink = Sink()
+    publisher = RclpyNode('tap_pub', '/rtap', context=context)
+    reader = RclpyNode('tap_sub', '/rtap', context=context)
+    try:
+        publisher.add_publish_tap(Tap(sink))
+        pub = publisher.create_publisher('std_msgs/msg/Float64', 'value')
+        raw = []
+        reader.create_subscription('std_msgs/msg/Float64', '/rtap/value', raw.append, raw=True)
+        assert reader.spin_until(lambda: pub.get_subscription_count() > 0, 30.0)
+        pub.publish(publisher.msg('std_msgs/msg/Float64')(data=2.5))
+        assert reader.spin_until(lambda: raw, 30.0)
+        # rclpy's serialize_message: XCDR1 little endian, 4-byte header, the float64 2.5; the
+        # tap gets the bytes that went out.
+        assert sink.data == [bytes(raw[0])] == [b'\x00\x01\x00\x00' + struct.pack('<d', 2.5)]
+        with pytest.raises(TransportError, match='std_msgs/msg/Float64'):
+            pub.publish(publisher.msg('std_msgs/msg/String')(data='x'))
+        assert len(sink.data) == 1
+    finally:
+        reader.shutdown()
+        publisher.shutdown()
+
+
+def test_rclpy_call_soon_runs_on_the_spinning_thread(context):
+    node = RclpyNode('soon', '/rtap', context=context)
+    try:
+        ran_on = []
+        caller = threading.Thread(target=node.call_soon, args=(
+            lambda: ran_on.append(threading.get_ident()),))
+        caller.start()
+        caller.join()
+        assert ran_on == []
+        assert node.spin_until(lambda: ran_on, 10.0)
+        assert ran_on == [threading.get_ident()]
+    finally:
+        node.shutdown()

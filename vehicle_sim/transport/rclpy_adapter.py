@@ -142,14 +142,21 @@ class _Publisher(port.Publisher):
     Both calls are rclpy's own bound method: no wrapper on the hot path.
     """
 
-    def __init__(self, publisher):
+    def __init__(self, publisher, ros_type: str):
         self.publisher = publisher
         self.topic_name = publisher.topic_name
+        self.ros_type = ros_type
         # Instance attributes: rclpy's bound method itself, called without a wrapper.
         self.publish = self.publish_serialized = publisher.publish
 
     def publish(self, msg) -> None:   # noqa: F811 - the class-level form the port requires
         self.publisher.publish(msg)
+
+    def check_message(self, msg) -> None:
+        """Refuse a message of another type than the topic's (a tapped publish serializes it)."""
+        if not isinstance(msg, self.publisher.msg_type):
+            raise TransportError(
+                f'{self.topic_name} takes {self.ros_type}, got {type(msg).__name__}')
 
     def get_subscription_count(self) -> int:
         return self.publisher.get_subscription_count()
@@ -248,7 +255,7 @@ class RclpyNode(port.NodePort):
 
     def create_publisher(self, ros_type: str, topic: str, qos=None):
         publisher = _Publisher(self.node.create_publisher(import_type(ros_type), topic,
-                                                          to_rclpy_qos(qos)))
+                                                          to_rclpy_qos(qos)), ros_type)
         return self._tap(publisher, ros_type, qos, _serialize_message)
 
     def call_soon(self, callback) -> None:
