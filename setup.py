@@ -47,8 +47,12 @@ setup(
     install_requires=['setuptools', 'numpy', 'pybullet', 'PyYAML', 'cyclonedds==11.0.1',
                       'rosbags>=0.10'],
     # matplotlib draws the plots of `vehicle-sim demo` and `vehicle-sim scenario --plot`.
-    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib'],
-                    'plot': ['matplotlib']},
+    extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib', 'mcap',
+                             'zstandard', 'lz4'],
+                    'plot': ['matplotlib'],
+                    # MCAP recordings (vehicle-sim record/play/bag, --record): the mcap
+                    # library and its zstd and lz4 chunk compressors.
+                    'record': ['mcap', 'zstandard', 'lz4']},
     zip_safe=True,
     maintainer='vehicle_sim maintainers',
     maintainer_email='maintainers@vehicle-sim.example.org',

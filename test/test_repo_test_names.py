@@ -17,14 +17,15 @@ Test files are named by one rule: ``test_<area>_<subject>.py``.
 
 The area is the part of the repository the file tests: a package of vehicle_sim (core, physics,
 webots, ros, transport, scenario(s), tools, testing), the ``vehicle-sim`` command (cli), the
-configuration files (config), the interface definitions (msgs, vehicle_msgs_py), or the
+configuration files (config), the interface definitions (msgs, vehicle_msgs_py), recording and
+replaying (record: vehicle_sim.recording and its commands), or the
 repository as a whole (repo: licence headers, packaging, text, cross-layer registrations).
 """
 
 from pathlib import Path
 
 AREAS = ('core', 'physics', 'webots', 'ros', 'transport', 'scenario', 'tools', 'testing', 'cli',
-         'config', 'msgs', 'repo')
+         'config', 'msgs', 'record', 'repo')
 TEST_DIR = Path(__file__).resolve().parent
 
 

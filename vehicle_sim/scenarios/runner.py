@@ -81,7 +81,9 @@ class ScenarioResult:
     :param spread: with repeated runs, {criterion name: (min, max)} of the measured values.
     :param collisions: {vehicle name: its CollisionEvents (with the contact point)}.
     :param notes: scripted commands that were taken but had no effect when given (a brake while
-        cruise control holds a speed), each once per run, with its time and file line.
+        cruise control holds a speed), each once per run, with its time and file line; a
+        recording that stopped on a write error.
+    :param recording: the MCAP file of the run's topics (``record``), or None.
     """
 
     spec: ScenarioSpec
@@ -97,6 +99,7 @@ class ScenarioResult:
     runs: int = 1
     collisions: Dict[str, List[CollisionEvent]] = field(default_factory=dict)
     notes: List[str] = field(default_factory=list)
+    recording: Optional[str] = None
 
     @property
     def passed(self):
@@ -225,7 +228,7 @@ class Director:
 
 
 def run_scenario(spec_or_path, seed=None, gui=False, progress=None, repeat=1,
-                 transport=None) -> ScenarioResult:
+                 transport=None, record=None) -> ScenarioResult:
     """
     Run a scenario and return its result.
 
@@ -235,7 +238,10 @@ def run_scenario(spec_or_path, seed=None, gui=False, progress=None, repeat=1,
     :param progress: ``progress(time_s, duration_s)`` after each step.
     :param repeat: run this many times (external processes: the spread of the values).
     :param transport: the served nodes' transport (None = VEHICLE_SIM_TRANSPORT).
+    :param record: an MCAP file to record every topic of the run into (the simulation is then
+        served over ROS, so that its topics are published); with ``repeat``, the last run's.
     :raises ScenarioError: for an invalid file or a refused scripted command.
+    :raises RecordingError: when the recording cannot be created.
     """
     spec = spec_or_path if isinstance(spec_or_path, ScenarioSpec) else load_scenario(
         spec_or_path)
@@ -243,7 +249,7 @@ def run_scenario(spec_or_path, seed=None, gui=False, progress=None, repeat=1,
         spec = spec.with_seed(seed)
     if repeat < 1:
         raise ValueError(f'repeat = {repeat!r}: must be >= 1')
-    results = [_run_once(spec, gui, progress, transport) for _ in range(repeat)]
+    results = [_run_once(spec, gui, progress, transport, record) for _ in range(repeat)]
     result = results[-1]
     if repeat > 1:
         result.runs = repeat
@@ -264,13 +270,24 @@ def _spread(results):
     return spread
 
 
-def _run_once(spec, gui, progress, transport):
+def _run_once(spec, gui, progress, transport, record=None):
     criteria = build_criteria(spec.criteria, spec.duration_s)
     director = Director(spec, criteria, progress)
-    served = spec.served
+    served = spec.served or record is not None
     start = time.monotonic()
-    sim = (ServedSim(spec, director, spec.seed, gui, transport) if served
-           else LocalSim(spec, director, spec.seed, gui))
+    recorder = None
+    if record is not None:
+        from vehicle_sim.recording.bag_writer import BagWriter
+        from vehicle_sim.recording.recorder import Recorder
+        recorder = Recorder(BagWriter(record), use_sim_time=True,
+                            on_error=lambda text: director.notes.append(text))
+    try:
+        sim = (ServedSim(spec, director, spec.seed, gui, transport, recorder) if served
+               else LocalSim(spec, director, spec.seed, gui))
+    except BaseException:
+        if recorder is not None:
+            recorder.close()
+        raise
     error = None
     watcher = None
     try:
@@ -300,10 +317,13 @@ def _run_once(spec, gui, progress, transport):
             watcher.close()
         director.close()
         sim.close()
+        if recorder is not None:
+            recorder.close()
     return ScenarioResult(spec, spec.seed, [c.result() for c in criteria], sim_time_s,
                           time.monotonic() - start, director.tracks,
                           director.digest.hexdigest(), not served or kind != 'processes',
-                          error, collisions=director.collisions, notes=director.notes)
+                          error, collisions=director.collisions, notes=director.notes,
+                          recording=record)
 
 
 # ---------------------------------------------------------------------------- in-process

@@ -28,6 +28,9 @@ Subcommands (``vehicle-sim <command> --help`` for details)::
     demo                run the end-to-end scenario and write a PNG of the paths
     teleop              drive the car (or --robot) from the keyboard through cmd_vel
     scenario FILE       run a scenario file headless: criteria, JUnit XML, plot, exit status
+    record TOPICS|-a    record topics into an MCAP file (like ``ros2 bag record -s mcap``)
+    play FILE           republish a recording (like ``ros2 bag play``)
+    bag info FILE       a recording's topics, types, counts, duration (like ``ros2 bag info``)
 
 Everything talks over the embedded Cyclone DDS transport, with ``ROS_DOMAIN_ID`` and
 ``ROS_AUTOMATIC_DISCOVERY_RANGE`` honoured like a ROS 2 node does (docs/transport.md).
@@ -108,6 +111,9 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument('--gui', action='store_true',
                      help="open PyBullet's window with a chase camera following the first "
                           'vehicle (needs an X display; keys: docs/drive.md)')
+    run.add_argument('--record', metavar='FILE.mcap',
+                     help='record every topic the node publishes, from its first step, into '
+                          'an MCAP file (docs/record_replay.md)')
     run.add_argument('ros_args', nargs=argparse.REMAINDER,
                      help='ROS arguments after --')
     run.set_defaults(func=cmd_run)
@@ -191,6 +197,18 @@ def build_parser() -> argparse.ArgumentParser:
     from vehicle_sim.tools.scenario_command import cmd_scenario
     add_scenario_arguments(scenario)
     scenario.set_defaults(func=cmd_scenario)
+
+    from vehicle_sim.tools import record_commands
+    record = sub.add_parser('record', help='record topics into an MCAP file '
+                                           '(docs/record_replay.md)')
+    record_commands.add_record_arguments(record)
+    record.set_defaults(func=record_commands.cmd_record)
+    play = sub.add_parser('play', help='republish an MCAP recording')
+    record_commands.add_play_arguments(play)
+    play.set_defaults(func=record_commands.cmd_play)
+    bag = sub.add_parser('bag', help="a recording's summary (bag info FILE)")
+    record_commands.add_bag_arguments(bag)
+    bag.set_defaults(func=record_commands.cmd_bag)
     return parser
 
 

@@ -46,6 +46,9 @@ def add_arguments(parser):
                         help='run N times and report the spread of the measured values '
                              '(external processes are not deterministic)')
     parser.add_argument('--no-progress', action='store_true', help='no progress display')
+    parser.add_argument('--record', metavar='FILE.mcap',
+                        help='record every topic of the run into an MCAP file (the simulation '
+                             'is served over ROS; with --repeat, the last run)')
 
 
 class Progress:
@@ -139,6 +142,7 @@ def _exit_on_sigterm():
 
 def cmd_scenario(args) -> int:
     """Run ``vehicle-sim scenario``."""
+    from vehicle_sim.recording.bag_writer import RecordingError
     from vehicle_sim.scenarios.runner import run_scenario
     from vehicle_sim.scenarios.schema import load_scenario
     from vehicle_sim.scenarios.yaml_lines import ScenarioError
@@ -156,9 +160,16 @@ def cmd_scenario(args) -> int:
         spec = load_scenario(args.file)
     except ScenarioError as error:
         raise CliError(str(error), EXIT_USAGE) from None
-    for option, path in (('--junit', args.junit), ('--plot', args.plot)):
+    for option, path in (('--junit', args.junit), ('--plot', args.plot),
+                         ('--record', args.record)):
         if path:
             prepare_output(path, option)
+    if args.record:
+        from vehicle_sim.recording.bag_writer import require_mcap
+        try:
+            require_mcap()
+        except RecordingError as error:
+            raise CliError(f'--record: {error}', EXIT_USAGE) from None
     seed = spec.seed if args.seed is None else args.seed
     print(f'scenario {spec.name} ({args.file}), seed {seed}, {spec.duration_s:g} s, driver: '
           f'{spec.driver.kind}')
@@ -166,14 +177,19 @@ def cmd_scenario(args) -> int:
     _exit_on_sigterm()      # so that the driver's processes are stopped on the way out
     try:
         result = run_scenario(spec, seed=args.seed, gui=args.gui, progress=progress,
-                              repeat=args.repeat)
+                              repeat=args.repeat, record=args.record)
     except ScenarioError as error:
         raise CliError(str(error), EXIT_FAILURE) from None
+    except RecordingError as error:
+        raise CliError(f'--record: {error}', EXIT_USAGE) from None
     finally:
         if progress is not None:
             progress.done()
     for line in report_lines(result):
         print(line)
+    if args.record:
+        print(f'recorded {args.record}' + ('' if result.passed else
+                                           f' (replay it: vehicle-sim play {args.record})'))
     if args.junit:
         from vehicle_sim.scenarios.junit import write_junit
         write_junit(result, args.junit)

@@ -598,6 +598,21 @@ class NodePort(abc.ABC):
             later with :meth:`deserialize` (a reader that keeps many messages and looks at few).
         """
 
+    def tap_publishers(self, tap) -> None:
+        """
+        Hand every message this node publishes to a tap too, as its CDR bytes (a recorder).
+
+        ``tap(topic, ros_type, qos)`` is called once for each publisher of the node, those
+        created before and after, with its fully-qualified topic, type and QosProfile; it
+        returns ``write(data)`` (called with the bytes of each message published, after it is
+        sent) or None to leave that publisher alone. A tapped publisher's reader gate stays open:
+        every message is built, whether a subscriber is matched or not.
+
+        :raises TransportError: when the transport cannot tap its publishers, or they already are.
+        """
+        raise TransportError(f'{self.get_fully_qualified_name()}: this transport cannot hand '
+                             'its published messages to a recorder')
+
     def deserialize(self, ros_type: str, data: bytes):
         """Return the message of ``ros_type`` whose serialized bytes are ``data``."""
         return self.msg(ros_type).deserialize(bytes(data))

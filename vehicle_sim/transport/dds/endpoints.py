@@ -83,24 +83,49 @@ class DdsPublisher(port.Publisher):
 
     :param reader_gate: the gate kept by :func:`reader_gate_listener` of the writer (volatile
         writers only: a transient-local writer keeps samples for readers matching later).
+    :param qos: the writer's QoS profile.
     """
 
     def __init__(self, node, writer: DataWriter, msg_type, topic_name: str,
-                 reader_gate: Optional[port.ReaderGate] = None):
+                 reader_gate: Optional[port.ReaderGate] = None,
+                 qos: port.QosProfile = port.QOS_DEFAULT):
         if reader_gate is not None:
             self.reader_gate = reader_gate
         self._node = node
         self._writer = writer
         self._type = msg_type
         self.topic_name = topic_name
+        self.ros_type = msg_type.__ros_type__
+        self.qos = qos
         # publish_serialized is the bound writer itself: no method frame on the hot path.
         self.publish_serialized = cyclone_private.serialized_writer(writer)
+        self._tap = None
 
     def publish(self, msg) -> None:
         if type(msg) is not self._type:
             raise TransportError(
                 f'{self.topic_name} takes {self._type.__ros_type__}, got {type(msg).__name__}')
         self._writer.write(msg)
+        if self._tap is not None:
+            self._tap(msg.serialize())
+
+    def tap(self, write) -> None:
+        """
+        Hand every message published from now on to ``write(data)`` too, as CDR bytes.
+
+        The reader gate stays open from then on: every message is built and written, whether
+        a reader is matched or not (``NodePort.tap_publishers``).
+        """
+        send = self.publish_serialized
+        count = send.count
+
+        def publish_serialized(data: bytes) -> None:
+            send(data)
+            write(data)
+        publish_serialized.count = count
+        self.publish_serialized = publish_serialized
+        self._tap = write
+        self.reader_gate = port.ALWAYS_OPEN
 
     def publish_serialized(self, data: bytes) -> None:  # noqa: F811 - replaced per instance
         """Write CDR bytes (with the encapsulation header) of this topic's type, unchecked."""

@@ -117,6 +117,8 @@ class DdsNode(port.NodePort):
         self._reader_gids: Dict[int, bytes] = {}
         self._writer_gids: Dict[int, bytes] = {}
         self._endpoints: List[Any] = []
+        self._publishers: List[DdsPublisher] = []
+        self._publish_tap = None
         self._shutdown = False
         self._shutdown_requested = False
         self._graph_visible = False
@@ -230,7 +232,25 @@ class DdsNode(port.NodePort):
                             listener=reader_gate_listener(gate) if gate is not None else None)
         self._add_writer(writer)
         self._graph_changed()
-        return DdsPublisher(self, writer, msg_type, fqn, gate)
+        publisher = DdsPublisher(self, writer, msg_type, fqn, gate, profile)
+        self._publishers.append(publisher)
+        if self._publish_tap is not None:
+            self._tap(publisher, profile)
+        return publisher
+
+    def tap_publishers(self, tap) -> None:
+        self._check_ok()
+        if self._publish_tap is not None:
+            raise TransportError(f'node {self.get_fully_qualified_name()}: its publishers are '
+                                 'already tapped')
+        self._publish_tap = tap
+        for publisher in self._publishers:
+            self._tap(publisher, publisher.qos)
+
+    def _tap(self, publisher: DdsPublisher, profile: port.QosProfile) -> None:
+        write = self._publish_tap(publisher.topic_name, publisher.ros_type, profile)
+        if write is not None:
+            publisher.tap(write)
 
     def create_subscription(self, ros_type: str, topic: str, callback,
                             qos=None, *, raw: bool = False) -> DdsSubscription:
