@@ -188,7 +188,7 @@ def _from_records(path, size, reader_module, stream, has_footer) -> BagInfo:
     total = 0
     compressions = set()
     chunks = 0
-    for record in StreamReader(stream, validate_crcs=True, emit_chunks=True).records:
+    for record in _until_end(StreamReader(stream, validate_crcs=True, emit_chunks=True).records):
         if isinstance(record, Chunk):
             chunks += 1
             compressions.add(record.compression)
@@ -207,10 +207,23 @@ def _from_records(path, size, reader_module, stream, has_footer) -> BagInfo:
                 total += 1
                 start = item.log_time if start is None else min(start, item.log_time)
                 end = item.log_time if end is None else max(end, item.log_time)
-    return BagInfo(path, size, header.profile if header else '', header.library if header else '',
+    if header is None:
+        raise RecordingError(f'{path}: not a readable MCAP recording: no header record after '
+                             'the magic bytes')
+    return BagInfo(path, size, header.profile, header.library,
                    _topics(channels, schemas, counts), total, start, end,
                    ', '.join(c or 'none' for c in sorted(compressions)), chunks,
                    complete=has_footer)
+
+
+def _until_end(records):
+    # A file without a footer ends after its last record (checked by _framing): the mcap
+    # reader's EndOfFile there is the end, not a fault.
+    from mcap.exceptions import EndOfFile
+    try:
+        yield from records
+    except EndOfFile:
+        return
 
 
 def iter_messages(path: str, topics: Optional[Iterable[str]] = None,
@@ -226,18 +239,25 @@ def iter_messages(path: str, topics: Optional[Iterable[str]] = None,
     info = read_info(path)
     by_name = {topic.name: topic for topic in info.topics}
     reader_module = _require_reader()
+    from mcap.exceptions import EndOfFile as EOFError_
     stream = _open(path)
     try:
         if info.complete:
             reader = reader_module.SeekingReader(stream, validate_crcs=True)
         else:
             reader = reader_module.NonSeekingReader(stream, validate_crcs=True)
+        # Without a summary: in file order (a recorder writes in log-time order), not sorted
+        # in memory.
         messages = reader.iter_messages(topics=list(topics) if topics is not None else None,
-                                        start_time=start_ns)
+                                        start_time=start_ns, log_time_order=info.complete)
         while True:
             try:
                 _, channel, message = next(messages)
             except StopIteration:
+                return
+            except EOFError_ as error:
+                if info.complete:
+                    raise _broken(path, error) from None
                 return
             except Exception as error:  # noqa: BLE001 - a broken chunk midway
                 raise _broken(path, error) from None
