@@ -14,9 +14,10 @@
 
 
 """
-A recording read by an independent implementation in another language: Foxglove's and MCAP's
-own TypeScript libraries in Node (``@mcap/core``, ``@foxglove/rosmsg``,
-``@foxglove/rosmsg2-serialization``, ``fzstd`` for the zstd chunks).
+A recording read by an independent implementation in another language, in Node.
+
+MCAP's and Foxglove's own TypeScript libraries: ``@mcap/core``, ``@foxglove/rosmsg``,
+``@foxglove/rosmsg2-serialization``, and ``fzstd`` for the zstd chunks.
 
 The test installs them with npm into pytest's cache folder, runs ``record_node_reader.cjs`` on
 a recording of the automobile node, and compares what it reads with rosbags' reading of the
