@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Every performance figure of issue 10 in one table: measured, target, met or missed.
+Every performance figure of issues 10 and 21 in one table: measured, target, met or missed.
 
 ``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
 also run alone and say more); each ratio is measured in this run, its two sides interleaved or
@@ -106,6 +106,7 @@ def matched_write_us(count=3000):
 def collect(quick):
     """Run every benchmark; return (rows, floors)."""
     import bench_plugin
+    import bench_record
     import bench_ros_sync
     import bench_service_roundtrip
     import bench_step
@@ -131,6 +132,14 @@ def collect(quick):
     during = bench_service_roundtrip.during_time_step(200 if quick else 400)
     plugin = bench_plugin.figures(1000 if quick else 6000)
     plugin_subset = bench_plugin.figures(1000 if quick else 6000, bench_plugin.SUBSET)
+    import tempfile
+    with tempfile.TemporaryDirectory(prefix='bench_record_') as folder:
+        rec_plain, rec_published, rec_us = bench_record.measure_in_process(
+            5 if quick else 15, 200 if quick else 400, folder)
+        rec_rtf, rec_rtf_plain, _ = bench_record.measure_ros_rtf(1000, 3 if quick else 5,
+                                                                 folder)
+        long_steps = 6000 if quick else 60000
+        rss_start, rss_end, long_size, _ = bench_record.measure_memory(long_steps, folder)
     found['write_us'] = bare_write_us()
     found['matched_write_us'] = matched_write_us()
     bare_p50, bare_p99 = service['bare']
@@ -153,6 +162,14 @@ def collect(quick):
         ('service p50, simulation running / bare cyclonedds p50', sim_p50 / bare_p50, '<=',
          1.3, 'x'),
         ('10 cars in one world, per-car cost / one car', ten, '<=', 1.2, 'x'),
+        ('in-process step, every topic recorded (--record) / not recorded', rec_plain, '<=',
+         bench_record.TARGET_RATIO, 'x'),
+        ('  same, recorded / every topic published without recording', rec_published, None,
+         None, 'x'),
+        ('ROS-synchronous RTF with --record (1000 steps per robot/time_step)', rec_rtf, '>=',
+         bench_record.TARGET_RTF, 'x'),
+        (f'recorder RSS growth over {long_steps * bench_record.STEP_MS / 1000:g} s simulated',
+         rss_end - rss_start, '<=', 5.0, 'MiB'),
     ]
     floors = [
         f'raw PyBullet stepSimulation (BmwX5): {raw_us:.1f} us per basic step; Driver.step '
@@ -183,6 +200,12 @@ def collect(quick):
         f'(no Python logic) {write_floor * 100:.1f} % (/clock messages received: '
         f'{counts.get("/clock", 0)})',
     ]
+    floors.append(
+        f'recording in process: {rec_us["plain"]:.0f} us per step not recorded (topics without '
+        f'a subscriber are skipped), {rec_us["published"]:.0f} us with every topic published, '
+        f'{rec_us["recorded"]:.0f} us recorded; over ROS {rec_rtf_plain:.1f}x real time '
+        f'without --record in the same run; recorder RSS {rss_start:.1f} -> {rss_end:.1f} MiB '
+        f'over the long run, file {long_size / 2**20:.1f} MiB')
     return rows, floors
 
 
