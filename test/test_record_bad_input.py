@@ -50,9 +50,8 @@ def vehicle_sim(*args):
 def _record(path, steps, namespace, opener=None, chunk_size=None):
     node = create_node(NODE_NAME, args=['rt', '--ros-args', '-r', f'__ns:={namespace}',
                                         '-p', 'synchronous:=true'], transport='dds')
-    recorder = record_node(node, path, opener=opener)
-    if chunk_size is not None:      # smaller chunks: several of them in a short run
-        recorder.writer._writer._Writer__chunk_size = chunk_size
+    # Smaller chunks than rosbag2's 1 MiB: several of them in a short run.
+    recorder = record_node(node, path, opener=opener, chunk_size=chunk_size)
     app = AutomobileNode(node=node)
     try:
         app.vehicles[''].logic.set_cruising_speed_kmh(30.0)

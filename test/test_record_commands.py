@@ -160,3 +160,27 @@ def test_record_command_writes_what_a_running_node_publishes(tmp_path):
         assert qos.reliability.name == 'RELIABLE'
         # Log times on the wall clock, within the recording's run.
         assert abs(reader.start_time / 1e9 - time.time()) < 600
+
+
+def test_failing_scenario_records_its_run_and_its_junit_names_the_recording(tmp_path):
+    from xml.etree import ElementTree
+    path = str(tmp_path / 'crash.mcap')
+    junit = str(tmp_path / 'results.xml')
+    repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    result = subprocess.run([VEHICLE_SIM, 'scenario', 'scenarios/drive_into_obstacle.yaml',
+                             '--no-progress', '--record', path, '--junit', junit],
+                            env=peer_env(), capture_output=True, text=True, cwd=repo,
+                            timeout=PEER_START_TIMEOUT_S * 3)
+    assert result.returncode == 1, result.stderr           # the car hits the wall
+    assert f'(replay it: vehicle-sim play {path})' in result.stdout
+    suite = ElementTree.parse(junit).getroot().find('testsuite')
+    properties = {p.get('name'): p.get('value') for p in suite.iter('property')}
+    assert properties['recording'] == path
+    failures = [f.text for f in suite.iter('failure')]
+    assert failures and all(f'recording: {path}' in text for text in failures)
+    from vehicle_sim.recording.bag_reader import read_info
+    info = read_info(path)
+    # The scenario's 10 s, every step (10 ms) and the first publication at t = 0.
+    assert info.duration_ns == 10 * 10**9
+    assert abs(info.topic('/automobile/current_speed').count - 1001) <= 1
+    assert info.topic('/collision').count >= 1             # the crash is in the file

@@ -50,7 +50,7 @@ class Recorder:
     """
     Writes topics into a :class:`BagWriter`.
 
-    :param writer: the open BagWriter (closed by :meth:`close`).
+    :param writer: the open BagWriter or WriterProcess (closed by :meth:`close`).
     :param use_sim_time: log times from ``/clock`` instead of the wall clock.
     :param on_error: ``on_error(text)``, called once when a write fails and the recording stops.
     """
@@ -135,7 +135,8 @@ class Recorder:
 
 
 def record_node(node, path: str, compression: Optional[str] = None,
-                opener=None) -> Recorder:
+                opener=None, background: bool = True,
+                chunk_size: Optional[int] = None) -> Recorder:
     """
     Record every topic ``node`` publishes into ``path``, on the simulated clock.
 
@@ -143,12 +144,22 @@ def record_node(node, path: str, compression: Optional[str] = None,
     built on ``node``), so that the first step is recorded too. A write that fails stops the
     recording with an error on the node's log; the node goes on.
 
-    :param opener: ``opener(path)`` -> the binary file (tests).
+    :param opener: ``opener(path)`` -> the binary file (tests; the file is then written in
+        this process).
+    :param background: write the file in a child process (:mod:`.writer_process`), so that
+        the step only queues the bytes.
+    :param chunk_size: uncompressed bytes of a chunk (default: rosbag2's 1 MiB).
     :raises RecordingError: when the file cannot be created or ``mcap`` is missing.
     :raises TransportError: when the node's transport cannot tap its publishers.
     """
-    from vehicle_sim.recording.bag_writer import DEFAULT_COMPRESSION
-    writer = BagWriter(path, compression or DEFAULT_COMPRESSION, opener=opener)
+    from vehicle_sim.recording.bag_writer import DEFAULT_CHUNK_SIZE, DEFAULT_COMPRESSION
+    compression = compression or DEFAULT_COMPRESSION
+    chunk_size = chunk_size or DEFAULT_CHUNK_SIZE
+    if background and opener is None:
+        from vehicle_sim.recording.writer_process import WriterProcess
+        writer = WriterProcess(path, compression, chunk_size)
+    else:
+        writer = BagWriter(path, compression, chunk_size, opener=opener)
     recorder = Recorder(writer, use_sim_time=True,
                         on_error=lambda text: node.get_logger().error(text))
     try:
