@@ -38,7 +38,7 @@ import sys
 import tempfile
 import time
 
-from bench_common import use_free_domain
+from bench_common import process_cpu_s, use_free_domain
 
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, REPO_ROOT)
@@ -77,18 +77,32 @@ def _node(name, tap=None, path=None):
 
 
 def measure_in_process(blocks, steps, folder):
-    """Return (recorded ÷ plain, recorded ÷ published, us per step of each) as medians."""
+    """
+    Return (recorded ÷ plain, recorded ÷ published, figures per step) as medians.
+
+    The figures [us per step]: the wall time of each node (``plain``, ``published``,
+    ``recorded``), and for each the CPU time of this process (``*_cpu``); ``writer_cpu`` is
+    the CPU time of the recorder's writer process.
+    """
     plain, _ = _node('bench_plain')
     published, _ = _node('bench_published', tap=lambda *_: (lambda data: None))
     recorded, recorder = _node('bench_recorded', path=os.path.join(folder, 'inproc.mcap'))
-    times = {'plain': [], 'published': [], 'recorded': []}
+    writer = getattr(recorder.writer, '_process', None)
+    times = {k: [] for k in ('plain', 'published', 'recorded', 'plain_cpu', 'published_cpu',
+                             'recorded_cpu', 'writer_cpu')}
     try:
         for _ in range(blocks):
             for name, app in (('plain', plain), ('published', published),
                               ('recorded', recorded)):
+                writer_start = process_cpu_s(writer.pid) if writer is not None else 0.0
+                cpu = time.process_time()
                 start = time.perf_counter()
                 app.step(steps)
                 times[name].append((time.perf_counter() - start) / steps)
+                times[name + '_cpu'].append((time.process_time() - cpu) / steps)
+                if name == 'recorded' and writer is not None:
+                    times['writer_cpu'].append(
+                        (process_cpu_s(writer.pid) - writer_start) / steps)
     finally:
         recorder.close()
         for app in (plain, published, recorded):
@@ -96,7 +110,8 @@ def measure_in_process(blocks, steps, folder):
     ratio_plain = statistics.median(r / p for r, p in zip(times['recorded'], times['plain']))
     ratio_published = statistics.median(
         r / p for r, p in zip(times['recorded'], times['published']))
-    per_step = {k: statistics.median(v) * 1e6 for k, v in times.items()}
+    per_step = {k: statistics.median(v) * 1e6 if v else float('nan')
+                for k, v in times.items()}
     return ratio_plain, ratio_published, per_step
 
 
@@ -159,6 +174,9 @@ def main(argv=None):
           f'{steps["published"]:.0f} us, recorded {steps["recorded"]:.0f} us; recorded / plain '
           f'{found["ratio_plain"]:.2f}x (target <= {TARGET_RATIO:g}x), recorded / published '
           f'{found["ratio_published"]:.2f}x')
+    print(f'  CPU per step of the node\'s process: plain {steps["plain_cpu"]:.0f} us, published '
+          f'{steps["published_cpu"]:.0f} us, recorded {steps["recorded_cpu"]:.0f} us (+ '
+          f'{steps["writer_cpu"]:.0f} us in the writer process)')
     print(f'  over ROS (robot/time_step, 1000 steps): real-time factor '
           f'{found["rtf_recorded"]:.1f}x with --record (target >= {TARGET_RTF:g}x), '
           f'{found["rtf_plain"]:.1f}x without')

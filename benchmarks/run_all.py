@@ -203,7 +203,10 @@ def collect(quick):
     floors.append(
         f'recording in process: {rec_us["plain"]:.0f} us per step not recorded (topics without '
         f'a subscriber are skipped), {rec_us["published"]:.0f} us with every topic published, '
-        f'{rec_us["recorded"]:.0f} us recorded; over ROS {rec_rtf_plain:.1f}x real time '
+        f'{rec_us["recorded"]:.0f} us recorded (CPU of the node\'s process '
+        f'{rec_us["plain_cpu"]:.0f}, {rec_us["published_cpu"]:.0f} and '
+        f'{rec_us["recorded_cpu"]:.0f} us, the writer process {rec_us["writer_cpu"]:.0f} us); '
+        f'over ROS {rec_rtf_plain:.1f}x real time '
         f'without --record in the same run; recorder RSS {rss_start:.1f} -> {rss_end:.1f} MiB '
         f'over the long run, file {long_size / 2**20:.1f} MiB')
     return rows, floors

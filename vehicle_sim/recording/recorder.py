@@ -95,7 +95,13 @@ class Recorder:
                 if found is not None:
                     self._sim_ns = found
             wall = wall_ns()
-            if not add(channel_id, data, self._sim_ns if self.use_sim_time else wall, wall):
+            try:
+                written = add(channel_id, data, self._sim_ns if self.use_sim_time else wall,
+                              wall)
+            except Exception as error:  # noqa: BLE001 - a recorder never breaks the publisher
+                self._fail(f'recording {self.path} stopped: {type(error).__name__}: {error}')
+                return
+            if not written:
                 self._stop()
         return write
 
@@ -108,6 +114,11 @@ class Recorder:
     def tap(self, topic: str, ros_type: str, qos):
         """Record a publisher's topic with its QoS (the tap of ``NodePort.tap_publishers``)."""
         return self.channel(topic, ros_type, qos_text.dump([qos_text.profile_entry(qos)]))
+
+    def _fail(self, text: str) -> None:
+        if self.writer.error is None:
+            self.writer.error = text
+        self._stop()
 
     def _stop(self) -> None:
         if self.stopped:

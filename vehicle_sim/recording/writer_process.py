@@ -43,8 +43,9 @@ from vehicle_sim.recording.bag_writer import (
 
 # Messages per batch sent to the child (a few hundred kilobytes at most for a car's topics).
 BATCH = 512
-# How long close() waits for the child to finish the file [s].
+# How long close() waits for the child to finish the file, and the start for its reply [s].
 CLOSE_TIMEOUT_S = 60.0
+START_TIMEOUT_S = 60.0
 
 
 def _serve(receive, send, path: str, compression: str, chunk_size: int) -> None:
@@ -121,7 +122,11 @@ class WriterProcess:
         self.error: Optional[str] = None
         self.closed = False
         self._batch = []
-        kind, text = self._receive()
+        if self._in.poll(START_TIMEOUT_S):
+            kind, text = self._receive()
+        else:
+            kind, text = 'error', (f'recording {path}: the writer process did not start within '
+                                   f'{START_TIMEOUT_S:g} s')
         if kind != 'ok':
             self._end()
             raise RecordingError(text)
@@ -144,10 +149,14 @@ class WriterProcess:
                 self.error = f'recording {self.path}: the writer process ended unexpectedly'
 
     def _check(self) -> None:
-        while self.error is None and self._in.poll():
-            kind, text = self._receive()
-            if kind == 'error':
-                self.error = text
+        try:
+            while self.error is None and self._in.poll():
+                kind, text = self._receive()
+                if kind == 'error':
+                    self.error = text
+        except OSError:
+            if self.error is None:
+                self.error = f'recording {self.path}: the writer process ended unexpectedly'
 
     def add_channel(self, topic: str, ros_type: str, offered_qos_profiles: str) -> int:
         """Register a topic; return its channel id. :raises RecordingError: unknown type."""
@@ -194,7 +203,7 @@ class WriterProcess:
         if self.error is None:
             self._flush()
         self._send(('close', None))
-        if self._in.poll(CLOSE_TIMEOUT_S):
+        if self._poll(CLOSE_TIMEOUT_S):
             while True:
                 kind, text = self._receive()
                 if kind == 'closed':
@@ -202,12 +211,18 @@ class WriterProcess:
                     break
                 if kind == 'error':
                     self.error = self.error or text
-                    if not self._in.poll(CLOSE_TIMEOUT_S):
+                    if not self._poll(CLOSE_TIMEOUT_S):
                         break
         elif self.error is None:
             self.error = f'recording {self.path}: the writer process did not finish the file'
         self._end()
         return self.error
+
+    def _poll(self, timeout_s: float) -> bool:
+        try:
+            return self._in.poll(timeout_s)
+        except OSError:
+            return False
 
     def _end(self) -> None:
         self._out.close()
