@@ -23,7 +23,6 @@ process's DDS node is the other side (the subscriber of what is played).
 import os
 import subprocess
 import sys
-import time
 
 from conftest import peer_env, PEER_START_TIMEOUT_S, stop_processes
 import pytest
@@ -140,8 +139,8 @@ def test_record_command_writes_what_a_running_node_publishes(tmp_path):
     try:
         record = subprocess.run(
             [VEHICLE_SIM, 'record', '/rt_rec/automobile/current_speed', '/rt_rec/odom',
-             '-o', path, '--duration', '4'], env=peer_env(), capture_output=True, text=True,
-            timeout=PEER_START_TIMEOUT_S * 2)
+             '-o', path, '--duration', '4', '--use-sim-time'], env=peer_env(),
+            capture_output=True, text=True, timeout=PEER_START_TIMEOUT_S * 2)
     finally:
         stop_processes([run])
     assert record.returncode == 0, record.stderr
@@ -158,8 +157,35 @@ def test_record_command_writes_what_a_running_node_publishes(tmp_path):
         # A publisher seen on the graph: rosbag2's unknown history and depth 0.
         assert qos.history.name == 'UNKNOWN' and qos.depth == 0
         assert qos.reliability.name == 'RELIABLE'
-        # Log times on the wall clock, within the recording's run.
-        assert abs(reader.start_time / 1e9 - time.time()) < 600
+        # --use-sim-time: log times from /clock (subscribed to, not recorded), so each
+        # message's log time is the simulated time it was published at, within a step or two
+        # (/clock and the topic come through different readers).
+        store = get_typestore(Stores.EMPTY)
+        speed = topics['/rt_rec/automobile/current_speed']
+        store.register(get_types_from_msg(speed.msgdef.data, speed.msgtype))
+        for _, log_ns, raw in reader.messages([speed]):
+            stamp = store.deserialize_cdr(raw, speed.msgtype).header.stamp
+            assert abs(log_ns - (stamp.sec * 10**9 + stamp.nanosec)) <= 50_000_000
+
+
+def test_player_loops_until_stopped(recording):
+    from vehicle_sim.recording.player import Player
+    node = DdsNode('rt_play_loop')
+    try:
+        player = Player(node, recording, rate=1000.0, topics=['/tf_static', SPEED])
+        rounds = []
+
+        def stop():
+            if player.counts[SPEED] >= 3 * (STEPS + 1):
+                rounds.append(player.counts[SPEED])
+                return True
+            return False
+        published = player.play(stop, loop=True)
+    finally:
+        node.shutdown()
+    assert player.counts[SPEED] == 3 * (STEPS + 1)      # three times the recording
+    assert player.counts['/tf_static'] == 3
+    assert published == sum(player.counts.values()) and rounds
 
 
 def test_failing_scenario_records_its_run_and_its_junit_names_the_recording(tmp_path):

@@ -249,7 +249,7 @@ def iter_messages(path: str, topics: Optional[Iterable[str]] = None,
         # Without a summary: in file order (a recorder writes in log-time order), not sorted
         # in memory.
         messages = reader.iter_messages(topics=list(topics) if topics is not None else None,
-                                        start_time=start_ns, log_time_order=info.complete)
+                                        starting_at=start_ns, log_time_order=info.complete)
         while True:
             try:
                 _, channel, message = next(messages)
