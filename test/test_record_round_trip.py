@@ -156,3 +156,24 @@ def test_run_record_then_bag_info_lists_topics_types_and_counts(tmp_path):
             'Count: 1 | Serialization Format: cdr') in info.stdout
     assert 'Storage id:        mcap' in info.stdout
     assert 'Compression:       zstd' in info.stdout
+
+
+@pytest.mark.parametrize('compression', ['lz4', 'none'])
+def test_lz4_and_uncompressed_chunks_read_back(tmp_path, compression):
+    from vehicle_msgs_py import types
+    from vehicle_sim.recording.bag_reader import read_info
+    from vehicle_sim.recording.bag_writer import BagWriter
+    from vehicle_sim.recording.recorder import Recorder
+    path = str(tmp_path / f'{compression}.mcap')
+    recorder = Recorder(BagWriter(path, compression, chunk_size=4096))
+    write = recorder.channel('/chatter', 'std_msgs/msg/String', '')
+    string = types.message_type('std_msgs/msg/String')
+    for index in range(500):
+        write(string(data=f'hello {index}').serialize())
+    assert recorder.close() is None
+    info = read_info(path)
+    assert info.compression == compression and info.chunk_count > 1
+    with Reader(path) as reader:
+        store = _typestore(reader)
+        texts = [store.deserialize_cdr(raw, c.msgtype).data for c, _, raw in reader.messages()]
+    assert texts == [f'hello {index}' for index in range(500)]
