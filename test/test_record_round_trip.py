@@ -139,6 +139,26 @@ def test_schemas_are_ros2msg_with_their_dependencies_and_qos_as_rosbag2_stores_i
         assert by_topic['/clock'].ext.serialization_format == 'cdr'
 
 
+def test_rosbag2_metadata_record_is_version_9_with_qos_as_a_list(recording):
+    # ros2 bag info parses it with yaml-cpp: version 9 wants each topic's profiles as a list.
+    from mcap.reader import make_reader
+    import yaml
+    path, _, published = recording
+    with open(path, 'rb') as stream:
+        (record,) = [m for m in make_reader(stream).iter_metadata() if m.name == 'rosbag2']
+    assert record.metadata['ROS_DISTRO'] == 'jazzy'
+    info = yaml.safe_load(record.metadata['serialized_metadata'])
+    assert info['version'] == 9 and info['storage_identifier'] == 'mcap'
+    assert info['duration'] == {'nanoseconds': STEPS * 10_000_000}
+    topics = {t['topic_metadata']['name']: t for t in info['topics_with_message_count']}
+    assert set(topics) == published
+    clock = topics['/clock']
+    assert clock['message_count'] == STEPS + 1
+    (profile,) = clock['topic_metadata']['offered_qos_profiles']
+    assert profile['reliability'] == 'reliable' and profile['deadline']['sec'] == 9223372036
+    assert clock['topic_metadata']['type_description_hash'].startswith('RIHS01_')
+
+
 def test_run_record_then_bag_info_lists_topics_types_and_counts(tmp_path):
     path = str(tmp_path / 'cli.mcap')
     run = subprocess.run([VEHICLE_SIM, 'run', '--no-status', '--synchronous', '--duration', '0.5',

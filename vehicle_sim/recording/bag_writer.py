@@ -258,10 +258,12 @@ class BagWriter:
         start = self.start_ns or 0
         duration = (self.end_ns - start) if self.end_ns is not None else 0
         name = os.path.basename(self.path)
+        from vehicle_sim.recording import qos_text
+        # Version 9 metadata holds the profiles as a YAML list (the channels: as YAML text).
         topics = [{'topic_metadata': {'name': topic, 'type': ros_type,
                                       'serialization_format': MESSAGE_ENCODING,
-                                      'offered_qos_profiles': qos, 'type_description_hash':
-                                      _hash_or_empty(ros_type)},
+                                      'offered_qos_profiles': qos_text.parse(qos),
+                                      'type_description_hash': _hash_or_empty(ros_type)},
                    'message_count': self.counts[channel_id]}
                   for channel_id, (topic, ros_type, qos) in self._topics.items()]
         info = {

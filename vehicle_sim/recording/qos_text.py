@@ -19,8 +19,9 @@ rosbag2 (metadata version 9, Jazzy) writes a YAML list with one profile per publ
 topic: ``history``, ``depth``, ``reliability``, ``durability``, ``deadline``, ``lifespan``,
 ``liveliness``, ``liveliness_lease_duration`` and ``avoid_ros_namespace_conventions``, the
 policies named in lower case and the durations as ``{sec, nsec}`` (an infinite one as
-rmw's ``RMW_DURATION_INFINITE``). A publisher seen on the graph has no known depth: rosbag2
-writes ``history: unknown, depth: 0`` for those, and so do we.
+rmw's ``RMW_DURATION_INFINITE``). Of a publisher seen on the graph, vehicle_sim's graph view
+knows the reliability and the durability only: its entry says ``history: unknown, depth: 0``
+(rosbag2's form of a policy it does not know).
 """
 
 from typing import List, Optional, Sequence
