@@ -195,8 +195,9 @@ class BagWriter:
     def _fail(self, error: OSError) -> None:
         reason = error.strerror or str(error)
         self.error = (f'recording {self.path} stopped: {reason}, after '
-                      f'{self.message_count} messages; the file keeps what was written '
-                      f'before ({self._file.size} bytes, without its summary)')
+                      f'{self.message_count} messages; the file keeps the complete chunks '
+                      f'written before ({self._file.size} bytes, without its summary; the '
+                      'messages of the chunk being written are lost)')
 
     def add_channel(self, topic: str, ros_type: str, offered_qos_profiles: str) -> int:
         """
