@@ -33,6 +33,7 @@ EXTRAS = {
     'ray': ['ray'],                                # sweeps on a Ray cluster (vehicle_sim/sweep)
     'foxglove': ['foxglove-sdk>=0.30,<0.31'],      # the live view (docs/foxglove.md)
     'gym': ['gymnasium>=1.0'],                     # vehicle_sim.gym (docs/gym.md)
+    'record': ['mcap', 'zstandard', 'lz4'],        # MCAP recordings and their compressors
 }
 # pyarrow: a sweep writes results.parquet when it imports.
 EXTRAS['test'] = (['pytest', 'pytest-timeout', 'ruff', 'pyarrow']

@@ -56,16 +56,17 @@ def _node_command(profile_path=None):
     return command
 
 
-def measure_ros(steps, repeats, profile_path=None, between=None):
+def measure_ros(steps, repeats, profile_path=None, between=None, command=None):
     """
     Return the wall and node CPU seconds of each ``robot/time_step`` request, the counts.
 
     :param between: called after each request (the in-process block of the same run, so
         that the two sides of the ratio are interleaved and a change of load hits both).
+    :param command: the node's command line (default: the automobile node, as above).
     """
     from vehicle_sim.transport.dds import DdsNode
     env = dict(os.environ, PYTHONPATH=REPO_ROOT + os.pathsep + os.environ.get('PYTHONPATH', ''))
-    command = _node_command(profile_path)
+    command = command or _node_command(profile_path)
     proc = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL,
                             stderr=subprocess.DEVNULL)
     client = DdsNode('bench_ros_sync')

@@ -13,9 +13,10 @@
 # limitations under the License.
 
 """
-Every performance figure of issues 10 and 20 in one table: measured, target, met or missed.
+Every performance figure of issues 10, 20 and 21 in one table: measured, target, met or missed.
 
-Issue 20's are the Gymnasium environment's (bench_gym.py).
+Issue 20's are the Gymnasium environment's (bench_gym.py); issue 21's the recorder's
+(bench_record.py).
 
 ``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
 also run alone and say more); each ratio is measured in this run, its two sides interleaved or
@@ -118,6 +119,7 @@ def collect(quick):
     """Run every benchmark; return (rows, floors)."""
     import bench_maps
     import bench_plugin
+    import bench_record
     import bench_ros_sync
     import bench_service_roundtrip
     import bench_step
@@ -145,6 +147,14 @@ def collect(quick):
     plugin = bench_plugin.figures(1000 if quick else 6000)
     plugin_subset = bench_plugin.figures(1000 if quick else 6000, bench_plugin.SUBSET)
     maps = bench_maps.figures(quick)
+    import tempfile
+    with tempfile.TemporaryDirectory(prefix='bench_record_') as folder:
+        rec_plain, rec_published, rec_us = bench_record.measure_in_process(
+            5 if quick else 15, 200 if quick else 400, folder)
+        rec_rtf, rec_rtf_plain, _ = bench_record.measure_ros_rtf(1000, 3 if quick else 5,
+                                                                 folder)
+        long_steps = 6000 if quick else 60000
+        rss_start, rss_end, long_size, _ = bench_record.measure_memory(long_steps, folder)
     found['write_us'] = bare_write_us()
     found['matched_write_us'] = matched_write_us()
     bare_p50, bare_p99 = service['bare']
@@ -173,6 +183,14 @@ def collect(quick):
         ('  same: in-process step with the map / without', maps['step_ratio'], '<=', 1.1, 'x'),
         ('  same: lidar 1080 rays, 270 deg, 40 Hz on the map, share of one core',
          maps['lidar_share'] * 100.0, '<=', 15.0, '%'),
+        ('in-process step, every topic recorded (--record) / not recorded', rec_plain, '<=',
+         bench_record.TARGET_RATIO, 'x'),
+        ('  same, recorded / every topic published without recording', rec_published, None,
+         None, 'x'),
+        ('ROS-synchronous RTF with --record (1000 steps per robot/time_step)', rec_rtf, '>=',
+         bench_record.TARGET_RTF, 'x'),
+        (f'recorder RSS growth over {long_steps * bench_record.STEP_MS / 1000:g} s simulated',
+         rss_end - rss_start, '<=', 5.0, 'MiB'),
     ] + gym_rows
     floors = [
         f'raw PyBullet stepSimulation (BmwX5): {raw_us:.1f} us per basic step; Driver.step '
@@ -206,6 +224,15 @@ def collect(quick):
         f'bodies; step {maps["step_mapped_us"]:.0f} us with it, {maps["step_plain_us"]:.0f} us '
         f'without; lidar {maps["lidar_ms"]:.2f} ms per sample (CPU)',
     ] + gym_context
+    floors.append(
+        f'recording in process: {rec_us["plain"]:.0f} us per step not recorded (topics without '
+        f'a subscriber are skipped), {rec_us["published"]:.0f} us with every topic published, '
+        f'{rec_us["recorded"]:.0f} us recorded (CPU of the node\'s process '
+        f'{rec_us["plain_cpu"]:.0f}, {rec_us["published_cpu"]:.0f} and '
+        f'{rec_us["recorded_cpu"]:.0f} us, the writer process {rec_us["writer_cpu"]:.0f} us); '
+        f'over ROS {rec_rtf_plain:.1f}x real time '
+        f'without --record in the same run; recorder RSS {rss_start:.1f} -> {rss_end:.1f} MiB '
+        f'over the long run, file {long_size / 2**20:.1f} MiB')
     return rows, floors
 
 

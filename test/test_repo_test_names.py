@@ -16,17 +16,17 @@
 Test files are named by one rule: ``test_<area>_<subject>.py``.
 
 The area is the part of the repository the file tests: a package of vehicle_sim (core, physics,
-webots, ros, transport, scenario(s), sweep, foxglove, gym, tools, testing), the ``vehicle-sim``
-command (cli), the configuration files (config), the interface definitions (msgs,
-vehicle_msgs_py), the maps across their layers (map: occupancy and lane maps, map files, walls,
-/map; vehicle_sim/maps and core/map), or the repository as a whole (repo: licence headers,
-packaging, text, cross-layer registrations).
+webots, ros, transport, scenario(s), sweep, foxglove, gym, record, tools, testing), the
+``vehicle-sim`` command (cli), the configuration files (config), the interface definitions
+(msgs, vehicle_msgs_py), the maps across their layers (map: occupancy and lane maps, map files,
+walls, /map; vehicle_sim/maps and core/map), or the repository as a whole (repo: licence
+headers, packaging, text, cross-layer registrations).
 """
 
 from pathlib import Path
 
 AREAS = ('core', 'physics', 'webots', 'ros', 'transport', 'scenario', 'sweep', 'foxglove',
-         'gym', 'tools', 'testing', 'cli', 'config', 'msgs', 'map', 'repo')
+         'gym', 'record', 'tools', 'testing', 'cli', 'config', 'msgs', 'map', 'repo')
 TEST_DIR = Path(__file__).resolve().parent
 
 

@@ -134,10 +134,10 @@ class DiffRobotNode:
     """
 
     def __init__(self, args=None, world=None, parameter_overrides=None, transport=None,
-                 node_name=ri.ROBOT_NODE_NAME, namespace=''):
-        node = self.node = create_node(node_name, namespace, args=args,
-                                       parameter_overrides=parameter_overrides,
-                                       transport=transport)
+                 node_name=ri.ROBOT_NODE_NAME, namespace='', node=None):
+        node = self.node = node if node is not None else create_node(
+            node_name, namespace, args=args, parameter_overrides=parameter_overrides,
+            transport=transport)
         try:
             self._setup(world)
         except BaseException:

@@ -17,9 +17,10 @@ JUnit XML of a scenario run, in the shape pytest's ``--junitxml`` writes (xunit2
 
 ``<testsuites>`` holds one ``<testsuite>`` (name = the scenario's name; ``tests``, ``failures``,
 ``errors``, ``skipped``, ``time``, ``timestamp``, ``hostname``) with the run's properties (seed,
-simulated time, odometry hash, determinism) and one ``<testcase>`` per criterion (``classname``
-= ``scenario.<name>``, ``name`` = the criterion's name, ``time``): a failed criterion carries
-``<failure message=...>``, and every test case's ``<system-out>`` gives the measured value. A
+simulated time, odometry hash, determinism; ``recording``, the MCAP file of a recorded run) and
+one ``<testcase>`` per criterion (``classname`` = ``scenario.<name>``, ``name`` = the
+criterion's name, ``time``): a failed criterion carries ``<failure message=...>`` (its text
+names the recording), and every test case's ``<system-out>`` gives the measured value. A
 run that failed by itself (a controller that raised, a process that died) adds a test case
 ``run`` with ``<error message=...>``.
 """
@@ -62,6 +63,10 @@ def junit_tree(result, timestamp=None):
                         ('deterministic', str(result.deterministic).lower()),
                         ('runs', result.runs)):
         ElementTree.SubElement(properties, 'property', name=name, value=str(value))
+    recording = getattr(result, 'recording', None)
+    if recording:
+        ElementTree.SubElement(properties, 'property', name='recording', value=recording)
+    seen = f'; recording: {recording} (vehicle-sim play {recording})' if recording else ''
     # Every criterion is judged over the whole run: the run's time is shared out evenly.
     share = result.wall_time_s / max(1, len(criteria))
     classname = f'scenario.{spec.name}'
@@ -70,7 +75,7 @@ def junit_tree(result, timestamp=None):
                                       name=criterion.name, time=f'{share:.3f}')
         if not criterion.passed:
             failure = ElementTree.SubElement(case, 'failure', message=criterion.detail)
-            failure.text = f'{criterion.kind}: {criterion.detail}'
+            failure.text = f'{criterion.kind}: {criterion.detail}{seen}'
         out = ElementTree.SubElement(case, 'system-out')
         text = f'{criterion.kind}: {_value_text(criterion)}; {criterion.detail}'
         if result.spread and criterion.name in result.spread:
@@ -82,7 +87,7 @@ def junit_tree(result, timestamp=None):
                                       time='0.000')
         error = ElementTree.SubElement(case, 'error',
                                        message=result.error.splitlines()[0][:200])
-        error.text = result.error
+        error.text = result.error + seen
     return ElementTree.ElementTree(suites)
 
 

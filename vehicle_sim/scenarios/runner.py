@@ -81,7 +81,9 @@ class ScenarioResult:
     :param spread: with repeated runs, {criterion name: (min, max)} of the measured values.
     :param collisions: {vehicle name: its CollisionEvents (with the contact point)}.
     :param notes: scripted commands that were taken but had no effect when given (a brake while
-        cruise control holds a speed), each once per run, with its time and file line.
+        cruise control holds a speed), each once per run, with its time and file line; a
+        recording that stopped on a write error.
+    :param recording: the MCAP file of the run's topics (``record``), or None.
     """
 
     spec: ScenarioSpec
@@ -97,6 +99,7 @@ class ScenarioResult:
     runs: int = 1
     collisions: Dict[str, List[CollisionEvent]] = field(default_factory=dict)
     notes: List[str] = field(default_factory=list)
+    recording: Optional[str] = None
 
     @property
     def passed(self):
@@ -225,7 +228,7 @@ class Director:
 
 
 def run_scenario(spec_or_path, seed=None, gui=False, progress=None, repeat=1,
-                 transport=None, foxglove=None) -> ScenarioResult:
+                 transport=None, foxglove=None, record=None) -> ScenarioResult:
     """
     Run a scenario and return its result.
 
@@ -237,7 +240,10 @@ def run_scenario(spec_or_path, seed=None, gui=False, progress=None, repeat=1,
     :param transport: the served nodes' transport (None = VEHICLE_SIM_TRANSPORT).
     :param foxglove: (host, port) of a live Foxglove view of the automobile node (the scenario
         is then served); None: none.
+    :param record: an MCAP file to record every topic of the run into (the simulation is then
+        served over ROS, so that its topics are published); with ``repeat``, the last run's.
     :raises ScenarioError: for an invalid file or a refused scripted command.
+    :raises RecordingError: when the recording cannot be created.
     """
     spec = spec_or_path if isinstance(spec_or_path, ScenarioSpec) else load_scenario(
         spec_or_path)
@@ -245,7 +251,8 @@ def run_scenario(spec_or_path, seed=None, gui=False, progress=None, repeat=1,
         spec = spec.with_seed(seed)
     if repeat < 1:
         raise ValueError(f'repeat = {repeat!r}: must be >= 1')
-    results = [_run_once(spec, gui, progress, transport, foxglove) for _ in range(repeat)]
+    results = [_run_once(spec, gui, progress, transport, foxglove, record)
+               for _ in range(repeat)]
     result = results[-1]
     if repeat > 1:
         result.runs = repeat
@@ -266,14 +273,26 @@ def _spread(results):
     return spread
 
 
-def _run_once(spec, gui, progress, transport, foxglove=None):
+def _run_once(spec, gui, progress, transport, foxglove=None, record=None):
     criteria = build_criteria(spec.criteria, spec.duration_s)
     director = Director(spec, criteria, progress)
-    # The live view shows the automobile node: a scenario watched is served.
-    served = spec.served or foxglove is not None
+    # The live view shows the automobile node and a recording holds its topics: a scenario
+    # watched or recorded is served.
+    served = spec.served or foxglove is not None or record is not None
     start = time.monotonic()
-    sim = (ServedSim(spec, director, spec.seed, gui, transport, foxglove) if served
-           else LocalSim(spec, director, spec.seed, gui))
+    recorder = None
+    if record is not None:
+        from vehicle_sim.recording.bag_writer import BagWriter
+        from vehicle_sim.recording.recorder import Recorder
+        recorder = Recorder(BagWriter(record), use_sim_time=True,
+                            on_error=lambda text: director.notes.append(text))
+    try:
+        sim = (ServedSim(spec, director, spec.seed, gui, transport, foxglove, recorder)
+               if served else LocalSim(spec, director, spec.seed, gui))
+    except BaseException:
+        if recorder is not None:
+            recorder.close()
+        raise
     error = None
     watcher = None
     try:
@@ -303,10 +322,13 @@ def _run_once(spec, gui, progress, transport, foxglove=None):
             watcher.close()
         director.close()
         sim.close()
+        if recorder is not None:
+            recorder.close()
     return ScenarioResult(spec, spec.seed, [c.result() for c in criteria], sim_time_s,
                           time.monotonic() - start, director.tracks,
                           director.digest.hexdigest(), not served or kind != 'processes',
-                          error, collisions=director.collisions, notes=director.notes)
+                          error, collisions=director.collisions, notes=director.notes,
+                          recording=record)
 
 
 # ---------------------------------------------------------------------------- in-process

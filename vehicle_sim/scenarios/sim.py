@@ -134,28 +134,47 @@ class ServedSim:
         commands of a step are those set before it).
     :param transport: the nodes' transport (None = VEHICLE_SIM_TRANSPORT).
     :param foxglove: (host, port) of the automobile node's live Foxglove view, or None.
+    :param recorder: a Recorder (vehicle_sim.recording) tapping every node's publishers from
+        its creation on, or None.
     """
 
     served = True
 
-    def __init__(self, spec, director, seed, gui=False, transport=None, foxglove=None):
+    def __init__(self, spec, director, seed, gui=False, transport=None, foxglove=None,
+                 recorder=None):
         from vehicle_sim.ros.diff_robot_node import DiffRobotNode
         self.automobile = None
         self.robot_nodes = []
         self._temp = None
         self.vehicles = {}
         step_ms = spec.time_step_ms
+
+        def tapped(name, overrides):
+            # The node, its publishers recorded before the node object wires them.
+            if recorder is None:
+                return None
+            from vehicle_sim.transport import create_node
+            node = create_node(name, parameter_overrides=overrides, transport=transport)
+            try:
+                node.tap_publishers(recorder.tap)
+            except BaseException:
+                node.shutdown()
+                raise
+            return node
+
         try:
             if foxglove is not None and not spec.world.vehicles:
                 raise ScenarioError('--foxglove shows the automobile node: this scenario has '
                                     'no car')
             if spec.world.vehicles:
-                from vehicle_sim.ros.automobile import AutomobileNode
+                from vehicle_sim.ros.automobile import AutomobileNode, NODE_NAME
                 live_view = {} if foxglove is None else {
                     'foxglove_host': foxglove[0], 'foxglove': foxglove[1]}
-                self.automobile = AutomobileNode(transport=transport, parameter_overrides={
-                    'world': self._world_file(spec), 'synchronous': True,
-                    'time_step_ms': step_ms, 'gui': gui, **live_view})
+                overrides = {'world': self._world_file(spec), 'synchronous': True,
+                             'time_step_ms': step_ms, 'gui': gui, **live_view}
+                self.automobile = AutomobileNode(transport=transport,
+                                                 parameter_overrides=overrides,
+                                                 node=tapped(NODE_NAME, overrides))
                 world = self.automobile.world
                 for vehicle in spec.world.vehicles:
                     built = self.automobile.scene.vehicles[vehicle.name]
@@ -164,13 +183,13 @@ class ServedSim:
             else:
                 world = None
             for robot in spec.robots:
+                overrides = {'robot': robot.model, 'x': robot.x_m, 'y': robot.y_m,
+                             'yaw': robot.yaw_rad, 'synchronous': True,
+                             'time_step_ms': step_ms, 'gui': gui and world is None,
+                             'sensors': list(robot.sensors) or ['']}
                 node = DiffRobotNode(world=world, transport=transport, node_name=robot.name,
-                                     parameter_overrides={
-                                         'robot': robot.model, 'x': robot.x_m, 'y': robot.y_m,
-                                         'yaw': robot.yaw_rad, 'synchronous': True,
-                                         'time_step_ms': step_ms,
-                                         'gui': gui and world is None,
-                                         'sensors': list(robot.sensors) or ['']})
+                                     parameter_overrides=overrides,
+                                     node=tapped(robot.name, overrides))
                 self.robot_nodes.append(node)
                 if world is None:
                     world = node.world

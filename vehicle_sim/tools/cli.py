@@ -29,6 +29,9 @@ Subcommands (``vehicle-sim <command> --help`` for details)::
     teleop              drive the car (or --robot) from the keyboard through cmd_vel
     scenario FILE       run a scenario file headless: criteria, JUnit XML, plot, exit status
     sweep SCENARIO      run a scenario over a grid of values and seeds, in parallel (local or Ray)
+    record TOPICS|-a    record topics into an MCAP file (like ``ros2 bag record -s mcap``)
+    play FILE           republish a recording (like ``ros2 bag play``)
+    bag info FILE       a recording's topics, types, counts, duration (like ``ros2 bag info``)
 
 Everything talks over the embedded Cyclone DDS transport, with ``ROS_DOMAIN_ID`` and
 ``ROS_AUTOMATIC_DISCOVERY_RANGE`` honoured like a ROS 2 node does (docs/transport.md).
@@ -111,6 +114,9 @@ def build_parser() -> argparse.ArgumentParser:
                      help="open PyBullet's window with a chase camera following the first "
                           'vehicle (needs an X display; keys: docs/drive.md)')
     add_foxglove_arguments(run)
+    run.add_argument('--record', metavar='FILE.mcap',
+                     help='record every topic the node publishes, from its first step, into '
+                          'an MCAP file (docs/record_replay.md)')
     run.add_argument('ros_args', nargs=argparse.REMAINDER,
                      help='ROS arguments after --')
     run.set_defaults(func=cmd_run)
@@ -201,6 +207,17 @@ def build_parser() -> argparse.ArgumentParser:
     from vehicle_sim.tools.sweep_command import cmd_sweep
     add_sweep_arguments(sweep)
     sweep.set_defaults(func=cmd_sweep)
+    from vehicle_sim.tools import record_commands
+    record = sub.add_parser('record', help='record topics into an MCAP file '
+                                           '(docs/record_replay.md)')
+    record_commands.add_record_arguments(record)
+    record.set_defaults(func=record_commands.cmd_record)
+    play = sub.add_parser('play', help='republish an MCAP recording')
+    record_commands.add_play_arguments(play)
+    play.set_defaults(func=record_commands.cmd_play)
+    bag = sub.add_parser('bag', help="a recording's summary (bag info FILE)")
+    record_commands.add_bag_arguments(bag)
+    bag.set_defaults(func=record_commands.cmd_bag)
     return parser
 
 

@@ -229,6 +229,15 @@ def cmd_run(args) -> int:
         overrides['foxglove_host'], overrides['foxglove'] = live_view
     # The CLI runs on the embedded transport unless the user asked for another one.
     transport = os.environ.get('VEHICLE_SIM_TRANSPORT') or 'dds'
+    record = getattr(args, 'record', None)
+    if record:
+        from vehicle_sim.recording.bag_writer import check_output, RecordingError, require_mcap
+        try:
+            check_output(record)        # before the node joins the graph
+            require_mcap()
+        except RecordingError as error:
+            raise CliError(f'--record: {error}', EXIT_USAGE) from None
+    recorders = []
     output = _StatusOutput(not args.no_status)
 
     def render(app):
@@ -243,8 +252,14 @@ def cmd_run(args) -> int:
 
     def build(node_args):
         try:
-            app = AutomobileNode(node_args, transport=transport, parameter_overrides=overrides)
+            node = None
+            if record:
+                node = _recorded_node(node_args, transport, overrides, record, recorders)
+            app = AutomobileNode(node_args, transport=transport, parameter_overrides=overrides,
+                                 node=node)
         except (VehicleSimError, ValueError) as exc:
+            for recorder in recorders:
+                recorder.close()
             raise CliError(str(exc), EXIT_USAGE) from None
         node = app.node
         if output.enabled:
@@ -267,3 +282,21 @@ def cmd_run(args) -> int:
         return run_node(build, ['vehicle-sim', *ros_args], transport=transport)
     finally:
         output.finish()
+        for recorder in recorders:
+            recorder.close()
+            print(recorder.summary(), file=sys.stderr)
+
+
+def _recorded_node(node_args, transport, overrides, path, recorders):
+    """Create the automobile node with its publishers tapped into a recording of ``path``."""
+    from vehicle_sim.recording.recorder import record_node
+    from vehicle_sim.ros.automobile import NODE_NAME
+    from vehicle_sim.transport import create_node
+    node = create_node(NODE_NAME, args=node_args, transport=transport,
+                       parameter_overrides=overrides)
+    try:
+        recorders.append(record_node(node, path))
+    except BaseException:
+        node.shutdown()
+        raise
+    return node

@@ -49,6 +49,9 @@ def add_arguments(parser):
                              '(external processes are not deterministic)')
     parser.add_argument('--no-progress', action='store_true', help='no progress display')
     add_foxglove_arguments(parser)
+    parser.add_argument('--record', metavar='FILE.mcap',
+                        help='record every topic of the run into an MCAP file (the simulation '
+                             'is served over ROS; with --repeat, the last run)')
 
 
 class Progress:
@@ -142,6 +145,7 @@ def _exit_on_sigterm():
 
 def cmd_scenario(args) -> int:
     """Run ``vehicle-sim scenario``."""
+    from vehicle_sim.recording.bag_writer import RecordingError
     from vehicle_sim.scenarios.runner import run_scenario
     from vehicle_sim.scenarios.schema import load_scenario
     from vehicle_sim.scenarios.yaml_lines import ScenarioError
@@ -159,10 +163,17 @@ def cmd_scenario(args) -> int:
         spec = load_scenario(args.file)
     except ScenarioError as error:
         raise CliError(str(error), EXIT_USAGE) from None
-    for option, path in (('--junit', args.junit), ('--plot', args.plot)):
+    for option, path in (('--junit', args.junit), ('--plot', args.plot),
+                         ('--record', args.record)):
         if path:
             prepare_output(path, option)
     live_view = live_view_address(args)
+    if args.record:
+        from vehicle_sim.recording.bag_writer import require_mcap
+        try:
+            require_mcap()
+        except RecordingError as error:
+            raise CliError(f'--record: {error}', EXIT_USAGE) from None
     seed = spec.seed if args.seed is None else args.seed
     print(f'scenario {spec.name} ({args.file}), seed {seed}, {spec.duration_s:g} s, driver: '
           f'{spec.driver.kind}')
@@ -170,14 +181,19 @@ def cmd_scenario(args) -> int:
     _exit_on_sigterm()      # so that the driver's processes are stopped on the way out
     try:
         result = run_scenario(spec, seed=args.seed, gui=args.gui, progress=progress,
-                              repeat=args.repeat, foxglove=live_view)
+                              repeat=args.repeat, foxglove=live_view, record=args.record)
     except ScenarioError as error:
         raise CliError(str(error), EXIT_FAILURE) from None
+    except RecordingError as error:
+        raise CliError(f'--record: {error}', EXIT_USAGE) from None
     finally:
         if progress is not None:
             progress.done()
     for line in report_lines(result):
         print(line)
+    if args.record:
+        print(f'recorded {args.record}' + ('' if result.passed else
+                                           f' (replay it: vehicle-sim play {args.record})'))
     if args.junit:
         from vehicle_sim.scenarios.junit import write_junit
         write_junit(result, args.junit)
