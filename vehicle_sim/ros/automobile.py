@@ -38,6 +38,7 @@ from types import SimpleNamespace
 from typing import Callable, Dict, List, Optional
 
 from vehicle_sim.core.commands.drive_input import CarDriveInput
+from vehicle_sim.core.map.vehicle_lanes import VehicleLanes
 from vehicle_sim.core.specs.errors import InvalidCommandError
 from vehicle_sim.physics import SimulatedCar
 from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
@@ -56,7 +57,12 @@ from vehicle_sim.ros.endpoints import (
     serve,
     subscribe,
 )
-from vehicle_sim.ros.map_interfaces import map_in_world, map_static_transform, MapOutputs
+from vehicle_sim.ros.map_interfaces import (
+    lanes_frame,
+    map_in_world,
+    map_static_transform,
+    MapOutputs,
+)
 from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.sensor_interfaces import check_names, sensor_rows
 from vehicle_sim.ros.sim_control import serve_vehicle, WorldControl
@@ -157,7 +163,8 @@ class AutomobileNode:
             self._live = start_live_view(node, settings)
         spec = self._with_sensor_parameter(world_spec(settings))
         # Collisions are watched when there is something besides the ground to hit.
-        collisions = bool(spec.obstacles) or len(spec.vehicles) > 1 or spec.map is not None
+        collisions = (bool(spec.obstacles) or len(spec.vehicles) > 1 or spec.map is not None
+                      or spec.has_lanes)
 
         def feed(vehicle, scene):
             # Each vehicle's sensors at their rates, and its collisions (ros: their topics).
@@ -232,7 +239,7 @@ class AutomobileNode:
                       for row in itf.WORLD_SERVICES + itf.WORLD_INPUTS})
         for spec in scene.vehicles:
             full_name = self._full_name(spec.namespace)
-            for row in itf.VEHICLE_TOPICS + itf.INPUT_TOPICS + itf.SERVICES:
+            for row in itf.VEHICLE_TOPICS + itf.LANE_TOPICS + itf.INPUT_TOPICS + itf.SERVICES:
                 taken[full_name(row.name)] = f'{row.name!r} of vehicle {spec.name!r}'
         return taken
 
@@ -252,6 +259,11 @@ class AutomobileNode:
 
         vehicle.outputs = Outputs(node, itf.VEHICLE_TOPICS + self._sensor_rows(vehicle),
                                   vehicle, resolve)
+        lanes = self.scene.lanes
+        if lanes is not None:      # lane_state, lane_invasion (docs/maps.md)
+            vehicle.lanes = VehicleLanes(lanes)
+            vehicle.lanes_frame = lanes_frame(self.scene.spec)
+            vehicle.lane_outputs = Outputs(node, itf.LANE_TOPICS, vehicle, resolve)
         handlers = {
             itf.SETTER: self._handle_setter,
             itf.GETTER: self._handle_getter,
@@ -304,8 +316,10 @@ class AutomobileNode:
         if world_map is not None:     # map -> world, the root of the tree (docs/maps.md)
             self._fleet.static_transforms.insert(0, map_static_transform(world_map))
         self._fleet_outputs = Outputs(self.node, itf.WORLD_TOPICS, self._fleet)
-        # /map and its kin (ros/map_interfaces.py), for a world with a map.
-        self._map_outputs = MapOutputs(self.node, self.scene.parts.get('map'))
+        # /map, /map/lanes and their kin (ros/map_interfaces.py), for a world with a map.
+        parts = self.scene.parts
+        self._map_outputs = MapOutputs(self.node, parts.get('map'), parts.get('roads'),
+                                       lanes_frame(self.scene.spec))
         if self._map_outputs.summary:
             self._logger.info(self._map_outputs.summary)
 
@@ -419,6 +433,8 @@ class AutomobileNode:
             for vehicle in vehicles:
                 vehicle.sample(stamp)
                 vehicle.outputs.publish(EACH_PUBLISH, vehicle)
+                if vehicle.lanes is not None:
+                    self._publish_lanes(vehicle, time_s)
                 if tf_poses is not None:
                     tf_poses.append(vehicle.odom[:2])
                 if serve_pending is not None:   # a request waits for one car's burst at most
@@ -429,6 +445,15 @@ class AutomobileNode:
                 self._live.publish(time_s, self._transforms)
         for vehicle in self._sensing:
             self._publish_sensors(vehicle)
+
+    def _publish_lanes(self, vehicle, time_s):
+        # lane_state of this sample, then one lane_invasion per marking crossed since the last.
+        crossed = vehicle.update_lanes(time_s)
+        outputs = vehicle.lane_outputs
+        outputs.publish(EACH_PUBLISH, vehicle)
+        for event in crossed:
+            vehicle.lane_event_stamp, vehicle.lane_event = self._stamp(event.time_s), event
+            outputs.publish(ON_EVENT, vehicle)
 
     def _publish_sensors(self, vehicle):
         # Every reading and collision event since the last call, stamped with its own
