@@ -105,6 +105,7 @@ def matched_write_us(count=3000):
 
 def collect(quick):
     """Run every benchmark; return (rows, floors)."""
+    import bench_lane_world
     import bench_maps
     import bench_plugin
     import bench_ros_sync
@@ -133,6 +134,7 @@ def collect(quick):
     plugin = bench_plugin.figures(1000 if quick else 6000)
     plugin_subset = bench_plugin.figures(1000 if quick else 6000, bench_plugin.SUBSET)
     maps = bench_maps.figures(quick)
+    lane_world = bench_lane_world.figures(quick)
     found['write_us'] = bare_write_us()
     found['matched_write_us'] = matched_write_us()
     bare_p50, bare_p99 = service['bare']
@@ -161,6 +163,8 @@ def collect(quick):
         ('  same: in-process step with the map / without', maps['step_ratio'], '<=', 1.1, 'x'),
         ('  same: lidar 1080 rays, 270 deg, 40 Hz on the map, share of one core',
          maps['lidar_share'] * 100.0, '<=', 15.0, '%'),
+        ('highway (roads:) node step with lanes - without, per car (lane state, invasions)',
+         lane_world['extra_us'], '<=', 20.0, 'us'),
     ]
     floors = [
         f'raw PyBullet stepSimulation (BmwX5): {raw_us:.1f} us per basic step; Driver.step '

@@ -163,13 +163,15 @@ class AutomobileNode:
             self._live = start_live_view(node, settings)
         spec = self._with_sensor_parameter(world_spec(settings))
         # Collisions are watched when there is something besides the ground to hit.
-        collisions = (bool(spec.obstacles) or len(spec.vehicles) > 1 or spec.map is not None
-                      or spec.has_lanes)
+        # (and in a world whose lane map has barriers: curbstones, walls).
+        collisions = bool(spec.obstacles) or len(spec.vehicles) > 1 or spec.map is not None
 
         def feed(vehicle, scene):
             # Each vehicle's sensors at their rates, and its collisions (ros: their topics).
+            watch = collisions or any(getattr(part, 'barrier_count', 0)
+                                      for part in scene.parts.values())
             return SensorFeed(scene.world, vehicle.body, vehicle.spec.sensors, scene.origin,
-                              collisions)
+                              watch)
 
         self.scene = build_scene(spec, time_step_s=settings.time_step_s,
                                  friction=settings.friction, gui=settings.gui, mount=feed)
