@@ -267,11 +267,6 @@ class WorldSpec:
     map: Optional[object] = None
     lanes: Optional[object] = field(default=None, compare=False, repr=False)
 
-    @property
-    def has_lanes(self) -> bool:
-        """True when the world has a lane map: roads, or a map of a lane kind (lanelet2)."""
-        return bool(self.roads) or getattr(self.map, 'type', None) == 'lanelet2'
-
 
 @dataclass(frozen=True)
 class RobotSpec:
