@@ -99,3 +99,35 @@ def test_lane_state_names_the_lanelet_at_s_10_with_offset_0_in_frame_map(car):
     assert state.offset == pytest.approx(0.0, abs=0.01)
     assert state.s == pytest.approx(10.0, abs=0.01)
     assert state.speed_limit == pytest.approx(13.9)
+
+
+def _set_lane_pose(car, lanelet, s, offset=0.0):
+    client = car.client_of_lane_pose = getattr(car, 'client_of_lane_pose', None) or \
+        car.node.create_client(itf.SET_LANE_POSE.srv_type, car.name('set_lane_pose'))
+    assert client.wait_for_service(30.0)
+    request = car.node.srv(itf.SET_LANE_POSE.srv_type).Request()
+    request.lanelet, request.s, request.offset = lanelet, s, offset
+    return client.call(request, 30.0)
+
+
+def test_set_lane_pose_puts_the_car_on_a_lane_and_refuses_places_off_it(car):
+    states, invasions = [], []
+    car.node.create_subscription(itf.LANE_STATE.ros_type, car.name('lane_state'),
+                                 states.append, itf.LANE_STATE.qos)
+    sub = car.node.create_subscription(itf.LANE_INVASION.ros_type, car.name('lane_invasion'),
+                                       invasions.append, itf.LANE_INVASION.qos)
+    assert wait_for(lambda: sub.get_publisher_count(), spin=car.node)
+    answer = _set_lane_pose(car, 2002, 20.0, 0.5)   # across the dashed line: no crossing
+    assert answer.success and 'on lane 2002 at s 20.000 m' in answer.message
+    for lanelet, s, offset, reason in ((9999, 10.0, 0.0, '9999'), (2002, 80.0, 0.0, '80'),
+                                       (2002, float('nan'), 0.0, 'nan'),
+                                       (2002, 10.0, 3.0, 'offset')):
+        refused = _set_lane_pose(car, lanelet, s, offset)
+        assert not refused.success
+        assert 'refused' in refused.message and reason in refused.message.lower()
+        assert 'nothing moved' in refused.message
+    assert car.call('robot/time_step', 100).success
+    assert wait_for(lambda: states and states[-1].lane_id == 2002, spin=car.node)
+    assert states[-1].s == pytest.approx(20.0, abs=0.01)
+    assert states[-1].offset == pytest.approx(0.5, abs=0.01)
+    assert not wait_for(lambda: invasions, timeout_s=1.0, spin=car.node)

@@ -290,9 +290,10 @@ def test_the_shipped_highway_scenario_with_stay_in_lane_passes_through_the_runne
 def test_docs_maps_embeds_the_lane_tables_and_lanes_md_has_no_wiring_left():
     from vehicle_sim.core.map.kinds import LANELET2_MAP_SPECS
     from vehicle_sim.core.specs.param_spec import parameter_table_markdown
-    from vehicle_sim.ros.endpoints import topic_table_markdown
+    from vehicle_sim.ros.endpoints import service_table_markdown, topic_table_markdown
     from vehicle_sim.ros.map_interfaces import MAP_LANES
     maps = (REPO / 'docs' / 'maps.md').read_text('utf-8')
     assert parameter_table_markdown(LANELET2_MAP_SPECS, 'key') in maps
     assert topic_table_markdown((MAP_LANES,) + itf.LANE_TOPICS) in maps
+    assert service_table_markdown(itf.LANE_SERVICES) in maps
     assert 'Wiring still to do' not in (REPO / 'docs' / 'lanes.md').read_text('utf-8')

@@ -38,7 +38,6 @@ from types import SimpleNamespace
 from typing import Callable, Dict, List, Optional
 
 from vehicle_sim.core.commands.drive_input import CarDriveInput
-from vehicle_sim.core.map.vehicle_lanes import VehicleLanes
 from vehicle_sim.core.specs.errors import InvalidCommandError
 from vehicle_sim.physics import SimulatedCar
 from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
@@ -46,6 +45,7 @@ from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.physics.sensors import SensorFeed
 from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.ros.car_context import CarContext
+from vehicle_sim.ros.car_lanes import publish_car_lanes, wire_car_lanes
 from vehicle_sim.ros.descriptions import mounted_sensors
 from vehicle_sim.ros.endpoints import (
     EACH_PUBLISH,
@@ -241,7 +241,8 @@ class AutomobileNode:
                       for row in itf.WORLD_SERVICES + itf.WORLD_INPUTS})
         for spec in scene.vehicles:
             full_name = self._full_name(spec.namespace)
-            for row in itf.VEHICLE_TOPICS + itf.LANE_TOPICS + itf.INPUT_TOPICS + itf.SERVICES:
+            for row in (itf.VEHICLE_TOPICS + itf.LANE_TOPICS + itf.INPUT_TOPICS + itf.SERVICES
+                        + itf.LANE_SERVICES):
                 taken[full_name(row.name)] = f'{row.name!r} of vehicle {spec.name!r}'
         return taken
 
@@ -261,11 +262,6 @@ class AutomobileNode:
 
         vehicle.outputs = Outputs(node, itf.VEHICLE_TOPICS + self._sensor_rows(vehicle),
                                   vehicle, resolve)
-        lanes = self.scene.lanes
-        if lanes is not None:      # lane_state, lane_invasion (docs/maps.md)
-            vehicle.lanes = VehicleLanes(lanes)
-            vehicle.lanes_frame = lanes_frame(self.scene.spec)
-            vehicle.lane_outputs = Outputs(node, itf.LANE_TOPICS, vehicle, resolve)
         handlers = {
             itf.SETTER: self._handle_setter,
             itf.GETTER: self._handle_getter,
@@ -278,6 +274,9 @@ class AutomobileNode:
             spec: self._bind(handlers[spec.kind], spec, vehicle, resolve(spec.name))
             for spec in itf.SERVICES if spec.kind in handlers}, resolve).values())
         vehicle.services += serve_vehicle(node, itf.POSE_SERVICES, vehicle, resolve).values()
+        if self.scene.lanes is not None:    # lane_state, lane_invasion, set_lane_pose
+            wire_car_lanes(node, vehicle, self.scene.lanes, lanes_frame(self.scene.spec),
+                           resolve)
         vehicle.drive = CarDriveInput(vehicle.logic, self.settings.cmd_vel_timeout_s)
         if self._drive_inputs:
             self._wire_inputs(vehicle, resolve)
@@ -436,7 +435,7 @@ class AutomobileNode:
                 vehicle.sample(stamp)
                 vehicle.outputs.publish(EACH_PUBLISH, vehicle)
                 if vehicle.lanes is not None:
-                    self._publish_lanes(vehicle, time_s)
+                    publish_car_lanes(vehicle, time_s, self._stamp)
                 if tf_poses is not None:
                     tf_poses.append(vehicle.odom[:2])
                 if serve_pending is not None:   # a request waits for one car's burst at most
@@ -447,15 +446,6 @@ class AutomobileNode:
                 self._live.publish(time_s, self._transforms)
         for vehicle in self._sensing:
             self._publish_sensors(vehicle)
-
-    def _publish_lanes(self, vehicle, time_s):
-        # lane_state of this sample, then one lane_invasion per marking crossed since the last.
-        crossed = vehicle.update_lanes(time_s)
-        outputs = vehicle.lane_outputs
-        outputs.publish(EACH_PUBLISH, vehicle)
-        for event in crossed:
-            vehicle.lane_event_stamp, vehicle.lane_event = self._stamp(event.time_s), event
-            outputs.publish(ON_EVENT, vehicle)
 
     def _publish_sensors(self, vehicle):
         # Every reading and collision event since the last call, stamped with its own

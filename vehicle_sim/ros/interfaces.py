@@ -176,6 +176,15 @@ LANE_INVASION = Topic('lane_invasion', lm.LANE_INVASION, QOS_SENSOR, ON_EVENT,
                       doc='base_link crossed a lane marking: one message per crossing, naming '
                           'the boundary and its line type (virtual and none lines give none)')
 LANE_TOPICS = (LANE_STATE, LANE_INVASION)
+SET_LANE_POSE_TYPE = 'vehicle_msgs/srv/SetLanePose'
+LANE_POSE = 'lane_pose'    # service kind: teleport onto a lane (ros/car_lanes.py)
+SET_LANE_POSE = Service('set_lane_pose', SET_LANE_POSE_TYPE, LANE_POSE, value='lane pose',
+                        unit='m', webots=False,
+                        doc='teleport at rest onto a lane: at s along its centreline, offset to '
+                            'its left (+), heading along it; refused: a lane not in the map, s '
+                            'outside it, an offset off it, NaN/inf, a place inside an obstacle '
+                            'or vehicle')
+LANE_SERVICES = (SET_LANE_POSE,)
 
 # Inputs of each car (docs/drive.md): cmd_vel (one of CMD_VEL_INPUTS, by the cmd_vel_stamped
 # parameter) and drive; the converters give SI values, steering + = left (REP 103).
