@@ -297,3 +297,25 @@ def test_docs_maps_embeds_the_lane_tables_and_lanes_md_has_no_wiring_left():
     assert topic_table_markdown((MAP_LANES,) + itf.LANE_TOPICS) in maps
     assert service_table_markdown(itf.LANE_SERVICES) in maps
     assert 'Wiring still to do' not in (REPO / 'docs' / 'lanes.md').read_text('utf-8')
+
+
+def test_a_hosted_controller_reads_the_runs_lane_state(tmp_path):
+    from vehicle_sim.scenarios.runner import run_scenario
+    world = write_world(tmp_path, [dict(ON_2001, namespace='')])
+    record = tmp_path / 'lanes.txt'
+    controller = tmp_path / 'lane_reader.py'
+    controller.write_text(
+        'from vehicle_sim.webots import Driver\n'
+        'driver = Driver()\n'
+        'driver.step()\n'
+        'state = driver.getLaneState()\n'
+        f'open({str(record)!r}, "w").write(f"{{state.lane_id}} {{state.s_m:.3f}}")\n',
+        encoding='utf-8')
+    scenario = tmp_path / 'lanes_scenario.yaml'
+    scenario.write_text(yaml.safe_dump({
+        'name': 'lane_reader', 'world': str(world), 'duration': 0.1,
+        'driver': {'controller': str(controller)},
+        'criteria': [{'kind': 'stay_in_lane', 'max_offset': 0.1}]}), encoding='utf-8')
+    result = run_scenario(str(scenario))
+    assert result.passed
+    assert record.read_text() == '2001 10.000'
