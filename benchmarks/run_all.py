@@ -117,6 +117,7 @@ def _gym_figures(quick):
 
 def collect(quick):
     """Run every benchmark; return (rows, floors)."""
+    import bench_lane_world
     import bench_maps
     import bench_plugin
     import bench_record
@@ -155,6 +156,7 @@ def collect(quick):
                                                                  folder)
         long_steps = 6000 if quick else 60000
         rss_start, rss_end, long_size, _ = bench_record.measure_memory(long_steps, folder)
+    lane_world = bench_lane_world.figures(quick)
     found['write_us'] = bare_write_us()
     found['matched_write_us'] = matched_write_us()
     bare_p50, bare_p99 = service['bare']
@@ -191,6 +193,8 @@ def collect(quick):
          bench_record.TARGET_RTF, 'x'),
         (f'recorder RSS growth over {long_steps * bench_record.STEP_MS / 1000:g} s simulated',
          rss_end - rss_start, '<=', 5.0, 'MiB'),
+        ('highway (roads:) node step with lanes - without, per car (lane state, invasions)',
+         lane_world['extra_us'], '<=', 20.0, 'us'),
     ] + gym_rows
     floors = [
         f'raw PyBullet stepSimulation (BmwX5): {raw_us:.1f} us per basic step; Driver.step '

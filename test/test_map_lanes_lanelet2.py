@@ -33,9 +33,9 @@ LOCAL_SHIFT, as an MGRS grid position would be), so the projectors can be told a
 import math
 import sys
 
+from lane_helpers import DEFAULT_MPS, LOCAL_SHIFT, ORIGIN, write_map
 import pytest
 
-from vehicle_sim.core.geometry.geodesy import GeodeticOrigin, LocalTangentPlane
 from vehicle_sim.core.map.lane_invasion import LaneInvasionDetector
 from vehicle_sim.core.map.lane_state import LaneTracker
 from vehicle_sim.core.map.lanelet2_params import lanelet2_map_from_dict
@@ -50,63 +50,6 @@ from vehicle_sim.maps.lanelet2_map import (  # noqa: E402  (after the skip)
     line_type_of,
     load_lanelet2,
 )
-
-ORIGIN = GeodeticOrigin(48.1, 11.5, 0.0)
-LOCAL_SHIFT = (81000.0, 49000.0)
-DEFAULT_MPS = 13.9
-
-
-def _node(plane, node_id, x, y, local_tags=True):
-    lat, lon, alt = plane.to_geodetic(x, y, 0.0)
-    tags = (f'<tag k="local_x" v="{x + LOCAL_SHIFT[0]!r}"/><tag k="local_y" '
-            f'v="{y + LOCAL_SHIFT[1]!r}"/>' if local_tags else '')
-    return (f'  <node id="{node_id}" lat="{lat:.12f}" lon="{lon:.12f}" version="1">'
-            f'<tag k="ele" v="{alt:.6f}"/>{tags}</node>\n')
-
-
-def _way(way_id, nodes, kind, subtype=None):
-    refs = ''.join(f'<nd ref="{n}"/>' for n in nodes)
-    sub = f'<tag k="subtype" v="{subtype}"/>' if subtype else ''
-    return f'  <way id="{way_id}" version="1">{refs}<tag k="type" v="{kind}"/>{sub}</way>\n'
-
-
-def _lanelet(rel_id, left, right, one_way='yes', extra=''):
-    return (f'  <relation id="{rel_id}" version="1"><member type="way" ref="{left}" role="left"/>'
-            f'<member type="way" ref="{right}" role="right"/><tag k="type" v="lanelet"/>'
-            f'<tag k="subtype" v="road"/><tag k="location" v="urban"/>'
-            f'<tag k="one_way" v="{one_way}"/>{extra}</relation>\n')
-
-
-def write_map(path, lanelets=True, local_tags=True):
-    """Write the map of the module docstring; return its path."""
-    plane = LocalTangentPlane(ORIGIN)
-    grid = {}                       # (x, y) -> node id; several points per boundary on 0..50
-    text = '<?xml version="1.0" encoding="UTF-8"?>\n<osm version="0.6" generator="test">\n'
-    xs = (0.0, 12.5, 25.0, 37.5, 50.0, 100.0, 150.0)
-    for x in xs:
-        for y in (0.0, 3.5, 7.0):
-            grid[(x, y)] = 100 + len(grid)
-            text += _node(plane, grid[(x, y)], x, y, local_tags or len(grid) > 1)
-
-    def line(y, x_from, x_to):
-        return [grid[(x, y)] for x in xs if x_from <= x <= x_to]
-
-    text += _way(1001, line(0.0, 0, 50), 'line_thin', 'solid')
-    text += _way(1002, line(3.5, 0, 50), 'line_thin', 'dashed')
-    text += _way(1003, line(7.0, 0, 50), 'line_thin', 'solid')
-    text += _way(1004, line(0.0, 50, 100), 'line_thin', 'solid')
-    text += _way(1005, line(3.5, 50, 100), 'line_thin', 'solid')
-    text += _way(1006, line(7.0, 50, 100), 'line_thin', 'solid')
-    text += _way(1007, line(0.0, 100, 150), 'curbstone', 'high')
-    text += _way(1008, line(3.5, 100, 150), 'line_thin', 'solid')
-    if lanelets:
-        text += _lanelet(2001, 1002, 1001)
-        text += _lanelet(2002, 1003, 1002)
-        text += _lanelet(2003, 1005, 1004)
-        text += _lanelet(2004, 1006, 1005, extra='<tag k="speed_limit" v="30"/>')
-        text += _lanelet(2005, 1008, 1007, one_way='no')
-    path.write_text(text + '</osm>\n', encoding='utf-8')
-    return path
 
 
 @pytest.fixture(scope='module')

@@ -37,6 +37,7 @@ EXPECTED_FILES = {
     'msg/Collision.msg', 'msg/LaneState.msg', 'msg/LaneInvasion.msg',
     'srv/SetFloat.srv', 'srv/GetFloat.srv', 'srv/SetInt.srv', 'srv/GetInt.srv',
     'srv/SetBool.srv', 'srv/GetBool.srv', 'srv/GetDimensions.srv', 'srv/SetPose.srv',
+    'srv/SetLanePose.srv',
 }
 
 
@@ -69,7 +70,7 @@ def test_exported_files_parse_and_name_every_type(package_dir):
         'vehicle_msgs/msg/LaneState', 'vehicle_msgs/msg/LaneInvasion',
         *(f'vehicle_msgs/msg/{srv}_{part}'
           for srv in ('SetFloat', 'GetFloat', 'SetInt', 'GetInt', 'SetBool', 'GetBool',
-                      'GetDimensions', 'SetPose')
+                      'GetDimensions', 'SetPose', 'SetLanePose')
           for part in ('Request', 'Response')),
     }
 

@@ -49,6 +49,10 @@ def test_fields_are_in_the_definitions_order():
         'header', 'on_lane', 'lane_id', 's', 'offset', 'heading_error', 'width', 'speed_limit']
     assert list(message_type('vehicle_msgs/msg/LaneInvasion').__dataclass_fields__) == [
         'header', 'boundary_id', 'line_type', 'position']
+    assert list(message_type('vehicle_msgs/srv/SetLanePose_Request').__dataclass_fields__) == [
+        'lanelet', 's', 'offset']
+    assert list(message_type('vehicle_msgs/srv/SetLanePose_Response').__dataclass_fields__) == [
+        'success', 'message']
 
 
 @pytest.mark.parametrize('ros_type, digest', [
@@ -57,6 +61,8 @@ def test_fields_are_in_the_definitions_order():
      'ff5e36c66771f4b3a566da21fdb62b3df4c475f8f300c2d26a4fe6d63c6eb3cf'),
     ('vehicle_msgs/msg/LaneInvasion',
      '536182fd7b69061433861ddfa523cab04c997eac600fa56ed53317ce7eabeea5'),
+    ('vehicle_msgs/srv/SetLanePose',
+     '2c795a5dbb0b5089d6e7807059c11b16188933e566a7abc4ae085675e81c65bd'),
 ])
 def test_type_hash_is_the_pinned_value(ros_type, digest):
     assert type_hash(ros_type) == 'RIHS01_' + digest
@@ -132,3 +138,11 @@ def test_lane_markers_draw_the_surface_every_boundary_and_every_centreline():
     assert all(m.header.frame_id == 'map' for m in array.markers)
     data = array.serialize()       # (colours are float32: compare bytes, not values)
     assert type(array).deserialize(data).serialize() == data
+
+
+def test_set_lane_pose_request_bytes_are_the_hand_computed_cdr():
+    request = message_type('vehicle_msgs/srv/SetLanePose_Request')(lanelet=-2005, s=12.5,
+                                                                   offset=-0.25)
+    expected = LE_HEADER + struct.pack('<q2d', -2005, 12.5, -0.25)
+    assert request.serialize() == expected
+    assert type(request).deserialize(expected) == request

@@ -33,6 +33,10 @@ PyBullet's compound shapes would hold at most 16 boxes each). The World names th
 would put the body's centre inside a thick wall, where it touches no face). A vehicle whose
 start position lies on a wall cell is refused before anything is built, naming the world file's
 field; one whose outline touches a wall is refused by the World.
+
+A lanelet2 map (:func:`~vehicle_sim.physics.lane_layer.build_lanelet2`) becomes its road
+surface, markings and barriers (physics/lane_layer.py); its lanes were loaded before the bodies
+(``spec.lanes``).
 """
 
 from dataclasses import dataclass
@@ -48,6 +52,7 @@ from vehicle_sim.core.map.rectangles import COLUMN, COLUMNS, merge_rectangles, R
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.world.params import WorldSpec
 from vehicle_sim.maps.occupancy_files import load_occupancy_grid
+from vehicle_sim.physics.lane_layer import build_lanelet2
 
 MAP_BODY_NAME = 'map'
 # Boxes of one static mesh body, and the side of the square of cells they are ordered by.
@@ -186,6 +191,7 @@ def build_occupancy_grid(world, spec: WorldSpec) -> OccupancyMap:
 # map kind (core/map/kinds.py MAP_KINDS) -> build(world, WorldSpec) -> what callers read.
 MAP_BUILDERS: Dict[str, Callable] = {
     'occupancy_grid': build_occupancy_grid,
+    'lanelet2': build_lanelet2,      # physics/lane_layer.py: a LaneMap
 }
 
 

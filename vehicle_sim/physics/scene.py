@@ -32,8 +32,14 @@ Extension points: a *scene part* is any object with ``name`` and ``build(world, 
 what the WorldSpec asks of it (a map layer's ground and walls, traffic vehicles) once the
 obstacles and vehicles are in, and returns what callers read later, kept in
 :attr:`Scene.parts` under its name. A WorldSpec with a ``map`` gets the map layer
-(physics/map_layer.py) as its first part, ``scene.parts['map']``; a world without one gets no
-part and pays nothing.
+(physics/map_layer.py) as its first part, ``scene.parts['map']``; a WorldSpec with ``roads:``
+gets the road layer (physics/lane_layer.py), ``scene.parts['roads']``; a world without either
+gets no part and pays nothing.
+
+Lanes: before anything is built, the world's lane map (a lanelet2 map or its roads) is loaded
+and the vehicles placed by lane get their pose (vehicle_sim/maps/lane_maps.py), so a bad file
+or a vehicle off every lane is refused with nothing built; :attr:`Scene.lanes` is that
+LaneGraph (None without a lane map), ``scene.spec`` the WorldSpec with it.
 
 It returns a :class:`Scene`: the World, the vehicles by name (:class:`SceneVehicle`: body, car,
 sensors), the obstacles by name and the geodetic origin, which callers read instead of building
@@ -48,8 +54,10 @@ from vehicle_sim.config import load_car, load_robot
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.world.params import RobotSpec, used_twice, WorldSpec
+from vehicle_sim.maps.lane_maps import with_lanes
 from vehicle_sim.physics.diff_robot import DiffRobotBody
 from vehicle_sim.physics.gui import GuiClosedError
+from vehicle_sim.physics.lane_layer import RoadLayer
 from vehicle_sim.physics.map_layer import MapLayer
 from vehicle_sim.physics.sensors import SensorSuite
 from vehicle_sim.physics.simulated_car import SimulatedCar
@@ -101,6 +109,11 @@ class Scene:
     parts: Dict[str, object] = field(default_factory=dict)
 
     @property
+    def lanes(self):
+        """The world's lane map (a core LaneGraph), or None when it has none."""
+        return self.spec.lanes
+
+    @property
     def origin(self) -> GeodeticOrigin:
         """The geodetic origin of the world frame (GNSS)."""
         return self.spec.origin
@@ -139,13 +152,16 @@ def build_scene(spec: WorldSpec, world: Optional[World] = None, *,
     :param parts: scene parts (traffic), built in order after the vehicles (and after the map
         layer, which a spec with a map gets first).
     :raises InvalidPoseError: for a vehicle that starts inside an obstacle.
-    :raises InvalidParameterError: for two vehicles (cars or robots) of one name; nothing is
-        built.
+    :raises InvalidParameterError: for two vehicles (cars or robots) of one name, a lane map
+        that cannot be read, a vehicle placed off every lane; nothing is built.
     """
     twice = used_twice([v.name for v in spec.vehicles] + [r.name for r in robots])
     if twice:   # names are how getDevice, /initialpose and scenarios find a vehicle
         raise InvalidParameterError(f'vehicle name(s) used twice: {twice}')
     params = params or {}
+    spec = with_lanes(spec)     # lanes loaded and vehicles placed on them, before any body
+    if spec.roads:
+        parts = (RoadLayer(),) + tuple(parts)
     if spec.map is not None:
         parts = (MapLayer(),) + tuple(parts)
     owned = world is None

@@ -45,6 +45,7 @@ from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.physics.sensors import SensorFeed
 from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.ros.car_context import CarContext
+from vehicle_sim.ros.car_lanes import publish_car_lanes, wire_car_lanes
 from vehicle_sim.ros.descriptions import mounted_sensors
 from vehicle_sim.ros.endpoints import (
     EACH_PUBLISH,
@@ -56,7 +57,12 @@ from vehicle_sim.ros.endpoints import (
     serve,
     subscribe,
 )
-from vehicle_sim.ros.map_interfaces import map_in_world, map_static_transform, MapOutputs
+from vehicle_sim.ros.map_interfaces import (
+    lanes_frame,
+    map_in_world,
+    map_static_transform,
+    MapOutputs,
+)
 from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.sensor_interfaces import check_names, sensor_rows
 from vehicle_sim.ros.sim_control import serve_vehicle, WorldControl
@@ -157,12 +163,15 @@ class AutomobileNode:
             self._live = start_live_view(node, settings)
         spec = self._with_sensor_parameter(world_spec(settings))
         # Collisions are watched when there is something besides the ground to hit.
+        # (and in a world whose lane map has barriers: curbstones, walls).
         collisions = bool(spec.obstacles) or len(spec.vehicles) > 1 or spec.map is not None
 
         def feed(vehicle, scene):
             # Each vehicle's sensors at their rates, and its collisions (ros: their topics).
+            watch = collisions or any(getattr(part, 'barrier_count', 0)
+                                      for part in scene.parts.values())
             return SensorFeed(scene.world, vehicle.body, vehicle.spec.sensors, scene.origin,
-                              collisions)
+                              watch)
 
         self.scene = build_scene(spec, time_step_s=settings.time_step_s,
                                  friction=settings.friction, gui=settings.gui, mount=feed)
@@ -232,7 +241,8 @@ class AutomobileNode:
                       for row in itf.WORLD_SERVICES + itf.WORLD_INPUTS})
         for spec in scene.vehicles:
             full_name = self._full_name(spec.namespace)
-            for row in itf.VEHICLE_TOPICS + itf.INPUT_TOPICS + itf.SERVICES:
+            for row in (itf.VEHICLE_TOPICS + itf.LANE_TOPICS + itf.INPUT_TOPICS + itf.SERVICES
+                        + itf.LANE_SERVICES):
                 taken[full_name(row.name)] = f'{row.name!r} of vehicle {spec.name!r}'
         return taken
 
@@ -264,6 +274,9 @@ class AutomobileNode:
             spec: self._bind(handlers[spec.kind], spec, vehicle, resolve(spec.name))
             for spec in itf.SERVICES if spec.kind in handlers}, resolve).values())
         vehicle.services += serve_vehicle(node, itf.POSE_SERVICES, vehicle, resolve).values()
+        if self.scene.lanes is not None:    # lane_state, lane_invasion, set_lane_pose
+            wire_car_lanes(node, vehicle, self.scene.lanes, lanes_frame(self.scene.spec),
+                           resolve)
         vehicle.drive = CarDriveInput(vehicle.logic, self.settings.cmd_vel_timeout_s)
         if self._drive_inputs:
             self._wire_inputs(vehicle, resolve)
@@ -304,8 +317,10 @@ class AutomobileNode:
         if world_map is not None:     # map -> world, the root of the tree (docs/maps.md)
             self._fleet.static_transforms.insert(0, map_static_transform(world_map))
         self._fleet_outputs = Outputs(self.node, itf.WORLD_TOPICS, self._fleet)
-        # /map and its kin (ros/map_interfaces.py), for a world with a map.
-        self._map_outputs = MapOutputs(self.node, self.scene.parts.get('map'))
+        # /map, /map/lanes and their kin (ros/map_interfaces.py), for a world with a map.
+        parts = self.scene.parts
+        self._map_outputs = MapOutputs(self.node, parts.get('map'), parts.get('roads'),
+                                       lanes_frame(self.scene.spec))
         if self._map_outputs.summary:
             self._logger.info(self._map_outputs.summary)
 
@@ -419,6 +434,8 @@ class AutomobileNode:
             for vehicle in vehicles:
                 vehicle.sample(stamp)
                 vehicle.outputs.publish(EACH_PUBLISH, vehicle)
+                if vehicle.lanes is not None:
+                    publish_car_lanes(vehicle, time_s, self._stamp)
                 if tf_poses is not None:
                     tf_poses.append(vehicle.odom[:2])
                 if serve_pending is not None:   # a request waits for one car's burst at most

@@ -23,6 +23,7 @@ feed, its drive inputs and the listeners of composing nodes follow.
 """
 
 from vehicle_sim.core.car.drivetrain import ControlMode
+from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.geometry.frames import pose_in_frame, quaternion_from_yaw, twist_in_body
 from vehicle_sim.core.sensors.sets import static_transforms
 from vehicle_sim.ros import interfaces as itf
@@ -65,6 +66,13 @@ class CarContext:
         self.sample_stamp = None
         self.event = None
         self.event_stamp = None
+        # Lanes (a world with a lane map): its VehicleLanes, the rows' Outputs and call context.
+        self.lanes = None
+        self.lanes_frame = 'world'
+        self.lane_outputs = None
+        self.lane_state = None
+        self.lane_event = None
+        self.lane_event_stamp = None
 
     def sample(self, stamp):
         """
@@ -111,6 +119,18 @@ class CarContext:
             joints = self._joints = (positions, velocities)
         return joints
 
+    def update_lanes(self, time_s):
+        """
+        Read the car's lane state now (``lane_state``); return the markings crossed since.
+
+        Called each publish period in a world with a lane map (``lanes`` set), right after
+        :meth:`sample`, from base_link's ground-truth pose.
+        """
+        x, y, _, qx, qy, qz, qw = self.body.pose()
+        self.lane_state, crossed = self.lanes.update(x, y, yaw_from_quaternion(qx, qy, qz, qw),
+                                                     time_s)
+        return crossed
+
     @property
     def label(self):
         return f'vehicle {self.spec.name!r}'
@@ -119,6 +139,8 @@ class CarContext:
         """Put the car back at its spawn pose and its logic in its start state (sim_control)."""
         self.car.reset()
         self.feed.restart_motion()
+        if self.lanes is not None:
+            self.lanes.reset()          # the jump back is not a crossing
         if self.drive is not None:
             self.drive.service_override()   # a stale command's watchdog must not brake later
         for listener in self.reset_listeners:
@@ -138,6 +160,8 @@ class CarContext:
         """Put the car at rest at a GroundPose (sim_control); raises InvalidPoseError."""
         self.car.teleport(place.position)
         self.feed.restart_motion()
+        if self.lanes is not None:
+            self.lanes.reset()
 
     def description(self):
         """Return the URDF published on robot_description (names prefixed ``<p>``)."""

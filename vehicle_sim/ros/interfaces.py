@@ -37,6 +37,7 @@ positive = right, throttle and brake in [0, 1]. Standard ROS outputs are SI / RE
 
 from operator import attrgetter
 
+from vehicle_sim.ros import lane_messages as lm
 from vehicle_sim.ros import messages as m
 from vehicle_sim.ros.autoware_interfaces import ACKERMANN_DRIVE
 from vehicle_sim.ros.endpoints import (  # noqa: F401 - the cadences are part of this table
@@ -48,6 +49,7 @@ from vehicle_sim.ros.endpoints import (  # noqa: F401 - the cadences are part of
     EACH_PUBLISH,
     EACH_STEP,
     IN,
+    ON_EVENT,
     ONCE_LATCHED,
     RECEIVED,
     Service,
@@ -57,7 +59,7 @@ from vehicle_sim.ros.endpoints import (  # noqa: F401 - the cadences are part of
     topic_table_markdown,
     value_text,
 )
-from vehicle_sim.ros.sensor_interfaces import COLLISION, sensor_topic_rows
+from vehicle_sim.ros.sensor_interfaces import COLLISION, QOS_SENSOR, sensor_topic_rows
 from vehicle_sim.ros.sim_control import (
     RESET,
     TELEPORT,
@@ -155,6 +157,34 @@ TOPICS = AUTOMOBILE_TOPICS + STANDARD_TOPICS
 # Wired once per vehicle (relative names) and once for the node (global names).
 VEHICLE_TOPICS = tuple(row for row in TOPICS if not row.is_global)
 WORLD_TOPICS = tuple(row for row in TOPICS if row.is_global)
+
+# Lanes (docs/maps.md): wired per vehicle only in a world with a lane map (a lanelet2 map or
+# roads:), in their own Outputs. Call context: ``lane_state`` (core LaneState of this sample),
+# ``lane_event`` and ``lane_event_stamp`` (one core LaneInvasion); wiring: ``lanes_frame``.
+LANE_STATE = Topic('lane_state', lm.LANE_STATE, QOS_DEFAULT, EACH_PUBLISH,
+                   converter(lm.lane_state_builder, lambda v: (v.stamp, v.lane_state),
+                             lambda w: (w.lanes_frame,)),
+                   unit='m, rad, m/s',
+                   doc='the lane base_link is on: lane id, s along its centreline, offset '
+                       '(+ left), heading error, width, speed limit; on_lane false off every '
+                       'lane; frame of the lane map (map or world)')
+LANE_INVASION = Topic('lane_invasion', lm.LANE_INVASION, QOS_SENSOR, ON_EVENT,
+                      converter(lm.lane_invasion_builder,
+                                lambda v: (v.lane_event_stamp, v.lane_event),
+                                lambda w: (w.lanes_frame,)),
+                      unit='m',
+                      doc='base_link crossed a lane marking: one message per crossing, naming '
+                          'the boundary and its line type (virtual and none lines give none)')
+LANE_TOPICS = (LANE_STATE, LANE_INVASION)
+SET_LANE_POSE_TYPE = 'vehicle_msgs/srv/SetLanePose'
+LANE_POSE = 'lane_pose'    # service kind: teleport onto a lane (ros/car_lanes.py)
+SET_LANE_POSE = Service('set_lane_pose', SET_LANE_POSE_TYPE, LANE_POSE, value='lane pose',
+                        unit='m', webots=False,
+                        doc='teleport at rest onto a lane: at s along its centreline, offset to '
+                            'its left (+), heading along it; refused: a lane not in the map, s '
+                            'outside it, an offset off it, NaN/inf, a place inside an obstacle '
+                            'or vehicle')
+LANE_SERVICES = (SET_LANE_POSE,)
 
 # Inputs of each car (docs/drive.md): cmd_vel (one of CMD_VEL_INPUTS, by the cmd_vel_stamped
 # parameter) and drive; the converters give SI values, steering + = left (REP 103).

@@ -18,12 +18,14 @@ The topics of a world's map: rows per map kind, and the map -> world transform.
 A node whose scene has a map (``scene.parts['map']``, physics/map_layer.py) wires the rows
 :func:`map_rows` gives for its kind with :class:`MapOutputs` and publishes them once, latched,
 with its other latched rows. An occupancy grid publishes ``/map`` and ``/map_metadata`` as nav2
-map_server does (transient-local, reliable, depth 1; frame ``map``). Every map adds the
+map_server does (transient-local, reliable, depth 1; frame ``map``); a lane map (a lanelet2
+map, or a world's ``roads:``) publishes ``/map/lanes`` (visualization_msgs/MarkerArray, the
+same QoS; frame :func:`lanes_frame`). Every map adds the
 ``map -> world`` transform to ``/tf_static`` (:func:`map_static_transform`): identity unless the
 world file's ``world_in_map`` says otherwise.
 
-Wiring context: ``map_frame``; call context: ``stamp`` (the loading time) and ``grid`` (the
-core OccupancyGrid).
+Wiring context: ``map_frame``, ``lanes_frame``; call context: ``stamp`` (the loading time),
+``grid`` (the core OccupancyGrid), ``lanes`` (the core LaneGraph).
 """
 
 import math
@@ -33,6 +35,7 @@ from typing import Dict, Tuple
 from vehicle_sim.core.geometry.frames import quaternion_from_yaw
 from vehicle_sim.ros import messages as m
 from vehicle_sim.ros.endpoints import converter, ONCE_LATCHED, Outputs, Topic
+from vehicle_sim.ros.lane_messages import lane_markers_builder, MARKER_ARRAY
 from vehicle_sim.transport.qos import QOS_LATCHED
 
 MAP_FRAME = 'map'
@@ -47,15 +50,36 @@ MAP_METADATA = Topic('/map_metadata', m.MAP_META_DATA, QOS_LATCHED, ONCE_LATCHED
                      converter(m.map_meta_data_builder, lambda ctx: (ctx.stamp, ctx.grid)),
                      unit='m', doc="the grid's size, resolution and origin")
 
+MAP_LANES = Topic('/map/lanes', MARKER_ARRAY, QOS_LATCHED, ONCE_LATCHED,
+                  converter(lane_markers_builder, lambda ctx: (ctx.stamp, ctx.lanes),
+                            lambda w: (w.lanes_frame,)),
+                  unit='m', doc='the lane map for RViz: road surface (triangle list), lane '
+                                'boundaries by line type, centrelines; frame map (a lanelet2 '
+                                'map) or world (roads:)')
+
 # map kind (core/map/kinds.py MAP_KINDS) -> its rows.
 MAP_TOPICS: Dict[str, Tuple[Topic, ...]] = {
     'occupancy_grid': (MAP, MAP_METADATA),
+    'lanelet2': (MAP_LANES,),
 }
+# The rows of a world's roads: (a lane map without a map: key).
+ROADS_TOPICS: Tuple[Topic, ...] = (MAP_LANES,)
 
 
 def map_rows(built) -> Tuple[Topic, ...]:
     """Return the rows of a built map (``scene.parts['map']``); () for no map."""
     return () if built is None else MAP_TOPICS[built.spec.type]
+
+
+def lanes_frame(spec) -> str:
+    """
+    Return the frame of a world's lane messages: ``map`` for a lanelet2 map, else ``world``.
+
+    A lanelet2 map's nodes are in the map frame (Autoware's), which is the world frame there
+    (core/map/kinds.py refuses a world_in_map other than the identity); roads are written in
+    the world frame.
+    """
+    return MAP_FRAME if getattr(spec.map, 'type', None) == 'lanelet2' else WORLD_FRAME
 
 
 def map_static_transform(map_spec):
@@ -75,21 +99,28 @@ def map_in_world(map_spec):
 
 class MapOutputs:
     """
-    The publishers of a scene's map rows (none for a scene without a map).
+    The publishers of a scene's map rows (none for a scene without a map or roads).
 
     :param node: a transport NodePort.
     :param built: ``scene.parts.get('map')``.
+    :param roads: ``scene.parts.get('roads')`` (a LaneMap of the world's roads:), or None.
+    :param frame: the frame of the lane messages (:func:`lanes_frame`).
     """
 
-    def __init__(self, node, built):
+    def __init__(self, node, built, roads=None, frame=WORLD_FRAME):
         self._built = built
-        rows = map_rows(built)
+        rows = map_rows(built) + (ROADS_TOPICS if roads is not None else ())
+        lanes = getattr(built, 'lanes', None) or getattr(roads, 'lanes', None)
         self._context = SimpleNamespace(map_frame=MAP_FRAME, stamp=None,
-                                        grid=getattr(built, 'grid', None))
+                                        grid=getattr(built, 'grid', None), lanes=lanes,
+                                        lanes_frame=frame)
         self.outputs = Outputs(node, rows, self._context) if rows else None
         # One line for the node's log: what was loaded ('' without a map).
-        self.summary = '' if built is None else (
-            f'map {built.describe()}; publishing ' + ', '.join(row.name for row in rows))
+        loaded = [f'map {built.describe()}'] if built is not None else []
+        if roads is not None:
+            loaded.append(f'roads {roads.describe()}')
+        self.summary = '' if not loaded else (
+            '; '.join(loaded) + '; publishing ' + ', '.join(row.name for row in rows))
 
     def publish_latched(self, stamp):
         """Publish the map's latched rows with ``stamp`` (the time the map was loaded)."""

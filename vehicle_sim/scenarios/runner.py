@@ -156,7 +156,8 @@ class Director:
             self.world.remove(monitor)      # stepped from post_step, after the physics
             self.monitors[name] = monitor
         self.collisions = {name: [] for name in self.vehicles}
-        scene = world_scene(self.world, self.vehicles, self.spec.world.obstacles)
+        scene = world_scene(self.world, self.vehicles, self.spec.world.obstacles,
+                            lanes=getattr(sim, 'lanes', None))
         for criterion in self.criteria:
             criterion.bind(scene)
         self.tracks = {name: Track(outline=scene.outline(name)) for name in self.vehicles}
@@ -337,7 +338,7 @@ def _run_controller(spec, sim, director, step):
     from vehicle_sim.webots.host import ControllerHost, ControllerStopped, hosting
     vut = director.vut
     host = ControllerHost(sim.world, vut.car, vut.sensors, spec.world.origin, spec.duration_s,
-                          step)
+                          step, lanes=getattr(sim, 'lanes', None))
     script = spec.driver.controller
     saved_argv, saved_path = sys.argv, list(sys.path)
     saved_seed = os.environ.get('VEHICLE_SIM_SEED')

@@ -33,10 +33,12 @@ class Scene:
     :param outlines: {vehicle name: Outline}.
     :param fixed: footprints that never move (static obstacles, map walls).
     :param moving: returns the footprints of the movable obstacles now; None = none.
+    :param lanes: the world's lane map (a core LaneGraph; the lane criteria read it), or None.
     """
 
     def __init__(self, outlines: Dict[str, Outline], fixed: Sequence[Footprint] = (),
-                 moving: Callable[[], Iterable[Footprint]] = None):
+                 moving: Callable[[], Iterable[Footprint]] = None, lanes=None):
+        self.lanes = lanes
         self._outlines = dict(outlines)
         self._fixed = tuple(fixed)
         self._moving = moving
@@ -52,7 +54,8 @@ class Scene:
         return self._fixed + tuple(self._moving())
 
 
-def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = ()) -> Scene:
+def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
+                lanes=None) -> Scene:
     """
     Return the scene of a built simulation.
 
@@ -60,6 +63,7 @@ def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = ()) -> 
     :param vehicles: {name: VehicleHandle}.
     :param obstacles: the world's ObstacleSpecs.
     :param walls: further fixed footprints (a map's walls).
+    :param lanes: the world's lane map (the built scene's ``lanes``), or None.
     """
     fixed = [obstacle_footprint(spec) for spec in obstacles if spec.static] + list(walls)
     movable = [spec for spec in obstacles if not spec.static]
@@ -70,4 +74,4 @@ def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = ()) -> 
             yield obstacle_footprint(spec, position, orientation)
 
     return Scene({name: handle.outline for name, handle in vehicles.items()}, fixed,
-                 moving if movable else None)
+                 moving if movable else None, lanes)

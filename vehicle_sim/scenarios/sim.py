@@ -102,6 +102,7 @@ class LocalSim:
         self.scene = scene = build_scene(spec.world, time_step_s=spec.time_step_ms / 1000.0,
                                          gui=gui, robots=spec.robots, hooks=(director,))
         self.world = world = scene.world
+        self.lanes = scene.lanes        # the lane criteria's lane map (None: none)
         self.vehicles = {
             name: VehicleHandle(name, built.body, built.car,
                                 _seeded(built.spec.sensors, seed) if built.car is not None else ())
@@ -147,6 +148,7 @@ class ServedSim:
         self.robot_nodes = []
         self._temp = None
         self.vehicles = {}
+        self.lanes = None               # the lane criteria's lane map (None: none)
         step_ms = spec.time_step_ms
 
         def tapped(name, overrides):
@@ -176,6 +178,7 @@ class ServedSim:
                                                  parameter_overrides=overrides,
                                                  node=tapped(NODE_NAME, overrides))
                 world = self.automobile.world
+                self.lanes = self.automobile.scene.lanes
                 for vehicle in spec.world.vehicles:
                     built = self.automobile.scene.vehicles[vehicle.name]
                     self.vehicles[vehicle.name] = VehicleHandle(
@@ -193,7 +196,8 @@ class ServedSim:
                 self.robot_nodes.append(node)
                 if world is None:
                     world = node.world
-                    build_scene(spec.world, world)     # the obstacles (no car: no vehicles)
+                    # the obstacles (no car: no vehicles) and the lane map
+                    self.lanes = build_scene(spec.world, world).lanes
                 self.vehicles[robot.name] = VehicleHandle(robot.name, node.robot)
             self.world = world
             world.add_body(director)

@@ -32,6 +32,10 @@ InertialUnit, Gyro, Accelerometer, DistanceSensor; webots/devices.py) of a mount
 looked up by its device name. Sensors are mounted by a world file (``world_file=`` or
 ``VEHICLE_SIM_WORLD``; the Driver drives its first vehicle) or by ``sensors=`` (names of the
 car preset's sensors, which carry the Webots car PROTOs' device names).
+
+Lanes: in a world with a lane map (a lanelet2 map or ``roads:``; docs/maps.md),
+``driver.getLaneState()`` returns the car's lane state now (a core LaneState: lane id, s,
+offset, heading error, width, speed limit), an addition of ours (Webots has no lane map).
 """
 
 from dataclasses import replace
@@ -42,9 +46,12 @@ import weakref
 
 from vehicle_sim.config import load_car, load_world
 from vehicle_sim.core.car.drivetrain import ControlMode
+from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
+from vehicle_sim.core.map.lane_state import LaneTracker
 from vehicle_sim.core.sensors.sets import enable_sensors
 from vehicle_sim.core.world.params import VehicleSpec, WorldSpec
+from vehicle_sim.maps.lane_maps import with_lanes
 from vehicle_sim.physics.scene import build_scene, mount_suite
 from vehicle_sim.physics.sensors import SensorSuite
 from vehicle_sim.webots.api_table import (
@@ -191,6 +198,8 @@ class Driver:
         if world is None and world_file is None:
             world_file = os.environ.get('VEHICLE_SIM_WORLD') or None
         spec = load_world(world_file, car) if world is None and world_file else None
+        if spec is not None:
+            spec = with_lanes(spec)     # vehicles placed by lane get their pose here
         vehicle = spec.vehicles[0] if spec is not None else None
         params = load_car(vehicle.model if vehicle is not None else car)
         if position is None:
@@ -222,6 +231,7 @@ class Driver:
         self.simulated_car = scene.vehicles[name].car
         self.logic = self.simulated_car.logic
         self.sensors = scene.vehicles[name].sensors
+        self._lanes = None if scene.lanes is None else LaneTracker(scene.lanes)
         self._devices = devices_of(self.sensors)
         self._duration_s = duration_s
         self._sync = _WorldSync.of(world)
@@ -239,6 +249,8 @@ class Driver:
         if sensors is not None:
             specs = enable_sensors(specs, sensors, 'Driver(sensors=...)')
         self.sensors = SensorSuite(world, host.car.body, specs, host.origin)
+        lanes = getattr(host, 'lanes', None)
+        self._lanes = None if lanes is None else LaneTracker(lanes)
         self._devices = devices_of(self.sensors)
         self._duration_s = host.duration_s
         self._sync = _WorldSync.of(world)
@@ -365,6 +377,21 @@ class Driver:
             _warn(f'getDeviceByIndex({index}): index outside 0..{len(devices) - 1}')
             return None
         return devices[index]
+
+    # ---------------------------------------------------------------- lanes (our addition)
+    def getLaneState(self):
+        """
+        Return the car's lane state now, or None in a world without a lane map.
+
+        A core LaneState (core/map/lane_state.py) of base_link's ground-truth pose:
+        ``on_lane``, ``lane_id``, ``s_m``, ``offset_m`` (+ left), ``heading_error_rad``,
+        ``width_m``, ``speed_limit_mps`` (off every lane: ``on_lane`` False, the rest 0). The
+        values ``<ns>/lane_state`` carries on ROS (docs/maps.md).
+        """
+        if self._lanes is None:
+            return None
+        x, y, _, qx, qy, qz, qw = self.simulated_car.body.pose()
+        return self._lanes.update(x, y, yaw_from_quaternion(qx, qy, qz, qw))
 
     # ---------------------------------------------------------------- special getters
     def getControlMode(self):

@@ -53,6 +53,7 @@ class ControllerHost:
     :param duration_s: ``step()`` returns -1 from this simulated time on [s].
     :param step: advances the world one basic step (and serves it, when the host publishes it);
         None = ``world.step``.
+    :param lanes: the world's lane map (a core LaneGraph; ``Driver.getLaneState``), or None.
     """
 
     world: Any
@@ -63,6 +64,7 @@ class ControllerHost:
     step: Optional[Callable[[], Any]] = None
     drivers: List[Any] = field(default_factory=list)
     calls_after_end: int = 0
+    lanes: Any = None
 
     def after_end(self):
         """Return -1 for a step() at or after the end; stop a controller that insists."""

@@ -20,8 +20,9 @@ table of its keys (besides the keys every map has, :data:`COMMON_MAP_SPECS`) and
 that turns the validated values into its spec. :func:`map_from_dict` validates a world's
 ``map:`` mapping against the table of its ``type`` and returns that spec; the physics layer
 (``physics/map_layer.py``) has a builder registered under the same name, and a test checks that
-both registries list the same kinds. Adding a kind (Lanelet2 maps, road segments) is one row
-here, one builder there.
+both registries list the same kinds. Adding a kind is one row here, one builder there. Kinds:
+``occupancy_grid`` and ``lanelet2`` (core/map/lanelet2_params.py's keys); the ``roads:`` key
+of a world is a lane map without a ``map:`` (core/map/road_segments.py).
 
 Every map spec carries ``type``, ``world_in_map`` (:class:`MapPlacement`: the map -> world
 transform, identity unless the world file says otherwise) and ``source`` (where it was
@@ -35,6 +36,7 @@ import os
 from typing import Callable, Dict, Tuple
 
 from vehicle_sim.core.geometry.frames import Pose
+from vehicle_sim.core.map.lanelet2_params import LANELET2_SPECS, Lanelet2MapSpec
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec, REQUIRED, validate_table
 from vehicle_sim.core.specs.value_text import brief
@@ -71,7 +73,7 @@ class MapPlacement:
 
 COMMON_MAP_SPECS = (
     ParamSpec('type', 'type', 'str', REQUIRED, '',
-              'the map kind, a name of MAP_KINDS: occupancy_grid'),
+              'the map kind, a name of MAP_KINDS: occupancy_grid, lanelet2'),
     ParamSpec('world_in_map', 'world_in_map', 'pose', Pose(), 'm, rad',
               'pose {x, y, yaw} of the world frame in the map frame (the map -> world '
               'transform on /tf_static); default identity', choices=('x', 'y', 'yaw')),
@@ -122,6 +124,22 @@ def _occupancy_grid(values, source, base_dir) -> OccupancyMapSpec:
                             values['unknown'], source)
 
 
+LANELET2_MAP_SPECS = COMMON_MAP_SPECS + tuple(s for s in LANELET2_SPECS if s.key != 'type')
+
+
+def _lanelet2(values, source, base_dir) -> Lanelet2MapSpec:
+    placement = _placement(values['world_in_map'])
+    if not placement.identity:
+        # The projector and the world's origin put the nodes in the world frame (docs/maps.md).
+        raise InvalidParameterError(
+            f"{source}: field 'world_in_map' must be the identity for a lanelet2 map (its "
+            'projector and the world origin place the nodes in the world frame, which is the '
+            "map frame); choose the projector and 'origin' instead")
+    return Lanelet2MapSpec(values['type'], _resolved(base_dir, values['file']),
+                           values['projector'], values['default_speed_limit_mps'], placement,
+                           source)
+
+
 @dataclass(frozen=True)
 class MapKind:
     """
@@ -153,6 +171,9 @@ def register_map_kind(kind: MapKind) -> MapKind:
 register_map_kind(MapKind('occupancy_grid', OCCUPANCY_GRID_SPECS, _occupancy_grid,
                           'a nav2 map_server map (YAML + PGM/PNG image): walls on occupied '
                           'cells, /map'))
+register_map_kind(MapKind('lanelet2', LANELET2_MAP_SPECS, _lanelet2,
+                          'a Lanelet2 .osm lane map: road surface and markings, curbstones and '
+                          'walls, lane state, /map/lanes'))
 
 
 def map_from_dict(data, source, base_dir=''):

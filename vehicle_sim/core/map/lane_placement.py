@@ -22,6 +22,8 @@ lane. A lane that is not in the map, an ``s`` beyond the lane or an offset off i
 naming the source and the field.
 """
 
+from dataclasses import replace
+
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec, REQUIRED, validate_table
 
@@ -58,3 +60,24 @@ def pose_on_lane(data, graph, source):
         reason, prefix = str(error), graph.source + ': '
         reason = reason[len(prefix):] if reason.startswith(prefix) else reason
         raise InvalidParameterError(f'{source}: {reason}') from None
+
+
+def place_on_lanes(vehicles, graph, source):
+    """
+    Return the vehicles with those placed by lane (``lane_pose``) at their lane's pose.
+
+    :param vehicles: VehicleSpecs of a world, in file order (``lane_pose`` None: kept).
+    :param graph: the world's LaneGraph, or None.
+    :param source: the world file, quoted in errors ('w.yaml: vehicles[0].pose: ...').
+    :raises InvalidParameterError: a lane pose off the map, naming the vehicle's ``pose``.
+    """
+    placed = []
+    for index, vehicle in enumerate(vehicles):
+        if getattr(vehicle, 'lane_pose', None) is None:
+            placed.append(vehicle)
+            continue
+        lanelet, s_m, offset_m = vehicle.lane_pose
+        x_m, y_m, yaw_rad = pose_on_lane({'lanelet': lanelet, 's': s_m, 'offset': offset_m},
+                                         graph, f'{source}: vehicles[{index}].pose')
+        placed.append(replace(vehicle, x_m=x_m, y_m=y_m, yaw_rad=yaw_rad))
+    return tuple(placed)

@@ -32,6 +32,7 @@ Projectors (how the file's nodes become world x, y):
 """
 
 from dataclasses import dataclass
+from typing import Any
 
 from vehicle_sim.core.specs.param_spec import ParamSpec, REQUIRED, validate_table
 
@@ -51,12 +52,21 @@ LANELET2_SPECS = (
 
 @dataclass(frozen=True)
 class Lanelet2MapSpec:
-    """A validated ``map:`` of type lanelet2 (``file`` as written: relative to the world)."""
+    """
+    A validated ``map:`` of type lanelet2.
+
+    ``file`` as written (relative to the world file) from :func:`lanelet2_map_from_dict`,
+    resolved against the world file's folder from the world's ``map:`` key (core/map/kinds.py),
+    which also sets ``world_in_map`` (identity: the projector puts the nodes in the world frame)
+    and ``source`` (where it was written, quoted in errors).
+    """
 
     type: str
     file: str
     projector: str
     default_speed_limit_mps: float
+    world_in_map: Any = None
+    source: str = ''
 
 
 def lanelet2_map_from_dict(data, source) -> Lanelet2MapSpec:

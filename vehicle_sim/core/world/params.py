@@ -33,13 +33,14 @@ wrong type, a NaN or an impossible value is refused with the file, the entry and
 the file and resolving car models are config.py's (this module touches no file).
 """
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 import os
 from typing import Callable, Optional, Sequence, Tuple
 
 from vehicle_sim.core.geometry.frames import Pose
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.core.map.kinds import map_from_dict
+from vehicle_sim.core.map.lane_placement import is_lane_pose, LANE_POSE_SPECS
 from vehicle_sim.core.map.road_segments import roads_from_list, RoadSpec
 from vehicle_sim.core.sensors.params import SensorSpec
 from vehicle_sim.core.sensors.sets import merge_sensors
@@ -219,8 +220,8 @@ VEHICLE_SPECS = (
     ParamSpec('namespace', 'namespace', 'namespace', '', doc="ROS namespace; '' = none"),
     ParamSpec('model', 'model', 'str', None, optional=True,
               doc='car preset; null = the car_model parameter'),
-    ParamSpec('pose', 'pose', 'pose', Pose(), 'm, rad', 'spawn pose of base_link {x, y, yaw}',
-              choices=('x', 'y', 'yaw')),
+    ParamSpec('pose', 'pose', 'pose', Pose(), 'm, rad', 'spawn pose of base_link {x, y, yaw}, '
+              'or on a lane {lanelet, s, offset} (docs/maps.md)', choices=('x', 'y', 'yaw')),
     ParamSpec('sensors', 'sensors', 'raw', None, '',
               "changes to the preset's sensors and new ones (docs/sensors.md)", optional=True),
 )
@@ -242,6 +243,9 @@ class VehicleSpec:
     y_m: float = 0.0
     yaw_rad: float = 0.0
     sensors: Tuple[SensorSpec, ...] = ()
+    # placed on a lane: (lanelet, s [m], offset [m]); x, y, yaw are set from the world's lane
+    # map when the scene is built (core/map/lane_placement.py); None = placed by x, y, yaw.
+    lane_pose: Optional[Tuple[int, float, float]] = None
 
 
 @dataclass(frozen=True)
@@ -250,7 +254,9 @@ class WorldSpec:
     A validated world: geodetic origin, vehicles, obstacles, roads; ``source`` = its file.
 
     ``roads`` are its road segments (core/map/road_segments.py); ``map`` is its map layer's spec
-    (core/map/kinds.py: e.g. an OccupancyMapSpec), or None.
+    (core/map/kinds.py: e.g. an OccupancyMapSpec), or None. ``lanes`` is its lane map (a core
+    LaneGraph from a lanelet2 map or the roads) once loaded (vehicle_sim/maps/lane_maps.py, by
+    the scene builder), with the vehicles placed by lane; None before that or without one.
     """
 
     origin: GeodeticOrigin
@@ -259,6 +265,7 @@ class WorldSpec:
     source: str = ''
     roads: Tuple[RoadSpec, ...] = ()
     map: Optional[object] = None
+    lanes: Optional[object] = field(default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True)
@@ -325,12 +332,21 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
     roads = () if roads is None else roads_from_list(roads, f'{source}: roads')
     base_dir = os.path.dirname(source) if base_dir is None else base_dir
     world_map = map_from_dict(data.get('map'), f'{source}: map', base_dir)
+    if roads and getattr(world_map, 'type', None) == 'lanelet2':
+        raise InvalidParameterError(f'{source}: has both roads: and a lanelet2 map: a world has '
+                                    'one lane map; keep one of them')
     return WorldSpec(origin, vehicles, obstacles, source, roads=roads, map=world_map)
 
 
 def _vehicle(entry, where, index, default_model, preset_sensors):
     if not isinstance(entry, dict):
         raise InvalidParameterError(f'{where} must be a mapping')
+    lane_pose = None
+    if is_lane_pose(entry.get('pose')):    # on a lane: placed once the lane map is loaded
+        lane = validate_table(LANE_POSE_SPECS, entry['pose'], f'{where}.pose',
+                              what='a pose on a lane')
+        lane_pose = (lane['lanelet'], lane['s_m'], lane['offset_m'])
+        entry = {key: value for key, value in entry.items() if key != 'pose'}
     values = validate_table(VEHICLE_SPECS, entry, where,
                             {s.key: s.default for s in VEHICLE_SPECS}, 'a vehicle')
     model = values['model'] or default_model
@@ -339,6 +355,9 @@ def _vehicle(entry, where, index, default_model, preset_sensors):
     except InvalidParameterError as error:
         raise InvalidParameterError(f"{where}: field 'model': {error}") from None
     sensors = merge_sensors(base, values['sensors'], f'{where}.sensors')
+    if lane_pose is not None:
+        return VehicleSpec(values['name'] or f'vehicle{index}', values['namespace'], model,
+                           sensors=sensors, lane_pose=lane_pose)
     pose = values['pose']
     _check_in_world(where, 'pose', pose.x_m, pose.y_m)
     return VehicleSpec(values['name'] or f'vehicle{index}', values['namespace'], model,
