@@ -25,6 +25,7 @@ The form (every key optional except ``vehicles``)::
       - {name: wall, shape: box, size: [1.0, 6.0, 2.0], position: [20.0, 0.0, 1.0], yaw: 0.0}
     roads:        # lanes from road segments: core/map/road_segments.py
       - {lanes: 2, segments: [{type: straight, length: 200.0}]}
+    traffic: {vehicles: 20, seed: 1}   # vehicles on the lanes: core/traffic/traffic_params.py
 
 Each mapping is checked against a ParamSpec table (core/param_spec.py), so an unknown key, a wrong
 type, a NaN or an impossible value is refused with the file, the entry and the field. Reading
@@ -47,9 +48,10 @@ from vehicle_sim.core.param_spec import (
 from vehicle_sim.core.placement import check_in_world
 from vehicle_sim.core.sensor_params import SensorSpec
 from vehicle_sim.core.sensor_sets import merge_sensors
+from vehicle_sim.core.traffic.traffic_params import traffic_from_dict, TrafficSpec
 from vehicle_sim.core.value_text import brief
 
-WORLD_KEYS = ('origin', 'vehicles', 'obstacles', 'roads')
+WORLD_KEYS = ('origin', 'vehicles', 'obstacles', 'roads', 'traffic')
 
 ORIGIN_SPECS = (
     ParamSpec('latitude', 'latitude_deg', 'float', 0.0, 'deg', 'WGS-84 latitude of the world '
@@ -242,13 +244,14 @@ class VehicleSpec:
 
 @dataclass(frozen=True)
 class WorldSpec:
-    """A validated world: origin, vehicles, obstacles, roads (core/map); ``source`` = its file."""
+    """A validated world: origin, vehicles, obstacles, roads, traffic; ``source`` = its file."""
 
     origin: GeodeticOrigin
     vehicles: Tuple[VehicleSpec, ...]
     obstacles: Tuple[ObstacleSpec, ...]
     source: str = ''
     roads: Tuple[RoadSpec, ...] = ()
+    traffic: Optional[TrafficSpec] = None
 
 
 @dataclass(frozen=True)
@@ -311,7 +314,10 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
                                     f'{brief(sorted(taken))}')
     roads = data.get('roads')
     roads = () if roads is None else roads_from_list(roads, f'{source}: roads')
-    return WorldSpec(origin, vehicles, obstacles, source, roads)
+    traffic = data.get('traffic')
+    if traffic is not None:
+        traffic = traffic_from_dict(traffic, f'{source}: traffic', preset_sensors)
+    return WorldSpec(origin, vehicles, obstacles, source, roads, traffic)
 
 
 def _vehicle(entry, where, index, default_model, preset_sensors):
