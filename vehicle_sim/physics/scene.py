@@ -31,7 +31,8 @@ contract):
 Extension points: a *scene part* is any object with ``name`` and ``build(world, spec)``; it adds
 what the WorldSpec asks of it (a map layer's ground and walls, traffic vehicles) once the
 obstacles and vehicles are in, and returns what callers read later, kept in
-:attr:`Scene.parts` under its name. No part exists yet; the map and traffic issues add theirs.
+:attr:`Scene.parts` under its name. A world with ``traffic:`` gets the traffic part
+(physics/traffic_bodies.py) unless ``parts`` holds one named 'traffic' already.
 
 It returns a :class:`Scene`: the World, the vehicles by name (:class:`SceneVehicle`: body, car,
 sensors), the obstacles by name and the geodetic origin, which callers read instead of building
@@ -50,6 +51,7 @@ from vehicle_sim.physics.diff_robot import DiffRobotBody
 from vehicle_sim.physics.gui import GuiClosedError
 from vehicle_sim.physics.sensors import SensorSuite
 from vehicle_sim.physics.simulated_car import SimulatedCar
+from vehicle_sim.physics.traffic_bodies import TrafficPart
 from vehicle_sim.physics.vehicle_body import VehicleBody
 from vehicle_sim.physics.world import DEFAULT_FRICTION, DEFAULT_TIME_STEP_S, World
 
@@ -133,7 +135,8 @@ def build_scene(spec: WorldSpec, world: Optional[World] = None, *,
     :param hooks: step hooks registered before every body.
     :param mount: (SceneVehicle, Scene) -> its sensors, for each vehicle once every body is in;
         None mounts none.
-    :param parts: scene parts (map layer, traffic), built in order after the vehicles.
+    :param parts: scene parts (map layer, traffic), built in order after the vehicles; the
+        traffic part is added for a spec with traffic when none is given.
     :raises InvalidPoseError: for a vehicle that starts inside an obstacle.
     :raises InvalidParameterError: for two vehicles (cars or robots) of one name; nothing is
         built.
@@ -142,6 +145,9 @@ def build_scene(spec: WorldSpec, world: Optional[World] = None, *,
     if twice:   # names are how getDevice, /initialpose and scenarios find a vehicle
         raise InvalidParameterError(f'vehicle name(s) used twice: {twice}')
     params = params or {}
+    if getattr(spec, 'traffic', None) is not None and \
+            not any(part.name == 'traffic' for part in parts):
+        parts = (*parts, TrafficPart())
     owned = world is None
     if owned:
         world = World(time_step_s=time_step_s, friction=friction, gui=gui)
