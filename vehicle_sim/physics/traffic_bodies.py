@@ -69,11 +69,11 @@ def _vehicle_bodies(world):
     return found
 
 
-def our_vehicle(body):
-    """Return a VehicleBody as the traffic manager sees it (OurVehicle)."""
+def our_vehicle(body, outline=None):
+    """Return a VehicleBody as the traffic manager sees it (OurVehicle); ``outline``: cached."""
     x, y, _, qx, qy, qz, qw = body.pose()
     yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
-    outline = body.outline
+    outline = body.outline if outline is None else outline
     cx = 0.5 * (outline.x_min_m + outline.x_max_m)
     cy = 0.5 * (outline.y_min_m + outline.y_max_m)
     c, s = math.cos(yaw), math.sin(yaw)
@@ -144,6 +144,7 @@ class TrafficBodies:
             self._index[body_id] = v.index
         self._cid = cid
         self._ours = _vehicle_bodies(world)
+        self._outlines = [body.outline for body in self._ours]
         self._place()
         world.add_body(self)
 
@@ -175,7 +176,8 @@ class TrafficBodies:
         count = self.world.step_count
         if count == 0 or count % self.every:
             return
-        self.manager.set_ours([our_vehicle(body) for body in self._ours])
+        self.manager.set_ours([our_vehicle(body, outline)
+                               for body, outline in zip(self._ours, self._outlines)])
         self.manager.step(self.every * self.world.time_step_s)
         self._place()
 

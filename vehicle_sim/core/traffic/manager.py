@@ -42,7 +42,7 @@ Everything random comes from one ``random.Random(seed)`` consumed in a fixed ord
 with the same inputs give the same trajectories bit for bit.
 """
 
-from bisect import bisect_left
+from bisect import bisect_left, bisect_right
 import math
 import random
 from typing import Dict, List, Optional, Sequence, Tuple
@@ -112,6 +112,10 @@ class _Occupant:
         self.s, self.speed, self.half, self.ident, self.v0 = s, speed, half, ident, v0
 
 
+def _by_s(occupant):
+    return occupant.s
+
+
 def _smoothstep(x):
     return x * x * (3.0 - 2.0 * x)
 
@@ -141,6 +145,7 @@ class TrafficManager:
         self.lane_changes = 0
         self.vehicles: List[TrafficVehicle] = []
         self._ours: List[OurVehicle] = []
+        self._ours_at = {}                    # our vehicle's name -> (lane, s) last located
         self._occ: Dict[int, Tuple[list, list]] = {}
         self._dims = dimensions
         lanes = graph.lanes
@@ -273,18 +278,22 @@ class TrafficManager:
     def pose(self, v: TrafficVehicle):
         """Return (x, y, yaw) of a vehicle's centre (lane-change offset and heading included)."""
         lane = self.graph.lanes[v.lane]
-        k = lane.segment_at(v.s_m)
-        t = min(max(v.s_m - lane.s0[k], 0.0), lane.seg_len[k])
+        k = bisect_right(lane.s0, v.s_m) - 1
+        k = 0 if k < 0 else (k if k < len(lane.seg_len) else len(lane.seg_len) - 1)
+        t = v.s_m - lane.s0[k]
+        length = lane.seg_len[k]
+        t = 0.0 if t < 0.0 else (length if t > length else t)
         ux, uy = lane.ux[k], lane.uy[k]
-        heading = lane.heading_at(k, t)
-        yaw = heading
+        yaw = lane.vertex_headings[k] + lane.turns[k] * (t / length)
         if v.from_lane is not None and v.speed_mps > 0.1:
-            tau = min(v.change_s / self.spec.lane_change_duration_s, 1.0)
-            lateral = -v.change_from_m * 6.0 * tau * (1.0 - tau) / self.spec.lane_change_duration_s
-            yaw = heading + math.atan2(lateral, v.speed_mps)
+            duration = self.spec.lane_change_duration_s
+            tau = min(v.change_s / duration, 1.0)
+            lateral = -v.change_from_m * 6.0 * tau * (1.0 - tau) / duration
+            yaw += math.atan2(lateral, v.speed_mps)
         off = v.offset_m
-        return (lane.xs[k] + ux * t - uy * off, lane.ys[k] + uy * t + ux * off,
-                math.atan2(math.sin(yaw), math.cos(yaw)))
+        if yaw > math.pi or yaw <= -math.pi:
+            yaw = math.atan2(math.sin(yaw), math.cos(yaw))
+        return (lane.xs[k] + ux * t - uy * off, lane.ys[k] + uy * t + ux * off, yaw)
 
     # ------------------------------------------------------------------ our vehicles
     def set_ours(self, ours: Sequence[OurVehicle]):
@@ -304,32 +313,53 @@ class TrafficManager:
         items.insert(i, occupant)
 
     def _occupancy(self):
-        self._occ = {}
+        lists = {}
         graph = self.graph
+        lanes = graph.lanes
         for v in self.vehicles:
             if not v.active:
                 continue
-            v0 = self._v0(v)
-            self._add(v.lane, _Occupant(v.s_m, v.speed_mps, 0.5 * v.length_m, v.index, v0))
+            v0 = lanes[v.lane].speed_limit_mps * v.factor
+            half = 0.5 * v.length_m
+            lists.setdefault(v.lane, []).append(_Occupant(v.s_m, v.speed_mps, half, v.index, v0))
             if v.from_lane is not None:
-                self._add(v.from_lane, _Occupant(v.from_s_m, v.speed_mps, 0.5 * v.length_m,
-                                                 v.index, v0))
+                lists.setdefault(v.from_lane, []).append(
+                    _Occupant(v.from_s_m, v.speed_mps, half, v.index, v0))
         for k, o in enumerate(self._ours):
-            pos = graph.locate(o.x_m, o.y_m, o.yaw_rad)
+            pos = self._locate_ours(o)
             if pos is None:
                 continue
             speed = o.speed_mps * math.cos(pos.heading_error_rad)
             half = 0.5 * o.length_m
             ident = -1 - k
-            self._add(pos.lane_id, _Occupant(pos.s_m, speed, half, ident, pos.speed_limit_mps))
-            lane = graph.lanes[pos.lane_id]
+            lists.setdefault(pos.lane_id, []).append(
+                _Occupant(pos.s_m, speed, half, ident, pos.speed_limit_mps))
+            lane = lanes[pos.lane_id]
             # the lateral reach of its footprint: a heading error widens it
             reach = 0.5 * (o.width_m * abs(math.cos(pos.heading_error_rad))
                            + o.length_m * abs(math.sin(pos.heading_error_rad)))
             for side, other in ((1.0, lane.left_lane), (-1.0, lane.right_lane)):
                 if other is not None and side * pos.offset_m + reach > 0.5 * pos.width_m:
-                    s = pos.s_m * graph.lanes[other].length_m / lane.length_m
-                    self._add(other, _Occupant(s, speed, half, ident, pos.speed_limit_mps))
+                    s = pos.s_m * lanes[other].length_m / lane.length_m
+                    lists.setdefault(other, []).append(
+                        _Occupant(s, speed, half, ident, pos.speed_limit_mps))
+        occ = {}
+        for lane_id, items in lists.items():
+            items.sort(key=_by_s)       # stable: equal s keep the vehicles' order
+            occ[lane_id] = ([o.s for o in items], items)
+        self._occ = occ
+
+    def _locate_ours(self, o):
+        """Locate one of our vehicles: on the lane it was on (cheap), else on the whole map."""
+        last = self._ours_at.get(o.name)
+        if last is not None:
+            pos, on_lane = self.graph.locate_on(last[0], o.x_m, o.y_m, o.yaw_rad, last[1])
+            if on_lane:
+                self._ours_at[o.name] = (pos.lane_id, pos.s_m)
+                return pos
+        pos = self.graph.locate(o.x_m, o.y_m, o.yaw_rad)
+        self._ours_at[o.name] = None if pos is None else (pos.lane_id, pos.s_m)
+        return pos
 
     def _ahead(self, lane_id, s, ident, path):
         """Return (centre distance, occupant) of the next occupant ahead, or (None, None)."""
@@ -356,7 +386,7 @@ class TrafficManager:
             else:
                 return None, None
             hop += 1
-            s = -1e9
+            s = 0.0
 
     def _behind(self, lane_id, s, ident):
         """Return (centre distance, occupant) of the nearest occupant behind, or (None, None)."""
@@ -395,17 +425,8 @@ class TrafficManager:
         if not (math.isfinite(dt_s) and dt_s > 0.0):
             raise ValueError(f'dt_s = {dt_s!r}: must be finite and > 0')
         self._occupancy()
+        self._accelerations()
         vehicles = self.vehicles
-        for v in vehicles:
-            if not v.active or v.stopped:
-                continue
-            v0 = self._v0(v)
-            gap, leader = self._leader(v, v.lane, v.s_m)
-            acc = self._acc(v0, v.speed_mps, gap, leader)
-            if v.from_lane is not None:
-                gap2, leader2 = self._leader(v, v.from_lane, v.from_s_m)
-                acc = min(acc, self._acc(v0, v.speed_mps, gap2, leader2))
-            v.acc_mps2 = acc
         period = max(1, int(round(self.spec.lane_change_period_s / dt_s)))
         for v in vehicles:
             if v.active and not v.stopped and v.from_lane is None and not v.keep_lane and \
@@ -428,6 +449,56 @@ class TrafficManager:
         self._reenter()
         self.steps += 1
         self.time_s += dt_s
+
+    def _accelerations(self):
+        """Set every moving vehicle's IDM acceleration (one pass over each lane's occupants)."""
+        vehicles, lanes = self.vehicles, self.graph.lanes
+        p = self.idm
+        a, time_headway, s0 = p.acceleration_mps2, p.time_headway_s, p.min_gap_m
+        two_sqrt_ab = 2.0 * math.sqrt(p.acceleration_mps2 * p.deceleration_mps2)
+        delta, floor = p.exponent, -p.max_deceleration_mps2
+        for v in vehicles:
+            v.acc_mps2 = math.inf
+        for lane_id, (_, items) in self._occ.items():
+            count = len(items)
+            lane = lanes[lane_id]
+            for i, o in enumerate(items):
+                ident = o.ident
+                if ident < 0:
+                    continue
+                v = vehicles[ident]
+                if v.stopped:
+                    continue
+                j = i + 1
+                while j < count and items[j].ident == ident:
+                    j += 1
+                if j < count:
+                    leader = items[j]
+                    dist = leader.s - o.s
+                else:
+                    path = (v.next_lane,) if lane_id == v.lane else ()
+                    nxt = path[0] if path and path[0] is not None else (
+                        lane.successors[0] if lane.successors else None)
+                    if nxt is None or lane.length_m - o.s > LOOKAHEAD_M:
+                        leader = None
+                    else:
+                        dist, leader = self._ahead(nxt, 0.0, ident, ())
+                        if leader is not None:
+                            dist += lane.length_m - o.s
+                speed = o.speed
+                acc = a * (1.0 - (speed / o.v0) ** delta)
+                if leader is not None:
+                    gap = dist - leader.half - o.half
+                    if gap <= 0.0:
+                        acc = floor
+                    else:
+                        dyn = speed * time_headway + speed * (speed - leader.speed) / two_sqrt_ab
+                        ratio = (s0 + (dyn if dyn > 0.0 else 0.0)) / gap
+                        acc -= a * ratio * ratio
+                if acc < floor:
+                    acc = floor
+                if acc < v.acc_mps2:
+                    v.acc_mps2 = acc
 
     def _pass_lane_end(self, v):
         lanes = self.graph.lanes
