@@ -132,6 +132,21 @@ def test_traffic_stops_behind_our_stopped_car():
     assert gap == pytest.approx(m.idm.min_gap_m, abs=0.3)
 
 
+def test_a_leader_on_the_next_lane_counts():
+    # ours stands 30 m into the next segment's middle lane; the traffic car comes from 400 m
+    # before the segment's end at 30 m/s and must stop behind it across the lane boundary
+    ego = ours_on(100102, 30.0)
+    m = manager({'placed': [{'lanelet': MIDDLE, 's': 200.0, 'speed': 30.0,
+                             'route': [100102, 100202]}]}, ours=[ego])
+    v = m.vehicles[0]
+    m.set_ours([ego])
+    for _ in range(int(60.0 / DT)):
+        m.step(DT)
+        assert v.lane == MIDDLE or v.s_m + v.length_m / 2 < 30.0 - 4.6 / 2
+    assert v.lane == 100102 and v.speed_mps == 0.0
+    assert 30.0 - 4.6 / 2 - (v.s_m + v.length_m / 2) == pytest.approx(m.idm.min_gap_m, abs=0.3)
+
+
 def run_blocked(ours_lanes):
     """Run a car behind a slow truck on the middle lane, ours beside it on ``ours_lanes``."""
     m = manager({'placed': [{'model': 'Car', 'lanelet': MIDDLE, 's': 100.0, 'speed': 30.0},
