@@ -50,7 +50,9 @@ setup(
     # lanelet2 reads Lanelet2 .osm lane maps (vehicle_sim/maps/lanelet2_map.py).
     extras_require={'test': ['pytest', 'pytest-timeout', 'ruff', 'matplotlib', 'lanelet2'],
                     'plot': ['matplotlib'],
-                    'lanelet2': ['lanelet2']},
+                    'lanelet2': ['lanelet2'],
+                    # benchmarks/bench_traffic.py's comparison only (not needed by any test)
+                    'bench': ['highway-env']},
     zip_safe=True,
     maintainer='vehicle_sim maintainers',
     maintainer_email='maintainers@vehicle-sim.example.org',

@@ -26,7 +26,7 @@ Side by side, in the same run: highway-env's ``highway-fast-v0`` (IDM and MOBIL 
 straight 4-lane road) with the same car count, stepped with the idle action: its simulation
 steps per second (``simulation_frequency`` steps of 1/f s per policy step) against ours, and
 both as simulated seconds per wall second. highway-env is a benchmark-only optional dependency
-(``pip install highway-env``); without it that part is skipped with a printed line.
+(``pip install 'vehicle_sim[bench]'``); without it that part is skipped with a printed line.
 
 Run: ``.venv/bin/python benchmarks/bench_traffic.py [--quick]``.
 """

@@ -110,6 +110,7 @@ def collect(quick):
     import bench_service_roundtrip
     import bench_step
     import bench_topics_cpu
+    import bench_traffic
 
     from vehicle_sim.transport import dds
     dds.ensure_domain()
@@ -121,6 +122,7 @@ def collect(quick):
     overhead, raw_us, full_us, substeps, _ = bench_step.measure_overhead(
         5 if quick else 15, 200 if quick else 400)
     ten = bench_step.measure_ten_cars(5 if quick else 15, 200 if quick else 400)
+    traffic, traffic_core, highway_env = bench_traffic.figures(quick)
     ros = bench_ros_sync.figures(steps=1000, repeats=3 if quick else 5)
     share, _, counts = bench_topics_cpu.measure_node(4.0 if quick else 10.0, 10)
     clock_only, _, _ = bench_topics_cpu.measure_node(4.0 if quick else 10.0, 10, False)
@@ -153,8 +155,23 @@ def collect(quick):
         ('service p50, simulation running / bare cyclonedds p50', sim_p50 / bare_p50, '<=',
          1.3, 'x'),
         ('10 cars in one world, per-car cost / one car', ten, '<=', 1.2, 'x'),
+        ('highway with 50 traffic cars, in-process real-time factor', traffic[50][0], '>=',
+         bench_traffic.TARGETS[50], 'x'),
+        ('highway with 200 traffic cars, in-process real-time factor', traffic[200][0], '>=',
+         bench_traffic.TARGETS[200], 'x'),
     ]
+    if highway_env is not None:
+        rows.append(('steps/s with 50 traffic cars / highway-env highway-fast-v0 with 50',
+                     traffic[50][1] / highway_env[0], '>=',
+                     bench_traffic.TARGET_HIGHWAY_ENV_RATIO, 'x'))
     floors = [
+        'traffic on the highway (ego car cruising, 10 ms steps): ' + ', '.join(
+            f'{n} cars {traffic[n][0]:.0f}x' for n in bench_traffic.COUNTS) + ' real time; the '
+        'core traffic manager alone (no physics): ' + ', '.join(
+            f'{n} cars {traffic_core[n]:.0f}x' for n in traffic_core) + (
+            '' if highway_env is None else
+            f'; highway-env highway-fast-v0 with 50: {highway_env[0]:.0f} simulation steps/s, '
+            f'{highway_env[1]:.1f}x real time'),
         f'raw PyBullet stepSimulation (BmwX5): {raw_us:.1f} us per basic step; Driver.step '
         f'{full_us:.1f} us',
         f'bare DDS write of serialized bytes: {found["write_us"]:.2f} us with no reader, '
