@@ -100,7 +100,8 @@ def highway_env_figures(count, policy_steps):
         import gymnasium
         import highway_env  # noqa: F401  (registers the environments)
     except ImportError:
-        print('highway-env: not installed, its side is skipped (pip install highway-env)')
+        print("highway-env: not installed, its side is skipped "
+              "(pip install 'vehicle_sim[bench]')")
         return None
     env = gymnasium.make('highway-fast-v0')
     env.unwrapped.configure({'vehicles_count': count, 'duration': 10 ** 6})
