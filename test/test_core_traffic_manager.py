@@ -246,3 +246,21 @@ def test_no_vehicle_is_spawned_on_our_car_and_the_step_refuses_a_bad_dt():
             assert abs(v.s_m - 300.0) >= 15.0 + 2.3
     with pytest.raises(ValueError, match='dt_s'):
         m.step(float('nan'))
+
+
+def test_docs_hold_the_generated_key_tables():
+    from pathlib import Path
+
+    from vehicle_sim.core.traffic.traffic_params import traffic_markdown
+    text = (Path(__file__).resolve().parent.parent / 'docs' / 'traffic.md').read_text('utf-8')
+    assert traffic_markdown() in text
+
+
+def test_the_shipped_highway_traffic_world_spawns_its_vehicles():
+    spec = load_world('highway_traffic')
+    sizes = {'ToyotaPrius': (4.3, 1.8), 'BmwX5': (4.6, 1.9), 'TeslaModel3': (4.7, 1.9),
+             'CitroenCZero': (3.5, 1.5), 'LincolnMKZ': (4.9, 1.9)}
+    m = TrafficManager(lane_graph_from_roads(spec.roads), spec.traffic, sizes)
+    assert len(m.vehicles) == 60
+    speeds_kmh = [m.desired_speed(v) * 3.6 for v in m.vehicles]
+    assert 59.9 <= min(speeds_kmh) and max(speeds_kmh) <= 100.1

@@ -165,3 +165,14 @@ def test_no_traffic_key_no_traffic_part(scenes):
     assert 'traffic' not in scene.parts
     assert not any(name.startswith('traffic_') for name in scene.world.obstacles)
     assert math.isfinite(scene.world.step())
+
+
+def test_the_shipped_highway_traffic_world_builds_and_drives(scenes):
+    from vehicle_sim.config import load_world
+    scene = scenes(load_world('highway_traffic'))
+    traffic = scene.parts['traffic']
+    assert len(traffic.body_ids) == 60
+    for _ in range(100):
+        scene.world.step()
+    assert traffic.manager.time_s == pytest.approx(0.95)
+    assert not any(v.stopped for v in traffic.manager.vehicles)

@@ -71,7 +71,7 @@ TRAFFIC_SPECS = (
     ParamSpec('speed_factor', 'speed_factor', 'raw', None, '', 'desired speed / lane limit: '
               '{mean, std} of a normal distribution cut at 2 std', optional=True),
     ParamSpec('seed', 'seed', 'int', 0, '', 'random seed (spawn places, models, factors, '
-              'route choices)', ge=0, le=2 ** 31 - 1),
+              'route choices)', ge=0, le=999999),
     ParamSpec('spawn', 'spawn', 'raw', None, '', 'where the random vehicles start: {lanes, '
               's_range, spacing}', optional=True),
     ParamSpec('idm', 'idm', 'raw', None, '', 'Intelligent Driver Model parameters',
@@ -222,3 +222,19 @@ def _check(check_model, model, where):
         check_model(model)
     except InvalidParameterError as error:
         raise InvalidParameterError(f'{where}: unknown model {model!r}: {error}') from None
+
+
+def traffic_markdown():
+    """Return the key tables of ``traffic:`` (and of its sub-mappings) for docs/traffic.md."""
+    from vehicle_sim.core.param_spec import parameter_table_markdown
+    from vehicle_sim.core.traffic.idm import IDM_SPECS
+    from vehicle_sim.core.traffic.mobil import MOBIL_SPECS
+    parts = []
+    for title, specs in (('`traffic:`', TRAFFIC_SPECS),
+                         ('`speed_factor:`', SPEED_FACTOR_SPECS),
+                         ('`spawn:`', SPAWN_SPECS),
+                         ('each entry of `placed:`', PLACED_SPECS),
+                         ('`idm:` (the Intelligent Driver Model)', IDM_SPECS),
+                         ('`mobil:` (lane changes)', MOBIL_SPECS)):
+        parts.append(f'#### {title}\n\n' + parameter_table_markdown(specs, 'field'))
+    return '\n'.join(parts)
