@@ -18,7 +18,7 @@ Traffic cost (docs/traffic.md): real-time factor in process with 0, 10, 50 and 2
 
 The shipped highway (config/worlds/highway.yaml) with its ego car (ToyotaPrius, cruising at
 90 km/h, no sensors mounted) and N traffic cars (``traffic: {vehicles: N}``, seeded), built by
-the scene builder and stepped with ``World.step`` (10 ms steps; traffic updated every 50 ms):
+the scene builder and stepped with ``World.step`` (10 ms steps; traffic updated every 100 ms):
 simulated seconds / wall seconds, best of ``repeats`` runs (targets: >= 100x with 50 cars,
 >= 30x with 200). The core manager alone (no physics) is printed beside it.
 
@@ -77,7 +77,7 @@ def real_time_factor(count, sim_seconds, repeats=3):
     return best, best / 0.01
 
 
-def manager_only(count, sim_seconds, dt=0.05):
+def manager_only(count, sim_seconds, dt=0.1):
     """Return the real-time factor of the core TrafficManager alone (no physics)."""
     spec = highway_spec(count)
     graph = lane_graph_from_roads(spec.roads)

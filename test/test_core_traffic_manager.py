@@ -71,13 +71,14 @@ def traffic_boxes(m):
     return [(*m.pose(v), v.length_m, v.width_m) for v in m.vehicles if v.active]
 
 
-def test_fifty_vehicles_drive_the_highway_for_120_s_without_a_collision():
+@pytest.mark.parametrize('dt', [0.05, 0.1])          # 0.1 s: the default update period
+def test_fifty_vehicles_drive_the_highway_for_120_s_without_a_collision(dt):
     m = manager({'vehicles': 50, 'seed': 11, 'models': ['Car', 'Truck'],
                  'speed_factor': {'mean': 0.85, 'std': 0.1}})
     assert len(m.vehicles) == 50
     changing_seen = 0
-    for _ in range(int(120.0 / DT)):
-        m.step(DT)
+    for _ in range(int(round(120.0 / dt))):
+        m.step(dt)
         assert overlaps(traffic_boxes(m)) == []
         for v in m.vehicles:
             if not v.active:

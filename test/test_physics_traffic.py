@@ -144,8 +144,8 @@ def test_fifty_traffic_cars_drive_among_the_bodies(scenes):
     moved = [v.s_m != s for v, s in zip(traffic.manager.vehicles, start)]
     assert all(moved)
     # updated (to the world's time then) before the physics of the steps that start at
-    # 0.05, 0.10, ..., 1.95 s
-    assert traffic.manager.time_s == pytest.approx(1.95, abs=1e-9)
+    # 0.1, 0.2, ..., 1.9 s (update_period 0.1 s)
+    assert traffic.manager.time_s == pytest.approx(1.9, abs=1e-9)
     assert scene.world.time_s == pytest.approx(2.0)
 
 
@@ -174,5 +174,5 @@ def test_the_shipped_highway_traffic_world_builds_and_drives(scenes):
     assert len(traffic.body_ids) == 60
     for _ in range(100):
         scene.world.step()
-    assert traffic.manager.time_s == pytest.approx(0.95)
+    assert traffic.manager.time_s == pytest.approx(0.9)
     assert not any(v.stopped for v in traffic.manager.vehicles)

@@ -433,11 +433,18 @@ class TrafficManager:
                     (self.steps + v.index) % period == 0:
                 self._consider_change(v)
         duration = self.spec.lane_change_duration_s
+        lanes = self.graph.lanes
+        waiting = False
         for v in vehicles:
             if not v.active or v.stopped:
+                waiting = waiting or not v.active
                 continue
-            s_old = v.s_m
-            v.s_m, v.speed_mps = advance(v.s_m, v.speed_mps, v.acc_mps2, dt_s)
+            s_old, speed, acc = v.s_m, v.speed_mps, v.acc_mps2
+            new_speed = speed + acc * dt_s
+            if new_speed >= 0.0:          # core/traffic/idm.advance, inline (the hot loop)
+                v.s_m, v.speed_mps = s_old + (speed + 0.5 * acc * dt_s) * dt_s, new_speed
+            else:
+                v.s_m, v.speed_mps = advance(s_old, speed, acc, dt_s)
             if v.from_lane is not None:
                 v.from_s_m += v.s_m - s_old
                 v.change_s += dt_s
@@ -445,8 +452,11 @@ class TrafficManager:
                     v.from_lane, v.offset_m = None, 0.0
                 else:
                     v.offset_m = v.change_from_m * (1.0 - _smoothstep(v.change_s / duration))
-            self._pass_lane_end(v)
-        self._reenter()
+            if v.s_m > lanes[v.lane].length_m:
+                self._pass_lane_end(v)
+                waiting = waiting or not v.active
+        if waiting:
+            self._reenter()
         self.steps += 1
         self.time_s += dt_s
 

@@ -82,8 +82,8 @@ TRAFFIC_SPECS = (
               'time a lane change takes (lateral move)', gt=0.5, le=20.0),
     ParamSpec('lane_change_period', 'lane_change_period_s', 'float', 1.0, 's',
               'how often each vehicle considers a lane change', gt=0.0, le=60.0),
-    ParamSpec('update_period', 'update_period_s', 'float', 0.05, 's',
-              'traffic update period (a multiple of the world step; 0.05 = 20 Hz)', gt=0.0,
+    ParamSpec('update_period', 'update_period_s', 'float', 0.1, 's',
+              'traffic update period (a multiple of the world step; 0.1 = 10 Hz)', gt=0.0,
               le=1.0),
     ParamSpec('placed', 'placed', 'raw', None, '', 'individually placed vehicles (table below)',
               optional=True),
@@ -149,7 +149,7 @@ class TrafficSpec:
     mobil: MobilParams = MobilParams()
     lane_change_duration_s: float = 3.0
     lane_change_period_s: float = 1.0
-    update_period_s: float = 0.05
+    update_period_s: float = 0.1
     placed: Tuple[PlacedVehicle, ...] = ()
     source: str = 'traffic'
 
