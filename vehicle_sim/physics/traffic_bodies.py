@@ -130,6 +130,8 @@ class TrafficBodies:
                 f'{manager.spec.update_period_s:g}: must be a multiple of the world step '
                 f'{dt:g} s')
         self._heights = [sizes[v.model][2] for v in manager.vehicles]
+        self.heights = {model: size[2] for model, size in sizes.items()}   # {model: height}
+        self.colours = COLOURS
         self.body_ids = []
         self._index = {}
         cid = world.client_id

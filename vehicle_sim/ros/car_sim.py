@@ -39,6 +39,7 @@ from typing import Callable, Dict, List, Optional
 
 from vehicle_sim.core.drive_input import CarDriveInput
 from vehicle_sim.core.errors import InvalidCommandError
+from vehicle_sim.core.traffic.objects import traffic_objects
 from vehicle_sim.physics import SimulatedCar
 from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
 from vehicle_sim.physics.scene import build_scene
@@ -61,6 +62,7 @@ from vehicle_sim.ros.sensor_interfaces import check_names, sensor_rows
 from vehicle_sim.ros.sim_control import serve_vehicle, WorldControl
 from vehicle_sim.ros.sim_params import declare_parameters, initialpose_index, world_spec
 from vehicle_sim.ros.time_step import TimeStepService
+from vehicle_sim.ros.traffic_interfaces import MARKERS_FRAME, OBJECTS_FRAME, TRAFFIC_TOPICS
 from vehicle_sim.transport import create_node
 from vehicle_sim.transport.port import resolve_name, ThrottledWarning
 
@@ -114,6 +116,7 @@ class AutomobileNode:
         self._time_step = None
         self._control = None
         self._sensing = []
+        self._traffic = None
         self._gui_closed = False
         try:
             self._build()
@@ -132,7 +135,8 @@ class AutomobileNode:
         self.settings = settings = declare_parameters(node)
         spec = self._with_sensor_parameter(world_spec(settings))
         # Collisions are watched when there is something besides the ground to hit.
-        collisions = bool(spec.obstacles) or len(spec.vehicles) > 1
+        collisions = bool(spec.obstacles) or len(spec.vehicles) > 1 or \
+            getattr(spec, 'traffic', None) is not None
 
         def feed(vehicle, scene):
             # Each vehicle's sensors at their rates, and its collisions (ros: their topics).
@@ -199,7 +203,8 @@ class AutomobileNode:
     def _interface_names(self, scene):
         # {fully-qualified name: what has it} of every table row of the node.
         global_name = self._full_name('')
-        taken = {global_name(row.name): 'a topic of the node' for row in itf.WORLD_TOPICS}
+        taken = {global_name(row.name): 'a topic of the node'
+                 for row in itf.WORLD_TOPICS + (TRAFFIC_TOPICS if scene.traffic else ())}
         taken.update({global_name(row.name): 'an endpoint of the node'
                       for row in itf.WORLD_SERVICES + itf.WORLD_INPUTS})
         for spec in scene.vehicles:
@@ -273,6 +278,13 @@ class AutomobileNode:
             static_transforms=[t for v in vehicles for t in v.static_transforms()],
             stamp=None, tf_poses=None)
         self._fleet_outputs = Outputs(self.node, itf.WORLD_TOPICS, self._fleet)
+        # The traffic rows (ros/traffic_interfaces.py), for a world with traffic.
+        bodies = self.scene.parts.get('traffic')
+        self._traffic = None if bodies is None else SimpleNamespace(
+            objects_frame=OBJECTS_FRAME, markers_frame=MARKERS_FRAME,
+            colours=bodies.colours, bodies=bodies, stamp=None, objects=None)
+        self._traffic_outputs = None if bodies is None else Outputs(
+            self.node, TRAFFIC_TOPICS, self._traffic)
 
     @staticmethod
     def _bind(handler, spec, vehicle, name):
@@ -390,6 +402,11 @@ class AutomobileNode:
                     serve_pending()
             fleet.tf_poses = tf_poses
             outputs.publish(EACH_PUBLISH, fleet)
+            traffic = self._traffic
+            if traffic is not None and self._traffic_outputs.wanted(EACH_PUBLISH):
+                traffic.stamp = stamp
+                traffic.objects = traffic_objects(traffic.bodies.manager, traffic.bodies.heights)
+                self._traffic_outputs.publish(EACH_PUBLISH, traffic)
         for vehicle in self._sensing:
             self._publish_sensors(vehicle)
 
