@@ -171,6 +171,28 @@ def test_traffic_changes_lanes_to_pass_a_slow_truck_but_never_cuts_in_front_of_o
     assert car.acc_mps2 < -1.0                 # it brakes behind the truck instead
 
 
+def test_a_scripted_lane_change_starts_at_its_time_and_is_the_only_one():
+    m = manager({'placed': [{'lanelet': FAST, 's': 100.0, 'speed': 25.0,
+                             'change_lane': 'right', 'change_at': 2.0},
+                            {'model': 'Truck', 'lanelet': FAST, 's': 140.0, 'speed': 10.0,
+                             'speed_factor': 0.3, 'route': [100101]}]})
+    car = m.vehicles[0]
+    lanes = []
+    for _ in range(int(8.0 / DT)):
+        m.step(DT)
+        lanes.append((round(m.time_s, 6), car.lane, car.changing))
+    # behind a slow truck, yet no MOBIL change before 2 s; then the scripted one, to the right
+    assert all(lane == FAST for t, lane, _ in lanes if t <= 2.0)
+    started = next(t for t, lane, _ in lanes if lane == MIDDLE)
+    assert started == pytest.approx(2.0 + DT)
+    assert lanes[-1] == (pytest.approx(8.0), MIDDLE, False)
+    starts = sum(1 for (_, _, now), (_, _, before) in zip(lanes[1:], lanes) if now and not before)
+    assert starts == 1
+    with pytest.raises(InvalidParameterError, match=r"placed\[0\]: field 'change_lane' = "
+                                                    r"'left': a vehicle with a route"):
+        manager({'placed': [{'lanelet': MIDDLE, 'route': [100102], 'change_lane': 'left'}]})
+
+
 def test_at_a_fork_each_vehicle_takes_a_seeded_random_branch():
     def lane(lane_id, points, successors=()):
         pts = np.asarray(points, dtype=float)

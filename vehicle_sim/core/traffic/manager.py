@@ -82,7 +82,8 @@ class TrafficVehicle:
 
     __slots__ = ('index', 'name', 'model', 'length_m', 'width_m', 'factor', 'lane', 's_m',
                  'speed_mps', 'acc_mps2', 'offset_m', 'from_lane', 'from_s_m', 'change_s',
-                 'change_from_m', 'next_lane', 'route', 'keep_lane', 'active', 'stopped')
+                 'change_from_m', 'next_lane', 'route', 'keep_lane', 'scripted', 'active',
+                 'stopped')
 
     def __init__(self, index, model, length_m, width_m, factor, lane, s_m, route):
         self.index = index
@@ -97,6 +98,7 @@ class TrafficVehicle:
         self.next_lane = None
         self.route = list(route)
         self.keep_lane = bool(route)  # a routed vehicle drives its route: no lane changes
+        self.scripted = None          # (side 'left' | 'right', from time [s]): a scripted change
         self.active = True           # False: left the map at a dead end, waiting to re-enter
         self.stopped = False         # collided: stands still
 
@@ -193,6 +195,8 @@ class TrafficManager:
             v = TrafficVehicle(len(self.vehicles), p.model, length, width, p.speed_factor,
                                p.lanelet, p.s_m, p.route)
             v.speed_mps = -1.0 if p.speed_mps is None else p.speed_mps
+            if p.change_lane != 'none':
+                v.scripted, v.keep_lane = (p.change_lane, p.change_at_s), True
             self.vehicles.append(v)
         spawn = spec.spawn_lanes if spec.spawn_lanes is not None else sorted(lanes)
         for lane_id in spawn:
@@ -429,6 +433,10 @@ class TrafficManager:
         vehicles = self.vehicles
         period = max(1, int(round(self.spec.lane_change_period_s / dt_s)))
         for v in vehicles:
+            if v.scripted is not None and self.time_s >= v.scripted[1] - 1e-9 and v.active \
+                    and not v.stopped and v.from_lane is None:
+                self._scripted_change(v)
+        for v in vehicles:
             if v.active and not v.stopped and v.from_lane is None and not v.keep_lane and \
                     (self.steps + v.index) % period == 0:
                 self._consider_change(v)
@@ -558,7 +566,24 @@ class TrafficManager:
                 best, best_gain = (target, side), gain
         if best is None:
             return
-        target, side = best
+        self._start_change(v, lane, *best)
+
+    def _scripted_change(self, v):
+        """Start a placed vehicle's scripted change once its lane allows it (no MOBIL)."""
+        lane = self.graph.lanes[v.lane]
+        side = v.scripted[0]
+        target, allowed = ((lane.left_lane, lane.left_change) if side == 'left' else
+                           (lane.right_lane, lane.right_change))
+        reach = v.s_m + v.speed_mps * self.spec.lane_change_duration_s + v.length_m
+        if not allowed or reach > lane.length_m or \
+                reach * self.graph.lanes[target].length_m / lane.length_m > \
+                self.graph.lanes[target].length_m:
+            return                      # not here: on a later lane
+        v.scripted = None
+        self._start_change(v, lane, target, 1.0 if side == 'left' else -1.0)
+
+    def _start_change(self, v, lane, target, side):
+        """Move ``v`` onto lane ``target`` (``side``: +1 left, -1 right), offset where it was."""
         other = self.graph.lanes[target]
         s_new = v.s_m * other.length_m / lane.length_m
         v.from_lane, v.from_s_m = v.lane, v.s_m

@@ -116,6 +116,11 @@ PLACED_SPECS = (
     ParamSpec('route', 'route', LANE_IDS, (), '', 'the lanes it drives after its first, each a '
               'successor of the one before ([] = random at forks); it does not change lanes',
               empty=True),
+    ParamSpec('change_lane', 'change_lane', 'enum', 'none', choices=('none', 'left', 'right'),
+              doc='a scripted lane change (a cut-in): to this side, from change_at on, as soon '
+                  'as the lane map allows it (no MOBIL: the only change it makes)'),
+    ParamSpec('change_at', 'change_at_s', 'float', 0.0, 's', 'simulated time of the scripted '
+              'lane change', ge=0.0),
 )
 
 
@@ -130,6 +135,8 @@ class PlacedVehicle:
     speed_factor: float
     route: Tuple[int, ...]
     where: str           # 'file: traffic: placed[i]', for the errors the lane map finds
+    change_lane: str = 'none'
+    change_at_s: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -201,8 +208,13 @@ def traffic_from_dict(data, source, check_model=None) -> TrafficSpec:
         item = validate_table(PLACED_SPECS, entry, where, what='placed vehicle')
         model = item['model'] or models[0]
         _check(check_model, model, f"{where}: field 'model'")
+        if item['change_lane'] != 'none' and item['route']:
+            raise InvalidParameterError(f"{where}: field 'change_lane' = "
+                                        f"{item['change_lane']!r}: a vehicle with a route does "
+                                        f'not change lanes (give one or the other)')
         entries.append(PlacedVehicle(model, item['lanelet'], item['s_m'], item['speed_mps'],
-                                     item['speed_factor'], item['route'], where))
+                                     item['speed_factor'], item['route'], where,
+                                     item['change_lane'], item['change_at_s']))
     vehicles = values['vehicles']
     if vehicles is None and values['density_per_km'] is None:
         vehicles = 0
