@@ -153,7 +153,8 @@ class Director:
             self.world.remove(monitor)      # stepped from post_step, after the physics
             self.monitors[name] = monitor
         self.collisions = {name: [] for name in self.vehicles}
-        scene = world_scene(self.world, self.vehicles, self.spec.world.obstacles)
+        scene = world_scene(self.world, self.vehicles, self.spec.world.obstacles,
+                            traffic=getattr(sim, 'traffic', None))
         for criterion in self.criteria:
             criterion.bind(scene)
         self.tracks = {name: Track(outline=scene.outline(name)) for name in self.vehicles}
