@@ -44,6 +44,8 @@ def app():
     node = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/traffic_test'], transport='dds',
                           parameter_overrides={'synchronous': True,
                                                'world': 'highway_traffic'})
+    node.initial_traffic = [(v.lane, v.s_m, v.speed_mps)
+                            for v in node.scene.parts['traffic'].manager.vehicles]
     yield node
     node.close()
 
@@ -99,3 +101,20 @@ def test_docs_hold_the_traffic_topic_table():
     from vehicle_sim.ros.traffic_interfaces import traffic_topic_table_markdown
     text = (Path(__file__).resolve().parent.parent / 'docs' / 'traffic.md').read_text('utf-8')
     assert traffic_topic_table_markdown() in text
+
+
+def test_sim_reset_starts_the_traffic_again(app):
+    app.step(20)
+    traffic = app.scene.parts['traffic']
+    assert [(v.lane, v.s_m) for v in traffic.manager.vehicles] != \
+        [(lane, s) for lane, s, _ in app.initial_traffic]
+    message = app.reset()
+    assert 'traffic: its 60 vehicles back at their start' in message
+    assert [(v.lane, v.s_m, v.speed_mps) for v in traffic.manager.vehicles] == \
+        app.initial_traffic
+    # the boxes are back too
+    import pybullet
+    v = traffic.manager.vehicles[0]
+    position, _ = pybullet.getBasePositionAndOrientation(
+        traffic.body_ids[0], physicsClientId=app.world.client_id)
+    assert position[:2] == pytest.approx(traffic.manager.pose(v)[:2], abs=1e-9)

@@ -150,6 +150,14 @@ class TrafficBodies:
         self._place()
         world.add_body(self)
 
+    def reset(self):
+        """Start the traffic again as built (same seed: the same places); say so in words."""
+        old = self.manager
+        ours = [our_vehicle(body, outline) for body, outline in zip(self._ours, self._outlines)]
+        self.manager = TrafficManager(old.graph, old.spec, old.dimensions, ours)
+        self._place()
+        return f'traffic: its {len(self.manager.vehicles)} vehicles back at their start'
+
     def _z(self, index):
         return 0.5 * (self._heights[index] + GROUND_CLEARANCE_M)
 

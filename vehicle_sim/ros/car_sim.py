@@ -165,9 +165,11 @@ class AutomobileNode:
             self._logger.info(f'PyBullet window open; keys: {shortcuts_text()}')
         self._wire_world()
         # /sim/reset, /sim/pause, /initialpose (ros/sim_control.py).
+        traffic = self.scene.parts.get('traffic')
         self._control = WorldControl(
             node, self.world, self._vehicles, settings.synchronous,
-            self._vehicles[initialpose_index(settings, spec)])
+            self._vehicles[initialpose_index(settings, spec)],
+            resets=() if traffic is None else (traffic,))
         self._publish_latched()
         self._publish_step(self.world.time_s)
         if not settings.synchronous:

@@ -141,12 +141,15 @@ class WorldControl:
     :param vehicles: the world's Movables, in order.
     :param synchronous: the world moves only by robot/time_step (pause is refused).
     :param initialpose_vehicle: the Movable that /initialpose moves; None: no /initialpose.
+    :param resets: further parts reset after the vehicles (the traffic): each ``reset()``
+        returns what it did, in words.
     """
 
     def __init__(self, node, world, vehicles: Sequence, synchronous: bool,
-                 initialpose_vehicle=None):
+                 initialpose_vehicle=None, resets: Sequence = ()):
         self._world = world
         self._vehicles = tuple(vehicles)
+        self._resets = tuple(resets)
         self._synchronous = synchronous
         self._logger = node.get_logger()
         # One throttle per reason, as ROS throttles per call site.
@@ -165,10 +168,12 @@ class WorldControl:
         for vehicle in self._vehicles:
             vehicle.reset()
         obstacles = self._world.reset_obstacles()
+        others = ''.join(f'; {part.reset()}' for part in self._resets)
         names = ', '.join(v.label for v in self._vehicles)
         moved = ', '.join(obstacles) if obstacles else 'none'
         return (f'reset {names} (spawn pose, at rest, logic in its start state) and the movable '
-                f'obstacles ({moved}); simulated time goes on at {self._world.time_s:.3f} s')
+                f'obstacles ({moved}){others}; simulated time goes on at '
+                f'{self._world.time_s:.3f} s')
 
     def _on_reset(self, request, response):
         response.message = self.reset()

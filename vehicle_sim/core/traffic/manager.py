@@ -149,7 +149,7 @@ class TrafficManager:
         self._ours: List[OurVehicle] = []
         self._ours_at = {}                    # our vehicle's name -> (lane, s) last located
         self._occ: Dict[int, Tuple[list, list]] = {}
-        self._dims = dimensions
+        self.dimensions = dimensions
         lanes = graph.lanes
         self._entries = sorted(i for i, pred in graph.predecessors.items() if not pred)
         self._place(spec, lanes, dimensions, ours)
