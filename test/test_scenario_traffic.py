@@ -85,3 +85,35 @@ def test_min_gap_waits_for_after_and_fails_without_traffic():
     criterion.observe(Sample(1.0, 0.0, 0.0, 0.0, 10.0))
     result = criterion.result()
     assert not result.passed and 'no traffic' in result.detail
+
+
+def actor_scenario(tmp_path, speed_control):
+    data = {
+        'name': f'actor_{speed_control}',
+        'world': {'vehicles': [
+            {'name': 'ego', 'model': 'Car', 'pose': {'x': 40.0, 'y': 0.0, 'yaw': 0.0}},
+            {'name': 'other', 'namespace': 'other', 'model': 'ToyotaPrius',
+             'pose': {'x': 0.0, 'y': 0.0, 'yaw': 0.0}}]},
+        'vehicle': 'ego',
+        'duration': 15.0,
+        'actors': [{'vehicle': 'other', 'speed': 8.0, 'waypoints': [[120.0, 0.0]],
+                    'speed_control': speed_control}],
+        'driver': {'commands': [{'t': 0.0, 'cruising_speed': 0.0, 'brake_intensity': 1.0}]},
+        'criteria': [{'kind': 'no_collision', 'vehicle': 'other'}],
+    }
+    path = tmp_path / f'actor_{speed_control}.yaml'
+    path.write_text(yaml.safe_dump(data), encoding='utf-8')
+    return run_scenario(path)
+
+
+def test_an_idm_actor_stops_behind_the_vehicle_ahead_a_waypoint_actor_hits_it(tmp_path):
+    idm = actor_scenario(tmp_path, 'idm')
+    assert idm.passed, [c.detail for c in idm.criteria]
+    track = idm.tracks['other']
+    # the Prius's front (rear axle + 3.585 m) stands IDM's minimum gap s0 = 2 m behind the
+    # Car's rear (x = 40 - 0.5 m)
+    gap = 40.0 - 0.5 - (track.x_m[-1] + 3.585)
+    assert gap == pytest.approx(2.0, abs=0.3)
+    blind = actor_scenario(tmp_path, 'waypoints')
+    assert not blind.passed
+    assert blind.criterion('no_collision').value >= 1
