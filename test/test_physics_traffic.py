@@ -176,3 +176,20 @@ def test_the_shipped_highway_traffic_world_builds_and_drives(scenes):
         scene.world.step()
     assert traffic.manager.time_s == pytest.approx(0.9)
     assert not any(v.stopped for v in traffic.manager.vehicles)
+
+
+def test_a_car_at_a_dead_end_re_enters_at_the_start_of_an_entry_lane(scenes):
+    import pybullet
+    scene = scenes(highway({'placed': [{'lanelet': 100402, 's': 590.0, 'speed': 20.0}]},
+                           sensors=()))
+    traffic = scene.parts['traffic']
+    car = traffic.manager.vehicles[0]
+    for _ in range(200):
+        scene.world.step()
+    # the highway's entry lanes: forward lanes of its first segment, backward of its last
+    assert car.active and car.lane in (100001, 100002, 100003, 100451, 100452, 100453)
+    assert car.s_m < 100.0
+    position, _ = pybullet.getBasePositionAndOrientation(
+        traffic.body_ids[0], physicsClientId=scene.world.client_id)
+    assert position[:2] == pytest.approx(traffic.manager.pose(car)[:2], abs=0.5)
+    assert position[2] > 0.0

@@ -26,9 +26,10 @@ sensors, cameras, collision monitors and teleport checks see it like any obstacl
 Every ``update_period`` (a whole number of world steps) the step hook gives the manager our
 vehicles (footprint centre, heading, speed, size), advances it and puts each box at its
 vehicle's pose with its velocity; between updates Bullet moves the boxes on at that velocity.
-A vehicle waiting to re-enter the map is parked under the ground. After every step our
-vehicles' contacts are read: a traffic vehicle touching one of ours stops for good (it stays
-where it is, an obstacle).
+A vehicle waiting to re-enter the map is parked under the ground. After every step the
+contacts of our vehicles with the traffic vehicles near them (within NEAR_M at the last update)
+are read: a traffic vehicle touching one of ours stops for good (it stays where it is, an
+obstacle).
 """
 
 import math
@@ -49,7 +50,9 @@ PARK_DEPTH_M = -50.0             # where a vehicle off the map waits (under the 
 COLOURS = ((0.80, 0.10, 0.10, 1.0), (0.10, 0.30, 0.80, 1.0), (0.90, 0.90, 0.90, 1.0),
            (0.15, 0.15, 0.15, 1.0), (0.20, 0.60, 0.25, 1.0), (0.95, 0.75, 0.10, 1.0),
            (0.55, 0.55, 0.60, 1.0))
-_BODY_B = 2
+# the contacts of our vehicles are read with the traffic vehicles within this distance of them
+# at the last update (both move less than 10 m in 100 ms; the longest box is about 6 m)
+NEAR_M = 40.0
 
 
 def model_dimensions(model):
@@ -147,7 +150,10 @@ class TrafficBodies:
         self._cid = cid
         self._ours = _vehicle_bodies(world)
         self._outlines = [body.outline for body in self._ours]
+        self._parked = set()
         self._place()
+        self._near = self._nearby([our_vehicle(body, outline)
+                                   for body, outline in zip(self._ours, self._outlines)])
         world.add_body(self)
 
     def reset(self):
@@ -155,7 +161,9 @@ class TrafficBodies:
         old = self.manager
         ours = [our_vehicle(body, outline) for body, outline in zip(self._ours, self._outlines)]
         self.manager = TrafficManager(old.graph, old.spec, old.dimensions, ours)
+        self._parked = set()
         self._place()
+        self._near = self._nearby(ours)
         return f'traffic: its {len(self.manager.vehicles)} vehicles back at their start'
 
     def _z(self, index):
@@ -164,43 +172,58 @@ class TrafficBodies:
     def _place(self):
         cid = self._cid
         manager = self.manager
+        reset_pose, reset_velocity = pybullet.resetBasePositionAndOrientation, \
+            pybullet.resetBaseVelocity
+        parked, heights = self._parked, self._heights
+        self._positions = positions = []       # (index, x, y) of the vehicles on the map
         for v, body_id in zip(manager.vehicles, self.body_ids):
+            index = v.index
             if not v.active:
-                pybullet.resetBasePositionAndOrientation(
-                    body_id, (0.0, 0.0, PARK_DEPTH_M - 10.0 * v.index), (0.0, 0.0, 0.0, 1.0),
-                    physicsClientId=cid)
-                pybullet.resetBaseVelocity(body_id, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0),
-                                           physicsClientId=cid)
+                if index not in parked:        # under the ground until it re-enters
+                    reset_pose(body_id, (0.0, 0.0, PARK_DEPTH_M - 10.0 * index),
+                               (0.0, 0.0, 0.0, 1.0), physicsClientId=cid)
+                    reset_velocity(body_id, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0),
+                                   physicsClientId=cid)
+                    parked.add(index)
                 continue
+            parked.discard(index)
             x, y, yaw = manager.pose(v)
+            positions.append((index, x, y))
             half = 0.5 * yaw
-            pybullet.resetBasePositionAndOrientation(
-                body_id, (x, y, self._z(v.index)), (0.0, 0.0, math.sin(half), math.cos(half)),
-                physicsClientId=cid)
+            reset_pose(body_id, (x, y, 0.5 * (heights[index] + GROUND_CLEARANCE_M)),
+                       (0.0, 0.0, math.sin(half), math.cos(half)), physicsClientId=cid)
             speed = v.speed_mps
-            pybullet.resetBaseVelocity(body_id, (speed * math.cos(yaw), speed * math.sin(yaw),
-                                                 0.0), (0.0, 0.0, 0.0), physicsClientId=cid)
+            reset_velocity(body_id, (speed * math.cos(yaw), speed * math.sin(yaw), 0.0),
+                           (0.0, 0.0, 0.0), physicsClientId=cid)
 
     def pre_step(self):
         """World hook: every ``update_period``, advance the traffic and place the bodies."""
         count = self.world.step_count
         if count == 0 or count % self.every:
             return
-        self.manager.set_ours([our_vehicle(body, outline)
-                               for body, outline in zip(self._ours, self._outlines)])
+        ours = [our_vehicle(body, outline) for body, outline in zip(self._ours, self._outlines)]
+        self.manager.set_ours(ours)
         self.manager.step(self.every * self.world.time_step_s)
         self._place()
+        self._near = self._nearby(ours)
+
+    def _nearby(self, ours):
+        """Return, per one of our vehicles, the traffic vehicles within NEAR_M of it."""
+        limit = NEAR_M * NEAR_M
+        return [[index for index, x, y in self._positions
+                 if (x - o.x_m) ** 2 + (y - o.y_m) ** 2 < limit] for o in ours]
 
     def post_step(self):
         """World hook: a traffic vehicle touching one of our vehicles stops for good."""
-        cid, index, manager = self._cid, self._index, self.manager
-        for body in self._ours:
-            for point in pybullet.getContactPoints(bodyA=body.body_id, physicsClientId=cid):
-                i = index.get(point[_BODY_B])
-                if i is not None and not manager.vehicles[i].stopped:
+        cid, manager, body_ids = self._cid, self.manager, self.body_ids
+        contacts = pybullet.getContactPoints
+        for body, near in zip(self._ours, self._near):
+            for i in near:
+                if not manager.vehicles[i].stopped and contacts(
+                        bodyA=body.body_id, bodyB=body_ids[i], physicsClientId=cid):
                     manager.stop(i)
-                    pybullet.resetBaseVelocity(self.body_ids[i], (0.0, 0.0, 0.0),
-                                               (0.0, 0.0, 0.0), physicsClientId=cid)
+                    pybullet.resetBaseVelocity(body_ids[i], (0.0, 0.0, 0.0), (0.0, 0.0, 0.0),
+                                               physicsClientId=cid)
 
     def body_of(self, name):
         """Return the body id of the traffic vehicle called ``name`` (``traffic_<i>``)."""
