@@ -197,3 +197,26 @@ def test_a_car_at_a_dead_end_re_enters_at_the_start_of_an_entry_lane(scenes):
     assert position[:2] == pytest.approx((x + car.speed_mps * since * math.cos(yaw),
                                           y + car.speed_mps * since * math.sin(yaw)), abs=0.01)
     assert position[2] > 0.0
+
+
+def test_the_camera_shows_the_traffic_car_ahead_in_its_colour(scenes):
+    from vehicle_sim.physics.traffic_bodies import COLOURS
+    camera = {'name': 'camera', 'type': 'camera', 'pose': {'x': 1.5, 'z': 0.6}, 'width': 160,
+              'height': 120, 'fov': 1.0, 'rate_hz': 10.0}
+    scene = scenes(highway({'placed': [{'model': 'BmwX5', 'lanelet': MIDDLE, 's': 35.0,
+                                        'speed': 0.0, 'route': [100102]}]}, sensors=(camera,)))
+    scene.parts['traffic'].manager.stop(0)
+    scene.world.step()
+    frame = scene.vehicles['Car'].sensors.sample('camera')
+    colour = np.array(COLOURS[0][:3])                    # traffic_0's body: red
+    pixels = frame.rgb[56:64, 76:84].astype(float) / 255.0
+    # shaded red: the same chromaticity as the body colour, not the grey road or the sky
+    scale = pixels.sum(axis=-1, keepdims=True) / colour.sum()
+    assert (np.abs(pixels - scale * colour).max(axis=-1) < 0.05).all()
+    # without the car, the centre is not red
+    scene.parts['traffic'].manager.vehicles[0].active = False
+    scene.parts['traffic']._place()
+    scene.world.step()
+    empty = scene.vehicles['Car'].sensors.sample('camera').rgb[56:64, 76:84].astype(float)
+    assert not (np.abs(empty / 255.0 - (empty.sum(axis=-1, keepdims=True) / 255.0 /
+                                         colour.sum()) * colour).max(axis=-1) < 0.05).all()
