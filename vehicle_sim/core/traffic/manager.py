@@ -47,64 +47,17 @@ import math
 import random
 from typing import Dict, List, Optional, Sequence, Tuple
 
-from vehicle_sim.core.errors import InvalidParameterError
 from vehicle_sim.core.traffic.idm import advance, idm_acceleration
 from vehicle_sim.core.traffic.mobil import LaneChangeAccelerations, should_change
+from vehicle_sim.core.traffic.spawn import spawn_vehicles
 from vehicle_sim.core.traffic.traffic_params import TrafficSpec
+from vehicle_sim.core.traffic.vehicles import OurVehicle, TrafficVehicle
+
+__all__ = ['OurVehicle', 'TrafficManager', 'TrafficVehicle']
 
 LOOKAHEAD_M = 250.0       # leaders further ahead do not count (IDM's interaction is ~0 there)
 LOOKBACK_M = 150.0        # followers further behind do not count in MOBIL
 ENTRY_MARGIN_M = 1.0      # extra room a re-entering vehicle needs ahead
-
-
-class OurVehicle:
-    """
-    One of our vehicles as traffic sees it: its footprint centre, heading, speed and size.
-
-    :param name: its name (for the collision reports).
-    :param x_m: footprint centre x [m].
-    :param y_m: footprint centre y [m].
-    :param yaw_rad: heading [rad].
-    :param speed_mps: speed along its heading [m/s].
-    :param length_m: footprint length [m].
-    :param width_m: footprint width [m].
-    """
-
-    __slots__ = ('name', 'x_m', 'y_m', 'yaw_rad', 'speed_mps', 'length_m', 'width_m')
-
-    def __init__(self, name, x_m, y_m, yaw_rad, speed_mps, length_m, width_m):
-        self.name, self.x_m, self.y_m, self.yaw_rad = name, x_m, y_m, yaw_rad
-        self.speed_mps, self.length_m, self.width_m = speed_mps, length_m, width_m
-
-
-class TrafficVehicle:
-    """The state of one traffic vehicle (mutable; the manager owns it)."""
-
-    __slots__ = ('index', 'name', 'model', 'length_m', 'width_m', 'factor', 'lane', 's_m',
-                 'speed_mps', 'acc_mps2', 'offset_m', 'from_lane', 'from_s_m', 'change_s',
-                 'change_from_m', 'next_lane', 'route', 'keep_lane', 'scripted', 'active',
-                 'stopped')
-
-    def __init__(self, index, model, length_m, width_m, factor, lane, s_m, route):
-        self.index = index
-        self.name = f'traffic_{index}'
-        self.model, self.length_m, self.width_m, self.factor = model, length_m, width_m, factor
-        self.lane, self.s_m, self.speed_mps, self.acc_mps2 = lane, s_m, 0.0, 0.0
-        self.offset_m = 0.0          # lateral offset from the lane's centreline (+ = left)
-        self.from_lane = None        # the lane being left during a change
-        self.from_s_m = 0.0
-        self.change_s = 0.0          # time since the change began [s]
-        self.change_from_m = 0.0     # the offset the change began at
-        self.next_lane = None
-        self.route = list(route)
-        self.keep_lane = bool(route)  # a routed vehicle drives its route: no lane changes
-        self.scripted = None          # (side 'left' | 'right', from time [s]): a scripted change
-        self.active = True           # False: left the map at a dead end, waiting to re-enter
-        self.stopped = False         # collided: stands still
-
-    @property
-    def changing(self):
-        return self.from_lane is not None
 
 
 class _Occupant:
@@ -150,98 +103,16 @@ class TrafficManager:
         self._ours_at = {}                    # our vehicle's name -> (lane, s) last located
         self._occ: Dict[int, Tuple[list, list]] = {}
         self.dimensions = dimensions
-        lanes = graph.lanes
         self._entries = sorted(i for i, pred in graph.predecessors.items() if not pred)
-        self._place(spec, lanes, dimensions, ours)
+        self.vehicles = spawn_vehicles(graph, spec, dimensions, ours, self.rng)
+        for v in self.vehicles:
+            v.next_lane = self._choose_next(v)
         self.set_ours(ours)
         self._occupancy()
         for v in self.vehicles:               # start speeds: safe behind the leaders
             if v.speed_mps < 0.0:
                 gap, leader = self._leader(v, v.lane, v.s_m)
                 v.speed_mps = self._safe_speed(v, gap, leader)
-
-    # ------------------------------------------------------------------ spawning
-    def _place(self, spec, lanes, dims, ours):
-        src = spec.source
-        taken = {}                            # lane -> [(s, half)] of placed vehicles and ours
-        for o in ours:
-            pos = self.graph.locate(o.x_m, o.y_m, o.yaw_rad)
-            if pos is not None:
-                taken.setdefault(pos.lane_id, []).append((pos.s_m, 0.5 * o.length_m))
-        for p in spec.placed:
-            lane = lanes.get(p.lanelet)
-            if lane is None:
-                raise InvalidParameterError(f"{p.where}: field 'lanelet' = {p.lanelet}: lane "
-                                            f'{p.lanelet} is not in the map ({self.graph.source})')
-            if not p.s_m <= lane.length_m:
-                raise InvalidParameterError(f"{p.where}: field 's' = {p.s_m:g}: not on lane "
-                                            f'{p.lanelet} (0 .. {lane.length_m:.3f} m)')
-            previous = p.lanelet
-            for step in p.route:
-                if step not in lanes:
-                    raise InvalidParameterError(f"{p.where}: field 'route': lane {step} is not "
-                                                f'in the map ({self.graph.source})')
-                if step not in lanes[previous].successors:
-                    raise InvalidParameterError(
-                        f"{p.where}: field 'route': lane {step} does not follow lane "
-                        f'{previous} (its successors: {list(lanes[previous].successors)})')
-                previous = step
-            length, width = dims[p.model]
-            for s, half in taken.get(p.lanelet, ()):
-                if abs(s - p.s_m) < half + 0.5 * length:
-                    raise InvalidParameterError(f"{p.where}: field 's' = {p.s_m:g}: overlaps "
-                                                f'another vehicle on lane {p.lanelet}')
-            taken.setdefault(p.lanelet, []).append((p.s_m, 0.5 * length))
-            v = TrafficVehicle(len(self.vehicles), p.model, length, width, p.speed_factor,
-                               p.lanelet, p.s_m, p.route)
-            v.speed_mps = -1.0 if p.speed_mps is None else p.speed_mps
-            if p.change_lane != 'none':
-                v.scripted, v.keep_lane = (p.change_lane, p.change_at_s), True
-            self.vehicles.append(v)
-        spawn = spec.spawn_lanes if spec.spawn_lanes is not None else sorted(lanes)
-        for lane_id in spawn:
-            if lane_id not in lanes:
-                raise InvalidParameterError(f"{src}: spawn: field 'lanes': lane {lane_id} is not "
-                                            f'in the map ({self.graph.source})')
-        slots, length_km = self._slots(spec, spawn, lanes, taken)
-        count = spec.vehicles if spec.density_per_km is None else int(
-            round(spec.density_per_km * length_km))
-        if count > len(slots):
-            what = (f"field 'vehicles' = {count}" if spec.density_per_km is None else
-                    f"field 'density' = {spec.density_per_km:g} ({count} vehicles)")
-            raise InvalidParameterError(
-                f'{src}: {what}: more than fit: {len(slots)} places on the spawn lanes at '
-                f'spacing {spec.spawn_spacing_m:g} m ({length_km:.3f} lane-km)')
-        rng = self.rng
-        for slot in sorted(rng.sample(range(len(slots)), count)):
-            lane_id, s = slots[slot]
-            model = spec.models[rng.randrange(len(spec.models))]
-            length, width = dims[model]
-            mean, std = spec.speed_factor_mean, spec.speed_factor_std
-            factor = min(max(rng.gauss(mean, std), mean - 2.0 * std), mean + 2.0 * std)
-            v = TrafficVehicle(len(self.vehicles), model, length, width, factor, lane_id, s, ())
-            v.speed_mps = -1.0
-            self.vehicles.append(v)
-        for v in self.vehicles:
-            v.next_lane = self._choose_next(v)
-
-    @staticmethod
-    def _slots(spec, spawn, lanes, taken):
-        spacing = spec.spawn_spacing_m
-        slots, length_m = [], 0.0
-        for lane_id in spawn:
-            lane = lanes[lane_id]
-            lo, hi = (0.0, lane.length_m) if spec.spawn_s_range_m is None else (
-                spec.spawn_s_range_m[0], min(spec.spawn_s_range_m[1], lane.length_m))
-            if hi <= lo:
-                continue
-            length_m += hi - lo
-            s = lo + 0.5 * spacing
-            while s <= hi - 0.5 * spacing + 1e-9:
-                if all(abs(s - t) >= 0.5 * spacing + half for t, half in taken.get(lane_id, ())):
-                    slots.append((lane_id, s))
-                s += spacing
-        return slots, length_m / 1000.0
 
     def _choose_next(self, v):
         successors = self.graph.lanes[v.lane].successors
