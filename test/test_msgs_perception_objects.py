@@ -110,3 +110,29 @@ def test_markers_delete_the_vehicles_that_left():
     assert [(m.id, m.action) for m in one.markers] == [(0, 0), (3, DELETE)]
     again = build(stamp(), objects()[:1])
     assert [(m.id, m.action) for m in again.markers] == [(0, 0)]
+
+
+def test_obstacles_follow_the_vehicles_as_unknown_objects_at_rest():
+    from vehicle_sim.core.traffic.objects import obstacle_objects
+    from vehicle_sim.core.world_params import obstacle_from_dict
+    wall = obstacle_from_dict({'name': 'wall', 'shape': 'box', 'size': [1.0, 6.0, 2.0],
+                               'position': [20.0, 0.0, 1.0], 'yaw': 0.3}, 'w.yaml')
+    pole = obstacle_from_dict({'name': 'pole', 'shape': 'cylinder', 'radius': 0.2,
+                               'height': 2.0, 'position': [10.0, 5.0, 1.0], 'mass': 3.0},
+                              'w.yaml')
+    found = obstacle_objects((wall, pole), pose_of=lambda name: (11.0, 5.5, 1.0, 0.0))
+    assert [(o.name, o.x_m, o.y_m, o.yaw_rad) for o in found] == [
+        ('wall', 20.0, 0.0, 0.3), ('pole', 11.0, 5.5, 0.0)]       # the pole is movable
+    message = predicted_objects_builder(message_type, 'map')(stamp(), objects()[:1], found)
+    assert len(message.objects) == 3
+    first, wall_object, pole_object = message.objects
+    assert first.classification[0].label == 1
+    assert [c.label for c in wall_object.classification] == [0]          # UNKNOWN
+    assert wall_object.kinematics.predicted_paths == []
+    assert wall_object.kinematics.initial_twist_with_covariance.twist.linear.x == 0.0
+    assert (wall_object.shape.type, wall_object.shape.dimensions.y) == (0, 6.0)  # BOUNDING_BOX
+    assert (pole_object.shape.type, pole_object.shape.dimensions.x) == (1, 0.4)  # CYLINDER
+    assert bytes(wall_object.object_id.uuid) == object_uuid('wall')
+    data = message.serialize()
+    assert bytes(typestore().serialize_cdr(to_rosbags(message), PKG + 'PredictedObjects')) \
+        == data

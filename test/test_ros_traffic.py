@@ -118,3 +118,38 @@ def test_sim_reset_starts_the_traffic_again(app):
     position, _ = pybullet.getBasePositionAndOrientation(
         traffic.body_ids[0], physicsClientId=app.world.client_id)
     assert position[:2] == pytest.approx(traffic.manager.pose(v)[:2], abs=1e-9)
+
+
+def test_obstacles_of_a_traffic_world_are_objects_too(tmp_path):
+    import copy
+
+    import yaml
+
+    from vehicle_sim.config import read_yaml, world_path
+    from vehicle_sim.ros.automobile_node import AutomobileNode
+    data = copy.deepcopy(read_yaml(world_path('highway')))
+    data['traffic'] = {'vehicles': 3, 'seed': 2}
+    data['obstacles'] = [{'name': 'cone', 'shape': 'cylinder', 'radius': 0.2, 'height': 0.7,
+                          'position': [50.0, -14.0, 0.35]}]
+    path = tmp_path / 'highway_cone.yaml'
+    path.write_text(yaml.safe_dump(data), encoding='utf-8')
+    node = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/traffic_cone'], transport='dds',
+                          parameter_overrides={'synchronous': True, 'world': str(path)})
+    try:
+        received = []
+        with client_node('cone_listener') as client:
+            sub = client.create_subscription(PREDICTED_OBJECTS_TOPIC.ros_type,
+                                             PREDICTED_OBJECTS_TOPIC.name, received.append,
+                                             QOS_OBJECTS)
+            assert wait_for(lambda: sub.get_publisher_count(), spin=client)
+            node.step(1)
+            assert wait_for(lambda: received, spin=client)
+        objects = received[-1].objects
+        assert [o.classification[0].label for o in objects] == [1, 1, 1, 0]
+        cone = objects[-1]
+        assert bytes(cone.object_id.uuid) == object_uuid('cone')
+        position = cone.kinematics.initial_pose_with_covariance.pose.position
+        assert (position.x, position.y, position.z) == (50.0, -14.0, 0.35)
+        assert (cone.shape.type, cone.shape.dimensions.z) == (1, 0.7)
+    finally:
+        node.close()

@@ -39,7 +39,8 @@ from typing import Callable, Dict, List, Optional
 
 from vehicle_sim.core.drive_input import CarDriveInput
 from vehicle_sim.core.errors import InvalidCommandError
-from vehicle_sim.core.traffic.objects import traffic_objects
+from vehicle_sim.core.geometry import yaw_from_quaternion
+from vehicle_sim.core.traffic.objects import obstacle_objects, traffic_objects
 from vehicle_sim.physics import SimulatedCar
 from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
 from vehicle_sim.physics.scene import build_scene
@@ -284,7 +285,7 @@ class AutomobileNode:
         bodies = self.scene.parts.get('traffic')
         self._traffic = None if bodies is None else SimpleNamespace(
             objects_frame=OBJECTS_FRAME, markers_frame=MARKERS_FRAME,
-            colours=bodies.colours, bodies=bodies, stamp=None, objects=None)
+            colours=bodies.colours, bodies=bodies, stamp=None, objects=None, obstacles=())
         self._traffic_outputs = None if bodies is None else Outputs(
             self.node, TRAFFIC_TOPICS, self._traffic)
 
@@ -408,9 +409,16 @@ class AutomobileNode:
             if traffic is not None and self._traffic_outputs.wanted(EACH_PUBLISH):
                 traffic.stamp = stamp
                 traffic.objects = traffic_objects(traffic.bodies.manager, traffic.bodies.heights)
+                traffic.obstacles = obstacle_objects(self.scene.spec.obstacles,
+                                                     self._obstacle_pose)
                 self._traffic_outputs.publish(EACH_PUBLISH, traffic)
         for vehicle in self._sensing:
             self._publish_sensors(vehicle)
+
+    def _obstacle_pose(self, name):
+        # (x, y, z, yaw) of a movable obstacle now (PredictedObjects).
+        (position, (qx, qy, qz, qw)), _, _ = self.world.body_state(self.world.obstacles[name])
+        return (*position, yaw_from_quaternion(qx, qy, qz, qw))
 
     def _publish_sensors(self, vehicle):
         # Every reading and collision event since the last call, stamped with its own

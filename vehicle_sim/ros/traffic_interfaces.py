@@ -19,7 +19,8 @@ The traffic topics of a node whose world has traffic (docs/traffic.md): rows of 
 Both are global and published each publish period. Wiring context ``w``: ``objects_frame`` (the
 PredictedObjects' frame, ``map`` as Autoware expects), ``markers_frame`` (the world frame of
 RViz, ``world``), ``colours`` (the bodies' colours); call context ``ctx``: ``stamp`` and
-``objects`` (core TrafficObjects; None = nothing to publish).
+``objects`` (core TrafficObjects; None = nothing to publish) and ``obstacles`` (core
+ObstacleObjects, in PredictedObjects only).
 """
 
 from vehicle_sim.ros.endpoints import converter, EACH_PUBLISH, Topic, topic_table_markdown
@@ -42,12 +43,16 @@ def _objects(ctx):
     return None if ctx.objects is None else (ctx.stamp, ctx.objects)
 
 
+def _objects_and_obstacles(ctx):
+    return None if ctx.objects is None else (ctx.stamp, ctx.objects, ctx.obstacles)
+
+
 PREDICTED_OBJECTS_TOPIC = Topic(
     '/perception/object_recognition/objects', PREDICTED_OBJECTS, QOS_OBJECTS, EACH_PUBLISH,
-    converter(predicted_objects_builder, _objects, lambda w: (w.objects_frame,)),
+    converter(predicted_objects_builder, _objects_and_obstacles, lambda w: (w.objects_frame,)),
     unit='m, rad, m/s',
     doc='ground truth of every traffic vehicle (class CAR, box, pose, twist, a path along its '
-        'lane at constant speed); frame map')
+        'lane at constant speed) and obstacle (class UNKNOWN, at rest); frame map')
 TRAFFIC_MARKERS = Topic(
     '/sim/traffic/markers', MARKER_ARRAY, QOS_OBJECTS, EACH_PUBLISH,
     converter(traffic_markers_builder, _objects, lambda w: (w.markers_frame, w.colours)),

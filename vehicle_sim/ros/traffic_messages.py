@@ -24,7 +24,8 @@ TrafficObjects (core/traffic/objects.py).
   perception gives them: per object a UUID derived from its name, existence probability 1,
   classification CAR (probability 1), the pose of its box's centre, its twist in its own frame
   (x forward), a BOUNDING_BOX shape of its dimensions, and one predicted path (confidence 1):
-  constant speed along its lane.
+  constant speed along its lane. After them the world's obstacles: classification UNKNOWN, at
+  rest, no predicted path, a BOUNDING_BOX (a box) or CYLINDER (a cylinder, a sphere) shape.
 - ``visualization_msgs/MarkerArray``: one CUBE per object (namespace ``traffic``, id = the
   vehicle's index), coloured like its body; objects that left the map since the last message
   are deleted (action DELETE).
@@ -50,8 +51,8 @@ MARKER = 'visualization_msgs/msg/Marker'
 MARKER_ARRAY = 'visualization_msgs/msg/MarkerArray'
 COLOR = 'std_msgs/msg/ColorRGBA'
 
-CAR = 1                  # ObjectClassification.CAR
-BOUNDING_BOX = 0         # Shape.BOUNDING_BOX
+UNKNOWN, CAR = 0, 1      # ObjectClassification
+BOUNDING_BOX, CYLINDER = 0, 1    # Shape
 CUBE, ADD, DELETE = 1, 0, 2     # visualization_msgs/Marker
 # the namespace of the objects' UUIDs (uuid5 of the vehicle's name): stable across runs
 UUID_NAMESPACE = uuid.uuid5(uuid.NAMESPACE_URL, 'vehicle_sim/traffic')
@@ -95,9 +96,19 @@ def predicted_objects_builder(msg, frame_id: str):
         item.shape.dimensions.z = float(o.height_m)
         return item
 
-    def build(stamp, objects):
+    def obstacle(o):
+        item = object_type(object_id=uuid_type(uuid=object_uuid(o.name)),
+                           existence_probability=1.0,
+                           classification=[classification_type(label=UNKNOWN, probability=1.0)])
+        item.kinematics.initial_pose_with_covariance.pose = pose(o.x_m, o.y_m, o.z_m, o.yaw_rad)
+        item.shape = shape_type(type=BOUNDING_BOX if o.shape == 'box' else CYLINDER)
+        item.shape.dimensions.x, item.shape.dimensions.y, item.shape.dimensions.z = \
+            (float(v) for v in o.size_m)
+        return item
+
+    def build(stamp, objects, obstacles=()):
         return objects_type(header=header_type(stamp=stamp, frame_id=frame_id),
-                            objects=[one(o) for o in objects])
+                            objects=[one(o) for o in objects] + [obstacle(o) for o in obstacles])
     return build
 
 

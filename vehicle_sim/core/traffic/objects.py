@@ -20,7 +20,8 @@ The traffic vehicles as objects for ground-truth perception: pose, speed, box, p
 :class:`TrafficObject` with its centre pose, speed along its heading, box dimensions and a
 straight prediction: the poses it reaches at its current speed along its lane and planned
 successors every ``step_s`` up to ``horizon_s`` (as Autoware's dummy perception predicts its
-objects: constant speed along the lane). The ROS layer turns them into
+objects: constant speed along the lane). :func:`obstacle_objects` gives the world's obstacles
+(:class:`ObstacleObject`: pose, shape, extents). The ROS layer turns them into
 ``autoware_perception_msgs/PredictedObjects`` and markers (ros/traffic_messages.py).
 """
 
@@ -105,4 +106,40 @@ def traffic_objects(manager, heights: Mapping[str, float], horizon_s=PREDICTION_
         found.append(TrafficObject(v.index, v.name, x, y, yaw, v.speed_mps, v.length_m,
                                    v.width_m, heights[v.model],
                                    _path(manager, v, horizon_s, step_s), step_s))
+    return tuple(found)
+
+
+@dataclass(frozen=True)
+class ObstacleObject:
+    """
+    One obstacle as an object: its name, centre (x, y, z) [m], heading [rad], shape, extents.
+
+    :param shape: the ObstacleSpec's shape ('box', 'cylinder', 'sphere').
+    :param size_m: full extents along its own x, y, z [m].
+    """
+
+    name: str
+    x_m: float
+    y_m: float
+    z_m: float
+    yaw_rad: float
+    shape: str
+    size_m: Tuple[float, float, float]
+
+
+def obstacle_objects(specs, pose_of=None) -> Tuple[ObstacleObject, ...]:
+    """
+    Return the obstacles (core ObstacleSpecs) as ObstacleObjects.
+
+    :param specs: the world's ObstacleSpecs.
+    :param pose_of: ``pose_of(name)`` -> (x, y, z, yaw) now of a movable obstacle (mass > 0);
+        None = every obstacle where its spec puts it.
+    """
+    found = []
+    for spec in specs:
+        if pose_of is not None and not spec.static:
+            x, y, z, yaw = pose_of(spec.name)
+        else:
+            (x, y, z), yaw = spec.position_m, spec.yaw_rad
+        found.append(ObstacleObject(spec.name, x, y, z, yaw, spec.shape, tuple(spec.size_m)))
     return tuple(found)
