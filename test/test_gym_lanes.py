@@ -21,6 +21,7 @@ road, determinism; worlds without lanes unchanged.
 """
 
 import math
+from pathlib import Path
 import warnings
 
 import numpy as np
@@ -39,6 +40,7 @@ from gymnasium.utils.env_checker import check_env  # noqa: E402
 
 import vehicle_sim.gym  # noqa: E402,F401  (registers the ids)
 
+ROOT = Path(__file__).resolve().parents[1]
 # One road, one lane each way, 3.5 m lanes: 20 m straight east, a quarter circle of radius
 # 30 m to the left, 30 m straight north. Forward lanes 100001, 100101, 100201 (docs/lanes.md).
 ROAD = {'name': 'bend', 'lanes': 1, 'backward_lanes': 1, 'lane_width': 3.5,
@@ -230,3 +232,22 @@ def test_lane_term_weights_time_off_the_lane_and_solid_lines():
     assert lane_term(weights, True, 2, 0.1) == pytest.approx(-3.0)
     with pytest.raises(InvalidParameterError, match='off_lane_penalty'):
         RewardWeights(off_lane_penalty=-1.0)
+
+
+def test_a_scenarios_lane_criteria_are_judged_on_the_worlds_lane_map(make):
+    scenario = ROOT / 'scenarios' / 'highway_stay_in_lane.yaml'
+    env = make(scenario=str(scenario), action_repeat=10)
+    _, info = env.reset(seed=0)
+    assert set(info['criteria'].values()) == {'undecided'}
+    for _ in range(20):         # straight along the middle lane: nothing decided yet
+        _, _, terminated, _, info = env.step(np.array([0.0, 15.0], dtype=np.float32))
+        assert not terminated
+    assert set(info['criteria'].values()) == {'undecided'}
+    for _ in range(100):        # steer left across the lanes: stay_in_lane fails
+        _, _, terminated, _, info = env.step(np.array([0.2, 15.0], dtype=np.float32))
+        if terminated:
+            break
+    assert terminated
+    verdicts = info['criteria']
+    stay = [name for name in verdicts if 'stay_in_lane' in name]
+    assert len(stay) == 1 and verdicts[stay[0]] == 'failed', verdicts

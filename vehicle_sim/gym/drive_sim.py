@@ -261,7 +261,8 @@ class DriveSim:
         self._step0 = self.world.step_count
         if self._criteria_specs:
             self._watch = CriteriaWatch(self._criteria_specs, self.episode_s, self.world,
-                                        self._handles, self.scene.spec.obstacles)
+                                        self._handles, self.scene.spec.obstacles,
+                                        self.scene.lanes)
         x, y, yaw = self._ego_state()
         if self.lanes is not None:       # after the teleport: the jump is no crossing
             self.lanes.reset()
