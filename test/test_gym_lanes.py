@@ -39,6 +39,7 @@ gymnasium = pytest.importorskip('gymnasium', reason="needs the 'gym' extra (gymn
 from gymnasium.utils.env_checker import check_env  # noqa: E402
 
 import vehicle_sim.gym  # noqa: E402,F401  (registers the ids)
+from vehicle_sim.gym import DriveVectorEnv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 # One road, one lane each way, 3.5 m lanes: 20 m straight east, a quarter circle of radius
@@ -251,3 +252,40 @@ def test_a_scenarios_lane_criteria_are_judged_on_the_worlds_lane_map(make):
     verdicts = info['criteria']
     stay = [name for name in verdicts if 'stay_in_lane' in name]
     assert len(stay) == 1 and verdicts[stay[0]] == 'failed', verdicts
+
+
+def test_on_a_lanelet2_map_the_lane_part_reads_the_lanelet_and_progress_follows_successors(
+        make, tmp_path):
+    pytest.importorskip('lanelet2', reason="needs the 'lanelet2' extra (Lanelet2's Python "
+                        'package) to read the .osm map')
+    from lane_helpers import write_world
+    world = write_world(tmp_path, [{'name': 'Car', 'model': 'ToyotaPrius',
+                                    'pose': {'lanelet': 2001, 's': 10.0, 'offset': 0.0}}])
+    env = make(world=str(world), action_repeat=10)
+    obs, _ = env.reset(seed=0)
+    assert obs['lane_id'][0] == 2001
+    assert obs['lane'][0] == pytest.approx(10.0, abs=1e-3) and abs(obs['lane'][1]) < 1e-3
+    x0, total = float(obs['pose'][0]), 0.0
+    for _ in range(80):          # straight on at 10 m/s, past the lanelet's end at x = 50 m
+        obs, _, _, _, info = env.step(np.array([0.0, 10.0], dtype=np.float32))
+        total += info['progress_m']
+        if obs['pose'][0] > 60.0:
+            break
+    assert obs['lane_id'][0] == 2003 and info['on_lane']       # 2001's successor
+    assert obs['lane'][0] == pytest.approx(float(obs['pose'][0]) - 50.0, abs=0.05)
+    assert total == pytest.approx(float(obs['pose'][0]) - x0, abs=0.05)
+
+
+def test_the_vector_env_batches_the_lane_keys():
+    env = DriveVectorEnv(3, world='highway', action_repeat=5)
+    try:
+        obs, info = env.reset(seed=[0, 1, 2])
+        assert obs['lane'].shape == (3, 6) and obs['lane_id'].shape == (3, 1)
+        assert obs['lane_id'].dtype == np.int64 and (obs['lane_id'][:, 0] == 100002).all()
+        action = np.tile(np.array([0.0, 10.0], dtype=np.float32), (3, 1))
+        obs, reward, _, _, info = env.step(action)
+        assert info['lane_id'].tolist() == [100002] * 3 and info['on_lane'].all()
+        assert info['reward_terms']['lane'].shape == (3,)
+        assert env.single_observation_space.contains({k: v[0] for k, v in obs.items()})
+    finally:
+        env.close()
