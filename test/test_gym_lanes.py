@@ -289,3 +289,20 @@ def test_the_vector_env_batches_the_lane_keys():
         assert env.single_observation_space.contains({k: v[0] for k, v in obs.items()})
     finally:
         env.close()
+
+
+def test_a_reset_after_leaving_the_lane_is_neither_a_crossing_nor_progress(make):
+    env = make(world=bend_world(100101, 2.0), action_repeat=10)
+    first, _ = env.reset(seed=0)
+    crossed = 0
+    for _ in range(40):
+        _, _, _, _, info = env.step(np.array([0.0, 8.0], dtype=np.float32))
+        crossed += info['lane_crossings']
+    assert crossed >= 1 and not info['on_lane']
+    again, info = env.reset(seed=0)
+    assert info['lane_crossings'] == 0 and info['on_lane'] and info['lane_id'] == 100101
+    assert again['lane'].tobytes() == first['lane'].tobytes()
+    _, _, _, _, info = env.step(np.array([0.0, 1.0], dtype=np.float32))
+    # the jump back is not counted: the first step's progress is what the car drove
+    assert info['lane_crossings'] == 0 and 0.0 <= info['progress_m'] < 0.1
+    assert info['reward_terms']['lane'] == 0.0
