@@ -214,6 +214,13 @@ def test_lane_distance_follows_successors_predecessors_and_neighbours():
         -(first.length_m - 18.0 + 1.0))
     # the backward lane of the same segment is no neighbour of the same direction: unrelated
     assert lane_distance(graph, 100001, 5.0, 100051, 5.0) is None
+    # a lane change onto the same-direction neighbour, on the arc where the two differ in
+    # length: s carried over at the same fraction of the length
+    two = lane_graph_from_roads(roads_from_list([dict(ROAD, lanes=2)], 'w'), 'w')
+    inner, outer = two.lanes[100101], two.lanes[100102]
+    assert inner.right_lane == 100102 and outer.length_m > inner.length_m
+    moved = lane_distance(two, 100101, 10.0, 100102, 12.0)
+    assert moved == pytest.approx(12.0 - 10.0 / inner.length_m * outer.length_m)
 
 
 def test_lane_progress_counts_after_coming_back_and_nothing_off_the_lane():
