@@ -19,7 +19,9 @@ Speed of the Gymnasium environment (docs/gym.md), with highway-env's beside it.
 Figures, each in env steps per second (one step = one action, action_repeat 1, 10 ms):
 
 1. one ``vehicle_sim/Drive-v0`` (``gymnasium.make``, world obstacle_course, a car), state
-   observations only (target >= 3000/s), and with a 1080-ray lidar (target >= 500/s);
+   observations only (target >= 3000/s), and with a 1080-ray lidar (target >= 500/s); and on
+   the highway world (3 + 3 lanes, 2.33 km) with its lane observations, lane progress and lane
+   penalty (target >= 3000/s, as state-only; the ratio to the state-only figure beside);
 2. the in-process vector environment with 1, 8 and 32 worlds: its steps of all worlds per
    CPU second of this process over the single environment's, short blocks of the two
    interleaved, every world taking the lone environment's actions in a world without episode
@@ -129,6 +131,33 @@ def single_rate(blocks, steps, **options):
         return statistics.median(runner.block(steps) for _ in range(blocks))
     finally:
         env.close()
+
+
+def lane_ratio(blocks, steps):
+    """
+    Return (with lanes, without, ratio) of the highway world and the same car without roads.
+
+    The highway world's steps/s over the same car on a world without its roads (no lane map:
+    no lane observation, tracker or lane reward), short blocks of the two interleaved, so that
+    the ratio is the lanes' cost.
+    """
+    gymnasium = _gym()
+    bare = {'vehicles': [{'name': 'Car', 'model': 'ToyotaPrius',
+                          'pose': {'x': 20.0, 'y': -5.625, 'yaw': 0.0}}]}
+    envs = [gymnasium.make(ENV_ID, world='highway'), gymnasium.make(ENV_ID, world=bare)]
+    try:
+        runners = [_Runner(env) for env in envs]
+        for runner in runners:
+            runner.block(50)
+        rates = [[], []]
+        for _ in range(blocks):
+            for rate, runner in zip(rates, runners):
+                rate.append(runner.block(steps))
+        ratio = statistics.median(a / b for a, b in zip(*rates))
+        return statistics.median(rates[0]), statistics.median(rates[1]), ratio
+    finally:
+        for env in envs:
+            env.close()
 
 
 def _cpu_block(runner, steps):
@@ -272,6 +301,8 @@ def figures(quick=False):
     vector_blocks = 6 if quick else 20
     state = single_rate(blocks, steps)
     lidar = single_rate(blocks, max(100, steps // 4), lidar=True)
+    lanes = single_rate(blocks, steps, world='highway')
+    laned, bare, lane_cost = lane_ratio(2 * blocks, max(200, steps // 2))
     vectors = {n: vector_ratio(n, vector_blocks, max(320, 4 * n)) for n in (1, 8, 32)}
     asynchronous = async_rate(200 if quick else 1000)
     each_s, per_world_s = creation_s()
@@ -281,13 +312,18 @@ def figures(quick=False):
         ('gym: one Drive-v0, state observations (obstacle_course car)', state, '>=',
          TARGET_STATE, 'steps/s'),
         ('gym: one Drive-v0 with a 1080-ray lidar', lidar, '>=', TARGET_LIDAR, 'steps/s'),
+        ('gym: one Drive-v0, highway world with lane observations', lanes, '>=',
+         TARGET_STATE, 'steps/s'),
     ]
     for n, (many, lone, ratio) in vectors.items():
         rows.append((f'gym: vector env of {n} worlds in one process / one env, steps/s', ratio,
                      '>=', TARGET_VECTOR, 'x'))
     rows.append(('gym: creating one Drive-v0 (gymnasium.make, 16 in a row)', each_s, '<=',
                  TARGET_CREATE_S, 's'))
-    context = [f'gym: vector env of {n} worlds: {many:.0f} world steps/s ({many / n:.0f} per '
+    context = [f'gym: highway with lanes {lanes:.0f} steps/s beside state-only obstacle_course '
+               f'{state:.0f} steps/s: {lanes / state:.2f}x; interleaved with the same car on '
+               f'a world without roads: {laned:.0f} / {bare:.0f} steps/s = {lane_cost:.2f}x']
+    context += [f'gym: vector env of {n} worlds: {many:.0f} world steps/s ({many / n:.0f} per '
                f'world), one env alone in the same blocks {lone:.0f} steps/s'
                for n, (many, lone, _) in vectors.items()]
     context.append(f'gym: AsyncVectorEnv, 2 processes: {asynchronous:.0f} steps/s of both')

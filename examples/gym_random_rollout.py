@@ -16,7 +16,8 @@
 """
 A random policy in vehicle_sim/Drive-v0: one car, a 1080-ray lidar, episodes until a crash.
 
-Run: ``.venv/bin/python examples/gym_random_rollout.py [--episodes 3] [--render out.png]``.
+Run: ``.venv/bin/python examples/gym_random_rollout.py [--episodes 3] [--render out.png]
+[--world highway]`` (a world with lanes adds the ``lane`` observation and reward term).
 Needs the ``gym`` extra (``pip install 'vehicle_sim[gym]'``). Each episode prints its length,
 its return, each reward term's sum and why it ended; ``--render`` saves the last chase-camera
 picture (matplotlib).
@@ -35,8 +36,10 @@ def main(argv=None):
     parser.add_argument('--episodes', type=int, default=3)
     parser.add_argument('--seed', type=int, default=0)
     parser.add_argument('--render', metavar='PNG', help='save the last picture here')
+    parser.add_argument('--world', default='obstacle_course',
+                        help='a world name or file (default obstacle_course)')
     args = parser.parse_args(argv)
-    env = gymnasium.make('vehicle_sim/Drive-v0', world='obstacle_course', lidar=True,
+    env = gymnasium.make('vehicle_sim/Drive-v0', world=args.world, lidar=True,
                          action_repeat=10, max_episode_s=20.0,
                          render_mode='rgb_array' if args.render else None)
     env.action_space.seed(args.seed)
@@ -56,9 +59,11 @@ def main(argv=None):
                'goal reached' if info['goal_reached'] else
                'time limit' if truncated else 'terminated')
         nearest = float(np.min(obs['lidar']))
+        lane = (f'; lane {int(obs["lane_id"][0])}, offset {obs["lane"][1]:.2f} m'
+                if 'lane' in obs else '')
         print(f'episode {episode}: {steps} steps, {info["time_s"]:.1f} s, return {total:.2f} '
               f'({", ".join(f"{k} {v:.2f}" for k, v in terms.items())}); {why}; '
-              f'nearest lidar return {nearest:.2f} m')
+              f'nearest lidar return {nearest:.2f} m{lane}')
         if args.render and episode == args.episodes - 1:
             import matplotlib
             matplotlib.use('Agg')

@@ -19,8 +19,10 @@ One driving world for learning: the scene, its ego vehicle, and an episode's ste
 :class:`DriveSim` holds what a Gym environment needs of the simulator, without Gymnasium: the
 world built by the scene builder (physics/scene.py) from a world or scenario file, the ego's
 action layout (controls.py), observation parts (observations.py), progress measure and reward
-terms (core/learning), collisions and a scenario's criteria (episode.py). ``DriveEnv`` wraps
-one, ``DriveVectorEnv`` holds several, each with its own physics client, in one process.
+terms (core/learning), collisions and a scenario's criteria (episode.py), and in a world with a
+lane map the ego's lane state (core/map/vehicle_lanes.py, updated once per env step; lanes.py).
+``DriveEnv`` wraps one, ``DriveVectorEnv`` holds several, each with its own physics client, in
+one process.
 
 A reset puts every vehicle back at its spawn pose (each body loaded afresh in the same client,
 ``VehicleBody.reset``) and every movable obstacle at its start: no new physics client, a few
@@ -35,8 +37,22 @@ import numpy as np
 
 from vehicle_sim.config import read_yaml, world_from_data, world_path
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
-from vehicle_sim.core.learning.progress import GoalProgress, HeadingProgress, PathProgress
-from vehicle_sim.core.learning.reward import reward_terms, RewardWeights, TERMS, total
+from vehicle_sim.core.learning.progress import (
+    GoalProgress,
+    HeadingProgress,
+    LaneProgress,
+    PathProgress,
+)
+from vehicle_sim.core.learning.reward import (
+    lane_term,
+    LANE_TERMS,
+    reward_terms,
+    RewardWeights,
+    solid_crossings,
+    TERMS,
+    total,
+)
+from vehicle_sim.core.map.vehicle_lanes import VehicleLanes
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.world.params import RobotSpec, WorldSpec
 from vehicle_sim.gym.controls import make_control
@@ -121,7 +137,8 @@ class DriveSim:
         self.episode_s = opts['max_episode_s'] or (self.scenario.duration_s if self.scenario
                                                    else DEFAULT_EPISODE_S)
         self.weights = RewardWeights(opts['progress_weight'], opts['collision_penalty'],
-                                     opts['goal_reward'])
+                                     opts['goal_reward'], opts['off_lane_penalty'],
+                                     opts['solid_line_penalty'])
         self._hook = _ActorHook()
         self._parts = []
         self.scene = build_scene(world_spec, time_step_s=step_ms / 1000.0, gui=gui,
@@ -129,6 +146,12 @@ class DriveSim:
         try:
             self.world = self.scene.world
             self.ego = self.scene.vehicles[self.ego_name]
+            graph = self.scene.lanes
+            # the ego's lane state and the markings it crosses (None: a world without lanes)
+            self.lanes = None if graph is None else VehicleLanes(graph)
+            self.lane_ids = () if graph is None else tuple(sorted(graph.lanes))
+            self._terms = TERMS if graph is None else LANE_TERMS
+            self._crossed = ()
             self.control = make_control(opts['control'], self.ego, opts['max_speed'],
                                         opts['max_reverse_speed'])
             self._parts.extend(p for p in (factory(self) for factory in PART_FACTORIES)
@@ -200,6 +223,8 @@ class DriveSim:
                 return PathProgress(path), goal
             except InvalidParameterError as error:
                 raise InvalidParameterError(f"{SOURCE}: option 'path': {error}") from None
+        if goal is None and self.lanes is not None:
+            return LaneProgress(self.lanes.graph), goal
         return (goal if goal is not None else HeadingProgress()), goal
 
     # ---------------------------------------------------------------- episode
@@ -236,11 +261,22 @@ class DriveSim:
         self._step0 = self.world.step_count
         if self._criteria_specs:
             self._watch = CriteriaWatch(self._criteria_specs, self.episode_s, self.world,
-                                        self._handles, self.scene.spec.obstacles)
+                                        self._handles, self.scene.spec.obstacles,
+                                        self.scene.lanes)
         x, y, yaw = self._ego_state()
-        self._progress.start(x, y, yaw)
+        if self.lanes is not None:       # after the teleport: the jump is no crossing
+            self.lanes.reset()
+            self.lanes.update(x, y, yaw, self.world.time_s)
+            self._crossed = ()
+        self._start_progress(x, y, yaw)
         self._goal_reached = False
-        return self.observe(), self._info(0.0, dict.fromkeys(TERMS, 0.0), '', False)
+        return self.observe(), self._info(0.0, dict.fromkeys(self._terms, 0.0), '', False)
+
+    def _start_progress(self, x, y, yaw):
+        if isinstance(self._progress, LaneProgress):
+            self._progress.start(self.lanes.state)
+        else:
+            self._progress.start(x, y, yaw)
 
     def _offset_start(self, rng):
         # The ego at its spawn pose plus a uniform offset; an offset that puts it inside
@@ -297,8 +333,10 @@ class DriveSim:
             else self._goal
         hits = []
         reached_now = False
+        repeat_done = 0
         for _ in range(repeat):
             world.step()
+            repeat_done += 1
             if monitor.fresh:
                 hits.extend(monitor.fresh)
             if watch is not None or circle is not None:
@@ -312,8 +350,15 @@ class DriveSim:
             if hits and self.options['terminate_on_collision']:
                 break
         x, y, yaw = self._ego_state()
-        progress_m = self._progress.advance(x, y, yaw)
         terminated = bool(hits) and self.options['terminate_on_collision']
+        if self.lanes is not None:
+            state, self._crossed = self.lanes.update(x, y, yaw, world.time_s)
+            if self.options['terminate_off_road'] and not state.on_lane:
+                terminated = True
+        if isinstance(self._progress, LaneProgress):
+            progress_m = self._progress.advance(self.lanes.state)
+        else:
+            progress_m = self._progress.advance(x, y, yaw)
         if watch is not None:
             ended, reached_all = watch.decide(self.elapsed_s)
             terminated = terminated or ended
@@ -322,6 +367,10 @@ class DriveSim:
         terminated = terminated or reached_now
         self._goal_reached = self._goal_reached or reached_now
         terms = reward_terms(self.weights, progress_m, bool(hits), reached_now)
+        if self.lanes is not None:
+            terms['lane'] = lane_term(self.weights, self.lanes.state.on_lane,
+                                      solid_crossings(self._crossed),
+                                      repeat_done * world.time_step_s)
         truncated = not terminated and self.elapsed_s >= self.episode_s - 1e-9
         other = ','.join(sorted({event.other for event in hits}))
         return self.observe(), terms, terminated, truncated, self._info(progress_m, terms,
@@ -332,6 +381,12 @@ class DriveSim:
                 'reward_terms': dict(terms), 'reward_default': total(terms),
                 'collision': collision, 'collided_with': collided_with,
                 'goal_reached': self._goal_reached}
+        if self.lanes is not None:
+            state = self.lanes.state
+            info['on_lane'] = state.on_lane
+            info['lane_id'] = state.lane_id
+            info['lane_crossings'] = len(self._crossed)
+            info['solid_crossings'] = solid_crossings(self._crossed)
         if self._watch is not None:
             info['criteria'] = dict(self._watch.verdicts)
         return info

@@ -23,6 +23,11 @@ step); :func:`verdict_now` says whether a criterion is already decided:
 - ``reach_goal``: passed once the goal region is reached (at the speed asked), failed once its
   deadline passed without;
 - ``max_speed``, ``stay_on_path``, ``clearance``: failed as soon as the bound is crossed;
+- the lane criteria (a world with a lane map): ``stay_in_lane`` failed as soon as the ego is
+  off every lane, beyond its offset or across a solid line; ``speed_limit`` as soon as the ego
+  is faster than its lane's limit (plus the tolerance); ``reach_lanelet`` passed once the
+  lanelet is reached (it ends nothing), failed once its deadline passed without; each failed
+  from the start in a world without a lane map;
 - otherwise undecided until the end.
 
 The episode is *terminated* when a criterion failed, or when every ``reach_goal`` criterion
@@ -75,10 +80,36 @@ def verdict_now(criterion, elapsed_s):
         return FAILED if criterion.top_mps > values['limit_mps'] else UNDECIDED
     if kind == 'stay_on_path':
         return FAILED if criterion.worst_m > values['max_distance_m'] else UNDECIDED
+    if kind in _LANE_KINDS:
+        return _lane_verdict(criterion, elapsed_s)
     if kind == 'clearance':
         nearest = min((d for d, _, _, _ in criterion.nearest.values()), default=math.inf)
         return FAILED if nearest < values['min_m'] else UNDECIDED
     return UNDECIDED
+
+
+_LANE_KINDS = ('stay_in_lane', 'speed_limit', 'reach_lanelet')
+
+
+def _lane_verdict(criterion, elapsed_s):
+    values = criterion.values
+    if criterion.error:
+        return FAILED
+    kind = criterion.KIND
+    if kind == 'stay_in_lane':
+        limit = values['max_offset_m']
+        off = criterion.off_lane_s is not None or (values['solid_lines'] and criterion.crossed) \
+            or (limit is not None and criterion.worst is not None
+                and criterion.worst[0] > limit)
+        return FAILED if off else UNDECIDED
+    if kind == 'speed_limit':
+        worst = criterion.worst
+        return FAILED if worst is not None and worst[0] > values['tolerance_mps'] + 1e-12 \
+            else UNDECIDED
+    within = values['within_s'] or criterion.duration_s
+    if criterion.reached_s is not None:
+        return PASSED if criterion.reached_s <= within + _EPS_S else FAILED
+    return FAILED if elapsed_s > within + _EPS_S else UNDECIDED
 
 
 class CriteriaWatch:
@@ -88,12 +119,13 @@ class CriteriaWatch:
     :param specs: the ego's CriterionSpecs.
     :param duration_s: the scenario's duration [s].
     :param world: the World; ``handles``: {name: VehicleHandle} of the vehicles;
-        ``obstacles``: the world's ObstacleSpecs (clearance).
+        ``obstacles``: the world's ObstacleSpecs (clearance); ``lanes``: the world's LaneGraph
+        or None (the lane criteria).
     """
 
-    def __init__(self, specs, duration_s, world, handles, obstacles):
+    def __init__(self, specs, duration_s, world, handles, obstacles, lanes=None):
         self.criteria = build_criteria(specs, duration_s)
-        scene = world_scene(world, handles, obstacles)
+        scene = world_scene(world, handles, obstacles, lanes=lanes)
         for criterion in self.criteria:
             criterion.bind(scene)
         self.goals = [c for c in self.criteria if c.KIND == 'reach_goal']

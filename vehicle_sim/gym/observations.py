@@ -25,10 +25,12 @@ The observation parts of the Gym environment: each one fills some keys of the Di
 - ``camera``: (height, width, 3) uint8 in [0, 255]: an RGB picture of a camera on the ego,
   rows top to bottom.
 
+- ``lane``, ``lane_id`` (a world with lanes): the ego's lane state (lanes.py).
+
 A part is an object with ``spaces()`` ({key: (low, high, shape, dtype)}), ``reset()`` (after the
-world was reset) and ``read(out)`` (writes its keys into the dict ``out``). The lane state of a
-map (the maps issue) comes in as one more part: pass it in ``observation_parts`` of the
-environment, or append its factory to :data:`PART_FACTORIES` so every environment gets it.
+world was reset) and ``read(out)`` (writes its keys into the dict ``out``). More parts: pass
+them in ``observation_parts`` of the environment, or append a factory to
+:data:`PART_FACTORIES` so every environment gets it (the lane state comes in that way).
 """
 
 from dataclasses import replace
@@ -39,6 +41,7 @@ import numpy as np
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.sensors.params import sensor_from_dict
 from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.gym.lanes import lane_part
 from vehicle_sim.gym.options import CAMERA, LIDAR
 from vehicle_sim.physics.sensors.camera import CameraSensor
 from vehicle_sim.physics.sensors.lidar import LidarSensor
@@ -170,6 +173,6 @@ def ego_parts(world, vehicle, lidar_spec, camera_spec):
     return parts
 
 
-# Factories (sim) -> part or None, run for every environment after the built-in parts: where
-# a map's lane state plugs in (e.g. lambda sim: LanePart(sim.scene.parts['map'], sim.ego)).
-PART_FACTORIES = []
+# Factories (sim) -> part or None, run for every environment after the built-in parts, in
+# order; None = nothing for this world (lane_part: a world without lanes).
+PART_FACTORIES = [lane_part]

@@ -94,8 +94,16 @@ OPTION_SPECS = (
     ParamSpec('collision_penalty', kind='float', default=10.0, ge=0.0,
               doc='subtracted on a step with a new collision'),
     ParamSpec('goal_reward', kind='float', default=10.0, doc='added when the goal is reached'),
+    ParamSpec('off_lane_penalty', kind='float', default=10.0, unit='1/s', ge=0.0,
+              doc='with lanes: subtracted per second off every lane (a step that ends off '
+                  'them costs this times its duration)'),
+    ParamSpec('solid_line_penalty', kind='float', default=1.0, ge=0.0,
+              doc='with lanes: subtracted per solid line (or curb, road border, wall) the '
+                  'ego crosses'),
     ParamSpec('terminate_on_collision', kind='bool', default=True,
               doc='a collision of the ego ends the episode (terminated)'),
+    ParamSpec('terminate_off_road', kind='bool', default=False,
+              doc='with lanes: a step that ends off every lane ends the episode (terminated)'),
     ParamSpec('start_noise', kind='floats', default=(0.0, 0.0, 0.0), unit='m, m, rad',
               length=3, check=_start_noise,
               doc="half-widths [x, y, yaw] of a uniform offset of the ego's start pose, drawn "

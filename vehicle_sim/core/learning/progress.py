@@ -25,12 +25,16 @@ yaw)`` (after a step), which returns the progress of that step [m]; positive is 
 - :class:`GoalProgress`: the decrease of the straight-line distance to a goal point.
 - :class:`HeadingProgress`: the displacement projected on the heading at the step's start
   (distance driven forward; reversing counts negative).
+- :class:`LaneProgress`: the distance along the lanes of a lane map (core/map/lane_travel.py),
+  from lane states (core/map/lane_state.py) rather than poses: ``start(state)`` and
+  ``advance(state)``.
 """
 
 import math
 
 import numpy as np
 
+from vehicle_sim.core.map.lane_travel import lane_distance
 from vehicle_sim.core.specs.errors import InvalidParameterError
 
 
@@ -141,5 +145,37 @@ class HeadingProgress:
         x0, y0, yaw0 = self._last
         self._last = (x_m, y_m, yaw_rad)
         return (x_m - x0) * math.cos(yaw0) + (y_m - y0) * math.sin(yaw0)
+
+    done = False
+
+
+class LaneProgress:
+    """
+    Progress along the lanes of a map [m]: the change of s along the route, following successors.
+
+    Fed with the vehicle's LaneState after each step (a LaneTracker's). A step that ends off
+    every lane makes no progress; the last position on a lane is kept, so that coming back onto
+    the lane (the same one, a successor, a predecessor or a neighbour) counts the distance
+    along the lanes since then. A step onto a lane not linked to that position (a jump across
+    the road, onto the opposite direction) makes no progress and starts counting afresh there.
+
+    :param graph: the LaneGraph.
+    """
+
+    def __init__(self, graph):
+        self.graph = graph
+        self._last = None           # (lane id, s [m]) of the last state on a lane
+
+    def start(self, state):
+        self._last = (state.lane_id, state.s_m) if state.on_lane else None
+
+    def advance(self, state):
+        if not state.on_lane:
+            return 0.0
+        last, self._last = self._last, (state.lane_id, state.s_m)
+        if last is None:
+            return 0.0
+        distance = lane_distance(self.graph, last[0], last[1], state.lane_id, state.s_m)
+        return 0.0 if distance is None else distance
 
     done = False

@@ -18,20 +18,26 @@ The default reward of the Gym environment, term by term.
 
 reward = progress_weight * progress [m] - collision_penalty * (1 if a new collision this step)
          + goal_reward * (1 on the step the goal is reached)
+         [with a lane map:] - off_lane_penalty * (the step's duration [s] if it ends off
+         every lane) - solid_line_penalty * (solid lines crossed in the step)
 
 Each term is reported separately (:func:`reward_terms`), so that a user's reward can reuse
-them and a learning curve can be read term by term. Leaving the lane adds a term once lanes
-exist (the maps issue); it goes here, next to the others.
+them and a learning curve can be read term by term. The ``lane`` term (:func:`lane_term`) is
+there only when the world has lanes (LANE_TERMS).
 """
 
 from dataclasses import dataclass
 import math
 from typing import Dict
 
+from vehicle_sim.core.map.lane_graph import SOLID_TYPES
 from vehicle_sim.core.specs.errors import InvalidParameterError
 
-# The names of the terms, in the order info['reward_terms'] lists them.
+# The names of the terms, in the order info['reward_terms'] lists them (LANE_TERMS: a world
+# with a lane map).
 TERMS = ('progress', 'collision', 'goal')
+LANE_TERMS = TERMS + ('lane',)
+_PENALTIES = ('collision_penalty', 'off_lane_penalty', 'solid_line_penalty')
 
 
 @dataclass(frozen=True)
@@ -42,20 +48,25 @@ class RewardWeights:
     :param progress_weight: reward per metre of progress [1/m].
     :param collision_penalty: subtracted on a step with a new collision [-], >= 0.
     :param goal_reward: added on the step the goal is reached [-].
+    :param off_lane_penalty: subtracted per second off every lane [1/s], >= 0.
+    :param solid_line_penalty: subtracted per solid line crossed [-], >= 0.
     """
 
     progress_weight: float = 1.0
     collision_penalty: float = 10.0
     goal_reward: float = 10.0
+    off_lane_penalty: float = 10.0
+    solid_line_penalty: float = 1.0
 
     def __post_init__(self):
-        for name in ('progress_weight', 'collision_penalty', 'goal_reward'):
+        for name in ('progress_weight', 'goal_reward') + _PENALTIES:
             value = getattr(self, name)
             if not math.isfinite(value):
                 raise InvalidParameterError(f'{name} = {value!r}: must be finite')
-        if self.collision_penalty < 0.0:
-            raise InvalidParameterError(f'collision_penalty = {self.collision_penalty!r}: '
-                                        'must be >= 0 (it is subtracted)')
+        for name in _PENALTIES:
+            if getattr(self, name) < 0.0:
+                raise InvalidParameterError(f'{name} = {getattr(self, name)!r}: must be >= 0 '
+                                            '(it is subtracted)')
 
 
 def reward_terms(weights: RewardWeights, progress_m: float, collided: bool,
@@ -72,6 +83,25 @@ def reward_terms(weights: RewardWeights, progress_m: float, collided: bool,
         'collision': -weights.collision_penalty if collided else 0.0,
         'goal': weights.goal_reward if reached_goal else 0.0,
     }
+
+
+def solid_crossings(invasions) -> int:
+    """Return how many of a step's LaneInvasions (core/map/lane_invasion.py) were solid lines."""
+    return sum(1 for event in invasions if event.line_type in SOLID_TYPES)
+
+
+def lane_term(weights: RewardWeights, on_lane: bool, solid_lines: int, step_s: float) -> float:
+    """
+    Return the weighted ``lane`` term of one step (0 or negative).
+
+    :param on_lane: the step ended on a lane (LaneState.on_lane: within half the lane's width
+        of a lane's centreline, between its ends).
+    :param solid_lines: solid lines crossed during the step (:func:`solid_crossings`).
+    :param step_s: the step's duration [s] (an env step: action_repeat basic steps).
+    """
+    penalty = (0.0 if on_lane else weights.off_lane_penalty * float(step_s)) \
+        + (weights.solid_line_penalty * solid_lines if solid_lines else 0.0)
+    return -penalty if penalty else 0.0
 
 
 def total(terms: Dict[str, float]) -> float:
