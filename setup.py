@@ -35,8 +35,9 @@ EXTRAS = {
     'gym': ['gymnasium>=1.0'],                     # vehicle_sim.gym (docs/gym.md)
     'record': ['mcap', 'zstandard', 'lz4'],        # MCAP recordings and their compressors
 }
-# pyarrow: a sweep writes results.parquet when it imports.
-EXTRAS['test'] = (['pytest', 'pytest-timeout', 'ruff', 'pyarrow']
+# pyarrow: a sweep writes results.parquet when it imports. protobuf: the Foxglove scene tests
+# decode a SceneUpdate with the schema its channel advertises.
+EXTRAS['test'] = (['pytest', 'pytest-timeout', 'ruff', 'pyarrow', 'protobuf']
                   + sorted({req for reqs in EXTRAS.values() for req in reqs}))
 # Benchmark only (bench_gym.py compares with highway-env), not in `test`.
 EXTRAS['gym-bench'] = ['gymnasium>=1.0', 'highway-env']

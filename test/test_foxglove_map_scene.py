@@ -220,14 +220,62 @@ def test_an_id_of_a_static_and_a_moving_source_is_refused(monkeypatch):
         SceneStream().frame(_scene(), full=True)
 
 
+def _decoded(messages, update):
+    # The update decoded with protobuf from the schema the channel advertises.
+    descriptor_pb2 = pytest.importorskip(
+        'google.protobuf.descriptor_pb2', reason='protobuf (Python) decodes the update here')
+    from google.protobuf import descriptor_pool, message_factory
+    schema = messages.SceneUpdate.get_schema()
+    files = descriptor_pb2.FileDescriptorSet.FromString(schema.data)
+    pool = descriptor_pool.DescriptorPool()
+    for file in files.file:
+        pool.Add(file)
+    kind = message_factory.GetMessageClass(pool.FindMessageTypeByName(schema.name))
+    return kind.FromString(update.encode())
+
+
 def test_lines_and_triangles_become_foxglove_primitives(highway):
     foxglove = pytest.importorskip('foxglove', reason='foxglove-sdk (the foxglove extra)')
     from vehicle_sim.foxglove import scene_messages
     messages = foxglove.messages
     entities = fs.scene_entities(highway, ['lanes'])
-    update = scene_messages.scene_update(messages, entities, 1.5, deleted_ids=['traffic/b'])
-    data = update.encode()
-    assert len(data) > 1000
-    surface = scene_messages.scene_entity(messages, entities[0], scene_messages.timestamp(
-        messages, 0.0))
-    assert surface is not None
+    update = _decoded(messages, scene_messages.scene_update(
+        messages, entities, 1.5, deleted_ids=['traffic/b']))
+    (deletion,) = update.deletions
+    assert (deletion.id, deletion.type, deletion.timestamp.seconds, deletion.timestamp.nanos) == (
+        'traffic/b', 0, 1, 500_000_000)                # MATCHING_ID at the update's time
+    surface, markings = update.entities[:2]
+    (mesh,) = entities[0].triangles
+    (triangles,) = surface.triangles
+    assert list(triangles.indices) == mesh.indices.reshape(-1).tolist()
+    assert np.array([(p.x, p.y, p.z) for p in triangles.points]) == pytest.approx(
+        mesh.points_m)
+    assert (triangles.color.r, triangles.color.a) == pytest.approx((0.3, 1.0))
+    for got, lines in zip(markings.lines, entities[1].lines):
+        assert got.type == {'line_strip': 0, 'line_list': 2}[lines.kind]
+        assert got.thickness == pytest.approx(lines.thickness_m) and not got.scale_invariant
+        assert np.array([(p.x, p.y, p.z) for p in got.points]) == pytest.approx(lines.points_m)
+    assert markings.frame_id == 'world' and markings.id == 'lanes/markings'
+
+
+@pytest.mark.parametrize('make, message', [
+    (lambda: fs.Lines('line_loop', [[0, 0, 0], [1, 0, 0]], 0.1, (1, 1, 1, 1)),
+     "lines kind 'line_loop'; known: line_strip, line_list"),
+    (lambda: fs.Lines('line_list', [[0, 0, 0], [1, 0, 0], [2, 0, 0]], 0.1, (1, 1, 1, 1)),
+     'a line list takes points in pairs; got 3 points'),
+    (lambda: fs.Lines('line_strip', [[0, 0], [1, 0]], 0.1, (1, 1, 1, 1)),
+     r'lines points_m: expected \(N, 3\) points \[m\], got shape \(2, 2\)'),
+    (lambda: fs.Triangles([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [0, 1, 3], (1, 1, 1, 1)),
+     'triangles indices must be triples into the 3 points'),
+    (lambda: fs.Triangles([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [0, 1], (1, 1, 1, 1)),
+     'triangles indices must be triples into the 3 points'),
+])
+def test_bad_lines_and_triangles_are_refused_naming_the_field(make, message):
+    with pytest.raises(ValueError, match=message):
+        make()
+
+
+def test_lines_and_triangles_take_plain_lists():
+    lines = fs.Lines('line_list', [[0, 0, 0], [1, 0, 0]], 0.1, (1, 1, 1, 1))
+    triangles = fs.Triangles([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [0, 1, 2], (1, 1, 1, 1))
+    assert lines.points_m.shape == (2, 3) and triangles.indices.tolist() == [[0, 1, 2]]

@@ -36,6 +36,13 @@ IDENTITY = (0.0, 0.0, 0.0, 1.0)
 LINE_KINDS = ('line_strip', 'line_list')
 
 
+def _points(points, what) -> np.ndarray:
+    array = np.asarray(points, dtype=float)
+    if array.ndim != 2 or array.shape[1] != 3:
+        raise ValueError(f'{what}: expected (N, 3) points [m], got shape {array.shape}')
+    return array
+
+
 @dataclass(frozen=True)
 class Primitive:
     """
@@ -74,6 +81,10 @@ class Lines:
     def __post_init__(self):
         if self.kind not in LINE_KINDS:
             raise ValueError(f'lines kind {self.kind!r}; known: {", ".join(LINE_KINDS)}')
+        points = _points(self.points_m, 'lines points_m')
+        if self.kind == 'line_list' and len(points) % 2:
+            raise ValueError(f'a line list takes points in pairs; got {len(points)} points')
+        object.__setattr__(self, 'points_m', points)
 
 
 @dataclass(frozen=True, eq=False)
@@ -87,6 +98,16 @@ class Triangles:
     points_m: np.ndarray
     indices: np.ndarray
     color_rgba: Color
+
+    def __post_init__(self):
+        points = _points(self.points_m, 'triangles points_m')
+        indices = np.asarray(self.indices, dtype=np.int64).reshape(-1, 3) \
+            if np.size(self.indices) % 3 == 0 else None
+        if indices is None or (indices.size and (indices.min() < 0
+                                                 or indices.max() >= len(points))):
+            raise ValueError(f'triangles indices must be triples into the {len(points)} points')
+        object.__setattr__(self, 'points_m', points)
+        object.__setattr__(self, 'indices', indices)
 
 
 @dataclass(frozen=True)
