@@ -39,8 +39,8 @@ EXTRAS = {
 # decode a SceneUpdate with the schema its channel advertises.
 EXTRAS['test'] = (['pytest', 'pytest-timeout', 'ruff', 'pyarrow', 'protobuf']
                   + sorted({req for reqs in EXTRAS.values() for req in reqs}))
-# Benchmark only (bench_gym.py compares with highway-env), not in `test`.
-EXTRAS['gym-bench'] = ['gymnasium>=1.0', 'highway-env']
+# Benchmark only, not in `test`: bench_gym.py and bench_traffic.py compare with highway-env.
+EXTRAS['bench'] = ['gymnasium>=1.0', 'highway-env']
 
 
 setup(

@@ -29,7 +29,7 @@ Figures, each in env steps per second (one step = one action, action_repeat 1, 1
 4. creating an environment (16 in a row, each with its own physics client; target <= 0.2 s),
    and a reset;
 5. highway-env's ``highway-fast-v0`` and ``racetrack-v0`` (if the package is installed:
-   ``pip install 'vehicle_sim[gym-bench]'``; skipped with a line otherwise).
+   ``pip install 'vehicle_sim[bench]'``; skipped with a line otherwise).
 
 Every environment takes the same fixed sequence of random actions (seeded) and is reset when its
 episode ends, so resets count in the figures as in training. Run:
@@ -294,7 +294,7 @@ def figures(quick=False):
     context.append(f'gym: a world of DriveVectorEnv(16): {per_world_s * 1000:.1f} ms to create; '
                    f"a reset (with the lidar's first scan) {reset:.1f} ms")
     if highway is None:
-        context.append("gym: highway-env not installed (pip install 'vehicle_sim[gym-bench]'): "
+        context.append("gym: highway-env not installed (pip install 'vehicle_sim[bench]'): "
                        'its figures skipped')
     else:
         context.extend(f'gym: highway-env {env_id}: {rate:.0f} steps/s'

@@ -125,6 +125,7 @@ def collect(quick):
     import bench_service_roundtrip
     import bench_step
     import bench_topics_cpu
+    import bench_traffic
 
     from vehicle_sim.transport import dds
     dds.ensure_domain()
@@ -137,6 +138,7 @@ def collect(quick):
         5 if quick else 15, 200 if quick else 400)
     ten = bench_step.measure_ten_cars(5 if quick else 15, 200 if quick else 400)
     gym_rows, gym_context = _gym_figures(quick)
+    traffic, traffic_core, highway_env = bench_traffic.figures(quick)
     ros = bench_ros_sync.figures(steps=1000, repeats=3 if quick else 5)
     share, _, counts = bench_topics_cpu.measure_node(4.0 if quick else 10.0, 10)
     clock_only, _, _ = bench_topics_cpu.measure_node(4.0 if quick else 10.0, 10, False)
@@ -195,8 +197,23 @@ def collect(quick):
          rss_end - rss_start, '<=', 5.0, 'MiB'),
         ('highway (roads:) node step with lanes - without, per car (lane state, invasions)',
          lane_world['extra_us'], '<=', 20.0, 'us'),
+        ('highway with 50 traffic cars, in-process real-time factor', traffic[50][0], '>=',
+         bench_traffic.TARGETS[50], 'x'),
+        ('highway with 200 traffic cars, in-process real-time factor', traffic[200][0], '>=',
+         bench_traffic.TARGETS[200], 'x'),
     ] + gym_rows
+    if highway_env is not None:
+        rows.append(('steps/s with 50 traffic cars / highway-env highway-fast-v0 with 50',
+                     traffic[50][1] / highway_env[0], '>=',
+                     bench_traffic.TARGET_HIGHWAY_ENV_RATIO, 'x'))
     floors = [
+        'traffic on the highway (ego car cruising, 10 ms steps): ' + ', '.join(
+            f'{n} cars {traffic[n][0]:.0f}x' for n in bench_traffic.COUNTS) + ' real time; the '
+        'core traffic manager alone (no physics): ' + ', '.join(
+            f'{n} cars {traffic_core[n]:.0f}x' for n in traffic_core) + (
+            '' if highway_env is None else
+            f'; highway-env highway-fast-v0 with 50: {highway_env[0]:.0f} simulation steps/s, '
+            f'{highway_env[1]:.1f}x real time'),
         f'raw PyBullet stepSimulation (BmwX5): {raw_us:.1f} us per basic step; Driver.step '
         f'{full_us:.1f} us',
         f'bare DDS write of serialized bytes: {found["write_us"]:.2f} us with no reader, '

@@ -19,8 +19,8 @@ On a ROS 2 machine, ``vehicle-sim export-interfaces <ws>/src`` calls :func:`expo
 ``colcon build`` then builds ``vehicle_msgs`` next to ``vehicle_sim`` (docs/ros_interface.md).
 Only our own
 package is exported: the Autoware (autoware_control_msgs, autoware_auto_control_msgs,
-autoware_vehicle_msgs) and ackermann_msgs types come from their real packages on a ROS machine,
-and the rcl_interfaces / std_srvs copies from ROS itself.
+autoware_vehicle_msgs, autoware_perception_msgs) and ackermann_msgs types come from their real
+packages on a ROS machine, and the rcl_interfaces / std_srvs copies from ROS itself.
 """
 
 import argparse

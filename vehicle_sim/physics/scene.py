@@ -34,7 +34,9 @@ obstacles and vehicles are in, and returns what callers read later, kept in
 :attr:`Scene.parts` under its name. A WorldSpec with a ``map`` gets the map layer
 (physics/map_layer.py) as its first part, ``scene.parts['map']``; a WorldSpec with ``roads:``
 gets the road layer (physics/lane_layer.py), ``scene.parts['roads']``; a world without either
-gets no part and pays nothing.
+gets no part and pays nothing. A world with ``traffic:`` gets the traffic part
+(physics/traffic_bodies.py), on its lane map, unless ``parts`` holds one named 'traffic'
+already.
 
 Lanes: before anything is built, the world's lane map (a lanelet2 map or its roads) is loaded
 and the vehicles placed by lane get their pose (vehicle_sim/maps/lane_maps.py), so a bad file
@@ -61,6 +63,7 @@ from vehicle_sim.physics.lane_layer import RoadLayer
 from vehicle_sim.physics.map_layer import MapLayer
 from vehicle_sim.physics.sensors import SensorSuite
 from vehicle_sim.physics.simulated_car import SimulatedCar
+from vehicle_sim.physics.traffic_bodies import TrafficPart
 from vehicle_sim.physics.vehicle_body import VehicleBody
 from vehicle_sim.physics.world import DEFAULT_FRICTION, DEFAULT_TIME_STEP_S, World
 
@@ -150,7 +153,8 @@ def build_scene(spec: WorldSpec, world: Optional[World] = None, *,
     :param mount: (SceneVehicle, Scene) -> its sensors, for each vehicle once every body is in;
         None mounts none.
     :param parts: scene parts (traffic), built in order after the vehicles (and after the map
-        layer, which a spec with a map gets first).
+        layer, which a spec with a map gets first); the traffic part is added for a spec with
+        traffic when none is given.
     :raises InvalidPoseError: for a vehicle that starts inside an obstacle.
     :raises InvalidParameterError: for two vehicles (cars or robots) of one name, a lane map
         that cannot be read, a vehicle placed off every lane; nothing is built.
@@ -164,6 +168,9 @@ def build_scene(spec: WorldSpec, world: Optional[World] = None, *,
         parts = (RoadLayer(),) + tuple(parts)
     if spec.map is not None:
         parts = (MapLayer(),) + tuple(parts)
+    if getattr(spec, 'traffic', None) is not None and \
+            not any(part.name == 'traffic' for part in parts):
+        parts = (*parts, TrafficPart())
     owned = world is None
     if owned:
         world = World(time_step_s=time_step_s, friction=friction, gui=gui)

@@ -38,7 +38,9 @@ from types import SimpleNamespace
 from typing import Callable, Dict, List, Optional
 
 from vehicle_sim.core.commands.drive_input import CarDriveInput
+from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.specs.errors import InvalidCommandError
+from vehicle_sim.core.traffic.objects import obstacle_objects, traffic_objects
 from vehicle_sim.physics import SimulatedCar
 from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
 from vehicle_sim.physics.scene import build_scene
@@ -73,6 +75,7 @@ from vehicle_sim.ros.sim_params import (
     world_spec,
 )
 from vehicle_sim.ros.time_step import TimeStepService
+from vehicle_sim.ros.traffic_interfaces import MARKERS_FRAME, OBJECTS_FRAME, TRAFFIC_TOPICS
 from vehicle_sim.transport import create_node
 from vehicle_sim.transport.logger import ThrottledWarning
 from vehicle_sim.transport.names import resolve_name
@@ -141,6 +144,7 @@ class AutomobileNode:
         self._time_step = None
         self._control = None
         self._sensing = []
+        self._traffic = None
         self._gui_closed = False
         self._live = None
         try:
@@ -162,9 +166,10 @@ class AutomobileNode:
             # Before any endpoint: the live view sees every publisher and service created.
             self._live = start_live_view(node, settings)
         spec = self._with_sensor_parameter(world_spec(settings))
-        # Collisions are watched when there is something besides the ground to hit.
-        # (and in a world whose lane map has barriers: curbstones, walls).
-        collisions = bool(spec.obstacles) or len(spec.vehicles) > 1 or spec.map is not None
+        # Collisions are watched when there is something besides the ground to hit: obstacles,
+        # other vehicles, map walls, traffic (and a lane map's barriers: curbstones, walls).
+        collisions = (bool(spec.obstacles) or len(spec.vehicles) > 1 or spec.map is not None
+                      or spec.traffic is not None)
 
         def feed(vehicle, scene):
             # Each vehicle's sensors at their rates, and its collisions (ros: their topics).
@@ -197,10 +202,12 @@ class AutomobileNode:
             self._logger.info(f'PyBullet window open; keys: {shortcuts_text()}')
         self._wire_world()
         # /sim/reset, /sim/pause, /initialpose (ros/sim_control.py).
+        traffic = self.scene.parts.get('traffic')
         self._control = WorldControl(
             node, self.world, self._vehicles, settings.synchronous,
             self._vehicles[initialpose_index(settings, spec)],
-            map_in_world=None if spec.map is None else map_in_world(spec.map))
+            map_in_world=None if spec.map is None else map_in_world(spec.map),
+            resets=() if traffic is None else (traffic,))
         self._publish_latched()
         self._publish_step(self.world.time_s)
         if not settings.synchronous:
@@ -236,7 +243,8 @@ class AutomobileNode:
     def _interface_names(self, scene):
         # {fully-qualified name: what has it} of every table row of the node.
         global_name = self._full_name('')
-        taken = {global_name(row.name): 'a topic of the node' for row in itf.WORLD_TOPICS}
+        taken = {global_name(row.name): 'a topic of the node'
+                 for row in itf.WORLD_TOPICS + (TRAFFIC_TOPICS if scene.traffic else ())}
         taken.update({global_name(row.name): 'an endpoint of the node'
                       for row in itf.WORLD_SERVICES + itf.WORLD_INPUTS})
         for spec in scene.vehicles:
@@ -323,6 +331,13 @@ class AutomobileNode:
                                        lanes_frame(self.scene.spec))
         if self._map_outputs.summary:
             self._logger.info(self._map_outputs.summary)
+        # The traffic rows (ros/traffic_interfaces.py), for a world with traffic.
+        bodies = self.scene.parts.get('traffic')
+        self._traffic = None if bodies is None else SimpleNamespace(
+            objects_frame=OBJECTS_FRAME, markers_frame=MARKERS_FRAME,
+            colours=bodies.colours, bodies=bodies, stamp=None, objects=None, obstacles=())
+        self._traffic_outputs = None if bodies is None else Outputs(
+            self.node, TRAFFIC_TOPICS, self._traffic)
 
     @staticmethod
     def _bind(handler, spec, vehicle, name):
@@ -444,8 +459,20 @@ class AutomobileNode:
             outputs.publish(EACH_PUBLISH, fleet)
             if self._live is not None:
                 self._live.publish(time_s, self._transforms)
+            traffic = self._traffic
+            if traffic is not None and self._traffic_outputs.wanted(EACH_PUBLISH):
+                traffic.stamp = stamp
+                traffic.objects = traffic_objects(traffic.bodies.manager, traffic.bodies.heights)
+                traffic.obstacles = obstacle_objects(self.scene.spec.obstacles,
+                                                     self._obstacle_pose)
+                self._traffic_outputs.publish(EACH_PUBLISH, traffic)
         for vehicle in self._sensing:
             self._publish_sensors(vehicle)
+
+    def _obstacle_pose(self, name):
+        # (x, y, z, yaw) of a movable obstacle now (PredictedObjects).
+        (position, (qx, qy, qz, qw)), _, _ = self.world.body_state(self.world.obstacles[name])
+        return (*position, yaw_from_quaternion(qx, qy, qz, qw))
 
     def _publish_sensors(self, vehicle):
         # Every reading and collision event since the last call, stamped with its own

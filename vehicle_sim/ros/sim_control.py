@@ -144,12 +144,15 @@ class WorldControl:
     :param initialpose_vehicle: the Movable that /initialpose moves; None: no /initialpose.
     :param map_in_world: (xyz, q) of the ``map`` frame in the world (a world with a map whose
         map -> world transform is not the identity); None: ``map`` is the world.
+    :param resets: further parts reset after the vehicles (the traffic): each ``reset()``
+        returns what it did, in words.
     """
 
     def __init__(self, node, world, vehicles: Sequence, synchronous: bool,
-                 initialpose_vehicle=None, map_in_world=None):
+                 initialpose_vehicle=None, map_in_world=None, resets: Sequence = ()):
         self._world = world
         self._vehicles = tuple(vehicles)
+        self._resets = tuple(resets)
         self._synchronous = synchronous
         self._logger = node.get_logger()
         # One throttle per reason, as ROS throttles per call site.
@@ -169,10 +172,12 @@ class WorldControl:
         for vehicle in self._vehicles:
             vehicle.reset()
         obstacles = self._world.reset_obstacles()
+        others = ''.join(f'; {part.reset()}' for part in self._resets)
         names = ', '.join(v.label for v in self._vehicles)
         moved = ', '.join(obstacles) if obstacles else 'none'
         return (f'reset {names} (spawn pose, at rest, logic in its start state) and the movable '
-                f'obstacles ({moved}); simulated time goes on at {self._world.time_s:.3f} s')
+                f'obstacles ({moved}){others}; simulated time goes on at '
+                f'{self._world.time_s:.3f} s')
 
     def _on_reset(self, request, response):
         response.message = self.reset()

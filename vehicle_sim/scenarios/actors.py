@@ -22,17 +22,78 @@ by the follower (the follower's choice, not an input clamp). A robot actor gets 
 curvature κ = 2 sin α / L_d as wheel speeds v ∓ κ v t / 2. After the last waypoint (unless it
 loops) the vehicle stops: cruising speed 0 and full brake for a car, zero wheel speeds for a
 robot.
+
+With ``speed_control: idm`` (:class:`IdmSpeed`) the waypoint's speed is the desired speed of
+the Intelligent Driver Model (core/traffic/idm.py) behind the nearest vehicle ahead within the
+actor's width (traffic vehicles and the scenario's other vehicles): the actor slows down and
+stops behind it as traffic does; a car brakes (cruising speed 0 and the brakes) when it must
+slow down by more than BRAKE_ABOVE_MPS.
 """
 
 import math
 
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.specs.units import mps_to_kmh, ros_steering_to_webots
+from vehicle_sim.core.traffic.idm import idm_acceleration, IdmParams
 
 # The aim point moves on once the vehicle is this close to it (its look-ahead), and the last
 # waypoint counts as reached within ARRIVE_M or one wheelbase (a robot: its tread), the smaller.
 ARRIVE_M = 1.0
 LOOKAHEAD_TIME_S = 1.0
+# IDM speed control: the speed asked for is the speed IDM reaches after this time [s]; a car
+# brakes instead of cruising when that is this much below its speed [m/s].
+IDM_HORIZON_S = 0.5
+BRAKE_ABOVE_MPS = 1.0
+LEADER_RANGE_M = 250.0
+
+
+class IdmSpeed:
+    """
+    The Intelligent Driver Model's speed for an actor behind whatever drives ahead of it.
+
+    :param outline: the actor's footprint (core Outline) in its base_link frame.
+    :param others: ``others()`` -> [(name, x, y, yaw, length, width, speed)] of the vehicles
+        around (box centres, speed along their heading), the actor's own left out.
+    :param params: IdmParams (the traffic's, or the defaults).
+    """
+
+    def __init__(self, outline, others, params=None):
+        self.outline = outline
+        self.others = others
+        self.params = params or IdmParams()
+
+    def leader(self, x_m, y_m, yaw_rad):
+        """Return (bumper gap [m], speed [m/s]) of the nearest vehicle ahead, or None."""
+        c, s = math.cos(yaw_rad), math.sin(yaw_rad)
+        outline = self.outline
+        best = None
+        for _, x, y, yaw, length, width, speed in self.others():
+            dx, dy = x - x_m, y - y_m
+            ahead, side = c * dx + s * dy, -s * dx + c * dy
+            if ahead <= 0.0 or ahead > LEADER_RANGE_M:
+                continue
+            turn = yaw - yaw_rad
+            across = 0.5 * (abs(math.sin(turn)) * length + abs(math.cos(turn)) * width)
+            if side - across >= outline.y_max_m or side + across <= outline.y_min_m:
+                continue
+            along = 0.5 * (abs(math.cos(turn)) * length + abs(math.sin(turn)) * width)
+            gap = ahead - along - outline.x_max_m
+            if best is None or gap < best[0]:
+                best = (gap, speed * math.cos(turn))
+        return best
+
+    def speed(self, x_m, y_m, yaw_rad, speed_mps, desired_mps):
+        """Return the speed [m/s] to ask for: IDM's after IDM_HORIZON_S, within 0 .. desired."""
+        if desired_mps <= 0.0:
+            return 0.0
+        found = self.leader(x_m, y_m, yaw_rad)
+        speed = max(speed_mps, 0.0)
+        if found is None:
+            acc = idm_acceleration(speed, desired_mps, None, 0.0, self.params)
+        else:
+            gap, leader_speed = found
+            acc = idm_acceleration(speed, desired_mps, gap, speed - leader_speed, self.params)
+        return min(max(speed + acc * IDM_HORIZON_S, 0.0), desired_mps)
 
 
 class WaypointFollower:
@@ -94,8 +155,9 @@ class CarActor:
     :param car: SimulatedCar.
     """
 
-    def __init__(self, spec, car):
+    def __init__(self, spec, car, idm=None):
         self.car = car
+        self.idm = idm if spec.speed_control == 'idm' else None
         logic = car.logic
         self.follower = WaypointFollower(spec, logic.wheelbase_m)
         self._limits = (logic.min_steering_angle_rad, logic.max_steering_angle_rad)
@@ -115,6 +177,14 @@ class CarActor:
         steer = ros_steering_to_webots(math.atan(curvature * self.follower.wheelbase_m))
         low, high = self._limits
         logic.set_steering_angle(min(max(steer, low), high))
+        if self.idm is not None:
+            now = self.car.body.forward_speed_mps()
+            speed = self.idm.speed(x, y, yaw, now, speed)
+            if speed < now - BRAKE_ABOVE_MPS:      # the cruise control slows too gently
+                logic.set_cruising_speed_kmh(0.0)
+                logic.set_brake_intensity(min(1.0, (now - speed) / 5.0))
+                return
+            logic.set_brake_intensity(0.0)
         logic.set_cruising_speed_kmh(mps_to_kmh(speed))
 
 
@@ -126,8 +196,9 @@ class RobotActor:
     :param robot: DiffRobotBody.
     """
 
-    def __init__(self, spec, robot):
+    def __init__(self, spec, robot, idm=None):
         self.robot = robot
+        self.idm = idm if spec.speed_control == 'idm' else None
         params = robot.params
         self._tread = params.wheel_tread_m
         self._radius = params.wheel_radius_m
@@ -142,6 +213,8 @@ class RobotActor:
             self.robot.set_wheel_velocities(0.0, 0.0)
             return
         speed, curvature = command
+        if self.idm is not None:
+            speed = self.idm.speed(x, y, yaw, self.robot.forward_speed_mps(), speed)
         half = curvature * speed * self._tread / 2.0
         self.robot.set_wheel_velocities((speed - half) / self._radius,
                                         (speed + half) / self._radius)

@@ -317,6 +317,60 @@ class Clearance(Criterion):
                                f'(bound {bound:g} m){others}', points)
 
 
+class MinGap(Criterion):
+    """The vehicle keeps a gap to the traffic vehicle ahead of it in its lane (its corridor)."""
+
+    KIND = 'min_gap'
+    UNIT = 'm'
+    SPECS = (
+        ParamSpec('min', 'min_m', 'float', REQUIRED, 'm', 'smallest gap allowed between the '
+                  "vehicle's front and the rear of a traffic vehicle ahead of it (its box "
+                  "overlapping the corridor of the vehicle's width)", ge=0.0),
+        ParamSpec('after', 'after_s', 'float', 0.0, 's', 'checked from this simulated time on',
+                  ge=0.0),
+    )
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        self.outline = None
+        self.traffic = None
+        self.worst = None           # (gap, time, other's name)
+
+    def bind(self, scene):
+        self.outline = scene.outline(self.vehicle)
+        self.traffic = getattr(scene, 'traffic', None)
+
+    def observe(self, sample):
+        if self.traffic is None or sample.time_s < self.values['after_s'] - 1e-9:
+            return
+        c, s = math.cos(sample.yaw_rad), math.sin(sample.yaw_rad)
+        front = self.outline.x_max_m
+        left, right = self.outline.y_max_m, self.outline.y_min_m
+        for name, x, y, yaw, length, width in self.traffic():
+            dx, dy = x - sample.x_m, y - sample.y_m
+            ahead, side = c * dx + s * dy, -s * dx + c * dy     # in the vehicle's frame
+            turn = yaw - sample.yaw_rad
+            half_across = 0.5 * (abs(math.sin(turn)) * length + abs(math.cos(turn)) * width)
+            half_along = 0.5 * (abs(math.cos(turn)) * length + abs(math.sin(turn)) * width)
+            if side - half_across >= left or side + half_across <= right:
+                continue                # beside the corridor
+            if ahead <= 0.0:
+                continue                # behind the vehicle's reference point: not ahead
+            gap = ahead - half_along - front
+            if self.worst is None or gap < self.worst[0]:
+                self.worst = (gap, sample.time_s, name)
+
+    def result(self):
+        bound = self.values['min_m']
+        if self.traffic is None:
+            return self._result(False, None, 'the world has no traffic (traffic: in the world)')
+        if self.worst is None:
+            return self._result(True, None, f'no traffic vehicle ahead (bound {bound:g} m)')
+        gap, time_s, name = self.worst
+        return self._result(gap >= bound, gap, f'smallest gap {gap:.3f} m to {name} at '
+                                               f'{time_s:.2f} s (bound {bound:g} m)')
+
+
 COMPARISONS = {'<': operator.lt, '<=': operator.le, '>': operator.gt, '>=': operator.ge,
                '==': operator.eq, '!=': operator.ne}
 TOPIC_MODES = ('always', 'eventually', 'final')
@@ -415,7 +469,7 @@ class TopicPredicate(Criterion):
 
 
 CRITERIA = {cls.KIND: cls for cls in (ReachGoal, NoCollision, StayOnPath, MaxSpeed, Clearance,
-                                      TopicPredicate)}
+                                      MinGap, TopicPredicate)}
 
 
 def criterion_specs(kind):

@@ -17,8 +17,9 @@ What a run's criteria measure distances against: vehicle outlines and obstacle f
 
 A :class:`Scene` holds each vehicle's footprint rectangle (core Outline) and gives the
 footprints around them now: fixed ones (static obstacles, and the walls a map adds) computed
-once, movable obstacles' read from the world at each call. Criteria get it through
-``Criterion.bind``; unit tests build one by hand.
+once, movable obstacles' read from the world at each call; and the traffic vehicles now
+(``traffic``: (name, x, y, yaw, length, width) of each, their box centre). Criteria get it
+through ``Criterion.bind``; unit tests build one by hand.
 """
 
 from typing import Callable, Dict, Iterable, Sequence
@@ -33,15 +34,19 @@ class Scene:
     :param outlines: {vehicle name: Outline}.
     :param fixed: footprints that never move (static obstacles, map walls).
     :param moving: returns the footprints of the movable obstacles now; None = none.
+    :param traffic: returns the traffic vehicles now, each (name, x, y, yaw, length, width)
+        of its box centre [m, rad]; None = the world has no traffic.
     :param lanes: the world's lane map (a core LaneGraph; the lane criteria read it), or None.
     """
 
     def __init__(self, outlines: Dict[str, Outline], fixed: Sequence[Footprint] = (),
-                 moving: Callable[[], Iterable[Footprint]] = None, lanes=None):
+                 moving: Callable[[], Iterable[Footprint]] = None,
+                 traffic: Callable[[], Iterable[tuple]] = None, lanes=None):
         self.lanes = lanes
         self._outlines = dict(outlines)
         self._fixed = tuple(fixed)
         self._moving = moving
+        self.traffic = traffic
 
     def outline(self, vehicle) -> Outline:
         """Return a vehicle's footprint rectangle in its base_link frame."""
@@ -55,7 +60,7 @@ class Scene:
 
 
 def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
-                lanes=None) -> Scene:
+                lanes=None, traffic=None) -> Scene:
     """
     Return the scene of a built simulation.
 
@@ -64,6 +69,7 @@ def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
     :param obstacles: the world's ObstacleSpecs.
     :param walls: further fixed footprints (a map's walls).
     :param lanes: the world's lane map (the built scene's ``lanes``), or None.
+    :param traffic: the world's traffic (physics TrafficBodies), or None.
     """
     fixed = [obstacle_footprint(spec) for spec in obstacles if spec.static] + list(walls)
     movable = [spec for spec in obstacles if not spec.static]
@@ -73,5 +79,11 @@ def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
             (position, orientation), _, _ = world.body_state(world.obstacles[spec.name])
             yield obstacle_footprint(spec, position, orientation)
 
+    def traffic_now():
+        manager = traffic.manager
+        return [(v.name, *manager.pose(v), v.length_m, v.width_m)
+                for v in manager.vehicles if v.active]
+
     return Scene({name: handle.outline for name, handle in vehicles.items()}, fixed,
-                 moving if movable else None, lanes)
+                 moving if movable else None, None if traffic is None else traffic_now,
+                 lanes)

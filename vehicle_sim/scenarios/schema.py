@@ -101,6 +101,10 @@ ACTOR_SPECS = (
               'pure-pursuit look-ahead; 0 = max(2 wheelbases, 1 s of travel)', ge=0.0),
     ParamSpec('loop', 'loop', 'bool', False, doc='back to the first waypoint after the last '
               '(else stop there)'),
+    ParamSpec('speed_control', 'speed_control', 'enum', 'waypoints',
+              choices=('waypoints', 'idm'), doc="waypoints: the waypoints' speeds; idm: at most "
+              'those, slower as the Intelligent Driver Model (docs/traffic.md) asks behind '
+              "whatever drives ahead within the actor's width (traffic, other vehicles)"),
 )
 
 @dataclass(frozen=True)
@@ -121,6 +125,7 @@ class ActorSpec:
     lookahead_m: float
     loop: bool
     line: Optional[int] = None
+    speed_control: str = 'waypoints'
 
 
 @dataclass(frozen=True)
@@ -327,7 +332,7 @@ def _actors(ctx, value, names, vehicle):
         points = _waypoints(ctx, values['waypoints'], path + ('waypoints',),
                             values['speed_mps'])
         actors.append(ActorSpec(name, points, values['lookahead_m'], values['loop'],
-                                line_of(ctx.lines, path)))
+                                line_of(ctx.lines, path), values['speed_control']))
     return tuple(actors)
 
 

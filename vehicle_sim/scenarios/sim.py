@@ -115,6 +115,11 @@ class LocalSim:
                 world.close()
                 raise
 
+    @property
+    def traffic(self):
+        """The world's traffic (physics TrafficBodies), or None."""
+        return self.scene.parts.get('traffic')
+
     def step(self):
         """Advance one basic step; return the time [s]."""
         return self.world.step()
@@ -213,6 +218,13 @@ class ServedSim:
             yaml.safe_dump(spec.world_data, stream)
         self._temp = path
         return path
+
+    @property
+    def traffic(self):
+        """The world's traffic (physics TrafficBodies), or None."""
+        if self.automobile is None:
+            return None
+        return self.automobile.scene.parts.get('traffic')
 
     @property
     def nodes(self):

@@ -26,6 +26,7 @@ The form (every key optional except ``vehicles``)::
     roads:        # lanes from road segments: core/map/road_segments.py
       - {lanes: 2, segments: [{type: straight, length: 200.0}]}
     map: {type: occupancy_grid, file: maps/track.yaml}
+    traffic: {vehicles: 20, seed: 1}   # vehicles on the lanes: core/traffic/traffic_params.py
 
 
 Each mapping is checked against a ParamSpec table (core/specs/param_spec.py), so an unknown key, a
@@ -52,9 +53,10 @@ from vehicle_sim.core.specs.param_spec import (
     validate_table,
 )
 from vehicle_sim.core.specs.value_text import brief
+from vehicle_sim.core.traffic.traffic_params import traffic_from_dict, TrafficSpec
 from vehicle_sim.core.world.placement import check_in_world
 
-WORLD_KEYS = ('origin', 'vehicles', 'obstacles', 'roads', 'map')
+WORLD_KEYS = ('origin', 'vehicles', 'obstacles', 'roads', 'map', 'traffic')
 
 ORIGIN_SPECS = (
     ParamSpec('latitude', 'latitude_deg', 'float', 0.0, 'deg', 'WGS-84 latitude of the world '
@@ -251,12 +253,13 @@ class VehicleSpec:
 @dataclass(frozen=True)
 class WorldSpec:
     """
-    A validated world: geodetic origin, vehicles, obstacles, roads; ``source`` = its file.
+    A validated world: origin, vehicles, obstacles, roads, map, traffic; ``source`` = its file.
 
     ``roads`` are its road segments (core/map/road_segments.py); ``map`` is its map layer's spec
-    (core/map/kinds.py: e.g. an OccupancyMapSpec), or None. ``lanes`` is its lane map (a core
-    LaneGraph from a lanelet2 map or the roads) once loaded (vehicle_sim/maps/lane_maps.py, by
-    the scene builder), with the vehicles placed by lane; None before that or without one.
+    (core/map/kinds.py: e.g. an OccupancyMapSpec), or None; ``traffic`` its traffic
+    (core/traffic/traffic_params.py), or None. ``lanes`` is its lane map (a core LaneGraph from a
+    lanelet2 map or the roads) once loaded (vehicle_sim/maps/lane_maps.py, by the scene builder),
+    with the vehicles placed by lane; None before that or without one.
     """
 
     origin: GeodeticOrigin
@@ -265,6 +268,7 @@ class WorldSpec:
     source: str = ''
     roads: Tuple[RoadSpec, ...] = ()
     map: Optional[object] = None
+    traffic: Optional[TrafficSpec] = None
     lanes: Optional[object] = field(default=None, compare=False, repr=False)
 
 
@@ -335,7 +339,11 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
     if roads and getattr(world_map, 'type', None) == 'lanelet2':
         raise InvalidParameterError(f'{source}: has both roads: and a lanelet2 map: a world has '
                                     'one lane map; keep one of them')
-    return WorldSpec(origin, vehicles, obstacles, source, roads=roads, map=world_map)
+    traffic = data.get('traffic')
+    if traffic is not None:
+        traffic = traffic_from_dict(traffic, f'{source}: traffic', preset_sensors)
+    return WorldSpec(origin, vehicles, obstacles, source, roads=roads, map=world_map,
+                     traffic=traffic)
 
 
 def _vehicle(entry, where, index, default_model, preset_sensors):

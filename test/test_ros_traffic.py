@@ -1,0 +1,155 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+The traffic topics of the automobile node (ros/traffic_interfaces.py) over the wire.
+
+The node runs the shipped highway_traffic world in this process (synchronous, embedded DDS); a
+client node subscribes to /perception/object_recognition/objects and /sim/traffic/markers. Each
+message holds one object / marker per traffic vehicle on the map, with the types, frames and
+QoS of the rows; the objects are where the world's traffic vehicles are.
+"""
+
+from automobile_helpers import client_node, wait_for
+import pytest
+
+from vehicle_sim.ros.traffic_interfaces import (
+    MARKERS_FRAME,
+    OBJECTS_FRAME,
+    PREDICTED_OBJECTS_TOPIC,
+    QOS_OBJECTS,
+    TRAFFIC_MARKERS,
+    TRAFFIC_TOPICS,
+)
+from vehicle_sim.ros.traffic_messages import object_uuid
+
+pytestmark = pytest.mark.transport
+
+
+@pytest.fixture(scope='module')
+def app():
+    from vehicle_sim.ros.automobile import AutomobileNode
+    node = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/traffic_test'], transport='dds',
+                          parameter_overrides={'synchronous': True,
+                                               'world': 'highway_traffic'})
+    node.initial_traffic = [(v.lane, v.s_m, v.speed_mps)
+                            for v in node.scene.parts['traffic'].manager.vehicles]
+    yield node
+    node.close()
+
+
+def test_the_traffic_rows_are_wired_with_their_types_and_qos(app):
+    publishers = app._traffic_outputs.publishers
+    assert tuple(publishers) == TRAFFIC_TOPICS
+    assert PREDICTED_OBJECTS_TOPIC.ros_type == \
+        'autoware_perception_msgs/msg/PredictedObjects'
+    assert TRAFFIC_MARKERS.ros_type == 'visualization_msgs/msg/MarkerArray'
+    assert {row.qos for row in publishers} == {QOS_OBJECTS}
+    assert QOS_OBJECTS.depth == 1
+
+
+def test_objects_and_markers_over_the_wire_match_the_world(app):
+    received = {row.name: [] for row in TRAFFIC_TOPICS}
+    with client_node('traffic_listener') as client:
+        subs = [client.create_subscription(row.ros_type, row.name,
+                                           lambda msg, key=row.name: received[key].append(msg),
+                                           QOS_OBJECTS) for row in TRAFFIC_TOPICS]
+        assert wait_for(lambda: all(s.get_publisher_count() for s in subs), spin=client)
+        app.step(10)
+        assert wait_for(lambda: all(received.values()), spin=client)
+        objects = received[PREDICTED_OBJECTS_TOPIC.name][-1]
+        markers = received[TRAFFIC_MARKERS.name][-1]
+    manager = app.scene.parts['traffic'].manager
+    on_map = [v for v in manager.vehicles if v.active]
+    assert len(objects.objects) == len(on_map) == 60
+    assert objects.header.frame_id == OBJECTS_FRAME
+    assert objects.header.stamp.nanosec == 100_000_000     # 10 steps of 10 ms
+    first = objects.objects[0]
+    v = on_map[0]
+    assert bytes(first.object_id.uuid) == object_uuid(v.name)
+    assert [(c.label, c.probability) for c in first.classification] == [(1, 1.0)]   # CAR
+    pose = first.kinematics.initial_pose_with_covariance.pose
+    x, y, _ = manager.pose(v)
+    assert (pose.position.x, pose.position.y) == pytest.approx((x, y), abs=1e-9)
+    assert first.kinematics.initial_twist_with_covariance.twist.linear.x == \
+        pytest.approx(v.speed_mps)
+    assert first.shape.type == 0                       # BOUNDING_BOX
+    assert first.shape.dimensions.x == pytest.approx(v.length_m)
+    path = first.kinematics.predicted_paths[0]
+    assert len(path.path) == 10 and path.time_step.nanosec == 500_000_000
+    assert markers.markers[0].header.frame_id == MARKERS_FRAME
+    assert len(markers.markers) == 60
+    assert {m.ns for m in markers.markers} == {'traffic'}
+    assert sorted(m.id for m in markers.markers) == [v.index for v in on_map]
+
+
+def test_docs_hold_the_traffic_topic_table():
+    from pathlib import Path
+
+    from vehicle_sim.ros.traffic_interfaces import traffic_topic_table_markdown
+    text = (Path(__file__).resolve().parent.parent / 'docs' / 'traffic.md').read_text('utf-8')
+    assert traffic_topic_table_markdown() in text
+
+
+def test_sim_reset_starts_the_traffic_again(app):
+    app.step(20)
+    traffic = app.scene.parts['traffic']
+    assert [(v.lane, v.s_m) for v in traffic.manager.vehicles] != \
+        [(lane, s) for lane, s, _ in app.initial_traffic]
+    message = app.reset()
+    assert 'traffic: its 60 vehicles back at their start' in message
+    assert [(v.lane, v.s_m, v.speed_mps) for v in traffic.manager.vehicles] == \
+        app.initial_traffic
+    # the boxes are back too
+    import pybullet
+    v = traffic.manager.vehicles[0]
+    position, _ = pybullet.getBasePositionAndOrientation(
+        traffic.body_ids[0], physicsClientId=app.world.client_id)
+    assert position[:2] == pytest.approx(traffic.manager.pose(v)[:2], abs=1e-9)
+
+
+def test_obstacles_of_a_traffic_world_are_objects_too(tmp_path):
+    import copy
+
+    import yaml
+
+    from vehicle_sim.config import read_yaml, world_path
+    from vehicle_sim.ros.automobile import AutomobileNode
+    data = copy.deepcopy(read_yaml(world_path('highway')))
+    data['traffic'] = {'vehicles': 3, 'seed': 2}
+    data['obstacles'] = [{'name': 'cone', 'shape': 'cylinder', 'radius': 0.2, 'height': 0.7,
+                          'position': [50.0, -14.0, 0.35]}]
+    path = tmp_path / 'highway_cone.yaml'
+    path.write_text(yaml.safe_dump(data), encoding='utf-8')
+    node = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/traffic_cone'], transport='dds',
+                          parameter_overrides={'synchronous': True, 'world': str(path)})
+    try:
+        received = []
+        with client_node('cone_listener') as client:
+            sub = client.create_subscription(PREDICTED_OBJECTS_TOPIC.ros_type,
+                                             PREDICTED_OBJECTS_TOPIC.name, received.append,
+                                             QOS_OBJECTS)
+            assert wait_for(lambda: sub.get_publisher_count(), spin=client)
+            node.step(1)
+            assert wait_for(lambda: received, spin=client)
+        objects = received[-1].objects
+        assert [o.classification[0].label for o in objects] == [1, 1, 1, 0]
+        cone = objects[-1]
+        assert bytes(cone.object_id.uuid) == object_uuid('cone')
+        position = cone.kinematics.initial_pose_with_covariance.pose.position
+        assert (position.x, position.y, position.z) == (50.0, -14.0, 0.35)
+        assert (cone.shape.type, cone.shape.dimensions.z) == (1, 0.7)
+    finally:
+        node.close()

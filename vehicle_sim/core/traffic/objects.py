@@ -1,0 +1,145 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+The traffic vehicles as objects for ground-truth perception: pose, speed, box, predicted path.
+
+:func:`traffic_objects` reads a TrafficManager: every vehicle on the map becomes a
+:class:`TrafficObject` with its centre pose, speed along its heading, box dimensions and a
+straight prediction: the poses it reaches at its current speed along its lane and planned
+successors every ``step_s`` up to ``horizon_s`` (as Autoware's dummy perception predicts its
+objects: constant speed along the lane). :func:`obstacle_objects` gives the world's obstacles
+(:class:`ObstacleObject`: pose, shape, extents). The ROS layer turns them into
+``autoware_perception_msgs/PredictedObjects`` and markers (ros/traffic_messages.py).
+"""
+
+from dataclasses import dataclass
+import math
+from typing import Mapping, Tuple
+
+PREDICTION_HORIZON_S = 5.0
+PREDICTION_STEP_S = 0.5
+
+
+@dataclass(frozen=True)
+class TrafficObject:
+    """
+    One traffic vehicle as an object (world frame, base at the box's centre on the ground).
+
+    :param index: the vehicle's index (``traffic_<index>``).
+    :param name: its name.
+    :param x_m: box centre x [m].
+    :param y_m: box centre y [m].
+    :param yaw_rad: heading [rad].
+    :param speed_mps: speed along its heading [m/s].
+    :param length_m: box length [m].
+    :param width_m: box width [m].
+    :param height_m: box height [m].
+    :param path: predicted poses (x, y, yaw), one per ``step_s``, the first at ``step_s``.
+    :param step_s: time between the path's poses [s].
+    """
+
+    index: int
+    name: str
+    x_m: float
+    y_m: float
+    yaw_rad: float
+    speed_mps: float
+    length_m: float
+    width_m: float
+    height_m: float
+    path: Tuple[Tuple[float, float, float], ...]
+    step_s: float
+
+
+def _path(manager, v, horizon_s, step_s):
+    """Poses along the lane and its planned successors at constant speed (centreline)."""
+    lanes = manager.graph.lanes
+    poses = []
+    lane_id, s, upcoming = v.lane, v.s_m, [v.next_lane]
+    count = int(round(horizon_s / step_s))
+    for _ in range(count):
+        s += v.speed_mps * step_s
+        while s > lanes[lane_id].length_m:
+            nxt = upcoming.pop(0) if upcoming else None
+            if nxt is None:
+                successors = lanes[lane_id].successors
+                nxt = successors[0] if successors else None
+            if nxt is None:
+                return tuple(poses)          # the lane ends: the prediction too
+            s -= lanes[lane_id].length_m
+            lane_id = nxt
+        poses.append(manager.graph.pose_at(lane_id, s))
+    return tuple(poses)
+
+
+def traffic_objects(manager, heights: Mapping[str, float], horizon_s=PREDICTION_HORIZON_S,
+                    step_s=PREDICTION_STEP_S) -> Tuple[TrafficObject, ...]:
+    """
+    Return the vehicles on the map as TrafficObjects, in index order.
+
+    :param manager: the TrafficManager.
+    :param heights: {model: box height [m]}.
+    :param horizon_s: how far the prediction reaches [s].
+    :param step_s: time between predicted poses [s].
+    """
+    if not (math.isfinite(horizon_s) and math.isfinite(step_s) and 0.0 < step_s <= horizon_s):
+        raise ValueError(f'horizon_s = {horizon_s!r}, step_s = {step_s!r}: need '
+                         f'0 < step_s <= horizon_s')
+    found = []
+    for v in manager.vehicles:
+        if not v.active:
+            continue
+        x, y, yaw = manager.pose(v)
+        found.append(TrafficObject(v.index, v.name, x, y, yaw, v.speed_mps, v.length_m,
+                                   v.width_m, heights[v.model],
+                                   _path(manager, v, horizon_s, step_s), step_s))
+    return tuple(found)
+
+
+@dataclass(frozen=True)
+class ObstacleObject:
+    """
+    One obstacle as an object: its name, centre (x, y, z) [m], heading [rad], shape, extents.
+
+    :param shape: the ObstacleSpec's shape ('box', 'cylinder', 'sphere').
+    :param size_m: full extents along its own x, y, z [m].
+    """
+
+    name: str
+    x_m: float
+    y_m: float
+    z_m: float
+    yaw_rad: float
+    shape: str
+    size_m: Tuple[float, float, float]
+
+
+def obstacle_objects(specs, pose_of=None) -> Tuple[ObstacleObject, ...]:
+    """
+    Return the obstacles (core ObstacleSpecs) as ObstacleObjects.
+
+    :param specs: the world's ObstacleSpecs.
+    :param pose_of: ``pose_of(name)`` -> (x, y, z, yaw) now of a movable obstacle (mass > 0);
+        None = every obstacle where its spec puts it.
+    """
+    found = []
+    for spec in specs:
+        if pose_of is not None and not spec.static:
+            x, y, z, yaw = pose_of(spec.name)
+        else:
+            (x, y, z), yaw = spec.position_m, spec.yaw_rad
+        found.append(ObstacleObject(spec.name, x, y, z, yaw, spec.shape, tuple(spec.size_m)))
+    return tuple(found)

@@ -1,0 +1,122 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+Where the traffic vehicles start.
+
+First the placed ones (checked against the lane map: lane, s, route, overlaps), then the random
+ones on places ``spacing`` apart on the spawn lanes (core/traffic/traffic_params.py), drawn
+without replacement, away from the placed vehicles and ours.
+"""
+
+from typing import List
+
+from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.traffic.vehicles import TrafficVehicle
+
+
+def spawn_vehicles(graph, spec, dims, ours, rng) -> List[TrafficVehicle]:
+    """
+    Return the traffic vehicles at their start: the placed ones, then the random ones.
+
+    A vehicle whose start speed is to be the safe one behind its leader has speed -1 (the
+    manager sets it once every vehicle is in).
+
+    :param graph: the LaneGraph.
+    :param spec: the TrafficSpec.
+    :param dims: {model: (length, width)} [m].
+    :param ours: our vehicles (OurVehicle): no vehicle is spawned on them.
+    :param rng: the manager's random.Random (consumed: places, models, speed factors).
+    :raises InvalidParameterError: see TrafficManager.
+    """
+    src = spec.source
+    lanes = graph.lanes
+    vehicles = []
+    taken = {}                            # lane -> [(s, half)] of placed vehicles and ours
+    for o in ours:
+        pos = graph.locate(o.x_m, o.y_m, o.yaw_rad)
+        if pos is not None:
+            taken.setdefault(pos.lane_id, []).append((pos.s_m, 0.5 * o.length_m))
+    for p in spec.placed:
+        lane = lanes.get(p.lanelet)
+        if lane is None:
+            raise InvalidParameterError(f"{p.where}: field 'lanelet' = {p.lanelet}: lane "
+                                        f'{p.lanelet} is not in the map ({graph.source})')
+        if not p.s_m <= lane.length_m:
+            raise InvalidParameterError(f"{p.where}: field 's' = {p.s_m:g}: not on lane "
+                                        f'{p.lanelet} (0 .. {lane.length_m:.3f} m)')
+        previous = p.lanelet
+        for step in p.route:
+            if step not in lanes:
+                raise InvalidParameterError(f"{p.where}: field 'route': lane {step} is not "
+                                            f'in the map ({graph.source})')
+            if step not in lanes[previous].successors:
+                raise InvalidParameterError(
+                    f"{p.where}: field 'route': lane {step} does not follow lane "
+                    f'{previous} (its successors: {list(lanes[previous].successors)})')
+            previous = step
+        length, width = dims[p.model]
+        for s, half in taken.get(p.lanelet, ()):
+            if abs(s - p.s_m) < half + 0.5 * length:
+                raise InvalidParameterError(f"{p.where}: field 's' = {p.s_m:g}: overlaps "
+                                            f'another vehicle on lane {p.lanelet}')
+        taken.setdefault(p.lanelet, []).append((p.s_m, 0.5 * length))
+        v = TrafficVehicle(len(vehicles), p.model, length, width, p.speed_factor,
+                           p.lanelet, p.s_m, p.route)
+        v.speed_mps = -1.0 if p.speed_mps is None else p.speed_mps
+        if p.change_lane != 'none':
+            v.scripted, v.keep_lane = (p.change_lane, p.change_at_s), True
+        vehicles.append(v)
+    spawn = spec.spawn_lanes if spec.spawn_lanes is not None else sorted(lanes)
+    for lane_id in spawn:
+        if lane_id not in lanes:
+            raise InvalidParameterError(f"{src}: spawn: field 'lanes': lane {lane_id} is not "
+                                        f'in the map ({graph.source})')
+    slots, length_km = _slots(spec, spawn, lanes, taken)
+    count = spec.vehicles if spec.density_per_km is None else int(
+        round(spec.density_per_km * length_km))
+    if count > len(slots):
+        what = (f"field 'vehicles' = {count}" if spec.density_per_km is None else
+                f"field 'density' = {spec.density_per_km:g} ({count} vehicles)")
+        raise InvalidParameterError(
+            f'{src}: {what}: more than fit: {len(slots)} places on the spawn lanes at '
+            f'spacing {spec.spawn_spacing_m:g} m ({length_km:.3f} lane-km)')
+    for slot in sorted(rng.sample(range(len(slots)), count)):
+        lane_id, s = slots[slot]
+        model = spec.models[rng.randrange(len(spec.models))]
+        length, width = dims[model]
+        mean, std = spec.speed_factor_mean, spec.speed_factor_std
+        factor = min(max(rng.gauss(mean, std), mean - 2.0 * std), mean + 2.0 * std)
+        v = TrafficVehicle(len(vehicles), model, length, width, factor, lane_id, s, ())
+        v.speed_mps = -1.0
+        vehicles.append(v)
+    return vehicles
+
+def _slots(spec, spawn, lanes, taken):
+    spacing = spec.spawn_spacing_m
+    slots, length_m = [], 0.0
+    for lane_id in spawn:
+        lane = lanes[lane_id]
+        lo, hi = (0.0, lane.length_m) if spec.spawn_s_range_m is None else (
+            spec.spawn_s_range_m[0], min(spec.spawn_s_range_m[1], lane.length_m))
+        if hi <= lo:
+            continue
+        length_m += hi - lo
+        s = lo + 0.5 * spacing
+        while s <= hi - 0.5 * spacing + 1e-9:
+            if all(abs(s - t) >= 0.5 * spacing + half for t, half in taken.get(lane_id, ())):
+                slots.append((lane_id, s))
+            s += spacing
+    return slots, length_m / 1000.0

@@ -1,0 +1,147 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+Message builders of the traffic topics: PredictedObjects (ground truth) and markers.
+
+Same form as ros/messages.py's builders: ``<type>_builder(msg, frame_id)`` resolves the classes
+once; the ``build(stamp, objects)`` it returns makes one message from a stamp and the core
+TrafficObjects (core/traffic/objects.py).
+
+- ``autoware_perception_msgs/PredictedObjects``, as Autoware's planning simulator's dummy
+  perception gives them: per object a UUID derived from its name, existence probability 1,
+  classification CAR (probability 1), the pose of its box's centre, its twist in its own frame
+  (x forward), a BOUNDING_BOX shape of its dimensions, and one predicted path (confidence 1):
+  constant speed along its lane. After them the world's obstacles: classification UNKNOWN, at
+  rest, no predicted path, a BOUNDING_BOX (a box) or CYLINDER (a cylinder, a sphere) shape.
+- ``visualization_msgs/MarkerArray``: one CUBE per object (namespace ``traffic``, id = the
+  vehicle's index), coloured like its body; objects that left the map since the last message
+  are deleted (action DELETE).
+"""
+
+import math
+import uuid
+
+from vehicle_sim.core.geometry.frames import quaternion_from_yaw
+
+HEADER = 'std_msgs/msg/Header'
+PREDICTED_OBJECTS = 'autoware_perception_msgs/msg/PredictedObjects'
+PREDICTED_OBJECT = 'autoware_perception_msgs/msg/PredictedObject'
+OBJECT_CLASSIFICATION = 'autoware_perception_msgs/msg/ObjectClassification'
+PREDICTED_PATH = 'autoware_perception_msgs/msg/PredictedPath'
+SHAPE = 'autoware_perception_msgs/msg/Shape'
+UUID = 'unique_identifier_msgs/msg/UUID'
+POSE = 'geometry_msgs/msg/Pose'
+POINT = 'geometry_msgs/msg/Point'
+QUATERNION = 'geometry_msgs/msg/Quaternion'
+DURATION = 'builtin_interfaces/msg/Duration'
+MARKER = 'visualization_msgs/msg/Marker'
+MARKER_ARRAY = 'visualization_msgs/msg/MarkerArray'
+COLOR = 'std_msgs/msg/ColorRGBA'
+
+UNKNOWN, CAR = 0, 1      # ObjectClassification
+BOUNDING_BOX, CYLINDER = 0, 1    # Shape
+CUBE, ADD, DELETE = 1, 0, 2     # visualization_msgs/Marker
+# the namespace of the objects' UUIDs (uuid5 of the vehicle's name): stable across runs
+UUID_NAMESPACE = uuid.uuid5(uuid.NAMESPACE_URL, 'vehicle_sim/traffic')
+
+
+def object_uuid(name) -> bytes:
+    """Return the 16 bytes of a traffic vehicle's object id (uuid5 of its name)."""
+    return uuid.uuid5(UUID_NAMESPACE, name).bytes
+
+
+def predicted_objects_builder(msg, frame_id: str):
+    """Return ``build(stamp, objects)``: autoware_perception_msgs/PredictedObjects."""
+    objects_type, object_type = msg(PREDICTED_OBJECTS), msg(PREDICTED_OBJECT)
+    header_type, classification_type = msg(HEADER), msg(OBJECT_CLASSIFICATION)
+    path_type, shape_type, uuid_type = msg(PREDICTED_PATH), msg(SHAPE), msg(UUID)
+    pose_type, point_type, quaternion_type = msg(POSE), msg(POINT), msg(QUATERNION)
+    duration_type = msg(DURATION)
+
+    def pose(x, y, z, yaw):
+        qx, qy, qz, qw = quaternion_from_yaw(yaw)
+        return pose_type(position=point_type(x=float(x), y=float(y), z=float(z)),
+                         orientation=quaternion_type(x=qx, y=qy, z=qz, w=qw))
+
+    def one(o):
+        item = object_type(object_id=uuid_type(uuid=object_uuid(o.name)),
+                           existence_probability=1.0,
+                           classification=[classification_type(label=CAR, probability=1.0)])
+        z = 0.5 * o.height_m
+        kinematics = item.kinematics
+        kinematics.initial_pose_with_covariance.pose = pose(o.x_m, o.y_m, z, o.yaw_rad)
+        kinematics.initial_twist_with_covariance.twist.linear.x = float(o.speed_mps)
+        seconds = math.floor(o.step_s)
+        kinematics.predicted_paths = [path_type(
+            path=[pose(x, y, z, yaw) for x, y, yaw in o.path],
+            time_step=duration_type(sec=int(seconds),
+                                    nanosec=int(round((o.step_s - seconds) * 1e9))),
+            confidence=1.0)]
+        item.shape = shape_type(type=BOUNDING_BOX)
+        item.shape.dimensions.x = float(o.length_m)
+        item.shape.dimensions.y = float(o.width_m)
+        item.shape.dimensions.z = float(o.height_m)
+        return item
+
+    def obstacle(o):
+        item = object_type(object_id=uuid_type(uuid=object_uuid(o.name)),
+                           existence_probability=1.0,
+                           classification=[classification_type(label=UNKNOWN, probability=1.0)])
+        item.kinematics.initial_pose_with_covariance.pose = pose(o.x_m, o.y_m, o.z_m, o.yaw_rad)
+        item.shape = shape_type(type=BOUNDING_BOX if o.shape == 'box' else CYLINDER)
+        item.shape.dimensions.x, item.shape.dimensions.y, item.shape.dimensions.z = \
+            (float(v) for v in o.size_m)
+        return item
+
+    def build(stamp, objects, obstacles=()):
+        return objects_type(header=header_type(stamp=stamp, frame_id=frame_id),
+                            objects=[one(o) for o in objects] + [obstacle(o) for o in obstacles])
+    return build
+
+
+def traffic_markers_builder(msg, frame_id: str, colours=()):
+    """
+    Return ``build(stamp, objects)``: visualization_msgs/MarkerArray of the traffic vehicles.
+
+    :param colours: RGBA per vehicle index, cycled (the bodies' colours); () = grey.
+    """
+    marker_type, array_type = msg(MARKER), msg(MARKER_ARRAY)
+    header_type, color_type = msg(HEADER), msg(COLOR)
+    shown = set()
+
+    def build(stamp, objects):
+        header = header_type(stamp=stamp, frame_id=frame_id)
+        markers = []
+        present = set()
+        for o in objects:
+            r, g, b, a = colours[o.index % len(colours)] if colours else (0.6, 0.6, 0.6, 1.0)
+            item = marker_type(header=header, ns='traffic', id=o.index, type=CUBE, action=ADD,
+                               color=color_type(r=r, g=g, b=b, a=a))
+            item.pose.position.x, item.pose.position.y = float(o.x_m), float(o.y_m)
+            item.pose.position.z = 0.5 * o.height_m
+            qx, qy, qz, qw = quaternion_from_yaw(o.yaw_rad)
+            item.pose.orientation.x, item.pose.orientation.y = qx, qy
+            item.pose.orientation.z, item.pose.orientation.w = qz, qw
+            item.scale.x, item.scale.y = float(o.length_m), float(o.width_m)
+            item.scale.z = float(o.height_m)
+            markers.append(item)
+            present.add(o.index)
+        for index in sorted(shown - present):
+            markers.append(marker_type(header=header, ns='traffic', id=index, action=DELETE))
+        shown.clear()
+        shown.update(present)
+        return array_type(markers=markers)
+    return build
