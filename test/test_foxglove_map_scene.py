@@ -187,25 +187,25 @@ def test_static_entities_go_in_full_updates_moving_ones_in_every_one(monkeypatch
 
     cars = {'a': 0.0, 'b': 5.0}
 
-    def traffic(scene):
-        return [fs.boxes_entity(f'traffic/{name}', (x, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0),
+    def carts(scene):
+        return [fs.boxes_entity(f'cart/{name}', (x, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0),
                                 [((0.0, 0.0, 0.75), fs.IDENTITY, (4.0, 1.8, 1.5))],
                                 (1.0, 0.0, 0.0, 1.0))
                 for name, x in cars.items()]
 
     fs.register_entity_source('ground', ground, static=True)
-    fs.register_entity_source('traffic', traffic)
+    fs.register_entity_source('carts', carts)
     stream, scene = SceneStream(), _scene()
     first = stream.frame(scene, full=False)      # the first update is full
-    assert [e.id for e in first.entities] == ['ground', 'traffic/a', 'traffic/b']
+    assert [e.id for e in first.entities] == ['ground', 'cart/a', 'cart/b']
     cars['a'] = 2.0
     second = stream.frame(scene, full=False)
-    assert [e.id for e in second.entities] == ['traffic/a', 'traffic/b']
+    assert [e.id for e in second.entities] == ['cart/a', 'cart/b']
     assert second.entities[0].primitives[0].position_m == (2.0, 0.0, 0.75)
-    del cars['b']                                 # a traffic car gone: deleted
+    del cars['b']                                 # a cart gone: deleted
     third = stream.frame(scene, full=True)       # a client subscribed: the ground again
-    assert [e.id for e in third.entities] == ['ground', 'traffic/a']
-    assert third.deleted_ids == ('traffic/b',)
+    assert [e.id for e in third.entities] == ['ground', 'cart/a']
+    assert third.deleted_ids == ('cart/b',)
     assert stream.frame(scene, full=False).deleted_ids == ()
     assert len(built) == 1                        # static sources built once per scene
 

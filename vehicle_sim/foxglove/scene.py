@@ -23,11 +23,13 @@ own; :mod:`.scene_messages` turns them into ``foxglove.SceneUpdate`` and
 
 Every entity is in the ``world`` frame and posed from the ground truth of the physics, so the
 scene does not depend on the transforms. An entity source is a function ``source(scene)`` ->
-entities of the scene builder's ``Scene``; :func:`register_entity_source` adds one (traffic
-plugs in there, under its own name), either *static* (built once per scene, sent when a client
-subscribes) or moving (called at every update; :func:`boxes_entity` draws a body as posed boxes).
+entities of the scene builder's ``Scene``; :func:`register_entity_source` adds one (a new kind
+of thing plugs in there, under its own name), either *static* (built once per scene, sent when
+a client subscribes) or moving (called at every update; :func:`boxes_entity` draws a body as
+posed boxes).
 Built in: ``'vehicles'`` (each vehicle's chassis boxes, posed at each update), ``'obstacles'``
-(the world's cubes, cylinders and spheres), and the static ``'map'`` (an occupancy map's walls)
+(the world's cubes, cylinders and spheres), ``'traffic'`` (the traffic vehicles' boxes), and
+the static ``'map'`` (an occupancy map's walls)
 and ``'lanes'`` (road surface, markings, barriers, centrelines) of :mod:`.map_scene`.
 """
 
@@ -155,6 +157,27 @@ def obstacle_entities(scene) -> List[Entity]:
     return found
 
 
+# ------------------------------------------------------------------------------ traffic
+
+def traffic_entities(scene) -> List[Entity]:
+    """
+    Return the traffic vehicles on the map (the entity source ``'traffic'``), each its box.
+
+    The traffic scene part (``scene.parts['traffic']``, physics/traffic_bodies.py) gives each
+    vehicle's box size and colour; its pose is where the physics has the box now. A vehicle
+    that leaves the map is not returned (so it is deleted from the view).
+    """
+    traffic = getattr(scene, 'parts', {}).get('traffic')
+    if traffic is None:
+        return []
+    found = []
+    for name, body_id, size, colour in traffic.boxes():
+        (position, orientation), *_ = scene.world.body_state(body_id)
+        found.append(Entity(f'traffic/{name}', WORLD_FRAME, (Primitive(
+            'cube', tuple(position), tuple(orientation), tuple(size), tuple(colour)),)))
+    return found
+
+
 # ------------------------------------------------------------------------------ the registry
 
 EntitySource = Callable[[object], Iterable[Entity]]
@@ -205,5 +228,6 @@ def scene_entities(scene, sources: Optional[Iterable[str]] = None) -> List[Entit
 
 register_entity_source('vehicles', vehicle_entities)
 register_entity_source('obstacles', obstacle_entities)
+register_entity_source('traffic', traffic_entities)
 register_entity_source('map', map_scene.wall_entities, static=True)
 register_entity_source('lanes', map_scene.lane_entities, static=True)
