@@ -35,8 +35,9 @@ EXTRAS = {
     'gym': ['gymnasium>=1.0'],                     # vehicle_sim.gym (docs/gym.md)
     'record': ['mcap', 'zstandard', 'lz4'],        # MCAP recordings and their compressors
 }
-# pyarrow: a sweep writes results.parquet when it imports.
-EXTRAS['test'] = (['pytest', 'pytest-timeout', 'ruff', 'pyarrow']
+# pyarrow: a sweep writes results.parquet when it imports. protobuf: the Foxglove scene tests
+# decode a SceneUpdate with the schema its channel advertises.
+EXTRAS['test'] = (['pytest', 'pytest-timeout', 'ruff', 'pyarrow', 'protobuf']
                   + sorted({req for reqs in EXTRAS.values() for req in reqs}))
 # Benchmark only, not in `test`: bench_gym.py and bench_traffic.py compare with highway-env.
 EXTRAS['bench'] = ['gymnasium>=1.0', 'highway-env']

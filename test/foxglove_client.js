@@ -122,7 +122,12 @@ function maybeSubscribe() {
     const update = decodeScene(data);
     say({ event: 'scene', entities: update.entities.map((e) => ({
       id: e.id, frame_id: e.frame_id ?? e.frameId, cubes: e.cubes, cylinders: e.cylinders,
-      spheres: e.spheres })) });
+      spheres: e.spheres,
+      // lines and triangles in short: their type, size, colour and first points
+      lines: (e.lines || []).map((l) => ({ type: l.type, thickness: l.thickness,
+        color: l.color, count: l.points.length, first: l.points.slice(0, 2) })),
+      triangles: (e.triangles || []).map((t) => ({ color: t.color, points: t.points.length,
+        indices: t.indices.length })) })) });
   });
 }
 

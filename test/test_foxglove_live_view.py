@@ -163,3 +163,39 @@ def test_foxglove_client_decodes_speed_and_scene_drives_and_sets_parameters(node
     assert by_kind['status'][0]['message'] == (
         'parameter time_step_ms: Trying to set a read-only parameter: time_step_ms; '
         'nothing changed')
+
+
+def test_foxglove_client_receives_the_highway_lanes_in_the_scene(node_modules):
+    # The highway world's lanes (roads:) reach the client in its first scene update: the
+    # markings as line strips (solid) and line lists (dashes) on the lane boundaries, the road
+    # surface as an indexed triangle list.
+    from vehicle_sim.foxglove.map_scene import lane_map_entities
+    port = free_port()
+    app = AutomobileNode(transport='dds', parameter_overrides={
+        'foxglove': port, 'real_time_factor': 0.0, 'world': 'highway'})
+    try:
+        expected = {e.id: e for e in lane_map_entities(app.scene.lanes)}
+        code, events, err = run_client(app, node_modules, port, '/automobile/current_speed',
+                                       '/foxglove/scene', '/automobile/set_cruising_speed',
+                                       str(CRUISING_KMH))
+    finally:
+        app.close()
+    assert code == 0, f'client failed: {events[-3:]}; stderr: {err[-2000:]}'
+    scene = next(e for e in events if e['event'] == 'scene')
+    entities = {e['id']: e for e in scene['entities']}
+    assert {'vehicle/Car', 'lanes/surface', 'lanes/markings', 'lanes/centerlines'} <= set(
+        entities)
+    markings, want = entities['lanes/markings']['lines'], expected['lanes/markings'].lines
+    assert len(markings) == len(want) == 40
+    line_type = {'line_strip': 0, 'line_list': 2}      # foxglove.LinePrimitive.Type
+    for got, lines in zip(markings, want):
+        assert got['type'] == line_type[lines.kind]
+        assert got['count'] == len(lines.points_m)
+        assert got['thickness'] == pytest.approx(lines.thickness_m)
+        for point, (x, y, z) in zip(got['first'], lines.points_m[:2].tolist()):
+            assert (point['x'], point['y'], point['z']) == pytest.approx((x, y, z), abs=0.01)
+    assert sum(got['type'] == 2 for got in markings) == 20          # the dashed lane lines
+    (surface,) = entities['lanes/surface']['triangles']
+    (mesh,) = expected['lanes/surface'].triangles
+    assert surface['indices'] == mesh.indices.size > 0
+    assert surface['points'] == len(mesh.points_m)

@@ -112,17 +112,19 @@ def test_registering_a_source_twice_is_refused_and_changes_nothing():
 
 def test_a_registered_source_adds_its_entities_after_the_built_in_ones(monkeypatch):
     monkeypatch.setattr(fs, 'ENTITY_SOURCES', dict(fs.ENTITY_SOURCES))
-    lane = fs.Entity('lane/1', fs.WORLD_FRAME, ())
-    fs.register_entity_source('lanes', lambda scene: [lane])
+    sign = fs.Entity('sign/1', fs.WORLD_FRAME, ())
+    fs.register_entity_source('signs', lambda scene: [sign])
     scene = SimpleNamespace(vehicles={}, spec=SimpleNamespace(obstacles=()), obstacles={})
-    assert fs.scene_entities(scene) == [lane]
-    assert list(fs.ENTITY_SOURCES) == ['vehicles', 'obstacles', 'lanes']
+    assert fs.scene_entities(scene) == [sign]
+    assert list(fs.ENTITY_SOURCES) == ['vehicles', 'obstacles', 'traffic', 'map', 'lanes',
+                                       'signs']
+    assert fs.STATIC_SOURCES == {'map', 'lanes'}
 
 
 def test_unknown_source_and_duplicate_ids_are_refused(monkeypatch):
     scene = SimpleNamespace(vehicles={}, spec=SimpleNamespace(obstacles=()), obstacles={})
-    with pytest.raises(ValueError, match="unknown entity source 'map'; registered: vehicles"):
-        fs.scene_entities(scene, ['map'])
+    with pytest.raises(ValueError, match="unknown entity source 'cones'; registered: vehicles"):
+        fs.scene_entities(scene, ['cones'])
     monkeypatch.setattr(fs, 'ENTITY_SOURCES', dict(fs.ENTITY_SOURCES))
     twice = fs.Entity('x', fs.WORLD_FRAME, ())
     fs.register_entity_source('twice', lambda scene: [twice, twice])

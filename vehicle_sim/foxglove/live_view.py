@@ -26,8 +26,9 @@ import time
 from typing import Callable, Iterable, Optional
 
 from vehicle_sim.foxglove import scene_messages
+from vehicle_sim.foxglove.entities import Transform
 from vehicle_sim.foxglove.parameters import NodeParameters
-from vehicle_sim.foxglove.scene import scene_entities, Transform
+from vehicle_sim.foxglove.scene_stream import SceneStream
 from vehicle_sim.foxglove.sdk import load_sdk
 from vehicle_sim.foxglove.server import check_host, exposure_warning, start_server
 from vehicle_sim.foxglove.services import NodeServices
@@ -95,7 +96,10 @@ class LiveView(PublishTap):
         # keep them; reading them costs nothing at each publish).
         self._own = {self._scene_channel.id(): 0, self._transforms_channel.id(): 0}
         self.scene = None
+        self._stream = SceneStream()
         self._next_scene_s = 0.0
+        # Scene subscriptions seen (SDK thread) and answered with a full update (node thread).
+        self._scene_subscriptions = self._scene_subscriptions_sent = 0
         warning = exposure_warning(host, self.server.port)
         if warning:
             logger.warn(warning)
@@ -118,6 +122,8 @@ class LiveView(PublishTap):
         """Replay latched topics and send the scene at once to a new subscriber (SDK thread)."""
         if channel_id in self._own:
             self._own[channel_id] += 1
+            if channel_id == self._scene_channel.id():
+                self._scene_subscriptions += 1
             self._next_scene_s = 0.0
         self.topics.subscribed(channel_id)
 
@@ -137,6 +143,9 @@ class LiveView(PublishTap):
         """
         Send the scene (at most every SCENE_PERIOD_S of wall time) and the transforms.
 
+        The scene's static entities (map, lanes) go with the first update after a client
+        subscribed; the moving ones with every update (:class:`~.scene_stream.SceneStream`).
+
         Each only while a client subscribes to it.
 
         :param time_s: the simulated time of the step [s], the messages' stamp.
@@ -148,8 +157,12 @@ class LiveView(PublishTap):
             now = time.monotonic()
             if now >= self._next_scene_s:
                 self._next_scene_s = now + SCENE_PERIOD_S
+                subscriptions = self._scene_subscriptions
+                frame = self._stream.frame(self.scene,
+                                           full=subscriptions != self._scene_subscriptions_sent)
+                self._scene_subscriptions_sent = subscriptions
                 self._scene_channel.log(scene_messages.scene_update(
-                    messages, scene_entities(self.scene), time_s))
+                    messages, frame.entities, time_s, frame.deleted_ids))
         if transforms is not None and own[self._transforms_channel.id()]:
             self._transforms_channel.log(
                 scene_messages.frame_transforms(messages, transforms(), time_s))

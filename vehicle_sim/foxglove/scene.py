@@ -16,24 +16,40 @@
 """
 The 3D scene of a running world as Foxglove scene entities, from a registry of entity sources.
 
-What is drawn is described here with plain values (:class:`Primitive`, :class:`Entity`,
-:class:`Transform`), SDK-free so that the geometry is tested on its own;
-:mod:`.scene_messages` turns them into ``foxglove.SceneUpdate`` and ``foxglove.FrameTransforms``.
+What is drawn is described with plain values (:mod:`.entities`: :class:`Entity` and its
+cubes, cylinders, spheres, lines and triangles), SDK-free so that the geometry is tested on its
+own; :mod:`.scene_messages` turns them into ``foxglove.SceneUpdate`` and
+``foxglove.FrameTransforms``.
 
 Every entity is in the ``world`` frame and posed from the ground truth of the physics, so the
 scene does not depend on the transforms. An entity source is a function ``source(scene)`` ->
-entities of the scene builder's ``Scene``; :func:`register_entity_source` adds one, which is
-where a map layer, lanes or traffic plug in (each its own name, e.g. ``'map'``), next to the
-two built in: ``'vehicles'`` (each vehicle's chassis boxes, posed at each publish) and
-``'obstacles'`` (the world's cubes, cylinders and spheres).
+entities of the scene builder's ``Scene``; :func:`register_entity_source` adds one (a new kind
+of thing plugs in there, under its own name), either *static* (built once per scene, sent when
+a client subscribes) or moving (called at every update; :func:`boxes_entity` draws a body as
+posed boxes).
+Built in: ``'vehicles'`` (each vehicle's chassis boxes, posed at each update), ``'obstacles'``
+(the world's cubes, cylinders and spheres), ``'traffic'`` (the traffic vehicles' boxes), and
+the static ``'map'`` (an occupancy map's walls)
+and ``'lanes'`` (road surface, markings, barriers, centrelines) of :mod:`.map_scene`.
 """
 
-from dataclasses import dataclass
-from typing import Callable, Dict, Iterable, List, Optional, Tuple
+from typing import Callable, Dict, Iterable, List, Optional, Sequence, Tuple
 
 from vehicle_sim.core.geometry.frames import pose_from_frame, quaternion_from_rpy
+from vehicle_sim.foxglove import map_scene
+from vehicle_sim.foxglove.entities import (  # noqa: F401 - the values sources build, here too
+    Color,
+    Entity,
+    IDENTITY,
+    Lines,
+    Primitive,
+    Quaternion,
+    Transform,
+    Triangles,
+    Vector,
+    WORLD_FRAME,
+)
 
-WORLD_FRAME = 'world'
 # The colour of vehicle boxes (RGBA): a translucent blue, so that sensors inside show.
 VEHICLE_COLOR = (0.2, 0.45, 0.85, 0.8)
 # The height of a vehicle drawn from its footprint alone (a body with no boxes of its own) [m].
@@ -41,51 +57,12 @@ FOOTPRINT_BOX_HEIGHT_M = 1.0
 # The obstacle shapes of the world files -> the Foxglove primitive drawing them.
 PRIMITIVE_OF_SHAPE = {'box': 'cube', 'cylinder': 'cylinder', 'sphere': 'sphere'}
 
-Vector = Tuple[float, float, float]
-Quaternion = Tuple[float, float, float, float]
-IDENTITY = (0.0, 0.0, 0.0, 1.0)
-
-
-@dataclass(frozen=True)
-class Primitive:
-    """
-    One shape: ``kind`` 'cube', 'cylinder' (axis along its z) or 'sphere'.
-
-    :param position_m: its centre in the entity's frame [m].
-    :param orientation: (x, y, z, w).
-    :param size_m: its full extents along its own x, y, z [m].
-    :param color_rgba: [0, 1] each.
-    """
-
-    kind: str
-    position_m: Vector
-    orientation: Quaternion
-    size_m: Vector
-    color_rgba: Tuple[float, float, float, float]
-
-
-@dataclass(frozen=True)
-class Entity:
-    """A scene entity: its id (unique in the scene), frame and shapes."""
-
-    id: str
-    frame_id: str
-    primitives: Tuple[Primitive, ...]
-
-
-@dataclass(frozen=True)
-class Transform:
-    """One transform of the tree: ``child`` in ``parent`` (translation [m], rotation)."""
-
-    parent: str
-    child: str
-    translation_m: Vector
-    rotation: Quaternion
+Box = Tuple[Vector, Quaternion, Vector]
 
 
 # ------------------------------------------------------------------------------ vehicles
 
-def vehicle_boxes(params, outline) -> List[Tuple[Vector, Quaternion, Vector]]:
+def vehicle_boxes(params, outline) -> List[Box]:
     """
     Return a vehicle's body boxes in its base_link: (centre [m], orientation, size [m]).
 
@@ -105,6 +82,22 @@ def vehicle_boxes(params, outline) -> List[Tuple[Vector, Quaternion, Vector]]:
              (outline.length_m, outline.width_m, FOOTPRINT_BOX_HEIGHT_M))]
 
 
+def boxes_entity(entity_id: str, pose, boxes: Sequence[Box], color_rgba: Color) -> Entity:
+    """
+    Return a body drawn as boxes, posed now, in the world frame (vehicles, traffic).
+
+    :param entity_id: the entity's id; the same id each frame moves the entity.
+    :param pose: the body's frame in the world: (x, y, z [m], qx, qy, qz, qw).
+    :param boxes: (centre [m], orientation, size [m]) of each box in the body's frame.
+    """
+    xyz, q = tuple(pose[:3]), tuple(pose[3:])
+    primitives = []
+    for centre, orientation, size in boxes:
+        position, rotation = pose_from_frame(xyz, q, centre, orientation)
+        primitives.append(Primitive('cube', position, rotation, tuple(size), tuple(color_rgba)))
+    return Entity(entity_id, WORLD_FRAME, tuple(primitives))
+
+
 def vehicle_entity(name: str, pose, boxes, color_rgba=VEHICLE_COLOR) -> Entity:
     """
     Return a vehicle's entity in the world frame.
@@ -112,12 +105,7 @@ def vehicle_entity(name: str, pose, boxes, color_rgba=VEHICLE_COLOR) -> Entity:
     :param pose: base_link in the world: (x, y, z [m], qx, qy, qz, qw).
     :param boxes: :func:`vehicle_boxes`.
     """
-    xyz, q = tuple(pose[:3]), tuple(pose[3:])
-    primitives = []
-    for centre, orientation, size in boxes:
-        position, rotation = pose_from_frame(xyz, q, centre, orientation)
-        primitives.append(Primitive('cube', position, rotation, size, tuple(color_rgba)))
-    return Entity(f'vehicle/{name}', WORLD_FRAME, tuple(primitives))
+    return boxes_entity(f'vehicle/{name}', pose, boxes, color_rgba)
 
 
 def vehicle_entities(scene) -> List[Entity]:
@@ -169,26 +157,53 @@ def obstacle_entities(scene) -> List[Entity]:
     return found
 
 
+# ------------------------------------------------------------------------------ traffic
+
+def traffic_entities(scene) -> List[Entity]:
+    """
+    Return the traffic vehicles on the map (the entity source ``'traffic'``), each its box.
+
+    The traffic scene part (``scene.parts['traffic']``, physics/traffic_bodies.py) gives each
+    vehicle's box size and colour; its pose is where the physics has the box now. A vehicle
+    that leaves the map is not returned (so it is deleted from the view).
+    """
+    traffic = getattr(scene, 'parts', {}).get('traffic')
+    if traffic is None:
+        return []
+    found = []
+    for name, body_id, size, colour in traffic.boxes():
+        (position, orientation), *_ = scene.world.body_state(body_id)
+        found.append(Entity(f'traffic/{name}', WORLD_FRAME, (Primitive(
+            'cube', tuple(position), tuple(orientation), tuple(size), tuple(colour)),)))
+    return found
+
+
 # ------------------------------------------------------------------------------ the registry
 
 EntitySource = Callable[[object], Iterable[Entity]]
 ENTITY_SOURCES: Dict[str, EntitySource] = {}
+# The names of the sources whose entities never change for one scene (drawn once per
+# subscriber, not at every update).
+STATIC_SOURCES: set = set()
 
 
-def register_entity_source(name: str, source: EntitySource) -> None:
+def register_entity_source(name: str, source: EntitySource, *, static: bool = False) -> None:
     """
     Add an entity source under ``name`` (a map layer, lanes, traffic).
 
+    :param source: ``source(scene)`` -> the entities now; a source whose scene has nothing of
+        its kind returns none.
+    :param static: True: its entities never change for one scene (a map, lanes): they are
+        built once and sent when a client subscribes. False: called at every update (moving
+        bodies); an id it gave before and no longer gives is deleted from the view.
     :raises ValueError: for a name already registered.
     """
     if name in ENTITY_SOURCES:
         raise ValueError(f'entity source {name!r} is already registered; registered: '
                          f'{", ".join(ENTITY_SOURCES)}')
     ENTITY_SOURCES[name] = source
-
-
-register_entity_source('vehicles', vehicle_entities)
-register_entity_source('obstacles', obstacle_entities)
+    if static:
+        STATIC_SOURCES.add(name)
 
 
 def scene_entities(scene, sources: Optional[Iterable[str]] = None) -> List[Entity]:
@@ -209,3 +224,10 @@ def scene_entities(scene, sources: Optional[Iterable[str]] = None) -> List[Entit
             seen.add(entity.id)
             found.append(entity)
     return found
+
+
+register_entity_source('vehicles', vehicle_entities)
+register_entity_source('obstacles', obstacle_entities)
+register_entity_source('traffic', traffic_entities)
+register_entity_source('map', map_scene.wall_entities, static=True)
+register_entity_source('lanes', map_scene.lane_entities, static=True)

@@ -223,6 +223,19 @@ class TrafficBodies:
                     pybullet.resetBaseVelocity(body_ids[i], (0.0, 0.0, 0.0), (0.0, 0.0, 0.0),
                                                physicsClientId=cid)
 
+    def boxes(self):
+        """
+        Return the traffic vehicles on the map as drawn (the Foxglove scene's ``traffic/``).
+
+        :return: [(name, body id, (length, width, height) of its box [m], colour)]; a vehicle
+            parked under the ground (waiting to re-enter) is left out.
+        """
+        dimensions, colours = self.manager.dimensions, self.colours
+        return [(v.name, body_id, dimensions[v.model][:2] + (
+                     self.heights[v.model] - GROUND_CLEARANCE_M,),
+                 colours[v.index % len(colours)])
+                for v, body_id in zip(self.manager.vehicles, self.body_ids) if v.active]
+
     def body_of(self, name):
         """Return the body id of the traffic vehicle called ``name`` (``traffic_<i>``)."""
         for v, body_id in zip(self.manager.vehicles, self.body_ids):

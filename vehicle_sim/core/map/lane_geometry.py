@@ -137,18 +137,29 @@ def _pieces(points, dashed):
         start += DASH_M + GAP_M
 
 
-def marking_mesh(graph: LaneGraph) -> Mesh:
-    """Return the painted lines: stripes and dashes of every boundary (each once)."""
-    builder = _MeshBuilder()
-    half = 0.5 * LINE_WIDTH_M
+def painted_pieces(graph: LaneGraph):
+    """
+    Yield what is painted along every boundary (each once): (boundary, kind, piece).
+
+    ``kind`` is 'solid' or 'dashed' (one stripe of a boundary's type, :data:`PAINT`); ``piece``
+    is an (M, 2) polyline [m] along the stripe's middle: the whole stripe, or one dash.
+    """
     for boundary in graph.boundaries():
         for kind, shift in PAINT.get(boundary.line_type, ()):
             points = boundary.points + shift * _normals(boundary.points)
             for piece in _pieces(points, kind == 'dashed'):
                 if len(piece) < 2 or math.hypot(*(piece[-1] - piece[0])) < 1e-6:
                     continue
-                normals = _normals(piece)
-                builder.strip(piece + half * normals, piece - half * normals, MARKING_Z_M)
+                yield boundary, kind, piece
+
+
+def marking_mesh(graph: LaneGraph) -> Mesh:
+    """Return the painted lines: stripes and dashes of every boundary (each once)."""
+    builder = _MeshBuilder()
+    half = 0.5 * LINE_WIDTH_M
+    for _, _, piece in painted_pieces(graph):
+        normals = _normals(piece)
+        builder.strip(piece + half * normals, piece - half * normals, MARKING_Z_M)
     return builder.mesh()
 
 
