@@ -37,6 +37,7 @@ import math
 import pybullet
 
 from vehicle_sim.config import load_car
+from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.geometry.footprint import car_outline
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.manager import OurVehicle, TrafficManager
@@ -74,7 +75,7 @@ def _vehicle_bodies(world):
 def our_vehicle(body, outline=None):
     """Return a VehicleBody as the traffic manager sees it (OurVehicle); ``outline``: cached."""
     x, y, _, qx, qy, qz, qw = body.pose()
-    yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+    yaw = yaw_from_quaternion(qx, qy, qz, qw)
     outline = body.outline if outline is None else outline
     cx = 0.5 * (outline.x_min_m + outline.x_max_m)
     cy = 0.5 * (outline.y_min_m + outline.y_max_m)
