@@ -23,11 +23,12 @@ curvature κ = 2 sin α / L_d as wheel speeds v ∓ κ v t / 2. After the last w
 loops) the vehicle stops: cruising speed 0 and full brake for a car, zero wheel speeds for a
 robot.
 
-With ``speed_control: idm`` (:class:`IdmSpeed`) the waypoint's speed is the desired speed of
-the Intelligent Driver Model (core/traffic/idm.py) behind the nearest vehicle ahead within the
-actor's width (traffic vehicles and the scenario's other vehicles): the actor slows down and
-stops behind it as traffic does; a car brakes (cruising speed 0 and the brakes) when it must
-slow down by more than BRAKE_ABOVE_MPS.
+With ``speed_control: idm`` (the default; :class:`IdmSpeed`) the waypoint's speed is the
+desired speed of the Intelligent Driver Model (core/traffic/idm.py) behind the nearest vehicle
+ahead within the actor's width (traffic vehicles and the scenario's other vehicles): the actor
+slows down and stops behind it as traffic does; a car brakes (cruising speed 0 and the brakes)
+when it must slow down by more than BRAKE_ABOVE_MPS. ``speed_control: waypoints`` drives the
+waypoints' speeds whatever is ahead.
 """
 
 import math
