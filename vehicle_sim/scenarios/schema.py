@@ -52,6 +52,7 @@ from vehicle_sim.scenarios.driver_schema import (
     MAX_DURATION_S,
 )
 import vehicle_sim.scenarios.lane_criteria  # noqa: F401  (registers the lane criteria)
+import vehicle_sim.scenarios.overtake_criterion  # noqa: F401  (registers overtake)
 from vehicle_sim.scenarios.yaml_lines import error_at, line_of, load_with_lines, ScenarioError
 
 SCENARIO_SPECS = (
