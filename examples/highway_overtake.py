@@ -48,6 +48,8 @@ LANE_CHANGE_SPEED_MPS = 1.2  # lateral speed of the moving lane target
 STEER_GAIN = 0.6             # Stanley gain: lateral error [m] -> lateral speed [m/s]
 MAX_STEERING_RAD = 0.08
 BRAKE_ABOVE_KMH = 5.0        # brake when this much faster than wanted
+CUT_IN_M = 4.0               # a front corner sensor closer than this: a car cuts in, slow down
+COME_BACK_AFTER_S = 6.0      # back to the home lane once its side was free this long [s]
 
 SIDES = ('left', 'right')
 
@@ -77,6 +79,7 @@ target_lane = HOME_LANE      # the lane it wants to be on
 target_offset = 0.0          # the moving lateral target from the current lane's centre [m]
 last = None                  # the lane state of the step before
 passing = False              # off the home lane: a car seen beside on the home side
+free_since = None            # off the home lane: since when the home side is free [s]
 step = 0
 while driver.step() != -1:
     step += 1
@@ -99,8 +102,8 @@ while driver.step() != -1:
     if math.isnan(front):
         front = front_range
     speed = MAX_SPEED_KMH * min(1.0, front / front_range)
-    if not free('front left 2') or not free('front right 2'):
-        speed = min(speed, 0.5 * MAX_SPEED_KMH)       # a car close at the front corner
+    if min(sensors[f'front {side} 2'].getValue() for side in SIDES) < CUT_IN_M:
+        speed = min(speed, 0.5 * MAX_SPEED_KMH)       # a car cutting in at a front corner
 
     # overtake: a car ahead and a free lane beside (left first)
     home_side = None if lane == HOME_LANE else ('right' if lane > HOME_LANE else 'left')
@@ -109,13 +112,19 @@ while driver.step() != -1:
             target_lane, passing = lane + 1, False
         elif lane > 0 and side_free('right'):
             target_lane, passing = lane - 1, False
-    # come back once a car passed (seen beside, on the home side) is behind and that side free
+    # come back once the car passed (seen beside, on the home side) is behind and that side is
+    # free, or once that side has been free for COME_BACK_AFTER_S (the slow car went elsewhere)
     elif target_lane == lane and home_side is not None:
         if not free(home_side):
             passing = True
-        elif passing and side_free(home_side):
+        if not side_free(home_side):
+            free_since = None
+        elif free_since is None:
+            free_since = driver.getTime()
+        if free_since is not None and (
+                passing or driver.getTime() - free_since >= COME_BACK_AFTER_S):
             target_lane = lane - 1 if home_side == 'right' else lane + 1
-            passing = False
+            passing, free_since = False, None
 
     # the lane target moves over at LANE_CHANGE_SPEED_MPS; steer to it (Stanley's law)
     wanted = (target_lane - lane) * state.width_m

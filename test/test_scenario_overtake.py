@@ -143,3 +143,31 @@ def test_overtake_values_are_validated_naming_the_field(tmp_path):
     path.write_text(text.replace('../examples/', str(ROOT / 'examples') + '/'), encoding='utf-8')
     with pytest.raises(ScenarioError, match='min'):
         load_scenario(path)
+
+
+def test_the_controller_overtakes_in_the_traffic_of_highway_traffic_yaml(tmp_path):
+    # the world of config/worlds/highway_traffic.yaml (60 cars at 60 to 100 km/h, MOBIL lane
+    # changes) with the scenario's car and its distance sensors
+    world = yaml.safe_load((ROOT / 'config' / 'worlds' / 'highway_traffic.yaml').read_text(
+        encoding='utf-8'))
+    data = yaml.safe_load(OVERTAKE.read_text(encoding='utf-8'))
+    data['world'] = {'vehicles': data['world']['vehicles'], 'roads': world['roads'],
+                     'traffic': world['traffic']}
+    data['driver'] = {'controller': str(ROOT / 'examples' / 'highway_overtake.py')}
+    data['duration'] = 40.0
+    data['criteria'] = [
+        {'kind': 'no_collision'},
+        {'kind': 'overtake', 'min': 2},
+        {'kind': 'stay_in_lane'},
+        {'kind': 'min_gap', 'min': 5.0},
+        # a car ahead at the start: it moves to the right lane, then overtakes on the left
+        {'kind': 'reach_lanelet', 'name': 'right_lane', 'lanelet': 100003, 'within': 5.0},
+        {'kind': 'reach_lanelet', 'name': 'back_left', 'lanelet': 100002, 'min_s': 450.0},
+    ]
+    path = tmp_path / 'highway_traffic_overtake.yaml'
+    path.write_text(yaml.safe_dump(data), encoding='utf-8')
+    result = run_scenario(path)
+    assert result.passed, [c.detail for c in result.criteria]
+    assert result.criterion('overtake').value >= 2
+    assert result.criterion('min_gap').value > 5.0
+    assert result.wall_time_s < 30.0
