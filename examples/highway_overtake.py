@@ -21,9 +21,10 @@ speed (slower the closer the car ahead), and once a car ahead is within OVERTAKE
 range the controller looks at a neighbouring lane (left first): its three front sensors on that
 side, the side sensor and the rear sensor must all read free, and there must be a lane there.
 It then moves over with the steering and, once the car it passed is behind it and its home lane
-is free again, comes back. The sensors are Webots' highway car's (``distance sensor front``,
-``... front left 0..2``, ``... front right 0..2``, ``... left``, ``... right``, ``... rear
-left``, ``... rear right``), returning metres (no lookup table).
+is free again (or that lane has been free for COME_BACK_AFTER_S), comes back. The sensors are
+Webots' highway car's (``distance sensor front``, ``... front left 0..2``, ``... front right
+0..2``, ``... left``, ``... right``, ``... rear left``, ``... rear right``), returning metres
+(no lookup table).
 
 Webots' sample keeps its lane with a PID on the GPS's lateral coordinate of a straight road;
 this one keeps its lane on any road with ``Driver.getLaneState()`` (our addition: the lateral
@@ -109,9 +110,9 @@ while driver.step() != -1:
     home_side = None if lane == HOME_LANE else ('right' if lane > HOME_LANE else 'left')
     if target_lane == lane and front < OVERTAKE_RATIO * front_range:
         if lane < LANES - 1 and side_free('left'):
-            target_lane, passing = lane + 1, False
+            target_lane, passing, free_since = lane + 1, False, None
         elif lane > 0 and side_free('right'):
-            target_lane, passing = lane - 1, False
+            target_lane, passing, free_since = lane - 1, False, None
     # come back once the car passed (seen beside, on the home side) is behind and that side is
     # free, or once that side has been free for COME_BACK_AFTER_S (the slow car went elsewhere)
     elif target_lane == lane and home_side is not None:
