@@ -219,3 +219,50 @@ class RobotActor:
         half = curvature * speed * self._tread / 2.0
         self.robot.set_wheel_velocities((speed - half) / self._radius,
                                         (speed + half) / self._radius)
+
+
+def vehicles_around(vehicles, name, traffic=None):
+    """
+    Return ``others()`` for the IdmSpeed of actor ``name``: the boxes of the vehicles around.
+
+    :param vehicles: {name: VehicleHandle} of the scenario (the actor's own left out).
+    :param traffic: the world's traffic (physics TrafficBodies), or None.
+    :return: a callable giving [(name, x, y, yaw, length, width, speed)] now (box centres).
+    """
+    handles = [(other, handle, handle.outline) for other, handle in vehicles.items()
+               if other != name]
+
+    def others():
+        found = []
+        for other, handle, outline in handles:
+            x, y, _, qx, qy, qz, qw = handle.body.pose()
+            yaw = yaw_from_quaternion(qx, qy, qz, qw)
+            cx = 0.5 * (outline.x_min_m + outline.x_max_m)
+            cy = 0.5 * (outline.y_min_m + outline.y_max_m)
+            c, s = math.cos(yaw), math.sin(yaw)
+            found.append((other, x + c * cx - s * cy, y + s * cx + c * cy, yaw,
+                          outline.length_m, outline.width_m, handle.body.forward_speed_mps()))
+        if traffic is not None:
+            manager = traffic.manager
+            found += [(v.name, *manager.pose(v), v.length_m, v.width_m, v.speed_mps)
+                      for v in manager.vehicles if v.active]
+        return found
+    return others
+
+
+def make_actor(spec, vehicles, traffic=None):
+    """
+    Return the CarActor or RobotActor of an ActorSpec, with its IdmSpeed.
+
+    The IdmSpeed is used when the actor's ``speed_control`` is idm (the default).
+
+    :param spec: the ActorSpec.
+    :param vehicles: {name: VehicleHandle} of the scenario.
+    :param traffic: the world's traffic (physics TrafficBodies), or None: its vehicles count as
+        leaders and its IDM parameters are the actor's (the defaults without traffic).
+    """
+    handle = vehicles[spec.vehicle]
+    idm = IdmSpeed(handle.outline, vehicles_around(vehicles, spec.vehicle, traffic),
+                   None if traffic is None else traffic.manager.idm)
+    return (CarActor(spec, handle.car, idm) if handle.is_car
+            else RobotActor(spec, handle.body, idm))
