@@ -55,7 +55,20 @@ def test_the_webots_controller_overtakes_the_slow_cars_and_comes_back():
     straight = [y for x, y in zip(track.x_m, track.y_m) if x < 590.0]
     assert max(straight) == pytest.approx(MIDDLE_Y_M + LANE_WIDTH_M, abs=0.4)
     assert min(straight) == pytest.approx(MIDDLE_Y_M, abs=0.05)
+    # smooth lane changes: the lateral acceleration (speed x yaw rate over 0.1 s) stays small
+    assert max_lateral_acceleration(track) < 2.0
     assert result.wall_time_s < 30.0
+
+
+def max_lateral_acceleration(track, half=5):
+    worst = 0.0
+    for i in range(half, len(track.time_s) - half):
+        dt = track.time_s[i + half] - track.time_s[i - half]
+        speed = math.hypot(track.x_m[i + half] - track.x_m[i - half],
+                           track.y_m[i + half] - track.y_m[i - half]) / dt
+        turn = math.remainder(track.yaw_rad[i + half] - track.yaw_rad[i - half], 2.0 * math.pi)
+        worst = max(worst, abs(speed * turn / dt))
+    return worst
 
 
 def test_cruising_without_the_controller_runs_into_the_first_slow_car(tmp_path):
