@@ -21,6 +21,7 @@ terms, refused input, registration and Gymnasium's vector wrappers (rendering:
 test_gym_render.py).
 """
 
+import json
 import warnings
 
 import numpy as np
@@ -327,3 +328,33 @@ def test_registering_again_or_inside_a_plugin_namespace_keeps_one_id():
         assert registry['vehicle_sim/Drive-v0'].entry_point == spec.entry_point
     finally:
         registry['vehicle_sim/Drive-v0'] = spec
+
+
+@pytest.mark.parametrize('speed_control, hits', [(None, False), ('waypoints', True)])
+def test_a_scenario_actor_keeps_its_idm_gap_to_the_standing_ego_unless_told_otherwise(
+        make, tmp_path, speed_control, hits):
+    # the actor drives at 8 m/s towards the standing ego 40 m ahead: IDM (the default) stops it
+    # behind the ego, the waypoints' speed drives it into the ego
+    actor = {'vehicle': 'other', 'speed': 8.0, 'waypoints': [[120.0, 0.0]]}
+    if speed_control is not None:
+        actor['speed_control'] = speed_control
+    text = (
+        'world:\n  vehicles:\n'
+        '    - {name: ego, model: Car, pose: {x: 40.0, y: 0.0, yaw: 0.0}}\n'
+        '    - {name: other, namespace: other, model: ToyotaPrius, '
+        'pose: {x: 0.0, y: 0.0, yaw: 0.0}}\n'
+        f'actors: [{json.dumps(actor)}]\n'
+        'duration: 12.0\n'
+        'driver: {commands: [{t: 0.0, cruising_speed: 0.0}]}\n'
+        'criteria: [{kind: no_collision}]\n')
+    path = tmp_path / 'actor_behind.yaml'
+    path.write_text(text, encoding='utf-8')
+    env = make(scenario=str(path))
+    env.reset(seed=0)
+    for _ in range(3000):
+        obs, reward, terminated, truncated, info = env.step([0.0, 0.0])
+        if terminated or truncated:
+            break
+    assert info['collision'] is hits
+    assert (info['collided_with'] == 'other') is hits
+    assert truncated is not hits and info['time_s'] > (5.0 if hits else 11.9)

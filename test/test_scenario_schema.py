@@ -78,6 +78,7 @@ def test_schema_valid_sample_gives_its_values(tmp_path):
                                                  'setCruisingSpeed'),))
     assert second.line == 14
     assert spec.actors[0].waypoints[1].speed_mps == 3.0
+    assert spec.actors[0].speed_control == 'idm'      # default: IDM behind whatever is ahead
     assert [c.name for c in spec.criteria] == ['no_collision', 'max_speed']
     assert spec.criteria[1].values == {'limit_mps': 5.0}
 

@@ -62,7 +62,7 @@ from vehicle_sim.gym.options import CAMERA, LIDAR, SOURCE, validate_options
 from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.physics.sensors.collisions import CollisionMonitor
 from vehicle_sim.physics.world import DEFAULT_TIME_STEP_S
-from vehicle_sim.scenarios.actors import CarActor, RobotActor
+from vehicle_sim.scenarios.actors import make_actor
 from vehicle_sim.scenarios.schema import load_scenario, ScenarioSpec
 from vehicle_sim.scenarios.sim import VehicleHandle
 
@@ -296,12 +296,8 @@ class DriveSim:
     def _actors(self):
         if self.scenario is None:
             return []
-        actors = []
-        for spec in self.scenario.actors:
-            vehicle = self.scene.vehicles[spec.vehicle]
-            actors.append(CarActor(spec, vehicle.car) if vehicle.car is not None
-                          else RobotActor(spec, vehicle.body))
-        return actors
+        traffic = self.scene.parts.get('traffic')
+        return [make_actor(spec, self._handles, traffic) for spec in self.scenario.actors]
 
     def observe(self):
         """Return the observation dict now."""

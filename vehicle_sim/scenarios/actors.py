@@ -23,11 +23,12 @@ curvature κ = 2 sin α / L_d as wheel speeds v ∓ κ v t / 2. After the last w
 loops) the vehicle stops: cruising speed 0 and full brake for a car, zero wheel speeds for a
 robot.
 
-With ``speed_control: idm`` (:class:`IdmSpeed`) the waypoint's speed is the desired speed of
-the Intelligent Driver Model (core/traffic/idm.py) behind the nearest vehicle ahead within the
-actor's width (traffic vehicles and the scenario's other vehicles): the actor slows down and
-stops behind it as traffic does; a car brakes (cruising speed 0 and the brakes) when it must
-slow down by more than BRAKE_ABOVE_MPS.
+With ``speed_control: idm`` (the default; :class:`IdmSpeed`) the waypoint's speed is the
+desired speed of the Intelligent Driver Model (core/traffic/idm.py) behind the nearest vehicle
+ahead within the actor's width (traffic vehicles and the scenario's other vehicles): the actor
+slows down and stops behind it as traffic does; a car brakes (cruising speed 0 and the brakes)
+when it must slow down by more than BRAKE_ABOVE_MPS. ``speed_control: waypoints`` drives the
+waypoints' speeds whatever is ahead.
 """
 
 import math
@@ -218,3 +219,50 @@ class RobotActor:
         half = curvature * speed * self._tread / 2.0
         self.robot.set_wheel_velocities((speed - half) / self._radius,
                                         (speed + half) / self._radius)
+
+
+def vehicles_around(vehicles, name, traffic=None):
+    """
+    Return ``others()`` for the IdmSpeed of actor ``name``: the boxes of the vehicles around.
+
+    :param vehicles: {name: VehicleHandle} of the scenario (the actor's own left out).
+    :param traffic: the world's traffic (physics TrafficBodies), or None.
+    :return: a callable giving [(name, x, y, yaw, length, width, speed)] now (box centres).
+    """
+    handles = [(other, handle, handle.outline) for other, handle in vehicles.items()
+               if other != name]
+
+    def others():
+        found = []
+        for other, handle, outline in handles:
+            x, y, _, qx, qy, qz, qw = handle.body.pose()
+            yaw = yaw_from_quaternion(qx, qy, qz, qw)
+            cx = 0.5 * (outline.x_min_m + outline.x_max_m)
+            cy = 0.5 * (outline.y_min_m + outline.y_max_m)
+            c, s = math.cos(yaw), math.sin(yaw)
+            found.append((other, x + c * cx - s * cy, y + s * cx + c * cy, yaw,
+                          outline.length_m, outline.width_m, handle.body.forward_speed_mps()))
+        if traffic is not None:
+            manager = traffic.manager
+            found += [(v.name, *manager.pose(v), v.length_m, v.width_m, v.speed_mps)
+                      for v in manager.vehicles if v.active]
+        return found
+    return others
+
+
+def make_actor(spec, vehicles, traffic=None):
+    """
+    Return the CarActor or RobotActor of an ActorSpec, with its IdmSpeed.
+
+    The IdmSpeed is used when the actor's ``speed_control`` is idm (the default).
+
+    :param spec: the ActorSpec.
+    :param vehicles: {name: VehicleHandle} of the scenario.
+    :param traffic: the world's traffic (physics TrafficBodies), or None: its vehicles count as
+        leaders and its IDM parameters are the actor's (the defaults without traffic).
+    """
+    handle = vehicles[spec.vehicle]
+    idm = IdmSpeed(handle.outline, vehicles_around(vehicles, spec.vehicle, traffic),
+                   None if traffic is None else traffic.manager.idm)
+    return (CarActor(spec, handle.car, idm) if handle.is_car
+            else RobotActor(spec, handle.body, idm))

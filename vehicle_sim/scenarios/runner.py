@@ -28,7 +28,6 @@ the simulation served over ROS (:class:`~.sim.ServedSim`), paced at the driver's
 
 from dataclasses import dataclass, field
 import hashlib
-import math
 import os
 import random
 import runpy
@@ -37,12 +36,11 @@ import time
 import traceback
 from typing import Dict, List, Optional
 
-from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.geometry.footprint import Outline
 from vehicle_sim.core.specs.errors import InvalidCommandError
 from vehicle_sim.core.world.collision import CollisionEvent
 from vehicle_sim.physics.sensors.collisions import CollisionMonitor
-from vehicle_sim.scenarios.actors import CarActor, IdmSpeed, RobotActor
+from vehicle_sim.scenarios.actors import make_actor
 from vehicle_sim.scenarios.criteria import build_criteria, CriterionResult
 from vehicle_sim.scenarios.external import run_processes, TopicWatcher
 from vehicle_sim.scenarios.scene import world_scene
@@ -150,12 +148,7 @@ class Director:
         self.world = sim.world
         self.vehicles = sim.vehicles
         traffic = getattr(sim, 'traffic', None)
-        for actor in self.spec.actors:
-            handle = self.vehicles[actor.vehicle]
-            idm = IdmSpeed(handle.outline, self._others(actor.vehicle, traffic),
-                           None if traffic is None else traffic.manager.idm)
-            self.actors.append(CarActor(actor, handle.car, idm) if handle.is_car
-                               else RobotActor(actor, handle.body, idm))
+        self.actors = [make_actor(actor, self.vehicles, traffic) for actor in self.spec.actors]
         for name, handle in self.vehicles.items():   # every vehicle: the plot marks them
             monitor = CollisionMonitor(self.world, handle.body)
             self.world.remove(monitor)      # stepped from post_step, after the physics
@@ -168,29 +161,6 @@ class Director:
             criterion.bind(scene)
         self.tracks = {name: Track(outline=scene.outline(name)) for name in self.vehicles}
         self._measure(self.world.time_s)
-
-    def _others(self, name, traffic):
-        """Return ``others()``: the boxes around actor ``name`` for its IdmSpeed."""
-        handles = [(other, handle, handle.outline) for other, handle in self.vehicles.items()
-                   if other != name]
-
-        def others():
-            found = []
-            for other, handle, outline in handles:
-                x, y, _, qx, qy, qz, qw = handle.body.pose()
-                yaw = yaw_from_quaternion(qx, qy, qz, qw)
-                cx = 0.5 * (outline.x_min_m + outline.x_max_m)
-                cy = 0.5 * (outline.y_min_m + outline.y_max_m)
-                c, s = math.cos(yaw), math.sin(yaw)
-                found.append((other, x + c * cx - s * cy, y + s * cx + c * cy, yaw,
-                              outline.length_m, outline.width_m,
-                              handle.body.forward_speed_mps()))
-            if traffic is not None:
-                manager = traffic.manager
-                found += [(v.name, *manager.pose(v), v.length_m, v.width_m, v.speed_mps)
-                          for v in manager.vehicles if v.active]
-            return found
-        return others
 
     @property
     def vut(self):

@@ -52,6 +52,7 @@ from vehicle_sim.scenarios.driver_schema import (
     MAX_DURATION_S,
 )
 import vehicle_sim.scenarios.lane_criteria  # noqa: F401  (registers the lane criteria)
+import vehicle_sim.scenarios.overtake_criterion  # noqa: F401  (registers overtake)
 from vehicle_sim.scenarios.yaml_lines import error_at, line_of, load_with_lines, ScenarioError
 
 SCENARIO_SPECS = (
@@ -101,10 +102,11 @@ ACTOR_SPECS = (
               'pure-pursuit look-ahead; 0 = max(2 wheelbases, 1 s of travel)', ge=0.0),
     ParamSpec('loop', 'loop', 'bool', False, doc='back to the first waypoint after the last '
               '(else stop there)'),
-    ParamSpec('speed_control', 'speed_control', 'enum', 'waypoints',
-              choices=('waypoints', 'idm'), doc="waypoints: the waypoints' speeds; idm: at most "
-              'those, slower as the Intelligent Driver Model (docs/traffic.md) asks behind '
-              "whatever drives ahead within the actor's width (traffic, other vehicles)"),
+    ParamSpec('speed_control', 'speed_control', 'enum', 'idm',
+              choices=('idm', 'waypoints'), doc="idm: at most the waypoints' speeds, slower as "
+              'the Intelligent Driver Model (docs/traffic.md) asks behind whatever drives ahead '
+              "within the actor's width (traffic, other vehicles); waypoints: exactly the "
+              "waypoints' speeds, whatever is ahead"),
 )
 
 @dataclass(frozen=True)
@@ -125,7 +127,7 @@ class ActorSpec:
     lookahead_m: float
     loop: bool
     line: Optional[int] = None
-    speed_control: str = 'waypoints'
+    speed_control: str = 'idm'
 
 
 @dataclass(frozen=True)
