@@ -156,17 +156,21 @@ def test_domain_error_is_one_line_naming_cyclone_reason_and_the_environment():
         assert name in message
 
 
-@pytest.mark.parametrize('user_uri', [USER_LO_ADDRESS, USER_LO_NAME],
+@pytest.mark.parametrize('user_uri, namespace', [(USER_LO_ADDRESS, '/user_uri_address'),
+                                                 (USER_LO_NAME, '/user_uri_name')],
                          ids=['address_127_0_0_1', 'name_lo'])
-def test_node_starts_and_serves_with_a_user_uri_selecting_loopback(user_uri):
+def test_node_starts_and_serves_with_a_user_uri_selecting_loopback(user_uri, namespace):
+    # A namespace of its own per case: the test process's one DDS participant may still know
+    # the previous case's server for a while after that process ended, and a request sent to it
+    # alone would get no reply (the service race of ROS 2 itself, not what is tested here).
     env = peer_env()
     env['CYCLONEDDS_URI'] = user_uri
-    process = NodeProcess('--ros-args', '-r', '__ns:=/user_uri', '-p', 'synchronous:=true',
+    process = NodeProcess('--ros-args', '-r', f'__ns:={namespace}', '-p', 'synchronous:=true',
                           env=env)
     node = make_client_node('user_uri_tester')
     try:
         client = node.create_client('vehicle_msgs/srv/SetInt',
-                                    '/user_uri/' + itf.service('robot/time_step').name)
+                                    f'{namespace}/' + itf.service('robot/time_step').name)
         assert client.wait_for_service(WAIT_S), process.text()
         request = node.srv('vehicle_msgs/srv/SetInt').Request(value=30)
         assert client.call(request, WAIT_S).success is True
