@@ -24,6 +24,7 @@ log, the simulation goes on, and the file keeps what was written before.
 
 import errno
 import os
+import re
 import subprocess
 import sys
 
@@ -85,7 +86,9 @@ def test_truncated_file_is_one_line_error_for_bag_info_and_play(good, tmp_path):
     cut = tmp_path / 'cut.mcap'
     cut.write_bytes(data[:len(data) * 2 // 3])
     line = _one_line_error(vehicle_sim('bag', 'info', str(cut)), str(cut), 'cut short')
-    assert 'needs' in line
+    # Where the cut falls depends on the recording: inside a record's header or its body.
+    assert re.search(r'cut short at byte \d+: (a record header at byte \d+ is incomplete|the '
+                     r'record at byte \d+ \(opcode 0x[0-9a-f]{2}\) needs \d+ more bytes)', line)
     _one_line_error(vehicle_sim('play', str(cut)), str(cut), 'cut short')
 
 
