@@ -124,3 +124,19 @@ def spawn_peer():
         yield spawn
     finally:
         stop_processes([peer.proc for peer in peers])
+
+
+@pytest.fixture
+def make():
+    """Give the Gym tests ``make(**kwargs)``: Drive-v0 environments, closed after the test."""
+    import gymnasium
+    made = []
+
+    def _make(**kwargs):
+        env = gymnasium.make('vehicle_sim/Drive-v0', **kwargs)
+        made.append(env)
+        return env
+
+    yield _make
+    for env in made:
+        env.close()

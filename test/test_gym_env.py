@@ -47,20 +47,6 @@ CASES = {
 }
 
 
-@pytest.fixture
-def make():
-    made = []
-
-    def _make(**kwargs):
-        env = gymnasium.make('vehicle_sim/Drive-v0', **kwargs)
-        made.append(env)
-        return env
-
-    yield _make
-    for env in made:
-        env.close()
-
-
 @pytest.mark.parametrize('case', sorted(CASES))
 def test_gymnasium_check_env_passes(make, case):
     env = make(**CASES[case])

@@ -66,20 +66,6 @@ def on(lane_id, s_m):
     return LaneState(True, lane_id, s_m, 0.0, 0.0, 3.5, 13.9)
 
 
-@pytest.fixture
-def make():
-    made = []
-
-    def _make(**kwargs):
-        env = gymnasium.make('vehicle_sim/Drive-v0', **kwargs)
-        made.append(env)
-        return env
-
-    yield _make
-    for env in made:
-        env.close()
-
-
 def test_check_env_passes_on_the_highway_with_the_lane_part(make):
     env = make(world='highway')
     with warnings.catch_warnings():

@@ -16,18 +16,7 @@
 """
 Lanelet2 maps as lane graphs: a map the test writes (OSM XML), read with the lanelet2 package.
 
-The map (local metres; lanes 3.5 m wide, along +x; ids as in Lanelet2's files)::
-
-      y = 7.0   ------1003 solid------------+-----1006 solid--------------
-                 2002 (left lane)           |  2004 (speed_limit 30)
-      y = 3.5   - - - 1002 dashed - - - - - +-----1005 solid--------------
-                 2001 (right lane)          |  2003              | 2005 (two-way)
-      y = 0.0   ------1001 solid------------+-----1004 solid-----+--1007 curbstone--
-               x = 0                     x = 50               x = 100          x = 150
-
-Every node carries both lat/lon (the local point on the east-north-up plane of ORIGIN, from
-core/geometry/geodesy.py) and Autoware's local_x/local_y tags (the local point shifted by
-LOCAL_SHIFT, as an MGRS grid position would be), so the projectors can be told apart.
+The map, its ids and its two kinds of coordinates are drawn in test/lane_helpers.py.
 """
 
 import math

@@ -42,7 +42,6 @@ from vehicle_sim.core.geometry.footprint import car_outline
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.manager import OurVehicle, TrafficManager
 from vehicle_sim.core.world.params import ObstacleSpec
-from vehicle_sim.physics.vehicle_body import VehicleBody
 
 GROUND_CLEARANCE_M = 0.15        # the box's underside above the ground
 PARK_DEPTH_M = -50.0             # where a vehicle off the map waits (under the ground)
@@ -61,15 +60,6 @@ def model_dimensions(model):
     outline = car_outline(params)
     top = max(box.position_m[2] + 0.5 * box.size_m[2] for box in params.collision_boxes)
     return outline.length_m, outline.width_m, top + params.rear_tire_radius_m
-
-
-def _vehicle_bodies(world):
-    found = []
-    for registered in world.bodies:
-        body = getattr(registered, 'body', registered)
-        if isinstance(body, VehicleBody) and body.name:
-            found.append(body)
-    return found
 
 
 def our_vehicle(body, outline=None):
@@ -107,7 +97,7 @@ class TrafficPart:
             raise InvalidParameterError(f'{traffic.source}: traffic needs a lane map '
                                         f'(roads: in the world file, or a Lanelet2 map)')
         sizes = {model: model_dimensions(model) for model in traffic.all_models}
-        ours = [our_vehicle(body) for body in _vehicle_bodies(world)]
+        ours = [our_vehicle(body) for body in world.vehicle_bodies()]
         manager = TrafficManager(graph, traffic, {m: d[:2] for m, d in sizes.items()}, ours)
         return TrafficBodies(world, manager, sizes)
 
@@ -147,7 +137,7 @@ class TrafficBodies:
             self.body_ids.append(body_id)
             self._index[body_id] = v.index
         self._cid = cid
-        self._ours = _vehicle_bodies(world)
+        self._ours = world.vehicle_bodies()
         self._outlines = [body.outline for body in self._ours]
         self._parked = set()
         self._place()

@@ -215,6 +215,10 @@ class World:
         """The registered bodies, in registration order."""
         return tuple(self._bodies)
 
+    def vehicle_bodies(self):
+        """Return the named vehicle bodies (CarBody, DiffRobotBody), in registration order."""
+        return [v for v in map(_vehicle_body, self._bodies) if v is not None]
+
     def add_body(self, body):
         """
         Register a body so that ``step()`` calls its hooks.
@@ -330,7 +334,7 @@ class World:
         if spec.name in self.obstacles:
             raise ValueError(f'obstacle {spec.name!r} exists already')
         body_id = create_obstacle(self.client_id, spec)
-        vehicles = {v.body_id: v.name for v in map(_vehicle_body, self._bodies) if v is not None}
+        vehicles = {v.body_id: v.name for v in self.vehicle_bodies()}
         inside = [vehicles[other] for other in self._overlapping(body_id) if other in vehicles]
         if inside:
             pybullet.removeBody(body_id, physicsClientId=self.client_id)
@@ -356,7 +360,7 @@ class World:
         :raises InvalidPoseError: when a vehicle is inside one (the bodies are removed).
         """
         body_ids = list(body_ids)
-        vehicles = {v.body_id: v.name for v in map(_vehicle_body, self._bodies) if v is not None}
+        vehicles = {v.body_id: v.name for v in self.vehicle_bodies()}
         cid = self.client_id
 
         def inside_of(vehicle_id):
