@@ -140,3 +140,47 @@ def test_bad_arguments_are_refused(vector):
     env.reset(seed=0)
     with pytest.raises(ValueError, match=r'shape \(2,\)'):
         env.step(FAST)
+
+
+def test_a_bad_action_for_one_world_moves_no_world(vector):
+    # Every world's action is checked before any world is commanded or stepped.
+    env = vector(3)
+    env.reset(seed=0)
+    before = env.step(np.stack([GENTLE] * 3))[0]
+    times = [sim.world.time_s for sim in env.sims]
+    bad = np.stack([GENTLE, np.array([0.0, np.nan], dtype=np.float32), GENTLE])
+    with pytest.raises(ValueError, match=r'action\[1\] \(speed\) = nan'):
+        env.step(bad)
+    assert [sim.world.time_s for sim in env.sims] == times
+    after = env.step(np.stack([GENTLE] * 3))[0]
+    lone = DriveVectorEnv(3)
+    try:
+        lone.reset(seed=0)
+        lone.step(np.stack([GENTLE] * 3))
+        expected = lone.step(np.stack([GENTLE] * 3))[0]
+    finally:
+        lone.close()
+    for key in before:
+        assert after[key].tobytes() == expected[key].tobytes(), key
+
+
+def test_worlds_give_the_same_results_whichever_way_round_a_step_walks_them(vector):
+    # The phases of a step walk the worlds forwards and backwards by turns (for the cache):
+    # world i's results are those of a lone environment, step after step.
+    env = vector(3)
+    lones = [DriveEnv() for _ in range(3)]
+    try:
+        obs, _ = env.reset(seed=[5, 6, 7])
+        alone = [lone.reset(seed=5 + i)[0] for i, lone in enumerate(lones)]
+        for i, one in enumerate(alone):
+            assert obs['pose'][i].tobytes() == one['pose'].tobytes()
+        actions = [GENTLE, FAST, np.array([-0.1, 4.0], dtype=np.float32)]
+        for _ in range(6):
+            obs, reward, *_ = env.step(np.stack(actions))
+            for i, lone in enumerate(lones):
+                one, lone_reward, *_ = lone.step(actions[i])
+                assert obs['pose'][i].tobytes() == one['pose'].tobytes()
+                assert reward[i] == lone_reward
+    finally:
+        for lone in lones:
+            lone.close()

@@ -315,10 +315,26 @@ class DriveSim:
         :raises ValueError: for an action outside the action space (nothing stepped).
         :raises RuntimeError: before the first reset.
         """
+        self.apply(self.check(action))
+        self.advance(action_repeat)
+        return self.finish()
+
+    # The three phases of a step, for DriveVectorEnv: it checks every world's action, then
+    # applies and advances every world, then finishes every world, so that the basic steps of
+    # its worlds run one after another without the rest of a step between them (each world's
+    # physics data then stays in the processor's cache more often).
+    def check(self, action):
+        """Return ``action`` checked against the action space (ValueError naming the entry)."""
         if self._monitor is None:
             raise RuntimeError('step() before reset(): call reset() first')
-        values = self.control.check(action)
+        return self.control.check(action)
+
+    def apply(self, values):
+        """Command the ego with a checked action (:meth:`check`)."""
         self.control.apply(values)
+
+    def advance(self, action_repeat=None):
+        """Run the ``action_repeat`` basic steps of a step (after :meth:`apply`)."""
         repeat = action_repeat or self.options['action_repeat']
         world = self.world
         monitor = self._monitor
@@ -345,6 +361,13 @@ class DriveSim:
                     reached_now = True
             if hits and self.options['terminate_on_collision']:
                 break
+        self._advanced = (hits, reached_now, repeat_done)
+
+    def finish(self):
+        """Return (obs, reward terms, terminated, truncated, info) of the step just advanced."""
+        hits, reached_now, repeat_done = self._advanced
+        world = self.world
+        watch = self._watch
         x, y, yaw = self._ego_state()
         terminated = bool(hits) and self.options['terminate_on_collision']
         if self.lanes is not None:

@@ -66,37 +66,47 @@ def _stack_infos(infos):
 
 class _InfoTable:
     """
-    The step infos of every world in preallocated arrays (Gymnasium's vector info layout).
+    The step infos of every world, as Gymnasium's vector info layout.
 
-    Every world's step info has the same keys (DriveSim), one level of dicts at most: filled in
-    place world by world, then copied out once per step, which costs less than building arrays
-    from lists each step. The masks are all true and shared (read-only).
+    Every world's step info has the same keys (DriveSim), one level of dicts at most. Each step
+    gets fresh columns (:meth:`begin`), filled world by world (:meth:`put`) and handed out as
+    they are (:meth:`table`): no copy, and nothing the caller keeps is written again. The masks
+    are all true and shared (read-only).
     """
 
     def __init__(self, info, num_envs):
-        self.entries = []           # (key, sub key or None, column)
+        self.keys = []              # (key, sub key or None)
+        self.dtypes = []
         for key, value in info.items():
             for sub, item in (value.items() if isinstance(value, dict) else ((None, value),)):
-                dtype = object if isinstance(item, str) else np.asarray(item).dtype
-                self.entries.append((key, sub, np.zeros(num_envs, dtype=dtype)))
+                self.keys.append((key, sub))
+                self.dtypes.append(object if isinstance(item, str) else np.asarray(item).dtype)
+        self.num_envs = num_envs
         self.mask = np.ones(num_envs, dtype=bool)
         self.mask.flags.writeable = False
+        self.columns = []
+
+    def begin(self):
+        """Start a step: fresh columns (every world puts its info before :meth:`table`)."""
+        n = self.num_envs
+        self.columns = [np.empty(n, dtype=dtype) for dtype in self.dtypes]
 
     def put(self, index, info):
-        for key, sub, column in self.entries:
+        for (key, sub), column in zip(self.keys, self.columns):
             column[index] = info[key] if sub is None else info[key][sub]
 
     def table(self):
         out = {}
         mask = self.mask
-        for key, sub, column in self.entries:
+        for (key, sub), column in zip(self.keys, self.columns):
             if sub is None:
-                out[key] = column.copy()
+                out[key] = column
             else:
-                if key not in out:
-                    out[key] = {}
-                out[key][sub] = column.copy()
-                out[key]['_' + sub] = mask
+                inner = out.get(key)
+                if inner is None:
+                    inner = out[key] = {}
+                inner[sub] = column
+                inner['_' + sub] = mask
             out['_' + key] = mask
         return out
 
@@ -140,6 +150,9 @@ class DriveVectorEnv(VectorEnv):
         self.single_observation_space = observation_space(first.spaces)
         self.action_space = batch_space(self.single_action_space, num_envs)
         self.observation_space = batch_space(self.single_observation_space, num_envs)
+        self._actions_shape = self.action_space.shape
+        self._backwards = False      # the direction of the next step's first phase
+        self._orders = (tuple(range(num_envs)), tuple(reversed(range(num_envs))))
         self._keys = list(first.spaces)
         self._obs = {key: np.zeros((num_envs,) + space.shape, dtype=space.dtype)
                      for key, space in self.single_observation_space.spaces.items()}
@@ -216,24 +229,41 @@ class DriveVectorEnv(VectorEnv):
     def step(self, actions):
         """Step every world with its row of ``actions``; return the batched results."""
         actions = np.asarray(actions)
-        if actions.shape != self.action_space.shape:
+        if actions.shape != self._actions_shape:
             raise ValueError(f'actions of shape {actions.shape}: expected '
-                             f'{self.action_space.shape} (one row per world)')
+                             f'{self._actions_shape} (one row per world)')
         rewards = np.zeros(self.num_envs, dtype=np.float64)
         terminated = np.zeros(self.num_envs, dtype=bool)
         truncated = np.zeros(self.num_envs, dtype=bool)
         table = self._infos
+        if table is not None:
+            table.begin()
         finals = {}
         mode = self.autoreset_mode
-        for i, sim in enumerate(self.sims):
-            if self._ended[i] and mode == AutoresetMode.NEXT_STEP:
+        sims, ended = self.sims, self._ended
+        if mode == AutoresetMode.DISABLED and ended.any():
+            i = int(np.flatnonzero(ended)[0])
+            raise RuntimeError(f'world {i} ended: reset it (reset_mask) before stepping '
+                               "it again (autoreset_mode 'disabled')")
+        # Every action checked before any world moves (a bad one changes nothing), then the
+        # step's phases world after world (DriveSim.apply/advance/finish), each phase walking
+        # the worlds the other way round from the one before: the worlds a phase ends with are
+        # the ones whose data the processor's cache still holds when the next phase starts.
+        order = self._orders[self._backwards]
+        self._backwards = not self._backwards      # three phases: the next step turns round
+        stepping = [i for i in order if not ended[i]] if ended.any() else order
+        checked = [sims[i].check(actions[i]) for i in stepping]
+        for i, values in zip(stepping, checked):
+            sims[i].apply(values)
+        for i in reversed(stepping):
+            sims[i].advance()
+        for i in order:
+            sim = sims[i]
+            if ended[i]:                  # NEXT_STEP: reset now, the action ignored
                 obs, info = sim.reset(self._rng(i))
-                self._ended[i] = False
-            elif self._ended[i] and mode == AutoresetMode.DISABLED:
-                raise RuntimeError(f'world {i} ended: reset it (reset_mask) before stepping '
-                                   "it again (autoreset_mode 'disabled')")
+                ended[i] = False
             else:
-                obs, _, terminated[i], truncated[i], info = sim.step(actions[i])
+                obs, _, terminated[i], truncated[i], info = sim.finish()
                 rewards[i] = info['reward_default'] if self.reward_fn is None else \
                     float(self.reward_fn(obs, actions[i], info))
                 if terminated[i] or truncated[i]:
@@ -241,10 +271,11 @@ class DriveVectorEnv(VectorEnv):
                         finals[i] = (obs, info)
                         obs, info = sim.reset(self._rng(i))
                     else:
-                        self._ended[i] = True
+                        ended[i] = True
             self._put(i, obs)
             if table is None:
                 table = self._infos = _InfoTable(info, self.num_envs)
+                table.begin()
             table.put(i, info)
         stacked = table.table()
         if finals:
