@@ -287,3 +287,21 @@ def test_the_shipped_highway_traffic_world_spawns_its_vehicles():
     assert len(m.vehicles) == 60
     speeds_kmh = [m.desired_speed(v) * 3.6 for v in m.vehicles]
     assert 59.9 <= min(speeds_kmh) and max(speeds_kmh) <= 100.1
+
+
+def test_a_stopped_vehicle_stands_where_it_was_hit_between_steps():
+    m = manager({'placed': [{'lanelet': MIDDLE, 's': 100.0, 'speed': 20.0,
+                             'route': [100102]}]})
+    car = m.vehicles[0]
+    m.step(DT)
+    s = car.s_m
+    m.stop(0, 0.7)                   # it went on 0.7 m since the step before it was hit
+    assert car.stopped and car.speed_mps == 0.0 and car.s_m == pytest.approx(s + 0.7)
+    for _ in range(20):
+        m.step(DT)
+    assert car.s_m == pytest.approx(s + 0.7)
+    with pytest.raises(ValueError, match='travelled_m = nan'):
+        m.stop(0, float('nan'))
+    with pytest.raises(ValueError, match='travelled_m = -1'):
+        m.stop(0, -1.0)
+    assert car.s_m == pytest.approx(s + 0.7)

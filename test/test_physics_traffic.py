@@ -118,9 +118,15 @@ def test_a_collision_with_our_car_stops_the_traffic_car_and_names_it(scenes):
     assert manager.vehicles[0].stopped and manager.vehicles[0].speed_mps == 0.0
     assert [e.other for e in events] == ['traffic_0']
     s = manager.vehicles[0].s_m
+    traffic = scene.parts['traffic']
+    (where, _), *_ = scene.world.body_state(traffic.body_ids[0])
+    # its box stands where the manager has it (where it was when it was hit)
+    assert where[:2] == pytest.approx(manager.pose(manager.vehicles[0])[:2], abs=1e-9)
     for _ in range(100):
         scene.world.step()
     assert manager.vehicles[0].s_m == s         # it stays, an obstacle
+    (after, _), *_ = scene.world.body_state(traffic.body_ids[0])
+    assert after == pytest.approx(where, abs=1e-9)      # no jump at the next updates
 
 
 def test_traffic_bodies_are_seen_by_the_teleport_check(scenes):
@@ -179,7 +185,6 @@ def test_the_shipped_highway_traffic_world_builds_and_drives(scenes):
 
 
 def test_a_car_at_a_dead_end_re_enters_at_the_start_of_an_entry_lane(scenes):
-    import pybullet
     scene = scenes(highway({'placed': [{'lanelet': 100402, 's': 590.0, 'speed': 20.0}]},
                            sensors=()))
     traffic = scene.parts['traffic']
@@ -189,9 +194,9 @@ def test_a_car_at_a_dead_end_re_enters_at_the_start_of_an_entry_lane(scenes):
     # the highway's entry lanes: forward lanes of its first segment, backward of its last
     assert car.active and car.lane in (100001, 100002, 100003, 100451, 100452, 100453)
     assert car.s_m < 100.0
-    position, _ = pybullet.getBasePositionAndOrientation(
-        traffic.body_ids[0], physicsClientId=scene.world.client_id)
-    # the box: the manager's pose moved on at the car's velocity since its last update
+    (position, _), *_ = scene.world.body_state(traffic.body_ids[0])
+    # the box, as anything reading the world sees it: the manager's pose moved on at the
+    # car's velocity since its last update
     x, y, yaw = traffic.manager.pose(car)
     since = scene.world.time_s - traffic.manager.time_s
     assert position[:2] == pytest.approx((x + car.speed_mps * since * math.cos(yaw),

@@ -93,6 +93,45 @@ def test_world_calls_hooks_once_per_step_and_per_extra_substep():
         assert counter.steps == 5
 
 
+def test_every_read_of_the_world_between_steps_syncs_the_placed_bodies_first():
+    # A placed body (traffic) moves only when put: rays, overlap checks and body states run
+    # the before_query hooks first, which put it where it is now.
+    import pybullet
+
+    from vehicle_sim.core.world.params import ObstacleSpec
+    from vehicle_sim.physics.sensors.rays import cast_rays
+
+    class Placer:
+        def __init__(self, world, body_id):
+            self.world, self.body_id, self.calls, self.x = world, body_id, 0, 10.0
+
+        def before_query(self):
+            self.calls += 1
+            pybullet.resetBasePositionAndOrientation(
+                self.body_id, (self.x, 0.0, 0.5), (0.0, 0.0, 0.0, 1.0),
+                physicsClientId=self.world.client_id)
+            self.world.mark_moved()
+
+    with World() as world:
+        spec = ObstacleSpec('box', 'box', (10.0, 0.0, 0.5), 0.0, 0.0, 0.0, 0.0,
+                            (1.0, 0.0, 0.0, 1.0), (1.0, 1.0, 1.0))
+        body_id = world.add_obstacle(spec, placed=True)
+        placer = world.add_body(Placer(world, body_id))
+        world.step()
+        placer.x = 20.0                    # where it is now; Bullet still has it at 10 m
+        hit = cast_rays(world, (0.0, 0.0, 0.5), [(100.0, 0.0, 0.5)], -1)[0]
+        assert placer.calls == 1 and hit * 100.0 == pytest.approx(19.5, abs=1e-6)
+        placer.x = 30.0
+        (position, _), *_ = world.body_state(body_id)
+        assert placer.calls == 2 and position[0] == pytest.approx(30.0)
+        world.overlaps(body_id)
+        assert placer.calls == 3
+        before = placer.calls
+        for _ in range(20):                # nothing reads: the body is not put
+            world.step()
+        assert placer.calls == before
+
+
 def test_world_same_inputs_give_the_same_trajectory_run_after_run():
     params = load_car('BmwX5')
     runs = []

@@ -42,12 +42,14 @@ def _shape(spec, visual):
     return _GEOMETRY[spec.shape](spec)
 
 
-def create_obstacle(client_id, spec):
+def create_obstacle(client_id, spec, placed=False):
     """
     Create an obstacle's body.
 
     :param client_id: the World's PyBullet client.
     :param spec: core.world_params.ObstacleSpec.
+    :param placed: a static obstacle moved only by being placed (traffic): a Bullet rigid body
+        (maximal coordinates), which costs a step almost nothing; otherwise a multibody.
     :return: the body id.
     """
     collision = pybullet.createCollisionShape(physicsClientId=client_id, **_shape(spec, False))
@@ -55,4 +57,5 @@ def create_obstacle(client_id, spec):
                                         physicsClientId=client_id, **_shape(spec, True))
     pose = spec.pose
     return pybullet.createMultiBody(spec.mass_kg, collision, visual, list(pose.xyz),
-                                    list(pose.quaternion), physicsClientId=client_id)
+                                    list(pose.quaternion), useMaximalCoordinates=placed,
+                                    physicsClientId=client_id)

@@ -14,22 +14,26 @@
 
 
 """
-Traffic in the physics world: one kinematic box per traffic vehicle, moved by the core manager.
+Traffic in the physics world: one placed box per traffic vehicle, moved by the core manager.
 
 :class:`TrafficPart` is the scene part (physics/scene.py) of a world file's ``traffic:``: it
 takes the world's lane map (its ``roads:``, or a LaneGraph given to it, e.g. a Lanelet2 map's),
 reads each model's dimensions from its car preset (the footprint of its collision boxes and
-tyres, the top of its highest box), builds the core TrafficManager and adds one static
-(mass 0) box per traffic vehicle as a named obstacle (``traffic_<i>``), so that lidars, distance
-sensors, cameras, collision monitors and teleport checks see it like any obstacle.
+tyres, the top of its highest box), builds the core TrafficManager and adds one static box per
+traffic vehicle as a named obstacle (``traffic_<i>``), so that lidars, distance sensors,
+cameras, collision monitors and teleport checks see it like any obstacle.
 
 Every ``update_period`` (a whole number of world steps) the step hook gives the manager our
 vehicles (footprint centre, heading, speed, size), advances it and puts each box at its
-vehicle's pose with its velocity; between updates Bullet moves the boxes on at that velocity.
-A vehicle waiting to re-enter the map is parked under the ground. After every step the
-contacts of our vehicles with the traffic vehicles near them (within NEAR_M at the last update)
-are read: a traffic vehicle touching one of ours stops for good (it stays where it is, an
-obstacle).
+vehicle's pose. Between updates a vehicle goes on straight at its speed, and its box is put
+there whenever something can tell: before each step for the vehicles near ours (the step's
+contacts), before anything reads the world (``World.sync_bodies``: rays, cameras, overlap
+checks, body states) for all of them, and after every step with a GUI window. Bullet never
+moves the boxes itself: a static rigid body costs its step almost nothing, where 50 moving
+bodies cost it some 20 us a step (docs/traffic.md, Cost). A vehicle waiting to re-enter the
+map is parked under the ground. After every step the contacts of our vehicles with the traffic
+vehicles near them (within NEAR_M at the last update) are read: a traffic vehicle touching one
+of ours stops for good where its box was (it stays there, an obstacle).
 """
 
 import math
@@ -106,6 +110,14 @@ class TrafficBodies:
     """
     The traffic vehicles' bodies in a World, moved by a TrafficManager (a world step hook).
 
+    Each box is a Bullet rigid body that is only ever placed (it costs a physics step almost
+    nothing, where a moving body costs Bullet some 0.4 us a step each). Between two updates a
+    vehicle goes on straight at its speed: a box is put at that pose (the last update's plus
+    the velocity times the time since) when something can tell: before each step for the
+    vehicles near ours (their contacts), and before anything reads the world between steps
+    (:meth:`before_query`, called by ``World.sync_bodies``: rays, cameras, overlap checks), every
+    step with a GUI window.
+
     :param world: the World.
     :param manager: the core TrafficManager.
     :param sizes: {model: (length, width, height)} [m].
@@ -126,23 +138,26 @@ class TrafficBodies:
         self.colours = COLOURS
         self.body_ids = []
         self._index = {}
-        cid = world.client_id
         for v in manager.vehicles:
             x, y, yaw = manager.pose(v)
             length, width, height = sizes[v.model]
             spec = ObstacleSpec(v.name, 'box', (x, y, self._z(v.index)), 0.0, 0.0, yaw, 0.0,
                                 COLOURS[v.index % len(COLOURS)],
                                 (length, width, height - GROUND_CLEARANCE_M))
-            body_id = world.add_obstacle(spec)
+            body_id = world.add_obstacle(spec, placed=True)
             self.body_ids.append(body_id)
             self._index[body_id] = v.index
-        self._cid = cid
+        self._cid = world.client_id
         self._ours = world.vehicle_bodies()
         self._outlines = [body.outline for body in self._ours]
         self._parked = set()
+        # per vehicle on the map: (x, y, z, qz, qw, vx, vy) of its box at the last update
+        self._motion = [None] * len(self.body_ids)
+        self._placed_at = 0.0          # the time of the last update [s]
+        self._synced_step = -1         # the step count at which every box was last put
         self._place()
-        self._near = self._nearby([our_vehicle(body, outline)
-                                   for body, outline in zip(self._ours, self._outlines)])
+        self._near, self._near_all = self._nearby([
+            our_vehicle(body, outline) for body, outline in zip(self._ours, self._outlines)])
         world.add_body(self)
 
     def reset(self):
@@ -152,55 +167,88 @@ class TrafficBodies:
         self.manager = TrafficManager(old.graph, old.spec, old.dimensions, ours)
         self._parked = set()
         self._place()
-        self._near = self._nearby(ours)
+        self._near, self._near_all = self._nearby(ours)
         return f'traffic: its {len(self.manager.vehicles)} vehicles back at their start'
 
     def _z(self, index):
         return 0.5 * (self._heights[index] + GROUND_CLEARANCE_M)
 
     def _place(self):
+        """Put every box at its vehicle's pose now (an update)."""
         cid = self._cid
         manager = self.manager
-        reset_pose, reset_velocity = pybullet.resetBasePositionAndOrientation, \
-            pybullet.resetBaseVelocity
-        parked, heights = self._parked, self._heights
+        reset_pose = pybullet.resetBasePositionAndOrientation
+        parked, heights, motion = self._parked, self._heights, self._motion
         self._positions = positions = []       # (index, x, y) of the vehicles on the map
+        cos, sin = math.cos, math.sin
         for v, body_id in zip(manager.vehicles, self.body_ids):
             index = v.index
             if not v.active:
+                motion[index] = None
                 if index not in parked:        # under the ground until it re-enters
                     reset_pose(body_id, (0.0, 0.0, PARK_DEPTH_M - 10.0 * index),
                                (0.0, 0.0, 0.0, 1.0), physicsClientId=cid)
-                    reset_velocity(body_id, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0),
-                                   physicsClientId=cid)
                     parked.add(index)
                 continue
             parked.discard(index)
             x, y, yaw = manager.pose(v)
             positions.append((index, x, y))
             half = 0.5 * yaw
-            reset_pose(body_id, (x, y, 0.5 * (heights[index] + GROUND_CLEARANCE_M)),
-                       (0.0, 0.0, math.sin(half), math.cos(half)), physicsClientId=cid)
+            z, qz, qw = 0.5 * (heights[index] + GROUND_CLEARANCE_M), sin(half), cos(half)
+            reset_pose(body_id, (x, y, z), (0.0, 0.0, qz, qw), physicsClientId=cid)
             speed = v.speed_mps
-            reset_velocity(body_id, (speed * math.cos(yaw), speed * math.sin(yaw), 0.0),
-                           (0.0, 0.0, 0.0), physicsClientId=cid)
+            motion[index] = (x, y, z, qz, qw, speed * cos(yaw), speed * sin(yaw))
+        self._placed_at = self.world.time_s
+        self._synced_step = self.world.step_count
+        self.world.mark_moved()
+
+    def _move(self, indices):
+        """Put the boxes of ``indices`` where their vehicles are now (straight on)."""
+        cid, body_ids, motion = self._cid, self.body_ids, self._motion
+        reset_pose = pybullet.resetBasePositionAndOrientation
+        elapsed = self.world.time_s - self._placed_at
+        for index in indices:
+            state = motion[index]
+            if state is None:
+                continue
+            x, y, z, qz, qw, vx, vy = state
+            if vx or vy:
+                reset_pose(body_ids[index], (x + vx * elapsed, y + vy * elapsed, z),
+                           (0.0, 0.0, qz, qw), physicsClientId=cid)
 
     def pre_step(self):
-        """World hook: every ``update_period``, advance the traffic and place the bodies."""
+        """
+        World hook: every ``update_period``, advance the traffic and place the bodies.
+
+        Between updates, the boxes near our vehicles are put where they are now (this step's
+        contacts).
+        """
+        world = self.world
+        count = world.step_count
+        if count and count % self.every == 0:
+            ours = [our_vehicle(body, outline)
+                    for body, outline in zip(self._ours, self._outlines)]
+            self.manager.set_ours(ours)
+            self.manager.step(self.every * world.time_step_s)
+            self._place()
+            self._near, self._near_all = self._nearby(ours)
+        elif self._synced_step != count:
+            self._move(self._near_all)
+
+    def before_query(self):
+        """World hook (``World.sync_bodies``): every box where its vehicle is now."""
         count = self.world.step_count
-        if count == 0 or count % self.every:
-            return
-        ours = [our_vehicle(body, outline) for body, outline in zip(self._ours, self._outlines)]
-        self.manager.set_ours(ours)
-        self.manager.step(self.every * self.world.time_step_s)
-        self._place()
-        self._near = self._nearby(ours)
+        if self._synced_step != count:
+            self._move(range(len(self.body_ids)))
+            self._synced_step = count
+            self.world.mark_moved()
 
     def _nearby(self, ours):
-        """Return, per one of our vehicles, the traffic vehicles within NEAR_M of it."""
+        """Return the traffic vehicles within NEAR_M of each of our vehicles, and all of them."""
         limit = NEAR_M * NEAR_M
-        return [[index for index, x, y in self._positions
+        near = [[index for index, x, y in self._positions
                  if (x - o.x_m) ** 2 + (y - o.y_m) ** 2 < limit] for o in ours]
+        return near, sorted(set().union(*near))
 
     def post_step(self):
         """World hook: a traffic vehicle touching one of our vehicles stops for good."""
@@ -210,9 +258,23 @@ class TrafficBodies:
             for i in near:
                 if not manager.vehicles[i].stopped and contacts(
                         bodyA=body.body_id, bodyB=body_ids[i], physicsClientId=cid):
-                    manager.stop(i)
-                    pybullet.resetBaseVelocity(body_ids[i], (0.0, 0.0, 0.0), (0.0, 0.0, 0.0),
-                                               physicsClientId=cid)
+                    self._stop(i)
+        if self.world.gui:                 # the window shows every box where it is
+            self.before_query()
+
+    def _stop(self, index):
+        # A vehicle that touched one of ours stops where its box was during the step.
+        v = self.manager.vehicles[index]
+        elapsed = self.world.time_s - self.world.time_step_s - self._placed_at
+        self.manager.stop(index, max(0.0, v.speed_mps * elapsed))
+        x, y, yaw = self.manager.pose(v)
+        z = self._z(index)
+        half = 0.5 * yaw
+        qz, qw = math.sin(half), math.cos(half)
+        pybullet.resetBasePositionAndOrientation(self.body_ids[index], (x, y, z),
+                                                 (0.0, 0.0, qz, qw), physicsClientId=self._cid)
+        self._motion[index] = (x, y, z, qz, qw, 0.0, 0.0)
+        self.world.mark_moved()
 
     def boxes(self):
         """

@@ -145,6 +145,7 @@ class World:
         self._pre_step = []
         self._pre_substep = []
         self._post_step = []
+        self._before_query = []
         self._names = {}              # body id -> name (obstacles)
         self.obstacles = {}           # obstacle name -> body id
         self._obstacle_specs = {}     # obstacle name -> its ObstacleSpec (reset_obstacles)
@@ -224,8 +225,11 @@ class World:
         Register a body so that ``step()`` calls its hooks.
 
         The body may define ``pre_step()`` (called once per basic step, before the physics),
-        ``pre_substep()`` (called before every physics sub-step after the first) and
-        ``post_step()`` (called once per basic step after the physics, time already advanced).
+        ``pre_substep()`` (called before every physics sub-step after the first),
+        ``post_step()`` (called once per basic step after the physics, time already advanced)
+        and ``before_query()`` (called by :meth:`sync_bodies` before anything reads the world
+        between steps: rays, cameras, overlap checks, body states; bodies that are only placed
+        now and then, as traffic, are put where they are now).
         """
         if body in self._bodies:
             return body
@@ -322,10 +326,12 @@ class World:
         return point_velocity(com_pos, linear, angular, link_position)
 
     # ---------------------------------------------------------------- obstacles and names
-    def add_obstacle(self, spec):
+    def add_obstacle(self, spec, placed=False):
         """
         Place an obstacle (core ObstacleSpec): static when its mass is 0.
 
+        :param placed: a static obstacle that its owner moves by placing it (traffic): a cheap
+            Bullet rigid body (physics/obstacles.py).
         :return: its body id.
         :raises ValueError: when an obstacle of that name exists already.
         :raises InvalidPoseError: when it would be inside a vehicle (nothing added).
@@ -333,7 +339,7 @@ class World:
         from vehicle_sim.physics.obstacles import create_obstacle
         if spec.name in self.obstacles:
             raise ValueError(f'obstacle {spec.name!r} exists already')
-        body_id = create_obstacle(self.client_id, spec)
+        body_id = create_obstacle(self.client_id, spec, placed)
         vehicles = {v.body_id: v.name for v in self.vehicle_bodies()}
         inside = [vehicles[other] for other in self._overlapping(body_id) if other in vehicles]
         if inside:
@@ -437,6 +443,7 @@ class World:
 
     def body_state(self, body_id):
         """Return a body's pose, velocities and joint states, for :meth:`restore_body_state`."""
+        self.sync_bodies()
         cid = self.client_id
         joints = range(pybullet.getNumJoints(body_id, physicsClientId=cid))
         return (pybullet.getBasePositionAndOrientation(body_id, physicsClientId=cid),
@@ -464,6 +471,7 @@ class World:
         return [self.body_name(other) for other in self._overlapping(body_id, tolerance_m)]
 
     def _overlapping(self, body_id, tolerance_m=OVERLAP_TOLERANCE_M):
+        self.sync_bodies()
         cid = self.client_id
         found = []
         for index in range(pybullet.getNumBodies(physicsClientId=cid)):
@@ -498,11 +506,28 @@ class World:
         Bring Bullet's collision structures up to date before a query between steps.
 
         Rays only see bodies whose bounding boxes the last step (or this call) computed; bodies
-        added since are refreshed here, once.
+        added or moved since are refreshed here, once. Placed bodies are synced first
+        (:meth:`sync_bodies`).
         """
+        self.sync_bodies()
         if self._broadphase_stale:
             pybullet.performCollisionDetection(physicsClientId=self.client_id)
             self._broadphase_stale = False
+
+    def sync_bodies(self):
+        """
+        Put the bodies that are only placed now and then (traffic) where they are now.
+
+        Called before anything reads the world between steps (rays through
+        :meth:`update_collision_state`, camera images, overlap checks, :meth:`body_state`): the
+        registered bodies' ``before_query()`` hooks, each a no-op when nothing moved since.
+        """
+        for hook in self._before_query:
+            hook()
+
+    def mark_moved(self):
+        """Say that bodies were moved between steps: rays refresh Bullet's bounding boxes."""
+        self._broadphase_stale = True
 
     def body_name(self, body_id):
         """
@@ -561,6 +586,8 @@ class World:
         self._pre_step = [b.pre_step for b in self._bodies if hasattr(b, 'pre_step')]
         self._pre_substep = [b.pre_substep for b in self._bodies if hasattr(b, 'pre_substep')]
         self._post_step = [b.post_step for b in self._bodies if hasattr(b, 'post_step')]
+        self._before_query = [b.before_query for b in self._bodies
+                              if hasattr(b, 'before_query')]
 
     def step(self):
         """Advance the world by one basic time step; return the new time [s]."""

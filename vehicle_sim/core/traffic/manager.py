@@ -175,9 +175,22 @@ class TrafficManager:
         """Give our vehicles' current states (before each :meth:`step`)."""
         self._ours = list(ours)
 
-    def stop(self, index):
-        """Stop a traffic vehicle for good (it collided): it stays where it is, at rest."""
+    def stop(self, index, travelled_m=0.0):
+        """
+        Stop a traffic vehicle for good (it collided): it stays where it is, at rest.
+
+        :param travelled_m: how far it went on along its lane since the last step [m], >= 0
+            (where it was when it collided, between two steps); the end of its lane at most.
+        """
+        if not (math.isfinite(travelled_m) and travelled_m >= 0.0):
+            raise ValueError(f'travelled_m = {travelled_m!r}: must be finite and >= 0')
         v = self.vehicles[index]
+        lane_length = self.graph.lanes[v.lane].length_m
+        travelled_m = min(travelled_m, lane_length - v.s_m)     # no lane change here
+        if travelled_m > 0.0:
+            v.s_m += travelled_m
+            if v.from_lane is not None:
+                v.from_s_m += travelled_m
         v.stopped, v.speed_mps, v.acc_mps2 = True, 0.0, 0.0
 
     # ------------------------------------------------------------------ the step

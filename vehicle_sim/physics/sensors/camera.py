@@ -60,6 +60,7 @@ class CameraSensor(Sensor):
         """Render a frame now; return a CameraReading stamped ``time_s``."""
         spec = self.spec
         cid = self.world.client_id
+        self.world.sync_bodies()          # placed bodies (traffic) where they are now
         position, rotation, _ = self.mount.world_frame()
         target = position + rotation[:, 0]
         view = pybullet.computeViewMatrix(position.tolist(), target.tolist(),
