@@ -19,9 +19,10 @@ The cost of recording (docs/record_replay.md), measured in one run and printed a
 1. In-process step with every topic recorded ÷ without: three synchronous automobile nodes in
    this process (ToyotaPrius, 10 ms, cruising at 30 km/h), stepped in interleaved blocks: one
    plain (no subscriber: its topics are skipped), one whose publishers are tapped by a tap that
-   drops the bytes (every message built and written to DDS), one recorded into an MCAP file
-   (``--record``). The target row is recorded ÷ plain (target <= 1.3x); recorded ÷ published
-   says what the MCAP writing itself costs.
+   drops the bytes (every message built and serialized, as for a subscriber; no DDS reader is
+   matched, so none is written to DDS), one recorded into an MCAP file (``--record``). The
+   target row is recorded ÷ plain (target <= 1.3x); recorded ÷ published says what the
+   recording itself costs beyond building the messages.
 2. ROS-synchronous real-time factor with a recorder attached (target >= 40x): the node in a
    subprocess as ``vehicle-sim run --synchronous --record FILE``, driven through
    ``robot/time_step`` as ``bench_ros_sync.py`` does; the same without ``--record`` right after.

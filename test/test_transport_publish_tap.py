@@ -99,6 +99,27 @@ def test_tap_sink_opens_the_reader_gate_without_a_dds_reader(nodes):
     assert len(sink.data) == 1
 
 
+def test_a_topic_only_a_sink_wants_costs_no_dds_write_until_a_reader_comes(nodes):
+    publisher_node, reader_node = nodes
+    sink = Sink()
+    publisher_node.add_publish_tap(Tap(sink))
+    publisher = publisher_node.create_publisher(FLOAT64, '/tap/later')
+    message = publisher_node.msg(FLOAT64)(data=3.0)
+    publisher.publish(message)
+    # no DDS reader: the sink has it, the transport wrote nothing (it would go nowhere)
+    assert len(sink.data) == 1 and publisher.publish_serialized.count[0] == 0
+    received = []
+    reader_node.create_subscription(FLOAT64, '/tap/later', received.append, raw=True)
+    assert wait_for(lambda: publisher.get_subscription_count() > 0)
+    publisher.publish(message)
+    assert wait_for(lambda: received, spin=reader_node)
+    assert publisher.publish_serialized.count[0] == 1 and len(sink.data) == 2
+    # a latched topic is written whatever its readers: a later one gets it from the history
+    latched = publisher_node.create_publisher(FLOAT64, '/tap/kept', QOS_LATCHED)
+    latched.publish(message)
+    assert latched.publish_serialized.count[0] == 1
+
+
 def test_publish_of_another_type_is_refused_before_the_tap_sees_it(nodes):
     publisher_node, _ = nodes
     sink = Sink()

@@ -96,15 +96,21 @@ def tap_publisher(publisher, sinks, serialize: Callable[[Any], bytes]) -> None:
     """
     Make ``publisher`` hand every message's bytes to ``sinks`` too.
 
+    The transport's write is skipped while the publisher's own reader gate is closed (a
+    volatile publisher with no matched subscription: the message would go nowhere), so a
+    topic only a sink wants costs no DDS write.
+
     :param serialize: ``serialize(msg)`` -> the bytes the transport would write for ``msg``;
         ``publish(msg)`` then serializes once and writes those bytes itself.
     """
     sinks = tuple(sinks)
     write = publisher.publish_serialized
     check = getattr(publisher, 'check_message', None)
+    gate = publisher.reader_gate
 
     def publish_serialized(data) -> None:
-        write(data)
+        if gate.open:       # closed: no subscriber would receive it (port.ReaderGate)
+            write(data)
         for sink in sinks:
             if sink.open:
                 sink.write(data)
