@@ -305,3 +305,20 @@ def test_a_stopped_vehicle_stands_where_it_was_hit_between_steps():
     with pytest.raises(ValueError, match='travelled_m = -1'):
         m.stop(0, -1.0)
     assert car.s_m == pytest.approx(s + 0.7)
+
+
+def test_objects_are_where_the_vehicles_are_at_the_stamp():
+    from vehicle_sim.core.traffic.objects import traffic_objects
+    m = manager({'placed': [{'lanelet': MIDDLE, 's': 100.0, 'speed': 20.0,
+                             'route': [100102]}]})
+    heights = {'Car': 1.5, 'Truck': 3.0}
+    now = traffic_objects(m, heights)[0]
+    later = traffic_objects(m, heights, since_s=0.05)[0]
+    car = m.vehicles[0]
+    x, y, yaw = m.pose(car)
+    assert (now.x_m, now.y_m) == (x, y)
+    # 0.05 s on at 20 m/s along the straight lane (+x): 1 m, and the path from there
+    assert (later.x_m - x, later.y_m - y) == pytest.approx((1.0, 0.0), abs=1e-9)
+    assert later.path[0][0] - now.path[0][0] == pytest.approx(1.0, abs=1e-9)
+    with pytest.raises(ValueError, match='since_s = -0.1'):
+        traffic_objects(m, heights, since_s=-0.1)

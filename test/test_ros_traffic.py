@@ -22,6 +22,8 @@ message holds one object / marker per traffic vehicle on the map, with the types
 QoS of the rows; the objects are where the world's traffic vehicles are.
 """
 
+import math
+
 from automobile_helpers import client_node, wait_for
 import pytest
 
@@ -81,8 +83,13 @@ def test_objects_and_markers_over_the_wire_match_the_world(app):
     assert bytes(first.object_id.uuid) == object_uuid(v.name)
     assert [(c.label, c.probability) for c in first.classification] == [(1, 1.0)]   # CAR
     pose = first.kinematics.initial_pose_with_covariance.pose
-    x, y, _ = manager.pose(v)
-    assert (pose.position.x, pose.position.y) == pytest.approx((x, y), abs=1e-9)
+    # where it is at the stamp: the manager's last update (at 0 s) gone on straight 0.1 s
+    assert app.scene.parts['traffic'].since_update_s == pytest.approx(0.1)
+    x, y, yaw = manager.pose(v)
+    gone = v.speed_mps * 0.1
+    assert gone > 1.0
+    assert (pose.position.x, pose.position.y) == pytest.approx(
+        (x + gone * math.cos(yaw), y + gone * math.sin(yaw)), abs=1e-9)
     assert first.kinematics.initial_twist_with_covariance.twist.linear.x == \
         pytest.approx(v.speed_mps)
     assert first.shape.type == 0                       # BOUNDING_BOX
@@ -93,6 +100,38 @@ def test_objects_and_markers_over_the_wire_match_the_world(app):
     assert len(markers.markers) == 60
     assert {m.ns for m in markers.markers} == {'traffic'}
     assert sorted(m.id for m in markers.markers) == [v.index for v in on_map]
+
+
+def test_a_world_with_obstacles_and_no_traffic_publishes_its_obstacles_as_objects(tmp_path):
+    import copy
+
+    import yaml
+
+    from vehicle_sim.config import read_yaml, world_path
+    from vehicle_sim.ros.automobile import AutomobileNode
+    data = copy.deepcopy(read_yaml(world_path('highway')))
+    data['obstacles'] = [{'name': 'cone', 'shape': 'cylinder', 'radius': 0.2, 'height': 0.7,
+                          'position': [50.0, -14.0, 0.35]}]
+    path = tmp_path / 'highway_cone_only.yaml'
+    path.write_text(yaml.safe_dump(data), encoding='utf-8')
+    node = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/cone_only'], transport='dds',
+                          parameter_overrides={'synchronous': True, 'world': str(path)})
+    try:
+        # the objects, not the traffic markers
+        assert tuple(node._traffic_outputs.publishers) == (PREDICTED_OBJECTS_TOPIC,)
+        received = []
+        with client_node('cone_only_listener') as client:
+            sub = client.create_subscription(PREDICTED_OBJECTS_TOPIC.ros_type,
+                                             PREDICTED_OBJECTS_TOPIC.name, received.append,
+                                             QOS_OBJECTS)
+            assert wait_for(lambda: sub.get_publisher_count(), spin=client)
+            node.step(1)
+            assert wait_for(lambda: received, spin=client)
+        objects = received[-1].objects
+        assert [bytes(o.object_id.uuid) for o in objects] == [object_uuid('cone')]
+        assert [o.classification[0].label for o in objects] == [0]          # UNKNOWN
+    finally:
+        node.close()
 
 
 def test_docs_hold_the_traffic_topic_table():

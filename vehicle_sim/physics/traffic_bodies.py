@@ -276,6 +276,11 @@ class TrafficBodies:
         self._motion[index] = (x, y, z, qz, qw, 0.0, 0.0)
         self.world.mark_moved()
 
+    @property
+    def since_update_s(self):
+        """Time since the manager's last step [s] (its vehicles went on straight since)."""
+        return self.world.time_s - self._placed_at
+
     def boxes(self):
         """
         Return the traffic vehicles on the map as drawn (the Foxglove scene's ``traffic/``).

@@ -75,7 +75,7 @@ from vehicle_sim.ros.sim_params import (
     world_spec,
 )
 from vehicle_sim.ros.time_step import TimeStepService
-from vehicle_sim.ros.traffic_interfaces import MARKERS_FRAME, OBJECTS_FRAME, TRAFFIC_TOPICS
+from vehicle_sim.ros.traffic_interfaces import MARKERS_FRAME, object_topics, OBJECTS_FRAME
 from vehicle_sim.transport import create_node
 from vehicle_sim.transport.logger import ThrottledWarning
 from vehicle_sim.transport.names import resolve_name
@@ -244,7 +244,8 @@ class AutomobileNode:
         # {fully-qualified name: what has it} of every table row of the node.
         global_name = self._full_name('')
         taken = {global_name(row.name): 'a topic of the node'
-                 for row in itf.WORLD_TOPICS + (TRAFFIC_TOPICS if scene.traffic else ())}
+                 for row in itf.WORLD_TOPICS + object_topics(bool(scene.traffic),
+                                                             bool(scene.obstacles))}
         taken.update({global_name(row.name): 'an endpoint of the node'
                       for row in itf.WORLD_SERVICES + itf.WORLD_INPUTS})
         for spec in scene.vehicles:
@@ -331,13 +332,15 @@ class AutomobileNode:
                                        lanes_frame(self.scene.spec))
         if self._map_outputs.summary:
             self._logger.info(self._map_outputs.summary)
-        # The traffic rows (ros/traffic_interfaces.py), for a world with traffic.
+        # The traffic rows (ros/traffic_interfaces.py): the objects for a world with traffic
+        # or obstacles, the markers with traffic.
         bodies = self.scene.parts.get('traffic')
-        self._traffic = None if bodies is None else SimpleNamespace(
+        rows = object_topics(bodies is not None, bool(self.scene.spec.obstacles))
+        self._traffic = None if not rows else SimpleNamespace(
             objects_frame=OBJECTS_FRAME, markers_frame=MARKERS_FRAME,
-            colours=bodies.colours, bodies=bodies, stamp=None, objects=None, obstacles=())
-        self._traffic_outputs = None if bodies is None else Outputs(
-            self.node, TRAFFIC_TOPICS, self._traffic)
+            colours=() if bodies is None else bodies.colours, bodies=bodies, stamp=None,
+            objects=None, obstacles=())
+        self._traffic_outputs = None if not rows else Outputs(self.node, rows, self._traffic)
 
     @staticmethod
     def _bind(handler, spec, vehicle, name):
@@ -462,7 +465,9 @@ class AutomobileNode:
             traffic = self._traffic
             if traffic is not None and self._traffic_outputs.wanted(EACH_PUBLISH):
                 traffic.stamp = stamp
-                traffic.objects = traffic_objects(traffic.bodies.manager, traffic.bodies.heights)
+                bodies = traffic.bodies
+                traffic.objects = () if bodies is None else traffic_objects(
+                    bodies.manager, bodies.heights, since_s=bodies.since_update_s)
                 traffic.obstacles = obstacle_objects(self.scene.spec.obstacles,
                                                      self._obstacle_pose)
                 self._traffic_outputs.publish(EACH_PUBLISH, traffic)

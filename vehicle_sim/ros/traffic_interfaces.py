@@ -62,6 +62,13 @@ TRAFFIC_MARKERS = Topic(
 TRAFFIC_TOPICS = (PREDICTED_OBJECTS_TOPIC, TRAFFIC_MARKERS)
 
 
+def object_topics(has_traffic: bool, has_obstacles: bool):
+    """Return the rows of a world: both with traffic, the objects alone with obstacles only."""
+    if has_traffic:
+        return TRAFFIC_TOPICS
+    return (PREDICTED_OBJECTS_TOPIC,) if has_obstacles else ()
+
+
 def traffic_topic_table_markdown():
     """Return the docs table of the traffic topics."""
     return topic_table_markdown(TRAFFIC_TOPICS)

@@ -64,11 +64,11 @@ class TrafficObject:
     step_s: float
 
 
-def _path(manager, v, horizon_s, step_s):
+def _path(manager, v, horizon_s, step_s, since_s):
     """Poses along the lane and its planned successors at constant speed (centreline)."""
     lanes = manager.graph.lanes
     poses = []
-    lane_id, s, upcoming = v.lane, v.s_m, [v.next_lane]
+    lane_id, s, upcoming = v.lane, v.s_m + v.speed_mps * since_s, [v.next_lane]
     count = int(round(horizon_s / step_s))
     for _ in range(count):
         s += v.speed_mps * step_s
@@ -86,7 +86,7 @@ def _path(manager, v, horizon_s, step_s):
 
 
 def traffic_objects(manager, heights: Mapping[str, float], horizon_s=PREDICTION_HORIZON_S,
-                    step_s=PREDICTION_STEP_S) -> Tuple[TrafficObject, ...]:
+                    step_s=PREDICTION_STEP_S, since_s=0.0) -> Tuple[TrafficObject, ...]:
     """
     Return the vehicles on the map as TrafficObjects, in index order.
 
@@ -94,18 +94,25 @@ def traffic_objects(manager, heights: Mapping[str, float], horizon_s=PREDICTION_
     :param heights: {model: box height [m]}.
     :param horizon_s: how far the prediction reaches [s].
     :param step_s: time between predicted poses [s].
+    :param since_s: time since the manager's last step [s], >= 0: each vehicle is where it
+        is now, gone on straight at its speed (as its body in the physics world), and its
+        path starts from there.
     """
     if not (math.isfinite(horizon_s) and math.isfinite(step_s) and 0.0 < step_s <= horizon_s):
         raise ValueError(f'horizon_s = {horizon_s!r}, step_s = {step_s!r}: need '
                          f'0 < step_s <= horizon_s')
+    if not (math.isfinite(since_s) and since_s >= 0.0):
+        raise ValueError(f'since_s = {since_s!r}: must be finite and >= 0')
     found = []
     for v in manager.vehicles:
         if not v.active:
             continue
         x, y, yaw = manager.pose(v)
-        found.append(TrafficObject(v.index, v.name, x, y, yaw, v.speed_mps, v.length_m,
+        gone = v.speed_mps * since_s
+        found.append(TrafficObject(v.index, v.name, x + gone * math.cos(yaw),
+                                   y + gone * math.sin(yaw), yaw, v.speed_mps, v.length_m,
                                    v.width_m, heights[v.model],
-                                   _path(manager, v, horizon_s, step_s), step_s))
+                                   _path(manager, v, horizon_s, step_s, since_s), step_s))
     return tuple(found)
 
 
