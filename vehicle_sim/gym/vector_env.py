@@ -157,7 +157,7 @@ class DriveVectorEnv(VectorEnv):
         self._obs = {key: np.zeros((num_envs,) + space.shape, dtype=space.dtype)
                      for key, space in self.single_observation_space.spaces.items()}
         self._rngs = [None] * num_envs
-        self._ended = np.zeros(num_envs, dtype=bool)
+        self._ended = [False] * num_envs       # worlds whose episode ended (autoreset)
         self._images = None
         self._infos = None
 
@@ -241,8 +241,9 @@ class DriveVectorEnv(VectorEnv):
         finals = {}
         mode = self.autoreset_mode
         sims, ended = self.sims, self._ended
-        if mode == AutoresetMode.DISABLED and ended.any():
-            i = int(np.flatnonzero(ended)[0])
+        any_ended = True in ended
+        if mode == AutoresetMode.DISABLED and any_ended:
+            i = ended.index(True)
             raise RuntimeError(f'world {i} ended: reset it (reset_mask) before stepping '
                                "it again (autoreset_mode 'disabled')")
         # Every action checked before any world moves (a bad one changes nothing), then the
@@ -251,7 +252,7 @@ class DriveVectorEnv(VectorEnv):
         # the ones whose data the processor's cache still holds when the next phase starts.
         order = self._orders[self._backwards]
         self._backwards = not self._backwards      # three phases: the next step turns round
-        stepping = [i for i in order if not ended[i]] if ended.any() else order
+        stepping = [i for i in order if not ended[i]] if any_ended else order
         checked = [sims[i].check(actions[i]) for i in stepping]
         for i, values in zip(stepping, checked):
             sims[i].apply(values)
@@ -263,10 +264,11 @@ class DriveVectorEnv(VectorEnv):
                 obs, info = sim.reset(self._rng(i))
                 ended[i] = False
             else:
-                obs, _, terminated[i], truncated[i], info = sim.finish()
+                obs, _, term, trunc, info = sim.finish()
+                terminated[i], truncated[i] = term, trunc
                 rewards[i] = info['reward_default'] if self.reward_fn is None else \
                     float(self.reward_fn(obs, actions[i], info))
-                if terminated[i] or truncated[i]:
+                if term or trunc:
                     if mode == AutoresetMode.SAME_STEP:
                         finals[i] = (obs, info)
                         obs, info = sim.reset(self._rng(i))
