@@ -26,6 +26,7 @@ node publishes is written as the bytes it sent, from its first publication on.
 """
 
 import struct
+import time
 from typing import Callable, Optional
 
 from vehicle_sim.recording import qos_text
@@ -84,8 +85,17 @@ class Recorder:
         :raises RecordingError: for a type whose definition is unknown.
         """
         channel_id = self.writer.add_channel(topic, ros_type, offered_qos_profiles)
-        add = self.writer.write
+        queue = getattr(self.writer, 'queue', None)     # the writer process's hot path
+        if queue is not None:
+            put = queue(channel_id)
+        else:
+            add = self.writer.write
+
+            def put(log_time_ns, publish_time_ns, data):
+                return add(channel_id, data, log_time_ns, publish_time_ns)
         follows_clock = self.use_sim_time and topic == CLOCK_TOPIC and ros_type == CLOCK_TYPE
+        use_sim_time = self.use_sim_time
+        time_ns = time.time_ns      # wall_ns, without its call
 
         def write(data: bytes) -> None:
             if self.stopped:
@@ -94,10 +104,9 @@ class Recorder:
                 found = clock_ns(data)
                 if found is not None:
                     self._sim_ns = found
-            wall = wall_ns()
+            wall = time_ns()
             try:
-                written = add(channel_id, data, self._sim_ns if self.use_sim_time else wall,
-                              wall)
+                written = put(self._sim_ns if use_sim_time else wall, wall, data)
             except Exception as error:  # noqa: BLE001 - a recorder never breaks the publisher
                 self._fail(f'recording {self.path} stopped: {type(error).__name__}: {error}')
                 return

@@ -117,11 +117,10 @@ class WriterProcess:
         self._in = Connection(from_child, writable=False)
         self.path = path
         self.channels: Dict[str, int] = {}
-        self.counts: Dict[int, int] = {}
-        self.message_count = 0
         self.error: Optional[str] = None
         self.closed = False
-        self._batch = []
+        self._batch = []             # one list for the writer's life: cleared once sent
+        self._sent = 0               # messages sent to the child
         if self._in.poll(START_TIMEOUT_S):
             kind, text = self._receive()
         else:
@@ -172,27 +171,44 @@ class WriterProcess:
         self._flush()
         self._send(('channel', (channel_id, topic, ros_type, offered_qos_profiles)))
         self.channels[topic] = channel_id
-        self.counts[channel_id] = 0
         return channel_id
+
+    @property
+    def message_count(self) -> int:
+        """Messages written or queued so far."""
+        return self._sent + len(self._batch)
 
     def write(self, channel_id: int, data: bytes, log_time_ns: int,
               publish_time_ns: int) -> bool:
         """Queue one message; return False once the recording has stopped."""
         if self.error is not None or self.closed:
             return False
+        return self.queue(channel_id)(log_time_ns, publish_time_ns, data)
+
+    def queue(self, channel_id: int):
+        """
+        Return ``put(log_time_ns, publish_time_ns, data)`` queuing messages of one channel.
+
+        The recorder's hot path (one call per message): it returns False once a batch sent
+        finds the recording stopped; the caller stops calling it then (and after close).
+        """
         batch = self._batch
-        batch.append((channel_id, log_time_ns, publish_time_ns, data))
-        self.counts[channel_id] += 1
-        self.message_count += 1
-        if len(batch) >= BATCH:
-            self._flush()
-            return self.error is None
-        return True
+        append = batch.append
+
+        def put(log_time_ns: int, publish_time_ns: int, data) -> bool:
+            append((channel_id, log_time_ns, publish_time_ns, data))
+            if len(batch) >= BATCH:
+                self._flush()
+                return self.error is None
+            return True
+        return put
 
     def _flush(self) -> None:
-        if self._batch:
-            batch, self._batch = self._batch, []
-            self._send(('messages', batch))
+        batch = self._batch
+        if batch and self.error is None:
+            self._send(('messages', batch))      # pickled here: the list can be reused
+            self._sent += len(batch)
+        batch.clear()
         self._check()
 
     def close(self) -> Optional[str]:
