@@ -102,7 +102,17 @@ def test_objects_and_markers_over_the_wire_match_the_world(app):
     assert sorted(m.id for m in markers.markers) == [v.index for v in on_map]
 
 
-def test_a_world_with_obstacles_and_no_traffic_publishes_its_obstacles_as_objects(tmp_path):
+CONE = {'name': 'cone', 'shape': 'cylinder', 'radius': 0.2, 'height': 0.7,
+        'position': [50.0, -14.0, 0.35]}
+
+
+def objects_of_highway(tmp_path, name, **keys):
+    """
+    Run the highway with ``keys`` added to its world file one step; return (node rows, objects).
+
+    The node's traffic rows (its publishers) and the PredictedObjects it published, received by
+    a client node.
+    """
     import copy
 
     import yaml
@@ -110,28 +120,30 @@ def test_a_world_with_obstacles_and_no_traffic_publishes_its_obstacles_as_object
     from vehicle_sim.config import read_yaml, world_path
     from vehicle_sim.ros.automobile import AutomobileNode
     data = copy.deepcopy(read_yaml(world_path('highway')))
-    data['obstacles'] = [{'name': 'cone', 'shape': 'cylinder', 'radius': 0.2, 'height': 0.7,
-                          'position': [50.0, -14.0, 0.35]}]
-    path = tmp_path / 'highway_cone_only.yaml'
+    data.update(keys)
+    path = tmp_path / f'{name}.yaml'
     path.write_text(yaml.safe_dump(data), encoding='utf-8')
-    node = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/cone_only'], transport='dds',
+    node = AutomobileNode(['x', '--ros-args', '-r', f'__ns:=/{name}'], transport='dds',
                           parameter_overrides={'synchronous': True, 'world': str(path)})
     try:
-        # the objects, not the traffic markers
-        assert tuple(node._traffic_outputs.publishers) == (PREDICTED_OBJECTS_TOPIC,)
         received = []
-        with client_node('cone_only_listener') as client:
+        with client_node(f'{name}_listener') as client:
             sub = client.create_subscription(PREDICTED_OBJECTS_TOPIC.ros_type,
                                              PREDICTED_OBJECTS_TOPIC.name, received.append,
                                              QOS_OBJECTS)
             assert wait_for(lambda: sub.get_publisher_count(), spin=client)
             node.step(1)
             assert wait_for(lambda: received, spin=client)
-        objects = received[-1].objects
-        assert [bytes(o.object_id.uuid) for o in objects] == [object_uuid('cone')]
-        assert [o.classification[0].label for o in objects] == [0]          # UNKNOWN
+        return tuple(node._traffic_outputs.publishers), received[-1].objects
     finally:
         node.close()
+
+
+def test_a_world_with_obstacles_and_no_traffic_publishes_its_obstacles_as_objects(tmp_path):
+    rows, objects = objects_of_highway(tmp_path, 'cone_only', obstacles=[CONE])
+    assert rows == (PREDICTED_OBJECTS_TOPIC,)          # the objects, not the traffic markers
+    assert [bytes(o.object_id.uuid) for o in objects] == [object_uuid('cone')]
+    assert [o.classification[0].label for o in objects] == [0]          # UNKNOWN
 
 
 def test_docs_hold_the_traffic_topic_table():
@@ -160,35 +172,12 @@ def test_sim_reset_starts_the_traffic_again(app):
 
 
 def test_obstacles_of_a_traffic_world_are_objects_too(tmp_path):
-    import copy
-
-    import yaml
-
-    from vehicle_sim.config import read_yaml, world_path
-    from vehicle_sim.ros.automobile import AutomobileNode
-    data = copy.deepcopy(read_yaml(world_path('highway')))
-    data['traffic'] = {'vehicles': 3, 'seed': 2}
-    data['obstacles'] = [{'name': 'cone', 'shape': 'cylinder', 'radius': 0.2, 'height': 0.7,
-                          'position': [50.0, -14.0, 0.35]}]
-    path = tmp_path / 'highway_cone.yaml'
-    path.write_text(yaml.safe_dump(data), encoding='utf-8')
-    node = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/traffic_cone'], transport='dds',
-                          parameter_overrides={'synchronous': True, 'world': str(path)})
-    try:
-        received = []
-        with client_node('cone_listener') as client:
-            sub = client.create_subscription(PREDICTED_OBJECTS_TOPIC.ros_type,
-                                             PREDICTED_OBJECTS_TOPIC.name, received.append,
-                                             QOS_OBJECTS)
-            assert wait_for(lambda: sub.get_publisher_count(), spin=client)
-            node.step(1)
-            assert wait_for(lambda: received, spin=client)
-        objects = received[-1].objects
-        assert [o.classification[0].label for o in objects] == [1, 1, 1, 0]
-        cone = objects[-1]
-        assert bytes(cone.object_id.uuid) == object_uuid('cone')
-        position = cone.kinematics.initial_pose_with_covariance.pose.position
-        assert (position.x, position.y, position.z) == (50.0, -14.0, 0.35)
-        assert (cone.shape.type, cone.shape.dimensions.z) == (1, 0.7)
-    finally:
-        node.close()
+    rows, objects = objects_of_highway(tmp_path, 'traffic_cone', obstacles=[CONE],
+                                       traffic={'vehicles': 3, 'seed': 2})
+    assert rows == TRAFFIC_TOPICS
+    assert [o.classification[0].label for o in objects] == [1, 1, 1, 0]
+    cone = objects[-1]
+    assert bytes(cone.object_id.uuid) == object_uuid('cone')
+    position = cone.kinematics.initial_pose_with_covariance.pose.position
+    assert (position.x, position.y, position.z) == (50.0, -14.0, 0.35)
+    assert (cone.shape.type, cone.shape.dimensions.z) == (1, 0.7)
