@@ -137,7 +137,6 @@ class TrafficBodies:
         self.heights = {model: size[2] for model, size in sizes.items()}   # {model: height}
         self.colours = COLOURS
         self.body_ids = []
-        self._index = {}
         for v in manager.vehicles:
             x, y, yaw = manager.pose(v)
             length, width, height = sizes[v.model]
@@ -146,7 +145,6 @@ class TrafficBodies:
                                 (length, width, height - GROUND_CLEARANCE_M))
             body_id = world.add_obstacle(spec, placed=True)
             self.body_ids.append(body_id)
-            self._index[body_id] = v.index
         self._cid = world.client_id
         self._ours = world.vehicle_bodies()
         self._outlines = [body.outline for body in self._ours]

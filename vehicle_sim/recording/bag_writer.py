@@ -253,6 +253,12 @@ class BagWriter:
             self.end_ns = log_time_ns
         return True
 
+    def queue(self, channel_id: int):
+        """Return ``put(log_time_ns, publish_time_ns, data)`` writing messages of one channel."""
+        def put(log_time_ns: int, publish_time_ns: int, data) -> bool:
+            return self.write(channel_id, data, log_time_ns, publish_time_ns)
+        return put
+
     def rosbag2_metadata(self) -> str:
         """Return the ``serialized_metadata`` YAML of the ``rosbag2`` record (BagMetadata)."""
         import yaml

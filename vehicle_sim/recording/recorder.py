@@ -85,14 +85,7 @@ class Recorder:
         :raises RecordingError: for a type whose definition is unknown.
         """
         channel_id = self.writer.add_channel(topic, ros_type, offered_qos_profiles)
-        queue = getattr(self.writer, 'queue', None)     # the writer process's hot path
-        if queue is not None:
-            put = queue(channel_id)
-        else:
-            add = self.writer.write
-
-            def put(log_time_ns, publish_time_ns, data):
-                return add(channel_id, data, log_time_ns, publish_time_ns)
+        put = self.writer.queue(channel_id)
         follows_clock = self.use_sim_time and topic == CLOCK_TOPIC and ros_type == CLOCK_TYPE
         use_sim_time = self.use_sim_time
         time_ns = time.time_ns      # wall_ns, without its call

@@ -17,10 +17,10 @@
 A :class:`~.bag_writer.BagWriter` in a child process, fed in batches: recording off the hot path.
 
 The ``mcap`` library's writer is Python and costs a few microseconds per message; a simulation
-step publishes a score of messages. :class:`WriterProcess` has the BagWriter's interface, but
-:meth:`WriterProcess.write` only appends the message to a batch, sent through a pipe to a child
-process (a fresh interpreter running this module, nothing of the parent's threads or its main
-script) that writes the file.
+step publishes a score of messages. :class:`WriterProcess` has the BagWriter's interface
+(``add_channel``, ``queue``, ``close``), but what ``queue`` returns only appends the message to
+a batch, sent through a pipe to a child process (a fresh interpreter running this module,
+nothing of the parent's threads or its main script) that writes the file.
 A failed write in the child (a full disk) comes back as the recording's error at the next batch;
 messages after it are dropped, as the BagWriter does. The child ignores SIGINT (Ctrl-C reaches
 the whole process group: the parent decides when the file is closed) and dies with the parent.
@@ -177,13 +177,6 @@ class WriterProcess:
     def message_count(self) -> int:
         """Messages written or queued so far."""
         return self._sent + len(self._batch)
-
-    def write(self, channel_id: int, data: bytes, log_time_ns: int,
-              publish_time_ns: int) -> bool:
-        """Queue one message; return False once the recording has stopped."""
-        if self.error is not None or self.closed:
-            return False
-        return self.queue(channel_id)(log_time_ns, publish_time_ns, data)
 
     def queue(self, channel_id: int):
         """
