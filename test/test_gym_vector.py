@@ -184,3 +184,35 @@ def test_worlds_give_the_same_results_whichever_way_round_a_step_walks_them(vect
     finally:
         for lone in lones:
             lone.close()
+
+
+def test_step_infos_are_what_gymnasium_makes_of_each_world_s_info(vector):
+    # Gymnasium's own VectorEnv._add_info stacks lone environments' infos (as SyncVectorEnv
+    # does): the native vector env's table must give the same keys, nesting, masks and values.
+    env = vector(3, world='obstacle_course')
+    lones = [DriveEnv(world='obstacle_course') for _ in range(3)]
+    actions = np.stack([FAST, GENTLE, np.array([-0.3, 5.0], dtype=np.float32)])
+    try:
+        env.reset(seed=[1, 2, 3])
+        for i, lone in enumerate(lones):
+            lone.reset(seed=i + 1)
+        stacker = gymnasium.vector.VectorEnv()
+        stacker.num_envs = 3
+        for _ in range(5):
+            _, _, _, _, info = env.step(actions)
+            expected = {}
+            for i, lone in enumerate(lones):
+                expected = stacker._add_info(expected, lone.step(actions[i])[4], i)
+
+            def same(ours, theirs):
+                assert list(ours) == list(theirs)
+                for key, value in theirs.items():
+                    if isinstance(value, dict):
+                        same(ours[key], value)
+                    else:
+                        assert np.array_equal(ours[key], value), key
+            same(info, expected)
+        assert info['time_s'][0] == pytest.approx(0.05)
+    finally:
+        for lone in lones:
+            lone.close()

@@ -85,6 +85,16 @@ class _InfoTable:
         self.mask = np.ones(num_envs, dtype=bool)
         self.mask.flags.writeable = False
         self.columns = []
+        # table()'s layout, the masks filled in: each step copies it and puts in the columns
+        self._outer = {}
+        self._inner = {}                # key -> its dict's layout
+        for key, sub in self.keys:
+            self._outer[key] = None
+            self._outer['_' + key] = self.mask
+            if sub is not None:
+                inner = self._inner.setdefault(key, {})
+                inner[sub] = None
+                inner['_' + sub] = self.mask
 
     def begin(self):
         """Start a step: fresh columns (every world puts its info before :meth:`table`)."""
@@ -96,18 +106,14 @@ class _InfoTable:
             column[index] = info[key] if sub is None else info[key][sub]
 
     def table(self):
-        out = {}
-        mask = self.mask
+        out = self._outer.copy()
+        for key, template in self._inner.items():
+            out[key] = template.copy()
         for (key, sub), column in zip(self.keys, self.columns):
             if sub is None:
                 out[key] = column
             else:
-                inner = out.get(key)
-                if inner is None:
-                    inner = out[key] = {}
-                inner[sub] = column
-                inner['_' + sub] = mask
-            out['_' + key] = mask
+                out[key][sub] = column
         return out
 
 
