@@ -24,9 +24,11 @@ Figures, each in env steps per second (one step = one action, action_repeat 1, 1
    penalty (target >= 3000/s, as state-only; the ratio to the state-only figure beside);
 2. the in-process vector environment with 1, 8 and 32 worlds: its steps of all worlds per
    CPU second of this process over the single environment's, short blocks of the two
-   interleaved, every world taking the lone environment's actions in a world without episode
-   ends (target >= 0.9x: a world in the vector costs no more than a lone environment);
-   wall-clock rates printed beside;
+   interleaved, every world taking the lone environment's actions and stepping as often in
+   each block, in a world without episode ends (target >= 0.9x: a world in the vector costs
+   no more than a lone environment); wall-clock rates printed beside; and with 8 and 32
+   worlds, the vector env over the same worlds held as Gymnasium's SyncVectorEnv of lone
+   environments (no target);
 3. Gymnasium's AsyncVectorEnv with 2 processes (steps of both per second);
 4. creating an environment (16 in a row, each with its own physics client; target <= 0.2 s),
    and a reset;
@@ -170,16 +172,35 @@ def _cpu_block(runner, steps):
     return steps * worlds, cpu_s, rate
 
 
+def _interleaved(first, first_steps, second, second_steps, blocks):
+    """Return (median wall rate of each, first's world steps per CPU second ÷ second's)."""
+    totals = {'first': [0, 0.0, []], 'second': [0, 0.0, []]}
+    for _ in range(blocks):
+        for key, runner, count in (('first', first, first_steps),
+                                   ('second', second, second_steps)):
+            done, cpu_s, rate = _cpu_block(runner, count)
+            totals[key][0] += done
+            totals[key][1] += cpu_s
+            totals[key][2].append(rate)
+    per_cpu = {key: done / cpu_s for key, (done, cpu_s, _) in totals.items()}
+    return statistics.median(totals['first'][2]), statistics.median(totals['second'][2]), \
+        per_cpu['first'] / per_cpu['second']
+
+
 def vector_ratio(num_envs, blocks, steps):
     """
     Return (vector world steps/s, single steps/s, ratio) from interleaved blocks.
 
-    The vector block steps ``steps / num_envs`` times (the same number of world steps). The
-    ratio is that of the world steps per CPU second of this process, summed over the blocks;
-    the rates are the median wall-clock ones. Both sides drive in RATIO_WORLD, where no episode
-    ends during the blocks: resets run the same code on both sides, but the vector's worlds
-    (all taking the same actions) would end together, a burst that short blocks sample
-    unevenly.
+    Each block steps both sides ``steps`` times (the vector: ``steps`` steps of all its
+    worlds), so that every world of the vector and the lone environment drive the same stretch
+    of the same trajectory in each block: a step's cost depends on where the car is in it (the
+    first 500 steps from rest cost up to 1.4 times the later ones), and blocks of ``steps /
+    num_envs`` vector steps kept the vector's worlds in that dearer start while the lone
+    environment drove on. The ratio is that of the world steps per CPU second of this process,
+    summed over the blocks; the rates are the median wall-clock ones. Both sides drive in
+    RATIO_WORLD, where no episode ends during the blocks: resets run the same code on both
+    sides, but the vector's worlds (all taking the same actions) would end together, a burst
+    that short blocks sample unevenly.
     """
     gymnasium = _gym()
     from vehicle_sim.gym import DriveVectorEnv
@@ -187,22 +208,32 @@ def vector_ratio(num_envs, blocks, steps):
     vector = DriveVectorEnv(num_envs, **RATIO_WORLD)
     try:
         lone, many = _Runner(single), _VectorRunner(vector)
-        lone.block(50)
-        many.block(max(1, 50 // num_envs))
-        totals = {'lone': [0, 0.0, []], 'many': [0, 0.0, []]}
-        for _ in range(blocks):
-            for key, runner, count in (('lone', lone, steps),
-                                       ('many', many, max(1, steps // num_envs))):
-                done, cpu_s, rate = _cpu_block(runner, count)
-                totals[key][0] += done
-                totals[key][1] += cpu_s
-                totals[key][2].append(rate)
-        per_cpu = {key: done / cpu_s for key, (done, cpu_s, _) in totals.items()}
-        return statistics.median(totals['many'][2]), statistics.median(totals['lone'][2]), \
-            per_cpu['many'] / per_cpu['lone']
+        return _interleaved(many, steps, lone, steps, blocks)
     finally:
         single.close()
         vector.close()
+
+
+def sync_ratio(num_envs, blocks, steps):
+    """
+    Return (vector world steps/s, SyncVectorEnv world steps/s, ratio) from interleaved blocks.
+
+    The same N worlds held in this process the way Gymnasium does it without a native vector
+    env: ``SyncVectorEnv`` of N ``gymnasium.make`` environments, stepped one after another.
+    Both pay for N worlds sharing one core's cache; the ratio (world steps per CPU second, as
+    :func:`vector_ratio`) is what the native vector env itself costs or saves.
+    """
+    gymnasium = _gym()
+    from vehicle_sim.gym import DriveVectorEnv
+    vector = DriveVectorEnv(num_envs, **RATIO_WORLD)
+    sync = gymnasium.vector.SyncVectorEnv(
+        [lambda: gymnasium.make(ENV_ID, **RATIO_WORLD) for _ in range(num_envs)])
+    try:
+        many, standard = _VectorRunner(vector), _VectorRunner(sync)
+        return _interleaved(many, steps, standard, steps, blocks)
+    finally:
+        vector.close()
+        sync.close()
 
 
 def async_rate(steps, processes=2):
@@ -299,11 +330,13 @@ def figures(quick=False):
     blocks = 3 if quick else 7
     steps = 400 if quick else 1000
     vector_blocks = 6 if quick else 20
+    vector_steps = 50 if quick else 100     # per block, on each side (vector_ratio)
     state = single_rate(blocks, steps)
     lidar = single_rate(blocks, max(100, steps // 4), lidar=True)
     lanes = single_rate(blocks, steps, world='highway')
     laned, bare, lane_cost = lane_ratio(2 * blocks, max(200, steps // 2))
-    vectors = {n: vector_ratio(n, vector_blocks, max(320, 4 * n)) for n in (1, 8, 32)}
+    vectors = {n: vector_ratio(n, vector_blocks, vector_steps) for n in (1, 8, 32)}
+    syncs = {n: sync_ratio(n, vector_blocks // 2, vector_steps) for n in (8, 32)}
     asynchronous = async_rate(200 if quick else 1000)
     each_s, per_world_s = creation_s()
     reset = reset_ms(30 if quick else 100)
@@ -326,6 +359,9 @@ def figures(quick=False):
     context += [f'gym: vector env of {n} worlds: {many:.0f} world steps/s ({many / n:.0f} per '
                f'world), one env alone in the same blocks {lone:.0f} steps/s'
                for n, (many, lone, _) in vectors.items()]
+    context += [f'gym: the same {n} worlds as a SyncVectorEnv of {n} gymnasium.make '
+                f'environments: {standard:.0f} world steps/s; the vector env {many:.0f}: '
+                f'{ratio:.2f}x per CPU second' for n, (many, standard, ratio) in syncs.items()]
     context.append(f'gym: AsyncVectorEnv, 2 processes: {asynchronous:.0f} steps/s of both')
     context.append(f'gym: a world of DriveVectorEnv(16): {per_world_s * 1000:.1f} ms to create; '
                    f"a reset (with the lidar's first scan) {reset:.1f} ms")
