@@ -203,15 +203,7 @@ def vector_ratio(num_envs, blocks, steps):
     that short blocks sample unevenly.
     """
     gymnasium = _gym()
-    from vehicle_sim.gym import DriveVectorEnv
-    single = gymnasium.make(ENV_ID, **RATIO_WORLD)
-    vector = DriveVectorEnv(num_envs, **RATIO_WORLD)
-    try:
-        lone, many = _Runner(single), _VectorRunner(vector)
-        return _interleaved(many, steps, lone, steps, blocks)
-    finally:
-        single.close()
-        vector.close()
+    return _vector_over(num_envs, gymnasium.make(ENV_ID, **RATIO_WORLD), _Runner, blocks, steps)
 
 
 def sync_ratio(num_envs, blocks, steps):
@@ -224,16 +216,24 @@ def sync_ratio(num_envs, blocks, steps):
     :func:`vector_ratio`) is what the native vector env itself costs or saves.
     """
     gymnasium = _gym()
-    from vehicle_sim.gym import DriveVectorEnv
-    vector = DriveVectorEnv(num_envs, **RATIO_WORLD)
     sync = gymnasium.vector.SyncVectorEnv(
         [lambda: gymnasium.make(ENV_ID, **RATIO_WORLD) for _ in range(num_envs)])
+    return _vector_over(num_envs, sync, _VectorRunner, blocks, steps)
+
+
+def _vector_over(num_envs, other, runner, blocks, steps):
+    """_interleaved() of DriveVectorEnv(num_envs) and ``other`` (stepped by ``runner``)."""
+    from vehicle_sim.gym import DriveVectorEnv
     try:
-        many, standard = _VectorRunner(vector), _VectorRunner(sync)
-        return _interleaved(many, steps, standard, steps, blocks)
+        vector = DriveVectorEnv(num_envs, **RATIO_WORLD)
+    except BaseException:
+        other.close()
+        raise
+    try:
+        return _interleaved(_VectorRunner(vector), steps, runner(other), steps, blocks)
     finally:
+        other.close()
         vector.close()
-        sync.close()
 
 
 def async_rate(steps, processes=2):
