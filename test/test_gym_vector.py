@@ -20,6 +20,8 @@ A crash in world 0 changes nothing in world 1 (bit-identical to a lone run); epi
 collision and on the goal; autoreset in Gymnasium's modes; the id's vector entry point.
 """
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -28,6 +30,8 @@ gymnasium = pytest.importorskip('gymnasium', reason="needs the 'gym' extra (gymn
 from gymnasium.vector import AutoresetMode  # noqa: E402
 
 from vehicle_sim.gym import DriveEnv, DriveVectorEnv  # noqa: E402
+
+SCENARIOS = Path(__file__).resolve().parents[1] / 'scenarios'
 
 FAST = np.array([0.0, 10.0], dtype=np.float32)     # into the wall at x = 19.5 m
 GENTLE = np.array([0.2, 2.0], dtype=np.float32)
@@ -113,6 +117,19 @@ def test_same_step_autoreset_reports_the_final_observation(vector):
     assert truncated[0] and info['_final_obs'][0]
     assert np.array_equal(obs['pose'], start)
     assert info['final_obs'][0]['pose'][0] > start[0][0]
+    # the final info is the ended step's info dict, as a lone env gives it; the step's own
+    # info columns are the reset's
+    final = info['final_info'][0]
+    assert final['time_s'] == pytest.approx(0.05) and info['time_s'][0] == 0.0
+    assert final['reward_default'] == pytest.approx(sum(final['reward_terms'].values()))
+    lone = DriveEnv(max_episode_s=0.05)
+    try:
+        lone.reset(seed=0)
+        for _ in range(5):
+            *_, lone_info = lone.step(FAST)
+        assert final == lone_info
+    finally:
+        lone.close()
 
 
 def test_it_is_a_gymnasium_vector_env_made_by_the_vector_entry_point():
@@ -186,23 +203,40 @@ def test_worlds_give_the_same_results_whichever_way_round_a_step_walks_them(vect
             lone.close()
 
 
-def test_step_infos_are_what_gymnasium_makes_of_each_world_s_info(vector):
+@pytest.mark.parametrize('where, shown', [
+    ({'world': 'obstacle_course'}, 'collision=True'),           # a crash
+    ({'world': 'highway'}, 'lane_crossings=1'),                 # lane keys, a crossing
+    ({'scenario': str(SCENARIOS / 'highway_stay_in_lane.yaml')}, 'ended=True'),  # criteria
+])
+def test_step_infos_are_what_gymnasium_makes_of_each_world_s_info(vector, where, shown):
     # Gymnasium's own VectorEnv._add_info stacks lone environments' infos (as SyncVectorEnv
-    # does): the native vector env's table must give the same keys, nesting, masks and values.
-    env = vector(3, world='obstacle_course')
-    lones = [DriveEnv(world='obstacle_course') for _ in range(3)]
+    # does, the lone ones reset as next_step autoreset does): the native vector env's table
+    # must give the same keys, nesting, masks and values, and a reward_fn the same info dicts.
+    def reward_fn(obs, action, info):
+        return info['progress_m'] + 10.0 * len(info) + sum(info['reward_terms'].values())
+
+    env = vector(3, reward_fn=reward_fn, action_repeat=10, **where)
+    lones = [DriveEnv(reward_fn=reward_fn, action_repeat=10, **where) for _ in range(3)]
     actions = np.stack([FAST, GENTLE, np.array([-0.3, 5.0], dtype=np.float32)])
+    seen = set()
     try:
         env.reset(seed=[1, 2, 3])
         for i, lone in enumerate(lones):
             lone.reset(seed=i + 1)
+        ended = [False] * 3
         stacker = gymnasium.vector.VectorEnv()
         stacker.num_envs = 3
-        for _ in range(5):
-            _, _, _, _, info = env.step(actions)
-            expected = {}
+        for _ in range(45):
+            _, rewards, terminated, truncated, info = env.step(actions)
+            expected, expected_rewards = {}, []
             for i, lone in enumerate(lones):
-                expected = stacker._add_info(expected, lone.step(actions[i])[4], i)
+                if ended[i]:
+                    (_, lone_info), reward, ended[i] = lone.reset(), 0.0, False
+                else:
+                    _, reward, term, trunc, lone_info = lone.step(actions[i])
+                    ended[i] = term or trunc
+                expected = stacker._add_info(expected, lone_info, i)
+                expected_rewards.append(reward)
 
             def same(ours, theirs):
                 assert list(ours) == list(theirs)
@@ -212,7 +246,12 @@ def test_step_infos_are_what_gymnasium_makes_of_each_world_s_info(vector):
                     else:
                         assert np.array_equal(ours[key], value), key
             same(info, expected)
-        assert info['time_s'][0] == pytest.approx(0.05)
+            assert rewards.tolist() == expected_rewards
+            assert (terminated | truncated).tolist() == [bool(t) for t in ended]
+            seen.update(f'{key}={value}' for key in ('collision', 'lane_crossings')
+                        if key in info for value in info[key])
+            seen.update(f'ended={value}' for value in ended)
+        assert shown in seen, seen
     finally:
         for lone in lones:
             lone.close()

@@ -365,6 +365,22 @@ class DriveSim:
 
     def finish(self):
         """Return (obs, reward terms, terminated, truncated, info) of the step just advanced."""
+        obs, terms, terminated, truncated, facts = self._outcome()
+        return obs, terms, terminated, truncated, self._info(*facts)
+
+    def finish_row(self):
+        """
+        Return :meth:`finish`'s step as DriveVectorEnv takes it, without an info dict.
+
+        :return: (obs, terminated, truncated, default reward, row): the info as the flat list
+            of its values (``_info_row``).
+        """
+        obs, terms, terminated, truncated, facts = self._outcome()
+        reward = total(terms)
+        return obs, terminated, truncated, reward, self._info_row(*facts, reward)
+
+    def _outcome(self):
+        # (obs, reward terms, terminated, truncated, the info's facts) of the step just advanced
         hits, reached_now, repeat_done = self._advanced
         world = self.world
         watch = self._watch
@@ -392,8 +408,7 @@ class DriveSim:
                                       repeat_done * world.time_step_s)
         truncated = not terminated and self.elapsed_s >= self.episode_s - 1e-9
         other = ','.join(sorted({event.other for event in hits}))
-        return self.observe(), terms, terminated, truncated, self._info(progress_m, terms,
-                                                                         other, bool(hits))
+        return self.observe(), terms, terminated, truncated, (progress_m, terms, other, bool(hits))
 
     def _info(self, progress_m, terms, collided_with, collision):
         info = {'time_s': self.elapsed_s, 'progress_m': float(progress_m),
@@ -409,6 +424,19 @@ class DriveSim:
         if self._watch is not None:
             info['criteria'] = dict(self._watch.verdicts)
         return info
+
+    def _info_row(self, progress_m, terms, collided_with, collision, reward):
+        # _info's values in its order, a nested dict's values in its place, for DriveVectorEnv's
+        # info table (test_gym_vector compares the vector's infos with lone environments').
+        row = [self.elapsed_s, float(progress_m), *terms.values(), reward, collision,
+               collided_with, self._goal_reached]
+        if self.lanes is not None:
+            state = self.lanes.state
+            row += (state.on_lane, state.lane_id, len(self._crossed),
+                    solid_crossings(self._crossed))
+        if self._watch is not None:
+            row += self._watch.verdicts.values()
+        return row
 
     def close(self):
         """Disconnect the physics client (idempotent)."""

@@ -102,8 +102,24 @@ class _InfoTable:
         self.columns = [np.empty(n, dtype=dtype) for dtype in self.dtypes]
 
     def put(self, index, info):
+        """Put world ``index``'s info dict (a reset's)."""
         for (key, sub), column in zip(self.keys, self.columns):
             column[index] = info[key] if sub is None else info[key][sub]
+
+    def put_row(self, index, row):
+        """Put world ``index``'s info as its values in ``keys`` order (DriveSim.finish_row)."""
+        for column, value in zip(self.columns, row):
+            column[index] = value
+
+    def info(self, row):
+        """Return the info dict of a row (for a reward_fn and final_info)."""
+        out = {}
+        for (key, sub), value in zip(self.keys, row):
+            if sub is None:
+                out[key] = value
+            else:
+                out.setdefault(key, {})[sub] = value
+        return out
 
     def table(self):
         out = self._outer.copy()
@@ -215,6 +231,8 @@ class DriveVectorEnv(VectorEnv):
             self._put(i, obs)
             self._ended[i] = False
             infos.append(info)
+        if self._infos is None and infos:
+            self._infos = _InfoTable(infos[0], self.num_envs)
         return self._observations(), _stack_infos(infos) if mask.all() else \
             self._masked(infos, mask)
 
@@ -242,8 +260,9 @@ class DriveVectorEnv(VectorEnv):
         terminated = np.zeros(self.num_envs, dtype=bool)
         truncated = np.zeros(self.num_envs, dtype=bool)
         table = self._infos
-        if table is not None:
-            table.begin()
+        if table is None:
+            raise RuntimeError('step() before reset(): call reset() first')
+        table.begin()
         finals = {}
         mode = self.autoreset_mode
         sims, ended = self.sims, self._ended
@@ -264,27 +283,27 @@ class DriveVectorEnv(VectorEnv):
             sims[i].apply(values)
         for i in reversed(stepping):
             sims[i].advance()
+        reward_fn = self.reward_fn
         for i in order:
             sim = sims[i]
             if ended[i]:                  # NEXT_STEP: reset now, the action ignored
                 obs, info = sim.reset(self._rng(i))
                 ended[i] = False
+                table.put(i, info)
             else:
-                obs, _, term, trunc, info = sim.finish()
+                obs, term, trunc, reward, row = sim.finish_row()
                 terminated[i], truncated[i] = term, trunc
-                rewards[i] = info['reward_default'] if self.reward_fn is None else \
-                    float(self.reward_fn(obs, actions[i], info))
-                if term or trunc:
-                    if mode == AutoresetMode.SAME_STEP:
-                        finals[i] = (obs, info)
-                        obs, info = sim.reset(self._rng(i))
-                    else:
-                        ended[i] = True
+                if reward_fn is not None:
+                    reward = float(reward_fn(obs, actions[i], table.info(row)))
+                rewards[i] = reward
+                if (term or trunc) and mode == AutoresetMode.SAME_STEP:
+                    finals[i] = (obs, table.info(row))
+                    obs, info = sim.reset(self._rng(i))
+                    table.put(i, info)
+                else:
+                    ended[i] = term or trunc
+                    table.put_row(i, row)
             self._put(i, obs)
-            if table is None:
-                table = self._infos = _InfoTable(info, self.num_envs)
-                table.begin()
-            table.put(i, info)
         stacked = table.table()
         if finals:
             mask = np.zeros(self.num_envs, dtype=bool)
