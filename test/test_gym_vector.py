@@ -108,6 +108,29 @@ def test_next_step_autoreset_resets_an_ended_world_on_the_following_step(vector)
     assert np.array_equal(obs['pose'], start) and (info['time_s'] == 0.0).all()
 
 
+def test_disabled_autoreset_refuses_an_ended_world_until_a_masked_reset(vector):
+    env = vector(2, max_episode_s=0.05, autoreset_mode='disabled')
+    obs, _ = env.reset(seed=0)
+    start = obs['pose'].copy()
+    for _ in range(5):
+        obs, _, _, truncated, _ = env.step(np.stack([FAST, GENTLE]))
+    assert truncated.all()
+    moved = obs['pose'].copy()
+    steps = [sim.world.step_count for sim in env.sims]
+    with pytest.raises(RuntimeError, match='world 0 ended'):
+        env.step(np.stack([FAST, GENTLE]))
+    assert [sim.world.step_count for sim in env.sims] == steps     # no world stepped
+    obs, info = env.reset(options={'reset_mask': np.array([True, False])})
+    assert np.array_equal(obs['pose'][0], start[0]) and np.array_equal(obs['pose'][1], moved[1])
+    assert info['_time_s'].tolist() == [True, False] and info['time_s'][0] == 0.0
+    with pytest.raises(RuntimeError, match='world 1 ended'):
+        env.step(np.stack([FAST, GENTLE]))
+    obs, info = env.reset(options={'reset_mask': np.array([False, True])})
+    obs, reward, terminated, truncated, info = env.step(np.stack([FAST, GENTLE]))
+    assert info['time_s'].tolist() == pytest.approx([0.01, 0.01])
+    assert not (terminated | truncated).any()
+
+
 def test_same_step_autoreset_reports_the_final_observation(vector):
     env = vector(1, max_episode_s=0.05, autoreset_mode='same_step')
     obs, _ = env.reset(seed=0)
