@@ -31,13 +31,14 @@ _LIBC = ctypes.CDLL(None)     # fflush for quiet_stdout
 
 
 @contextmanager
-def quiet_stdout(settle_on=None, settle_s=0.2, max_wait_s=2.0):
+def quiet_stdout(settle_on=None, settle_count=1, settle_s=0.2, max_wait_s=2.0):
     """
     Silence C-level stdout (PyBullet prints some notices with printf).
 
     :param settle_on: bytes that another thread of PyBullet prints shortly after the block (the
-        GUI window's first frames print ``ven = <GL vendor>``): stdout stays silenced until they
-        have come and nothing more came for ``settle_s``, at most ``max_wait_s`` after the block.
+        GUI window prints ``ven = <GL vendor>`` as it starts): stdout stays silenced until they
+        have come ``settle_count`` times and nothing more came for ``settle_s``, at most
+        ``max_wait_s`` after the block.
     """
     try:
         sys.stdout.flush()
@@ -54,28 +55,32 @@ def quiet_stdout(settle_on=None, settle_s=0.2, max_wait_s=2.0):
             # printf buffers in the C library when stdout is not a terminal: flush it while
             # fd 1 still goes to the pipe, or the notices come out later.
             _LIBC.fflush(None)
-            _drain(read_end, settle_on, settle_s, max_wait_s)
+            _drain(read_end, settle_on, settle_count, settle_s, max_wait_s)
             _LIBC.fflush(None)
     finally:
         os.dup2(saved, 1)
         os.close(saved)
         os.close(write_end)
-        _drain(read_end, None, 0.0, 0.0)
+        _drain(read_end, None, 0, 0.0, 0.0)
         os.close(read_end)
 
 
-def _drain(read_end, settle_on, settle_s, max_wait_s):
+def _drain(read_end, settle_on, settle_count, settle_s, max_wait_s):
     # Read (and drop) what the pipe holds; with settle_on, wait for it as quiet_stdout says.
     if settle_on is None:
         settle_s = 0.0          # nothing to wait for: take what is there and return
-    seen = settle_on is None
+    missing = 0 if settle_on is None else settle_count
+    tail = b''                  # the end of the last read: a notice split over two reads
     start = last = time.monotonic()
     while True:
         now = time.monotonic()
-        if seen and now - last >= settle_s or now - start >= max_wait_s:
+        if not missing and now - last >= settle_s or now - start >= max_wait_s:
             timeout_s = 0.0
         else:
             timeout_s = min(0.05, max_wait_s - (now - start))
+            # what the other thread printed may sit in the C library's buffer (stdout is a
+            # pipe now, not a terminal): push it into the pipe while waiting for it
+            _LIBC.fflush(None)
         ready, _, _ = select.select([read_end], [], [], timeout_s)
         if not ready:
             if timeout_s == 0.0:
@@ -85,4 +90,7 @@ def _drain(read_end, settle_on, settle_s, max_wait_s):
         if not data:
             return
         last = time.monotonic()
-        seen = seen or settle_on in data
+        if missing:
+            text = tail + data
+            missing = max(0, missing - text.count(settle_on))
+            tail = text[-(len(settle_on) - 1):] if len(settle_on) > 1 else b''

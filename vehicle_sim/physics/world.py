@@ -38,8 +38,8 @@ from vehicle_sim.core.specs.errors import InvalidPoseError
 from vehicle_sim.physics.pybullet_stdout import quiet_stdout
 from vehicle_sim.physics.vehicle_body import VehicleBody
 
-# How long the GUI's start waits for PyBullet's window notice ('ven = ...') to silence it [s];
-# it returns as soon as the notice came (test_ros_gui_nodes checks stdout stays ours).
+# How long the GUI's start waits for PyBullet's window notices ('ven = ...', twice) to silence
+# them [s]; it returns as soon as they came (test_ros_gui_nodes checks stdout stays ours).
 GUI_NOTICE_WAIT_S = 10.0
 # Tyre-road friction coefficient of the ground (Bullet multiplies the two materials' values; car
 # wheels have 1.0). 0-100 km/h in time0To100 needs about 1.1 on the driven axle (docs/physics.md
@@ -194,9 +194,10 @@ class World:
         )
         check_gui_available()   # PyBullet would end the process without an X server
         width, height = window_size(screen_size())
-        # The window's start-up notices come from its own thread once it draws its first frame:
-        # well within a second usually, some seconds on a first start (a cold GL driver).
-        with quiet_stdout(settle_on=b'ven = ', max_wait_s=GUI_NOTICE_WAIT_S):
+        # The window's start-up notices come from its own thread: it makes two render targets
+        # (Bullet's GLRenderToTexture), each printing 'ven = <GL vendor>', the first before
+        # connect returns, the second 0.1-0.5 s later (some seconds on a cold GL driver).
+        with quiet_stdout(settle_on=b'ven = ', settle_count=2, max_wait_s=GUI_NOTICE_WAIT_S):
             client_id = pybullet.connect(pybullet.GUI,
                                          options=f'--width={width} --height={height}')
         if client_id < 0:
