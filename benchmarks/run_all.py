@@ -191,6 +191,8 @@ def collect(quick):
          bench_record.TARGET_RATIO, 'x'),
         ('  same, recorded / every topic published without recording', rec_published, None,
          None, 'x'),
+        ('  same, every topic published without recording / not recorded',
+         rec_us['built_ratio'], None, None, 'x'),
         ('ROS-synchronous RTF with --record (1000 steps per robot/time_step)', rec_rtf, '>=',
          bench_record.TARGET_RTF, 'x'),
         (f'recorder RSS growth over {long_steps * bench_record.STEP_MS / 1000:g} s simulated',
