@@ -15,9 +15,14 @@
 
 """``--foxglove`` and ``--foxglove-host`` of ``vehicle-sim run`` and ``scenario``: bad input."""
 
+import errno
+import os
 from pathlib import Path
 import socket
+import subprocess
+import sys
 
+from conftest import peer_env
 import pytest
 
 from vehicle_sim.tools import cli
@@ -26,6 +31,32 @@ pytest.importorskip('foxglove', reason="foxglove-sdk is not installed (pip insta
                                        "'vehicle_sim[foxglove]')")
 
 SCENARIO = str(Path(__file__).resolve().parent.parent / 'scenarios' / 'stop_before_obstacle.yaml')
+# The console script pip installed next to this interpreter: what a user types.
+VEHICLE_SIM = os.path.join(os.path.dirname(sys.executable), 'vehicle-sim')
+CLI_TIMEOUT_S = 120.0
+
+
+def port_left_in_time_wait():
+    """
+    Return a port whose only socket is a closed connection (TIME_WAIT), no listener.
+
+    As after a simulator stopped while the app was connected: the server's side closed first.
+    The server's listener sets SO_REUSEADDR, as foxglove-sdk's (tokio's) does: the connection
+    left in TIME_WAIT keeps the flag, which lets a new listener with it bind.
+    """
+    with socket.socket() as server:
+        server.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        server.bind(('127.0.0.1', 0))
+        server.listen()
+        port = server.getsockname()[1]
+        with socket.create_connection(('127.0.0.1', port)) as client:
+            accepted, _ = server.accept()
+            accepted.close()                    # the server's side closes first
+            assert client.recv(1) == b''        # the client sees it and closes too
+    with socket.socket() as plain, pytest.raises(OSError) as caught:
+        plain.bind(('127.0.0.1', port))         # a bind without SO_REUSEADDR is refused
+    assert caught.value.errno == errno.EADDRINUSE
+    return port
 
 
 @pytest.mark.parametrize('command', [['run', '--duration', '0'], ['scenario', SCENARIO]])
@@ -39,6 +70,17 @@ def test_a_port_in_use_exits_2_in_one_line_before_anything_starts(command, capsy
     assert err == (f'vehicle-sim {command[0]}: --foxglove: cannot listen on 127.0.0.1:{port}: '
                    'Address already in use\n')
     assert 'automobile ready' not in out + err and 'scenario ' not in out
+
+
+def test_a_port_held_only_by_time_wait_is_accepted_by_the_installed_command():
+    # Restarting the simulator at once while the app was connected: the pre-check accepts the
+    # port (as the server's own listener does) and the live view starts on it.
+    port = port_left_in_time_wait()
+    done = subprocess.run([VEHICLE_SIM, 'run', '--no-status', '--duration', '0', '--foxglove',
+                           str(port)], env=peer_env(), capture_output=True, text=True,
+                          timeout=CLI_TIMEOUT_S)
+    assert done.returncode == 0, done.stderr
+    assert f'Foxglove live view on ws://127.0.0.1:{port} ' in done.stdout + done.stderr
 
 
 @pytest.mark.parametrize('args, message', [

@@ -68,10 +68,15 @@ def check_port_free(host: str, port: int, source: str) -> None:
     """
     Refuse a port something already listens on (before anything is started).
 
+    The probe binds as a server's listener does, with ``SO_REUSEADDR``: the closed connections
+    of a server that just stopped (TIME_WAIT, for a minute after a client was connected) do not
+    keep a new listener off the port, a listening socket does.
+
     :raises LiveViewError: one line naming ``source``, the address and the reason.
     """
     family = socket.AF_INET6 if ':' in host else socket.AF_INET
     with socket.socket(family, socket.SOCK_STREAM) as probe:
+        probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         try:
             probe.bind((host, port))
         except OSError as error:
