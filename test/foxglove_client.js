@@ -18,7 +18,10 @@
 // (@foxglove/rosmsg2-serialization, schemas parsed by @foxglove/rosmsg), so that the server is
 // checked by an implementation that is not ours.
 //
-// Usage: node foxglove_client.js URL SPEED_TOPIC SCENE_TOPIC SERVICE CRUISING_KMH
+// Usage: node foxglove_client.js URL SPEED_TOPIC SCENE_TOPIC SERVICE CRUISING_KMH [SUBPROTOCOLS]
+// SUBPROTOCOLS: the WebSocket subprotocol names the client offers, comma-separated (default
+// foxglove.sdk.v1,foxglove.websocket.v1, as the Foxglove app); the name the server chose is the
+// event "connected".
 // It subscribes to SPEED_TOPIC (a ROS 2 channel, cdr + ros2msg), SCENE_TOPIC (a
 // foxglove.SceneUpdate, protobuf) and /foxglove/transforms (foxglove.FrameTransforms); once the
 // speed and the scene are decoded it calls SERVICE (vehicle_msgs/srv/SetFloat) with
@@ -34,7 +37,7 @@ const protobuf = require('protobufjs');
 const descriptor = require('protobufjs/ext/descriptor');
 const WebSocket = require('ws');
 
-const [url, speedTopic, sceneTopic, serviceName, cruisingArg] = process.argv.slice(2);
+const [url, speedTopic, sceneTopic, serviceName, cruisingArg, offerArg] = process.argv.slice(2);
 const cruisingKmh = Number(cruisingArg);
 const RISE_KMH = 1.0;
 
@@ -58,11 +61,14 @@ function fail(reason) {
 }
 
 // The library leaves the subprotocol to the caller ("a subprotocol which is compatible with the
-// ws-protocol spec"): foxglove-sdk's server names its own foxglove.sdk.v1 (the Foxglove app
-// offers both); the library's foxglove.websocket.v1 comes second.
-const client = new FoxgloveClient({
-  ws: new WebSocket(url, ['foxglove.sdk.v1', FoxgloveClient.SUPPORTED_SUBPROTOCOL]),
-});
+// ws-protocol spec"): the same protocol is named foxglove.sdk.v1 by foxglove-sdk and the current
+// Foxglove app, foxglove.websocket.v1 by the library itself (its README's example), Lichtblick
+// and older Foxglove Studio.
+const offered = offerArg ? offerArg.split(',')
+  : ['foxglove.sdk.v1', FoxgloveClient.SUPPORTED_SUBPROTOCOL];
+const ws = new WebSocket(url, offered);
+ws.addEventListener('open', () => say({ event: 'connected', protocol: ws.protocol }));
+const client = new FoxgloveClient({ ws });
 const channels = new Map();        // channel id -> channel
 const decoders = new Map();        // subscription id -> (data) -> event
 let service = null;

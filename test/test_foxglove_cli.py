@@ -15,12 +15,17 @@
 
 """``--foxglove`` and ``--foxglove-host`` of ``vehicle-sim run`` and ``scenario``: bad input."""
 
+import base64
 import errno
 import os
 from pathlib import Path
+import queue
+import signal
 import socket
+import struct
 import subprocess
 import sys
+import threading
 
 from conftest import peer_env
 import pytest
@@ -34,6 +39,8 @@ SCENARIO = str(Path(__file__).resolve().parent.parent / 'scenarios' / 'stop_befo
 # The console script pip installed next to this interpreter: what a user types.
 VEHICLE_SIM = os.path.join(os.path.dirname(sys.executable), 'vehicle-sim')
 CLI_TIMEOUT_S = 120.0
+# Generous bound for a line of a running command to come.
+LINE_TIMEOUT_S = 60.0
 
 
 def port_left_in_time_wait():
@@ -81,6 +88,75 @@ def test_a_port_held_only_by_time_wait_is_accepted_by_the_installed_command():
                           timeout=CLI_TIMEOUT_S)
     assert done.returncode == 0, done.stderr
     assert f'Foxglove live view on ws://127.0.0.1:{port} ' in done.stdout + done.stderr
+
+
+def websocket_handshake(port, subprotocol='foxglove.sdk.v1'):
+    """Open a WebSocket offering ``subprotocol``; return it and the first frame read."""
+    client = socket.create_connection(('127.0.0.1', port), timeout=LINE_TIMEOUT_S)
+    key = base64.b64encode(os.urandom(16)).decode()
+    client.sendall((f'GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nUpgrade: websocket\r\n'
+                    f'Connection: Upgrade\r\nSec-WebSocket-Key: {key}\r\n'
+                    f'Sec-WebSocket-Version: 13\r\nSec-WebSocket-Protocol: {subprotocol}\r\n'
+                    '\r\n').encode())
+    received = b''
+    while b'\r\n\r\n' not in received or len(received.split(b'\r\n\r\n', 1)[1]) < 2:
+        chunk = client.recv(65536)
+        assert chunk, f'the server closed the connection: {received!r}'
+        received += chunk
+    head, frame = received.split(b'\r\n\r\n', 1)
+    assert head.startswith(b'HTTP/1.1 101 '), head
+    return client, frame
+
+
+def test_a_client_dropping_its_connection_is_a_debug_line_of_the_node_logger():
+    # A client that goes away without closing (a reset: the app killed, a network gone): the
+    # SDK's "Error receiving from client ...: Connection reset by peer (os error 104)" is a
+    # debug line of the node's logger (shown here at --log-level debug), never a raw line.
+    port = cli_port()
+    proc = subprocess.Popen([VEHICLE_SIM, 'run', '--no-status', '--foxglove', str(port), '--',
+                             '--ros-args', '--log-level', 'debug'], env=peer_env(),
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    lines = queue.Queue()
+    reader = threading.Thread(target=lambda: [lines.put(line) for line in proc.stderr],
+                              daemon=True)
+    reader.start()
+    seen = []
+
+    def wait_for(text):
+        while True:
+            line = lines.get(timeout=LINE_TIMEOUT_S)
+            seen.append(line)
+            if text in line:
+                return line
+
+    try:
+        wait_for(f'Foxglove live view on ws://127.0.0.1:{port} ')
+        client, frame = websocket_handshake(port)
+        assert frame[0] == 0x81                 # a text frame: the serverInfo
+        client.setsockopt(socket.SOL_SOCKET, socket.SO_LINGER, struct.pack('ii', 1, 0))
+        client.close()                          # linger 0: a reset, not a close
+        dropped = wait_for('Error receiving from client')
+    finally:
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.wait(timeout=CLI_TIMEOUT_S)
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+            reader.join()
+    while not lines.empty():
+        seen.append(lines.get())
+    assert dropped.startswith('[DEBUG] ') and '[automobile]: ' in dropped, dropped
+    assert 'Connection reset' in dropped
+    raw = [line for line in seen if 'client' in line and not line.startswith('[')]
+    assert raw == []
+    assert proc.returncode == 0, ''.join(seen[-20:])
+
+
+def cli_port():
+    with socket.socket() as probe:
+        probe.bind(('127.0.0.1', 0))
+        return probe.getsockname()[1]
 
 
 @pytest.mark.parametrize('args, message', [

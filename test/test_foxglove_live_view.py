@@ -107,14 +107,18 @@ def run_client(app, node_modules, port, *args):
     return proc.returncode, events, output['stderr']
 
 
-def test_foxglove_client_decodes_speed_and_scene_drives_and_sets_parameters(node_modules):
+# The one protocol's two names: foxglove-sdk's and the current Foxglove app's; the one of
+# @foxglove/ws-protocol's own example, Lichtblick and older Foxglove Studio.
+@pytest.mark.parametrize('subprotocol', ['foxglove.sdk.v1', 'foxglove.websocket.v1'])
+def test_foxglove_client_decodes_speed_and_scene_drives_and_sets_parameters(node_modules,
+                                                                            subprotocol):
     port = free_port()
     app = AutomobileNode(transport='dds', parameter_overrides={
         'foxglove': port, 'real_time_factor': 0.0})
     try:
         code, events, err = run_client(app, node_modules, port, '/automobile/current_speed',
                                        '/foxglove/scene', '/automobile/set_cruising_speed',
-                                       str(CRUISING_KMH))
+                                       str(CRUISING_KMH), subprotocol)
         cruising = app.vehicles[''].logic.status().target_cruising_speed_kmh
         use_sim_time = app.node.get_parameter('use_sim_time')
     finally:
@@ -124,6 +128,8 @@ def test_foxglove_client_decodes_speed_and_scene_drives_and_sets_parameters(node
         by_kind.setdefault(event['event'], []).append(event)
     assert code == 0, (f'client failed: {[e for e in events if e["event"] != "speed"]}, last '
                        f'speed {events[-1:]}; stderr: {err[-2000:]}')
+    # The client offered that one name only: the server answered with it.
+    assert by_kind['connected'] == [{'event': 'connected', 'protocol': subprotocol}]
     # The topic's channel: the CDR bytes of the transport, with its ros2msg schema.
     channels = by_kind['channels'][0]
     assert channels['speed'] == {'encoding': 'cdr', 'schemaEncoding': 'ros2msg',

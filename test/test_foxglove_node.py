@@ -240,3 +240,43 @@ def test_reset_pause_and_set_pose_are_offered(app):
     assert {'/automobile/set_cruising_speed', '/reset', '/set_pose', '/sim/pause',
             '/sim/reset'} <= set(offered)
     assert not [name for name in offered if 'parameter' in name]   # via the capability
+
+
+def opening_handshake(port, offer):
+    """Send a WebSocket opening handshake offering ``offer``; return the answer's head."""
+    with socket.create_connection(('127.0.0.1', port), timeout=30.0) as client:
+        client.sendall((f'GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nUpgrade: websocket\r\n'
+                        'Connection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n'
+                        f'Sec-WebSocket-Version: 13\r\nSec-WebSocket-Protocol: {offer}\r\n'
+                        '\r\n').encode())
+        answer = b''
+        while b'\r\n\r\n' not in answer:
+            chunk = client.recv(65536)
+            if not chunk:
+                break
+            answer += chunk
+    return answer.split(b'\r\n\r\n', 1)[0].decode('latin-1')
+
+
+@pytest.mark.parametrize('offer, chosen', [
+    ('foxglove.websocket.v1', 'foxglove.websocket.v1'),     # Lichtblick, ws-protocol's example
+    ('foxglove.sdk.v1', 'foxglove.sdk.v1'),                 # foxglove-sdk's name
+    ('foxglove.websocket.v1, foxglove.sdk.v1', 'foxglove.websocket.v1'),   # the client's first
+    ('chat, foxglove.sdk.v1', 'foxglove.sdk.v1'),
+])
+def test_both_names_of_the_protocol_are_accepted_and_answered_as_offered(app, offer, chosen):
+    head = opening_handshake(app._live.port, offer)
+    lines = head.split('\r\n')
+    assert lines[0] == 'HTTP/1.1 101 Switching Protocols'
+    headers = [line.split(':', 1) for line in lines[1:]]
+    values = {name.strip().lower(): [] for name, _ in headers}
+    for name, value in headers:
+        values[name.strip().lower()].append(value.strip())
+    assert values['sec-websocket-protocol'] == [chosen]
+    # RFC 6455's example key and its accept value: the rest of the answer is the SDK's own
+    assert values['sec-websocket-accept'] == ['s3pPLMBiTxaQ9kYGzzhZRbK+xOo=']
+
+
+def test_a_client_offering_another_protocol_is_refused_by_the_sdk(app):
+    head = opening_handshake(app._live.port, 'chat')
+    assert head.startswith('HTTP/1.1 400 ')

@@ -27,9 +27,11 @@ from typing import Callable, Iterable, Optional
 
 from vehicle_sim.foxglove import scene_messages
 from vehicle_sim.foxglove.entities import Transform
+from vehicle_sim.foxglove.front import SubprotocolFront, UPSTREAM_HOST
 from vehicle_sim.foxglove.parameters import NodeParameters
 from vehicle_sim.foxglove.scene_stream import SceneStream
 from vehicle_sim.foxglove.sdk import load_sdk
+from vehicle_sim.foxglove.sdk_log import SdkLogRoute
 from vehicle_sim.foxglove.server import check_host, exposure_warning, start_server
 from vehicle_sim.foxglove.services import NodeServices
 from vehicle_sim.foxglove.topics import TopicChannels
@@ -84,9 +86,20 @@ class LiveView(PublishTap):
         self.topics = TopicChannels(sdk, self.context, logger)
         self.services = NodeServices(sdk, node, logger)
         self.parameters = NodeParameters(sdk, node, parameter_names, logger)
-        self.server = start_server(sdk, context=self.context, host=host, port=port,
-                                   listener=_listener(sdk, self),
-                                   name=f'vehicle_sim {node.get_fully_qualified_name()}')
+        self._log_route = SdkLogRoute(node, logger)
+        # The SDK's server on a loopback port of its own, behind the listener on the asked
+        # address that lets both names of the protocol in (front.py).
+        self.server = self.front = None
+        try:
+            self.server = start_server(sdk, context=self.context, host=UPSTREAM_HOST, port=0,
+                                       listener=_listener(sdk, self),
+                                       name=f'vehicle_sim {node.get_fully_qualified_name()}')
+            self.front = SubprotocolFront(
+                host, port, self.server.port,
+                log=lambda text: node.call_soon(lambda: logger.debug(text)))
+        except BaseException:
+            self.close()
+            raise
         self.services.attach(self.server)
         self.parameters.server = self.server
         self._scene_channel = sdk.channels.SceneUpdateChannel(SCENE_TOPIC, context=self.context)
@@ -100,16 +113,26 @@ class LiveView(PublishTap):
         self._next_scene_s = 0.0
         # Scene subscriptions seen (SDK thread) and answered with a full update (node thread).
         self._scene_subscriptions = self._scene_subscriptions_sent = 0
-        warning = exposure_warning(host, self.server.port)
+        warning = exposure_warning(host, self.port)
         if warning:
             logger.warn(warning)
-        logger.info(f'Foxglove live view on ws://{host}:{self.server.port} '
+        logger.info(f'Foxglove live view on ws://{host}:{self.port} '
                     '(Foxglove app: Open connection, Foxglove WebSocket)')
         node.add_publish_tap(self)
 
     @property
     def port(self) -> int:
-        return self.server.port
+        """The port clients connect to."""
+        return self.front.port
+
+    @property
+    def clients(self) -> int:
+        """The number of Foxglove clients connected now."""
+        return self.front.clients
+
+    def wait_for_client(self, timeout_s: float) -> bool:
+        """Wait up to ``timeout_s`` for a client to have connected; return whether one has."""
+        return self.front.wait_for_client(timeout_s)
 
     # ------------------------------------------------------------------ the publish tap
     def topic(self, topic_name, ros_type, qos):
@@ -172,3 +195,7 @@ class LiveView(PublishTap):
         server, self.server = self.server, None
         if server is not None:
             server.stop()
+        front, self.front = self.front, None
+        if front is not None:
+            front.close()
+        self._log_route.close()
