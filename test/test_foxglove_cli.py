@@ -153,6 +153,74 @@ def test_a_client_dropping_its_connection_is_a_debug_line_of_the_node_logger():
     assert proc.returncode == 0, ''.join(seen[-20:])
 
 
+WATCHED = """\
+name: watched
+world: obstacle_course
+duration: 2.0
+seed: 0
+driver:
+  commands: [{t: 0.0, cruising_speed: 10.0}]
+criteria:
+  - kind: no_collision
+"""
+
+
+def summary(stdout):
+    """Return (simulated s, wall s, odometry sha256 start) of a scenario's verdict line."""
+    (line,) = [line for line in stdout.splitlines() if ' simulated in ' in line]
+    simulated = float(line.split(' s simulated in ')[0].rsplit(' ', 1)[1])
+    wall = float(line.split(' s simulated in ')[1].split(' s;')[0])
+    return simulated, wall, line.rsplit('odometry sha256 ', 1)[1]
+
+
+def test_a_watched_scenario_waits_for_a_client_then_runs_at_real_time(tmp_path, capsys):
+    # scenario --foxglove: the run waits for the app before its first step, then steps at the
+    # pace of the wall clock (2 s simulated take at least 2 s), with the results of a run told
+    # not to wait nor pace (stepping stays synchronous: the same odometry).
+    scenario = tmp_path / 'watched.yaml'
+    scenario.write_text(WATCHED, encoding='utf-8')
+    assert cli.main(['scenario', str(scenario), '--no-progress', '--foxglove', str(cli_port()),
+                     '--no-wait-client', '--real-time-factor', '0']) == 0
+    out, err = capsys.readouterr()
+    assert 'waiting for a Foxglove client' not in err
+    at_once = summary(out)
+    port = cli_port()
+    proc = subprocess.Popen([VEHICLE_SIM, 'scenario', str(scenario), '--no-progress',
+                             '--foxglove', str(port)], env=peer_env(), stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    try:
+        waiting = proc.stderr.readline()
+        while waiting and 'waiting for a Foxglove client' not in waiting:
+            waiting = proc.stderr.readline()
+        assert waiting.startswith(f'waiting for a Foxglove client on ws://127.0.0.1:{port} ')
+        assert proc.poll() is None                      # it waits
+        client, frame = websocket_handshake(port)
+        with client:
+            out, err = proc.communicate(timeout=CLI_TIMEOUT_S)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
+    assert proc.returncode == 0, err
+    assert 'PASS: 1/1 criteria passed' in out
+    simulated, wall, sha = summary(out)
+    assert simulated == at_once[0] == 2.0 and wall >= simulated
+    assert sha == at_once[2]
+
+
+@pytest.mark.parametrize('args, message', [
+    (['--no-wait-client'], '--no-wait-client needs --foxglove [PORT]'),
+    (['--real-time-factor', '-1'], '--real-time-factor -1: must be a number >= 0'),
+    (['--real-time-factor', 'nan'], '--real-time-factor nan: must be a number >= 0'),
+    (['--real-time-factor', '1e-9'], '--real-time-factor 1e-09: the 10 s scenario would last'),
+])
+def test_bad_pace_options_of_scenario_are_refused_before_the_run(args, message, capsys):
+    assert cli.main(['scenario', SCENARIO, '--no-progress', *args]) == 2
+    out, err = capsys.readouterr()
+    assert err.startswith(f'vehicle-sim scenario: {message}') and err.count('\n') == 1
+    assert 'scenario ' not in out
+
+
 def cli_port():
     with socket.socket() as probe:
         probe.bind(('127.0.0.1', 0))

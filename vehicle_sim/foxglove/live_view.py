@@ -116,7 +116,8 @@ class LiveView(PublishTap):
         warning = exposure_warning(host, self.port)
         if warning:
             logger.warn(warning)
-        logger.info(f'Foxglove live view on ws://{host}:{self.port} '
+        self.url = f'ws://{host}:{self.port}'
+        logger.info(f'Foxglove live view on {self.url} '
                     '(Foxglove app: Open connection, Foxglove WebSocket)')
         node.add_publish_tap(self)
 

@@ -541,6 +541,11 @@ class AutomobileNode:
         return self._control.paused
 
     @property
+    def live_view(self):
+        """The Foxglove LiveView of the ``foxglove`` parameter, or None."""
+        return self._live
+
+    @property
     def vehicles(self) -> Dict[str, SimulatedCar]:
         """Namespace ('' for the default car) -> SimulatedCar."""
         return {v.spec.namespace: v.car for v in self._vehicles}

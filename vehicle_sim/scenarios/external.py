@@ -30,6 +30,7 @@ import tempfile
 import time
 
 from vehicle_sim.scenarios.criteria import TopicPredicate
+from vehicle_sim.scenarios.pacing import Pacer
 from vehicle_sim.scenarios.yaml_lines import ScenarioError
 from vehicle_sim.transport.qos import BEST_EFFORT, QosProfile, RELIABLE
 
@@ -149,8 +150,8 @@ def run_processes(spec, sim, criteria, transport):
                         + processes.output())
             watcher.spin()
             time.sleep(0.01)
-        start = time.monotonic()
-        factor = driver.real_time_factor
+        pacer = Pacer(driver.real_time_factor, watcher.spin)
+        pacer.start()
         step_s = spec.time_step_ms / 1000.0
         sync_every = max(1, int(round(driver.sync_period_s / step_s)))
         steps = 0
@@ -165,11 +166,7 @@ def run_processes(spec, sim, criteria, transport):
                     return (f'lockstep: no message on {driver.sync[late][0]} within '
                             f'{driver.sync_timeout_s:g} s (wall) after /clock {now_s:.3f} s\n'
                             + processes.output())
-            if factor > 0.0:
-                due = start + now_s / factor
-                while time.monotonic() < due:
-                    watcher.spin()
-                    time.sleep(min(0.001, max(0.0, due - time.monotonic())))
+            pacer.wait(now_s)
             error = processes.failed()
             if error:
                 return error

@@ -24,9 +24,13 @@ it returns the world steps on to the duration with its last commands. External p
 the simulation served over ROS (:class:`~.sim.ServedSim`), paced at the driver's
 ``real_time_factor``; their timing is not reproducible, so such runs report
 ``deterministic = False`` (``repeat`` gives the spread of the measured values).
+
+A run watched live (``foxglove``) can wait for a Foxglove client before its first step, and any
+run can be paced at a real-time factor (:mod:`.pacing`): stepping stays synchronous, so the
+results do not change.
 """
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import hashlib
 import os
 import random
@@ -43,12 +47,15 @@ from vehicle_sim.physics.sensors.collisions import CollisionMonitor
 from vehicle_sim.scenarios.actors import make_actor
 from vehicle_sim.scenarios.criteria import build_criteria, CriterionResult
 from vehicle_sim.scenarios.external import run_processes, TopicWatcher
+from vehicle_sim.scenarios.pacing import Pacer
 from vehicle_sim.scenarios.scene import world_scene
 from vehicle_sim.scenarios.schema import load_scenario, ScenarioSpec
 from vehicle_sim.scenarios.sim import LocalSim, ServedSim
 from vehicle_sim.scenarios.yaml_lines import ScenarioError
 
 _EPS_S = 1e-9
+# How often the nodes are served while the run waits for a Foxglove client [s] (wall clock).
+CLIENT_WAIT_SLICE_S = 0.05
 
 
 @dataclass
@@ -228,7 +235,8 @@ class Director:
 
 
 def run_scenario(spec_or_path, seed=None, gui=False, progress=None, repeat=1,
-                 transport=None, foxglove=None, record=None) -> ScenarioResult:
+                 transport=None, foxglove=None, record=None, real_time_factor=None,
+                 wait_for_client=None) -> ScenarioResult:
     """
     Run a scenario and return its result.
 
@@ -242,6 +250,12 @@ def run_scenario(spec_or_path, seed=None, gui=False, progress=None, repeat=1,
         is then served); None: none.
     :param record: an MCAP file to record every topic of the run into (the simulation is then
         served over ROS, so that its topics are published); with ``repeat``, the last run's.
+    :param real_time_factor: simulated seconds per wall-clock second (0: as fast as possible);
+        None: the scenario's own (an external driver's ``real_time_factor``, else as fast as
+        possible). The results do not depend on it (stepping is synchronous).
+    :param wait_for_client: with ``foxglove``: each run waits for a Foxglove client to connect
+        before its first step, calling ``wait_for_client(url)`` when it starts waiting; None:
+        no wait.
     :raises ScenarioError: for an invalid file or a refused scripted command.
     :raises RecordingError: when the recording cannot be created.
     """
@@ -251,7 +265,13 @@ def run_scenario(spec_or_path, seed=None, gui=False, progress=None, repeat=1,
         spec = spec.with_seed(seed)
     if repeat < 1:
         raise ValueError(f'repeat = {repeat!r}: must be >= 1')
-    results = [_run_once(spec, gui, progress, transport, foxglove, record)
+    if real_time_factor is not None and not real_time_factor >= 0.0:
+        raise ValueError(f'real_time_factor = {real_time_factor!r}: must be >= 0')
+    if real_time_factor is not None and spec.driver.kind == 'processes':
+        spec = replace(spec, driver=replace(spec.driver, real_time_factor=real_time_factor))
+        real_time_factor = None         # the external driver's loop paces
+    results = [_run_once(spec, gui, progress, transport, foxglove, record,
+                         real_time_factor or 0.0, wait_for_client)
                for _ in range(repeat)]
     result = results[-1]
     if repeat > 1:
@@ -273,7 +293,8 @@ def _spread(results):
     return spread
 
 
-def _run_once(spec, gui, progress, transport, foxglove=None, record=None):
+def _run_once(spec, gui, progress, transport, foxglove=None, record=None, pace=0.0,
+              wait_for_client=None):
     criteria = build_criteria(spec.criteria, spec.duration_s)
     director = Director(spec, criteria, progress)
     # The live view shows the automobile node and a recording holds its topics: a scenario
@@ -297,18 +318,24 @@ def _run_once(spec, gui, progress, transport, foxglove=None, record=None):
     watcher = None
     try:
         director.attach(sim)
+        if wait_for_client is not None and foxglove is not None:
+            _wait_for_client(sim, wait_for_client)
+            start = time.monotonic()        # the run's wall time starts with its first step
         kind = spec.driver.kind
         if kind == 'processes':
             error = run_processes(spec, sim, criteria, transport)
         else:
             if served:
                 watcher = TopicWatcher(sim, criteria, transport)
+            pacer = Pacer(pace, sim.spin if watcher is None else watcher.spin)
+            pacer.start(sim.world.time_s)
 
             def step():
                 # one basic step; a served world also publishes and serves its nodes
                 sim.step()
                 if watcher is not None:
                     watcher.spin()
+                pacer.wait(sim.world.time_s)
 
             if kind == 'controller':
                 error = _run_controller(spec, sim, director, step)
@@ -329,6 +356,14 @@ def _run_once(spec, gui, progress, transport, foxglove=None, record=None):
                           director.digest.hexdigest(), not served or kind != 'processes',
                           error, collisions=director.collisions, notes=director.notes,
                           recording=record)
+
+
+def _wait_for_client(sim, announce):
+    """Serve the nodes until a Foxglove client has connected to the live view."""
+    live_view = sim.live_view
+    announce(live_view.url)
+    while not live_view.wait_for_client(CLIENT_WAIT_SLICE_S):
+        sim.spin()
 
 
 # ---------------------------------------------------------------------------- in-process

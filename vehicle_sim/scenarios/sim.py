@@ -227,6 +227,11 @@ class ServedSim:
         return self.automobile.scene.parts.get('traffic')
 
     @property
+    def live_view(self):
+        """The automobile node's Foxglove LiveView (``foxglove``), or None."""
+        return None if self.automobile is None else self.automobile.live_view
+
+    @property
     def nodes(self):
         """The transport nodes to spin."""
         nodes = [self.automobile.node] if self.automobile is not None else []

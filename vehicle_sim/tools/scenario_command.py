@@ -21,6 +21,7 @@ when one fails or the run itself failed (a controller raised, a process died), 2
 error, an invalid scenario file or ``--plot`` without matplotlib.
 """
 
+import math
 import os
 import signal
 import sys
@@ -49,6 +50,14 @@ def add_arguments(parser):
                              '(external processes are not deterministic)')
     parser.add_argument('--no-progress', action='store_true', help='no progress display')
     add_foxglove_arguments(parser)
+    parser.add_argument('--no-wait-client', action='store_true',
+                        help='with --foxglove: start at once (by default the run waits for a '
+                             'Foxglove client to connect before its first step)')
+    parser.add_argument('--real-time-factor', type=float, metavar='F',
+                        help='simulated seconds per wall-clock second, 0 = as fast as possible '
+                             '(default: 1 with --foxglove, else as fast as possible; an '
+                             "external driver: its file's real_time_factor); the results do "
+                             'not depend on it')
     parser.add_argument('--record', metavar='FILE.mcap',
                         help='record every topic of the run into an MCAP file (the simulation '
                              'is served over ROS; with --repeat, the last run)')
@@ -136,6 +145,35 @@ def prepare_output(path, option):
         raise CliError(f'{option} {path}: not writable', EXIT_USAGE)
 
 
+def _pace(args, spec, live_view):
+    """
+    Return the run's real-time factor: ``--real-time-factor``, 1 for a watched run, or None.
+
+    None: the scenario's own pace (an external driver's ``real_time_factor``, else as fast as
+    possible).
+
+    :raises CliError: a factor that is not a finite number >= 0, or one that would make the run
+        last longer than a scenario may (as the file's ``real_time_factor``).
+    """
+    from vehicle_sim.scenarios.driver_schema import MAX_DURATION_S
+    factor = args.real_time_factor
+    if factor is None:       # a watched run at real time; an external driver at its own
+        return 1.0 if live_view is not None and spec.driver.kind != 'processes' else None
+    if not (math.isfinite(factor) and factor >= 0.0):
+        raise CliError(f'--real-time-factor {factor:g}: must be a number >= 0 (0 = as fast as '
+                       'possible)', EXIT_USAGE)
+    if factor > 0.0 and spec.duration_s / factor > MAX_DURATION_S:
+        raise CliError(f'--real-time-factor {factor:g}: the {spec.duration_s:g} s scenario '
+                       f'would last {spec.duration_s / factor:g} s of wall clock; at most '
+                       f'{MAX_DURATION_S:g} s', EXIT_USAGE)
+    return factor
+
+
+def _waiting(url):
+    print(f'waiting for a Foxglove client on {url} (Foxglove app: Open connection, Foxglove '
+          'WebSocket; --no-wait-client starts at once)', file=sys.stderr, flush=True)
+
+
 def _exit_on_sigterm():
     if threading.current_thread() is threading.main_thread():
         def handler(signum, frame):
@@ -168,6 +206,9 @@ def cmd_scenario(args) -> int:
         if path:
             prepare_output(path, option)
     live_view = live_view_address(args)
+    pace = _pace(args, spec, live_view)
+    if args.no_wait_client and live_view is None:
+        raise CliError('--no-wait-client needs --foxglove [PORT]', EXIT_USAGE)
     if args.record:
         from vehicle_sim.recording.bag_writer import require_mcap
         try:
@@ -181,7 +222,9 @@ def cmd_scenario(args) -> int:
     _exit_on_sigterm()      # so that the driver's processes are stopped on the way out
     try:
         result = run_scenario(spec, seed=args.seed, gui=args.gui, progress=progress,
-                              repeat=args.repeat, foxglove=live_view, record=args.record)
+                              repeat=args.repeat, foxglove=live_view, record=args.record,
+                              real_time_factor=pace,
+                              wait_for_client=None if args.no_wait_client else _waiting)
     except ScenarioError as error:
         raise CliError(str(error), EXIT_FAILURE) from None
     except RecordingError as error:
