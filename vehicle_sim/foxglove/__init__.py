@@ -25,8 +25,10 @@ protocol's service and parameter capabilities, by the same handlers and validati
 docs/foxglove.md.
 
 Modules: :mod:`.sdk` (the optional package, imported lazily), :mod:`.server` (host, port,
-start), :mod:`.topics` (topic channels), :mod:`.services` and :mod:`.parameters` (the
-capabilities, run on the node's thread), :mod:`.scene` (entities of the world, the registry
-of entity sources), :mod:`.scene_messages` (those as Foxglove messages), :mod:`.live_view`
-(what the node attaches).
+start), :mod:`.front` (the listener in front of the SDK's server: both subprotocol names),
+:mod:`.sdk_log` (the SDK's log lines through the node's logger), :mod:`.topics` (topic
+channels), :mod:`.services` and :mod:`.parameters` (the capabilities, run on the node's
+thread), :mod:`.scene` (entities of the world, the registry of entity sources),
+:mod:`.scene_messages` (those as Foxglove messages), :mod:`.live_view` (what the node
+attaches).
 """
