@@ -19,6 +19,7 @@ The automobile node's live view in-process: its channels, transforms, parameters
 The app's side (Foxglove's own client library) is test_foxglove_live_view.py.
 """
 
+import errno
 import socket
 import sys
 import threading
@@ -280,3 +281,73 @@ def test_both_names_of_the_protocol_are_accepted_and_answered_as_offered(app, of
 def test_a_client_offering_another_protocol_is_refused_by_the_sdk(app):
     head = opening_handshake(app._live.port, 'chat')
     assert head.startswith('HTTP/1.1 400 ')
+
+
+def test_a_restart_right_after_a_client_was_connected_gets_the_port():
+    # The simulator stopped with the app connected, started again at once on the same port:
+    # the connection the server closed first is left in TIME_WAIT, which keeps a plain bind
+    # off the port but neither the pre-check nor the live view's listener.
+    from vehicle_sim.foxglove.server import check_port_free
+    port = free_port()
+    first = AutomobileNode(transport='dds', parameter_overrides={
+        'foxglove': port, 'synchronous': True})
+    try:
+        client = socket.create_connection(('127.0.0.1', port), timeout=30.0)
+        client.sendall((f'GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nUpgrade: websocket\r\n'
+                        'Connection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n'
+                        'Sec-WebSocket-Version: 13\r\nSec-WebSocket-Protocol: foxglove.sdk.v1\r\n'
+                        '\r\n').encode())
+        assert client.recv(12) == b'HTTP/1.1 101'
+    finally:
+        first.close()
+    with client:
+        while client.recv(65536):               # until the server's close
+            pass
+    with socket.socket() as plain, pytest.raises(OSError) as caught:
+        plain.bind(('127.0.0.1', port))
+    assert caught.value.errno == errno.EADDRINUSE           # TIME_WAIT holds the port
+    check_port_free('127.0.0.1', port, '--foxglove')        # no error
+    second = AutomobileNode(transport='dds', parameter_overrides={
+        'foxglove': port, 'synchronous': True})
+    try:
+        assert second.live_view.port == port
+    finally:
+        second.close()
+
+
+def test_sdk_log_records_reach_the_node_logger_at_debug_for_a_client_connection():
+    import logging
+
+    from vehicle_sim.foxglove.sdk_log import SdkLogRoute
+
+    class Node:
+        def call_soon(self, callback):
+            callback()                          # the node's thread, at once here
+
+    class Logger:
+        def __init__(self):
+            self.lines = []
+
+        def log(self, level, message):
+            self.lines.append((level, message))
+
+    logger = Logger()
+    route = SdkLogRoute(Node(), logger)
+    try:
+        assert logging.getLogger('foxglove').propagate is False
+        logging.getLogger('foxglove.websocket.connected_client.poller').error(
+            'Error receiving from client 127.0.0.1:1: IO error: Connection reset by peer')
+        logging.getLogger('foxglove.websocket.server').error(
+            'Dropping client 127.0.0.1:2: handshake failed')
+        logging.getLogger('foxglove.websocket_server').warning('Redefining service /reset')
+        logging.getLogger('foxglove.websocket.server').error('Failed to send required server '
+                                                             'info: closed')
+    finally:
+        route.close()
+    assert logger.lines == [
+        (10, 'Foxglove: Error receiving from client 127.0.0.1:1: IO error: Connection reset '
+             'by peer'),
+        (10, 'Foxglove: Dropping client 127.0.0.1:2: handshake failed'),
+        (30, 'Foxglove: Redefining service /reset'),
+        (40, 'Foxglove: Failed to send required server info: closed')]
+    assert logging.getLogger('foxglove').propagate is True     # as before, once closed

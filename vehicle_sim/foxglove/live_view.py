@@ -31,7 +31,7 @@ from vehicle_sim.foxglove.front import SubprotocolFront, UPSTREAM_HOST
 from vehicle_sim.foxglove.parameters import NodeParameters
 from vehicle_sim.foxglove.scene_stream import SceneStream
 from vehicle_sim.foxglove.sdk import load_sdk
-from vehicle_sim.foxglove.sdk_log import SdkLogRoute
+from vehicle_sim.foxglove.sdk_log import log_on_node_thread, SdkLogRoute
 from vehicle_sim.foxglove.server import check_host, exposure_warning, start_server
 from vehicle_sim.foxglove.services import NodeServices
 from vehicle_sim.foxglove.topics import TopicChannels
@@ -96,7 +96,7 @@ class LiveView(PublishTap):
                                        name=f'vehicle_sim {node.get_fully_qualified_name()}')
             self.front = SubprotocolFront(
                 host, port, self.server.port,
-                log=lambda text: node.call_soon(lambda: logger.debug(text)))
+                log=lambda text: log_on_node_thread(node, logger, 10, f'Foxglove: {text}'))
         except BaseException:
             self.close()
             raise

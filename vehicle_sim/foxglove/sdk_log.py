@@ -46,6 +46,14 @@ def node_level(record: logging.LogRecord) -> int:
     return max(level for level in _NODE_LEVELS if level <= max(record.levelno, 10))
 
 
+def log_on_node_thread(node, logger, level: int, message: str) -> None:
+    """Log ``message`` at ``level`` on ``node``'s thread, from any thread (dropped at its end)."""
+    try:
+        node.call_soon(lambda: logger.log(level, message))
+    except Exception:  # noqa: BLE001 - a node shutting down: the line is dropped
+        pass
+
+
 class _Route(logging.Handler):
     """The handler on the SDK's logger: hands each record to the latest live view's node."""
 
@@ -58,11 +66,7 @@ class _Route(logging.Handler):
         if not targets:
             return
         node, logger = targets[-1]
-        level, message = node_level(record), f'Foxglove: {record.getMessage()}'
-        try:
-            node.call_soon(lambda: logger.log(level, message))
-        except Exception:  # noqa: BLE001 - a node shutting down: the line is dropped
-            pass
+        log_on_node_thread(node, logger, node_level(record), f'Foxglove: {record.getMessage()}')
 
 
 _route = _Route()
