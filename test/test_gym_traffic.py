@@ -223,3 +223,26 @@ def test_a_reset_that_raises_leaves_no_episode_and_the_next_reset_works(make, mo
     assert _same(_episode(env, 2, actions),
                  _episode(make(world='highway_traffic', action_repeat=ACTION_REPEAT), 2,
                           actions))
+
+
+def test_start_noise_keeps_the_ego_clear_of_the_traffic_and_of_a_placed_vehicle(make):
+    # A placed traffic vehicle 9 m ahead of the ego's spawn in its lane, the ego's start drawn
+    # within 10 m along the road: a draw on the placed vehicle is drawn again, the random
+    # traffic starts around the ego wherever it is.
+    data = read_yaml(ROOT / 'config' / 'worlds' / 'highway_traffic.yaml')
+    data['traffic']['placed'] = [{'model': 'BmwX5', 'lanelet': 100002, 's': 29.0,
+                                  'speed': 0.0, 'speed_factor': 0.01}]
+    env = make(world=data, action_repeat=ACTION_REPEAT, start_noise=[10.0, 1.0, 0.2])
+    sim = env.unwrapped.sim
+    env.reset(seed=0)
+    xs = []
+    for k in range(60):
+        env.step(np.array([0.0, 5.0], dtype=np.float32))
+        env.reset()
+        _check_start(sim, f'reset {k + 1}')
+        manager = sim.scene.parts['traffic'].manager
+        assert manager.pose(manager.vehicles[0])[0] == pytest.approx(29.0)    # placed: there
+        xs.append(sim.observe()['pose'][0])
+    # drawn over 10 .. 30 m; from about 22 m on the ego's front would be within 1 m of the
+    # placed vehicle's back (26.6 m): drawn again
+    assert min(xs) < 12.0 and 20.0 < max(xs) < 22.5
