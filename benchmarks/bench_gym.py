@@ -271,10 +271,10 @@ def creation_s(count=16):
     return each, per_world
 
 
-def reset_ms(count=100):
+def reset_ms(count=100, **kwargs):
     """Return the milliseconds of one reset (in place: every body reloaded, same client)."""
     gymnasium = _gym()
-    env = gymnasium.make(ENV_ID, lidar=True)
+    env = gymnasium.make(ENV_ID, **(kwargs or {'lidar': True}))
     try:
         env.reset(seed=0)
         start = time.perf_counter()
@@ -343,6 +343,7 @@ def figures(quick=False):
     asynchronous = async_rate(200 if quick else 1000)
     each_s, per_world_s = creation_s()
     reset = reset_ms(30 if quick else 100)
+    traffic_reset = reset_ms(30 if quick else 100, world='highway_traffic')
     highway = highway_rates(2.0 if quick else 5.0)
     rows = [
         ('gym: one Drive-v0, state observations (obstacle_course car)', state, '>=',
@@ -367,7 +368,9 @@ def figures(quick=False):
                 f'{ratio:.2f}x per CPU second' for n, (many, standard, ratio) in syncs.items()]
     context.append(f'gym: AsyncVectorEnv, 2 processes: {asynchronous:.0f} steps/s of both')
     context.append(f'gym: a world of DriveVectorEnv(16): {per_world_s * 1000:.1f} ms to create; '
-                   f"a reset (with the lidar's first scan) {reset:.1f} ms")
+                   f"a reset (with the lidar's first scan) {reset:.1f} ms; in "
+                   f'highway_traffic (its 60 traffic vehicles started afresh) {traffic_reset:.1f} '
+                   'ms')
     if highway is None:
         context.append("gym: highway-env not installed (pip install 'vehicle_sim[bench]'): "
                        'its figures skipped')

@@ -271,6 +271,29 @@ def test_no_vehicle_is_spawned_on_our_car_and_the_step_refuses_a_bad_dt():
         m.step(float('nan'))
 
 
+def test_no_vehicle_starts_on_ours_across_two_lanes_or_off_every_lane():
+    # One of ours straddles the middle and fast lanes at an angle (located on one lane, it
+    # reaches into the other); a long one stands across the slow lane's edge, its centre off
+    # every lane. No traffic vehicle starts on either, for any seed; each keeps CLEARANCE_M.
+    from vehicle_sim.core.traffic.spawn import CLEARANCE_M
+    x, y, yaw = HIGHWAY.pose_at(MIDDLE, 315.0)        # a spawn place (spacing 30 m)
+    across = OurVehicle('across', x, y + 1.875, yaw + 0.5, 0.0, 4.6, 1.9)
+    x, y, _ = HIGHWAY.pose_at(SLOW, 525.0)
+    edge = OurVehicle('edge', x, y - 3.5, math.pi / 2, 0.0, 8.0, 2.5)
+    assert HIGHWAY.locate(edge.x_m, edge.y_m) is None
+    near = 0
+    for seed in range(10):
+        m = manager({'vehicles': 300, 'seed': seed}, ours=[across, edge])
+        for o in (across, edge):
+            box = corners(o.x_m, o.y_m, o.yaw_rad, o.length_m, o.width_m)
+            grown = corners(o.x_m, o.y_m, o.yaw_rad, o.length_m + 2 * CLEARANCE_M - 0.01,
+                            o.width_m + 2 * CLEARANCE_M - 0.01)
+            for b in traffic_boxes(m):
+                assert not rectangles_overlap(box, corners(*b)), (seed, o.name, b)
+                near += rectangles_overlap(grown, corners(*b))
+    assert near == 0
+
+
 def test_docs_hold_the_generated_key_tables():
     from pathlib import Path
 

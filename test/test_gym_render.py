@@ -17,12 +17,16 @@
 Rendering of the Gymnasium environment.
 
 'rgb_array' (the chase camera by the CPU renderer) and 'human' (PyBullet's window, on a virtual
-X display), and Gymnasium's checker with its render checks on.
+X display), and Gymnasium's checker with its render checks on: with a display and without one
+(docs/gym.md's check, run as written).
 """
 
 import json
+import re
+import subprocess
 import sys
 
+from conftest import peer_env, REPO_ROOT
 import numpy as np
 import pytest
 
@@ -42,6 +46,7 @@ warnings.simplefilter('ignore')
 out = {}
 env = gymnasium.make('vehicle_sim/Drive-v0')
 check_env(env.unwrapped)            # with the render checks: 'human' and 'rgb_array'
+out['render_modes'] = env.unwrapped.metadata['render_modes']
 env.close()
 out['check_env'] = 'passed'
 env = gymnasium.make('vehicle_sim/Drive-v0', render_mode='human')
@@ -96,6 +101,37 @@ def test_human_mode_opens_the_window_and_check_env_passes_with_render_checks(tmp
     assert result.returncode == 0 and lines, result.stdout[-2000:] + result.stderr[-2000:]
     seen = json.loads(lines[-1][len('RESULT '):])
     assert seen['check_env'] == 'passed'
+    assert seen['render_modes'] == ['human', 'rgb_array']
     assert seen['gui'] is True and seen['render'] == 'None'
     assert seen['x'] > 1.0
     assert abs(seen['target_x'] - seen['x']) < 3.0        # the window's camera follows it
+
+
+HEADLESS = r"""
+import json
+from vehicle_sim.physics.gui import GuiUnavailableError
+{check}
+out = {{'render_modes': env.unwrapped.metadata['render_modes']}}
+try:
+    gymnasium.make('vehicle_sim/Drive-v0', render_mode='human')
+except GuiUnavailableError as error:
+    out['human'] = str(error)
+print('RESULT ' + json.dumps(out))
+"""
+
+
+def test_the_documented_check_env_passes_without_a_display():
+    # docs/gym.md's check, as written, in a process without DISPLAY: Gymnasium's checker opens
+    # every declared render mode; 'human' is declared only where PyBullet's window can open.
+    text = open(f'{REPO_ROOT}/docs/gym.md', encoding='utf-8').read()
+    check = [block for block in re.findall(r'```python\n(.*?)```', text, re.S)
+             if 'check_env(' in block][0]
+    env = peer_env()
+    env.pop('DISPLAY', None)
+    result = subprocess.run([sys.executable, '-c', HEADLESS.format(check=check)], env=env,
+                            capture_output=True, text=True, timeout=240)
+    lines = [line for line in result.stdout.splitlines() if line.startswith('RESULT ')]
+    assert result.returncode == 0 and lines, result.stdout[-2000:] + result.stderr[-2000:]
+    seen = json.loads(lines[-1][len('RESULT '):])
+    assert seen['render_modes'] == ['rgb_array']
+    assert seen['human'].startswith('DISPLAY is not set')     # asked for, still refused

@@ -301,6 +301,18 @@ def test_a_vehicle_starting_inside_an_obstacle_is_refused_naming_both(world):
         other.add_obstacle(_obstacle('crate', (10.0, 0.0, 1.0)))
 
 
+def test_a_hook_watching_a_vehicle_is_no_vehicle_of_its_own(world):
+    # A collision monitor keeps the body it watches as 'body'; registering it is no vehicle
+    # start (a car pushed into a crate is monitored, not refused) and the car is listed once.
+    from vehicle_sim.physics.sensors.collisions import CollisionMonitor
+    car = SimulatedCar(world, load_car('Car'), (0.0, 0.0, 0.0))
+    world.add_obstacle(_obstacle('crate', (6.0, 0.0, 1.0), size=(2.0, 2.0, 2.0)))
+    car.body.place((5.0, 0.0, 0.0))                  # inside the crate now
+    monitor = CollisionMonitor(world, car.body)
+    assert monitor in world.bodies
+    assert world.vehicle_bodies() == [car.body]
+
+
 def test_reset_obstacles_puts_movable_ones_back_and_leaves_static_ones(world):
     world.add_obstacle(_obstacle('wall', (20.0, 0.0, 1.0)))
     world.add_obstacle(_obstacle('crate', (5.0, 5.0, 0.5), mass=10.0, size=(1.0, 1.0, 1.0)))

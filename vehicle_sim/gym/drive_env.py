@@ -19,6 +19,10 @@
 In process (no ROS, no DDS): the world is built by the scene builder in a PyBullet DIRECT client
 of this process (render_mode 'human': the PyBullet window). Actions, observations, reward and
 episode ends: docs/gym.md; the options: gym/options.py.
+
+An environment's ``metadata['render_modes']`` are the modes it can render here: 'human' only
+where PyBullet's window can open (physics/gui.py), so that Gymnasium's ``check_env``, which
+opens every declared mode, passes on a machine without a display.
 """
 
 import numpy as np
@@ -26,8 +30,16 @@ import numpy as np
 from vehicle_sim.gym.drive_sim import DriveSim
 from vehicle_sim.gym.require import gymnasium
 from vehicle_sim.gym.spaces import action_space, observation_space
+from vehicle_sim.physics.gui import gui_unavailable_reason
 
 RENDER_MODES = ('human', 'rgb_array')
+
+
+def render_modes_here(render_mode=None):
+    """Return the render modes an environment can give here: 'human' where a window opens."""
+    if render_mode == 'human' or gui_unavailable_reason() is None:
+        return list(RENDER_MODES)
+    return [mode for mode in RENDER_MODES if mode != 'human']
 
 
 class DriveEnv(gymnasium.Env):
@@ -62,7 +74,7 @@ class DriveEnv(gymnasium.Env):
                             observation_parts=observation_parts)
         self.action_space = action_space(self.sim.control)
         self.observation_space = observation_space(self.sim.spaces)
-        self.metadata = dict(self.metadata,
+        self.metadata = dict(self.metadata, render_modes=render_modes_here(render_mode),
                              render_fps=round(1.0 / (self.sim.world.time_step_s
                                                      * self.sim.options['action_repeat'])))
         self._image = None

@@ -71,6 +71,8 @@ DEFAULT_EPISODE_S = 60.0
 EGO_ROBOT_NAME = 'ego'
 # Start poses drawn at most per reset when start_noise puts the ego inside another body.
 START_DRAWS = 100
+# A reset draws the traffic's seed in [0, TRAFFIC_SEEDS) from the environment's generator.
+TRAFFIC_SEEDS = 2 ** 31
 
 
 class _ActorHook:
@@ -241,22 +243,29 @@ class DriveSim:
         """
         Start an episode: every vehicle and movable obstacle as built; return (obs, info).
 
-        :param rng: numpy Generator (the environment's seeded ``np_random``): the ego's start
-            offset (option start_noise) and the lidar noise seed are drawn from it.
+        :param rng: numpy Generator (the environment's seeded ``np_random``): the traffic's
+            seed, the ego's start offset (option start_noise) and the lidar noise seed are drawn
+            from it.
+        :raises InvalidParameterError: when no start pose of option start_noise fits; the
+            environment is then not reset (``step`` refuses until a reset succeeds).
         """
+        if self._monitor is not None:   # no episode until this reset is through
+            self._monitor.close()
+            self._monitor = None
         for vehicle in self.scene.vehicles.values():
             vehicle.vehicle.reset()
         self.world.reset_obstacles()
+        traffic = self.scene.parts.get('traffic')
+        traffic_seed = None if traffic is None else int(rng.integers(TRAFFIC_SEEDS))
         if any(self.options['start_noise']):
-            self._offset_start(rng)
+            self._offset_start(rng, traffic, traffic_seed)
+        elif traffic is not None:
+            traffic.reset(traffic_seed)
         for part in self._parts:
             reseed = getattr(part, 'reseed', None)
             if reseed is not None:
                 reseed(rng.integers(2 ** 31))
             part.reset()
-        if self._monitor is not None:
-            self._monitor.close()
-        self._monitor = CollisionMonitor(self.world, self.ego.body)
         self._hook.actors = self._actors()
         self._step0 = self.world.step_count
         if self._criteria_specs:
@@ -270,7 +279,9 @@ class DriveSim:
             self._crossed = ()
         self._start_progress(x, y, yaw)
         self._goal_reached = False
-        return self.observe(), self._info(0.0, dict.fromkeys(self._terms, 0.0), '', False)
+        obs = self.observe()
+        self._monitor = CollisionMonitor(self.world, self.ego.body)
+        return obs, self._info(0.0, dict.fromkeys(self._terms, 0.0), '', False)
 
     def _start_progress(self, x, y, yaw):
         if isinstance(self._progress, LaneProgress):
@@ -278,20 +289,30 @@ class DriveSim:
         else:
             self._progress.start(x, y, yaw)
 
-    def _offset_start(self, rng):
-        # The ego at its spawn pose plus a uniform offset; an offset that puts it inside
-        # another body is drawn again (the same draws for the same seed).
+    def _offset_start(self, rng, traffic, traffic_seed):
+        # The ego at its spawn pose plus a uniform offset, then the traffic started around it;
+        # an offset that puts the ego inside another body (the traffic, started afresh after,
+        # aside) or where the traffic does not fit around it is drawn again (the same draws for
+        # the same seed).
         half = np.asarray(self.options['start_noise'])
         body = self.ego.body
         x, y, yaw = body.spawn[:3]
+        moving = set() if traffic is None else {v.name for v in traffic.manager.vehicles}
         for _ in range(START_DRAWS):
             dx, dy, dyaw = rng.uniform(-half, half)
             body.rebuild((x + dx, y + dy, yaw + dyaw))
-            if not self.world.overlaps(body.body_id):
-                return
+            if any(name not in moving for name in self.world.overlaps(body.body_id)):
+                continue
+            if traffic is not None:
+                try:
+                    traffic.reset(traffic_seed)
+                except InvalidParameterError:    # a placed vehicle there, too few places
+                    continue
+            return
         raise InvalidParameterError(
             f"{SOURCE}: option 'start_noise' = {list(half)}: {START_DRAWS} start poses drawn "
-            f'around the spawn pose of {self.ego_name!r} were all inside another body')
+            f'around the spawn pose of {self.ego_name!r} were all inside another body'
+            + ('' if traffic is None else ' or where the traffic does not fit around it'))
 
     def _actors(self):
         if self.scenario is None:
@@ -326,7 +347,8 @@ class DriveSim:
     def check(self, action):
         """Return ``action`` checked against the action space (ValueError naming the entry)."""
         if self._monitor is None:
-            raise RuntimeError('step() before reset(): call reset() first')
+            raise RuntimeError('step() before reset() (or after a reset that raised): call '
+                               'reset() first')
         return self.control.check(action)
 
     def apply(self, values):

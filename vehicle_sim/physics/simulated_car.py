@@ -27,6 +27,8 @@ class SimulatedCar:
     §3.1) with the time before the step, and apply the resulting commands.
     """
 
+    drives_body = True      # the World counts it as the vehicle of ``body`` (world.py)
+
     def __init__(self, world, params, position=(0.0, 0.0, 0.0), name=None):
         """
         Place a car in the world.

@@ -36,6 +36,7 @@ vehicles near them (within NEAR_M at the last update) are read: a traffic vehicl
 of ours stops for good where its box was (it stays there, an obstacle).
 """
 
+from dataclasses import replace
 import math
 
 import pybullet
@@ -153,16 +154,26 @@ class TrafficBodies:
         self._motion = [None] * len(self.body_ids)
         self._placed_at = 0.0          # the time of the last update [s]
         self._synced_step = -1         # the step count at which every box was last put
+        self._start_step = world.step_count    # updates every ``every`` steps from here
         self._place()
         self._near, self._near_all = self._nearby([
             our_vehicle(body, outline) for body, outline in zip(self._ours, self._outlines)])
         world.add_body(self)
 
-    def reset(self):
-        """Start the traffic again as built (same seed: the same places); say so in words."""
+    def reset(self, seed=None):
+        """
+        Start the traffic again, clear of our vehicles where they are now; say so in words.
+
+        :param seed: the seed of the new start (places, models, speed factors, route choices);
+            None = the world's ``seed`` (as built, when our vehicles are at their spawn poses).
+        :raises InvalidParameterError: when the traffic does not fit around our vehicles (a
+            placed vehicle on one of them, fewer free places than vehicles); nothing changed.
+        """
         old = self.manager
+        spec = old.spec if seed is None else replace(old.spec, seed=seed)
         ours = [our_vehicle(body, outline) for body, outline in zip(self._ours, self._outlines)]
-        self.manager = TrafficManager(old.graph, old.spec, old.dimensions, ours)
+        self.manager = TrafficManager(old.graph, spec, old.dimensions, ours)
+        self._start_step = self.world.step_count
         self._parked = set()
         self._place()
         self._near, self._near_all = self._nearby(ours)
@@ -223,7 +234,8 @@ class TrafficBodies:
         """
         world = self.world
         count = world.step_count
-        if count and count % self.every == 0:
+        since = count - self._start_step
+        if since and since % self.every == 0:
             ours = [our_vehicle(body, outline)
                     for body, outline in zip(self._ours, self._outlines)]
             self.manager.set_ours(ours)

@@ -92,8 +92,9 @@ def pose_from(position, clearance_m=0.0):
 
 def _vehicle_body(registered):
     # A named vehicle body among the registered objects: a VehicleBody (CarBody, DiffRobotBody)
-    # or the SimulatedCar holding one as ``body``; None for hooks and sensors.
-    body = getattr(registered, 'body', registered)
+    # or what drives one (the SimulatedCar: ``drives_body``); None for hooks and sensors, which
+    # keep the body they watch as ``body`` too (a collision monitor is no second vehicle).
+    body = registered.body if getattr(registered, 'drives_body', False) else registered
     return body if isinstance(body, VehicleBody) and body.name else None
 
 

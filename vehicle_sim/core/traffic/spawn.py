@@ -19,12 +19,24 @@ Where the traffic vehicles start.
 First the placed ones (checked against the lane map: lane, s, route, overlaps), then the random
 ones on places ``spacing`` apart on the spawn lanes (core/traffic/traffic_params.py), drawn
 without replacement, away from the placed vehicles and ours.
+
+Away from ours twice over: along the lane one of ours is on (no place within half the spacing
+of its footprint, as between two traffic vehicles), and on the ground: no vehicle starts within
+CLEARANCE_M of the footprint of one of ours, whatever lane it is on (a neighbouring lane our
+vehicle reaches into, a lane crossing it, one of ours off every lane).
 """
 
+import math
 from typing import List
 
+import numpy as np
+
+from vehicle_sim.core.geometry.footprint import clearance, polygon_footprint
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.vehicles import TrafficVehicle
+
+# the least distance between a traffic vehicle's footprint and one of ours at the start [m]
+CLEARANCE_M = 1.0
 
 
 def spawn_vehicles(graph, spec, dims, ours, rng) -> List[TrafficVehicle]:
@@ -72,6 +84,10 @@ def spawn_vehicles(graph, spec, dims, ours, rng) -> List[TrafficVehicle]:
             if abs(s - p.s_m) < half + 0.5 * length:
                 raise InvalidParameterError(f"{p.where}: field 's' = {p.s_m:g}: overlaps "
                                             f'another vehicle on lane {p.lanelet}')
+        near = _near_ours(graph.pose_at(p.lanelet, p.s_m), length, width, ours)
+        if near is not None:
+            raise InvalidParameterError(f"{p.where}: field 's' = {p.s_m:g}: within "
+                                        f'{CLEARANCE_M:g} m of {near!r} on lane {p.lanelet}')
         taken.setdefault(p.lanelet, []).append((p.s_m, 0.5 * length))
         v = TrafficVehicle(len(vehicles), p.model, length, width, p.speed_factor,
                            p.lanelet, p.s_m, p.route)
@@ -84,7 +100,8 @@ def spawn_vehicles(graph, spec, dims, ours, rng) -> List[TrafficVehicle]:
         if lane_id not in lanes:
             raise InvalidParameterError(f"{src}: spawn: field 'lanes': lane {lane_id} is not "
                                         f'in the map ({graph.source})')
-    slots, length_km = _slots(spec, spawn, lanes, taken)
+    size = (max(dims[m][0] for m in spec.models), max(dims[m][1] for m in spec.models))
+    slots, length_km = _slots(spec, spawn, graph, taken, size, ours)
     count = spec.vehicles if spec.density_per_km is None else int(
         round(spec.density_per_km * length_km))
     if count > len(slots):
@@ -104,8 +121,42 @@ def spawn_vehicles(graph, spec, dims, ours, rng) -> List[TrafficVehicle]:
         vehicles.append(v)
     return vehicles
 
-def _slots(spec, spawn, lanes, taken):
+def _corners(x, y, yaw, length, width):
+    c, s = math.cos(yaw), math.sin(yaw)
+    return [(x + c * u - s * v, y + s * u + c * v)
+            for u, v in ((-0.5 * length, -0.5 * width), (0.5 * length, -0.5 * width),
+                         (0.5 * length, 0.5 * width), (-0.5 * length, 0.5 * width))]
+
+
+def _near_ours(pose, length, width, ours):
+    """Return the name of one of ours within CLEARANCE_M of a vehicle at ``pose``, or None."""
+    x, y, yaw = pose
+    reach = 0.5 * math.hypot(length, width) + CLEARANCE_M
+    box = None
+    for o in ours:
+        if math.hypot(o.x_m - x, o.y_m - y) > reach + 0.5 * math.hypot(o.length_m, o.width_m):
+            continue
+        if box is None:
+            box = _corners(x, y, yaw, length, width)
+        footprint = polygon_footprint(o.name, _corners(o.x_m, o.y_m, o.yaw_rad, o.length_m,
+                                                       o.width_m))
+        if clearance(box, footprint)[0] < CLEARANCE_M:
+            return o.name
+    return None
+
+
+def _centres(lane, places):
+    """Return the centreline points (x, y arrays) at arc lengths ``places`` of a lane."""
+    along = np.append(lane.s0, lane.length_m)
+    return np.interp(places, along, lane.xs), np.interp(places, along, lane.ys)
+
+
+def _slots(spec, spawn, graph, taken, size, ours):
+    # (the places free of the placed vehicles and ours, the spawn lanes' length [km]); a place
+    # is free of ours for the longest and widest model
+    lanes = graph.lanes
     spacing = spec.spawn_spacing_m
+    reach = 0.5 * math.hypot(*size) + CLEARANCE_M
     slots, length_m = [], 0.0
     for lane_id in spawn:
         lane = lanes[lane_id]
@@ -114,9 +165,19 @@ def _slots(spec, spawn, lanes, taken):
         if hi <= lo:
             continue
         length_m += hi - lo
+        places = []
         s = lo + 0.5 * spacing
         while s <= hi - 0.5 * spacing + 1e-9:
             if all(abs(s - t) >= 0.5 * spacing + half for t, half in taken.get(lane_id, ())):
-                slots.append((lane_id, s))
+                places.append(s)
             s += spacing
+        # the exact test only for the places whose centre is near one of ours
+        near = np.zeros(len(places), dtype=bool)
+        if ours and places:
+            xs, ys = _centres(lane, places)
+            for o in ours:
+                near |= np.hypot(xs - o.x_m, ys - o.y_m) <= \
+                    reach + 0.5 * math.hypot(o.length_m, o.width_m)
+        slots.extend((lane_id, s) for s, close in zip(places, near) if not close or _near_ours(
+            graph.pose_at(lane_id, s), *size, ours) is None)
     return slots, length_m / 1000.0
