@@ -41,7 +41,7 @@ RAY_EXTRA_HINT = "--backend ray needs ray: pip install 'vehicle_sim[ray]' (or pi
 # How long joining a Ray cluster may take (--ray-connect-timeout) [s].
 DEFAULT_CONNECT_TIMEOUT_S = 30.0
 # Joins the cluster at argv[1] and leaves it, in a child process: where no Ray answers,
-# ray.init(address=...) retries for a quarter of an hour, deaf to Ctrl-C, and a child is
+# ray.init(address=...) retries for about 14 minutes, deaf to Ctrl-C, and a child is
 # killed at the deadline for sure (Ray's own retry settings are internal and version-bound).
 _PROBE = 'import sys, ray; ray.init(address=sys.argv[1], log_to_driver=False); ray.shutdown()'
 
