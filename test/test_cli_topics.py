@@ -29,6 +29,7 @@ import sys
 from automobile_helpers import wait_for
 from conftest import peer_env, PEER_START_TIMEOUT_S, stop_processes
 import pytest
+import yaml
 
 from vehicle_sim.tools.graph_commands import PrintRate
 from vehicle_sim.tools.topic_commands import rate_report
@@ -233,6 +234,96 @@ def test_echo_field_that_the_type_lacks_exits_2_listing_the_fields(automobile):
     assert result.returncode == 2
     assert result.stderr == ("vehicle-sim echo: --field header.nope: header has no field "
                              "'nope'; fields: stamp, frame_id\n")
+
+
+# A JointState longer than ros2 topic echo's default truncate length (128) in every way: a
+# 130-character frame_id, 130 joint names and positions.
+LONG = 130
+LONG_NAMES = [f'j{i}' for i in range(LONG)]
+LONG_POSITIONS = [float(i) for i in range(LONG)]
+
+
+@pytest.fixture(scope='module')
+def long_joint_states():
+    """``vehicle-sim pub`` of the long JointState on /tp_topics/long_joints, 5 times a second."""
+    values = yaml.safe_dump({'header': {'frame_id': 'f' * LONG}, 'name': LONG_NAMES,
+                             'position': LONG_POSITIONS}, default_flow_style=True,
+                            width=float('inf')).strip()
+    proc = subprocess.Popen([VEHICLE_SIM, 'pub', f'{NS}/long_joints',
+                             'sensor_msgs/msg/JointState', values, '--rate', '5'],
+                            env=peer_env(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        yield f'{NS}/long_joints'
+    finally:
+        stop_processes([proc])
+
+
+def echo_once(topic, *options):
+    """Run ``vehicle-sim echo TOPIC --once OPTIONS``; return the message it printed, parsed."""
+    result = vehicle_sim('echo', topic, '--once', '--timeout', '30', '--wait', '30', *options)
+    assert result.returncode == 0, result.stderr
+    text, rest = result.stdout.split('---\n')
+    assert rest == ''
+    return yaml.safe_load(text)
+
+
+def test_echo_cuts_strings_and_arrays_after_128_items_as_ros2_topic_echo(long_joint_states):
+    shown = echo_once(long_joint_states)
+    assert shown['header']['frame_id'] == 'f' * 128 + '...'
+    assert shown['name'] == LONG_NAMES[:128] + ['...']
+    assert shown['position'] == LONG_POSITIONS[:128] + ['...']
+    assert (shown['velocity'], shown['effort']) == ([], [])
+
+
+def test_echo_truncate_length_sets_where_values_are_cut(long_joint_states):
+    shown = echo_once(long_joint_states, '--truncate-length', '2')
+    assert shown['header']['frame_id'] == 'ff...'
+    assert (shown['name'], shown['position']) == (['j0', 'j1', '...'], [0.0, 1.0, '...'])
+
+
+def test_echo_full_length_prints_every_item(long_joint_states):
+    shown = echo_once(long_joint_states, '--full-length')
+    assert shown['header']['frame_id'] == 'f' * LONG
+    assert (shown['name'], shown['position']) == (LONG_NAMES, LONG_POSITIONS)
+
+
+def test_echo_no_arr_and_no_str_print_types_and_lengths_only(long_joint_states):
+    shown = echo_once(long_joint_states, '--no-arr', '--no-str')
+    assert shown['header']['frame_id'] == f'<string length: <{LONG}>>'
+    assert shown['name'] == f'<sequence type: string, length: {LONG}>'
+    assert shown['position'] == f'<sequence type: double, length: {LONG}>'
+    assert shown['effort'] == '<sequence type: double, length: 0>'
+
+
+def test_echo_negative_truncate_length_exits_2_naming_it():
+    result = vehicle_sim('echo', '/anything', '--truncate-length', '-3')
+    assert result.returncode == 2
+    assert "argument --truncate-length/-l: must be an integer >= 0, got '-3'" in result.stderr
+
+
+def test_echo_timeout_without_count_ends_the_echo_with_exit_0(long_joint_states):
+    # --timeout alone says how long to listen: the messages that came are the result.
+    result = vehicle_sim('echo', long_joint_states, '--timeout', '10')
+    assert (result.returncode, result.stderr) == (0, '')
+    messages = result.stdout.split('---\n')
+    assert messages[-1] == '' and len(messages) >= 2
+    assert all(yaml.safe_load(m)['name'][:2] == ['j0', 'j1'] for m in messages[:-1])
+
+
+def test_echo_timeout_with_count_fails_saying_how_many_came(long_joint_states):
+    result = vehicle_sim('echo', long_joint_states, '--timeout', '1', '--count', '100000')
+    assert result.returncode == 1
+    assert re.fullmatch(r'vehicle-sim echo: (got \d+ of 100000 messages|no message) on '
+                        f'{NS}/long_joints within 1 s\n', result.stderr)
+
+
+def test_format_message_no_arr_names_a_fixed_array_by_its_type_and_size():
+    from vehicle_msgs_py import message_type
+    from vehicle_sim.tools.message_yaml import Abbreviation, format_message
+    msg = message_type('geometry_msgs/msg/PoseWithCovariance')()
+    shown = yaml.safe_load(format_message(msg, Abbreviation(no_arr=True)))
+    assert shown['covariance'] == '<array type: double[36]>'
+    assert shown['pose']['position'] == {'x': 0.0, 'y': 0.0, 'z': 0.0}
 
 
 def test_print_rate_lets_through_at_most_one_message_per_period():

@@ -21,9 +21,12 @@ process's DDS node is the other side (the subscriber of what is played).
 """
 
 import os
+import signal
 import subprocess
 import sys
+import threading
 
+from automobile_helpers import wait_for
 from conftest import peer_env, PEER_START_TIMEOUT_S, stop_processes
 import pytest
 
@@ -167,6 +170,46 @@ def test_record_command_writes_what_a_running_node_publishes(tmp_path):
         for _, log_ns, raw in reader.messages([speed]):
             stamp = store.deserialize_cdr(raw, speed.msgtype).header.stamp
             assert abs(log_ns - (stamp.sec * 10**9 + stamp.nanosec)) <= 50_000_000
+
+
+def test_record_command_on_sighup_closes_a_complete_file_up_to_the_signal(tmp_path):
+    # A closed terminal sends SIGHUP: the file is finished as on Ctrl-C, not cut at its last
+    # complete chunk (a second of current_speed alone is ~1,000 messages: most of a 1 MiB chunk).
+    path = str(tmp_path / 'hup.mcap')
+    topic = '/rt_hup/automobile/current_speed'
+    run = subprocess.Popen([VEHICLE_SIM, 'run', '--no-status', '--duration', '120', '--',
+                            '--ros-args', '-r', '__ns:=/rt_hup'], env=peer_env(),
+                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    node = DdsNode('rt_hup_watch')
+    seen = []
+    node.create_subscription('vehicle_msgs/msg/Float64Stamped', topic,
+                             lambda msg: seen.append(msg.header.stamp.sec * 10**9
+                                                     + msg.header.stamp.nanosec),
+                             QosProfile(depth=100))
+    record = subprocess.Popen([VEHICLE_SIM, 'record', topic, '-o', path], env=peer_env(),
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    lines = []
+    reader = threading.Thread(target=lambda: lines.extend(record.stdout), daemon=True)
+    reader.start()
+    try:
+        assert wait_for(lambda: f"Subscribed to topic '{topic}'\n" in lines,
+                        PEER_START_TIMEOUT_S, spin=node), lines
+        # Let it record a few simulated seconds, then hang up at a known simulated time.
+        assert wait_for(lambda: seen and seen[-1] - seen[0] >= 3 * 10**9,
+                        PEER_START_TIMEOUT_S, spin=node)
+        signal_ns = seen[-1]
+        record.send_signal(signal.SIGHUP)
+        record.wait(PEER_START_TIMEOUT_S)
+        reader.join(PEER_START_TIMEOUT_S)
+    finally:
+        node.shutdown()
+        stop_processes([run, record])
+    assert record.returncode == 0, record.stderr.read()
+    recorded = [stamp for stamp, _ in _stamps_and_values(path, topic)]   # rosbags reads it
+    assert lines[-1] == f'recorded {len(recorded)} messages on 1 topics into {path}\n'
+    # Consecutive 10 ms steps up to within half a simulated second of the signal.
+    assert all(b - a == 10_000_000 for a, b in zip(recorded, recorded[1:]))
+    assert recorded[-1] >= signal_ns - 500_000_000
 
 
 def test_player_loops_until_stopped(recording):

@@ -118,6 +118,38 @@ def test_cli_doc_row_lists_the_subcommand_and_every_option(name):
                 f'{name} {options} missing from docs/cli.md'
 
 
+# A usage synopsis in the docs: an indented ``vehicle-sim COMMAND ... [--option ...]`` line and
+# the indented lines continuing it.
+SYNOPSIS = re.compile(r'^    vehicle-sim ([a-z-]+) .*\[-')
+
+
+def _synopses():
+    found = []
+    for path in _user_docs():
+        lines = _text(path).splitlines()
+        for number, line in enumerate(lines):
+            match = SYNOPSIS.match(line)
+            if not match:
+                continue
+            text = [line]
+            for more in lines[number + 1:]:
+                if not re.match(r'^ {5,}[\[-]', more):
+                    break
+                text.append(more)
+            found.append((f'{path.relative_to(REPO)}:{number + 1}', match.group(1),
+                          ' '.join(text)))
+    return found
+
+
+@pytest.mark.parametrize('where, name, text', _synopses(), ids=lambda v: str(v)[:40])
+def test_doc_usage_synopsis_lists_every_option_of_its_command(where, name, text):
+    options = [action.option_strings for action in _subcommands()[name]._actions
+               if action.option_strings and '--help' not in action.option_strings]
+    missing = [o[-1] for o in options if not any(re.search(re.escape(v) + r'\b', text)
+                                                 for v in o)]
+    assert missing == [], f'{where}: the usage of vehicle-sim {name} lacks {missing}'
+
+
 def test_architecture_doc_is_linked_from_the_readme_and_names_only_files_that_exist():
     text = (REPO / 'docs' / 'architecture.md').read_text(encoding='utf-8')
     assert '(docs/architecture.md)' in (REPO / 'README.md').read_text(encoding='utf-8')

@@ -22,7 +22,9 @@ the other cases complete (local workers and Ray); --resume; Ctrl-C keeps what fi
 import csv
 import os
 from pathlib import Path
+import re
 import signal
+import socket
 import subprocess
 import sys
 from xml.etree import ElementTree
@@ -35,6 +37,9 @@ REPO = Path(__file__).resolve().parent.parent
 SCENARIO = str(REPO / 'scenarios' / 'stop_before_obstacle.yaml')
 GOOD = '../examples/lidar_stop_controller.py'
 TIMEOUT_S = 8.0     # well above a 2 s case's run (about 0.1 s, 1 s with a fresh worker's imports)
+# Generous bound for a sweep command that gives up on a Ray address after 5 s (interpreter and
+# Ray imports, twice).
+NO_RAY_COMMAND_BOUND_S = 180.0
 
 
 @pytest.fixture
@@ -156,3 +161,27 @@ def test_sweep_command_ctrl_c_keeps_the_finished_cases(controllers, tmp_path):
         rows = list(csv.DictReader(file))
     assert [r['status'] for r in rows] == ['fail', 'fail']
     assert len(os.listdir(out / 'cases')) == 2
+
+
+def test_sweep_command_exits_2_naming_a_ray_address_where_nothing_answers(tmp_path):
+    try:
+        import ray  # noqa: F401
+    except ImportError:
+        pytest.skip("ray is not installed (pip install 'vehicle_sim[ray]'): the Ray backend is "
+                    'optional')
+    out = tmp_path / 'out'
+    # A port bound on loopback but never listened on: connections to it are refused.
+    with socket.socket() as unused:
+        unused.bind(('127.0.0.1', 0))
+        address = f'127.0.0.1:{unused.getsockname()[1]}'
+        done = subprocess.run(
+            [sys.executable, '-m', 'vehicle_sim', 'sweep', SCENARIO, '--backend', 'ray',
+             '--ray-address', address, '--ray-connect-timeout', '5', '--out', str(out)],
+            capture_output=True, text=True, timeout=NO_RAY_COMMAND_BOUND_S)
+    assert done.returncode == 2
+    assert re.fullmatch(
+        re.escape(f'vehicle-sim sweep: --ray-address {address}: ')
+        + '(' + re.escape(f'no Ray cluster answered within 5 s (--ray-connect-timeout); is Ray '
+                          f'running there (ray status --address {address})?')
+        + '|cannot join that Ray cluster: .*)\n', done.stderr)
+    assert not out.exists() and done.stdout == ''

@@ -102,6 +102,8 @@ def test_bad_backend_options_are_refused(tmp_path):
         run_sweep(SCENARIO, out_dir=str(tmp_path / 'x'), ray_address='auto')
     with pytest.raises(SweepError, match='--workers 0: must be 1'):
         run_sweep(SCENARIO, out_dir=str(tmp_path / 'x'), workers=0)
+    with pytest.raises(SweepError, match='--ray-connect-timeout 0: must be > 0 s'):
+        run_sweep(SCENARIO, out_dir=str(tmp_path / 'x'), ray_connect_timeout_s=0)
     assert not (tmp_path / 'x').exists()
 
 

@@ -86,6 +86,27 @@ def dump(entries: Sequence[dict]) -> str:
     return yaml.safe_dump(list(entries), default_flow_style=False, sort_keys=False).strip()
 
 
+def from_rosbags(profiles: Sequence) -> str:
+    """
+    Return the text of QoS profiles as rosbags reads them from a rosbag2 folder's metadata.
+
+    :param profiles: rosbags' ``Qos`` tuples (enum policies, ``{sec, nsec}`` durations).
+    """
+    def duration(value) -> dict:
+        return {'sec': value.sec, 'nsec': value.nsec}
+    return dump([{
+        'history': qos.history.name.lower(),
+        'depth': qos.depth,
+        'reliability': qos.reliability.name.lower(),
+        'durability': qos.durability.name.lower(),
+        'deadline': duration(qos.deadline),
+        'lifespan': duration(qos.lifespan),
+        'liveliness': qos.liveliness.name.lower(),
+        'liveliness_lease_duration': duration(qos.liveliness_lease_duration),
+        'avoid_ros_namespace_conventions': qos.avoid_ros_namespace_conventions,
+    } for qos in profiles])
+
+
 def _policy(value, names: Sequence[str], field: str):
     # Version 8 files name the policies by their rmw enum numbers.
     if isinstance(value, int) and not isinstance(value, bool):

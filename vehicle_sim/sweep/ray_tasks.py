@@ -17,7 +17,8 @@ The Ray backend: one Ray task per case (``ray`` is the optional ``ray`` extra).
 
 ``ray.init()`` starts Ray on this machine (``num_cpus`` = the workers, no dashboard) unless it
 is initialised already in this process; with an address it joins that cluster
-(``ray.init(address=...)``: ``auto``, ``ray://head:10001``, ``head:6379``). At most ``workers``
+(``ray.init(address=...)``: ``auto``, ``ray://head:10001``, ``head:6379``), after
+:func:`check_address` has joined it once within a deadline. At most ``workers``
 tasks are in flight (default: the cluster's CPUs), so that a case's timeout counts from about
 when it starts; a task past it is cancelled (its worker process killed) and becomes the case's
 error, as does a task whose worker died. Each task writes the case's output to the case's log
@@ -28,6 +29,8 @@ same paths on the cluster's machines, and ``vehicle_sim`` installed there (docs/
 """
 
 import os
+import subprocess
+import sys
 import tempfile
 import time
 
@@ -35,6 +38,12 @@ from vehicle_sim.sweep.local import log_tail
 from vehicle_sim.sweep.worker import error_record, run_case_logged
 
 RAY_EXTRA_HINT = "--backend ray needs ray: pip install 'vehicle_sim[ray]' (or pip install ray)"
+# How long joining a Ray cluster may take (--ray-connect-timeout) [s].
+DEFAULT_CONNECT_TIMEOUT_S = 30.0
+# Joins the cluster at argv[1] and leaves it, in a child process: where no Ray answers,
+# ray.init(address=...) retries for about 14 minutes, deaf to Ctrl-C, and a child is
+# killed at the deadline for sure (Ray's own retry settings are internal and version-bound).
+_PROBE = 'import sys, ray; ray.init(address=sys.argv[1], log_to_driver=False); ray.shutdown()'
 
 
 def require_ray():
@@ -45,6 +54,36 @@ def require_ray():
         from vehicle_sim.sweep.grid import SweepError
         raise SweepError(RAY_EXTRA_HINT) from None
     return ray
+
+
+def check_address(address, timeout_s=DEFAULT_CONNECT_TIMEOUT_S):
+    """
+    Join the Ray cluster at ``address`` once, in a child process, within ``timeout_s``.
+
+    Nothing to check when Ray is initialised in this process already (:func:`run_ray` uses it).
+
+    :raises SweepError: one line naming the address: nothing answered within ``timeout_s``, or
+        Ray refused it (its last line of error).
+    """
+    from vehicle_sim.sweep.grid import SweepError
+    if require_ray().is_initialized():
+        return
+    try:
+        probe = subprocess.run([sys.executable, '-c', _PROBE, address], capture_output=True,
+                               text=True, stdin=subprocess.DEVNULL, timeout=timeout_s)
+    except subprocess.TimeoutExpired:
+        raise SweepError(f'--ray-address {address}: no Ray cluster answered within '
+                         f'{timeout_s:g} s (--ray-connect-timeout); is Ray running there '
+                         f'(ray status --address {address})?') from None
+    if probe.returncode != 0:
+        lines = [line.strip() for line in probe.stderr.splitlines() if line.strip()]
+        why = lines[-1] if lines else f'exit status {probe.returncode}'
+        # Ray's last line is its generic 'Failed to connect'; the cause (a refused
+        # authentication token, a version mismatch) is a ray.exceptions line above it.
+        causes = [line for line in lines[:-1] if line.startswith('ray.exceptions.')]
+        if causes:
+            why += f' ({causes[-1]})'
+        raise SweepError(f'--ray-address {address}: cannot join that Ray cluster: {why}')
 
 
 def ray_case(work, log_path):

@@ -144,7 +144,7 @@ def plan(scenario, sets=(), seeds=None) -> Plan:
 
 def run_sweep(scenario, sets=(), seeds=None, out_dir='sweep', workers=None, backend='local',
               ray_address=None, timeout_s=DEFAULT_TIMEOUT_S, resume=False, progress=None,
-              plot=True, started=None) -> SweepResult:
+              plot=True, started=None, ray_connect_timeout_s=None) -> SweepResult:
     """
     Run a scenario for every combination of ``sets`` and ``seeds``; write the merged results.
 
@@ -165,7 +165,10 @@ def run_sweep(scenario, sets=(), seeds=None, out_dir='sweep', workers=None, back
         far), e.g. :class:`~.progress.Progress`.
     :param plot: write summary.png when matplotlib imports.
     :param started: ``started(result)`` once the input is valid, before the first case runs.
-    :raises SweepError: bad input (nothing has run).
+    :param ray_connect_timeout_s: how long joining the cluster at ``ray_address`` may take;
+        None = ``ray_tasks.DEFAULT_CONNECT_TIMEOUT_S`` (30 s).
+    :raises SweepError: bad input (nothing has run), an address where no Ray cluster answers
+        within ``ray_connect_timeout_s`` among them.
     """
     if backend not in BACKENDS:
         raise SweepError(f'--backend {backend!r}: one of {", ".join(BACKENDS)}')
@@ -175,10 +178,15 @@ def run_sweep(scenario, sets=(), seeds=None, out_dir='sweep', workers=None, back
         raise SweepError(f'--timeout {timeout_s}: must be > 0 s')
     if ray_address is not None and backend != 'ray':
         raise SweepError('--ray-address needs --backend ray')
+    if ray_connect_timeout_s is not None and not 0 < ray_connect_timeout_s < float('inf'):
+        raise SweepError(f'--ray-connect-timeout {ray_connect_timeout_s}: must be > 0 s')
     if backend == 'ray':
         from vehicle_sim.sweep.ray_tasks import require_ray
         require_ray()
     planned = plan(scenario, sets, seeds)
+    if ray_address is not None:
+        from vehicle_sim.sweep.ray_tasks import check_address, DEFAULT_CONNECT_TIMEOUT_S
+        check_address(ray_address, ray_connect_timeout_s or DEFAULT_CONNECT_TIMEOUT_S)
     source, content, cases = planned.source, planned.content, planned.cases
     keys = [axis.key for axis in planned.axes]
     manifest = {'scenario': source,

@@ -49,6 +49,7 @@ from typing import List, Optional
 from vehicle_sim.tools.command import CliError, EXIT_FAILURE, EXIT_OK
 from vehicle_sim.tools.foxglove_options import add_arguments as add_foxglove_arguments
 from vehicle_sim.tools.graph_commands import (
+    add_abbreviation_arguments,
     add_topic_arguments,
     cmd_call,
     cmd_echo,
@@ -137,7 +138,9 @@ def build_parser() -> argparse.ArgumentParser:
     echo.add_argument('--rate', type=float, metavar='HZ',
                       help='print at most HZ messages a second (the others are skipped)')
     echo.add_argument('--timeout', type=float, metavar='S',
-                      help='fail when the messages did not come within S seconds')
+                      help='stop after S seconds; fail when no message came (or, with '
+                           '--once/--count, fewer than asked for)')
+    add_abbreviation_arguments(echo)
     echo.set_defaults(func=cmd_echo)
 
     pub = sub.add_parser('pub', help='publish a message to a topic', usage=PUB_USAGE)

@@ -30,10 +30,16 @@ class CliError(Exception):
         self.status = status
 
 
+# The signals that end a command cleanly: Ctrl-C, kill, and a closed terminal (SIGHUP, POSIX
+# only), so that the helper node leaves the graph and a recording is finished.
+STOP_SIGNALS = tuple(getattr(signal, name) for name in ('SIGINT', 'SIGTERM', 'SIGHUP')
+                     if hasattr(signal, name))
+
+
 def install_stop_handlers() -> threading.Event:
-    """Turn SIGINT/SIGTERM into an event so that the helper node leaves the graph cleanly."""
+    """Turn SIGINT/SIGTERM/SIGHUP into an event, so that the command ends cleanly."""
     stop = threading.Event()
     if threading.current_thread() is threading.main_thread():
-        for signum in (signal.SIGINT, signal.SIGTERM):
+        for signum in STOP_SIGNALS:
             signal.signal(signum, lambda *_: stop.set())
     return stop

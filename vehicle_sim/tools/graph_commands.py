@@ -20,6 +20,7 @@ hidden helper node (``_vehicle_sim_cli_<pid>``) on the embedded transport, creat
 command needs one.
 """
 
+import argparse
 import os
 import sys
 import time
@@ -33,6 +34,7 @@ from vehicle_sim.tools.command import (
     install_stop_handlers,
 )
 from vehicle_sim.tools.message_yaml import (
+    Abbreviation,
     build_request,
     field_path,
     format_message,
@@ -240,6 +242,41 @@ def add_topic_arguments(parser) -> None:
                         help='how long to look for the topic')
 
 
+# ros2 topic echo's --truncate-length default.
+DEFAULT_TRUNCATE_LENGTH = 128
+
+
+def _unsigned_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if value < 0:
+        raise argparse.ArgumentTypeError(f'must be an integer >= 0, got {text!r}')
+    return value
+
+
+def add_abbreviation_arguments(parser) -> None:
+    """Add ``ros2 topic echo``'s options that shorten long strings and arrays."""
+    parser.add_argument('--full-length', '-f', action='store_true',
+                        help='print arrays and strings whole (by default they are cut after '
+                             "--truncate-length items, with '...')")
+    parser.add_argument('--truncate-length', '-l', type=_unsigned_int,
+                        default=DEFAULT_TRUNCATE_LENGTH, metavar='N',
+                        help='the length to truncate arrays and strings to (default '
+                             f'{DEFAULT_TRUNCATE_LENGTH})')
+    parser.add_argument('--no-arr', action='store_true',
+                        help='print array fields as their type and length only')
+    parser.add_argument('--no-str', action='store_true',
+                        help='print string fields as their length only')
+
+
+def abbreviation(args) -> Abbreviation:
+    """Return what ``echo``'s options ask to shorten."""
+    return Abbreviation(None if args.full_length else args.truncate_length, args.no_arr,
+                        args.no_str)
+
+
 def subscribe(session: 'GraphSession', args, on_message):
     """
     Subscribe the helper node to ``args.topic`` (type from ``args.type`` or the graph).
@@ -298,6 +335,9 @@ def cmd_echo(args) -> int:
         raise CliError('--count must be >= 1', EXIT_USAGE)
     if args.rate is not None and not args.rate > 0.0:
         raise CliError(f'--rate must be > 0 Hz, got {args.rate:g}', EXIT_USAGE)
+    if args.timeout is not None and not args.timeout > 0.0:
+        raise CliError(f'--timeout must be > 0 s, got {args.timeout:g}', EXIT_USAGE)
+    shorten = abbreviation(args)
     session = GraphSession()
     try:
         received = []
@@ -307,8 +347,8 @@ def cmd_echo(args) -> int:
             if (count is not None and len(received) >= count) or not rate.due(time.monotonic()):
                 return
             received.append(msg)
-            text = format_message(msg) if field is None else format_plain(
-                pick_field(msg, field))
+            text = format_message(msg, shorten) if field is None else format_plain(
+                pick_field(msg, field, shorten))
             sys.stdout.write(text + '---\n')
             sys.stdout.flush()
 
@@ -318,10 +358,13 @@ def cmd_echo(args) -> int:
         deadline = None if args.timeout is None else time.monotonic() + args.timeout
         while not stop.is_set() and (count is None or len(received) < count):
             if deadline is not None and time.monotonic() >= deadline:
-                raise CliError(f'no message on {topic} within {args.timeout:g} s'
-                               if not received else
-                               f'got {len(received)} of {count} messages on {topic} within '
-                               f'{args.timeout:g} s')
+                # Without --once/--count the timeout is how long to echo: an end, not a fault.
+                if not received:
+                    raise CliError(f'no message on {topic} within {args.timeout:g} s')
+                if count is not None:
+                    raise CliError(f'got {len(received)} of {count} messages on {topic} '
+                                   f'within {args.timeout:g} s')
+                break
             node.spin_once(0.05)
     finally:
         session.close()

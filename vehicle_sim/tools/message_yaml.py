@@ -21,7 +21,9 @@ field's type and integer range.
 """
 
 import dataclasses
+import functools
 import math
+import re
 import typing
 from typing import Any, List, Optional, Sequence
 
@@ -39,21 +41,105 @@ _INT_RANGES = {
 }
 
 
+@dataclasses.dataclass(frozen=True)
+class Abbreviation:
+    """
+    How ``ros2 topic echo`` shortens long values (rosidl_runtime_py's ``message_to_yaml``).
 
-def to_plain(msg: Any) -> Any:
-    """Return a message as nested dicts/lists/scalars in field order (for YAML output)."""
-    if dataclasses.is_dataclass(msg) and not isinstance(msg, type):
-        return {f.name: to_plain(getattr(msg, f.name)) for f in dataclasses.fields(msg)
-                if f.name not in _HIDDEN_FIELDS}
-    if isinstance(msg, (bytes, bytearray)):
-        return list(msg)
-    if isinstance(msg, (list, tuple)):
-        return [to_plain(v) for v in msg]
-    if hasattr(msg, 'get_fields_and_field_types'):  # an rclpy message
-        return {name: to_plain(getattr(msg, name)) for name in msg.get_fields_and_field_types()}
-    if hasattr(msg, 'tolist'):  # numpy arrays of rclpy messages
-        return msg.tolist()
-    return msg
+    :param truncate_length: strings longer than this keep their first ``truncate_length``
+        characters and end in ``...``; sequences and arrays keep their first
+        ``truncate_length`` items and get an item ``'...'``; None keeps everything.
+    :param no_arr: show each sequence or array field as its type and length
+        (``<sequence type: double, length: 130>``, ``<array type: double[36]>``).
+    :param no_str: show each string as its length (``<string length: <130>>``).
+    """
+
+    truncate_length: Optional[int] = None
+    no_arr: bool = False
+    no_str: bool = False
+
+
+FULL_LENGTH = Abbreviation()
+# rosidl names basic types by their IDL names in --no-arr's text ('sequence type: double').
+_IDL_NAMES = {'float64': 'double', 'float32': 'float', 'bool': 'boolean', 'byte': 'octet',
+              'char': 'uint8', 'str': 'string'}
+TRUNCATED = '...'
+
+
+def to_plain(msg: Any, abbreviation: Abbreviation = FULL_LENGTH) -> Any:
+    """
+    Return a message as nested dicts/lists/scalars in field order (for YAML output).
+
+    :param abbreviation: what to shorten, as ``ros2 topic echo`` does (default: nothing).
+    """
+    return _plain(msg, abbreviation, None)
+
+
+def _plain(value: Any, abbreviation: Abbreviation, annotation) -> Any:
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        hints = _hints(type(value))
+        return {f.name: _plain(getattr(value, f.name), abbreviation, hints.get(f.name))
+                for f in dataclasses.fields(value) if f.name not in _HIDDEN_FIELDS}
+    if hasattr(value, 'get_fields_and_field_types'):  # an rclpy message
+        return {name: _plain(getattr(value, name), abbreviation, field_type)
+                for name, field_type in value.get_fields_and_field_types().items()}
+    limit = abbreviation.truncate_length
+    if isinstance(value, str):
+        if abbreviation.no_str:
+            return f'<string length: <{len(value)}>>'
+        return value if limit is None or len(value) <= limit else value[:limit] + TRUNCATED
+    if isinstance(value, (bytes, bytearray)):
+        value = list(value)
+    elif hasattr(value, 'tolist'):  # numpy arrays of rclpy messages
+        value = value.tolist()
+    if isinstance(value, (list, tuple)):
+        if abbreviation.no_arr and annotation is not None:
+            return _array_info(annotation, len(value))
+        kept = value if limit is None or len(value) <= limit else value[:limit]
+        items = [_plain(item, abbreviation, None) for item in kept]
+        return items + [TRUNCATED] if len(kept) < len(value) else items
+    return value
+
+
+@functools.lru_cache(maxsize=None)
+def _hints(cls) -> dict:
+    return typing.get_type_hints(cls, include_extras=True)
+
+
+def _element_name(element) -> str:
+    ros_type = getattr(element, '__ros_type__', None)
+    if ros_type is not None:
+        return ros_type
+    args = typing.get_args(element)
+    name = args[1] if len(args) > 1 and isinstance(args[1], str) else (
+        getattr(args[0] if args else element, '__name__', str(element)))
+    return _IDL_NAMES.get(name, name)
+
+
+def _array_info(annotation, length: int) -> str:
+    """
+    Return rosidl's ``--no-arr`` text of a sequence or array field.
+
+    :param annotation: the field's annotation (generated types) or its type string (rclpy:
+        ``sequence<double>``, ``sequence<double, 5>``, ``double[36]``).
+    """
+    if isinstance(annotation, str):
+        match = re.fullmatch(r'sequence<([^,>]+)(?:, (\d+))?>', annotation)
+        if match:
+            element, bound = match.groups()
+        else:
+            match = re.fullmatch(r'(.+)\[(\d+)\]', annotation)
+            if match is None:
+                return 'unknown'
+            return f'<array type: {match.group(1)}[{match.group(2)}]>'
+    else:
+        meta = typing.get_args(annotation)[1]
+        element = _element_name(meta.subtype)
+        if hasattr(meta, 'length'):
+            return f'<array type: {element}[{meta.length}]>'
+        bound = meta.max_length
+    bounded = f'[{bound}]' if bound else ''
+    return f'<sequence type: {element}{bounded}, length: {length}>'
 
 
 class _OrderedDumper(yaml.SafeDumper):
@@ -78,9 +164,9 @@ _OrderedDumper.add_representer(dict, _represent_dict)
 _OrderedDumper.add_representer(float, _represent_float)
 
 
-def format_message(msg: Any) -> str:
+def format_message(msg: Any, abbreviation: Abbreviation = FULL_LENGTH) -> str:
     """Return a message as YAML (fields in definition order), like ``ros2 topic echo``."""
-    plain = to_plain(msg)
+    plain = to_plain(msg, abbreviation)
     if not isinstance(plain, dict):
         plain = {'data': plain}
     return format_plain(plain)
@@ -117,9 +203,10 @@ def field_path(cls, path: str) -> List[str]:
     return names
 
 
-def pick_field(msg: Any, names: Sequence[str]) -> Any:
+def pick_field(msg: Any, names: Sequence[str],
+               abbreviation: Abbreviation = FULL_LENGTH) -> Any:
     """Return the plain value of the field at ``names`` (from :func:`field_path`) of ``msg``."""
-    plain = to_plain(msg)
+    plain = to_plain(msg, abbreviation)
     for name in names:
         plain = plain[name]
     return plain

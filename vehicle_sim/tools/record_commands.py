@@ -169,7 +169,7 @@ def _subscription_qos(publishers):
 def add_play_arguments(parser) -> None:
     parser.description = ("Republish an MCAP recording's topics with their recorded QoS at "
                           'their recorded pace.')
-    parser.add_argument('file', metavar='FILE')
+    parser.add_argument('file', metavar='FILE', help='an MCAP file or a rosbag2 folder')
     parser.add_argument('--rate', type=float, default=1.0, metavar='R',
                         help='playback speed (default 1.0)')
     parser.add_argument('--loop', action='store_true', help='play again from the start')
@@ -224,7 +224,7 @@ def add_bag_arguments(parser) -> None:
     bag_sub.required = True
     info = bag_sub.add_parser('info', help="print a recording's topics, types, counts and "
                                            'duration')
-    info.add_argument('file', metavar='FILE')
+    info.add_argument('file', metavar='FILE', help='an MCAP file or a rosbag2 folder')
 
 
 def _size_text(size: int) -> str:
@@ -245,9 +245,10 @@ def _time_text(ns: int) -> str:
 def format_info(info) -> str:
     """Return ``ros2 bag info``'s text of a BagInfo."""
     label = '{:<19}'.format
-    lines = [label('Files:') + os.path.basename(info.path),
+    files = info.files or [os.path.basename(info.path)]
+    lines = [label('Files:') + files[0], *(' ' * 19 + name for name in files[1:]),
              label('Bag size:') + _size_text(info.size),
-             label('Storage id:') + 'mcap',
+             label('Storage id:') + info.storage_id,
              label('Duration:') + f'{info.duration_ns // 1_000_000_000}.'
                                   f'{info.duration_ns % 1_000_000_000:09d}s']
     if info.start_ns is not None:
@@ -255,7 +256,7 @@ def format_info(info) -> str:
         lines.append(label('End:') + _time_text(info.end_ns))
     lines.append(label('Messages:') + str(info.message_count))
     lines.append(label('Compression:') + (info.compression or 'none')
-                 + f' ({info.chunk_count} chunks)')
+                 + (f' ({info.chunk_count} chunks)' if info.chunk_count is not None else ''))
     topics = [f'Topic: {t.name} | Type: {t.ros_type} | Count: {t.count} | '
               f'Serialization Format: {t.message_encoding}' for t in info.topics]
     lines.append(label('Topic information:') + (topics[0] if topics else ''))

@@ -19,8 +19,8 @@ The scenario runs for every combination of values and seeds, in parallel, with o
 report (docs/sweeps.md).
 
 Exit status: 0 every case passed; 1 a case failed or errored; 2 bad input (a ``--set``, the
-scenario, the folder; nothing ran); 130 stopped by Ctrl-C (the finished cases are kept and
-merged; ``--resume`` runs the rest).
+scenario, the folder, a ``--ray-address`` where no Ray answers; nothing ran); 130 stopped by
+Ctrl-C (the finished cases are kept and merged; ``--resume`` runs the rest).
 """
 
 import sys
@@ -32,6 +32,7 @@ EXIT_INTERRUPTED = 130
 
 def add_arguments(parser):
     """Add the ``sweep`` arguments to its sub-parser."""
+    from vehicle_sim.sweep.ray_tasks import DEFAULT_CONNECT_TIMEOUT_S
     from vehicle_sim.sweep.run import DEFAULT_TIMEOUT_S
     parser.add_argument('scenario', metavar='SCENARIO', help='scenario file (.yaml)')
     parser.add_argument('--set', dest='sets', action='append', default=[],
@@ -48,6 +49,9 @@ def add_arguments(parser):
     parser.add_argument('--ray-address', metavar='ADDR',
                         help='join this Ray cluster (e.g. auto, ray://head:10001); default: '
                              'start Ray here')
+    parser.add_argument('--ray-connect-timeout', type=float, metavar='S',
+                        help='how long joining the cluster at --ray-address may take (default '
+                             f'{DEFAULT_CONNECT_TIMEOUT_S:g} s); past it the sweep exits 2')
     parser.add_argument('--timeout', type=float, default=DEFAULT_TIMEOUT_S, metavar='S',
                         help=f'longest run of one case, wall clock (default {DEFAULT_TIMEOUT_S:g}'
                              ' s); past it the case is an error')
@@ -78,7 +82,8 @@ def cmd_sweep(args) -> int:
     try:
         result = run_sweep(args.scenario, args.sets, args.seeds, args.out, args.workers,
                            args.backend, args.ray_address, args.timeout, args.resume,
-                           None if args.no_progress else progress, started=started)
+                           None if args.no_progress else progress, started=started,
+                           ray_connect_timeout_s=args.ray_connect_timeout)
     except SweepError as error:
         raise CliError(str(error), EXIT_USAGE) from None
     finally:
