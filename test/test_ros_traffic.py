@@ -28,8 +28,6 @@ from automobile_helpers import client_node, wait_for
 import pytest
 
 from vehicle_sim.ros.traffic_interfaces import (
-    MARKERS_FRAME,
-    OBJECTS_FRAME,
     PREDICTED_OBJECTS_TOPIC,
     QOS_OBJECTS,
     TRAFFIC_MARKERS,
@@ -76,7 +74,7 @@ def test_objects_and_markers_over_the_wire_match_the_world(app):
     manager = app.scene.parts['traffic'].manager
     on_map = [v for v in manager.vehicles if v.active]
     assert len(objects.objects) == len(on_map) == 60
-    assert objects.header.frame_id == OBJECTS_FRAME
+    assert objects.header.frame_id == 'world'     # roads:, no map: (test_ros_frames.py)
     assert objects.header.stamp.nanosec == 100_000_000     # 10 steps of 10 ms
     first = objects.objects[0]
     v = on_map[0]
@@ -96,7 +94,7 @@ def test_objects_and_markers_over_the_wire_match_the_world(app):
     assert first.shape.dimensions.x == pytest.approx(v.length_m)
     path = first.kinematics.predicted_paths[0]
     assert len(path.path) == 10 and path.time_step.nanosec == 500_000_000
-    assert markers.markers[0].header.frame_id == MARKERS_FRAME
+    assert markers.markers[0].header.frame_id == 'world'
     assert len(markers.markers) == 60
     assert {m.ns for m in markers.markers} == {'traffic'}
     assert sorted(m.id for m in markers.markers) == [v.index for v in on_map]

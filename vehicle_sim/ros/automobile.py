@@ -60,7 +60,7 @@ from vehicle_sim.ros.endpoints import (
     subscribe,
 )
 from vehicle_sim.ros.map_interfaces import (
-    lanes_frame,
+    fixed_frame,
     map_in_world,
     map_static_transform,
     MapOutputs,
@@ -75,7 +75,7 @@ from vehicle_sim.ros.sim_params import (
     world_spec,
 )
 from vehicle_sim.ros.time_step import TimeStepService
-from vehicle_sim.ros.traffic_interfaces import MARKERS_FRAME, object_topics, OBJECTS_FRAME
+from vehicle_sim.ros.traffic_interfaces import object_topics
 from vehicle_sim.transport import create_node
 from vehicle_sim.transport.logger import ThrottledWarning
 from vehicle_sim.transport.names import resolve_name
@@ -284,7 +284,7 @@ class AutomobileNode:
             for spec in itf.SERVICES if spec.kind in handlers}, resolve).values())
         vehicle.services += serve_vehicle(node, itf.POSE_SERVICES, vehicle, resolve).values()
         if self.scene.lanes is not None:    # lane_state, lane_invasion, set_lane_pose
-            wire_car_lanes(node, vehicle, self.scene.lanes, lanes_frame(self.scene.spec),
+            wire_car_lanes(node, vehicle, self.scene.lanes, fixed_frame(self.scene.spec),
                            resolve)
         vehicle.drive = CarDriveInput(vehicle.logic, self.settings.cmd_vel_timeout_s)
         if self._drive_inputs:
@@ -329,7 +329,7 @@ class AutomobileNode:
         # /map, /map/lanes and their kin (ros/map_interfaces.py), for a world with a map.
         parts = self.scene.parts
         self._map_outputs = MapOutputs(self.node, parts.get('map'), parts.get('roads'),
-                                       lanes_frame(self.scene.spec))
+                                       fixed_frame(self.scene.spec))
         if self._map_outputs.summary:
             self._logger.info(self._map_outputs.summary)
         # The traffic rows (ros/traffic_interfaces.py): the objects for a world with traffic
@@ -337,7 +337,7 @@ class AutomobileNode:
         bodies = self.scene.parts.get('traffic')
         rows = object_topics(bodies is not None, bool(self.scene.spec.obstacles))
         self._traffic = None if not rows else SimpleNamespace(
-            objects_frame=OBJECTS_FRAME, markers_frame=MARKERS_FRAME,
+            frame=fixed_frame(self.scene.spec),
             colours=() if bodies is None else bodies.colours, bodies=bodies, stamp=None,
             objects=None, obstacles=())
         self._traffic_outputs = None if not rows else Outputs(self.node, rows, self._traffic)

@@ -16,9 +16,10 @@
 """
 The traffic topics of a node whose world has traffic (docs/traffic.md): rows of :mod:`.endpoints`.
 
-Both are global and published each publish period. Wiring context ``w``: ``objects_frame`` (the
-PredictedObjects' frame, ``map`` as Autoware expects), ``markers_frame`` (the world frame of
-RViz, ``world``), ``colours`` (the bodies' colours); call context ``ctx``: ``stamp`` and
+Both are global and published each publish period. Wiring context ``w``: ``frame`` (the frame of
+both, ``map_interfaces.fixed_frame``: ``map`` with a lanelet2 map, as Autoware expects, else
+``world``; a frame the node's tree has), ``colours`` (the bodies' colours); call context
+``ctx``: ``stamp`` and
 ``objects`` (core TrafficObjects; None = nothing to publish) and ``obstacles`` (core
 ObstacleObjects, in PredictedObjects only).
 """
@@ -35,9 +36,6 @@ from vehicle_sim.transport.qos import QosProfile
 # Autoware's dummy perception publisher: reliable, volatile, depth 1.
 QOS_OBJECTS = QosProfile(depth=1)
 
-OBJECTS_FRAME = 'map'
-MARKERS_FRAME = 'world'
-
 
 def _objects(ctx):
     return None if ctx.objects is None else (ctx.stamp, ctx.objects)
@@ -49,15 +47,16 @@ def _objects_and_obstacles(ctx):
 
 PREDICTED_OBJECTS_TOPIC = Topic(
     '/perception/object_recognition/objects', PREDICTED_OBJECTS, QOS_OBJECTS, EACH_PUBLISH,
-    converter(predicted_objects_builder, _objects_and_obstacles, lambda w: (w.objects_frame,)),
+    converter(predicted_objects_builder, _objects_and_obstacles, lambda w: (w.frame,)),
     unit='m, rad, m/s',
     doc='ground truth of every traffic vehicle (class CAR, box, pose, twist, a path along its '
-        'lane at constant speed) and obstacle (class UNKNOWN, at rest); frame map')
+        'lane at constant speed) and obstacle (class UNKNOWN, at rest); frame map (a lanelet2 '
+        'map) or world')
 TRAFFIC_MARKERS = Topic(
     '/sim/traffic/markers', MARKER_ARRAY, QOS_OBJECTS, EACH_PUBLISH,
-    converter(traffic_markers_builder, _objects, lambda w: (w.markers_frame, w.colours)),
+    converter(traffic_markers_builder, _objects, lambda w: (w.frame, w.colours)),
     unit='m, rad', doc='one CUBE per traffic vehicle (namespace traffic, id its index); frame '
-                       'world')
+                       'map (a lanelet2 map) or world')
 
 TRAFFIC_TOPICS = (PREDICTED_OBJECTS_TOPIC, TRAFFIC_MARKERS)
 
