@@ -39,6 +39,7 @@ from typing import Callable, Dict, List, Optional
 
 from vehicle_sim.core.commands.drive_input import CarDriveInput
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
+from vehicle_sim.core.sensors.sampling import SampleSchedule
 from vehicle_sim.core.specs.errors import InvalidCommandError
 from vehicle_sim.core.traffic.objects import obstacle_objects, traffic_objects
 from vehicle_sim.physics import SimulatedCar
@@ -75,7 +76,7 @@ from vehicle_sim.ros.sim_params import (
     world_spec,
 )
 from vehicle_sim.ros.time_step import TimeStepService
-from vehicle_sim.ros.traffic_interfaces import object_topics
+from vehicle_sim.ros.traffic_interfaces import AT_OBJECTS_RATE, object_topics, objects_rate_hz
 from vehicle_sim.transport import create_node
 from vehicle_sim.transport.logger import ThrottledWarning
 from vehicle_sim.transport.names import resolve_name
@@ -145,6 +146,7 @@ class AutomobileNode:
         self._control = None
         self._sensing = []
         self._traffic = None
+        self._objects_due = None
         self._gui_closed = False
         self._live = None
         try:
@@ -341,6 +343,15 @@ class AutomobileNode:
             colours=() if bodies is None else bodies.colours, bodies=bodies, stamp=None,
             objects=None, obstacles=())
         self._traffic_outputs = None if not rows else Outputs(self.node, rows, self._traffic)
+        if rows:     # at their own rate on simulated time (docs/traffic.md), from now on
+            spec = self.scene.spec
+            rate_hz = objects_rate_hz(self.settings.objects_rate_hz, spec.traffic)
+            self._objects_due = SampleSchedule.from_rate(rate_hz, self.settings.time_step_s,
+                                                         self.world.step_count)
+            if rate_hz != self.settings.objects_rate_hz:
+                self._logger.info(f'{spec.traffic.source}: objects_rate {rate_hz:g} Hz (the '
+                                  f"world's; parameter objects_rate "
+                                  f'{self.settings.objects_rate_hz:g} Hz not used)')
 
     @staticmethod
     def _bind(handler, spec, vehicle, name):
@@ -462,15 +473,16 @@ class AutomobileNode:
             outputs.publish(EACH_PUBLISH, fleet)
             if self._live is not None:
                 self._live.publish(time_s, self._transforms)
-            traffic = self._traffic
-            if traffic is not None and self._traffic_outputs.wanted(EACH_PUBLISH):
-                traffic.stamp = stamp
-                bodies = traffic.bodies
-                traffic.objects = () if bodies is None else traffic_objects(
-                    bodies.manager, bodies.heights, since_s=bodies.since_update_s)
-                traffic.obstacles = obstacle_objects(self.scene.spec.obstacles,
-                                                     self._obstacle_pose)
-                self._traffic_outputs.publish(EACH_PUBLISH, traffic)
+        traffic = self._traffic
+        if (traffic is not None and self._objects_due.due(self.world.step_count)
+                and self._traffic_outputs.wanted(AT_OBJECTS_RATE)):
+            traffic.stamp = stamp
+            bodies = traffic.bodies
+            traffic.objects = () if bodies is None else traffic_objects(
+                bodies.manager, bodies.heights, since_s=bodies.since_update_s)
+            traffic.obstacles = obstacle_objects(self.scene.spec.obstacles,
+                                                 self._obstacle_pose)
+            self._traffic_outputs.publish(AT_OBJECTS_RATE, traffic)
         for vehicle in self._sensing:
             self._publish_sensors(vehicle)
 
