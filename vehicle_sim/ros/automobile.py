@@ -31,9 +31,15 @@ serving and honours signals however long a request is.
 
 Reset, teleport and pause (``reset``, ``set_pose``, ``/sim/reset``,
 ``/sim/pause``, ``/initialpose``): :mod:`.sim_control`; a paused node skips its step timer.
+
+Pacing: each step feeds a :class:`~vehicle_sim.core.world.pacing.RealTimeMeter` (simulated
+time per wall time, over 1 s windows); in real-time mode a window below the asked factor logs a
+throttled warning with the achieved factor, and :attr:`AutomobileNode.achieved_real_time_factor`
+gives it to the ``vehicle-sim run`` status line.
 """
 
 from dataclasses import replace
+import time
 from types import SimpleNamespace
 from typing import Callable, Dict, List, Optional
 
@@ -42,6 +48,7 @@ from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.sensors.sampling import SampleSchedule
 from vehicle_sim.core.specs.errors import InvalidCommandError
 from vehicle_sim.core.traffic.objects import obstacle_objects, traffic_objects
+from vehicle_sim.core.world.pacing import RealTimeMeter
 from vehicle_sim.physics import SimulatedCar
 from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
 from vehicle_sim.physics.scene import build_scene
@@ -85,6 +92,8 @@ NODE_NAME = 'automobile'
 
 # Timer period standing for "as fast as possible" (the port's timers need a period > 0).
 AS_FAST_AS_POSSIBLE_PERIOD_S = 1e-6
+# Wall time between two "behind real time" warnings [s] (each counts the ones it held back).
+BEHIND_WARNING_PERIOD_S = 5.0
 
 _FROM_CORE = {'float': float, 'int': int, 'bool': bool}
 
@@ -123,7 +132,8 @@ class AutomobileNode:
     """
 
     def __init__(self, args=None, *, transport: Optional[str] = None,
-                 parameter_overrides: Optional[Dict] = None, node=None, drive_inputs=True):
+                 parameter_overrides: Optional[Dict] = None, node=None, drive_inputs=True,
+                 wall_clock: Callable[[], float] = time.monotonic):
         """
         Build the world, the cars and every endpoint.
 
@@ -133,6 +143,8 @@ class AutomobileNode:
         :param node: an existing NodePort to use instead of creating one.
         :param drive_inputs: wire each car's cmd_vel and drive (False: a composing node drives
             the cars itself, as autoware_automobile does).
+        :param wall_clock: the monotonic wall clock [s] the pacing is measured with (tests
+            inject one).
         :raises InvalidParameterError: for a refused parameter or an invalid world file.
         :raises TransportError: for a refused parameter override.
         """
@@ -141,6 +153,8 @@ class AutomobileNode:
             parameter_overrides=parameter_overrides)
         self.world = None
         self._drive_inputs = drive_inputs
+        self._wall_clock = wall_clock
+        self._pace = None
         self._timer = None
         self._time_step = None
         self._control = None
@@ -186,6 +200,9 @@ class AutomobileNode:
         if self._live is not None:
             self._live.show(self.scene)
         self._publish_every = settings.publish_every_steps
+        # Synchronous stepping has no target: the factor is measured (status line), never behind.
+        self._pace = RealTimeMeter(0.0 if settings.synchronous else settings.real_time_factor)
+        self._warn_behind = ThrottledWarning(self._logger, BEHIND_WARNING_PERIOD_S)
         self._stamp = stamp_builder(node.msg)
         # One queue for every vehicle's robot/time_step: they all advance the one world.
         self._time_step = TimeStepService(node, settings.time_step_ms, self.step_once,
@@ -410,6 +427,8 @@ class AutomobileNode:
     def _on_step_timer(self):
         if not self._control.paused:     # /sim/pause
             self.step_once()
+        else:                            # held time is not falling behind
+            self._pace.restart()
 
     def step_once(self) -> float:
         """
@@ -431,6 +450,8 @@ class AutomobileNode:
                         'speed 0, brake 1')
             self.node.serve_pending()
             self._publish_step(time_s)
+            if self._pace.update(self._wall_clock(), time_s):
+                self._report_behind()
         except Exception:
             # The window closes asynchronously: whichever PyBullet call comes next fails.
             if not self.world.gui_closed:
@@ -440,6 +461,14 @@ class AutomobileNode:
             self.node.request_shutdown()
             return self.world.time_s
         return time_s
+
+    def _report_behind(self):
+        pace = self._pace
+        self._warn_behind.warn(
+            f'behind real time: {pace.factor:.2f}x achieved over the last '
+            f'{pace.window_wall_s:.1f} s of wall time, real_time_factor {pace.target:g} asked; '
+            'a step and its publishing take longer than its period (fewer subscribers, a '
+            'larger publish_period_ms or a lower objects_rate lighten it)')
 
     def step(self, count: int = 1) -> float:
         """Advance the world by ``count`` basic steps; return the simulated time [s]."""
@@ -546,6 +575,11 @@ class AutomobileNode:
                 return vehicle
         raise KeyError(f'no vehicle {namespace!r}; known: '
                        f'{sorted(v.spec.namespace for v in self._vehicles)}')
+
+    @property
+    def achieved_real_time_factor(self) -> Optional[float]:
+        """Simulated time per wall time over the last second of wall time; None before one."""
+        return self._pace.factor
 
     @property
     def paused(self) -> bool:
