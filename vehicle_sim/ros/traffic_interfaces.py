@@ -26,6 +26,7 @@ None = nothing to publish) and ``obstacles`` (core ObstacleObjects, in Predicted
 
 from vehicle_sim.core.traffic.traffic_params import OBJECTS_RATE
 from vehicle_sim.ros.endpoints import converter, Topic, topic_table_markdown
+from vehicle_sim.ros.traffic_cdr import predicted_objects_serializer, traffic_markers_serializer
 from vehicle_sim.ros.traffic_messages import (
     MARKER_ARRAY,
     PREDICTED_OBJECTS,
@@ -52,14 +53,16 @@ def _objects_and_obstacles(ctx):
 
 PREDICTED_OBJECTS_TOPIC = Topic(
     '/perception/object_recognition/objects', PREDICTED_OBJECTS, QOS_OBJECTS, AT_OBJECTS_RATE,
-    converter(predicted_objects_builder, _objects_and_obstacles, lambda w: (w.frame,)),
+    converter(predicted_objects_builder, _objects_and_obstacles, lambda w: (w.frame,),
+              predicted_objects_serializer),
     unit='m, rad, m/s',
     doc='ground truth of every traffic vehicle (class CAR, box, pose, twist, a path along its '
         'lane at constant speed) and obstacle (class UNKNOWN, at rest); frame map (a lanelet2 '
         'map) or world')
 TRAFFIC_MARKERS = Topic(
     '/sim/traffic/markers', MARKER_ARRAY, QOS_OBJECTS, AT_OBJECTS_RATE,
-    converter(traffic_markers_builder, _objects, lambda w: (w.frame, w.colours)),
+    converter(traffic_markers_builder, _objects, lambda w: (w.frame, w.colours),
+              traffic_markers_serializer),
     unit='m, rad', doc='one CUBE per traffic vehicle (namespace traffic, id its index); frame '
                        'map (a lanelet2 map) or world')
 

@@ -197,6 +197,18 @@ class Lane:
         return self.vertex_headings[k] + self.turns[k] * min(max(t_m / self.seg_len[k], 0.0),
                                                              1.0)
 
+    def centre_pose(self, s_m):
+        """
+        Return the centreline pose (x, y, yaw) at arc length ``s_m``, unchecked.
+
+        The hot path of predictions that walk along lanes and keep ``s_m`` in [0, length]
+        themselves; :meth:`LaneGraph.pose_at` checks its arguments and gives the same pose.
+        """
+        k = self.segment_at(s_m)
+        t = s_m - self.s0[k]
+        return (self.xs[k] + self.ux[k] * t, self.ys[k] + self.uy[k] * t,
+                wrap_angle_rad(self.heading_at(k, t)))
+
     def walk(self, x, y, k):
         """
         Project a point on the centreline, walking from segment ``k`` to the nearest one.
