@@ -16,7 +16,7 @@
 Every performance figure of issues 10, 20 and 21 in one table: measured, target, met or missed.
 
 Issue 20's are the Gymnasium environment's (bench_gym.py); issue 21's the recorder's
-(bench_record.py).
+(bench_record.py); issue 28's highway_traffic over ROS in real time (bench_traffic_ros.py).
 
 ``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
 also run alone and say more); each ratio is measured in this run, its two sides interleaved or
@@ -126,6 +126,7 @@ def collect(quick):
     import bench_step
     import bench_topics_cpu
     import bench_traffic
+    import bench_traffic_ros
 
     from vehicle_sim.transport import dds
     dds.ensure_domain()
@@ -159,6 +160,7 @@ def collect(quick):
         long_steps = 6000 if quick else 60000
         rss_start, rss_end, long_size, _ = bench_record.measure_memory(long_steps, folder)
     lane_world = bench_lane_world.figures(quick)
+    traffic_ros = bench_traffic_ros.figures(quick)
     found['write_us'] = bare_write_us()
     found['matched_write_us'] = matched_write_us()
     bare_p50, bare_p99 = service['bare']
@@ -199,6 +201,15 @@ def collect(quick):
          rss_end - rss_start, '<=', 5.0, 'MiB'),
         ('highway (roads:) node step with lanes - without, per car (lane state, invasions)',
          lane_world['extra_us'], '<=', 20.0, 'us'),
+        ('highway_traffic over ROS at real time, a subscriber on every topic: headroom '
+         '(simulated / node CPU time)', traffic_ros['every topic']['headroom'], '>=',
+         bench_traffic_ros.TARGET_HEADROOM, 'x'),
+        ('  same, real-time factor achieved', traffic_ros['every topic']['achieved'], None, None,
+         'x'),
+        ('highway_traffic over ROS at real time with --record: headroom',
+         traffic_ros['record']['headroom'], '>=', bench_traffic_ros.TARGET_HEADROOM, 'x'),
+        ('  same, real-time factor achieved', traffic_ros['record']['achieved'], None, None,
+         'x'),
         ('highway with 50 traffic cars, in-process real-time factor', traffic[50][0], '>=',
          bench_traffic.TARGETS[50], 'x'),
         ('highway with 200 traffic cars, in-process real-time factor', traffic[200][0], '>=',
@@ -247,6 +258,8 @@ def collect(quick):
         f'bodies; step {maps["step_mapped_us"]:.0f} us with it, {maps["step_plain_us"]:.0f} us '
         f'without; lidar {maps["lidar_ms"]:.2f} ms per sample (CPU)',
     ] + gym_context
+    floors.append('highway_traffic over ROS at real time (vehicle-sim run): ' + '; '.join(
+        bench_traffic_ros.describe(name, run) for name, run in traffic_ros.items()))
     floors.append(
         f'recording in process: {rec_us["plain"]:.0f} us per step not recorded (topics without '
         f'a subscriber are skipped), {rec_us["published"]:.0f} us with every topic published, '

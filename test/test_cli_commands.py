@@ -181,6 +181,21 @@ def test_run_prints_plain_status_lines_with_advancing_time_when_not_on_a_termina
     assert times == sorted(times)
 
 
+def test_run_behind_real_time_warns_and_shows_the_achieved_factor_in_the_status():
+    # real_time_factor 10000: a 10 ms step in 1 us of wall time, which no step reaches
+    result = vehicle_sim('run', '--real-time-factor', '10000', '--duration', '3.5')
+    assert result.returncode == 0, result.stderr
+    factors = [float(found.group(1)) for found in
+               (re.search(r'\| real time +([0-9.]+)x$', line)
+                for line in result.stdout.splitlines()) if found]
+    assert factors, result.stdout
+    assert all(0.0 < factor < 9000.0 for factor in factors), factors
+    warnings = [line for line in result.stderr.splitlines() if 'behind real time' in line]
+    assert warnings, result.stderr
+    assert re.search(r'\[WARN\].*behind real time: [0-9.]+x achieved over the last [0-9.]+ s of '
+                     r'wall time, real_time_factor 10000 asked', warnings[0]), warnings[0]
+
+
 def test_demo_writes_a_png_where_asked(tmp_path):
     out = tmp_path / 'demo.png'
     result = vehicle_sim('demo', '--short', '--out', str(out))
@@ -205,7 +220,8 @@ def test_status_line_shows_time_speed_rpm_gear_mode_and_indicator():
     status = CarLogic(load_car('Car')).status()
     line = status_line(1.5, status)
     assert line.startswith('t      1.50 s |    0.00 km/h | rpm      - | gear  0 | UNDEFINED')
-    assert line.endswith('indicator off')
+    assert line.endswith('indicator off | real time       -')       # before the first second
+    assert status_line(1.5, status, 0.333).endswith('indicator off | real time   0.33x')
     # a car at rest jitters around 0: never shown as -0.00
     resting = status_line(1.5, dataclasses.replace(status, current_speed_kmh=-0.004))
     assert '|    0.00 km/h |' in resting

@@ -112,6 +112,14 @@ def test_pose_at_and_locate_are_inverse():
             (lane_id, pytest.approx(s_m), pytest.approx(offset_m))
 
 
+def test_centre_pose_is_pose_at_on_the_centreline_bit_for_bit():
+    graph = straight_then_left()
+    for lane in graph.lanes.values():
+        for k in range(101):
+            s_m = lane.length_m * k / 100.0
+            assert lane.centre_pose(s_m) == graph.pose_at(lane.id, s_m), (lane.id, s_m)
+
+
 @pytest.mark.parametrize('lane_id, s_m, offset_m, match', [
     (999, 1.0, 0.0, 'lane 999 is not in the map'),
     (100001, 100.5, 0.0, r's = 100.5 m is not on it \(0 .. 100.000 m\)'),

@@ -236,6 +236,9 @@ def test_at_a_fork_each_vehicle_takes_a_seeded_random_branch():
      r"placed\[1\]: field 's' = 13: overlaps another vehicle"),
     ({'spawn': {'lanes': [100001, 5]}}, r"traffic: spawn: field 'lanes': lane 5 is not in "
                                         r"the map"),
+    ({'objects_rate': 0.0}, r"w\.yaml: traffic: field 'objects_rate' = 0\.0: must be > 0"),
+    ({'objects_rate': float('nan')}, r"traffic: field 'objects_rate' = nan: must be finite"),
+    ({'objects_rate': -10.0}, r"traffic: field 'objects_rate' = -10\.0: must be > 0"),
 ])
 def test_bad_traffic_is_refused_naming_the_file_and_field(traffic, message):
     with pytest.raises(InvalidParameterError, match=message):

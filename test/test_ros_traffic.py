@@ -28,16 +28,18 @@ from automobile_helpers import client_node, wait_for
 import pytest
 
 from vehicle_sim.ros.traffic_interfaces import (
-    MARKERS_FRAME,
-    OBJECTS_FRAME,
     PREDICTED_OBJECTS_TOPIC,
     QOS_OBJECTS,
     TRAFFIC_MARKERS,
     TRAFFIC_TOPICS,
 )
 from vehicle_sim.ros.traffic_messages import object_uuid
+from vehicle_sim.transport.qos import QosProfile
 
 pytestmark = pytest.mark.transport
+
+# A subscription keeping every message of a burst of steps (the rows' own depth is 1).
+KEEP_ALL = QosProfile(depth=1000)
 
 
 @pytest.fixture(scope='module')
@@ -76,7 +78,7 @@ def test_objects_and_markers_over_the_wire_match_the_world(app):
     manager = app.scene.parts['traffic'].manager
     on_map = [v for v in manager.vehicles if v.active]
     assert len(objects.objects) == len(on_map) == 60
-    assert objects.header.frame_id == OBJECTS_FRAME
+    assert objects.header.frame_id == 'world'     # roads:, no map: (test_ros_frames.py)
     assert objects.header.stamp.nanosec == 100_000_000     # 10 steps of 10 ms
     first = objects.objects[0]
     v = on_map[0]
@@ -96,7 +98,7 @@ def test_objects_and_markers_over_the_wire_match_the_world(app):
     assert first.shape.dimensions.x == pytest.approx(v.length_m)
     path = first.kinematics.predicted_paths[0]
     assert len(path.path) == 10 and path.time_step.nanosec == 500_000_000
-    assert markers.markers[0].header.frame_id == MARKERS_FRAME
+    assert markers.markers[0].header.frame_id == 'world'
     assert len(markers.markers) == 60
     assert {m.ns for m in markers.markers} == {'traffic'}
     assert sorted(m.id for m in markers.markers) == [v.index for v in on_map]
@@ -106,12 +108,12 @@ CONE = {'name': 'cone', 'shape': 'cylinder', 'radius': 0.2, 'height': 0.7,
         'position': [50.0, -14.0, 0.35]}
 
 
-def objects_of_highway(tmp_path, name, **keys):
+def run_highway(tmp_path, name, steps, parameters=None, **keys):
     """
-    Run the highway with ``keys`` added to its world file one step; return (node rows, objects).
+    Run the highway with ``keys`` added to its world file ``steps`` steps.
 
-    The node's traffic rows (its publishers) and the PredictedObjects it published, received by
-    a client node.
+    :return: (the node's object rows (its publishers), {row name: the messages a client node
+        received}).
     """
     import copy
 
@@ -124,19 +126,70 @@ def objects_of_highway(tmp_path, name, **keys):
     path = tmp_path / f'{name}.yaml'
     path.write_text(yaml.safe_dump(data), encoding='utf-8')
     node = AutomobileNode(['x', '--ros-args', '-r', f'__ns:=/{name}'], transport='dds',
-                          parameter_overrides={'synchronous': True, 'world': str(path)})
+                          parameter_overrides={'synchronous': True, 'world': str(path),
+                                               **(parameters or {})})
     try:
-        received = []
+        rows = tuple(node._traffic_outputs.publishers)
+        received = {row.name: [] for row in rows}
         with client_node(f'{name}_listener') as client:
-            sub = client.create_subscription(PREDICTED_OBJECTS_TOPIC.ros_type,
-                                             PREDICTED_OBJECTS_TOPIC.name, received.append,
-                                             QOS_OBJECTS)
-            assert wait_for(lambda: sub.get_publisher_count(), spin=client)
-            node.step(1)
-            assert wait_for(lambda: received, spin=client)
-        return tuple(node._traffic_outputs.publishers), received[-1].objects
+            subs = [client.create_subscription(row.ros_type, row.name, received[row.name].append,
+                                               KEEP_ALL) for row in rows]
+            assert wait_for(lambda: all(s.get_publisher_count() for s in subs), spin=client)
+            node.step(steps)
+            assert wait_for(lambda: all(received.values()), spin=client)
+            client.spin_once(0.2)      # the last ones, if any
+        return rows, received
     finally:
         node.close()
+
+
+def objects_of_highway(tmp_path, name, **keys):
+    """Run the highway with ``keys`` added to its world file; return (rows, objects)."""
+    rows, received = run_highway(tmp_path, name, 10, **keys)
+    return rows, received[PREDICTED_OBJECTS_TOPIC.name][-1].objects
+
+
+def stamps(messages):
+    """Return the stamps [s] of PredictedObjects or of MarkerArrays (their first marker's)."""
+    headers = [m.markers[0].header if hasattr(m, 'markers') else m.header for m in messages]
+    return [h.stamp.sec + h.stamp.nanosec * 1e-9 for h in headers]
+
+
+def test_objects_and_markers_come_every_0_1_s_of_simulated_time_by_default(app):
+    received = {row.name: [] for row in TRAFFIC_TOPICS}
+    with client_node('traffic_rate') as client:
+        subs = [client.create_subscription(row.ros_type, row.name,
+                                           lambda msg, key=row.name: received[key].append(msg),
+                                           KEEP_ALL) for row in TRAFFIC_TOPICS]
+        assert wait_for(lambda: all(s.get_publisher_count() for s in subs), spin=client)
+        start_s = app.world.time_s
+        app.step(45)                   # 10 ms steps: 0.45 s, 4 or 5 objects at 10 Hz
+        assert wait_for(lambda: all(len(v) >= 4 for v in received.values()), spin=client)
+        client.spin_once(0.2)
+    for name, messages in received.items():
+        times = stamps(messages)
+        assert len(times) == 4 + (round(start_s * 100) % 10 >= 5), (name, times)
+        assert [b - a for a, b in zip(times, times[1:])] == pytest.approx(
+            [0.1] * (len(times) - 1), abs=1e-9), name
+        # on the grid of 0.1 s of simulated time from the node's start
+        assert [t * 10.0 for t in times] == pytest.approx([round(t * 10.0) for t in times],
+                                                          abs=1e-6)
+
+
+@pytest.mark.parametrize('parameters, traffic, period_s', [
+    ({'objects_rate': 4.0}, {}, 0.25),                                # the node's parameter
+    ({'objects_rate': 4.0}, {'objects_rate': 20.0}, 0.05),            # the world's wins
+])
+def test_the_objects_rate_sets_the_period_of_objects_and_markers(tmp_path, parameters,
+                                                                  traffic, period_s):
+    name = f'rate_{int(1 / period_s)}'
+    _, received = run_highway(tmp_path, name, 100, parameters,
+                              traffic={'vehicles': 3, 'seed': 2, **traffic})
+    for topic, messages in received.items():
+        times = stamps(messages)
+        assert len(times) == round(1.0 / period_s), (topic, times)
+        assert times == pytest.approx([period_s * (k + 1) for k in range(len(times))],
+                                      abs=1e-9), topic
 
 
 def test_a_world_with_obstacles_and_no_traffic_publishes_its_obstacles_as_objects(tmp_path):

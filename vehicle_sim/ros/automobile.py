@@ -31,16 +31,24 @@ serving and honours signals however long a request is.
 
 Reset, teleport and pause (``reset``, ``set_pose``, ``/sim/reset``,
 ``/sim/pause``, ``/initialpose``): :mod:`.sim_control`; a paused node skips its step timer.
+
+Pacing: each step feeds a :class:`~vehicle_sim.core.world.pacing.RealTimeMeter` (simulated
+time per wall time, over 1 s windows); in real-time mode a window below the asked factor logs a
+throttled warning with the achieved factor, and :attr:`AutomobileNode.achieved_real_time_factor`
+gives it to the ``vehicle-sim run`` status line.
 """
 
 from dataclasses import replace
+import time
 from types import SimpleNamespace
 from typing import Callable, Dict, List, Optional
 
 from vehicle_sim.core.commands.drive_input import CarDriveInput
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
+from vehicle_sim.core.sensors.sampling import SampleSchedule
 from vehicle_sim.core.specs.errors import InvalidCommandError
 from vehicle_sim.core.traffic.objects import obstacle_objects, traffic_objects
+from vehicle_sim.core.world.pacing import RealTimeMeter
 from vehicle_sim.physics import SimulatedCar
 from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
 from vehicle_sim.physics.scene import build_scene
@@ -60,7 +68,7 @@ from vehicle_sim.ros.endpoints import (
     subscribe,
 )
 from vehicle_sim.ros.map_interfaces import (
-    lanes_frame,
+    fixed_frame,
     map_in_world,
     map_static_transform,
     MapOutputs,
@@ -75,7 +83,7 @@ from vehicle_sim.ros.sim_params import (
     world_spec,
 )
 from vehicle_sim.ros.time_step import TimeStepService
-from vehicle_sim.ros.traffic_interfaces import MARKERS_FRAME, object_topics, OBJECTS_FRAME
+from vehicle_sim.ros.traffic_interfaces import AT_OBJECTS_RATE, object_topics, objects_rate_hz
 from vehicle_sim.transport import create_node
 from vehicle_sim.transport.logger import ThrottledWarning
 from vehicle_sim.transport.names import resolve_name
@@ -84,6 +92,8 @@ NODE_NAME = 'automobile'
 
 # Timer period standing for "as fast as possible" (the port's timers need a period > 0).
 AS_FAST_AS_POSSIBLE_PERIOD_S = 1e-6
+# Wall time between two "behind real time" warnings [s] (each counts the ones it held back).
+BEHIND_WARNING_PERIOD_S = 5.0
 
 _FROM_CORE = {'float': float, 'int': int, 'bool': bool}
 
@@ -122,7 +132,8 @@ class AutomobileNode:
     """
 
     def __init__(self, args=None, *, transport: Optional[str] = None,
-                 parameter_overrides: Optional[Dict] = None, node=None, drive_inputs=True):
+                 parameter_overrides: Optional[Dict] = None, node=None, drive_inputs=True,
+                 wall_clock: Callable[[], float] = time.monotonic):
         """
         Build the world, the cars and every endpoint.
 
@@ -132,6 +143,8 @@ class AutomobileNode:
         :param node: an existing NodePort to use instead of creating one.
         :param drive_inputs: wire each car's cmd_vel and drive (False: a composing node drives
             the cars itself, as autoware_automobile does).
+        :param wall_clock: the monotonic wall clock [s] the pacing is measured with (tests
+            inject one).
         :raises InvalidParameterError: for a refused parameter or an invalid world file.
         :raises TransportError: for a refused parameter override.
         """
@@ -140,11 +153,14 @@ class AutomobileNode:
             parameter_overrides=parameter_overrides)
         self.world = None
         self._drive_inputs = drive_inputs
+        self._wall_clock = wall_clock
+        self._pace = None
         self._timer = None
         self._time_step = None
         self._control = None
         self._sensing = []
         self._traffic = None
+        self._objects_due = None
         self._gui_closed = False
         self._live = None
         try:
@@ -184,6 +200,9 @@ class AutomobileNode:
         if self._live is not None:
             self._live.show(self.scene)
         self._publish_every = settings.publish_every_steps
+        # Synchronous stepping has no target: the factor is measured (status line), never behind.
+        self._pace = RealTimeMeter(0.0 if settings.synchronous else settings.real_time_factor)
+        self._warn_behind = ThrottledWarning(self._logger, BEHIND_WARNING_PERIOD_S)
         self._stamp = stamp_builder(node.msg)
         # One queue for every vehicle's robot/time_step: they all advance the one world.
         self._time_step = TimeStepService(node, settings.time_step_ms, self.step_once,
@@ -284,7 +303,7 @@ class AutomobileNode:
             for spec in itf.SERVICES if spec.kind in handlers}, resolve).values())
         vehicle.services += serve_vehicle(node, itf.POSE_SERVICES, vehicle, resolve).values()
         if self.scene.lanes is not None:    # lane_state, lane_invasion, set_lane_pose
-            wire_car_lanes(node, vehicle, self.scene.lanes, lanes_frame(self.scene.spec),
+            wire_car_lanes(node, vehicle, self.scene.lanes, fixed_frame(self.scene.spec),
                            resolve)
         vehicle.drive = CarDriveInput(vehicle.logic, self.settings.cmd_vel_timeout_s)
         if self._drive_inputs:
@@ -329,7 +348,7 @@ class AutomobileNode:
         # /map, /map/lanes and their kin (ros/map_interfaces.py), for a world with a map.
         parts = self.scene.parts
         self._map_outputs = MapOutputs(self.node, parts.get('map'), parts.get('roads'),
-                                       lanes_frame(self.scene.spec))
+                                       fixed_frame(self.scene.spec))
         if self._map_outputs.summary:
             self._logger.info(self._map_outputs.summary)
         # The traffic rows (ros/traffic_interfaces.py): the objects for a world with traffic
@@ -337,10 +356,19 @@ class AutomobileNode:
         bodies = self.scene.parts.get('traffic')
         rows = object_topics(bodies is not None, bool(self.scene.spec.obstacles))
         self._traffic = None if not rows else SimpleNamespace(
-            objects_frame=OBJECTS_FRAME, markers_frame=MARKERS_FRAME,
+            frame=fixed_frame(self.scene.spec),
             colours=() if bodies is None else bodies.colours, bodies=bodies, stamp=None,
             objects=None, obstacles=())
         self._traffic_outputs = None if not rows else Outputs(self.node, rows, self._traffic)
+        if rows:     # at their own rate on simulated time (docs/traffic.md), from now on
+            spec = self.scene.spec
+            rate_hz = objects_rate_hz(self.settings.objects_rate_hz, spec.traffic)
+            self._objects_due = SampleSchedule.from_rate(rate_hz, self.settings.time_step_s,
+                                                         self.world.step_count)
+            if rate_hz != self.settings.objects_rate_hz:
+                self._logger.info(f'{spec.traffic.source}: objects_rate {rate_hz:g} Hz (the '
+                                  f"world's; parameter objects_rate "
+                                  f'{self.settings.objects_rate_hz:g} Hz not used)')
 
     @staticmethod
     def _bind(handler, spec, vehicle, name):
@@ -399,6 +427,8 @@ class AutomobileNode:
     def _on_step_timer(self):
         if not self._control.paused:     # /sim/pause
             self.step_once()
+        else:                            # held time is not falling behind
+            self._pace.restart()
 
     def step_once(self) -> float:
         """
@@ -420,6 +450,8 @@ class AutomobileNode:
                         'speed 0, brake 1')
             self.node.serve_pending()
             self._publish_step(time_s)
+            if self._pace.update(self._wall_clock(), time_s):
+                self._report_behind()
         except Exception:
             # The window closes asynchronously: whichever PyBullet call comes next fails.
             if not self.world.gui_closed:
@@ -429,6 +461,14 @@ class AutomobileNode:
             self.node.request_shutdown()
             return self.world.time_s
         return time_s
+
+    def _report_behind(self):
+        pace = self._pace
+        self._warn_behind.warn(
+            f'behind real time: {pace.factor:.2f}x achieved over the last '
+            f'{pace.window_wall_s:.1f} s of wall time, real_time_factor {pace.target:g} asked; '
+            'a step and its publishing take longer than its period (fewer subscribers, a '
+            'larger publish_period_ms or a lower objects_rate lighten it)')
 
     def step(self, count: int = 1) -> float:
         """Advance the world by ``count`` basic steps; return the simulated time [s]."""
@@ -462,15 +502,16 @@ class AutomobileNode:
             outputs.publish(EACH_PUBLISH, fleet)
             if self._live is not None:
                 self._live.publish(time_s, self._transforms)
-            traffic = self._traffic
-            if traffic is not None and self._traffic_outputs.wanted(EACH_PUBLISH):
-                traffic.stamp = stamp
-                bodies = traffic.bodies
-                traffic.objects = () if bodies is None else traffic_objects(
-                    bodies.manager, bodies.heights, since_s=bodies.since_update_s)
-                traffic.obstacles = obstacle_objects(self.scene.spec.obstacles,
-                                                     self._obstacle_pose)
-                self._traffic_outputs.publish(EACH_PUBLISH, traffic)
+        traffic = self._traffic
+        if (traffic is not None and self._objects_due.due(self.world.step_count)
+                and self._traffic_outputs.wanted(AT_OBJECTS_RATE)):
+            traffic.stamp = stamp
+            bodies = traffic.bodies
+            traffic.objects = () if bodies is None else traffic_objects(
+                bodies.manager, bodies.heights, since_s=bodies.since_update_s)
+            traffic.obstacles = obstacle_objects(self.scene.spec.obstacles,
+                                                 self._obstacle_pose)
+            self._traffic_outputs.publish(AT_OBJECTS_RATE, traffic)
         for vehicle in self._sensing:
             self._publish_sensors(vehicle)
 
@@ -534,6 +575,11 @@ class AutomobileNode:
                 return vehicle
         raise KeyError(f'no vehicle {namespace!r}; known: '
                        f'{sorted(v.spec.namespace for v in self._vehicles)}')
+
+    @property
+    def achieved_real_time_factor(self) -> Optional[float]:
+        """Simulated time per wall time over the last second of wall time; None before one."""
+        return self._pace.factor
 
     @property
     def paused(self) -> bool:

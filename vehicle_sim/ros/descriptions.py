@@ -20,7 +20,7 @@ One source for two users: the node (:mod:`.automobile`) and ``launch/automobile.
 needs the TF of every link, which robot_state_publisher computes from it and ``joint_states``).
 """
 
-from dataclasses import fields, replace
+from dataclasses import replace
 from typing import List, Sequence, Tuple
 
 from vehicle_sim.config import load_car
@@ -29,7 +29,7 @@ from vehicle_sim.core.specs.errors import VehicleSimError
 from vehicle_sim.physics.sensor_urdf import with_sensor_links
 from vehicle_sim.physics.urdf import car_urdf
 from vehicle_sim.ros.interfaces import frame_prefix
-from vehicle_sim.ros.sim_params import defaults, SimSettings, world_spec
+from vehicle_sim.ros.sim_params import AUTOMOBILE_PARAMETERS, SimSettings, world_spec
 
 
 def mounted_sensors(spec, sensors_value: Sequence[str], source: str):
@@ -67,9 +67,7 @@ def robot_descriptions(car_model='Car', world='', sensors=('',)) -> List[Tuple[s
 
     :raises InvalidParameterError: for an unknown car model, world or sensor name.
     """
-    values = defaults()
-    settings = SimSettings(**{f.name: tuple(values[f.name]) if isinstance(values[f.name], list)
-                              else values[f.name] for f in fields(SimSettings)})
+    settings = SimSettings(**{spec.attr: spec.default for spec in AUTOMOBILE_PARAMETERS})
     settings = replace(settings, car_model=car_model, world=world, sensors=tuple(sensors))
     return [(spec.namespace, vehicle_description(
                 spec, mounted_sensors(spec, settings.sensors,

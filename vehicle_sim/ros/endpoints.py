@@ -173,16 +173,24 @@ class MessageKit:
             found = self._builders[key] = builder(self.msg, *constants)
         return found
 
-    def serializer(self, builder, *constants):
+    def serializer(self, builder, *constants, own=None):
         """
         Return the transport's serializer standing in for ``builder``, or None.
 
         It takes the builder's constants and values and returns the message's bytes
         (``Publisher.publish_serialized``); one per (builder, constants), like builders.
+
+        :param own: the row's own serializer factory for ``builder`` (a type with several
+            builders, or one outside ``ros/messages.py``), used where the transport publishes
+            bytes (it has serializers); None: the transport's for the builder's type.
         """
         ros_type = m.BUILT_TYPES.get(builder)
-        factory = None if ros_type is None or self._serializer is None else \
-            self._serializer(ros_type)
+        if self._serializer is None:
+            factory = None
+        elif own is not None:
+            factory = own
+        else:
+            factory = None if ros_type is None else self._serializer(ros_type)
         if factory is None:
             return None
         key = (factory, constants)
@@ -192,7 +200,7 @@ class MessageKit:
         return found
 
 
-def converter(builder, values, constants=None):
+def converter(builder, values, constants=None, serializer=None):
     """
     Make an output row's converter from a message builder and a value reader.
 
@@ -200,6 +208,9 @@ def converter(builder, values, constants=None):
     :param values: ``values(ctx)`` -> the tuple ``args`` of ``build``, or None (nothing now).
     :param constants: ``constants(w)`` -> the builder's constant arguments (frame ids, names; a
         hashable tuple), read once at wiring; None: the builder takes none.
+    :param serializer: a serializer factory standing in for ``builder`` (same constants and
+        values; returns the bytes), for a builder the transport has none for; None: the
+        transport's, if any (:meth:`MessageKit.serializer`).
     :return: the factory ``converter(kit, w)`` -> ``convert(ctx)`` (``kit`` a MessageKit).
         Where the kit has a serializer for the builder, ``convert`` returns the message's
         bytes instead and its ``serialized`` attribute is True (:class:`Outputs` then publishes
@@ -207,7 +218,7 @@ def converter(builder, values, constants=None):
     """
     def factory(kit, w):
         fixed = constants(w) if constants is not None else ()
-        serialize = kit.serializer(builder, *fixed)
+        serialize = kit.serializer(builder, *fixed, own=serializer)
         build = serialize if serialize is not None else kit.builder(builder, *fixed)
 
         def convert(ctx):

@@ -20,7 +20,7 @@ A node whose scene has a map (``scene.parts['map']``, physics/map_layer.py) wire
 with its other latched rows. An occupancy grid publishes ``/map`` and ``/map_metadata`` as nav2
 map_server does (transient-local, reliable, depth 1; frame ``map``); a lane map (a lanelet2
 map, or a world's ``roads:``) publishes ``/map/lanes`` (visualization_msgs/MarkerArray, the
-same QoS; frame :func:`lanes_frame`). Every map adds the
+same QoS; frame :func:`fixed_frame`). Every map adds the
 ``map -> world`` transform to ``/tf_static`` (:func:`map_static_transform`): identity unless the
 world file's ``world_in_map`` says otherwise.
 
@@ -71,13 +71,16 @@ def map_rows(built) -> Tuple[Topic, ...]:
     return () if built is None else MAP_TOPICS[built.spec.type]
 
 
-def lanes_frame(spec) -> str:
+def fixed_frame(spec) -> str:
     """
-    Return the frame of a world's lane messages: ``map`` for a lanelet2 map, else ``world``.
+    Return the frame of a world's ground-truth messages: ``map`` (lanelet2 map), else ``world``.
 
-    A lanelet2 map's nodes are in the map frame (Autoware's), which is the world frame there
-    (core/map/kinds.py refuses a world_in_map other than the identity); roads are written in
-    the world frame.
+    The one rule for the lane messages (``/map/lanes``, ``lane_state``, ``lane_invasion``) and
+    the objects (``/perception/object_recognition/objects``, ``/sim/traffic/markers``): a frame
+    the node's tree has. A lanelet2 map's nodes are in the map frame (Autoware's), which is the
+    world frame there (core/map/kinds.py refuses a world_in_map other than the identity); roads,
+    obstacles and an occupancy grid's world are written in the world frame, and a world without
+    ``map:`` has no ``map`` frame (docs/maps.md).
     """
     return MAP_FRAME if getattr(spec.map, 'type', None) == 'lanelet2' else WORLD_FRAME
 
@@ -104,7 +107,7 @@ class MapOutputs:
     :param node: a transport NodePort.
     :param built: ``scene.parts.get('map')``.
     :param roads: ``scene.parts.get('roads')`` (a LaneMap of the world's roads:), or None.
-    :param frame: the frame of the lane messages (:func:`lanes_frame`).
+    :param frame: the frame of the lane messages (:func:`fixed_frame`).
     """
 
     def __init__(self, node, built, roads=None, frame=WORLD_FRAME):

@@ -37,6 +37,7 @@ from vehicle_sim.config import (  # noqa: F401 (re-exported)
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec, table_defaults
+from vehicle_sim.core.traffic.traffic_params import OBJECTS_RATE
 from vehicle_sim.physics import DEFAULT_FRICTION
 from vehicle_sim.ros import node_support
 from vehicle_sim.ros.endpoints import CMD_VEL_STAMPED_PARAMETER, CMD_VEL_TIMEOUT_PARAMETER
@@ -78,6 +79,7 @@ AUTOMOBILE_PARAMETERS: Tuple[ParamSpec, ...] = (
                   '(ignored when synchronous)'),
     ParamSpec('synchronous', kind='bool', default=False,
               doc='advance the world only on robot/time_step calls (Webots --synchronize)'),
+    OBJECTS_RATE,
     ParamSpec('friction', kind='float', default=DEFAULT_FRICTION, unit='1', gt=0.0,
               doc='tyre-road friction coefficient of the ground'),
     SENSORS_PARAMETER,
@@ -135,6 +137,7 @@ class SimSettings:
     gui: bool = False
     foxglove: int = 0
     foxglove_host: str = '127.0.0.1'
+    objects_rate_hz: float = OBJECTS_RATE.default
 
     @property
     def time_step_s(self) -> float:

@@ -17,7 +17,7 @@
 import os
 import sys
 import time
-from typing import Any, Dict
+from typing import Any, Dict, Optional
 
 from vehicle_sim.tools.command import CliError, EXIT_USAGE
 
@@ -30,12 +30,14 @@ _MODES = {-1: 'UNDEFINED', 0: 'SPEED', 1: 'TORQUE'}
 _INDICATORS = {0: 'off', 1: 'right', 2: 'left'}
 
 
-def status_line(time_s: float, status) -> str:
+def status_line(time_s: float, status, factor: Optional[float] = None) -> str:
     """
     Return the one-line status of a car.
 
     :param time_s: simulated time [s].
     :param status: a ``CarStatus`` (vehicle_sim.core.car.logic).
+    :param factor: the real-time factor the node achieved over the last second (simulated
+        time per wall time); None before the first second: shown as '-'.
     """
     mode = _MODES.get(int(status.control_mode), str(status.control_mode))
     if status.hazard_flashers:
@@ -48,8 +50,10 @@ def status_line(time_s: float, status) -> str:
         indicator += ' [' + ''.join(lit) + ']'
     rpm = f'{status.rpm:6.0f}' if int(status.control_mode) == 1 else '     -'
     speed = round(status.current_speed_kmh, 2) + 0.0   # no '-0.00' for a car at rest
+    achieved = '      -' if factor is None else f'{factor:6.2f}x'
     return (f't {time_s:9.2f} s | {speed:7.2f} km/h | rpm {rpm} | '
-            f'gear {status.gear:2d} | {mode:<9} | indicator {indicator}')
+            f'gear {status.gear:2d} | {mode:<9} | indicator {indicator} | '
+            f'real time {achieved}')
 
 
 class _StatusOutput:
@@ -245,7 +249,8 @@ def cmd_run(args) -> int:
         if not vehicles:
             return f't {app.world.time_s:9.2f} s | no vehicle'
         namespace = '' if '' in vehicles else sorted(vehicles)[0]
-        line = status_line(app.world.time_s, vehicles[namespace].logic.status())
+        line = status_line(app.world.time_s, vehicles[namespace].logic.status(),
+                           app.achieved_real_time_factor)
         if len(vehicles) > 1:
             line = f'[{namespace or "/"} +{len(vehicles) - 1}] ' + line
         return line

@@ -208,6 +208,55 @@ def tf_message(frames):
     return serialize
 
 
+def cdr_string(text: str) -> bytes:
+    """Return a CDR string's bytes: its uint32 length (NUL included), its UTF-8 and the NUL."""
+    data = text.encode('utf-8')
+    if b'\0' in data:
+        raise ValueError(f'a CDR string cannot hold a NUL character: {text!r}')
+    return struct.pack('<I', len(data) + 1) + data + b'\0'
+
+
+_ZEROS = tuple(bytes(n) for n in range(8))
+
+
+class CdrWriter:
+    """
+    Little-endian XCDR1 bytes of a message of variable shape, written part by part.
+
+    For messages whose layout changes with their content (sequences of structs): each
+    :meth:`pack` aligns to its first field and appends a ``struct.Struct``'s bytes, whose own
+    fields the caller lays out (explicit ``x`` padding, as in the factories above).
+    :meth:`data` returns the message's bytes, encapsulation header first.
+    """
+
+    __slots__ = ('_parts', '_offset')
+
+    U32 = struct.Struct('<I')
+
+    def __init__(self):
+        self._parts = [CDR_LE]
+        self._offset = 0
+
+    def pack(self, align: int, layout: struct.Struct, *values) -> None:
+        """Append ``layout.pack(*values)`` at the next offset aligned to ``align``."""
+        pad = -self._offset % align
+        if pad:
+            self._parts.append(_ZEROS[pad])
+        self._parts.append(layout.pack(*values))
+        self._offset += pad + layout.size
+
+    def raw(self, align: int, data: bytes) -> None:
+        """Append bytes packed before (a constant part) at the next offset aligned to ``align``."""
+        pad = -self._offset % align
+        if pad:
+            self._parts.append(_ZEROS[pad])
+        self._parts.append(data)
+        self._offset += pad + len(data)
+
+    def data(self) -> bytes:
+        return b''.join(self._parts)
+
+
 # ROS type -> serializer factory (the constants of the type's message builder).
 SERIALIZERS = {
     'rosgraph_msgs/msg/Clock': clock,

@@ -197,6 +197,25 @@ class Lane:
         return self.vertex_headings[k] + self.turns[k] * min(max(t_m / self.seg_len[k], 0.0),
                                                              1.0)
 
+    def centre_pose(self, s_m):
+        """
+        Return the centreline pose (x, y, yaw) at arc length ``s_m``, unchecked.
+
+        The hot path of predictions that walk along lanes and keep ``s_m`` in [0, length]
+        themselves; :meth:`LaneGraph.pose_at` checks its arguments and gives the same pose.
+        """
+        # segment_at, heading_at and wrap_angle_rad written out: the same arithmetic
+        s0 = self.s0
+        k = bisect.bisect_right(s0, s_m) - 1
+        last = len(s0) - 1
+        k = 0 if k < 0 else (last if k > last else k)
+        t = s_m - s0[k]
+        f = t / self.seg_len[k]
+        f = 0.0 if f < 0.0 else (1.0 if f > 1.0 else f)
+        yaw = self.vertex_headings[k] + self.turns[k] * f
+        return (self.xs[k] + self.ux[k] * t, self.ys[k] + self.uy[k] * t,
+                math.atan2(math.sin(yaw), math.cos(yaw)))
+
     def walk(self, x, y, k):
         """
         Project a point on the centreline, walking from segment ``k`` to the nearest one.

@@ -81,7 +81,7 @@ def _path(manager, v, horizon_s, step_s, since_s):
                 return tuple(poses)          # the lane ends: the prediction too
             s -= lanes[lane_id].length_m
             lane_id = nxt
-        poses.append(manager.graph.pose_at(lane_id, s))
+        poses.append(lanes[lane_id].centre_pose(s))     # s is on the lane: no check
     return tuple(poses)
 
 

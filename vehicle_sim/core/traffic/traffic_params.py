@@ -26,6 +26,7 @@ The form (every key optional)::
       spawn: {lanes: [100001, 100002], s_range: [0.0, 500.0], spacing: 30.0}
       idm: {time_headway: 1.5, min_gap: 2.0}       # core/traffic/idm.py
       mobil: {politeness: 0.2}                      # core/traffic/mobil.py
+      objects_rate: 10.0           # Hz of the objects and markers over ROS (null: the node's)
       placed:                                       # individually placed vehicles
         - {model: BmwX5, lanelet: 100001, s: 120.0, speed: 20.0, route: [100101, 100201]}
 
@@ -34,7 +35,7 @@ when the manager is built on the world's LaneGraph (core/traffic/manager.py), na
 file and field.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Optional, Tuple
 
 from vehicle_sim.core.specs.errors import InvalidParameterError
@@ -55,6 +56,16 @@ def _check_lane_ids(spec, value):
 
 
 LANE_IDS = register_kind('lane_ids', 'int[]', _check_lane_ids)
+
+# The rate of the traffic objects over ROS (PredictedObjects and their markers), declared once:
+# the automobile node's parameter ``objects_rate`` (ros/sim_params.py) is this row, a world's
+# ``traffic: objects_rate`` is this row made optional. 10 Hz: Autoware's perception publishes
+# its objects at 10 Hz, and 60 vehicles with predicted paths each step cost more than the step.
+OBJECTS_RATE = ParamSpec(
+    'objects_rate', 'objects_rate_hz', 'float', 10.0, 'Hz',
+    'rate of /perception/object_recognition/objects and /sim/traffic/markers on simulated time '
+    "(at the first basic step at or after each k / rate; Autoware's perception: 10 Hz)",
+    gt=0.0)
 
 TRAFFIC_SPECS = (
     ParamSpec('vehicles', 'vehicles', 'int', None, '', 'number of vehicles spawned at random '
@@ -82,6 +93,9 @@ TRAFFIC_SPECS = (
               le=1.0),
     ParamSpec('placed', 'placed', 'raw', None, '', 'individually placed vehicles (table below)',
               optional=True),
+    replace(OBJECTS_RATE, default=None, optional=True,
+            doc='rate of the objects and markers over ROS on simulated time (null: the '
+                "node's objects_rate parameter, 10 Hz by default); wins over the parameter"),
 )
 
 SPEED_FACTOR_SPECS = (
@@ -154,6 +168,7 @@ class TrafficSpec:
     update_period_s: float = 0.1
     placed: Tuple[PlacedVehicle, ...] = ()
     source: str = 'traffic'
+    objects_rate_hz: Optional[float] = None
 
     @property
     def all_models(self):
@@ -219,7 +234,7 @@ def traffic_from_dict(data, source, check_model=None) -> TrafficSpec:
         IdmParams.from_dict(values['idm'], f'{source}: idm'),
         MobilParams.from_dict(values['mobil'], f'{source}: mobil'),
         values['lane_change_duration_s'], values['lane_change_period_s'],
-        values['update_period_s'], tuple(entries), source)
+        values['update_period_s'], tuple(entries), source, values['objects_rate_hz'])
 
 
 def _check(check_model, model, where):
