@@ -155,7 +155,7 @@ class Director:
             self.monitors[name] = monitor
         self.collisions = {name: [] for name in self.vehicles}
         scene = world_scene(self.world, self.vehicles, self.spec.world.obstacles,
-                            lanes=getattr(sim, 'lanes', None),
+                            walls=getattr(sim, 'walls', ()), lanes=getattr(sim, 'lanes', None),
                             traffic=getattr(sim, 'traffic', None))
         for criterion in self.criteria:
             criterion.bind(scene)
