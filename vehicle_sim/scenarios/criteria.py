@@ -56,7 +56,12 @@ class CriterionResult:
     :param points_m: where the value was measured, for plots ((x, y) [m]; clearance: per
         obstacle, nearest first, the closest point of the vehicle and that of the obstacle;
         min_gap: the vehicle's front and the traffic vehicle's rear at the smallest gap, or
-        twice the contact point of a collision).
+        twice the contact point of a collision; no_collision: the first collision's contact
+        point).
+    :param at_s: the simulated time of the key moment (when the value was measured: the
+        smallest gap or clearance, the first collision), or None.
+    :param others: the other vehicles at that moment (min_gap's traffic vehicle, what
+        no_collision's vehicle hit).
     """
 
     name: str
@@ -66,6 +71,8 @@ class CriterionResult:
     unit: str
     detail: str
     points_m: Tuple[Tuple[float, float], ...] = ()
+    at_s: Optional[float] = None
+    others: Tuple[str, ...] = ()
 
 
 def common_specs():
@@ -213,7 +220,11 @@ class NoCollision(Criterion):
             return self._result(True, 0, 'no collision')
         first = ', '.join(f'{e.other} at {e.time_s:.2f} s' for e in self.events[:3])
         counted = f'{count} {self.UNIT_OF_ONE if count == 1 else self.UNIT}'
-        return self._result(False, count, f'{counted}: {first}')
+        event = self.events[0]
+        point = () if event.position_m is None else (tuple(event.position_m[:2]),)
+        return CriterionResult(self.name, self.KIND, False, count, self.UNIT_OF_ONE
+                               if count == 1 else self.UNIT, f'{counted}: {first}', point,
+                               event.time_s, (event.other,))
 
 
 class StayOnPath(Criterion):
@@ -336,10 +347,10 @@ class Clearance(Criterion):
         if self.contacts:
             return CriterionResult(self.name, self.KIND, False, 0.0, self.UNIT,
                                    f'touched {name} at {time_s:.2f} s (a collision: distance 0; '
-                                   f'bound {bound:g} m){others}', points)
+                                   f'bound {bound:g} m){others}', points, time_s)
         return CriterionResult(self.name, self.KIND, distance >= bound, distance, self.UNIT,
                                f'closest {distance:.3f} m to {name} at {time_s:.2f} s '
-                               f'(bound {bound:g} m){others}', points)
+                               f'(bound {bound:g} m){others}', points, time_s)
 
 
 class MinGap(Criterion):
@@ -418,11 +429,12 @@ class MinGap(Criterion):
             return CriterionResult(
                 self.name, self.KIND, False, gap, self.UNIT,
                 f'touched {event.other} at {event.time_s:.2f} s (a collision: the gap reached '
-                f'0 m; bound {bound:g} m){ahead}', () if point is None else (point, point))
+                f'0 m; bound {bound:g} m){ahead}', () if point is None else (point, point),
+                event.time_s, (event.other,))
         if self.worst is None:
             return self._result(True, None, f'no traffic vehicle ahead (bound {bound:g} m)')
         return CriterionResult(self.name, self.KIND, gap >= bound, gap, self.UNIT, measured,
-                               (on_vehicle, on_other))
+                               (on_vehicle, on_other), time_s, (name,))
 
 
 COMPARISONS = {'<': operator.lt, '<=': operator.le, '>': operator.gt, '>=': operator.ge,

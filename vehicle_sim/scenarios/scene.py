@@ -60,14 +60,17 @@ class Scene:
     :param traffic: returns the traffic vehicles now, each (name, x, y, yaw, length, width)
         of its box centre [m, rad]; None = the world has no traffic.
     :param lanes: the world's lane map (a core LaneGraph; the lane criteria read it), or None.
+    :param walls: an occupancy map's walls (:func:`map_walls`): fixed footprints too.
     """
 
     def __init__(self, outlines: Dict[str, Outline], fixed: Sequence[Footprint] = (),
                  moving: Callable[[], Iterable[Footprint]] = None,
-                 traffic: Callable[[], Iterable[tuple]] = None, lanes=None):
+                 traffic: Callable[[], Iterable[tuple]] = None, lanes=None,
+                 walls: Sequence[Footprint] = ()):
         self.lanes = lanes
+        self.walls = tuple(walls)
         self._outlines = dict(outlines)
-        self._fixed = tuple(fixed)
+        self._fixed = tuple(fixed) + self.walls
         self._moving = moving
         self.traffic = traffic
         self._boxes = np.array([bounding_box(f) for f in self._fixed], dtype=float).reshape(-1, 4)
@@ -157,7 +160,7 @@ def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
     :param lanes: the world's lane map (the built scene's ``lanes``), or None.
     :param traffic: the world's traffic (physics TrafficBodies), or None.
     """
-    fixed = [obstacle_footprint(spec) for spec in obstacles if spec.static] + list(walls)
+    fixed = [obstacle_footprint(spec) for spec in obstacles if spec.static]
     movable = [spec for spec in obstacles if not spec.static]
 
     def moving():
@@ -172,4 +175,4 @@ def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
 
     return Scene({name: handle.outline for name, handle in vehicles.items()}, fixed,
                  moving if movable else None, None if traffic is None else traffic_now,
-                 lanes)
+                 lanes, walls)
