@@ -314,11 +314,10 @@ class Clearance(Criterion):
         if self.outline is None:
             return
         corners = self.outline.corners(sample.x_m, sample.y_m, sample.yaw_rad)
-        cx = sum(x for x, _ in corners) / len(corners)
-        cy = sum(y for _, y in corners) / len(corners)
-        radius = max(math.hypot(x - cx, y - cy) for x, y in corners)
+        xs, ys = [x for x, _ in corners], [y for _, y in corners]
         within = {name: best[0] for name, best in self.nearest.items()}
-        for lower, footprint in self.scene.footprints_near((cx, cy), radius, within):
+        for lower, footprint in self.scene.footprints_near((min(xs), min(ys), max(xs), max(ys)),
+                                                           within):
             best = self.nearest.get(footprint.name)
             if best is not None and lower >= best[0]:
                 continue            # cannot come nearer than the nearest so far

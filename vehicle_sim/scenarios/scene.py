@@ -43,10 +43,11 @@ def bounding_box(footprint: Footprint):
     return min(xs), min(ys), max(xs), max(ys)
 
 
-def _box_distance(boxes, x, y):
-    """Return the distances [m] of a point to boxes (n, 4) along the axes (0 inside)."""
-    dx = np.maximum(np.maximum(boxes[:, 0] - x, x - boxes[:, 2]), 0.0)
-    dy = np.maximum(np.maximum(boxes[:, 1] - y, y - boxes[:, 3]), 0.0)
+def _box_distance(boxes, box):
+    """Return the distances [m] of boxes (n, 4) to a box, all along the axes (0 overlapping)."""
+    x0, y0, x1, y1 = box
+    dx = np.maximum(np.maximum(boxes[:, 0] - x1, x0 - boxes[:, 2]), 0.0)
+    dy = np.maximum(np.maximum(boxes[:, 1] - y1, y0 - boxes[:, 3]), 0.0)
     return np.hypot(dx, dy)
 
 
@@ -92,29 +93,28 @@ class Scene:
         """Return the names of the footprints (obstacles, 'map' for a map's walls), a set."""
         return {f.name for f in self.footprints()}
 
-    def footprints_near(self, centre, radius_m, within) -> Sequence[Tuple[float, Footprint]]:
+    def footprints_near(self, box, within) -> Sequence[Tuple[float, Footprint]]:
         """
-        Return the footprints now that may come nearer than a distance to a disc.
+        Return the footprints now that may come nearer than a distance to a box.
 
-        :param centre: the disc's centre (x, y) [m] (a vehicle outline's bounding circle).
-        :param radius_m: its radius [m].
+        :param box: (x_min, y_min, x_max, y_max) [m] along the axes, e.g. around a vehicle's
+            outline.
         :param within: {footprint name: distance [m]}: of a name in it, only the footprints
-            whose box along the axes is nearer than that to the disc (none at 0: nothing comes
+            whose box along the axes is nearer than that to ``box`` (none at 0: nothing comes
             nearer); all of the others.
-        :return: [(a lower bound of the distance to the disc [m], footprint)], smallest first.
+        :return: [(a lower bound of the distance to what ``box`` holds [m], footprint)],
+            smallest first.
         """
-        x, y = centre
         found = []
         if self._fixed:
-            lower = _box_distance(self._boxes, x, y) - radius_m
+            lower = _box_distance(self._boxes, box)
             limits = np.array([within.get(name, math.inf) for name in self._names])
             limits = limits[self._codes]
             for index in np.flatnonzero((lower < limits) & (limits > 0.0)):
                 found.append((float(lower[index]), self._fixed[index]))
         if self._moving is not None:
             for footprint in self._moving():
-                box = np.array([bounding_box(footprint)])
-                lower = float(_box_distance(box, x, y)[0]) - radius_m
+                lower = float(_box_distance(np.array([bounding_box(footprint)]), box)[0])
                 limit = within.get(footprint.name, math.inf)
                 if lower < limit and limit > 0.0:
                     found.append((lower, footprint))
