@@ -40,7 +40,7 @@ What it draws, each artist with a ``gid`` (``kind:name``) so that tests find it:
 
 The view holds the vehicles' paths, the obstacles, the criteria's shapes and the traffic
 vehicles a criterion names; lanes and walls are drawn where they fall in it. The axes are equal
-unless that would squeeze the view's short side below a quarter of the plot (a long straight
+unless that would squeeze the view's short side below 15 % of the plot (a long straight
 road): then the short side is stretched to fill it, its axis label says by how much, and a
 second panel (``gid`` ``zoom``) shows the key moment (the first failed criterion's, else the
 first) with equal axes.
@@ -67,7 +67,7 @@ _STILL_S = 0.5
 ANNOTATED_COLLISIONS = 3        # the first collisions of a vehicle named at their mark
 TRAFFIC_OUTLINED = 4            # at most this many traffic vehicles: every one's outlines
 MARGIN_M, MARGIN_FRACTION = 2.0, 0.08   # the view's margin: the larger of these (each axis)
-STRETCH_BELOW = 0.25            # equal axes unless the short side would fill less of the plot
+STRETCH_BELOW = 0.15            # equal axes unless the short side would fill less of the plot
 ZOOM_HALF_M = 15.0              # the key moment's panel: at least this either side of it
 ROAD_COLOUR, LINE_COLOUR, WALL_COLOUR = '0.9', '0.45', (0.55, 0.55, 0.6)
 BARRIER_TYPES = ('curbstone', 'road_border', 'wall')
@@ -457,9 +457,18 @@ def _zoom(fig, ax, result, moment, patches, interval_s):
     return zoom, window
 
 
+def _around(view):
+    """Return a square about the view, twice its long side: what equal axes may show of it."""
+    x0, x1, y0, y1 = view
+    half = max(x1 - x0, y1 - y0)
+    cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+    return cx - half, cx + half, cy - half, cy + half
+
+
 def _draw(ax, result, view, patches, interval_s):
-    _lanes(ax, result.lanes, view, patches)
-    _walls(ax, result.walls, view)
+    # the lanes and walls about the view: the axes may widen it to the plot's shape
+    _lanes(ax, result.lanes, _around(view), patches)
+    _walls(ax, result.walls, _around(view))
     _obstacles(ax, result.spec, patches)
     _criteria(ax, result, patches)
     _vehicles(ax, result, patches, interval_s)
