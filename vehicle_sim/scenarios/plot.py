@@ -64,7 +64,7 @@ _EPS_S = 1e-9
 # an end outline says since when the vehicle stands there when that is longer than this (a
 # traffic vehicle's pose changes only at the traffic's updates, every 0.1 s by default)
 _STILL_S = 0.5
-ANNOTATED_COLLISIONS = 3        # the first collisions of a vehicle named at their mark
+ANNOTATED_COLLISIONS = 1        # a vehicle's first collisions named at their mark
 TRAFFIC_OUTLINED = 4            # at most this many traffic vehicles: every one's outlines
 MARGIN_M, MARGIN_FRACTION = 2.0, 0.08   # the view's margin: the larger of these (each axis)
 STRETCH_BELOW = 0.15            # equal axes unless the short side would fill less of the plot
