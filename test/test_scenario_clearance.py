@@ -19,9 +19,17 @@ from pathlib import Path
 import re
 
 import pytest
+import yaml
 
-from vehicle_sim.core.geometry.footprint import circle_footprint, Outline, polygon_footprint
+from vehicle_sim.config import load_car
+from vehicle_sim.core.geometry.footprint import (
+    car_outline,
+    circle_footprint,
+    Outline,
+    polygon_footprint,
+)
 from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.world.collision import CollisionEvent
 from vehicle_sim.scenarios.criteria import CRITERIA, Sample, validate_criterion
 from vehicle_sim.scenarios.runner import run_scenario
 from vehicle_sim.scenarios.scene import Scene
@@ -121,3 +129,54 @@ def test_stop_before_obstacle_keeps_its_clearance_from_the_pole_and_the_wall():
     assert wall_m == pytest.approx(3.9, abs=0.1)
     reported = re.search(r'wall (\d+\.\d+) m', clearance.detail)
     assert float(reported.group(1)) == pytest.approx(wall_m, abs=0.01)
+
+
+def _race_track_run(tmp_path, steering_rad, duration_s):
+    # config/worlds/race_track.yaml: an occupancy map's walls, no obstacle; the car starts on
+    # the straight heading +x, between the walls' faces at y = 3.5 and (the cells' raster)
+    # y = -3.4 m
+    data = {'name': 'race_track_clearance', 'world': 'race_track', 'duration': duration_s,
+            'driver': {'commands': [{'t': 0.0, 'cruising_speed': 20.0,
+                                     'steering_angle': steering_rad}]},
+            'criteria': [{'kind': 'no_collision'}, {'kind': 'clearance', 'min': 0.5}]}
+    path = tmp_path / 'race_track_clearance.yaml'
+    path.write_text(yaml.safe_dump(data), encoding='utf-8')
+    return run_scenario(path)
+
+
+def test_clearance_measures_the_map_walls(tmp_path):
+    result = _race_track_run(tmp_path, 0.0, 2.0)           # straight on along y = 0
+    assert result.criterion('no_collision').passed
+    clearance = result.criterion('clearance')
+    half_width_m = car_outline(load_car('CitroenCZero')).y_max_m
+    assert clearance.passed
+    assert clearance.value == pytest.approx(3.4 - half_width_m, abs=0.01)
+    assert 'to map at' in clearance.detail
+    # the car's right side and the right wall's face
+    assert clearance.points_m[0][1] == pytest.approx(-half_width_m, abs=0.01)
+    assert clearance.points_m[1][1] == pytest.approx(-3.4, abs=1e-6)
+
+
+def test_clearance_fails_when_the_car_hits_a_map_wall(tmp_path):
+    # steering left on the straight: the car drives into the wall at y = 3.5 m
+    result = _race_track_run(tmp_path, -0.3, 4.0)
+    hit = result.criterion('no_collision')
+    assert not hit.passed and hit.detail.startswith('3 collisions: map at 2.57 s')
+    clearance = result.criterion('clearance')
+    assert not clearance.passed
+    assert clearance.value == 0.0
+    assert clearance.detail.startswith('touched map at 2.57 s (a collision: distance 0')
+    # the contact point, twice (vehicle and wall): on the wall's face
+    assert clearance.points_m[0] == clearance.points_m[1]
+    assert clearance.points_m[0][1] == pytest.approx(3.5, abs=0.15)
+
+
+def test_clearance_fails_on_a_collision_with_an_obstacle_whatever_the_bound():
+    criterion = _clearance(0.0, fixed=(WALL,))
+    criterion.observe(Sample(0.0, 14.99, 0.0, 0.0, 1.0))        # 0.01 m from the wall's face
+    criterion.collision(CollisionEvent(0.1, 'wall', 500.0, (19.5, 0.2, 0.4)))
+    criterion.collision(CollisionEvent(0.2, 'other_car', 500.0, (1.0, 1.0, 0.4)))  # not one
+    result = criterion.result()
+    assert (result.passed, result.value) == (False, 0.0)
+    assert result.detail == 'touched wall at 0.10 s (a collision: distance 0; bound 0 m)'
+    assert result.points_m == ((19.5, 0.2), (19.5, 0.2))

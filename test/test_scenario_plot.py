@@ -19,11 +19,13 @@ The runs are made up (a track driven by hand through the shipped scenarios' worl
 drawn element has a closed-form place; one CLI run writes the PNG a user asks for.
 """
 
+import math
 from pathlib import Path
 import subprocess
 import sys
 
 import pytest
+import yaml
 
 from vehicle_sim.config import load_car, load_robot
 from vehicle_sim.core.geometry.footprint import (
@@ -197,3 +199,128 @@ def test_cli_scenario_plot_of_stop_before_obstacle_writes_a_readable_png(tmp_pat
     assert out.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'
     height, width, _ = image.imread(str(out)).shape
     assert width >= 1000 and height >= 600
+
+
+CUT_IN = ROOT / 'scenarios' / 'cut_in.yaml'
+
+
+@pytest.fixture(scope='module')
+def cut_in():
+    result = run_scenario(CUT_IN)
+    fig = build_figure(result)
+    yield result, fig
+    plt.close(fig)
+
+
+def test_plot_of_the_cut_in_draws_every_vehicle_s_path_with_its_label(cut_in):
+    result, fig = cut_in
+    (car,) = _artists(fig, 'track:Car')
+    (traffic,) = _artists(fig, 'track:traffic_0')
+    assert (car.get_label(), traffic.get_label()) == ('Car (under test)', 'traffic_0 (traffic)')
+    track = result.traffic_tracks['traffic_0']
+    assert list(traffic.get_xdata()) == track.x_m and list(traffic.get_ydata()) == track.y_m
+    # the traffic car drove the fast lane (centre y = -1.875) and changed into the car's lane
+    assert track.y_m[0] == pytest.approx(-1.875, abs=0.01)
+    assert track.y_m[-1] == pytest.approx(-5.625, abs=0.05)
+    assert len(_artists(fig, 'outline:traffic_0')) >= 5
+
+
+def test_plot_of_the_cut_in_draws_the_lane_lines_as_marked(cut_in):
+    _, fig = cut_in
+    ax = fig.axes[0]
+    lines = [a for a in ax.lines if (a.get_gid() or '').startswith('lane-line:')]
+    # the straight's boundaries where it starts (x = 0), 3.75 m apart: the edges, the dashed
+    # lines between lanes, the centre line
+    starts = {round(float(a.get_ydata()[0]), 3): a.get_linestyle() for a in lines
+              if abs(a.get_xdata()[0]) < 1e-6}
+    assert starts == {-11.25: '-', -7.5: '--', -3.75: '--', 0.0: '-', 3.75: '--', 7.5: '--',
+                      11.25: '-'}
+    lanes = [p for p in ax.patches if (p.get_gid() or '').startswith('lane:')]
+    assert len(lanes) >= 6
+
+
+def test_plot_of_the_cut_in_marks_the_smallest_gap(cut_in):
+    result, fig = cut_in
+    gap = result.criterion('min_gap')
+    assert gap.at_s == pytest.approx(17.0) and gap.others == ('traffic_0',)
+    (ring,) = _artists(fig, 'moment:min_gap')
+    assert (ring.get_xdata()[0], ring.get_ydata()[0]) == gap.points_m[0]
+    assert ring.get_label() == f'min_gap: {gap.value:.4g} m at 17.00 s'
+    # the ring is at the car's front bumper at 17 s (4.5 m ahead of base_link)
+    car = result.tracks['Car']
+    index = car.time_s.index(pytest.approx(17.0))
+    assert gap.points_m[0][0] == pytest.approx(car.x_m[index] + 4.5, abs=1e-6)
+    (segment,) = _artists(fig, 'gap:min_gap')
+    (x0, x1), (y0, y1) = segment.get_xdata(), segment.get_ydata()
+    assert math.hypot(x1 - x0, y1 - y0) == pytest.approx(gap.value, abs=1e-9)
+    names = {a.get_gid() for a in fig.axes[0].patches}
+    assert {'moment-outline:min_gap:Car', 'moment-outline:min_gap:traffic_0'} <= names
+
+
+def test_plot_of_the_long_straight_road_stretches_y_and_zooms_on_the_gap(cut_in):
+    result, fig = cut_in
+    ax = fig.axes[0]
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    assert x1 - x0 > 550.0                  # the whole drive
+    assert y1 - y0 < (x1 - x0) / 10.0       # not equal axes: the lane change shows
+    assert ax.get_aspect() == 'auto' and 'stretched' in ax.get_ylabel()
+    (zoom,) = [a for a in fig.axes if a.get_gid() == 'zoom']
+    assert zoom.get_aspect() == 1.0
+    (gx0, gy0), (gx1, gy1) = result.criterion('min_gap').points_m
+    (zx0, zx1), (zy0, zy1) = zoom.get_xlim(), zoom.get_ylim()
+    assert zx0 < min(gx0, gx1) and max(gx0, gx1) < zx1 and zy0 < gy0 < zy1
+    assert zx1 - zx0 < 100.0
+
+
+def test_plot_of_a_collision_with_traffic_marks_the_contact(tmp_path):
+    data = yaml.safe_load(CUT_IN.read_text(encoding='utf-8'))
+    placed = data['world']['traffic']['placed'][0]
+    placed['change_at'], placed['speed_factor'] = 8.0, 0.4     # it swerves into the car
+    data['driver']['controller'] = str(ROOT / 'examples' / 'acc_controller.py')
+    path = tmp_path / 'cut_in_hit.yaml'
+    path.write_text(yaml.safe_dump(data), encoding='utf-8')
+    result = run_scenario(path)
+    (event,) = result.collisions['Car']
+    fig = build_figure(result)
+    try:
+        for name in ('no_collision', 'min_gap'):
+            (ring,) = _artists(fig, f'moment:{name}')
+            assert (ring.get_xdata()[0], ring.get_ydata()[0]) == event.position_m[:2]
+        assert _artists(fig, 'moment:min_gap')[0].get_label() == 'min_gap: touched at 9.33 s'
+        (outline,) = _artists(fig, 'moment-outline:min_gap:traffic_0')
+        track = result.traffic_tracks['traffic_0']
+        index = max(i for i, t in enumerate(track.time_s) if t <= 9.33 + 1e-9)
+        corners = track.outline.corners(track.x_m[index], track.y_m[index],
+                                        track.yaw_rad[index])
+        assert outline.get_xy()[:4].ravel().tolist() == pytest.approx(
+            [v for corner in corners for v in corner])
+    finally:
+        plt.close(fig)
+
+
+def test_plot_of_a_map_scenario_draws_its_walls_with_equal_axes(tmp_path):
+    # config/worlds/race_track.yaml's occupancy map; the car steers left into its wall
+    data = {'name': 'race_track_wall', 'world': 'race_track', 'duration': 4.0,
+            'driver': {'commands': [{'t': 0.0, 'cruising_speed': 20.0, 'steering_angle': -0.3}]},
+            'criteria': [{'kind': 'clearance', 'min': 0.5}]}
+    path = tmp_path / 'race_track_wall.yaml'
+    path.write_text(yaml.safe_dump(data), encoding='utf-8')
+    result = run_scenario(path)
+    fig = build_figure(result)
+    try:
+        ax = fig.axes[0]
+        (walls,) = [c for c in ax.collections if c.get_gid() == 'walls:map']
+        drawn = {tuple(map(tuple, p.vertices[:4].round(6))) for p in walls.get_paths()}
+        known = {tuple((round(x, 6), round(y, 6)) for x, y in w.vertices) for w in result.walls}
+        assert drawn and drawn <= known
+        # the wall the car touched is drawn, and the ring marks the contact
+        clearance = result.criterion('clearance')
+        x, y = clearance.points_m[0]
+        touched = [w for w in drawn if min(p[0] for p in w) - 0.2 <= x <= max(p[0] for p in w)
+                   + 0.2 and min(p[1] for p in w) - 0.2 <= y <= max(p[1] for p in w) + 0.2]
+        assert touched
+        (ring,) = _artists(fig, 'moment:clearance')
+        assert (ring.get_xdata()[0], ring.get_ydata()[0]) == (x, y)
+        assert ax.get_aspect() == 1.0 and [a.get_gid() for a in fig.axes] == [None]
+    finally:
+        plt.close(fig)

@@ -15,7 +15,10 @@
 
 """The cut-in scenario and the min_gap criterion (scenarios/cut_in.yaml, scenarios/criteria.py)."""
 
+import csv
 from pathlib import Path
+import subprocess
+import sys
 
 import pytest
 import yaml
@@ -117,3 +120,47 @@ def test_an_idm_actor_stops_behind_the_vehicle_ahead_a_waypoint_actor_hits_it(tm
     blind = actor_scenario(tmp_path, 'waypoints')
     assert not blind.passed
     assert blind.criterion('no_collision').value >= 1
+
+
+# scenarios/cut_in.yaml with the traffic car cutting in at 8 s at 40 % of the limit: it swerves
+# into the car's side (its centre beside the car's corridor all along), which hits it at 9.33 s
+HIT_VARIANT = ('world.traffic.placed.0.change_at=8', 'world.traffic.placed.0.speed_factor=0.4')
+# CLI sweep: interpreter start, one 30 s run of the cut-in (about 7 s)
+SWEEP_TIMEOUT_S = 300.0
+
+
+def test_min_gap_and_overtake_fail_when_the_car_hits_the_traffic_car(tmp_path):
+    data = yaml.safe_load(CUT_IN.read_text(encoding='utf-8'))
+    placed = data['world']['traffic']['placed'][0]
+    placed['change_at'], placed['speed_factor'] = 8.0, 0.4
+    data['criteria'].append({'kind': 'overtake', 'min': 1})
+    data['driver']['controller'] = str(ROOT / 'examples' / 'acc_controller.py')
+    path = tmp_path / 'cut_in_hit.yaml'
+    path.write_text(yaml.safe_dump(data), encoding='utf-8')
+    result = run_scenario(path)
+    hit = result.criterion('no_collision')
+    assert not hit.passed and hit.detail == '1 collision: traffic_0 at 9.33 s'
+    gap = result.criterion('min_gap')
+    assert not gap.passed
+    assert gap.value == 0.0                     # contact: the gap reached zero
+    assert 'touched traffic_0 at 9.33 s' in gap.detail
+    # the car drove on past the traffic car it had hit (which stands where it was hit):
+    # not an overtake
+    overtake = result.criterion('overtake')
+    assert not overtake.passed and overtake.value == 0
+    assert 'traffic_0 touched at 9.33 s' in overtake.detail
+
+
+def test_a_sweep_row_of_the_hit_has_min_gap_0_failed(tmp_path):
+    command = Path(sys.executable).with_name('vehicle-sim')
+    out = tmp_path / 'sweep'
+    args = [str(command), 'sweep', str(CUT_IN), '--out', str(out), '--no-progress']
+    for item in HIT_VARIANT:
+        args += ['--set', item]
+    run = subprocess.run(args, capture_output=True, text=True, timeout=SWEEP_TIMEOUT_S)
+    assert run.returncode == 1, run.stdout + run.stderr           # a case failed
+    with open(out / 'results.csv', encoding='utf-8') as file:
+        (row,) = list(csv.DictReader(file))
+    assert (row['status'], row['no_collision'], row['no_collision.passed']) == \
+        ('fail', '1', 'false')
+    assert (float(row['min_gap']), row['min_gap.passed']) == (0.0, 'false')

@@ -54,7 +54,14 @@ class CriterionResult:
     :param unit: its unit.
     :param detail: one line: what was measured against what.
     :param points_m: where the value was measured, for plots ((x, y) [m]; clearance: per
-        obstacle, nearest first, the closest point of the vehicle and that of the obstacle).
+        obstacle, nearest first, the closest point of the vehicle and that of the obstacle;
+        min_gap: the vehicle's front and the traffic vehicle's rear at the smallest gap, or
+        twice the contact point of a collision; no_collision: the first collision's contact
+        point).
+    :param at_s: the simulated time of the key moment (when the value was measured: the
+        smallest gap or clearance, the first collision), or None.
+    :param others: the other vehicles at that moment (min_gap's traffic vehicle, what
+        no_collision's vehicle hit).
     """
 
     name: str
@@ -64,6 +71,8 @@ class CriterionResult:
     unit: str
     detail: str
     points_m: Tuple[Tuple[float, float], ...] = ()
+    at_s: Optional[float] = None
+    others: Tuple[str, ...] = ()
 
 
 def common_specs():
@@ -211,7 +220,11 @@ class NoCollision(Criterion):
             return self._result(True, 0, 'no collision')
         first = ', '.join(f'{e.other} at {e.time_s:.2f} s' for e in self.events[:3])
         counted = f'{count} {self.UNIT_OF_ONE if count == 1 else self.UNIT}'
-        return self._result(False, count, f'{counted}: {first}')
+        event = self.events[0]
+        point = () if event.position_m is None else (tuple(event.position_m[:2]),)
+        return CriterionResult(self.name, self.KIND, False, count, self.UNIT_OF_ONE
+                               if count == 1 else self.UNIT, f'{counted}: {first}', point,
+                               event.time_s, (event.other,))
 
 
 class StayOnPath(Criterion):
@@ -278,43 +291,65 @@ class Clearance(Criterion):
     SPECS = (
         ParamSpec('min', 'min_m', 'float', REQUIRED, 'm', "smallest distance allowed between "
                   "the vehicle's footprint rectangle and any obstacle's footprint (seen from "
-                  'above)', ge=0.0),
+                  'above); touching one (a collision) fails whatever the bound', ge=0.0),
     )
 
     def __init__(self, *args):
         super().__init__(*args)
         self.outline = None
-        self.footprints = None
+        self.scene = None
         self.nearest = {}         # obstacle name: (distance, time, vehicle point, its point)
+        self.contacts = {}        # obstacle name: the first collision with it (CollisionEvent)
 
     def bind(self, scene):
         self.outline = scene.outline(self.vehicle)
-        self.footprints = scene.footprints
+        self.scene = scene
+
+    def collision(self, event):
+        if self.scene is not None and event.other not in self.contacts and \
+                event.other in self.scene.footprint_names():
+            self.contacts[event.other] = event
 
     def observe(self, sample):
         if self.outline is None:
             return
         corners = self.outline.corners(sample.x_m, sample.y_m, sample.yaw_rad)
-        for footprint in self.footprints():
-            distance, on_vehicle, on_other = clearance(corners, footprint)
+        xs, ys = [x for x, _ in corners], [y for _, y in corners]
+        within = {name: best[0] for name, best in self.nearest.items()}
+        for lower, footprint in self.scene.footprints_near((min(xs), min(ys), max(xs), max(ys)),
+                                                           within):
             best = self.nearest.get(footprint.name)
+            if best is not None and lower >= best[0]:
+                continue            # cannot come nearer than the nearest so far
+            distance, on_vehicle, on_other = clearance(corners, footprint)
             if best is None or distance < best[0]:
                 self.nearest[footprint.name] = (distance, sample.time_s, on_vehicle, on_other)
 
     def result(self):
         bound = self.values['min_m']
-        if not self.nearest:
+        nearest = dict(self.nearest)
+        for name, event in self.contacts.items():
+            point = None if event.position_m is None else tuple(event.position_m[:2])
+            nearest[name] = (0.0, event.time_s, point, point)
+        if not nearest:
             return self._result(True, None, f'no obstacle to keep {bound:g} m from')
-        ranked = sorted(self.nearest.items(), key=lambda item: item[1][0])
+        # the touched first (by time), then by distance
+        ranked = sorted(nearest.items(), key=lambda item: (
+            item[0] not in self.contacts, item[1][0], item[1][1] if item[0] in self.contacts
+            else 0.0))
         name, (distance, time_s, _, _) = ranked[0]
         others = ''.join(f'; {other} {d:.3f} m at {t:.2f} s' for other, (d, t, _, _)
                          in ranked[1:3])
-        # two points per obstacle (vehicle, obstacle), nearest first; none where they touched
+        # two points per obstacle (vehicle, obstacle), nearest first; none where they overlapped
         points = tuple(p for _, (_, _, on_vehicle, on_other) in ranked if on_vehicle is not None
                        for p in (on_vehicle, on_other))
+        if self.contacts:
+            return CriterionResult(self.name, self.KIND, False, 0.0, self.UNIT,
+                                   f'touched {name} at {time_s:.2f} s (a collision: distance 0; '
+                                   f'bound {bound:g} m){others}', points, time_s)
         return CriterionResult(self.name, self.KIND, distance >= bound, distance, self.UNIT,
                                f'closest {distance:.3f} m to {name} at {time_s:.2f} s '
-                               f'(bound {bound:g} m){others}', points)
+                               f'(bound {bound:g} m){others}', points, time_s)
 
 
 class MinGap(Criterion):
@@ -325,7 +360,9 @@ class MinGap(Criterion):
     SPECS = (
         ParamSpec('min', 'min_m', 'float', REQUIRED, 'm', 'smallest gap allowed between the '
                   "vehicle's front and the rear of a traffic vehicle ahead of it (its box "
-                  "overlapping the corridor of the vehicle's width)", ge=0.0),
+                  "overlapping the corridor of the vehicle's width); touching a traffic vehicle "
+                  '(a collision, from any side) is a gap of 0 and fails whatever the bound',
+                  ge=0.0),
         ParamSpec('after', 'after_s', 'float', 0.0, 's', 'checked from this simulated time on',
                   ge=0.0),
     )
@@ -334,11 +371,19 @@ class MinGap(Criterion):
         super().__init__(*args)
         self.outline = None
         self.traffic = None
-        self.worst = None           # (gap, time, other's name)
+        self.worst = None           # (gap, time, other's name, vehicle point, other's point)
+        self.contact = None         # the first collision with a traffic vehicle (CollisionEvent)
 
     def bind(self, scene):
         self.outline = scene.outline(self.vehicle)
         self.traffic = getattr(scene, 'traffic', None)
+
+    def collision(self, event):
+        if self.contact is not None or self.traffic is None or \
+                event.time_s < self.values['after_s'] - 1e-9:
+            return
+        if any(name == event.other for name, *_ in self.traffic()):
+            self.contact = event
 
     def observe(self, sample):
         if self.traffic is None or sample.time_s < self.values['after_s'] - 1e-9:
@@ -358,17 +403,37 @@ class MinGap(Criterion):
                 continue                # behind the vehicle's reference point: not ahead
             gap = ahead - half_along - front
             if self.worst is None or gap < self.worst[0]:
-                self.worst = (gap, sample.time_s, name)
+                # the gap's ends, on the line along the heading through the other's centre
+                # (within the vehicle's width)
+                lateral = min(max(side, right), left)
+
+                def world(along, c=c, s=s, x0=sample.x_m, y0=sample.y_m, lateral=lateral):
+                    return (x0 + c * along - s * lateral, y0 + s * along + c * lateral)
+
+                self.worst = (gap, sample.time_s, name, world(front), world(front + gap))
 
     def result(self):
         bound = self.values['min_m']
         if self.traffic is None:
             return self._result(False, None, 'the world has no traffic (traffic: in the world)')
+        measured = ''
+        if self.worst is not None:
+            gap, time_s, name, on_vehicle, on_other = self.worst
+            measured = f'smallest gap {gap:.3f} m to {name} at {time_s:.2f} s (bound {bound:g} m)'
+        if self.contact is not None:
+            event = self.contact
+            point = None if event.position_m is None else tuple(event.position_m[:2])
+            gap = 0.0 if self.worst is None else min(0.0, self.worst[0])
+            ahead = f'; ahead: {measured}' if measured else ''
+            return CriterionResult(
+                self.name, self.KIND, False, gap, self.UNIT,
+                f'touched {event.other} at {event.time_s:.2f} s (a collision: the gap reached '
+                f'0 m; bound {bound:g} m){ahead}', () if point is None else (point, point),
+                event.time_s, (event.other,))
         if self.worst is None:
             return self._result(True, None, f'no traffic vehicle ahead (bound {bound:g} m)')
-        gap, time_s, name = self.worst
-        return self._result(gap >= bound, gap, f'smallest gap {gap:.3f} m to {name} at '
-                                               f'{time_s:.2f} s (bound {bound:g} m)')
+        return CriterionResult(self.name, self.KIND, gap >= bound, gap, self.UNIT, measured,
+                               (on_vehicle, on_other), time_s, (name,))
 
 
 COMPARISONS = {'<': operator.lt, '<=': operator.le, '>': operator.gt, '>=': operator.ge,

@@ -19,7 +19,9 @@ The ``overtake`` criterion of scenarios: the vehicle passes traffic vehicles dri
 A traffic vehicle counts as passed once it has been wholly ahead of the vehicle's front and
 later wholly behind its rear, both measured along the vehicle's heading, while it drove the
 same way (headings within 90 degrees) and near it (its centre within ``lateral`` of the
-vehicle's axis). It reads the traffic from the run's scene (``scene.traffic``) like ``min_gap``.
+vehicle's axis), and the vehicle never touched it (a collision with it, at any time: driving on
+past a car it has hit is no overtake). It reads the traffic from the run's scene
+(``scene.traffic``) like ``min_gap``.
 Importing this module registers it in ``criteria.CRITERIA`` (schema.py imports it).
 """
 
@@ -36,7 +38,8 @@ class Overtake(Criterion):
     UNIT = 'vehicles'
     UNIT_OF_ONE = 'vehicle'
     SPECS = (
-        ParamSpec('min', 'min_count', 'int', 1, doc='traffic vehicles it must pass', ge=1),
+        ParamSpec('min', 'min_count', 'int', 1, doc='traffic vehicles it must pass (one it '
+                  'touched, a collision, does not count)', ge=1),
         ParamSpec('lateral', 'lateral_m', 'float', 8.0, 'm', "counts traffic vehicles whose "
                   "centre is within this of the vehicle's axis (about two lanes)", gt=0.0),
         ParamSpec('within', 'within_s', 'float', None, 's', 'deadline; null = the duration',
@@ -49,10 +52,17 @@ class Overtake(Criterion):
         self.traffic = None
         self.ahead = set()          # names seen wholly ahead of the vehicle's front
         self.passed = {}            # name -> time it was wholly behind the vehicle's rear
+        self.touched = {}           # name -> time of the vehicle's first collision with it
 
     def bind(self, scene):
         self.outline = scene.outline(self.vehicle)
         self.traffic = getattr(scene, 'traffic', None)
+
+    def collision(self, event):
+        if self.traffic is None or event.other in self.touched:
+            return
+        if any(name == event.other for name, *_ in self.traffic()):
+            self.touched[event.other] = event.time_s
 
     def observe(self, sample):
         if self.traffic is None:
@@ -79,12 +89,18 @@ class Overtake(Criterion):
         bound = self.values['min_count']
         if self.traffic is None:
             return self._result(False, None, 'the world has no traffic (traffic: in the world)')
-        count = len(self.passed)
-        if self.passed:
-            order = sorted(self.passed.items(), key=lambda item: item[1])
+        passed = {name: time_s for name, time_s in self.passed.items()
+                  if name not in self.touched}
+        count = len(passed)
+        if passed:
+            order = sorted(passed.items(), key=lambda item: item[1])
             listed = ', '.join(f'{name} at {time_s:.2f} s' for name, time_s in order)
         else:
             listed = f'none of the {len(self.ahead)} seen ahead'
+        touched = sorted(self.touched.items(), key=lambda item: item[1])
+        if touched:
+            listed += '; not counted: ' + ', '.join(f'{name} touched at {time_s:.2f} s'
+                                                    for name, time_s in touched)
         within = self.values['within_s'] or self.duration_s
         return self._result(count >= bound, count, f'passed {count} (at least {bound} within '
                                                    f'{within:g} s): {listed}')

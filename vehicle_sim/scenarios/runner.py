@@ -38,9 +38,9 @@ import runpy
 import sys
 import time
 import traceback
-from typing import Dict, List, Optional
+from typing import Dict, List, Optional, Tuple
 
-from vehicle_sim.core.geometry.footprint import Outline
+from vehicle_sim.core.geometry.footprint import Footprint, Outline
 from vehicle_sim.core.specs.errors import InvalidCommandError
 from vehicle_sim.core.world.collision import CollisionEvent
 from vehicle_sim.physics.sensors.collisions import CollisionMonitor
@@ -91,6 +91,10 @@ class ScenarioResult:
         cruise control holds a speed), each once per run, with its time and file line; a
         recording that stopped on a write error.
     :param recording: the MCAP file of the run's topics (``record``), or None.
+    :param traffic_tracks: each traffic vehicle's path while it drove (its box centre; its
+        outline its box).
+    :param lanes: the world's lane map (a core LaneGraph), or None.
+    :param walls: an occupancy map's walls (core Footprints), for plots.
     """
 
     spec: ScenarioSpec
@@ -107,6 +111,9 @@ class ScenarioResult:
     collisions: Dict[str, List[CollisionEvent]] = field(default_factory=dict)
     notes: List[str] = field(default_factory=list)
     recording: Optional[str] = None
+    traffic_tracks: Dict[str, Track] = field(default_factory=dict)
+    lanes: Optional[object] = None
+    walls: Tuple[Footprint, ...] = ()
 
     @property
     def passed(self):
@@ -143,6 +150,8 @@ class Director:
         self.actors = []
         self.monitors = {}
         self.tracks = {}
+        self.traffic_tracks = {}
+        self.scene = None
         self.collisions = {}
         self.digest = hashlib.sha256()
         self._commands = list(spec.driver.commands)
@@ -162,10 +171,11 @@ class Director:
             self.monitors[name] = monitor
         self.collisions = {name: [] for name in self.vehicles}
         scene = world_scene(self.world, self.vehicles, self.spec.world.obstacles,
-                            lanes=getattr(sim, 'lanes', None),
+                            walls=getattr(sim, 'walls', ()), lanes=getattr(sim, 'lanes', None),
                             traffic=getattr(sim, 'traffic', None))
         for criterion in self.criteria:
             criterion.bind(scene)
+        self.scene = scene
         self.tracks = {name: Track(outline=scene.outline(name)) for name in self.vehicles}
         self._measure(self.world.time_s)
 
@@ -229,6 +239,16 @@ class Director:
             for criterion in self.criteria:
                 if criterion.vehicle == name:
                     criterion.observe(sample)
+        if self.scene.traffic is not None:
+            for name, x, y, yaw, length, width in self.scene.traffic():
+                track = self.traffic_tracks.get(name)
+                if track is None:
+                    track = self.traffic_tracks[name] = Track(outline=Outline(
+                        -0.5 * length, 0.5 * length, -0.5 * width, 0.5 * width))
+                track.time_s.append(now_s)
+                track.x_m.append(x)
+                track.y_m.append(y)
+                track.yaw_rad.append(yaw)
 
     def close(self):
         self.world = None
@@ -355,7 +375,8 @@ def _run_once(spec, gui, progress, transport, foxglove=None, record=None, pace=0
                           time.monotonic() - start, director.tracks,
                           director.digest.hexdigest(), not served or kind != 'processes',
                           error, collisions=director.collisions, notes=director.notes,
-                          recording=record)
+                          recording=record, traffic_tracks=director.traffic_tracks,
+                          lanes=director.scene.lanes, walls=director.scene.walls)
 
 
 def _wait_for_client(sim, announce):

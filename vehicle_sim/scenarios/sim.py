@@ -36,6 +36,7 @@ import yaml
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.scenarios.criteria import Sample
+from vehicle_sim.scenarios.scene import map_walls
 from vehicle_sim.scenarios.yaml_lines import ScenarioError
 
 # One odometry row: time, pose (x, y, z, qx, qy, qz, qw), linear and angular velocity (world).
@@ -103,6 +104,7 @@ class LocalSim:
                                          gui=gui, robots=spec.robots, hooks=(director,))
         self.world = world = scene.world
         self.lanes = scene.lanes        # the lane criteria's lane map (None: none)
+        self.walls = map_walls(scene)   # an occupancy map's walls (Footprints)
         self.vehicles = {
             name: VehicleHandle(name, built.body, built.car,
                                 _seeded(built.spec.sensors, seed) if built.car is not None else ())
@@ -154,6 +156,7 @@ class ServedSim:
         self._temp = None
         self.vehicles = {}
         self.lanes = None               # the lane criteria's lane map (None: none)
+        self.walls = ()                 # an occupancy map's walls (Footprints)
         step_ms = spec.time_step_ms
 
         def tapped(name, overrides):
@@ -184,6 +187,7 @@ class ServedSim:
                                                  node=tapped(NODE_NAME, overrides))
                 world = self.automobile.world
                 self.lanes = self.automobile.scene.lanes
+                self.walls = map_walls(self.automobile.scene)
                 for vehicle in spec.world.vehicles:
                     built = self.automobile.scene.vehicles[vehicle.name]
                     self.vehicles[vehicle.name] = VehicleHandle(
@@ -202,7 +206,8 @@ class ServedSim:
                 if world is None:
                     world = node.world
                     # the obstacles (no car: no vehicles) and the lane map
-                    self.lanes = build_scene(spec.world, world).lanes
+                    built_scene = build_scene(spec.world, world)
+                    self.lanes, self.walls = built_scene.lanes, map_walls(built_scene)
                 self.vehicles[robot.name] = VehicleHandle(robot.name, node.robot)
             self.world = world
             world.add_body(director)
