@@ -177,11 +177,12 @@ def build_scene(spec: WorldSpec, world: Optional[World] = None, *,
         world = World(time_step_s=time_step_s, friction=friction, gui=gui)
     scene = Scene(world, spec)
     try:
-        with _naming_the_file(spec):
-            _build_bodies(scene, spec, robots, params, hooks, parts)
-        if mount is not None:
-            for vehicle in scene.vehicles.values():
-                vehicle.sensors = mount(vehicle, scene)
+        with world.rendering_paused():     # a GUI window draws the whole scene once, after
+            with _naming_the_file(spec):
+                _build_bodies(scene, spec, robots, params, hooks, parts)
+            if mount is not None:
+                for vehicle in scene.vehicles.values():
+                    vehicle.sensors = mount(vehicle, scene)
     except BaseException as error:
         if not owned:
             raise
