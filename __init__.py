@@ -37,8 +37,10 @@ def _installed_spec(name, checkout):
     for finder in sys.meta_path:
         find_spec = getattr(finder, 'find_spec', None)
         spec = find_spec(name, elsewhere) if find_spec is not None else None
-        if spec is not None and spec.loader is not None and spec.origin is not None:
-            return spec     # a namespace portion (no loader, no origin) is not the package
+        # A namespace portion (no loader, no origin) is not the package, nor is this file.
+        if spec is not None and spec.loader is not None and spec.origin is not None and \
+                os.path.realpath(spec.origin) != os.path.realpath(__file__):
+            return spec
     return None
 
 
