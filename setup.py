@@ -62,7 +62,8 @@ setup(
         ('share/' + package_name + '/config/robots', _data('config/robots/*.yaml')),
         ('share/' + package_name + '/config/worlds', _data('config/worlds/*.yaml')),
         ('share/' + package_name + '/config/maps',
-         _data('config/maps/*.yaml') + _data('config/maps/*.png')),
+         _data('config/maps/*.yaml') + _data('config/maps/*.png')
+         + _data('config/maps/*.osm')),
         ('share/' + package_name + '/config/rviz', _data('config/rviz/*.rviz')),
         ('share/' + package_name + '/config/foxglove', _data('config/foxglove/*.json')),
     ],

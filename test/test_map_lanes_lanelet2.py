@@ -25,6 +25,7 @@ import sys
 from lane_helpers import DEFAULT_MPS, LOCAL_SHIFT, ORIGIN, write_map
 import pytest
 
+from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.core.map.lane_invasion import LaneInvasionDetector
 from vehicle_sim.core.map.lane_state import LaneTracker
 from vehicle_sim.core.map.lanelet2_params import lanelet2_map_from_dict
@@ -181,6 +182,38 @@ def test_bad_files_are_refused_naming_the_file(tmp_path):
     for path, projector, match in cases:
         with pytest.raises(InvalidParameterError, match='w.yaml: map.file: .*' + match):
             load_lanelet2(str(path), ORIGIN, projector, DEFAULT_MPS, 'w.yaml: map.file')
+
+
+# What the refusals below tell the user to write.
+ORIGIN_HINT = ("set the world file's origin: near the map, e.g. origin: {latitude: 48.1, "
+               'longitude: 11.5}')
+
+
+def test_a_map_far_from_the_worlds_origin_is_refused_naming_the_origin_key(osm):
+    # A world file without origin: (latitude 0, longitude 0) and the map at 48.1 N, 11.5 E:
+    # on that origin's east-north-up plane its lanes would lie 4800 km away.
+    with pytest.raises(InvalidParameterError) as refused:
+        load_lanelet2(str(osm), GeodeticOrigin(), 'local_cartesian', DEFAULT_MPS,
+                      'w.yaml: map.file')
+    assert str(refused.value) == (
+        f"w.yaml: map.file: {osm}: its lanes lie 4,800 km from the world's origin (latitude 0, "
+        "longitude 0) with projector 'local_cartesian', which places the map's lat/lon around "
+        f'that origin: {ORIGIN_HINT}')
+
+
+def test_a_map_outside_the_utm_zone_of_the_worlds_origin_is_refused_naming_the_key(osm):
+    with pytest.raises(InvalidParameterError) as refused:
+        load_lanelet2(str(osm), GeodeticOrigin(), 'utm', DEFAULT_MPS, 'w.yaml: map.file')
+    assert str(refused.value) == (
+        f"w.yaml: map.file: {osm}: its nodes lie outside the UTM zone of the world's origin "
+        "(latitude 0, longitude 0), as lanelet2 says: 'Latitude 48.1, longitude 11.5 out of "
+        f"legal range for UTM zone 31': {ORIGIN_HINT}")
+
+
+def test_a_map_near_the_worlds_origin_is_taken(osm):
+    near = GeodeticOrigin(ORIGIN.latitude_deg + 0.5, ORIGIN.longitude_deg, 0.0)   # 56 km north
+    graph = load_lanelet2(str(osm), near, 'local_cartesian', DEFAULT_MPS)[0]
+    assert graph.lanes[2001].centerline[0][1] == pytest.approx(-55600.0, abs=200.0)
 
 
 def test_without_lanelet2_the_error_names_the_extra(monkeypatch, osm):

@@ -131,3 +131,13 @@ def test_set_lane_pose_puts_the_car_on_a_lane_and_refuses_places_off_it(car):
     assert states[-1].s == pytest.approx(20.0, abs=0.01)
     assert states[-1].offset == pytest.approx(0.5, abs=0.01)
     assert not wait_for(lambda: invasions, timeout_s=1.0, spin=car.node)
+
+
+def test_a_refused_set_lane_pose_says_where_and_why_once_in_answer_and_log(node, car):
+    refused = _set_lane_pose(car, 999, 10.0)
+    assert not refused.success
+    assert refused.message == ("refused: vehicle 'Car': set_lane_pose: lane 999 is not in the "
+                               'map; nothing moved')
+    assert wait_for(lambda: 'lane 999 ' in node.text())
+    logged = [line for line in node.text().splitlines() if 'lane 999 ' in line]
+    assert len(logged) == 1 and logged[0].endswith(f']: {refused.message}'), logged

@@ -42,6 +42,7 @@ pytest.importorskip('lanelet2', reason="lanelet2 is not installed (pip install "
                                        "'vehicle_sim[lanelet2]'; the test extra has it)")
 
 REPO = Path(__file__).resolve().parent.parent
+SHIPPED_LANELET2 = REPO / 'config' / 'worlds' / 'lanelet2.yaml'
 ON_2001 = {'name': 'Car', 'namespace': 'ego', 'model': 'ToyotaPrius',
            'pose': {'lanelet': 2001, 's': 10.0}}
 
@@ -98,6 +99,40 @@ def test_lanelet2_and_roads_worlds_give_scene_lanes_and_a_world_without_gives_no
         assert scene.lanes is None and scene.parts == {}
     finally:
         scene.world.close()
+
+
+def test_the_shipped_lanelet2_world_puts_the_car_at_rest_on_lanelet_2001():
+    scene = build_scene(load_world(str(SHIPPED_LANELET2), 'ToyotaPrius'))
+    try:
+        assert sorted(scene.lanes.lanes) == [2001, 2002, 2003, 2004, 2005, 2006]
+        assert scene.lanes.lanes[2001].successors == (2003,)
+        body = scene.vehicles['Car'].body
+        for _ in range(200):                   # 2 s: settled on its wheels
+            scene.world.step()
+        x, y, z = body.pose()[:3]
+        found = scene.lanes.locate(x, y, _yaw(body))
+        assert found.lane_id == 2001
+        assert found.s_m == pytest.approx(10.0, abs=0.01)
+        assert found.offset_m == pytest.approx(0.0, abs=0.01)
+        assert z == pytest.approx(0.0, abs=0.01)          # base_link on the ground, not falling
+        assert math.hypot(*body.velocity()[0]) < 0.01
+    finally:
+        scene.world.close()
+
+
+def test_a_lanelet2_world_without_origin_is_refused_naming_the_key(tmp_path):
+    data = yaml.safe_load(SHIPPED_LANELET2.read_text(encoding='utf-8'))
+    origin = data.pop('origin')
+    data['map']['file'] = str(REPO / 'config' / 'maps' / 'lanelet2_map.osm')
+    data['map'].pop('projector')                  # the default: local_cartesian
+    world = tmp_path / 'no_origin.yaml'
+    world.write_text(yaml.safe_dump(data), encoding='utf-8')
+    with pytest.raises(InvalidParameterError) as refused:
+        build_scene(load_world(str(world), 'ToyotaPrius'))
+    assert str(refused.value).endswith(
+        "set the world file's origin: near the map, e.g. origin: {latitude: "
+        f"{origin['latitude']:g}, longitude: {origin['longitude']:g}}}")
+    assert f'{world}: map.file: ' in str(refused.value)
 
 
 def test_the_road_surface_has_no_collision_shape_and_rays_pass_it(tmp_path):
@@ -319,3 +354,15 @@ def test_a_hosted_controller_reads_the_runs_lane_state(tmp_path):
     result = run_scenario(str(scenario))
     assert result.passed
     assert record.read_text() == '2001 10.000'
+
+
+@pytest.mark.parametrize('doc', ['README.md', 'docs/maps.md', 'docs/lanes.md'])
+def test_the_docs_lanelet2_examples_are_the_shipped_world(doc):
+    shipped = SHIPPED_LANELET2.read_text(encoding='utf-8').splitlines()
+    text = (REPO / doc).read_text(encoding='utf-8')
+    examples = [line for line in text.splitlines() if line.startswith('map: {type: lanelet2')]
+    assert examples and set(examples) == {line for line in shipped if line.startswith('map:')}
+    origins = [line.split('#')[0].rstrip() for line in text.splitlines()
+               if line.startswith('origin:')]
+    assert origins and set(origins) == {line for line in shipped if line.startswith('origin:')}
+    assert 'config/worlds/lanelet2.yaml' in text

@@ -23,12 +23,14 @@ import sys
 
 import pytest
 
-from vehicle_sim.config import load_car
+from vehicle_sim.config import load_car, load_world
 from vehicle_sim.core.geometry.chase_camera import eye_position
+from vehicle_sim.core.specs.errors import InvalidPoseError
 from vehicle_sim.physics import SimulatedCar, World
 from vehicle_sim.physics._pybullet import pybullet
 from vehicle_sim.physics.gui import (
     ChaseCamera,
+    FRAME_PERIOD_S,
     gui_unavailable_reason,
     GuiUnavailableError,
     KEY_CLOSER,
@@ -36,6 +38,7 @@ from vehicle_sim.physics.gui import (
     KEY_FOLLOW,
     KEY_NEXT,
 )
+from vehicle_sim.physics.scene import build_scene
 
 linux_only = pytest.mark.skipif(not sys.platform.startswith('linux'),
                                 reason='the X display check applies on Linux only')
@@ -150,3 +153,83 @@ def test_a_key_released_without_a_new_press_does_nothing(two_cars):
 def test_chase_camera_needs_a_target(two_cars):
     with pytest.raises(ValueError, match='at least one target'):
         ChaseCamera(two_cars[0], [])
+
+
+# ----------------------------------------------------------------------- building, drawing
+
+def _gui_flagged_world():
+    # A DIRECT world that takes itself for a GUI one: what the scene builder and the traffic
+    # decide from ``world.gui`` runs, and nothing is drawn (rendering switches are no-ops).
+    world = World()
+    world.gui = True
+    return world
+
+
+def _spy(monkeypatch, calls, name, label):
+    real = getattr(pybullet, name)
+
+    def spy(*args, **kwargs):
+        calls.append(label(*args))
+        return real(*args, **kwargs)
+    monkeypatch.setattr(pybullet, name, spy)
+
+
+def test_a_gui_scene_is_built_with_rendering_off_then_on_again(monkeypatch):
+    world = _gui_flagged_world()
+    calls = []
+    _spy(monkeypatch, calls, 'configureDebugVisualizer',
+         lambda flag, enable, *rest: ('rendering', enable)
+         if flag == pybullet.COV_ENABLE_RENDERING else ('other', flag))
+    _spy(monkeypatch, calls, 'createMultiBody', lambda *args: 'body')
+    try:
+        build_scene(load_world('highway_traffic', 'ToyotaPrius'), world=world)
+    finally:
+        world.close()
+    bodies = [i for i, call in enumerate(calls) if call == 'body']
+    switches = [(i, call[1]) for i, call in enumerate(calls) if call[0] == 'rendering']
+    assert len(bodies) > 50                     # roads, car, 50 traffic boxes
+    assert [enable for _, enable in switches] == [0, 1]
+    assert switches[0][0] < bodies[0] and bodies[-1] < switches[1][0]
+
+
+def test_a_refused_gui_scene_turns_rendering_on_again_and_a_direct_one_never_switches(
+        monkeypatch, tmp_path):
+    calls = []
+    _spy(monkeypatch, calls, 'configureDebugVisualizer',
+         lambda flag, enable, *rest: ('rendering', enable)
+         if flag == pybullet.COV_ENABLE_RENDERING else ('other', flag))
+    world = _gui_flagged_world()
+    inside = tmp_path / 'inside.yaml'
+    inside.write_text('vehicles:\n  - {name: Car}\nobstacles:\n  - {name: crate, shape: box, '
+                      'size: [2, 2, 2], position: [1.5, 0, 1]}\n', encoding='utf-8')
+    try:
+        with pytest.raises(InvalidPoseError):
+            build_scene(load_world(str(inside), 'Car'), world=world)
+    finally:
+        world.close()
+    assert calls == [('rendering', 0), ('rendering', 1)]
+    calls.clear()
+    build_scene(load_world('highway', 'ToyotaPrius')).world.close()
+    assert calls == []
+
+
+def test_traffic_boxes_are_placed_for_the_window_once_a_frame_not_every_step(monkeypatch):
+    world = _gui_flagged_world()
+    try:
+        traffic = build_scene(load_world('highway_traffic', 'ToyotaPrius'),
+                              world=world).parts['traffic']
+        everyone = list(range(len(traffic.body_ids)))
+        placed_at = []
+        real_move = traffic._move
+
+        def move(indices):
+            if list(indices) == everyone:           # every box: for the window (or a query)
+                placed_at.append(world.time_s)
+            real_move(indices)
+        monkeypatch.setattr(traffic, '_move', move)
+        for _ in range(60):                      # 0.6 s, no sensor or other query
+            world.step()
+    finally:
+        world.close()
+    gaps = [b - a for a, b in zip(placed_at, placed_at[1:])]
+    assert len(placed_at) >= 10 and min(gaps) >= FRAME_PERIOD_S - 1e-9, placed_at

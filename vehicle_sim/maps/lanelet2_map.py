@@ -53,6 +53,14 @@ _LINE_TYPES_BY_TAG = {'curbstone': 'curbstone', 'road_border': 'road_border',
                       'virtual': 'virtual'}
 
 
+# A map whose lanes lie farther than this from the world's origin on a lat/lon projector's plane
+# is refused [m]: at 100 km the east-north-up plane is 0.8 km above the ground, and PyBullet's
+# single-precision shapes lose millimetres. A world file without origin: puts the origin at
+# latitude 0, longitude 0, thousands of km from any real map.
+FAR_FROM_ORIGIN_M = 100_000.0
+UTM_ZONE_ERROR = 'out of legal range for UTM zone'
+
+
 class Lanelet2Unavailable(InvalidParameterError):
     """The lanelet2 package is not installed."""
 
@@ -101,6 +109,37 @@ def _projector(lanelet2, projector, origin):
     if projector == 'utm':
         return lanelet2.projection.UtmProjector(where)
     return lanelet2.projection.LocalCartesianProjector(where)
+
+
+def _first_node_lat_lon(path):
+    # (lat, lon) of the file's first node, or None (the file was checked to be OSM XML).
+    for _, element in ElementTree.iterparse(path, events=('start',)):
+        if element.tag == 'node' and 'lat' in element.attrib and 'lon' in element.attrib:
+            try:
+                return float(element.attrib['lat']), float(element.attrib['lon'])
+            except ValueError:
+                return None
+    return None
+
+
+def _origin_hint(path, origin):
+    """Return (the origin, as errors name it; what to set: the key, a value near the map)."""
+    near = _first_node_lat_lon(path)
+    example = '' if near is None else (
+        f', e.g. origin: {{latitude: {round(near[0], 4):g}, longitude: {round(near[1], 4):g}}}')
+    return (f"the world's origin (latitude {origin.latitude_deg:g}, longitude "
+            f"{origin.longitude_deg:g})", f"set the world file's origin: near the map{example}")
+
+
+def _check_near_origin(lanes, path, source, origin, projector):
+    """Refuse lanes that a lat/lon projector puts thousands of km from the world's origin."""
+    nearest_m = min(float(min(map(math.hypot, *lane.centerline.T))) for lane in lanes)
+    if nearest_m <= FAR_FROM_ORIGIN_M:
+        return
+    where, what = _origin_hint(path, origin)
+    raise InvalidParameterError(
+        f"{source}: {path}: its lanes lie {nearest_m / 1000.0:,.0f} km from {where} with "
+        f"projector '{projector}', which places the map's lat/lon around that origin: {what}")
 
 
 def _use_local_tags(lanelet_map, path, source):
@@ -167,6 +206,12 @@ def load_lanelet2(path, origin=GeodeticOrigin(), projector='local_cartesian',
     except RuntimeError as error:
         raise InvalidParameterError(f'{source}: {path}: lanelet2 cannot read it: '
                                     f'{error}') from None
+    zone = next((str(e) for e in errors if UTM_ZONE_ERROR in str(e)), None)
+    if zone is not None:      # the utm projector: the origin's zone is not the map's
+        where, what = _origin_hint(path, origin)
+        raise InvalidParameterError(
+            f"{source}: {path}: its nodes lie outside the UTM zone of {where}, as lanelet2 "
+            f"says: '{zone.rsplit(': ', 1)[-1]}': {what}")
     if errors:
         shown = '; '.join(str(e) for e in errors[:3])
         more = f' (and {len(errors) - 3} more)' if len(errors) > 3 else ''
@@ -188,6 +233,8 @@ def load_lanelet2(path, origin=GeodeticOrigin(), projector='local_cartesian',
         both = (lanelet,) if rules.isOneWay(lanelet) else (lanelet, lanelet.invert())
         for one in both:
             lanes.append(_lane(one, graph, rules, default_speed_limit_mps))
+    if projector != 'autoware_local':      # local_x/local_y are the map frame: no origin
+        _check_near_origin(lanes, path, source, origin, projector)
     return LaneGraph(lanes, f'{source}: {path}'), lanelet_map, graph
 
 

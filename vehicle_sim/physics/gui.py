@@ -52,9 +52,12 @@ KEY_FARTHER = '-'
 DEFAULT_WINDOW_SIZE = (1024, 768)
 MIN_WINDOW_SIZE = (320, 240)
 WINDOW_MARGIN = (40, 100)
-# Simulated time between camera updates and key polls [s]: in GUI mode a PyBullet call can wait
-# for the window to finish a frame, so the camera does not move each 10 ms step.
-CAMERA_PERIOD_S = 0.03
+# Simulated time between the window's updates [s]: the camera's moves and key polls, and the
+# traffic boxes' placing (physics/traffic_bodies.py). In GUI mode a PyBullet call can wait for
+# the window to finish a frame, so nothing is moved for it each 10 ms step; at real time this
+# is 33 frames a second.
+FRAME_PERIOD_S = 0.03
+CAMERA_PERIOD_S = FRAME_PERIOD_S
 SHORTCUTS = (
     (KEY_FOLLOW, 'chase camera on/off (off: the mouse moves the camera)'),
     (KEY_NEXT, 'follow the next vehicle'),

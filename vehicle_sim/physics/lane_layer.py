@@ -46,6 +46,7 @@ from vehicle_sim.core.map.lane_geometry import (
     surface_mesh,
 )
 from vehicle_sim.core.map.lane_graph import LaneGraph
+from vehicle_sim.core.specs.value_text import count
 
 LANES_BODY_NAME = 'lanes'
 SURFACE_COLOR = (0.3, 0.3, 0.32, 1.0)     # asphalt
@@ -79,9 +80,9 @@ class LaneMap:
 
     def describe(self) -> str:
         """One line for logs: where the lanes come from, how many, the barriers."""
-        return (f'{self.lanes.source}: {len(self.lanes.lanes)} lanes, '
-                f'{len(self.lanes.boundaries())} boundaries, {self.barrier_count} barrier '
-                'pieces')
+        return (f"{self.lanes.source}: {count(len(self.lanes.lanes), 'lane', 'lanes')}, "
+                f"{count(len(self.lanes.boundaries()), 'boundary', 'boundaries')}, "
+                f"{count(self.barrier_count, 'barrier piece', 'barrier pieces')}")
 
 
 def _chunks(mesh: Mesh):

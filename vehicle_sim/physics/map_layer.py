@@ -50,6 +50,7 @@ from vehicle_sim.core.map.kinds import OccupancyMapSpec
 from vehicle_sim.core.map.occupancy import describe_size, MapYaml, OccupancyGrid, wall_mask
 from vehicle_sim.core.map.rectangles import COLUMN, COLUMNS, merge_rectangles, ROW, ROWS
 from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.specs.value_text import count
 from vehicle_sim.core.world.params import WorldSpec
 from vehicle_sim.maps.occupancy_files import load_occupancy_grid
 from vehicle_sim.physics.lane_layer import build_lanelet2
@@ -88,7 +89,7 @@ class OccupancyMap:
     def describe(self) -> str:
         """One line for logs: the file, its size, its walls (every built map has one)."""
         return (f'{self.map_yaml.source}: {describe_size(self.grid)}, '
-                f'{len(self.rectangles)} wall rectangles')
+                f"{count(len(self.rectangles), 'wall rectangle', 'wall rectangles')}")
 
     def wall_at(self, x_m: float, y_m: float) -> bool:
         """Return True when the world-frame point lies on a wall cell."""

@@ -49,12 +49,13 @@ anything themselves (a test over the package checks that nothing outside ``physi
 or adds an obstacle).
 """
 
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Callable, Dict, Mapping, Optional, Protocol, Sequence
 
 from vehicle_sim.config import load_car, load_robot
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
-from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.specs.errors import InvalidParameterError, InvalidPoseError
 from vehicle_sim.core.world.params import RobotSpec, used_twice, WorldSpec
 from vehicle_sim.maps.lane_maps import with_lanes
 from vehicle_sim.physics.diff_robot import DiffRobotBody
@@ -176,24 +177,12 @@ def build_scene(spec: WorldSpec, world: Optional[World] = None, *,
         world = World(time_step_s=time_step_s, friction=friction, gui=gui)
     scene = Scene(world, spec)
     try:
-        for hook in hooks:
-            world.add_body(hook)
-        for obstacle in spec.obstacles:
-            scene.obstacles[obstacle.name] = world.add_obstacle(obstacle)
-        for car_spec in spec.vehicles:
-            car = SimulatedCar(world, params.get(car_spec.name) or load_car(car_spec.model),
-                               (car_spec.x_m, car_spec.y_m, car_spec.yaw_rad),
-                               name=car_spec.name)
-            scene.vehicles[car_spec.name] = SceneVehicle(car_spec.name, car_spec, car.body, car)
-        for robot in robots:
-            body = DiffRobotBody(world, params.get(robot.name) or load_robot(robot.model),
-                                 (robot.x_m, robot.y_m, robot.yaw_rad), name=robot.name)
-            scene.vehicles[robot.name] = SceneVehicle(robot.name, robot, body)
-        for part in parts:
-            scene.parts[part.name] = part.build(world, spec)
-        if mount is not None:
-            for vehicle in scene.vehicles.values():
-                vehicle.sensors = mount(vehicle, scene)
+        with world.rendering_paused():     # a GUI window draws the whole scene once, after
+            with _naming_the_file(spec):
+                _build_bodies(scene, spec, robots, params, hooks, parts)
+            if mount is not None:
+                for vehicle in scene.vehicles.values():
+                    vehicle.sensors = mount(vehicle, scene)
     except BaseException as error:
         if not owned:
             raise
@@ -204,3 +193,35 @@ def build_scene(spec: WorldSpec, world: Optional[World] = None, *,
             raise GuiClosedError('the PyBullet window was closed during start-up') from None
         raise
     return scene
+
+
+@contextmanager
+def _naming_the_file(spec):
+    # A vehicle refused for its start pose (inside an obstacle, a wall, a barrier): the refusal
+    # names the world file it comes from.
+    try:
+        yield
+    except InvalidPoseError as error:
+        if spec.source and not str(error).startswith(f'{spec.source}: '):
+            raise InvalidPoseError(f'{spec.source}: {error}') from None
+        raise
+
+
+def _build_bodies(scene, spec, robots, params, hooks, parts):
+    # The hooks, obstacles, cars, robots and parts of build_scene, in that order.
+    world = scene.world
+    for hook in hooks:
+        world.add_body(hook)
+    for obstacle in spec.obstacles:
+        scene.obstacles[obstacle.name] = world.add_obstacle(obstacle)
+    for car_spec in spec.vehicles:
+        car = SimulatedCar(world, params.get(car_spec.name) or load_car(car_spec.model),
+                           (car_spec.x_m, car_spec.y_m, car_spec.yaw_rad),
+                           name=car_spec.name)
+        scene.vehicles[car_spec.name] = SceneVehicle(car_spec.name, car_spec, car.body, car)
+    for robot in robots:
+        body = DiffRobotBody(world, params.get(robot.name) or load_robot(robot.model),
+                             (robot.x_m, robot.y_m, robot.yaw_rad), name=robot.name)
+        scene.vehicles[robot.name] = SceneVehicle(robot.name, robot, body)
+    for part in parts:
+        scene.parts[part.name] = part.build(world, spec)

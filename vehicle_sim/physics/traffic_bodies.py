@@ -24,16 +24,16 @@ traffic vehicle as a named obstacle (``traffic_<i>``), so that lidars, distance 
 cameras, collision monitors and teleport checks see it like any obstacle.
 
 Every ``update_period`` (a whole number of world steps) the step hook gives the manager our
-vehicles (footprint centre, heading, speed, size), advances it and puts each box at its
-vehicle's pose. Between updates a vehicle goes on straight at its speed, and its box is put
-there whenever something can tell: before each step for the vehicles near ours (the step's
-contacts), before anything reads the world (``World.sync_bodies``: rays, cameras, overlap
-checks, body states) for all of them, and after every step with a GUI window. Bullet never
-moves the boxes itself: a static rigid body costs its step almost nothing, where 50 moving
-bodies cost it some 20 us a step (docs/traffic.md, Cost). A vehicle waiting to re-enter the
-map is parked under the ground. After every step the contacts of our vehicles with the traffic
-vehicles near them (within NEAR_M at the last update) are read: a traffic vehicle touching one
-of ours stops for good where its box was (it stays there, an obstacle).
+vehicles (footprint centre, heading, speed, size), advances it and puts each box at its vehicle's
+pose. Between updates a vehicle goes on straight at its speed, and its box is put there whenever
+something can tell: before each step for the vehicles near ours (the step's contacts), before
+anything reads the world (``World.sync_bodies``: rays, cameras, overlap checks, body states) for
+all of them, and once a frame (gui.FRAME_PERIOD_S) with a GUI window, not each step. Bullet never
+moves the boxes itself: a static rigid body costs its step almost nothing, where 50 moving bodies
+cost it some 20 us a step (docs/traffic.md, Cost). A vehicle waiting to re-enter the map is parked
+under the ground. After every step the contacts of our vehicles with the traffic vehicles near them
+(within NEAR_M at the last update) are read: a traffic vehicle touching one of ours stops for good
+where its box was (it stays there, an obstacle).
 """
 
 from dataclasses import replace
@@ -47,6 +47,7 @@ from vehicle_sim.core.geometry.footprint import car_outline
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.manager import OurVehicle, TrafficManager
 from vehicle_sim.core.world.params import ObstacleSpec
+from vehicle_sim.physics.gui import FRAME_PERIOD_S
 
 GROUND_CLEARANCE_M = 0.15        # the box's underside above the ground
 PARK_DEPTH_M = -50.0             # where a vehicle off the map waits (under the ground)
@@ -116,8 +117,8 @@ class TrafficBodies:
     vehicle goes on straight at its speed: a box is put at that pose (the last update's plus
     the velocity times the time since) when something can tell: before each step for the
     vehicles near ours (their contacts), and before anything reads the world between steps
-    (:meth:`before_query`, called by ``World.sync_bodies``: rays, cameras, overlap checks), every
-    step with a GUI window.
+    (:meth:`before_query`, called by ``World.sync_bodies``: rays, cameras, overlap checks), and
+    once a frame (``FRAME_PERIOD_S`` of simulated time) with a GUI window.
 
     :param world: the World.
     :param manager: the core TrafficManager.
@@ -155,6 +156,7 @@ class TrafficBodies:
         self._placed_at = 0.0          # the time of the last update [s]
         self._synced_step = -1         # the step count at which every box was last put
         self._start_step = world.step_count    # updates every ``every`` steps from here
+        self._drawn_at = -math.inf     # when every box was last put for the GUI window [s]
         self._place()
         self._near, self._near_all = self._nearby([
             our_vehicle(body, outline) for body, outline in zip(self._ours, self._outlines)])
@@ -269,7 +271,9 @@ class TrafficBodies:
                 if not manager.vehicles[i].stopped and contacts(
                         bodyA=body.body_id, bodyB=body_ids[i], physicsClientId=cid):
                     self._stop(i)
-        if self.world.gui:                 # the window shows every box where it is
+        world = self.world
+        if world.gui and world.time_s - self._drawn_at >= FRAME_PERIOD_S - 1e-9:
+            self._drawn_at = world.time_s  # the window shows every box where it is, each frame
             self.before_query()
 
     def _stop(self, index):

@@ -55,8 +55,9 @@ def wire_car_lanes(node, vehicle, lanes, frame, resolve):
         except (InvalidParameterError, InvalidPoseError) as error:
             # Odd input, ROS column (docs/deviations.md): success=false, nothing moved.
             response.success = False
+            # The error names the vehicle and the service already (pose_on_lane's source).
             response.message = f'refused: {error}; nothing moved'
-            logger.warn(f'{where} {response.message}')
+            logger.warn(response.message)
         else:
             response.success = True
             response.message = (f'{vehicle.label} at rest on lane {request.lanelet} at s '

@@ -121,7 +121,7 @@ class MapOutputs:
         # One line for the node's log: what was loaded ('' without a map).
         loaded = [f'map {built.describe()}'] if built is not None else []
         if roads is not None:
-            loaded.append(f'roads {roads.describe()}')
+            loaded.append(roads.describe())     # its source names the world file and 'roads'
         self.summary = '' if not loaded else (
             '; '.join(loaded) + '; publishing ' + ', '.join(row.name for row in rows))
 

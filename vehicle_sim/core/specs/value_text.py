@@ -91,13 +91,14 @@ def brief(value, limit=SHOWN_CHARS) -> str:
 def _size(value):
     kind = type(value).__name__
     if isinstance(value, (str, bytes)):
-        return f'{kind} of {_count(len(value), "character", "characters")}'
+        return f'{kind} of {count(len(value), "character", "characters")}'
     if isinstance(value, dict):
-        return f'{kind} of {_count(len(value), "key", "keys")}'
+        return f'{kind} of {count(len(value), "key", "keys")}'
     if isinstance(value, (list, tuple, set, frozenset)):
-        return f'{kind} of {_count(len(value), "entry", "entries")}'
+        return f'{kind} of {count(len(value), "entry", "entries")}'
     return kind
 
 
-def _count(number, one, many):
+def count(number: int, one: str, many: str) -> str:
+    """Return ``number`` and the noun that agrees with it: ``1 wall rectangle``, ``2 lanes``."""
     return f'{number} {one if number == 1 else many}'
