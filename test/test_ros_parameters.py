@@ -307,7 +307,7 @@ def test_node_declares_every_parameter_of_its_table(name):
     ('diff_robot', {'x': math.nan}, 'x = nan: must be finite'),
     ('diff_robot', {'yaw': math.inf}, 'yaw = inf: must be finite'),
     ('diff_robot', {'y': -2e6}, 'y = -2000000.0: must be >= -1e+06 and <= 1e+06'),
-    ('diff_robot', {'time_step_ms': 0}, 'time_step_ms = 0: must be >= 1'),
+    ('diff_robot', {'time_step_ms': 0}, 'time_step_ms = 0: must be in 1 .. 1000'),
     ('ackermann_to_differential', {'control_rate_hz': 0.0}, 'control_rate_hz = 0.0: must be > 0'),
     ('ackermann_to_differential', {'wheel_base': -0.4}, 'wheel_base = -0.4: must be > 0'),
     ('ackermann_to_differential', {'wheel_joints': ['a_joint', 'b_joint']},

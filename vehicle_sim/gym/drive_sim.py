@@ -54,6 +54,7 @@ from vehicle_sim.core.learning.reward import (
 )
 from vehicle_sim.core.map.vehicle_lanes import VehicleLanes
 from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.specs.simulation import TIME_STEP_MS
 from vehicle_sim.core.world.params import RobotSpec, WorldSpec
 from vehicle_sim.gym.controls import make_control
 from vehicle_sim.gym.episode import CriteriaWatch, judged_criteria
@@ -61,7 +62,6 @@ from vehicle_sim.gym.observations import ego_parts, PART_FACTORIES, sensor_spec
 from vehicle_sim.gym.options import CAMERA, LIDAR, SOURCE, validate_options
 from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.physics.sensors.collisions import CollisionMonitor
-from vehicle_sim.physics.world import DEFAULT_TIME_STEP_S
 from vehicle_sim.scenarios.actors import make_actor
 from vehicle_sim.scenarios.schema import load_scenario, ScenarioSpec
 from vehicle_sim.scenarios.sim import VehicleHandle
@@ -129,7 +129,7 @@ class DriveSim:
             robots = robots + (RobotSpec(EGO_ROBOT_NAME, opts['robot'], x, y, yaw),)
         self.ego_name = self._ego_name(world_spec, robots, opts)
         step_ms = opts['time_step_ms'] or (self.scenario.time_step_ms if self.scenario
-                                           else DEFAULT_TIME_STEP_S * 1000.0)
+                                           else TIME_STEP_MS.default)
         criteria = ()
         if self.scenario is not None:
             criteria = judged_criteria([c for c in self.scenario.criteria

@@ -22,8 +22,11 @@ naming the key and the rule, before anything is built. docs/gym.md shows the tab
 (:func:`options_markdown`).
 """
 
+from dataclasses import replace
+
 from vehicle_sim.core.sensors.params import CameraSpec, LidarSpec, SENSOR_TYPES
 from vehicle_sim.core.specs.param_spec import parameter_table_markdown, ParamSpec, validate_table
+from vehicle_sim.core.specs.simulation import TIME_STEP_MS
 
 CONTROLS = ('auto', 'speed_steering', 'throttle_steering', 'twist')
 SOURCE = 'vehicle_sim/Drive-v0'
@@ -66,8 +69,8 @@ OPTION_SPECS = (
                   'twist for a robot'),
     ParamSpec('action_repeat', kind='int', default=1, ge=1, le=10000,
               doc='basic steps per env step, each with the same action'),
-    ParamSpec('time_step_ms', kind='float', default=None, unit='ms', gt=0.0, le=1000.0,
-              optional=True, doc="basic time step; null = the scenario's, else 10 ms"),
+    replace(TIME_STEP_MS, default=None, optional=True,
+            doc=f"basic time step; null = the scenario's, else {TIME_STEP_MS.default} ms"),
     ParamSpec('max_speed', kind='float', default=None, unit='m/s', gt=0.0, optional=True,
               doc="speed_steering: largest speed action; null = min(the car's top speed, "
                   '20 m/s)'),

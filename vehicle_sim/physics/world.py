@@ -36,17 +36,16 @@ import tempfile
 import pybullet
 
 from vehicle_sim.core.specs.errors import InvalidPoseError
+from vehicle_sim.core.specs.simulation import FRICTION, TIME_STEP_MS
 from vehicle_sim.physics.pybullet_stdout import quiet_stdout
 from vehicle_sim.physics.vehicle_body import VehicleBody
 
 # How long the GUI's start waits for PyBullet's window notices ('ven = ...', twice) to silence
 # them [s]; it returns as soon as they came (test_ros_gui_nodes checks stdout stays ours).
 GUI_NOTICE_WAIT_S = 10.0
-# Tyre-road friction coefficient of the ground (Bullet multiplies the two materials' values; car
-# wheels have 1.0). 0-100 km/h in time0To100 needs about 1.1 on the driven axle (docs/physics.md
-# "Grip"; TeslaModel3 is the hardest); Webots' vehicle worlds use coulombFriction 8.
-DEFAULT_FRICTION = 1.5
-DEFAULT_TIME_STEP_S = 0.010
+# The ground's friction and the basic step: the rows every entry point shares (core/specs).
+DEFAULT_FRICTION = FRICTION.default
+DEFAULT_TIME_STEP_S = TIME_STEP_MS.default / 1000.0
 DEFAULT_SUBSTEPS = 1
 GROUND_SIZE_M = 1000.0
 # Constraint force mixing of every constraint row; a small value keeps the direct solver's
@@ -129,15 +128,17 @@ class World:
         :param gui: open PyBullet's GUI instead of a DIRECT client.
         :param friction: tyre-road friction coefficient of the ground [-].
         :param gravity: gravity [m/s^2], acting along -z.
-        :raises ValueError: for a non-positive time step, sub-step count or friction.
+        :raises ValueError: for a non-positive time step or sub-step count, or a friction the
+            ``friction`` row refuses (core/specs/simulation.py).
         """
         substeps = DEFAULT_SUBSTEPS if substeps is None else substeps
         if not time_step_s > 0.0:
             raise ValueError(f'time_step_s = {time_step_s!r}: must be > 0')
         if int(substeps) != substeps or substeps < 1:
             raise ValueError(f'substeps = {substeps!r}: must be an integer >= 1')
-        if not friction > 0.0:
-            raise ValueError(f'friction = {friction!r}: must be > 0')
+        refusal = FRICTION.refusal(friction)
+        if refusal:
+            raise ValueError(refusal)
         self.time_step_s = float(time_step_s)
         self.substeps = int(substeps)
         self.substep_s = self.time_step_s / self.substeps

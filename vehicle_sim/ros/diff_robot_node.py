@@ -58,6 +58,7 @@ from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.core.sensors.sets import enable_sensors, selected_sensors, static_transforms
 from vehicle_sim.core.specs.errors import InvalidCommandError, VehicleSimError
 from vehicle_sim.core.specs.param_spec import ParamSpec
+from vehicle_sim.core.specs.simulation import TIME_STEP_MS
 from vehicle_sim.core.world.params import RobotSpec, WorldSpec
 from vehicle_sim.core.world.placement import WORLD_EXTENT_M
 from vehicle_sim.physics.diff_robot import load_robot
@@ -108,7 +109,7 @@ ROBOT_NODE_PARAMETERS = (
     ParamSpec('yaw', kind='float', default=0.0, unit='rad', doc='spawn heading, positive = left'),
     ParamSpec('synchronous', kind='bool', default=False,
               doc='true: the world advances only through robot/time_step; false: in real time'),
-    ParamSpec('time_step_ms', kind='int', default=10, unit='ms', ge=1, doc='basic time step'),
+    TIME_STEP_MS,
     ParamSpec('wheel_joints', kind='str_list', default=('',), empty=True,
               doc="wheel_velocities order; [''] = the preset's joints, left first"),
     ParamSpec('publish_tf', kind='bool', default=True,

@@ -37,8 +37,8 @@ from vehicle_sim.config import (  # noqa: F401 (re-exported)
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec, table_defaults
+from vehicle_sim.core.specs.simulation import FRICTION, TIME_STEP_MS
 from vehicle_sim.core.traffic.traffic_params import OBJECTS_RATE
-from vehicle_sim.physics import DEFAULT_FRICTION
 from vehicle_sim.ros import node_support
 from vehicle_sim.ros.endpoints import CMD_VEL_STAMPED_PARAMETER, CMD_VEL_TIMEOUT_PARAMETER
 from vehicle_sim.ros.sensor_interfaces import SENSORS_PARAMETER
@@ -69,8 +69,7 @@ AUTOMOBILE_PARAMETERS: Tuple[ParamSpec, ...] = (
               doc='initial y of the default vehicle in the world frame'),
     ParamSpec('initial_yaw', kind='float', default=0.0, unit='rad',
               doc='initial yaw of the default vehicle (REP 103, + = left)'),
-    ParamSpec('time_step_ms', kind='int', default=10, unit='ms', ge=1, le=1000,
-              doc='basic time step of the world (Webots basicTimeStep)'),
+    TIME_STEP_MS,
     ParamSpec('publish_period_ms', kind='int', default=0, unit='ms', ge=0, le=60000,
               doc='period of the topics (/clock excepted); 0 = each basic step; a multiple of '
                   'time_step_ms'),
@@ -80,8 +79,7 @@ AUTOMOBILE_PARAMETERS: Tuple[ParamSpec, ...] = (
     ParamSpec('synchronous', kind='bool', default=False,
               doc='advance the world only on robot/time_step calls (Webots --synchronize)'),
     OBJECTS_RATE,
-    ParamSpec('friction', kind='float', default=DEFAULT_FRICTION, unit='1', gt=0.0,
-              doc='tyre-road friction coefficient of the ground'),
+    FRICTION,
     SENSORS_PARAMETER,
     CMD_VEL_STAMPED_PARAMETER,
     CMD_VEL_TIMEOUT_PARAMETER,

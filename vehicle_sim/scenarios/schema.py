@@ -40,6 +40,7 @@ from vehicle_sim import config
 from vehicle_sim.core.sensors.sets import enable_sensors, selected_sensors
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec, REQUIRED, validate_table
+from vehicle_sim.core.specs.simulation import TIME_STEP_MS
 from vehicle_sim.core.specs.value_text import brief
 from vehicle_sim.core.world.params import RobotSpec, used_twice, WorldSpec
 from vehicle_sim.scenarios.criteria import criteria_from_list, CriterionSpec
@@ -70,7 +71,7 @@ SCENARIO_SPECS = (
               'runs', gt=0.0, le=MAX_DURATION_S),
     ParamSpec('seed', 'seed', 'int', 0, doc='seed of the sensor noise and of the '
               'controller (random, numpy, VEHICLE_SIM_SEED); --seed overrides it', ge=0),
-    ParamSpec('time_step_ms', 'time_step_ms', 'int', 10, 'ms', 'basic time step', ge=1),
+    TIME_STEP_MS,
     ParamSpec('actors', 'actors', 'raw', None, optional=True,
               doc='scripted vehicles following waypoints (table below)'),
     ParamSpec('driver', 'driver', 'raw', REQUIRED,

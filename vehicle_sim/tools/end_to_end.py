@@ -39,9 +39,10 @@ from typing import Callable, List, Optional, Sequence, Tuple
 from vehicle_sim.core.bridge.speed_limiter import SpeedLimiter
 from vehicle_sim.core.diffdrive.kinematics import integrate_pose
 from vehicle_sim.core.geometry.angles import wrap_angle_rad, yaw_from_quaternion
+from vehicle_sim.core.specs.simulation import TIME_STEP_MS
 from vehicle_sim.core.specs.units import kmh_to_mps
 
-DT_S = 0.010                 # basic time step [s]
+DT_S = TIME_STEP_MS.default / 1000.0   # basic time step [s]: the nodes' default
 COMMAND_PERIOD_S = 0.020     # Autoware control command period [s] (50 Hz)
 BRIDGE_CONTROL_RATE_HZ = 50.0
 COMMAND_TIMEOUT_S = 0.5

@@ -50,6 +50,8 @@ from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.core.map.lane_state import LaneTracker
 from vehicle_sim.core.sensors.sets import enable_sensors
+from vehicle_sim.core.specs.param_spec import check_value
+from vehicle_sim.core.specs.simulation import TIME_STEP_MS
 from vehicle_sim.core.world.params import VehicleSpec, WorldSpec
 from vehicle_sim.maps.lane_maps import with_lanes
 from vehicle_sim.physics.scene import build_scene, mount_suite
@@ -158,7 +160,8 @@ class Driver:
     :param world: a World to share with other vehicles; a new one (owned) when None.
     :param position: (x [m], y [m], yaw [rad]) of the car on the ground.
     :param gui: open PyBullet's GUI (owned world only).
-    :param time_step_ms: basic time step of an owned world [ms]; Webots' 10 ms by default.
+    :param time_step_ms: basic time step of an owned world [ms]: an integer in 1 .. 1000
+        (the ``time_step_ms`` row of core/specs/simulation.py); None = its default, 10 ms.
     :param duration_s: ``step()`` returns -1 once the simulation time reaches this [s];
         default: ``VEHICLE_SIM_DURATION`` or never.
     :param name: robot name of the car.
@@ -211,6 +214,8 @@ class Driver:
         if sensors is not None:
             specs = enable_sensors(specs, sensors, 'Driver(sensors=...)')
         self._owns_world = world is None
+        if time_step_ms is not None:
+            check_value(TIME_STEP_MS, time_step_ms, 'Driver', key_word='argument')
         if world is not None and time_step_ms is not None and \
                 abs(time_step_ms / 1000.0 - world.time_step_s) > 1e-12:
             raise ValueError(f"time_step_ms={time_step_ms} differs from the shared world's "
@@ -223,7 +228,7 @@ class Driver:
         spec = (replace(spec, vehicles=spec.vehicles[1:] + (driven,)) if spec is not None
                 else WorldSpec(GeodeticOrigin(), (driven,), ()))
         scene = build_scene(
-            spec, world, time_step_s=0.010 if time_step_ms is None else time_step_ms / 1000.0,
+            spec, world, time_step_s=(time_step_ms or TIME_STEP_MS.default) / 1000.0,
             gui=gui, params={name: params},
             mount=lambda built, scene: mount_suite(built, scene) if built.name == name else None)
         self.world = world = scene.world
