@@ -55,7 +55,7 @@ def test_bullet_yaw_is_the_heading_minus_a_quarter_turn():
     assert bullet_yaw_deg(math.pi / 2) == pytest.approx(0.0)
     assert bullet_yaw_deg(0.0) == pytest.approx(-90.0)
     assert bullet_yaw_deg(math.pi) == pytest.approx(90.0)
-    assert bullet_yaw_deg(-math.pi / 2) == pytest.approx(-180.0)
+    assert bullet_yaw_deg(-math.pi / 2) == pytest.approx(180.0)     # (-180, 180]
 
 
 def test_eye_matches_pybullet_view_matrix():
@@ -78,6 +78,14 @@ def test_follow_heading_is_a_first_order_lag_the_short_way_round():
     gained = math.radians(20) * (1.0 - math.exp(-1.0))
     assert new == pytest.approx(math.remainder(math.radians(170) + gained, 2 * math.pi))
     assert follow_heading(0.3, 2.0, 0.01, 0.0) == pytest.approx(2.0)
+
+
+@pytest.mark.parametrize('heading', [math.pi, -math.pi])
+def test_the_camera_heading_is_wrapped_into_minus_pi_pi_as_every_angle(heading):
+    # One wrap in the package (core/geometry/angles.py, ROS's normalize_angle): a half turn
+    # either way is +pi.
+    assert follow_heading(0.0, heading, 0.01, 0.0) == math.pi
+    assert follow_heading(-math.pi, heading, 0.01, 0.01) == math.pi
 
 
 def test_zoom_scales_the_distance_within_its_range():

@@ -52,6 +52,26 @@ def test_wrap_angle_rad_brings_an_angle_into_minus_pi_pi(angle, wrapped):
     assert wrap_angle_rad(angle) == pytest.approx(wrapped, abs=1e-12)
 
 
+@pytest.mark.parametrize('angle', [math.pi, -math.pi])
+def test_wrap_angle_rad_is_half_open_at_minus_pi_as_ros_angles_normalize_angle(angle):
+    # ROS's angles::normalize_angle: (-pi, pi]; a half turn either way is +pi, never -pi.
+    assert wrap_angle_rad(angle) == math.pi
+
+
+@pytest.mark.parametrize('angle', [0.3, -3.0, 1e-300, -math.pi + 1e-15])
+def test_wrap_angle_rad_returns_an_angle_in_the_interval_unchanged(angle):
+    assert wrap_angle_rad(angle) == angle
+
+
+def test_the_angle_wrap_is_written_once_in_the_package():
+    # atan2(sin a, cos a), (a + pi) % 2pi - pi and remainder(a, 2pi): wraps, with other ends.
+    wrap = re.compile(r'atan2\(\s*math\.sin\(|%\s*\(?2(\.0)?\s*\*\s*math\.pi|%\s*math\.tau|'
+                      r'remainder\(')
+    found = sorted(str(path.relative_to(PACKAGE)) for path in PACKAGE.rglob('*.py')
+                   if wrap.search(path.read_text(encoding='utf-8')))
+    assert found == ['core/geometry/angles.py']
+
+
 def test_the_yaw_formula_is_written_once_in_the_package():
     formula = re.compile(r'atan2\(\s*2(\.0)?\s*\*\s*\(\s*q?w\s*\*\s*q?z')
     found = [str(path.relative_to(PACKAGE)) for path in PACKAGE.rglob('*.py')

@@ -27,6 +27,7 @@ Importing this module registers it in ``criteria.CRITERIA`` (schema.py imports i
 
 import math
 
+from vehicle_sim.core.geometry.angles import wrap_angle_rad
 from vehicle_sim.core.specs.param_spec import ParamSpec
 from vehicle_sim.scenarios.criteria import CRITERIA, Criterion
 
@@ -74,7 +75,7 @@ class Overtake(Criterion):
         for name, x, y, yaw, length, width in self.traffic():
             if name in self.passed:
                 continue
-            turn = math.remainder(yaw - sample.yaw_rad, 2.0 * math.pi)
+            turn = wrap_angle_rad(yaw - sample.yaw_rad)
             dx, dy = x - sample.x_m, y - sample.y_m
             along, side = c * dx + s * dy, -s * dx + c * dy   # in the vehicle's frame
             if abs(turn) >= 0.5 * math.pi or abs(side) > self.values['lateral_m']:

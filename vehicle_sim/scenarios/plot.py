@@ -54,6 +54,7 @@ import math
 
 import numpy as np
 
+from vehicle_sim.core.geometry.angles import wrap_angle_rad
 from vehicle_sim.core.geometry.footprint import band_polygon, obstacle_footprint
 from vehicle_sim.core.map.lane_graph import SOLID_TYPES, UNMARKED_TYPES
 
@@ -131,7 +132,7 @@ def settled_index(track):
 
 def _moved(track, a, b):
     return (math.hypot(track.x_m[b] - track.x_m[a], track.y_m[b] - track.y_m[a]) > _MOVED_M
-            or abs(math.remainder(track.yaw_rad[b] - track.yaw_rad[a], 2.0 * math.pi))
+            or abs(wrap_angle_rad(track.yaw_rad[b] - track.yaw_rad[a]))
             > _TURNED_RAD)
 
 

@@ -20,6 +20,8 @@ Angles follow REP 103: counter-clockwise positive about z, radians.
 
 import math
 
+_TWO_PI = 2.0 * math.pi
+
 
 def yaw_from_quaternion(qx, qy, qz, qw):
     """
@@ -40,8 +42,12 @@ def yaw_from_quaternion(qx, qy, qz, qw):
 
 def wrap_angle_rad(angle_rad):
     """
-    Return an angle wrapped into (-pi, pi] [rad].
+    Return an angle wrapped into (-pi, pi] [rad]: the package's one angle wrap.
+
+    The interval of ROS's ``angles::normalize_angle``: a half turn either way is +pi. The IEEE
+    remainder by 2 pi is exact: an angle already in the interval comes back unchanged.
 
     :param angle_rad: any finite angle [rad].
     """
-    return math.atan2(math.sin(angle_rad), math.cos(angle_rad))
+    wrapped = math.remainder(angle_rad, _TWO_PI)
+    return math.pi if wrapped == -math.pi else wrapped

@@ -27,6 +27,7 @@ from dataclasses import dataclass, replace
 import math
 from typing import Tuple
 
+from vehicle_sim.core.geometry.angles import wrap_angle_rad
 from vehicle_sim.core.specs.errors import InvalidParameterError
 
 Vector = Tuple[float, float, float]
@@ -88,11 +89,6 @@ class ChaseView:
     target_m: Vector
 
 
-def wrap_angle(angle_rad: float) -> float:
-    """Return the angle wrapped to [-pi, pi)."""
-    return (angle_rad + math.pi) % (2.0 * math.pi) - math.pi
-
-
 def follow_heading(camera_rad: float, heading_rad: float, dt_s: float, lag_s: float) -> float:
     """
     Move the camera heading towards the vehicle heading by one first-order lag step.
@@ -100,17 +96,17 @@ def follow_heading(camera_rad: float, heading_rad: float, dt_s: float, lag_s: fl
     camera' = camera + wrap(heading - camera) * (1 - exp(-dt / lag)); lag 0 gives the heading.
     The shorter way round is taken, so a heading crossing ±pi does not spin the camera.
 
-    :return: the new camera heading [rad], wrapped to [-pi, pi).
+    :return: the new camera heading [rad], wrapped to (-pi, pi] (:func:`wrap_angle_rad`).
     """
     if lag_s <= 0.0:
-        return wrap_angle(heading_rad)
+        return wrap_angle_rad(heading_rad)
     gain = 1.0 - math.exp(-dt_s / lag_s)
-    return wrap_angle(camera_rad + wrap_angle(heading_rad - camera_rad) * gain)
+    return wrap_angle_rad(camera_rad + wrap_angle_rad(heading_rad - camera_rad) * gain)
 
 
 def bullet_yaw_deg(heading_rad: float) -> float:
     """Return PyBullet's camera yaw [deg] of a camera looking along ``heading_rad`` (REP 103)."""
-    return math.degrees(wrap_angle(heading_rad - math.pi / 2.0))
+    return math.degrees(wrap_angle_rad(heading_rad - math.pi / 2.0))
 
 
 def chase_view(position_m: Vector, heading_rad: float, settings: ChaseSettings) -> ChaseView:

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import math
 from typing import Optional, Sequence, Tuple
 
+from vehicle_sim.core.geometry.angles import wrap_angle_rad
 from vehicle_sim.core.geometry.frames import rotation_matrix
 
 Point = Tuple[float, float]
@@ -318,7 +319,7 @@ def band_polygon(points: Sequence[Point], half_width_m, arc_points=8) -> Polygon
         out = []
         for i, node in enumerate(nodes[1:-1], 1):
             before, after = angles[i - 1], angles[i]
-            turn = math.remainder(after - before, 2.0 * math.pi)
+            turn = wrap_angle_rad(after - before)
             if turn * sign < 0.0:       # outside of the bend: an arc
                 out += arc(node, before + sign * math.pi / 2, before + sign * math.pi / 2
                            + turn)

@@ -204,7 +204,7 @@ class Lane:
         The hot path of predictions that walk along lanes and keep ``s_m`` in [0, length]
         themselves; :meth:`LaneGraph.pose_at` checks its arguments and gives the same pose.
         """
-        # segment_at, heading_at and wrap_angle_rad written out: the same arithmetic
+        # segment_at and heading_at written out: the same arithmetic
         s0 = self.s0
         k = bisect.bisect_right(s0, s_m) - 1
         last = len(s0) - 1
@@ -214,7 +214,7 @@ class Lane:
         f = 0.0 if f < 0.0 else (1.0 if f > 1.0 else f)
         yaw = self.vertex_headings[k] + self.turns[k] * f
         return (self.xs[k] + self.ux[k] * t, self.ys[k] + self.uy[k] * t,
-                math.atan2(math.sin(yaw), math.cos(yaw)))
+                wrap_angle_rad(yaw))
 
     def walk(self, x, y, k):
         """

@@ -38,6 +38,7 @@ from typing import Dict, List, Tuple
 
 import numpy as np
 
+from vehicle_sim.core.geometry.angles import wrap_angle_rad
 from vehicle_sim.core.map.lane_graph import Boundary, Lane
 
 SAME_CENTRE_M = 1.0
@@ -110,8 +111,7 @@ def connector_lanes(approaches: List[Approach], lanes: Dict[int, Lane]) -> List[
                     math.hypot(a.centre[0] - b.centre[0], a.centre[1] - b.centre[1]) > \
                     SAME_CENTRE_M:
                 continue
-            turn = math.atan2(math.sin(b.heading_rad - a.heading_rad),
-                              math.cos(b.heading_rad - a.heading_rad))
+            turn = wrap_angle_rad(b.heading_rad - a.heading_rad)
             if math.radians(45.0) <= abs(turn) <= math.radians(135.0):
                 outer = -1 if turn < 0.0 else 0          # right: outermost; left: innermost
                 arriving = lanes[a.arriving[outer]]

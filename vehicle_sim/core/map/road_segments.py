@@ -54,6 +54,7 @@ from typing import Optional, Tuple
 
 import numpy as np
 
+from vehicle_sim.core.geometry.angles import wrap_angle_rad
 from vehicle_sim.core.geometry.frames import Pose
 from vehicle_sim.core.map.lane_graph import (
     Boundary,
@@ -291,8 +292,7 @@ def _road_lanes(road, road_index, source):
         pose = _segment_end(pose, segment)
     if road.closed:
         gap = math.hypot(pose[0] - road.start.x_m, pose[1] - road.start.y_m)
-        turn = abs(math.atan2(math.sin(pose[2] - road.start.yaw_rad),
-                              math.cos(pose[2] - road.start.yaw_rad)))
+        turn = abs(wrap_angle_rad(pose[2] - road.start.yaw_rad))
         if gap > CLOSE_GAP_M or turn > CLOSE_TURN_RAD:
             raise InvalidParameterError(
                 f'{source}: road {road.name!r} is closed but its end ({pose[0]:.3f}, '

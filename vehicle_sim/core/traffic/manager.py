@@ -47,6 +47,7 @@ import math
 import random
 from typing import Dict, List, Optional, Sequence, Tuple
 
+from vehicle_sim.core.geometry.angles import wrap_angle_rad
 from vehicle_sim.core.traffic.idm import advance, idm_acceleration
 from vehicle_sim.core.traffic.mobil import LaneChangeAccelerations, should_change
 from vehicle_sim.core.traffic.spawn import spawn_vehicles
@@ -167,7 +168,7 @@ class TrafficManager:
             yaw += math.atan2(lateral, v.speed_mps)
         off = v.offset_m
         if yaw > math.pi or yaw <= -math.pi:
-            yaw = math.atan2(math.sin(yaw), math.cos(yaw))
+            yaw = wrap_angle_rad(yaw)
         return (lane.xs[k] + ux * t - uy * off, lane.ys[k] + uy * t + ux * off, yaw)
 
     # ------------------------------------------------------------------ our vehicles
