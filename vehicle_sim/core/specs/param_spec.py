@@ -188,6 +188,42 @@ def table_defaults(specs):
     return {spec.key: spec.default for spec in specs}
 
 
+_FIELD_TYPES = {'float': float, 'int': int, 'bool': bool, 'str': str, 'enum': str}
+
+
+def table_dataclass(specs):
+    """
+    Make a class the frozen dataclass of a ParamSpec table: each default written once, in its row.
+
+    Class decorator. The class gets one field per row (the row's ``attr``, a type from its kind
+    and its default), ``SPECS`` (the table) and, unless it has its own,
+    ``from_dict(data, source)``: the validated instance of a mapping of the table's keys (missing
+    keys take the defaults; None is an empty mapping). Its own methods stay.
+
+    :param specs: the ParamSpec rows; each must have a default.
+    :raises InvalidParameterError: for a row without a default.
+    """
+    def make(cls):
+        annotations = dict(cls.__dict__.get('__annotations__', {}))
+        for spec in specs:
+            if spec.default is REQUIRED:
+                raise InvalidParameterError(f'table_dataclass({cls.__name__}): row '
+                                            f'{spec.key!r} has no default')
+            annotations[spec.attr] = _FIELD_TYPES.get(spec.kind, Any)
+            setattr(cls, spec.attr, spec.default)
+        cls.__annotations__ = annotations
+        cls.SPECS = specs
+        if 'from_dict' not in cls.__dict__:
+            cls.from_dict = classmethod(_from_dict)
+        return dataclass(frozen=True)(cls)
+    return make
+
+
+def _from_dict(cls, data, source):
+    """Validate a mapping of the table's keys (missing keys: the defaults)."""
+    return cls(**validate_table(cls.SPECS, data or {}, source))
+
+
 def validate_table(specs, data, source, defaults=None, what='parameters', key_word='field'):
     """
     Validate a mapping against a ParamSpec table: the one validator of every parameter table.

@@ -32,10 +32,9 @@ settles at the equilibrium gap ``s_e(v) = (s0 + v T) / sqrt(1 - (v / v0)^delta)`
 traffic simulators built on the model do.
 """
 
-from dataclasses import dataclass
 import math
 
-from vehicle_sim.core.specs.param_spec import ParamSpec, validate_table
+from vehicle_sim.core.specs.param_spec import ParamSpec, table_dataclass
 
 IDM_SPECS = (
     ParamSpec('time_headway', 'time_headway_s', 'float', 1.5, 's',
@@ -53,21 +52,13 @@ IDM_SPECS = (
 )
 
 
-@dataclass(frozen=True)
+@table_dataclass(IDM_SPECS)
 class IdmParams:
-    """Validated IDM parameters (see :data:`IDM_SPECS` for units and ranges)."""
+    """
+    Validated IDM parameters: a field per row of :data:`IDM_SPECS` (units, ranges, defaults).
 
-    time_headway_s: float = 1.5
-    min_gap_m: float = 2.0
-    acceleration_mps2: float = 1.5
-    deceleration_mps2: float = 2.0
-    exponent: float = 4.0
-    max_deceleration_mps2: float = 9.0
-
-    @classmethod
-    def from_dict(cls, data, source):
-        """Validate a mapping of :data:`IDM_SPECS` keys (missing keys: the defaults)."""
-        return cls(**validate_table(IDM_SPECS, data or {}, source))
+    ``IdmParams.from_dict(data, source)`` validates a mapping of the table's keys.
+    """
 
 
 def desired_gap(v_mps, dv_mps, p: IdmParams):

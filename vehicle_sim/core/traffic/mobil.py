@@ -31,7 +31,7 @@ without a follower contributes 0 to the incentive and nothing to the safety crit
 
 from dataclasses import dataclass
 
-from vehicle_sim.core.specs.param_spec import ParamSpec, validate_table
+from vehicle_sim.core.specs.param_spec import ParamSpec, table_dataclass
 
 MOBIL_SPECS = (
     ParamSpec('politeness', 'politeness', 'float', 0.2, '',
@@ -43,18 +43,13 @@ MOBIL_SPECS = (
 )
 
 
-@dataclass(frozen=True)
+@table_dataclass(MOBIL_SPECS)
 class MobilParams:
-    """Validated MOBIL parameters (see :data:`MOBIL_SPECS`)."""
+    """
+    Validated MOBIL parameters: a field per row of :data:`MOBIL_SPECS`.
 
-    politeness: float = 0.2
-    threshold_mps2: float = 0.2
-    safe_braking_mps2: float = 4.0
-
-    @classmethod
-    def from_dict(cls, data, source):
-        """Validate a mapping of :data:`MOBIL_SPECS` keys (missing keys: the defaults)."""
-        return cls(**validate_table(MOBIL_SPECS, data or {}, source))
+    ``MobilParams.from_dict(data, source)`` validates a mapping of the table's keys.
+    """
 
 
 @dataclass(frozen=True)
