@@ -27,6 +27,7 @@ import threading
 import time
 
 from conftest import peer_env
+import pytest
 
 from vehicle_sim.core.specs.units import stamp_to_seconds
 from vehicle_sim.ros import interfaces as itf
@@ -209,3 +210,60 @@ def client_node(name):
         yield node
     finally:
         node.shutdown()
+
+
+
+def node_fixture(node_args, scope='module', name='sim'):
+    """
+    Return a fixture running a node in a subprocess (:class:`NodeProcess`) while it is in use.
+
+    :param node_args: the node's command line, or ``node_args(request)`` giving it (for a file
+        another fixture writes: ``request.getfixturevalue``).
+    """
+    @pytest.fixture(scope=scope, name=name)
+    def node(request):
+        with NodeProcess(*(node_args(request) if callable(node_args) else node_args)) as process:
+            yield process
+    return node
+
+
+def tester_fixture(node_name, name='tester'):
+    """Return a module fixture yielding a client node (:func:`client_node`) named ``node_name``."""
+    @pytest.fixture(scope='module', name=name)
+    def tester():
+        with client_node(node_name) as node:
+            yield node
+    return tester
+
+
+def car_fixture(topics, namespace='', scope='module', node='sim', tester='tester', name='car'):
+    """
+    Return a fixture giving an AutomobileClient of the ``tester`` fixture on ``namespace``.
+
+    It starts the ``node`` fixture first and returns once the node publishes ``topics``.
+    """
+    @pytest.fixture(scope=scope, name=name)
+    def car(request):
+        request.getfixturevalue(node)
+        client = AutomobileClient(request.getfixturevalue(tester), namespace)
+        client.wait_matched(list(topics))
+        return client
+    return car
+
+
+def automobile_fixtures(tester_name, node_args, topics, namespace='', scope='module',
+                        names=('sim', 'tester', 'car')):
+    """
+    Return the three fixtures of a module testing the automobile node over the wire.
+
+    ``sim``: the node in a subprocess run with ``node_args`` (:func:`node_fixture`); ``tester``:
+    a client node (:func:`tester_fixture`); ``car``: an AutomobileClient of the tester on
+    ``namespace`` once the node publishes ``topics`` (:func:`car_fixture`). A module binds them
+    to the same names: ``sim, tester, car = automobile_fixtures(...)``.
+
+    :param scope: the scope of ``sim`` and ``car`` ('module' or 'class'; ``tester``: module).
+    :param names: the fixtures' names, in that order.
+    """
+    sim, tester, car = names
+    return (node_fixture(node_args, scope, sim), tester_fixture(tester_name, tester),
+            car_fixture(topics, namespace, scope, sim, tester, car))

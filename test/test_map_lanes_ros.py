@@ -20,7 +20,7 @@ s = 10 m, in a subprocess, synchronous. The test node subscribes once the node i
 subscriber, which gets /map/lanes because the topic is transient-local.
 """
 
-from automobile_helpers import AutomobileClient, client_node, NodeProcess, stamp_of, wait_for
+from automobile_helpers import automobile_fixtures, stamp_of, wait_for
 from lane_helpers import write_world
 import pytest
 
@@ -35,22 +35,17 @@ pytestmark = pytest.mark.transport
 NAMESPACE = 'laned'
 
 
-@pytest.fixture(scope='module')
-def node(tmp_path_factory):
-    world = write_world(tmp_path_factory.mktemp('lane_world'), [
+def _laned_world(request):
+    world = write_world(request.getfixturevalue('tmp_path_factory').mktemp('lane_world'), [
         {'name': 'Car', 'namespace': 'ego', 'model': 'ToyotaPrius',
          'pose': {'lanelet': 2001, 's': 10.0}}])
-    with NodeProcess('--ros-args', '-r', f'__ns:=/{NAMESPACE}', '-p', f'world:={world}',
-                     '-p', 'synchronous:=true') as process:
-        yield process
+    return ['--ros-args', '-r', f'__ns:=/{NAMESPACE}', '-p', f'world:={world}',
+            '-p', 'synchronous:=true']
 
 
-@pytest.fixture(scope='module')
-def car(node):
-    with client_node('lane_tester') as tester:
-        client = AutomobileClient(tester, f'{NAMESPACE}/ego')
-        client.wait_matched(['/clock'])       # the node is up: /map/lanes was published before
-        yield client
+# The car's client: the node is up once /clock comes (/map/lanes was published before).
+node, tester, car = automobile_fixtures('lane_tester', _laned_world, ['/clock'],
+                                        f'{NAMESPACE}/ego', names=('node', 'tester', 'car'))
 
 
 def test_a_late_subscriber_gets_map_lanes_with_surface_boundaries_and_centrelines(car):

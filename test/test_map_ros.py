@@ -23,7 +23,7 @@ transient-local, as nav2 map_server's.
 
 import math
 
-from automobile_helpers import AutomobileClient, client_node, NodeProcess, stamp_of, wait_for
+from automobile_helpers import automobile_fixtures, stamp_of, wait_for
 from map_helpers import (
     ORIGIN,
     RESOLUTION_M,
@@ -60,19 +60,12 @@ def world_file(tmp_path_factory):
     return path
 
 
-@pytest.fixture(scope='module')
-def node(world_file):
-    with NodeProcess('--ros-args', '-r', f'__ns:=/{NAMESPACE}', '-p', f'world:={world_file}',
-                     '-p', 'synchronous:=true') as process:
-        yield process
-
-
-@pytest.fixture(scope='module')
-def car(node):
-    with client_node('map_tester') as tester:
-        client = AutomobileClient(tester, NAMESPACE)
-        client.wait_matched(['/clock'])       # the node is up: /map was published before
-        yield client
+# The car's client: the node is up once /clock comes (/map was published before).
+node, tester, car = automobile_fixtures(
+    'map_tester', lambda request: ['--ros-args', '-r', f'__ns:=/{NAMESPACE}', '-p',
+                                   f'world:={request.getfixturevalue("world_file")}',
+                                   '-p', 'synchronous:=true'],
+    ['/clock'], NAMESPACE, names=('node', 'tester', 'car'))
 
 
 def _latched(car, row):

@@ -33,11 +33,10 @@ import pytest
 
 pytest.importorskip('mcap', reason="recording needs the mcap package (the 'record' extra)")
 
+from record_helpers import record_automobile  # noqa: E402
+
 from vehicle_sim.recording.bag_reader import iter_messages, read_info  # noqa: E402
 from vehicle_sim.recording.bag_writer import BagWriter, RecordingError  # noqa: E402
-from vehicle_sim.recording.recorder import record_node  # noqa: E402
-from vehicle_sim.ros.automobile import AutomobileNode, NODE_NAME  # noqa: E402
-from vehicle_sim.transport import create_node  # noqa: E402
 
 VEHICLE_SIM = os.path.join(os.path.dirname(sys.executable), 'vehicle-sim')
 CLI_TIMEOUT_S = 60.0
@@ -49,17 +48,12 @@ def vehicle_sim(*args):
 
 
 def _record(path, steps, namespace, opener=None, chunk_size=None):
-    node = create_node(NODE_NAME, args=['rt', '--ros-args', '-r', f'__ns:={namespace}',
-                                        '-p', 'synchronous:=true'], transport='dds')
-    # Smaller chunks than rosbag2's 1 MiB: several of them in a short run.
-    recorder = record_node(node, path, opener=opener, chunk_size=chunk_size)
-    app = AutomobileNode(node=node)
-    try:
+    def drive(app):
         app.vehicles[''].logic.set_cruising_speed_kmh(30.0)
-        time_s = app.step(steps)
-    finally:
-        error = recorder.close()
-        app.close()
+        return app.step(steps)
+    # Smaller chunks than rosbag2's 1 MiB: several of them in a short run.
+    time_s, recorder, error = record_automobile(path, namespace, drive, opener=opener,
+                                                chunk_size=chunk_size)
     return recorder, error, time_s
 
 

@@ -32,12 +32,9 @@ import pytest
 
 pytest.importorskip('mcap', reason="recording needs the mcap package (the 'record' extra)")
 
+from record_helpers import record_automobile, typestore  # noqa: E402
 from rosbags.rosbag2 import Reader  # noqa: E402
-from rosbags.typesys import get_types_from_msg, get_typestore, Stores  # noqa: E402
 
-from vehicle_sim.recording.recorder import record_node  # noqa: E402
-from vehicle_sim.ros.automobile import AutomobileNode, NODE_NAME  # noqa: E402
-from vehicle_sim.transport import create_node  # noqa: E402
 from vehicle_sim.transport.dds import DdsNode  # noqa: E402
 from vehicle_sim.transport.qos import QOS_TF_STATIC_LISTENER, QosProfile
 
@@ -50,9 +47,7 @@ pytestmark = pytest.mark.transport
 
 def _stamps_and_values(path, topic):
     with Reader(path) as reader:
-        store = get_typestore(Stores.EMPTY)
-        for connection in reader.connections:
-            store.register(get_types_from_msg(connection.msgdef.data, connection.msgtype))
+        store = typestore(reader.connections)
         found = []
         for connection, _, raw in reader.messages():
             if connection.topic == topic:
@@ -66,16 +61,11 @@ def _stamps_and_values(path, topic):
 def recording(tmp_path_factory):
     """10 s of the automobile node (namespace /rt_play), recorded in process."""
     path = str(tmp_path_factory.mktemp('play') / 'run.mcap')
-    node = create_node(NODE_NAME, args=['rt', '--ros-args', '-r', '__ns:=/rt_play',
-                                        '-p', 'synchronous:=true'], transport='dds')
-    recorder = record_node(node, path)
-    app = AutomobileNode(node=node)
-    try:
+
+    def drive(app):
         app.vehicles[''].logic.set_cruising_speed_kmh(30.0)
         app.step(STEPS)
-    finally:
-        assert recorder.close() is None
-        app.close()
+    assert record_automobile(path, '/rt_play', drive)[2] is None
     return path
 
 
@@ -164,9 +154,8 @@ def test_record_command_writes_what_a_running_node_publishes(tmp_path):
         # --use-sim-time: log times from /clock (subscribed to, not recorded), so each
         # message's log time is the simulated time it was published at, within a step or two
         # (/clock and the topic come through different readers).
-        store = get_typestore(Stores.EMPTY)
         speed = topics['/rt_rec/automobile/current_speed']
-        store.register(get_types_from_msg(speed.msgdef.data, speed.msgtype))
+        store = typestore([speed])
         for _, log_ns, raw in reader.messages([speed]):
             stamp = store.deserialize_cdr(raw, speed.msgtype).header.stamp
             assert abs(log_ns - (stamp.sec * 10**9 + stamp.nanosec)) <= 50_000_000

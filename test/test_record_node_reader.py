@@ -33,12 +33,8 @@ import pytest
 
 pytest.importorskip('mcap', reason="recording needs the mcap package (the 'record' extra)")
 
+from record_helpers import record_automobile, typestore  # noqa: E402
 from rosbags.rosbag2 import Reader  # noqa: E402
-from rosbags.typesys import get_types_from_msg, get_typestore, Stores  # noqa: E402
-
-from vehicle_sim.recording.recorder import record_node  # noqa: E402
-from vehicle_sim.ros.automobile import AutomobileNode, NODE_NAME  # noqa: E402
-from vehicle_sim.transport import create_node  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCRIPT = os.path.join(HERE, 'record_node_reader.cjs')
@@ -71,26 +67,19 @@ def node_modules(request):
 @pytest.fixture(scope='module')
 def recording(tmp_path_factory):
     path = str(tmp_path_factory.mktemp('node_reader') / 'run.mcap')
-    node = create_node(NODE_NAME, args=['rt', '--ros-args', '-r', '__ns:=/rt_node',
-                                        '-p', 'synchronous:=true'], transport='dds')
-    recorder = record_node(node, path)
-    app = AutomobileNode(node=node)
-    try:
+
+    def drive(app):
         app.vehicles[''].logic.set_cruising_speed_kmh(30.0)
         app.vehicles[''].logic.set_steering_angle(0.1)
         app.step(STEPS)
-    finally:
-        assert recorder.close() is None
-        app.close()
+    assert record_automobile(path, '/rt_node', drive)[2] is None
     return path
 
 
 def _rosbags_last(path):
     """Return {topic: (count, last message decoded)} as rosbags reads the file."""
     with Reader(path) as reader:
-        store = get_typestore(Stores.EMPTY)
-        for connection in reader.connections:
-            store.register(get_types_from_msg(connection.msgdef.data, connection.msgtype))
+        store = typestore(reader.connections)
         found = {}
         for connection, _, raw in reader.messages():
             count = found.get(connection.topic, (0, None))[0]

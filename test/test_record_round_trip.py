@@ -30,12 +30,9 @@ import pytest
 
 pytest.importorskip('mcap', reason="recording needs the mcap package (the 'record' extra)")
 
+from record_helpers import record_automobile, typestore  # noqa: E402
 from rosbags.rosbag2 import Reader  # noqa: E402
-from rosbags.typesys import get_types_from_msg, get_typestore, Stores  # noqa: E402
-
-from vehicle_sim.recording.recorder import record_node  # noqa: E402
-from vehicle_sim.ros.automobile import AutomobileNode, NODE_NAME  # noqa: E402
-from vehicle_sim.transport import create_node  # noqa: E402
+from rosbags.typesys import get_types_from_msg  # noqa: E402
 
 STEPS = 1000                    # 10 s at the default 10 ms step
 STEP_S = 0.01
@@ -52,13 +49,9 @@ EACH_STEP = {'/clock', '/tf', '/odom', '/joint_states', '/automobile/current_spe
 def recording(tmp_path_factory):
     """Record 10 s of the automobile node; return (path, truth by step, the node's topics)."""
     path = str(tmp_path_factory.mktemp('record') / 'run.mcap')
-    node = create_node(NODE_NAME, args=['rt', '--ros-args', '-r', '__ns:=/rt_round',
-                                        '-p', 'synchronous:=true'], transport='dds')
-    recorder = record_node(node, path)
     published = set()
-    node.tap_publishers(lambda topic, ros_type, qos: published.add(topic))   # names only
-    app = AutomobileNode(node=node)
-    try:
+
+    def drive(app):
         car = app.vehicles['']
         car.logic.set_cruising_speed_kmh(SPEED_KMH)
         body = app.scene.vehicles[next(iter(app.scene.vehicles))].body
@@ -66,18 +59,11 @@ def recording(tmp_path_factory):
         for _ in range(STEPS):
             time_s = app.step_once()
             truth.append((time_s, car.logic.status().current_speed_kmh, body.pose()[0]))
-    finally:
-        assert recorder.close() is None
-        app.close()
+        return truth
+    truth, _, error = record_automobile(
+        path, '/rt_round', drive, tap=lambda topic, ros_type, qos: published.add(topic))
+    assert error is None
     return path, truth, published
-
-
-def _typestore(reader):
-    # Types from the file's schemas only: each schema is a type followed by its dependencies.
-    store = get_typestore(Stores.EMPTY)
-    for connection in reader.connections:
-        store.register(get_types_from_msg(connection.msgdef.data, connection.msgtype))
-    return store
 
 
 def _name(topic):
@@ -103,7 +89,7 @@ def test_every_published_topic_is_recorded_with_the_count_of_its_rate(recording)
 def test_messages_decode_with_rosbags_to_the_values_the_node_published(recording):
     path, truth, _ = recording
     with Reader(path) as reader:
-        store = _typestore(reader)
+        store = typestore(reader.connections)
         speeds, clocks, odom_x = [], [], []
         for connection, timestamp, raw in reader.messages():
             name = _name(connection.topic)
@@ -195,6 +181,6 @@ def test_lz4_and_uncompressed_chunks_read_back(tmp_path, compression):
     info = read_info(path)
     assert info.compression == compression and info.chunk_count > 1
     with Reader(path) as reader:
-        store = _typestore(reader)
+        store = typestore(reader.connections)
         texts = [store.deserialize_cdr(raw, c.msgtype).data for c, _, raw in reader.messages()]
     assert texts == [f'hello {index}' for index in range(500)]

@@ -26,8 +26,10 @@ import os
 import struct
 
 from automobile_helpers import (
+    automobile_fixtures,
     AutomobileClient,
-    client_node,
+    car_fixture,
+    node_fixture,
     NodeProcess,
     stamp_of,
     wait_for,
@@ -71,33 +73,17 @@ def _param(spec, value=None):
     return pytest.param(spec, id=label) if value is None else pytest.param(spec, value, id=label)
 
 
-@pytest.fixture(scope='module')
-def sim(tmp_path_factory):
+def _default_car(request):
     """Run the default car: synchronous from a params file, the model from ``-p``."""
-    path = tmp_path_factory.mktemp('automobile') / 'params.yaml'
+    path = request.getfixturevalue('tmp_path_factory').mktemp('automobile') / 'params.yaml'
     path.write_text('/**:\n  ros__parameters:\n    synchronous: true\n    time_step_ms: 10\n')
-    with NodeProcess('--ros-args', '--params-file', str(path), '-p',
-                          'car_model:=ToyotaPrius') as process:
-        yield process
+    return ['--ros-args', '--params-file', str(path), '-p', 'car_model:=ToyotaPrius']
 
 
-@pytest.fixture(scope='module')
-def two_cars():
-    with NodeProcess('--ros-args', '-p', 'world:=two_cars', '-p', 'synchronous:=true') as process:
-        yield process
-
-
-@pytest.fixture(scope='module')
-def tester():
-    with client_node('automobile_tester') as node:
-        yield node
-
-
-@pytest.fixture(scope='module')
-def car(sim, tester):
-    client = AutomobileClient(tester)
-    client.wait_matched(FLOAT_TOPICS + ['/clock'])
-    return client
+sim, tester, car = automobile_fixtures('automobile_tester', _default_car,
+                                       FLOAT_TOPICS + ['/clock'])
+two_cars = node_fixture(['--ros-args', '-p', 'world:=two_cars', '-p', 'synchronous:=true'],
+                        name='two_cars')
 
 
 @pytest.fixture(scope='module')
@@ -274,18 +260,8 @@ def test_discovery_info_lists_the_node_with_every_table_endpoint(car, raw):
 
 # ------------------------------------------------------------------------------- two cars
 
-@pytest.fixture(scope='module')
-def car1(two_cars, tester):
-    client = AutomobileClient(tester, 'car1')
-    client.wait_matched(['odom'])
-    return client
-
-
-@pytest.fixture(scope='module')
-def car2(two_cars, tester):
-    client = AutomobileClient(tester, 'car2')
-    client.wait_matched(['odom'])
-    return client
+car1 = car_fixture(['odom'], 'car1', node='two_cars', name='car1')
+car2 = car_fixture(['odom'], 'car2', node='two_cars', name='car2')
 
 
 def test_two_car_world_serves_each_namespace_independently(car1, car2):

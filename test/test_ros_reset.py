@@ -61,8 +61,10 @@ import math
 import time
 
 from automobile_helpers import (
+    automobile_fixtures,
     AutomobileClient,
-    client_node,
+    car_fixture,
+    node_fixture,
     NodeProcess,
     stamp_of,
     wait_for,
@@ -121,24 +123,10 @@ def world_file(tmp_path_factory):
     return path
 
 
-@pytest.fixture(scope='class')
-def sim(world_file):
-    with NodeProcess('--ros-args', '-p', 'synchronous:=true', '-p',
-                          f'world:={world_file}') as process:
-        yield process
-
-
-@pytest.fixture(scope='module')
-def tester():
-    with client_node('reset_tester') as node:
-        yield node
-
-
-@pytest.fixture(scope='class')
-def car(sim, tester):
-    client = AutomobileClient(tester)
-    client.wait_matched(['odom', '/tf', 'joint_states', '/clock'] + FLOAT_TOPICS)
-    return client
+sim, tester, car = automobile_fixtures(
+    'reset_tester', lambda request: ['--ros-args', '-p', 'synchronous:=true', '-p',
+                                     f'world:={request.getfixturevalue("world_file")}'],
+    ['odom', '/tf', 'joint_states', '/clock'] + FLOAT_TOPICS, scope='class')
 
 
 @pytest.fixture(scope='class')
@@ -371,22 +359,13 @@ class TestCar:
 
 # ------------------------------------------------------------------------------ options
 
-@pytest.fixture(scope='class')
-def two_cars():
-    with NodeProcess('--ros-args', '-p', 'world:=two_cars', '-p', 'synchronous:=true',
-                          '-p', 'initialpose_vehicle:=car2') as process:
-        yield process
+two_cars = node_fixture(['--ros-args', '-p', 'world:=two_cars', '-p', 'synchronous:=true',
+                         '-p', 'initialpose_vehicle:=car2'], scope='class', name='two_cars')
 
 
-@pytest.fixture(scope='class')
-def realtime(tester):
-    process = NodeProcess('--ros-args', '-p', 'synchronous:=false')
-    try:
-        client = AutomobileClient(tester)
-        client.wait_matched(['/clock'])
-        yield client
-    finally:
-        process.stop()
+realtime_node = node_fixture(['--ros-args', '-p', 'synchronous:=false'], scope='class',
+                             name='realtime_node')
+realtime = car_fixture(['/clock'], scope='class', node='realtime_node', name='realtime')
 
 
 class TestTwoCars:

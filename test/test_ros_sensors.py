@@ -28,8 +28,8 @@ from fractions import Fraction
 import math
 
 from automobile_helpers import (
+    automobile_fixtures,
     AutomobileClient,
-    client_node,
     NodeProcess,
     stamp_of,
     wait_for,
@@ -88,24 +88,10 @@ class Listener:
                         spin=self.node)
 
 
-@pytest.fixture(scope='module')
-def course():
-    with NodeProcess('--ros-args', '-r', f'__ns:=/{NAMESPACE}', '-p',
-                          'world:=obstacle_course', '-p', 'synchronous:=true') as process:
-        yield process
-
-
-@pytest.fixture(scope='module')
-def tester():
-    with client_node('sensor_tester') as node:
-        yield node
-
-
-@pytest.fixture(scope='module')
-def car(course, tester):
-    client = AutomobileClient(tester, NAMESPACE)
-    client.wait_matched(['/clock', 'collision'])
-    return client
+course, tester, car = automobile_fixtures(
+    'sensor_tester', ['--ros-args', '-r', f'__ns:=/{NAMESPACE}', '-p', 'world:=obstacle_course',
+                      '-p', 'synchronous:=true'],
+    ['/clock', 'collision'], NAMESPACE, names=('course', 'tester', 'car'))
 
 
 @pytest.fixture(scope='module')
