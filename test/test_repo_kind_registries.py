@@ -23,6 +23,7 @@ change goes" names exactly those files, and a fake new kind added by registratio
 end to end (as test/test_repo_sensor_registration.py shows for sensor types).
 """
 
+import ast
 from dataclasses import replace
 from pathlib import Path
 import re
@@ -224,6 +225,22 @@ def test_a_lane_map_kind_is_loaded_by_its_lane_loader_and_excludes_roads(monkeyp
     with pytest.raises(InvalidParameterError, match=r'both roads: and a road_table map'):
         world_from_data({'vehicles': [CAR], 'map': {'type': 'road_table'},
                          'roads': _highway_data()['roads']}, 'w.yaml')
+
+
+# The registrations of map kinds (and lanelet2's own key table): the only modules that write a
+# map kind's name; everything else reads the kind's row or the built map.
+MAP_KIND_FILES = {'core/map/kinds.py', 'core/map/lanelet2_params.py', 'maps/lane_maps.py',
+                  'physics/map_layer.py', 'ros/map_interfaces.py'}
+
+
+def test_map_kind_names_are_written_only_in_the_registrations():
+    package = REPO / 'vehicle_sim'
+    found = [f'{path.relative_to(package)}:{node.lineno}: {node.value!r}'
+             for path in sorted(package.rglob('*.py'))
+             if str(path.relative_to(package)) not in MAP_KIND_FILES
+             for node in ast.walk(ast.parse(path.read_text(encoding='utf-8')))
+             if isinstance(node, ast.Constant) and node.value in map_kinds.MAP_KINDS]
+    assert found == []
 
 
 def test_an_unknown_map_type_lists_the_registered_ones():
