@@ -339,6 +339,9 @@ def test_an_unknown_traffic_model_lists_the_registered_ones():
     with pytest.raises(InvalidParameterError, match=r"field 'lane_change' = 'lc2013': "
                                                     r'unknown; valid: mobil$'):
         traffic_from_dict({'model': {'lane_change': 'lc2013'}}, 'w.yaml: traffic')
+    with pytest.raises(InvalidParameterError, match=r"traffic: model: traffic models must be a "
+                                                    r"mapping, got 'idm'$"):
+        traffic_from_dict({'model': 'idm'}, 'w.yaml: traffic')
 
 
 def test_a_model_s_parameters_are_validated_under_its_name(toy_models):

@@ -113,7 +113,7 @@ def traffic_specs():
 
 
 def _model_names(data, source):
-    values = validate_table(MODEL_SPECS, data or {}, f'{source}: model', what='model')
+    values = validate_table(MODEL_SPECS, data or {}, f'{source}: model', what='traffic models')
     for key, registry in (('car_following', CAR_FOLLOWING_MODELS),
                           ('lane_change', LANE_CHANGE_MODELS)):
         if values[key] not in registry:
