@@ -19,7 +19,8 @@ The static layers of the Foxglove scene: an occupancy map's walls and a lane map
 Both are built once per scene (entity sources registered ``static`` in :mod:`.scene`) from what
 the scene builder already made, in the ``world`` frame, with the very geometry the physics uses:
 
-- ``'map'``: an occupancy-grid map (``scene.parts['map']``) as one entity ``map/walls`` with
+- ``'map'``: a map's walls (``scene.parts['map'].wall_boxes()``: an occupancy-grid map's) as
+  one entity ``map/walls`` with
   one cube per merged wall rectangle (core/map/rectangles.py, placed by core/map/wall_boxes.py),
   ``wall_height`` high: the walls the lidar sees, at the cost of one cube per rectangle.
 - ``'lanes'``: a lane map (``scene.lanes``, from a lanelet2 map or ``roads:``) as
@@ -43,7 +44,7 @@ from vehicle_sim.core.map.lane_geometry import (
     painted_pieces,
     surface_mesh,
 )
-from vehicle_sim.core.map.wall_boxes import wall_boxes, WallBoxes
+from vehicle_sim.core.map.wall_boxes import WallBoxes
 from vehicle_sim.foxglove.entities import Entity, Lines, Primitive, Triangles, WORLD_FRAME
 
 WALL_COLOR = (0.55, 0.55, 0.6, 1.0)          # concrete grey, as the physics draws them
@@ -68,15 +69,10 @@ def walls_entity(boxes: WallBoxes) -> Entity:
 
 
 def wall_entities(scene) -> List[Entity]:
-    """Return an occupancy-grid map's walls (the entity source ``'map'``); none without one."""
-    map_spec = getattr(scene.spec, 'map', None)
-    if map_spec is None or map_spec.type != 'occupancy_grid':
-        return []
-    built = scene.parts['map']
-    if len(built.rectangles) == 0:
-        return []
-    return [walls_entity(wall_boxes(built.grid, built.rectangles, map_spec.world_in_map,
-                                    map_spec.wall_height_m))]
+    """Return a map's walls (the entity source ``'map'``); none without a map or walls."""
+    built = getattr(scene, 'parts', {}).get('map')
+    boxes = None if built is None else built.wall_boxes()
+    return [] if boxes is None else [walls_entity(boxes)]
 
 
 # ------------------------------------------------------------------------------ lanes

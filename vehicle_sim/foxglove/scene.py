@@ -54,7 +54,8 @@ from vehicle_sim.foxglove.entities import (  # noqa: F401 - the values sources b
 VEHICLE_COLOR = (0.2, 0.45, 0.85, 0.8)
 # The height of a vehicle drawn from its footprint alone (a body with no boxes of its own) [m].
 FOOTPRINT_BOX_HEIGHT_M = 1.0
-# The obstacle shapes of the world files -> the Foxglove primitive drawing them.
+# obstacle shape (core/world/params.py OBSTACLE_SHAPES) -> the Foxglove primitive drawing it
+# (its size_m the primitive's size).
 PRIMITIVE_OF_SHAPE = {'box': 'cube', 'cylinder': 'cylinder', 'sphere': 'sphere'}
 
 Box = Tuple[Vector, Quaternion, Vector]

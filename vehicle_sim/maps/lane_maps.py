@@ -15,8 +15,9 @@
 """
 A world's lane map, loaded before its bodies are built: :func:`with_lanes`.
 
-A world has at most one lane map: a ``map:`` of type ``lanelet2`` (read with the lanelet2
-package, ``maps/lanelet2_map.py``) or its ``roads:`` (core/map/road_segments.py). The scene
+A world has at most one lane map: a ``map:`` of a lane map kind (``MapKind.lane_map``, read by
+its row of :data:`LANE_LOADERS`: ``lanelet2`` with the lanelet2 package,
+``maps/lanelet2_map.py``) or its ``roads:`` (core/map/road_segments.py). The scene
 builder calls :func:`with_lanes` before it builds anything, so that a file that cannot be read
 or a vehicle placed off every lane is refused with nothing started, and the vehicles placed by
 lane (``pose: {lanelet, s, offset}``) have their x, y, yaw when their bodies are made.
@@ -24,19 +25,30 @@ lane (``pose: {lanelet, s, offset}``) have their x, y, yaw when their bodies are
 
 from dataclasses import replace
 
+from vehicle_sim.core.map.kinds import is_lane_map
 from vehicle_sim.core.map.lane_placement import place_on_lanes
 from vehicle_sim.core.map.road_segments import lane_graph_from_roads
 
 
+def load_lanelet2_graph(spec):
+    """Return the LaneGraph of a WorldSpec's lanelet2 map (``LANE_LOADERS['lanelet2']``)."""
+    from vehicle_sim.maps.lanelet2_map import load_lanelet2  # the lanelet2 extra
+    world_map = spec.map
+    graph, _, _ = load_lanelet2(world_map.file, spec.origin, world_map.projector,
+                                world_map.default_speed_limit_mps, f'{world_map.source}.file')
+    return graph
+
+
+# lane map kind (core/map/kinds.py MAP_KINDS, lane_map=True) -> load(WorldSpec) -> LaneGraph.
+LANE_LOADERS = {
+    'lanelet2': load_lanelet2_graph,
+}
+
+
 def load_lane_graph(spec):
     """Return the LaneGraph of a WorldSpec's lane map, or None when it has none."""
-    world_map = spec.map
-    if getattr(world_map, 'type', None) == 'lanelet2':
-        from vehicle_sim.maps.lanelet2_map import load_lanelet2  # the lanelet2 extra
-        graph, _, _ = load_lanelet2(world_map.file, spec.origin, world_map.projector,
-                                    world_map.default_speed_limit_mps,
-                                    f'{world_map.source}.file')
-        return graph
+    if is_lane_map(spec.map):
+        return LANE_LOADERS[spec.map.type](spec)
     if spec.roads:
         return lane_graph_from_roads(spec.roads, f"{spec.source or 'world'}: roads")
     return None

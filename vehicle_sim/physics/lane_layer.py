@@ -78,6 +78,10 @@ class LaneMap:
     barrier_ids: Tuple[int, ...] = ()
     barrier_count: int = 0
 
+    def wall_boxes(self):
+        """None: a lane map's barriers are drawn and measured with its lanes."""
+        return None
+
     def describe(self) -> str:
         """One line for logs: where the lanes come from, how many, the barriers."""
         return (f"{self.lanes.source}: {count(len(self.lanes.lanes), 'lane', 'lanes')}, "

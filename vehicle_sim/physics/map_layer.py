@@ -41,7 +41,7 @@ surface, markings and barriers (physics/lane_layer.py); its lanes were loaded be
 
 from dataclasses import dataclass
 import math
-from typing import Callable, Dict, Tuple
+from typing import Callable, Dict, Optional, Tuple
 
 import numpy as np
 import pybullet
@@ -49,6 +49,7 @@ import pybullet
 from vehicle_sim.core.map.kinds import OccupancyMapSpec
 from vehicle_sim.core.map.occupancy import describe_size, MapYaml, OccupancyGrid, wall_mask
 from vehicle_sim.core.map.rectangles import COLUMN, COLUMNS, merge_rectangles, ROW, ROWS
+from vehicle_sim.core.map.wall_boxes import wall_boxes, WallBoxes
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.value_text import count
 from vehicle_sim.core.world.params import WorldSpec
@@ -90,6 +91,13 @@ class OccupancyMap:
         """One line for logs: the file, its size, its walls (every built map has one)."""
         return (f'{self.map_yaml.source}: {describe_size(self.grid)}, '
                 f"{count(len(self.rectangles), 'wall rectangle', 'wall rectangles')}")
+
+    def wall_boxes(self) -> Optional[WallBoxes]:
+        """Return the wall boxes in the world frame (scenario footprints, the live view)."""
+        if len(self.rectangles) == 0:
+            return None
+        return wall_boxes(self.grid, self.rectangles, self.spec.world_in_map,
+                          self.spec.wall_height_m)
 
     def wall_at(self, x_m: float, y_m: float) -> bool:
         """Return True when the world-frame point lies on a wall cell."""
@@ -189,7 +197,10 @@ def build_occupancy_grid(world, spec: WorldSpec) -> OccupancyMap:
     return built
 
 
-# map kind (core/map/kinds.py MAP_KINDS) -> build(world, WorldSpec) -> what callers read.
+# map kind (core/map/kinds.py MAP_KINDS) -> build(world, WorldSpec) -> what callers read
+# (``scene.parts['map']``): an object with ``spec``, ``describe()`` (one line for logs) and
+# ``wall_boxes()`` (its walls as core/map/wall_boxes.py's WallBoxes, or None), which the scenario
+# footprints and the live view read without naming the kind.
 MAP_BUILDERS: Dict[str, Callable] = {
     'occupancy_grid': build_occupancy_grid,
     'lanelet2': build_lanelet2,      # physics/lane_layer.py: a LaneMap

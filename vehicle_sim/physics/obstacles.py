@@ -23,12 +23,6 @@ see it; the friction is Bullet's default (0.5).
 
 import pybullet
 
-_GEOMETRY = {
-    'box': lambda spec: dict(shapeType=pybullet.GEOM_BOX,
-                             halfExtents=[s / 2.0 for s in spec.size_m]),
-    'sphere': lambda spec: dict(shapeType=pybullet.GEOM_SPHERE, radius=spec.radius_m),
-}
-
 
 def _cylinder(spec, visual):
     # createCollisionShape calls the cylinder's length 'height', createVisualShape 'length'
@@ -36,10 +30,18 @@ def _cylinder(spec, visual):
     return {'shapeType': pybullet.GEOM_CYLINDER, 'radius': spec.radius_m, key: spec.height_m}
 
 
+# obstacle shape (core/world/params.py OBSTACLE_SHAPES) -> geometry(spec, visual) -> the keyword
+# arguments of pybullet.createCollisionShape (visual False) or createVisualShape (visual True).
+OBSTACLE_GEOMETRY = {
+    'box': lambda spec, visual: dict(shapeType=pybullet.GEOM_BOX,
+                                     halfExtents=[s / 2.0 for s in spec.size_m]),
+    'cylinder': _cylinder,
+    'sphere': lambda spec, visual: dict(shapeType=pybullet.GEOM_SPHERE, radius=spec.radius_m),
+}
+
+
 def _shape(spec, visual):
-    if spec.shape == 'cylinder':
-        return _cylinder(spec, visual)
-    return _GEOMETRY[spec.shape](spec)
+    return OBSTACLE_GEOMETRY[spec.shape](spec, visual)
 
 
 def create_obstacle(client_id, spec, placed=False):

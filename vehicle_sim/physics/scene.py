@@ -31,12 +31,14 @@ contract):
 Extension points: a *scene part* is any object with ``name`` and ``build(world, spec)``; it adds
 what the WorldSpec asks of it (a map layer's ground and walls, traffic vehicles) once the
 obstacles and vehicles are in, and returns what callers read later, kept in
-:attr:`Scene.parts` under its name. A WorldSpec with a ``map`` gets the map layer
-(physics/map_layer.py) as its first part, ``scene.parts['map']``; a WorldSpec with ``roads:``
-gets the road layer (physics/lane_layer.py), ``scene.parts['roads']``; a world without either
-gets no part and pays nothing. A world with ``traffic:`` gets the traffic part
-(physics/traffic_bodies.py), on its lane map, unless ``parts`` holds one named 'traffic'
-already.
+:attr:`Scene.parts` under its name. The parts a world gets by itself are the rows of
+:data:`SCENE_PARTS`, one per world key the obstacles and vehicles leave (a test checks them
+against core/world/params.py's ``WORLD_KEYS``), each added when the WorldSpec asks for it: a
+``map`` gets the map layer (physics/map_layer.py), ``scene.parts['map']``; ``roads:`` the road
+layer (physics/lane_layer.py), ``scene.parts['roads']``; both before the caller's ``parts``;
+``traffic:`` the traffic part (physics/traffic_bodies.py), on its lane map, after them. A part
+of the caller's with a row's name takes that row's place; a world that asks for none gets no
+part and pays nothing.
 
 Lanes: before anything is built, the world's lane map (a lanelet2 map or its roads) is loaded
 and the vehicles placed by lane get their pose (vehicle_sim/maps/lane_maps.py), so a bad file
@@ -76,6 +78,49 @@ class ScenePart(Protocol):
 
     def build(self, world: World, spec: WorldSpec) -> object:
         """Add this part's bodies to ``world`` as ``spec`` asks; return what callers read."""
+
+
+@dataclass(frozen=True)
+class ScenePartRow:
+    """
+    A scene part every world that asks for it gets: one row of :data:`SCENE_PARTS`.
+
+    :param name: its name (``scene.parts[name]``; the world key it builds).
+    :param wanted: ``wanted(spec)`` -> whether a WorldSpec asks for it.
+    :param make: ``make()`` -> the part (a ScenePart of that name).
+    :param before_given: built before the caller's ``parts`` (True), or after them.
+    """
+
+    name: str
+    wanted: Callable[[WorldSpec], bool]
+    make: Callable[[], ScenePart]
+    before_given: bool = True
+
+
+SCENE_PARTS: Dict[str, ScenePartRow] = {}
+
+
+def register_scene_part(row: ScenePartRow) -> ScenePartRow:
+    """Add a row to :data:`SCENE_PARTS` (its name must be new); rows build in this order."""
+    if row.name in SCENE_PARTS:
+        raise ValueError(f'scene part {row.name!r} is registered already')
+    SCENE_PARTS[row.name] = row
+    return row
+
+
+register_scene_part(ScenePartRow('map', lambda spec: spec.map is not None, MapLayer))
+register_scene_part(ScenePartRow('roads', lambda spec: bool(spec.roads), RoadLayer))
+register_scene_part(ScenePartRow(
+    'traffic', lambda spec: getattr(spec, 'traffic', None) is not None, TrafficPart,
+    before_given=False))
+
+
+def scene_parts(spec: WorldSpec, given: Sequence[ScenePart] = ()) -> tuple:
+    """Return the parts of a WorldSpec in build order: the rows it asks for and ``given``."""
+    names = {part.name for part in given}
+    rows = [row for row in SCENE_PARTS.values() if row.name not in names and row.wanted(spec)]
+    return (tuple(row.make() for row in rows if row.before_given) + tuple(given)
+            + tuple(row.make() for row in rows if not row.before_given))
 
 
 @dataclass
@@ -153,9 +198,9 @@ def build_scene(spec: WorldSpec, world: Optional[World] = None, *,
     :param hooks: step hooks registered before every body.
     :param mount: (SceneVehicle, Scene) -> its sensors, for each vehicle once every body is in;
         None mounts none.
-    :param parts: scene parts (traffic), built in order after the vehicles (and after the map
-        layer, which a spec with a map gets first); the traffic part is added for a spec with
-        traffic when none is given.
+    :param parts: scene parts, built in order after the vehicles, after the rows of
+        :data:`SCENE_PARTS` that build first (map, roads) and before the others (traffic); one
+        with a row's name takes the row's place.
     :raises InvalidPoseError: for a vehicle that starts inside an obstacle.
     :raises InvalidParameterError: for two vehicles (cars or robots) of one name, a lane map
         that cannot be read, a vehicle placed off every lane; nothing is built.
@@ -165,13 +210,7 @@ def build_scene(spec: WorldSpec, world: Optional[World] = None, *,
         raise InvalidParameterError(f'vehicle name(s) used twice: {twice}')
     params = params or {}
     spec = with_lanes(spec)     # lanes loaded and vehicles placed on them, before any body
-    if spec.roads:
-        parts = (RoadLayer(),) + tuple(parts)
-    if spec.map is not None:
-        parts = (MapLayer(),) + tuple(parts)
-    if getattr(spec, 'traffic', None) is not None and \
-            not any(part.name == 'traffic' for part in parts):
-        parts = (*parts, TrafficPart())
+    parts = scene_parts(spec, parts)
     owned = world is None
     if owned:
         world = World(time_step_s=time_step_s, friction=friction, gui=gui)

@@ -33,6 +33,7 @@ from types import SimpleNamespace
 from typing import Dict, Tuple
 
 from vehicle_sim.core.geometry.frames import quaternion_from_yaw
+from vehicle_sim.core.map.kinds import is_lane_map
 from vehicle_sim.ros import messages as m
 from vehicle_sim.ros.endpoints import converter, ONCE_LATCHED, Outputs, Topic
 from vehicle_sim.ros.lane_messages import lane_markers_builder, MARKER_ARRAY
@@ -73,7 +74,7 @@ def map_rows(built) -> Tuple[Topic, ...]:
 
 def fixed_frame(spec) -> str:
     """
-    Return the frame of a world's ground-truth messages: ``map`` (lanelet2 map), else ``world``.
+    Return the frame of a world's ground-truth messages: ``map`` (a lane map), else ``world``.
 
     The one rule for the lane messages (``/map/lanes``, ``lane_state``, ``lane_invasion``) and
     the objects (``/perception/object_recognition/objects``, ``/sim/traffic/markers``): a frame
@@ -82,7 +83,7 @@ def fixed_frame(spec) -> str:
     obstacles and an occupancy grid's world are written in the world frame, and a world without
     ``map:`` has no ``map`` frame (docs/maps.md).
     """
-    return MAP_FRAME if getattr(spec.map, 'type', None) == 'lanelet2' else WORLD_FRAME
+    return MAP_FRAME if is_lane_map(spec.map) else WORLD_FRAME
 
 
 def map_static_transform(map_spec):

@@ -103,7 +103,7 @@ def predicted_objects_serializer(frame_id: str):
             pack(8, _TWIST_COVARIANCE, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
             raw(8, _ZERO_ACCELERATION)
             pack(4, _U32, 0)                   # no predicted path
-            pack(4, _SHAPE_HEAD, tm.BOUNDING_BOX if o.shape == 'box' else tm.CYLINDER, 0)
+            pack(4, _SHAPE_HEAD, tm.OBJECT_SHAPE_OF_OBSTACLE[o.shape], 0)
             pack(8, _VECTOR3, *o.size_m)
         return out.data()
     return serialize

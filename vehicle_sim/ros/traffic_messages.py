@@ -53,6 +53,8 @@ COLOR = 'std_msgs/msg/ColorRGBA'
 
 UNKNOWN, CAR = 0, 1      # ObjectClassification
 BOUNDING_BOX, CYLINDER = 0, 1    # Shape
+# obstacle shape (core/world/params.py OBSTACLE_SHAPES) -> its Shape type as an object.
+OBJECT_SHAPE_OF_OBSTACLE = {'box': BOUNDING_BOX, 'cylinder': CYLINDER, 'sphere': CYLINDER}
 CUBE, ADD, DELETE = 1, 0, 2     # visualization_msgs/Marker
 # the namespace of the objects' UUIDs (uuid5 of the vehicle's name): stable across runs
 UUID_NAMESPACE = uuid.uuid5(uuid.NAMESPACE_URL, 'vehicle_sim/traffic')
@@ -101,7 +103,7 @@ def predicted_objects_builder(msg, frame_id: str):
                            existence_probability=1.0,
                            classification=[classification_type(label=UNKNOWN, probability=1.0)])
         item.kinematics.initial_pose_with_covariance.pose = pose(o.x_m, o.y_m, o.z_m, o.yaw_rad)
-        item.shape = shape_type(type=BOUNDING_BOX if o.shape == 'box' else CYLINDER)
+        item.shape = shape_type(type=OBJECT_SHAPE_OF_OBSTACLE[o.shape])
         item.shape.dimensions.x, item.shape.dimensions.y, item.shape.dimensions.z = \
             (float(v) for v in o.size_m)
         return item

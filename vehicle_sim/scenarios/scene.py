@@ -30,7 +30,6 @@ from typing import Callable, Dict, Iterable, Sequence, Tuple
 import numpy as np
 
 from vehicle_sim.core.geometry.footprint import Footprint, obstacle_footprint, Outline
-from vehicle_sim.core.map.wall_boxes import wall_boxes
 from vehicle_sim.physics.map_layer import MAP_BODY_NAME
 
 
@@ -126,18 +125,14 @@ def map_walls(built) -> Tuple[Footprint, ...]:
     """
     Return the walls of a built scene's occupancy map as footprints, none without one.
 
-    :param built: the physics Scene (its ``spec.map`` and ``parts['map']``).
+    :param built: the physics Scene (its ``parts['map']``, whose ``wall_boxes()`` they are).
     :return: one rectangle per merged wall rectangle, each named 'map' as the map's
         collisions are.
     """
-    map_spec = getattr(built.spec, 'map', None)
-    if map_spec is None or map_spec.type != 'occupancy_grid':
+    part = built.parts.get('map')
+    boxes = None if part is None else part.wall_boxes()
+    if boxes is None:
         return ()
-    part = built.parts['map']
-    if len(part.rectangles) == 0:
-        return ()
-    boxes = wall_boxes(part.grid, part.rectangles, map_spec.world_in_map,
-                       map_spec.wall_height_m)
     c, s = math.cos(boxes.yaw_rad), math.sin(boxes.yaw_rad)
     walls = []
     for (x, y, _), (length, width, _) in zip(boxes.centres_m.tolist(), boxes.sizes_m.tolist()):

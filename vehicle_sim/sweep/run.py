@@ -16,13 +16,14 @@
 :func:`run_sweep`: the Python API of sweeps, which ``vehicle-sim sweep`` wraps.
 
 A scenario runs for every combination of values and seeds, in parallel, with merged reports
-(docs/sweeps.md).
+(docs/sweeps.md). The cases run on a backend of :data:`BACKENDS` (``local`` worker processes,
+``ray`` tasks): a backend is one :class:`Backend` row, its module imported only when it runs.
 """
 
 from dataclasses import dataclass, field
 import hashlib
 import os
-from typing import Dict, List, Optional
+from typing import Callable, Dict, List, Optional
 
 from vehicle_sim.sweep import results
 from vehicle_sim.sweep.grid import (
@@ -36,9 +37,67 @@ from vehicle_sim.sweep.grid import (
     SweepError,
 )
 
-BACKENDS = ('local', 'ray')
 DEFAULT_TIMEOUT_S = 600.0
 MAX_WORKERS = 1024
+
+
+@dataclass(frozen=True)
+class Backend:
+    """
+    A sweep backend: where the cases run.
+
+    :param name: its name (``--backend``, ``run_sweep(backend=...)``).
+    :param run: ``run(todo, workers, timeout_s, address, case_log, finished)``: run
+        ``worker.run_case_logged(work, case_log(work))`` for every payload of ``todo`` (at most
+        ``workers`` at once; None = as many as it has CPUs), calling ``finished(record)`` for
+        each (an error record for a case whose process died or ran past ``timeout_s``).
+    :param check: ``check()`` before anything is read: raises SweepError when an optional
+        package it needs is missing (None: nothing to check).
+    :param connect: ``connect(address, timeout_s)`` once the input is valid, for a backend that
+        joins a cluster at ``--ray-address`` (None: it takes no address).
+    :param doc: one line for ``vehicle-sim sweep --help``.
+    """
+
+    name: str
+    run: Callable
+    check: Optional[Callable] = None
+    connect: Optional[Callable] = None
+    doc: str = ''
+
+
+BACKENDS: Dict[str, Backend] = {}
+
+
+def register_backend(backend: Backend) -> Backend:
+    """Add a sweep backend to :data:`BACKENDS` (its name must be new)."""
+    if backend.name in BACKENDS:
+        raise ValueError(f'sweep backend {backend.name!r} is registered already')
+    BACKENDS[backend.name] = backend
+    return backend
+
+
+def _run_local(todo, workers, timeout_s, address, case_log, finished):
+    from vehicle_sim.sweep.local import run_local
+    run_local(todo, int(workers or os.cpu_count() or 1), timeout_s, case_log, finished)
+
+
+def _run_ray(todo, workers, timeout_s, address, case_log, finished):
+    from vehicle_sim.sweep.ray_tasks import run_ray
+    run_ray(todo, workers, timeout_s, address, case_log, finished)
+
+
+def _require_ray():
+    from vehicle_sim.sweep.ray_tasks import require_ray
+    require_ray()
+
+
+def _connect_ray(address, timeout_s):
+    from vehicle_sim.sweep.ray_tasks import check_address, DEFAULT_CONNECT_TIMEOUT_S
+    check_address(address, timeout_s or DEFAULT_CONNECT_TIMEOUT_S)
+
+
+register_backend(Backend('local', _run_local, doc='worker processes on this machine'))
+register_backend(Backend('ray', _run_ray, _require_ray, _connect_ray, doc='Ray tasks'))
 
 
 @dataclass
@@ -155,7 +214,7 @@ def run_sweep(scenario, sets=(), seeds=None, out_dir='sweep', workers=None, back
     :param out_dir: the results folder (docs/sweeps.md: its layout).
     :param workers: parallel cases (local: worker processes; ray: tasks in flight); None = the
         CPUs (of this machine, or of the Ray cluster).
-    :param backend: 'local' or 'ray'.
+    :param backend: a name of :data:`BACKENDS`: 'local' or 'ray'.
     :param ray_address: the Ray cluster to join (``ray.init(address=...)``); None starts Ray
         here (unless it is already initialised in this process).
     :param timeout_s: a case's longest run (wall clock); past it the case is an error; None =
@@ -176,17 +235,17 @@ def run_sweep(scenario, sets=(), seeds=None, out_dir='sweep', workers=None, back
         raise SweepError(f'--workers {workers}: must be 1 .. {MAX_WORKERS}')
     if timeout_s is not None and not 0 < timeout_s < float('inf'):
         raise SweepError(f'--timeout {timeout_s}: must be > 0 s')
-    if ray_address is not None and backend != 'ray':
-        raise SweepError('--ray-address needs --backend ray')
+    chosen = BACKENDS[backend]
+    if ray_address is not None and chosen.connect is None:
+        raise SweepError('--ray-address needs --backend '
+                         + ' or '.join(b.name for b in BACKENDS.values() if b.connect))
     if ray_connect_timeout_s is not None and not 0 < ray_connect_timeout_s < float('inf'):
         raise SweepError(f'--ray-connect-timeout {ray_connect_timeout_s}: must be > 0 s')
-    if backend == 'ray':
-        from vehicle_sim.sweep.ray_tasks import require_ray
-        require_ray()
+    if chosen.check is not None:
+        chosen.check()
     planned = plan(scenario, sets, seeds)
     if ray_address is not None:
-        from vehicle_sim.sweep.ray_tasks import check_address, DEFAULT_CONNECT_TIMEOUT_S
-        check_address(ray_address, ray_connect_timeout_s or DEFAULT_CONNECT_TIMEOUT_S)
+        chosen.connect(ray_address, ray_connect_timeout_s)
     source, content, cases = planned.source, planned.content, planned.cases
     keys = [axis.key for axis in planned.axes]
     manifest = {'scenario': source,
@@ -217,12 +276,8 @@ def run_sweep(scenario, sets=(), seeds=None, out_dir='sweep', workers=None, back
         return results.log_path(out_dir, work['case_id'])
 
     try:
-        if todo and backend == 'local':
-            from vehicle_sim.sweep.local import run_local
-            run_local(todo, int(workers or os.cpu_count() or 1), timeout_s, case_log, finished)
-        elif todo:
-            from vehicle_sim.sweep.ray_tasks import run_ray
-            run_ray(todo, workers, timeout_s, ray_address, case_log, finished)
+        if todo:
+            chosen.run(todo, workers, timeout_s, ray_address, case_log, finished)
     except KeyboardInterrupt:
         result.interrupted = True
     result.records = _ordered(cases, done_records)

@@ -33,7 +33,7 @@ EXIT_INTERRUPTED = 130
 def add_arguments(parser):
     """Add the ``sweep`` arguments to its sub-parser."""
     from vehicle_sim.sweep.ray_tasks import DEFAULT_CONNECT_TIMEOUT_S
-    from vehicle_sim.sweep.run import DEFAULT_TIMEOUT_S
+    from vehicle_sim.sweep.run import BACKENDS, DEFAULT_TIMEOUT_S
     parser.add_argument('scenario', metavar='SCENARIO', help='scenario file (.yaml)')
     parser.add_argument('--set', dest='sets', action='append', default=[],
                         metavar='KEY=V1,V2,...',
@@ -44,8 +44,9 @@ def add_arguments(parser):
                              "file's seed)")
     parser.add_argument('--workers', type=int, metavar='N',
                         help='cases run at once (default: the CPUs)')
-    parser.add_argument('--backend', choices=('local', 'ray'), default='local',
-                        help='local worker processes (default) or Ray tasks')
+    parser.add_argument('--backend', choices=tuple(BACKENDS), default='local',
+                        help='where the cases run: ' + '; '.join(
+                            f'{b.name}: {b.doc}' for b in BACKENDS.values()) + ' (default local)')
     parser.add_argument('--ray-address', metavar='ADDR',
                         help='join this Ray cluster (e.g. auto, ray://head:10001); default: '
                              'start Ray here')

@@ -134,9 +134,47 @@ def circle_footprint(name, center_m: Point, radius_m) -> Footprint:
                      radius_m=float(radius_m))
 
 
+def _hull(spec, centre, rotation, local) -> Footprint:
+    points = [(centre[0] + sum(rotation[0][k] * p[k] for k in range(3)),
+               centre[1] + sum(rotation[1][k] * p[k] for k in range(3))) for p in local]
+    return polygon_footprint(spec.name, points)
+
+
+def box_footprint(spec, centre, rotation) -> Footprint:
+    """Return a box's footprint: the hull of its eight corners."""
+    sx, sy, sz = (s / 2.0 for s in spec.size_m)
+    return _hull(spec, centre, rotation,
+                 [(x, y, z) for x in (-sx, sx) for y in (-sy, sy) for z in (-sz, sz)])
+
+
+def cylinder_footprint(spec, centre, rotation) -> Footprint:
+    """Return a cylinder's footprint: a circle upright, else the hull of its two rims."""
+    if abs(abs(rotation[2][2]) - 1.0) < 1e-12:          # axis vertical
+        return circle_footprint(spec.name, centre, spec.radius_m)
+    half = spec.height_m / 2.0
+    return _hull(spec, centre, rotation,
+                 [(spec.radius_m * math.cos(a), spec.radius_m * math.sin(a), z)
+                  for a in (2.0 * math.pi * k / RIM_POINTS for k in range(RIM_POINTS))
+                  for z in (-half, half)])
+
+
+def sphere_footprint(spec, centre, rotation) -> Footprint:
+    """Return a sphere's footprint: a circle."""
+    return circle_footprint(spec.name, centre, spec.radius_m)
+
+
+# obstacle shape (core/world/params.py OBSTACLE_SHAPES) -> footprint(spec, centre (x, y),
+# rotation matrix) -> its Footprint on the ground.
+OBSTACLE_FOOTPRINTS = {
+    'box': box_footprint,
+    'cylinder': cylinder_footprint,
+    'sphere': sphere_footprint,
+}
+
+
 def obstacle_footprint(spec, position_m=None, quaternion=None) -> Footprint:
     """
-    Return an obstacle's shape projected on the ground.
+    Return an obstacle's shape projected on the ground (its shape's row of OBSTACLE_FOOTPRINTS).
 
     A box gives the hull of its eight corners, a sphere and an upright cylinder a circle, a
     tilted cylinder the hull of its two rims (RIM_POINTS each).
@@ -148,21 +186,7 @@ def obstacle_footprint(spec, position_m=None, quaternion=None) -> Footprint:
     position = spec.position_m if position_m is None else position_m
     rotation = rotation_matrix(spec.pose.quaternion if quaternion is None else quaternion)
     centre = (float(position[0]), float(position[1]))
-    if spec.shape == 'sphere':
-        return circle_footprint(spec.name, centre, spec.radius_m)
-    if spec.shape == 'cylinder':
-        if abs(abs(rotation[2][2]) - 1.0) < 1e-12:          # axis vertical
-            return circle_footprint(spec.name, centre, spec.radius_m)
-        half = spec.height_m / 2.0
-        local = [(spec.radius_m * math.cos(a), spec.radius_m * math.sin(a), z)
-                 for a in (2.0 * math.pi * k / RIM_POINTS for k in range(RIM_POINTS))
-                 for z in (-half, half)]
-    else:
-        sx, sy, sz = (s / 2.0 for s in spec.size_m)
-        local = [(x, y, z) for x in (-sx, sx) for y in (-sy, sy) for z in (-sz, sz)]
-    points = [(centre[0] + sum(rotation[0][k] * p[k] for k in range(3)),
-               centre[1] + sum(rotation[1][k] * p[k] for k in range(3))) for p in local]
-    return polygon_footprint(spec.name, points)
+    return OBSTACLE_FOOTPRINTS[spec.shape](spec, centre, rotation)
 
 
 # -------------------------------------------------------------------------------- vehicles

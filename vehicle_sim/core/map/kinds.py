@@ -19,8 +19,9 @@ A map kind is a :class:`MapKind` row in :data:`MAP_KINDS`: its ``type`` name, th
 table of its keys (besides the keys every map has, :data:`COMMON_MAP_SPECS`) and the function
 that turns the validated values into its spec. :func:`map_from_dict` validates a world's
 ``map:`` mapping against the table of its ``type`` and returns that spec; the physics layer
-(``physics/map_layer.py``) has a builder registered under the same name, and a test checks that
-both registries list the same kinds. Adding a kind is one row here, one builder there. Kinds:
+(``physics/map_layer.py``) has a builder registered under the same name, the ROS layer
+(``ros/map_interfaces.py``) its topic rows, and a lane map its loader
+(``maps/lane_maps.py``); test/test_repo_kind_registries.py checks that they agree. Kinds:
 ``occupancy_grid`` and ``lanelet2`` (core/map/lanelet2_params.py's keys); the ``roads:`` key
 of a world is a lane map without a ``map:`` (core/map/road_segments.py).
 
@@ -149,12 +150,17 @@ class MapKind:
     :param specs: the ParamSpec table of its keys (:data:`COMMON_MAP_SPECS` included).
     :param make: ``make(values, source, base_dir)`` -> the kind's spec (values validated).
     :param doc: one line for docs/maps.md.
+    :param lane_map: the map is a lane map: the world's one (no ``roads:`` beside it), read
+        before any body by its loader in ``maps/lane_maps.py``'s ``LANE_LOADERS``; its nodes
+        lie in the map frame, which is the world frame (``make`` refuses another
+        ``world_in_map``), so the lane messages and objects are stamped ``map``.
     """
 
     name: str
     specs: Tuple[ParamSpec, ...]
     make: Callable
     doc: str = ''
+    lane_map: bool = False
 
 
 MAP_KINDS: Dict[str, MapKind] = {}
@@ -173,7 +179,12 @@ register_map_kind(MapKind('occupancy_grid', OCCUPANCY_GRID_SPECS, _occupancy_gri
                           'cells, /map'))
 register_map_kind(MapKind('lanelet2', LANELET2_MAP_SPECS, _lanelet2,
                           'a Lanelet2 .osm lane map: road surface and markings, curbstones and '
-                          'walls, lane state, /map/lanes'))
+                          'walls, lane state, /map/lanes', lane_map=True))
+
+
+def is_lane_map(map_spec) -> bool:
+    """Return whether a world's map spec (None: no map) is a lane map (``MapKind.lane_map``)."""
+    return map_spec is not None and MAP_KINDS[map_spec.type].lane_map
 
 
 def map_from_dict(data, source, base_dir=''):

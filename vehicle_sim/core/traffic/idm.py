@@ -106,3 +106,27 @@ def advance(s_m, v_mps, acc_mps2, dt_s):
     if v_new >= 0.0:
         return s_m + (v_mps + 0.5 * acc_mps2 * dt_s) * dt_s, v_new
     return s_m - 0.5 * v_mps * v_mps / acc_mps2, 0.0      # stops within the step
+
+
+def acceleration_function(p: IdmParams):
+    """
+    Return ``acceleration(v, v0, gap, v_leader)``: :func:`idm_acceleration` bound to ``p``.
+
+    The same numbers as :func:`idm_acceleration` (``gap`` None: a free road; ``dv`` = ``v -
+    v_leader``), with the parameters read once: the traffic manager calls it for every vehicle
+    at every update.
+    """
+    a, time_headway, s0 = p.acceleration_mps2, p.time_headway_s, p.min_gap_m
+    two_sqrt_ab = 2.0 * math.sqrt(p.acceleration_mps2 * p.deceleration_mps2)
+    delta, floor = p.exponent, -p.max_deceleration_mps2
+
+    def acceleration(v_mps, v0_mps, gap_m, leader_mps):
+        acc = a * (1.0 - (v_mps / v0_mps) ** delta)
+        if gap_m is not None:
+            if gap_m <= 0.0:
+                return floor
+            dynamic = v_mps * time_headway + v_mps * (v_mps - leader_mps) / two_sqrt_ab
+            ratio = (s0 + (dynamic if dynamic > 0.0 else 0.0)) / gap_m
+            acc -= a * ratio * ratio
+        return acc if acc > floor else floor
+    return acceleration

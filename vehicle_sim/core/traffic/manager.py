@@ -14,7 +14,10 @@
 
 
 """
-The traffic manager: vehicles that drive the lanes of a LaneGraph with IDM and MOBIL.
+The traffic manager: vehicles that drive the lanes of a LaneGraph with the traffic models.
+
+The models are a car-following and a lane-change model (IDM and MOBIL by default;
+core/traffic/models.py), looked up once when the manager is built.
 
 Each traffic vehicle is on one lane at an arc length ``s`` (its centre) with a speed; while it
 changes lanes it is already on the target lane, with a lateral ``offset`` from that lane's
@@ -27,11 +30,12 @@ Every :meth:`TrafficManager.step`:
    (:class:`OurVehicle`, given by :meth:`TrafficManager.set_ours`, located on the graph each
    step; one that reaches into a neighbouring lane occupies that lane too);
 2. each vehicle's leader is the next occupant ahead along its lane and its planned successors
-   (up to ``LOOKAHEAD_M``); IDM gives its acceleration (the lower of the two lanes' while it
-   changes lanes);
+   (up to ``LOOKAHEAD_M``); the car-following model gives its acceleration (the lower of the
+   two lanes' while it changes lanes);
 3. the vehicles whose turn it is (every ``lane_change_period``, staggered) weigh a change to each
-   neighbour a change is allowed onto with MOBIL; a change is never made in front of one of our
-   vehicles closer than its IDM gap ``s0 + v T``, nor when it would not end on the two lanes;
+   neighbour a change is allowed onto with the lane-change model; a change is never made in
+   front of one of our vehicles closer than the car-following model's gap at its speed (IDM's
+   ``s0 + v T``), nor when it would not end on the two lanes;
 4. the speeds and positions advance ballistically; a vehicle passing a lane's end goes on to its
    planned successor (its route's next lane, else a seeded random choice at forks); at a dead
    end it leaves the map and re-enters, when there is room, at the start of an entry lane (a
@@ -48,8 +52,9 @@ import random
 from typing import Dict, List, Optional, Sequence, Tuple
 
 from vehicle_sim.core.geometry.angles import wrap_angle_rad
-from vehicle_sim.core.traffic.idm import advance, idm_acceleration
-from vehicle_sim.core.traffic.mobil import LaneChangeAccelerations, should_change
+from vehicle_sim.core.traffic.idm import advance
+from vehicle_sim.core.traffic.mobil import LaneChangeAccelerations
+from vehicle_sim.core.traffic.models import CAR_FOLLOWING_MODELS, LANE_CHANGE_MODELS
 from vehicle_sim.core.traffic.spawn import spawn_vehicles
 from vehicle_sim.core.traffic.traffic_params import TrafficSpec
 from vehicle_sim.core.traffic.vehicles import OurVehicle, TrafficVehicle
@@ -93,8 +98,16 @@ class TrafficManager:
                  ours: Sequence[OurVehicle] = ()):
         self.graph = graph
         self.spec = spec
-        self.idm = spec.idm
-        self.mobil = spec.mobil
+        self.idm = spec.idm                   # scenario actors follow with these
+        # The two models, looked up once: the step calls only what they bind.
+        following = CAR_FOLLOWING_MODELS[spec.car_following]
+        following_params = spec.params_of(spec.car_following)
+        self._follow = following.bind(following_params)
+        self._min_gap = following.min_gap
+        self._following_params = following_params
+        self._comfortable_deceleration = following.comfortable_deceleration(following_params)
+        self._should_change = LANE_CHANGE_MODELS[spec.lane_change].bind(
+            spec.params_of(spec.lane_change))
         self.rng = random.Random(spec.seed)
         self.time_s = 0.0
         self.steps = 0
@@ -126,18 +139,17 @@ class TrafficManager:
         return successors[self.rng.randrange(len(successors))]
 
     def _safe_speed(self, v, gap, leader):
-        """Return the highest start speed <= desired at which IDM brakes no harder than b."""
+        """Return the highest start speed <= desired at which the model brakes at most b."""
         v0 = self._v0(v)
         if gap is None:
             return v0
         lo, hi = 0.0, v0
-        if idm_acceleration(hi, v0, gap, hi - leader.speed, self.idm) >= \
-                -self.idm.deceleration_mps2:
+        follow, comfortable = self._follow, -self._comfortable_deceleration
+        if follow(hi, v0, gap, leader.speed) >= comfortable:
             return hi
         for _ in range(30):
             mid = 0.5 * (lo + hi)
-            if idm_acceleration(mid, v0, gap, mid - leader.speed, self.idm) >= \
-                    -self.idm.deceleration_mps2:
+            if follow(mid, v0, gap, leader.speed) >= comfortable:
                 lo = mid
             else:
                 hi = mid
@@ -306,8 +318,12 @@ class TrafficManager:
 
     def _acc(self, v0, speed, gap, leader):
         if leader is None:
-            return idm_acceleration(speed, v0, None, 0.0, self.idm)
-        return idm_acceleration(speed, v0, gap, speed - leader.speed, self.idm)
+            return self._follow(speed, v0, None, 0.0)
+        return self._follow(speed, v0, gap, leader.speed)
+
+    def _gap_kept(self, speed):
+        """Return the car-following model's least gap [m] at ``speed`` (IDM: s0 + v T)."""
+        return self._min_gap(self._following_params, speed)
 
     def step(self, dt_s):
         """Advance every traffic vehicle by ``dt_s`` [s]."""
@@ -354,12 +370,9 @@ class TrafficManager:
         self.time_s += dt_s
 
     def _accelerations(self):
-        """Set every moving vehicle's IDM acceleration (one pass over each lane's occupants)."""
+        """Set every moving vehicle's acceleration (one pass over each lane's occupants)."""
         vehicles, lanes = self.vehicles, self.graph.lanes
-        p = self.idm
-        a, time_headway, s0 = p.acceleration_mps2, p.time_headway_s, p.min_gap_m
-        two_sqrt_ab = 2.0 * math.sqrt(p.acceleration_mps2 * p.deceleration_mps2)
-        delta, floor = p.exponent, -p.max_deceleration_mps2
+        follow = self._follow
         for v in vehicles:
             v.acc_mps2 = math.inf
         for lane_id, (_, items) in self._occ.items():
@@ -388,18 +401,10 @@ class TrafficManager:
                         dist, leader = self._ahead(nxt, 0.0, ident, ())
                         if leader is not None:
                             dist += lane.length_m - o.s
-                speed = o.speed
-                acc = a * (1.0 - (speed / o.v0) ** delta)
-                if leader is not None:
-                    gap = dist - leader.half - o.half
-                    if gap <= 0.0:
-                        acc = floor
-                    else:
-                        dyn = speed * time_headway + speed * (speed - leader.speed) / two_sqrt_ab
-                        ratio = (s0 + (dyn if dyn > 0.0 else 0.0)) / gap
-                        acc -= a * ratio * ratio
-                if acc < floor:
-                    acc = floor
+                if leader is None:
+                    acc = follow(o.speed, o.v0, None, 0.0)
+                else:
+                    acc = follow(o.speed, o.v0, dist - leader.half - o.half, leader.speed)
                 if acc < v.acc_mps2:
                     v.acc_mps2 = acc
 
@@ -426,7 +431,7 @@ class TrafficManager:
                 if behind is not None and behind.s + behind.half > 0.0:
                     continue
                 gap = None if leader is None else dist - leader.half - v.length_m
-                if gap is not None and gap < self.idm.min_gap_m + ENTRY_MARGIN_M:
+                if gap is not None and gap < self._gap_kept(0.0) + ENTRY_MARGIN_M:
                     continue
                 v.lane, v.s_m, v.active = lane_id, s, True
                 v.next_lane = self._choose_next(v)
@@ -485,11 +490,11 @@ class TrafficManager:
         self.lane_changes += 1
 
     def _change_gain(self, v, lane, target_id, reach):
-        """Return MOBIL's incentive for a change to ``target_id`` when it is made, else None."""
+        """Return the own gain of a change to ``target_id`` when the model makes it, else None."""
         target = self.graph.lanes[target_id]
         if reach * target.length_m / lane.length_m > target.length_m:
             return None
-        idm, half = self.idm, 0.5 * v.length_m
+        half = 0.5 * v.length_m
         s_new = v.s_m * target.length_m / lane.length_m
         v0 = self._v0(v)
         gap, leader = self._leader(v, v.lane, v.s_m)
@@ -502,26 +507,23 @@ class TrafficManager:
         nf_now = nf_after = None
         if follower is not None:
             back_gap = dist_back - follower.half - half
-            if follower.ident < 0 and back_gap < idm.min_gap_m + follower.speed * \
-                    idm.time_headway_s:
+            if follower.ident < 0 and back_gap < self._gap_kept(follower.speed):
                 return None                   # never cut in front of one of ours
             nf_gap = None if new_leader is None else dist_back + dist_lead - new_leader.half \
                 - follower.half
             nf_now = self._acc(follower.v0, follower.speed, nf_gap, new_leader)
-            nf_after = idm_acceleration(follower.speed, follower.v0, back_gap,
-                                        follower.speed - v.speed_mps, idm)
-        if new_leader is not None and new_leader.ident < 0 and new_gap < idm.min_gap_m:
+            nf_after = self._follow(follower.speed, follower.v0, back_gap, v.speed_mps)
+        if new_leader is not None and new_leader.ident < 0 and new_gap < self._gap_kept(0.0):
             return None
         dist_old, old_follower = self._behind(v.lane, v.s_m, v.index)
         of_now = of_after = None
         if old_follower is not None:
-            of_now = idm_acceleration(old_follower.speed, old_follower.v0,
-                                      dist_old - old_follower.half - half,
-                                      old_follower.speed - v.speed_mps, idm)
+            of_now = self._follow(old_follower.speed, old_follower.v0,
+                                  dist_old - old_follower.half - half, v.speed_mps)
             of_gap = None if leader is None else dist_old + gap + half - old_follower.half
             of_after = self._acc(old_follower.v0, old_follower.speed, of_gap, leader)
         acc = LaneChangeAccelerations(own_now, own_after, nf_now, nf_after, of_now, of_after)
-        if not should_change(acc, self.mobil):
+        if not self._should_change(acc):
             return None
         return acc.own_after - acc.own_now
 

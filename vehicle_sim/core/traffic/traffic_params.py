@@ -24,8 +24,9 @@ The form (every key optional)::
       speed_factor: {mean: 1.0, std: 0.1}
       seed: 7
       spawn: {lanes: [100001, 100002], s_range: [0.0, 500.0], spacing: 30.0}
-      idm: {time_headway: 1.5, min_gap: 2.0}       # core/traffic/idm.py
-      mobil: {politeness: 0.2}                      # core/traffic/mobil.py
+      model: {car_following: idm, lane_change: mobil}   # core/traffic/models.py (defaults)
+      idm: {time_headway: 1.5, min_gap: 2.0}       # each model's parameters under its name
+      mobil: {politeness: 0.2}
       objects_rate: 10.0           # Hz of the objects and markers over ROS (null: the node's)
       placed:                                       # individually placed vehicles
         - {model: BmwX5, lanelet: 100001, s: 120.0, speed: 20.0, route: [100101, 100201]}
@@ -36,14 +37,13 @@ file and field.
 """
 
 from dataclasses import dataclass, replace
-from typing import Optional, Tuple
+from typing import Any, Optional, Tuple
 
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec, REQUIRED, validate_table
 from vehicle_sim.core.specs.value_kinds import ParamRefused, register_kind
 from vehicle_sim.core.specs.value_text import brief
-from vehicle_sim.core.traffic.idm import IdmParams
-from vehicle_sim.core.traffic.mobil import MobilParams
+from vehicle_sim.core.traffic.models import all_models, CAR_FOLLOWING_MODELS, LANE_CHANGE_MODELS
 
 
 def _check_lane_ids(spec, value):
@@ -80,9 +80,8 @@ TRAFFIC_SPECS = (
               'route choices)', ge=0, le=999999),
     ParamSpec('spawn', 'spawn', 'raw', None, '', 'where the random vehicles start: {lanes, '
               's_range, spacing}', optional=True),
-    ParamSpec('idm', 'idm', 'raw', None, '', 'Intelligent Driver Model parameters',
-              optional=True),
-    ParamSpec('mobil', 'mobil', 'raw', None, '', 'MOBIL lane-change parameters',
+    ParamSpec('model', 'model', 'raw', None, '', 'the traffic models: {car_following, '
+              "lane_change} (table below; each model's parameters under its name)",
               optional=True),
     ParamSpec('lane_change_duration', 'lane_change_duration_s', 'float', 3.0, 's',
               'time a lane change takes (lateral move)', gt=0.5, le=20.0),
@@ -97,6 +96,32 @@ TRAFFIC_SPECS = (
             doc='rate of the objects and markers over ROS on simulated time (null: the '
                 "node's objects_rate parameter, 10 Hz by default); wins over the parameter"),
 )
+
+MODEL_SPECS = (
+    ParamSpec('car_following', 'car_following', 'str', 'idm', '', 'the car-following model, a '
+              'name of CAR_FOLLOWING_MODELS (core/traffic/models.py)'),
+    ParamSpec('lane_change', 'lane_change', 'str', 'mobil', '', 'the lane-change model, a name '
+              'of LANE_CHANGE_MODELS (core/traffic/models.py)'),
+)
+
+
+def traffic_specs():
+    """Return the table of ``traffic:``: its keys, then a key per registered traffic model."""
+    return TRAFFIC_SPECS + tuple(
+        ParamSpec(name, name, 'raw', None, '', f'parameters of {model.doc}', optional=True)
+        for name, model in all_models().items())
+
+
+def _model_names(data, source):
+    values = validate_table(MODEL_SPECS, data or {}, f'{source}: model', what='traffic models')
+    for key, registry in (('car_following', CAR_FOLLOWING_MODELS),
+                          ('lane_change', LANE_CHANGE_MODELS)):
+        if values[key] not in registry:
+            raise InvalidParameterError(f'{source}: model: field {key!r} = '
+                                        f'{brief(values[key])}: unknown; valid: '
+                                        + ', '.join(registry))
+    return values['car_following'], values['lane_change']
+
 
 SPEED_FACTOR_SPECS = (
     ParamSpec('mean', 'mean', 'float', 1.0, '', 'mean desired speed / lane limit', gt=0.0,
@@ -161,14 +186,30 @@ class TrafficSpec:
     spawn_lanes: Optional[Tuple[int, ...]] = None
     spawn_s_range_m: Optional[Tuple[float, float]] = None
     spawn_spacing_m: float = 30.0
-    idm: IdmParams = IdmParams()
-    mobil: MobilParams = MobilParams()
+    car_following: str = 'idm'
+    lane_change: str = 'mobil'
+    # (model name, its validated parameters) of every registered model (core/traffic/models.py)
+    model_params: Tuple[Tuple[str, Any], ...] = ()
     lane_change_duration_s: float = 3.0
     lane_change_period_s: float = 1.0
     update_period_s: float = 0.1
     placed: Tuple[PlacedVehicle, ...] = ()
     source: str = 'traffic'
     objects_rate_hz: Optional[float] = None
+
+    def params_of(self, model: str):
+        """Return the validated parameters of a traffic model (``traffic: <model>:``)."""
+        return dict(self.model_params)[model]
+
+    @property
+    def idm(self):
+        """The IDM's parameters (also what scenario actors follow their leaders with)."""
+        return self.params_of('idm')
+
+    @property
+    def mobil(self):
+        """MOBIL's parameters."""
+        return self.params_of('mobil')
 
     @property
     def all_models(self):
@@ -186,7 +227,10 @@ def traffic_from_dict(data, source, check_model=None) -> TrafficSpec:
         preset (config.py reads presets; None = no check).
     :raises InvalidParameterError: naming the file and field.
     """
-    values = validate_table(TRAFFIC_SPECS, data, source, what='traffic')
+    values = validate_table(traffic_specs(), data, source, what='traffic')
+    car_following, lane_change = _model_names(values['model'], source)
+    model_params = tuple((name, model.params(values[name], f'{source}: {name}'))
+                         for name, model in all_models().items())
     if values['vehicles'] is not None and values['density_per_km'] is not None:
         raise InvalidParameterError(f'{source}: give either vehicles or density, not both '
                                     f'(vehicles = {values["vehicles"]}, density = '
@@ -231,8 +275,7 @@ def traffic_from_dict(data, source, check_model=None) -> TrafficSpec:
     return TrafficSpec(
         vehicles, values['density_per_km'], models, factor['mean'], factor['std'],
         values['seed'], spawn['lanes'], s_range, spawn['spacing_m'],
-        IdmParams.from_dict(values['idm'], f'{source}: idm'),
-        MobilParams.from_dict(values['mobil'], f'{source}: mobil'),
+        car_following, lane_change, model_params,
         values['lane_change_duration_s'], values['lane_change_period_s'],
         values['update_period_s'], tuple(entries), source, values['objects_rate_hz'])
 
@@ -249,14 +292,13 @@ def _check(check_model, model, where):
 def traffic_markdown():
     """Return the key tables of ``traffic:`` (and of its sub-mappings) for docs/traffic.md."""
     from vehicle_sim.core.specs.param_spec import parameter_table_markdown
-    from vehicle_sim.core.traffic.idm import IDM_SPECS
-    from vehicle_sim.core.traffic.mobil import MOBIL_SPECS
     parts = []
-    for title, specs in (('`traffic:`', TRAFFIC_SPECS),
+    for title, specs in (('`traffic:`', traffic_specs()),
+                         ('`model:`', MODEL_SPECS),
                          ('`speed_factor:`', SPEED_FACTOR_SPECS),
                          ('`spawn:`', SPAWN_SPECS),
                          ('each entry of `placed:`', PLACED_SPECS),
-                         ('`idm:` (the Intelligent Driver Model)', IDM_SPECS),
-                         ('`mobil:` (lane changes)', MOBIL_SPECS)):
+                         *((f'`{name}:` ({model.doc})', model.specs)
+                           for name, model in all_models().items())):
         parts.append(f'#### {title}\n\n' + parameter_table_markdown(specs, 'field'))
     return '\n'.join(parts)

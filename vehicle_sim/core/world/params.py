@@ -36,11 +36,11 @@ the file and resolving car models are config.py's (this module touches no file).
 
 from dataclasses import dataclass, field, replace
 import os
-from typing import Callable, Optional, Sequence, Tuple
+from typing import Callable, Dict, Optional, Sequence, Tuple
 
 from vehicle_sim.core.geometry.frames import Pose
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
-from vehicle_sim.core.map.kinds import map_from_dict
+from vehicle_sim.core.map.kinds import is_lane_map, map_from_dict
 from vehicle_sim.core.map.lane_placement import is_lane_pose, LANE_POSE_SPECS
 from vehicle_sim.core.map.road_segments import roads_from_list, RoadSpec
 from vehicle_sim.core.sensors.params import SensorSpec
@@ -67,21 +67,51 @@ ORIGIN_SPECS = (
               'height of the world origin above the WGS-84 ellipsoid'),
 )
 
-OBSTACLE_SHAPES = ('box', 'cylinder', 'sphere')
-# A default colour per shape (RGBA), so that the kinds tell apart in camera images.
-DEFAULT_COLORS = {
-    'box': (0.75, 0.3, 0.2, 1.0),        # brick red
-    'cylinder': (0.95, 0.6, 0.1, 1.0),   # orange, like a traffic pole
-    'sphere': (0.2, 0.4, 0.85, 1.0),     # blue
-}
+@dataclass(frozen=True)
+class ObstacleShape:
+    """
+    One obstacle shape of world files: its name, default colour, size keys and extents.
+
+    :param name: the ``shape`` value in world files.
+    :param color_rgba: its default colour (so that the kinds tell apart in camera images).
+    :param size_specs: the ParamSpec rows of its size keys.
+    :param extents: ``extents(values)`` -> its full extent [x, y, z] [m] from the validated
+        values (``ObstacleSpec.size_m``).
+    """
+
+    name: str
+    color_rgba: Tuple[float, float, float, float]
+    size_specs: Tuple[ParamSpec, ...]
+    extents: Callable
+
+    @property
+    def specs(self) -> Tuple[ParamSpec, ...]:
+        """The ParamSpec table of an obstacle of this shape: the common keys, then its size."""
+        return _obstacle_common(self.name, self.color_rgba) + self.size_specs
 
 
-def _obstacle_common(shape):
+# The core registration of obstacle shapes: shape name -> ObstacleShape. Each layer registers
+# its part under these names (core/geometry/footprint.py OBSTACLE_FOOTPRINTS,
+# physics/obstacles.py OBSTACLE_GEOMETRY, foxglove/scene.py PRIMITIVE_OF_SHAPE,
+# ros/traffic_messages.py OBJECT_SHAPE_OF_OBSTACLE); test/test_repo_kind_registries.py checks
+# that they agree.
+OBSTACLE_SHAPES: Dict[str, ObstacleShape] = {}
+
+
+def register_obstacle_shape(shape: ObstacleShape) -> ObstacleShape:
+    """Add an obstacle shape to :data:`OBSTACLE_SHAPES` (its name must be new)."""
+    if shape.name in OBSTACLE_SHAPES:
+        raise ValueError(f'obstacle shape {shape.name!r} is registered already')
+    OBSTACLE_SHAPES[shape.name] = shape
+    return shape
+
+
+def _obstacle_common(shape, color_rgba):
     return (
         ParamSpec('name', 'name', 'ros_name', REQUIRED,
                   doc='unique name; the "other" of collision events'),
-        ParamSpec('shape', 'shape', 'enum', shape, choices=OBSTACLE_SHAPES, doc='box, cylinder '
-                  'or sphere'),
+        ParamSpec('shape', 'shape', 'enum', shape, choices=(shape,),
+                  doc='the shape (its size keys: the table of its name below)'),
         ParamSpec('position', 'position_m', 'floats', REQUIRED, 'm',
                   'centre of the shape in the world [x, y, z]', length=3),
         ParamSpec('roll', 'roll_rad', 'float', 0.0, 'rad', 'rotation about x'),
@@ -89,36 +119,45 @@ def _obstacle_common(shape):
         ParamSpec('yaw', 'yaw_rad', 'float', 0.0, 'rad', 'rotation about z (+ = left)'),
         ParamSpec('mass', 'mass_kg', 'float', 0.0, 'kg', '0 = static (fixed in the world)',
                   ge=0.0),
-        ParamSpec('color', 'color_rgba', 'rgba', DEFAULT_COLORS[shape], '',
+        ParamSpec('color', 'color_rgba', 'rgba', color_rgba, '',
                   '[red, green, blue, alpha] in [0, 1]'),
     )
 
 
-OBSTACLE_SPECS = {
-    'box': _obstacle_common('box') + (
-        ParamSpec('size', 'size_m', 'vec3', REQUIRED, 'm', 'extents [x, y, z]', gt=0.0),
-    ),
-    'cylinder': _obstacle_common('cylinder') + (
-        ParamSpec('radius', 'radius_m', 'float', REQUIRED, 'm', 'radius', gt=0.0),
-        ParamSpec('height', 'height_m', 'float', REQUIRED, 'm', 'length along its z axis',
-                  gt=0.0),
-    ),
-    'sphere': _obstacle_common('sphere') + (
-        ParamSpec('radius', 'radius_m', 'float', REQUIRED, 'm', 'radius', gt=0.0),
-    ),
-}
+def _round_extents(values):
+    # a cylinder's or sphere's bounding extents: its diameter across, its height (or diameter)
+    diameter = 2.0 * values['radius_m']
+    return (diameter, diameter, values.get('height_m') or diameter)
+
+
+_COMMON_KEYS = ('name', 'shape', 'position', 'roll', 'pitch', 'yaw', 'mass', 'color')
+_RADIUS = ParamSpec('radius', 'radius_m', 'float', REQUIRED, 'm', 'radius', gt=0.0)
+
+register_obstacle_shape(ObstacleShape(
+    'box', (0.75, 0.3, 0.2, 1.0),                       # brick red
+    (ParamSpec('size', 'size_m', 'vec3', REQUIRED, 'm', 'extents [x, y, z]', gt=0.0),),
+    lambda values: values['size_m']))
+register_obstacle_shape(ObstacleShape(
+    'cylinder', (0.95, 0.6, 0.1, 1.0),                  # orange, like a traffic pole
+    (_RADIUS, ParamSpec('height', 'height_m', 'float', REQUIRED, 'm', 'length along its z axis',
+                        gt=0.0)),
+    _round_extents))
+register_obstacle_shape(ObstacleShape(
+    'sphere', (0.2, 0.4, 0.85, 1.0),                    # blue
+    (_RADIUS,), _round_extents))
 
 
 def obstacles_markdown():
     """Return the key tables of the obstacles in docs/sensors.md: common keys, then per shape."""
-    shown = {'color': 'per shape', 'shape': REQUIRED}
-    common = tuple(replace(spec, default=shown[spec.key]) if spec.key in shown else spec
-                   for spec in _obstacle_common('box'))
+    shown = {'color': {'default': 'per shape'},
+             'shape': {'default': REQUIRED, 'choices': tuple(OBSTACLE_SHAPES)}}
+    common = tuple(replace(spec, **shown[spec.key]) if spec.key in shown else spec
+                   for spec in next(iter(OBSTACLE_SHAPES.values())).specs[:len(_COMMON_KEYS)])
     parts = ['#### Keys of every obstacle\n\n', parameter_table_markdown(common, 'key')]
-    for shape, specs in OBSTACLE_SPECS.items():
-        color = DEFAULT_COLORS[shape]
-        parts.append(f'\n#### `{shape}` (default `color`: {list(color)})\n\n'
-                     + parameter_table_markdown(specs, 'key', skip=tuple(s.key for s in common)))
+    for name, shape in OBSTACLE_SHAPES.items():
+        parts.append(f'\n#### `{name}` (default `color`: {list(shape.color_rgba)})\n\n'
+                     + parameter_table_markdown(shape.specs, 'key',
+                                                skip=tuple(s.key for s in common)))
     return ''.join(parts)
 
 
@@ -152,6 +191,10 @@ class ObstacleSpec:
         return self.mass_kg == 0.0
 
 
+# The fields of an ObstacleSpec (a shape's further size keys are folded into size_m).
+_OBSTACLE_FIELDS = frozenset(ObstacleSpec.__dataclass_fields__)
+
+
 def obstacle_from_dict(data, source) -> ObstacleSpec:
     """
     Validate one obstacle mapping.
@@ -161,18 +204,18 @@ def obstacle_from_dict(data, source) -> ObstacleSpec:
     if not isinstance(data, dict):
         raise InvalidParameterError(f'{source}: an obstacle must be a mapping, got {brief(data)}')
     shape = data.get('shape', REQUIRED)
-    if shape is REQUIRED or not isinstance(shape, str) or shape not in OBSTACLE_SPECS:
+    if shape is REQUIRED or not isinstance(shape, str) or shape not in OBSTACLE_SHAPES:
         what = 'is required' if shape is REQUIRED else f'= {brief(shape)}: unknown shape'
         raise InvalidParameterError(f"{source}: field 'shape' {what}; valid: "
                                     + ', '.join(OBSTACLE_SHAPES))
-    specs = OBSTACLE_SPECS[shape]
+    kind = OBSTACLE_SHAPES[shape]
+    specs = kind.specs
     values = validate_table(specs, data, source, {s.key: s.default for s in specs},
                             'an obstacle')
     _check_in_world(source, 'position', *values['position_m'][:2])
-    if shape != 'box':
-        diameter = 2.0 * values['radius_m']
-        values['size_m'] = (diameter, diameter, values.get('height_m') or diameter)
-    return ObstacleSpec(**values)
+    values['size_m'] = tuple(kind.extents(values))
+    return ObstacleSpec(**{key: value for key, value in values.items()
+                           if key in _OBSTACLE_FIELDS})
 
 
 def _check_in_world(source, key, x_m, y_m):
@@ -336,9 +379,9 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
     roads = () if roads is None else roads_from_list(roads, f'{source}: roads')
     base_dir = os.path.dirname(source) if base_dir is None else base_dir
     world_map = map_from_dict(data.get('map'), f'{source}: map', base_dir)
-    if roads and getattr(world_map, 'type', None) == 'lanelet2':
-        raise InvalidParameterError(f'{source}: has both roads: and a lanelet2 map: a world has '
-                                    'one lane map; keep one of them')
+    if roads and is_lane_map(world_map):
+        raise InvalidParameterError(f'{source}: has both roads: and a {world_map.type} map: a '
+                                    'world has one lane map; keep one of them')
     traffic = data.get('traffic')
     if traffic is not None:
         traffic = traffic_from_dict(traffic, f'{source}: traffic', preset_sensors)
