@@ -36,8 +36,8 @@ from dataclasses import dataclass, field
 import math
 from typing import Callable, List, Optional, Sequence, Tuple
 
-from vehicle_sim.core.bridge.speed_limiter import SpeedLimiter
 from vehicle_sim.core.diffdrive.kinematics import integrate_pose
+from vehicle_sim.core.diffdrive.speed_limiter import SpeedLimiter
 from vehicle_sim.core.geometry.angles import wrap_angle_rad, yaw_from_quaternion
 from vehicle_sim.core.specs.units import kmh_to_mps
 
