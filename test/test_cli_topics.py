@@ -34,7 +34,7 @@ import yaml
 from vehicle_sim.tools.graph_commands import PrintRate
 from vehicle_sim.tools.topic_commands import rate_report
 from vehicle_sim.transport.dds import DdsNode
-from vehicle_sim.transport.dds_config import domain_id
+from vehicle_sim.transport.dds.domain_config import domain_id
 from vehicle_sim.transport.qos import QOS_ROSOUT
 
 NS = '/tp_topics'

@@ -52,7 +52,7 @@ from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.ros import sim_params
 from vehicle_sim.ros.automobile import AutomobileNode
 from vehicle_sim.transport import dds
-from vehicle_sim.transport.dds_config import domain_id
+from vehicle_sim.transport.dds.domain_config import domain_id
 from vehicle_sim.transport.parameter_types import Parameter
 from vehicle_sim.transport.qos import QOS_DEFAULT, QOS_DISCOVERY_INFO_READER, QOS_SERVICES
 

@@ -16,7 +16,8 @@
 
 import pytest
 
-from vehicle_sim.transport import dds_config, params, selection
+from vehicle_sim.transport import params, selection
+from vehicle_sim.transport.dds import domain_config
 from vehicle_sim.transport.errors import TransportError
 from vehicle_sim.transport.names import resolve_name
 from vehicle_sim.transport.parameter_types import run_validator
@@ -125,16 +126,16 @@ def test_qos_presets_match_rmw_qos_profiles():
 
 
 @pytest.mark.parametrize('read, env', [
-    (dds_config.domain_id, {'ROS_DOMAIN_ID': 'x'}),
-    (dds_config.domain_id, {'ROS_DOMAIN_ID': '300'}),
-    (dds_config.discovery_range, {'ROS_AUTOMATIC_DISCOVERY_RANGE': 'PLANET'})])
+    (domain_config.domain_id, {'ROS_DOMAIN_ID': 'x'}),
+    (domain_config.domain_id, {'ROS_DOMAIN_ID': '300'}),
+    (domain_config.discovery_range, {'ROS_AUTOMATIC_DISCOVERY_RANGE': 'PLANET'})])
 def test_bad_dds_environment_raises_transport_error(read, env):
     with pytest.raises(TransportError):
         read(env)
 
 
 def test_domain_id_defaults_to_zero():
-    assert dds_config.domain_id({}) == 0
+    assert domain_config.domain_id({}) == 0
 
 
 def test_selection_unknown_transport_lists_valid_values():

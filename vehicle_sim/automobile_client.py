@@ -170,7 +170,7 @@ class AutomobileClient:
             if name in (full, spec.name, spec.short_name, full.lstrip('/')):
                 found = self._found[(name, kind)] = (spec, full)
                 return found
-        from vehicle_sim.graph import close_names
+        from vehicle_sim.transport.dds.graph import close_names
         names = [self._full(s.name) for s in specs]
         close = close_names(name if name.startswith('/') else '/' + name, names)
         hint = f'; did you mean: {", ".join(close)}' if close else ''

@@ -29,7 +29,8 @@ from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
 
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.transport import cyclone_private, fast_cdr, port
+from vehicle_sim.transport import fast_cdr, port
+from vehicle_sim.transport.dds import cyclone_private
 from vehicle_sim.transport.dds.context import Context
 from vehicle_sim.transport.dds.endpoints import (
     DdsPublisher,
