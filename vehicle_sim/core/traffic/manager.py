@@ -49,8 +49,8 @@ from typing import Dict, List, Optional, Sequence, Tuple
 
 from vehicle_sim.core.traffic.idm import advance, idm_acceleration
 from vehicle_sim.core.traffic.mobil import LaneChangeAccelerations, should_change
+from vehicle_sim.core.traffic.params import TrafficSpec
 from vehicle_sim.core.traffic.spawn import spawn_vehicles
-from vehicle_sim.core.traffic.traffic_params import TrafficSpec
 from vehicle_sim.core.traffic.vehicles import OurVehicle, TrafficVehicle
 
 __all__ = ['OurVehicle', 'TrafficManager', 'TrafficVehicle']
