@@ -141,7 +141,7 @@ def test_rclpy_node_override_of_the_wrong_type_names_both_types_and_the_value(co
 
 
 def test_rclpy_node_read_only_refusal_matches_the_embedded_transport(context):
-    from vehicle_sim.transport.params import read_only_reason
+    from vehicle_sim.transport.ros_args import read_only_reason
     node = RclpyNode('read_only_user', context=context)
     try:
         node.declare_parameter('model', 'Car', read_only=True)

@@ -417,7 +417,7 @@ def cmd_param(args) -> int:
     from vehicle_msgs_py import service_types
     from vehicle_sim.transport.dds import param_messages
     from vehicle_sim.transport.errors import TransportError
-    from vehicle_sim.transport.params import parse_parameter_value
+    from vehicle_sim.transport.ros_args import parse_parameter_value
     session = GraphSession()
     try:
         fqn = _param_node(session, args.node, args.wait)

@@ -172,7 +172,7 @@ def _ros_arguments(after):
     ROS argument only inside ``--ros-args``).
     """
     from vehicle_sim.transport import TransportError
-    from vehicle_sim.transport.params import parse_ros_args
+    from vehicle_sim.transport.ros_args import parse_ros_args
     ros_args = list(after or [])
     if ros_args and ros_args[0] == '--':
         ros_args = ros_args[1:]

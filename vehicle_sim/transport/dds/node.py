@@ -47,7 +47,6 @@ from vehicle_sim.transport.errors import TransportError
 from vehicle_sim.transport.logger import LOG_LEVEL_NAMES, Logger
 from vehicle_sim.transport.names import resolve_name, validate_node_name
 from vehicle_sim.transport.parameter_types import Parameter, SetParametersResult
-from vehicle_sim.transport.params import parse_ros_args
 from vehicle_sim.transport.qos import (
     as_qos,
     QOS_CLOCK,
@@ -57,6 +56,7 @@ from vehicle_sim.transport.qos import (
     VOLATILE,
 )
 from vehicle_sim.transport.reader_gate import ReaderGate
+from vehicle_sim.transport.ros_args import parse_ros_args
 from vehicle_sim.transport.ros_time import Time
 
 
