@@ -29,7 +29,7 @@ import time
 from conftest import peer_env
 
 from vehicle_sim.core.specs.units import stamp_to_seconds
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.transport.dds import DdsNode
 from vehicle_sim.transport.qos import QOS_TF_STATIC_LISTENER
 

@@ -24,7 +24,7 @@ from automobile_helpers import AutomobileClient, client_node, NodeProcess, stamp
 from lane_helpers import write_world
 import pytest
 
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros.map_interfaces import MAP_LANES
 from vehicle_sim.transport.dds.graph import GraphView
 

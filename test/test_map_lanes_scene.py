@@ -34,7 +34,7 @@ from vehicle_sim.core.map.kinds import map_from_dict, MAP_KINDS
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.physics.map_layer import MAP_BUILDERS
 from vehicle_sim.physics.scene import build_scene
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros.endpoints import EACH_PUBLISH
 from vehicle_sim.ros.map_interfaces import MAP_TOPICS
 

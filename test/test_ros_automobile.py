@@ -17,8 +17,8 @@ Cross-process tests of the automobile node over real DDS (docs/ros_interface.md)
 
 The node runs in a subprocess in synchronous mode; the test talks to it with its own DdsNode
 and, for wire-level checks, with raw cyclonedds readers. Every service and topic comes from
-``vehicle_sim.ros.interfaces``. Simulated time is asserted exactly (deterministic stepping);
-waits are generous bounds on outcomes.
+``vehicle_sim.ros.automobile_interfaces``. Simulated time is asserted exactly (deterministic
+stepping); waits are generous bounds on outcomes.
 """
 
 import math
@@ -48,7 +48,7 @@ from vehicle_msgs_py import types as msg_types
 from vehicle_sim.config import load_car, read_yaml
 from vehicle_sim.core.car.logic import CarLogic
 from vehicle_sim.core.specs.errors import InvalidParameterError
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros import sim_params
 from vehicle_sim.ros.automobile import AutomobileNode
 from vehicle_sim.transport import dds

@@ -77,7 +77,7 @@ from vehicle_sim.core.geometry.frames import (
     quaternion_from_rpy,
     rpy_from_quaternion,
 )
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros import robot_interfaces as ri
 from vehicle_sim.ros.sensor_interfaces import sensor_rows
 from vehicle_sim.ros.sim_control import INITIALPOSE

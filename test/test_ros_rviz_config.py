@@ -27,7 +27,7 @@ import yaml
 
 from vehicle_sim.config import load_car
 from vehicle_sim.core.sensors.sets import enable_sensors
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros.automobile import NODE_NAME
 from vehicle_sim.ros.sensor_interfaces import sensor_rows
 from vehicle_sim.ros.sim_params import load_world

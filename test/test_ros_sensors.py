@@ -36,7 +36,7 @@ from automobile_helpers import (
 )
 import pytest
 
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros.sensor_interfaces import QOS_SENSOR
 from vehicle_sim.transport.qos import QOS_TF_STATIC_LISTENER
 

@@ -28,7 +28,7 @@ from automobile_helpers import make_client_node, NodeProcess, WAIT_S
 from conftest import peer_env
 import pytest
 
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.transport.dds import domain_config
 from vehicle_sim.transport.errors import TransportError
 

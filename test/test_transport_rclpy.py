@@ -315,8 +315,8 @@ def test_sigint_after_the_node_exists_during_start_up_still_shuts_it_down():
 def test_rclpy_rows_publish_fast_cdr_bytes_and_a_raw_subscription_decodes_them(context):
     from types import SimpleNamespace
 
+    from vehicle_sim.ros import automobile_interfaces as itf
     from vehicle_sim.ros import endpoints
-    from vehicle_sim.ros import interfaces as itf
     publisher = RclpyNode('fast_pub', '/rfast', context=context)
     reader = RclpyNode('fast_sub', '/rfast', context=context)
     try:

@@ -53,7 +53,7 @@ from vehicle_sim.physics import SimulatedCar
 from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
 from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.physics.sensors import SensorFeed
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros.car_context import CarContext
 from vehicle_sim.ros.car_lanes import publish_car_lanes, wire_car_lanes
 from vehicle_sim.ros.descriptions import mounted_sensors

@@ -28,7 +28,7 @@ from vehicle_sim.core.sensors.sets import enable_sensors, selected_sensors
 from vehicle_sim.core.specs.errors import VehicleSimError
 from vehicle_sim.physics.sensor_urdf import with_sensor_links
 from vehicle_sim.physics.urdf import car_urdf
-from vehicle_sim.ros.interfaces import frame_prefix
+from vehicle_sim.ros.automobile_interfaces import frame_prefix
 from vehicle_sim.ros.sim_params import AUTOMOBILE_PARAMETERS, SimSettings, world_spec
 
 
