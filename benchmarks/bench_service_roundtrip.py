@@ -108,7 +108,7 @@ def serve_bare(service_name, ready):
 
 def serve_simulation(service_name, ready):
     """Serve /automobile/set_gear from the automobile node simulating in real time."""
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     app = AutomobileNode(['--ros-args', '-p', 'real_time_factor:=1.0'], transport='dds')
     app.node.get_logger().info('benchmark server ready')
     ready()

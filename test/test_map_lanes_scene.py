@@ -48,7 +48,7 @@ ON_2001 = {'name': 'Car', 'namespace': 'ego', 'model': 'ToyotaPrius',
 
 
 def _node(world):
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     return AutomobileNode(transport='dds', parameter_overrides={
         'world': str(world), 'synchronous': True})
 

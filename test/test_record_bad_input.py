@@ -36,7 +36,7 @@ pytest.importorskip('mcap', reason="recording needs the mcap package (the 'recor
 from vehicle_sim.recording.bag_reader import iter_messages, read_info  # noqa: E402
 from vehicle_sim.recording.bag_writer import BagWriter, RecordingError  # noqa: E402
 from vehicle_sim.recording.recorder import record_node  # noqa: E402
-from vehicle_sim.ros.automobile import AutomobileNode, NODE_NAME  # noqa: E402
+from vehicle_sim.ros.automobile_node import AutomobileNode, NODE_NAME  # noqa: E402
 from vehicle_sim.transport import create_node  # noqa: E402
 
 VEHICLE_SIM = os.path.join(os.path.dirname(sys.executable), 'vehicle-sim')

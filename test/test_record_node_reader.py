@@ -37,7 +37,7 @@ from rosbags.rosbag2 import Reader  # noqa: E402
 from rosbags.typesys import get_types_from_msg, get_typestore, Stores  # noqa: E402
 
 from vehicle_sim.recording.recorder import record_node  # noqa: E402
-from vehicle_sim.ros.automobile import AutomobileNode, NODE_NAME  # noqa: E402
+from vehicle_sim.ros.automobile_node import AutomobileNode, NODE_NAME  # noqa: E402
 from vehicle_sim.transport import create_node  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))

@@ -107,7 +107,7 @@ THIRD_PARTY = {
 # Inside ros, a node module (``*_node.py``) is imported by no other module of ros, except where
 # a node openly composes another: {composing node module: the node modules it builds on}.
 ROS = 'vehicle_sim.ros'
-NODE_COMPOSITION = {}
+NODE_COMPOSITION = {f'{ROS}.autoware_automobile_node': (f'{ROS}.automobile_node',)}
 
 # The core sub-packages from the bottom up; each imports only those before it.
 CORE_ORDER = ('specs', 'geometry', 'sensors', 'map', 'traffic', 'diffdrive', 'car', 'commands',
@@ -336,6 +336,13 @@ def test_every_module_keeps_to_its_layer():
 
 def test_no_ros_module_imports_a_node_module_it_does_not_compose():
     assert node_violations(MODULES) == []
+
+
+def test_the_declared_composition_is_the_one_node_import(monkeypatch):
+    monkeypatch.delitem(NODE_COMPOSITION, f'{ROS}.autoware_automobile_node')
+    assert [re.sub(r':\d+ ', ' ', breach) for breach in node_violations(MODULES)] == [
+        f'{ROS}.autoware_automobile_node imports node module {ROS}.automobile_node: move the '
+        'shared code to core or a shared module of vehicle_sim/ros']
 
 
 def test_the_four_nodes_are_found():

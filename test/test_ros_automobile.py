@@ -50,7 +50,7 @@ from vehicle_sim.core.car.logic import CarLogic
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros import sim_params
-from vehicle_sim.ros.automobile import AutomobileNode
+from vehicle_sim.ros.automobile_node import AutomobileNode
 from vehicle_sim.transport import dds
 from vehicle_sim.transport.dds.domain_config import domain_id
 from vehicle_sim.transport.parameter_types import Parameter

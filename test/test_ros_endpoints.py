@@ -95,7 +95,7 @@ def _automobile_rows(namespaces, inputs=(itf.CMD_VEL, itf.DRIVE)):
 
 
 def _build_automobile(world):
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     app = AutomobileNode(['x', '--ros-args', '-r', f'__ns:={NAMESPACE}'], transport='dds',
                          parameter_overrides={**SYNCHRONOUS, 'world': world})
     return app, app.close

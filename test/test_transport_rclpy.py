@@ -205,7 +205,7 @@ def test_rclpy_node_deferred_reply_is_sent_when_its_future_completes(context):
 
 def test_rclpy_automobile_time_step_is_answered_after_its_steps(context):
     pytest.importorskip('vehicle_msgs', reason='vehicle_msgs not built (export-interfaces)')
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     app = AutomobileNode(transport='rclpy', node=RclpyNode('automobile', '/rt_sync',
                                                              context=context,
                                                              parameter_overrides={

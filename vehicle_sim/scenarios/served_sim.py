@@ -77,7 +77,7 @@ class ServedSim:
                 raise ScenarioError('--foxglove shows the automobile node: this scenario has '
                                     'no car')
             if spec.world.vehicles:
-                from vehicle_sim.ros.automobile import AutomobileNode, NODE_NAME
+                from vehicle_sim.ros.automobile_node import AutomobileNode, NODE_NAME
                 live_view = {} if foxglove is None else {
                     'foxglove_host': foxglove[0], 'foxglove': foxglove[1]}
                 overrides = {'world': self._world_file(spec), 'synchronous': True,
