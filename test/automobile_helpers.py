@@ -93,7 +93,7 @@ def stop_process(proc):
             proc.wait()
 
 
-class AutomobileClient:
+class VehicleClient:
     """
     A test-side node talking to one vehicle namespace of the automobile node.
 

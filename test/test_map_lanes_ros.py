@@ -20,7 +20,7 @@ s = 10 m, in a subprocess, synchronous. The test node subscribes once the node i
 subscriber, which gets /map/lanes because the topic is transient-local.
 """
 
-from automobile_helpers import AutomobileClient, client_node, NodeProcess, stamp_of, wait_for
+from automobile_helpers import client_node, NodeProcess, stamp_of, VehicleClient, wait_for
 from lane_helpers import write_world
 import pytest
 
@@ -48,7 +48,7 @@ def node(tmp_path_factory):
 @pytest.fixture(scope='module')
 def car(node):
     with client_node('lane_tester') as tester:
-        client = AutomobileClient(tester, f'{NAMESPACE}/ego')
+        client = VehicleClient(tester, f'{NAMESPACE}/ego')
         client.wait_matched(['/clock'])       # the node is up: /map/lanes was published before
         yield client
 

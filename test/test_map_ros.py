@@ -23,7 +23,7 @@ transient-local, as nav2 map_server's.
 
 import math
 
-from automobile_helpers import AutomobileClient, client_node, NodeProcess, stamp_of, wait_for
+from automobile_helpers import client_node, NodeProcess, stamp_of, VehicleClient, wait_for
 from map_helpers import (
     ORIGIN,
     RESOLUTION_M,
@@ -70,7 +70,7 @@ def node(world_file):
 @pytest.fixture(scope='module')
 def car(node):
     with client_node('map_tester') as tester:
-        client = AutomobileClient(tester, NAMESPACE)
+        client = VehicleClient(tester, NAMESPACE)
         client.wait_matched(['/clock'])       # the node is up: /map was published before
         yield client
 

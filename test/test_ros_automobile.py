@@ -26,10 +26,10 @@ import os
 import struct
 
 from automobile_helpers import (
-    AutomobileClient,
     client_node,
     NodeProcess,
     stamp_of,
+    VehicleClient,
     wait_for,
     WAIT_S,
 )
@@ -95,7 +95,7 @@ def tester():
 
 @pytest.fixture(scope='module')
 def car(sim, tester):
-    client = AutomobileClient(tester)
+    client = VehicleClient(tester)
     client.wait_matched(FLOAT_TOPICS + ['/clock'])
     return client
 
@@ -276,14 +276,14 @@ def test_discovery_info_lists_the_node_with_every_table_endpoint(car, raw):
 
 @pytest.fixture(scope='module')
 def car1(two_cars, tester):
-    client = AutomobileClient(tester, 'car1')
+    client = VehicleClient(tester, 'car1')
     client.wait_matched(['odom'])
     return client
 
 
 @pytest.fixture(scope='module')
 def car2(two_cars, tester):
-    client = AutomobileClient(tester, 'car2')
+    client = VehicleClient(tester, 'car2')
     client.wait_matched(['odom'])
     return client
 
@@ -469,7 +469,7 @@ def test_publish_period_not_a_multiple_of_the_step_is_refused():
 def test_free_running_node_steps_while_serving_and_refuses_time_step(tester):
     process = NodeProcess('--ros-args', '-r', '__ns:=/fast', '-p', 'real_time_factor:=0.0')
     try:
-        fast = AutomobileClient(tester, 'fast')   # node namespace /fast: same names
+        fast = VehicleClient(tester, 'fast')   # node namespace /fast: same names
         start = fast.time_s()
         assert wait_for(lambda: fast.time_s() > start + 0.5)
         assert fast.call('robot/time_step', 10).success is False

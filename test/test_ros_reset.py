@@ -61,10 +61,10 @@ import math
 import time
 
 from automobile_helpers import (
-    AutomobileClient,
     client_node,
     NodeProcess,
     stamp_of,
+    VehicleClient,
     wait_for,
     WAIT_S,
 )
@@ -136,7 +136,7 @@ def tester():
 
 @pytest.fixture(scope='class')
 def car(sim, tester):
-    client = AutomobileClient(tester)
+    client = VehicleClient(tester)
     client.wait_matched(['odom', '/tf', 'joint_states', '/clock'] + FLOAT_TOPICS)
     return client
 
@@ -382,7 +382,7 @@ def two_cars():
 def realtime(tester):
     process = NodeProcess('--ros-args', '-p', 'synchronous:=false')
     try:
-        client = AutomobileClient(tester)
+        client = VehicleClient(tester)
         client.wait_matched(['/clock'])
         yield client
     finally:
@@ -393,7 +393,7 @@ class TestTwoCars:
     """Two cars, /initialpose for the second (parameter initialpose_vehicle)."""
 
     def test_initialpose_vehicle_and_a_pose_in_its_odom_frame(self, two_cars, tester, initialpose):
-        car1, car2 = AutomobileClient(tester, 'car1'), AutomobileClient(tester, 'car2')
+        car1, car2 = VehicleClient(tester, 'car1'), VehicleClient(tester, 'car2')
         car1.wait_matched(['odom'])
         car2.wait_matched(['odom'])
         assert wait_for(lambda: initialpose.get_subscription_count() >= 1, spin=tester)

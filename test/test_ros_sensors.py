@@ -28,10 +28,10 @@ from fractions import Fraction
 import math
 
 from automobile_helpers import (
-    AutomobileClient,
     client_node,
     NodeProcess,
     stamp_of,
+    VehicleClient,
     wait_for,
 )
 import pytest
@@ -103,7 +103,7 @@ def tester():
 
 @pytest.fixture(scope='module')
 def car(course, tester):
-    client = AutomobileClient(tester, NAMESPACE)
+    client = VehicleClient(tester, NAMESPACE)
     client.wait_matched(['/clock', 'collision'])
     return client
 
@@ -264,7 +264,7 @@ def test_sensors_parameter_mounts_preset_sensors_and_refuses_an_unknown_name(tes
     process = NodeProcess('--ros-args', '-r', '__ns:=/param_sensors', '-p',
                           'synchronous:=true', '-p', 'sensors:=[lidar]')
     try:
-        client = AutomobileClient(tester, 'param_sensors')
+        client = VehicleClient(tester, 'param_sensors')
         found = Listener(tester, '/param_sensors', {'scan': COURSE_TOPICS['scan']})
         found.wait_matched()
         assert client.call('robot/time_step', 100).success
