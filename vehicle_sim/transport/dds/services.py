@@ -118,7 +118,7 @@ class _PendingReply:
         self.deadline = deadline
 
 
-class DdsService(port.Service):
+class DdsService(port.ServiceServer):
     """
     A service server: request reader + reply writer sharing one ``serviceid`` token.
 
