@@ -313,9 +313,9 @@ def core_order_markdown():
     return 'core, bottom up: ' + ' < '.join(f'`{sub}`' for sub in CORE_ORDER) + '.'
 
 
-def _docstring_rule(source):
-    match = re.search(r'^May import: (.+?)\.$', ast.get_docstring(ast.parse(source)) or '',
-                      re.MULTILINE | re.DOTALL)
+def _docstring_rule(source, label='May import'):
+    docstring = ast.get_docstring(ast.parse(source)) or ''
+    match = re.search(rf'^{re.escape(label)}: (.+?)\.$', docstring, re.MULTILINE | re.DOTALL)
     return None if match is None else ' '.join(match.group(1).split())
 
 
@@ -373,6 +373,14 @@ def test_each_package_docstring_names_what_it_may_import(layer):
     assert _docstring_rule(init.read_text(encoding='utf-8')) == _rule_text(layer), \
         f'{init.relative_to(REPO)}: its docstring needs the line ' \
         f'"May import: {_rule_text(layer)}."'
+
+
+@pytest.mark.parametrize('sub', CORE_ORDER)
+def test_each_core_sub_package_docstring_names_those_below_it(sub):
+    init = REPO / 'vehicle_sim' / 'core' / sub / '__init__.py'
+    below = ', '.join(CORE_ORDER[:CORE_ORDER.index(sub)]) or 'no other core sub-package'
+    assert _docstring_rule(init.read_text(encoding='utf-8'), 'May import (core)') == below, \
+        f'{init.relative_to(REPO)}: its docstring needs the line "May import (core): {below}."'
 
 
 def test_every_layer_names_layers_that_exist():

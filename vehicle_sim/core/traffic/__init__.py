@@ -22,4 +22,6 @@ key of world files (:mod:`~vehicle_sim.core.traffic.params`), where the vehicles
 (:mod:`~vehicle_sim.core.traffic.spawn`, their state in :mod:`~vehicle_sim.core.traffic.vehicles`),
 the manager that moves them along the lanes (:mod:`~vehicle_sim.core.traffic.manager`) and
 their ground truth as objects (:mod:`~vehicle_sim.core.traffic.objects`).
+
+May import (core): specs, geometry, sensors, map.
 """
