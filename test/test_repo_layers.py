@@ -426,6 +426,23 @@ def test_an_import_inside_a_function_counts():
             'vehicle_msgs_py') in breaches
 
 
+@pytest.mark.parametrize('source, expected', [
+    ('from vehicle_sim.ros.bridge_node import X', [(1, 'vehicle_sim.ros.bridge_node.X', False)]),
+    ('from vehicle_sim.ros import bridge_node', [(1, 'vehicle_sim.ros.bridge_node', False)]),
+    ('import vehicle_sim.ros.diff_robot_node as d',
+     [(1, 'vehicle_sim.ros.diff_robot_node', False)]),
+    ('from .bridge_node import X', [(1, 'vehicle_sim.ros.bridge_node.X', False)]),
+    ('from . import automobile_node', [(1, 'vehicle_sim.ros.automobile_node', False)]),
+    ('def f():\n    from vehicle_sim.ros.bridge_node import X\n',
+     [(2, 'vehicle_sim.ros.bridge_node.X', True)]),
+    ('class C:\n    def f(self):\n        import numpy\n', [(3, 'numpy', True)]),
+    ('if TYPE_CHECKING:\n    from vehicle_sim.physics import World\n',
+     [(2, 'vehicle_sim.physics.World', False)]),
+])
+def test_the_import_scan_sees_every_import_form(source, expected):
+    assert list(imports_of('vehicle_sim.ros.planted', source, False)) == expected
+
+
 def test_a_relative_import_is_made_absolute():
     assert list(imports_of('vehicle_sim.gym.planted', 'from ..ros import x\n', False)) == [
         (1, 'vehicle_sim.ros.x', False)]
