@@ -144,7 +144,7 @@ def main(argv=None):
     os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
     use_free_domain()
     from vehicle_sim.foxglove.topics import ChannelSink
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
 
     base = {'synchronous': True}
     plain = AutomobileNode(transport='dds', parameter_overrides=base)

@@ -46,7 +46,7 @@ TARGET_US = 20.0
 
 
 def _node(world):
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     start = time.perf_counter()
     node = AutomobileNode(transport='dds', parameter_overrides={
         'world': world, 'synchronous': True})

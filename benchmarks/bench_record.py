@@ -61,7 +61,7 @@ def rss_mib() -> float:
 
 def _node(name, tap=None, path=None):
     from vehicle_sim.recording.recorder import record_node
-    from vehicle_sim.ros.automobile import AutomobileNode, NODE_NAME
+    from vehicle_sim.ros.automobile_node import AutomobileNode, NODE_NAME
     from vehicle_sim.transport import create_node
     node = create_node(NODE_NAME, args=['bench', '--ros-args', '-r', f'__ns:=/{name}',
                                         '-p', 'synchronous:=true', '-p', f'car_model:={CAR}',

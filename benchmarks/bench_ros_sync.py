@@ -151,7 +151,7 @@ def measure_node_in_process(steps, repeats):
     The two subscribe to ``/clock`` and ``current_speed``, as in :func:`measure_ros`. The
     difference is what delivering samples to another process costs the publisher.
     """
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     app = AutomobileNode(['bench', '--ros-args', '-r', '__ns:=/bench_node', '-p',
                           'synchronous:=true', '-p', f'car_model:={CAR}'], transport='dds')
     reader = None

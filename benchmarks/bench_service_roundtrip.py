@@ -86,9 +86,10 @@ def serve_bare(service_name, ready):
     from cyclonedds.domain import DomainParticipant
 
     from vehicle_msgs_py import types as msg_types
-    from vehicle_sim.transport import dds, dds_config
+    from vehicle_sim.transport import dds
+    from vehicle_sim.transport.dds import domain_config
     dds.ensure_domain()
-    participant = DomainParticipant(dds_config.domain_id())
+    participant = DomainParticipant(domain_config.domain_id())
     types = msg_types.service_types(SRV_TYPE)
     writer, reader = _bare_endpoints(participant, service_name, 'rr', 'rq',
                                      (types.response_wire, types.request_wire))
@@ -107,7 +108,7 @@ def serve_bare(service_name, ready):
 
 def serve_simulation(service_name, ready):
     """Serve /automobile/set_gear from the automobile node simulating in real time."""
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     app = AutomobileNode(['--ros-args', '-p', 'real_time_factor:=1.0'], transport='dds')
     app.node.get_logger().info('benchmark server ready')
     ready()
@@ -181,9 +182,9 @@ class BareCaller:
         from cyclonedds.domain import DomainParticipant
 
         from vehicle_msgs_py import types as msg_types
-        from vehicle_sim.transport import dds_config
+        from vehicle_sim.transport.dds import domain_config
         self.proc = _start_server('bare')
-        self.participant = DomainParticipant(dds_config.domain_id())
+        self.participant = DomainParticipant(domain_config.domain_id())
         self.types = msg_types.service_types(SRV_TYPE)
         self.writer, self.reader = _bare_endpoints(
             self.participant, SERVICE, 'rq', 'rr',

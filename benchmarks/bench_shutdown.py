@@ -143,8 +143,8 @@ def main():
     from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsParticipant
     from cyclonedds.core import InstanceState
 
-    from vehicle_sim.graph import GraphView
     from vehicle_sim.transport.dds import DdsNode
+    from vehicle_sim.transport.dds.graph import GraphView
 
     view = GraphView()
     client_node = DdsNode('bench_shutdown_client')

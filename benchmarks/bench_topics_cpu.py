@@ -49,7 +49,7 @@ def measure_node(seconds, step_ms, every_topic=True, floor=False, parameters=())
         PyBullet and the same topics written as bytes serialized once, no Python logic.
     :param parameters: more node parameters, ``('name:=value', ...)``.
     """
-    from vehicle_sim.ros import interfaces as itf
+    from vehicle_sim.ros import automobile_interfaces as itf
     from vehicle_sim.transport.dds import DdsNode
     env = dict(os.environ, PYTHONPATH=REPO_ROOT + os.pathsep + os.environ.get('PYTHONPATH', ''))
     command = ([sys.executable, os.path.abspath(__file__), '--floor-child'] if floor else
@@ -130,8 +130,8 @@ def floor_child(args):
     """
     import pybullet
 
-    from vehicle_sim.ros import interfaces as itf
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros import automobile_interfaces as itf
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     step_ms = int(args[args.index('-p') + 1].split(':=')[1])
     app = AutomobileNode(['floor', '--ros-args', '-p', 'synchronous:=true',
                           '-p', f'time_step_ms:={step_ms}'], transport='dds')
@@ -164,7 +164,7 @@ def floor_child(args):
 
 def step_breakdown(steps, step_ms):
     """Return (physics+logic, publishing) cost per step [ms], measured in this process."""
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     app = AutomobileNode(['bench', '--ros-args', '-r', '__ns:=/bench_inproc', '-p',
                           'synchronous:=true', '-p', f'time_step_ms:={step_ms}'],
                          transport='dds')

@@ -72,9 +72,9 @@ def measure(seconds, every_topic=True, record=None, node_args=(), warmup_s=2.0):
     :param record: an .mcap path for ``--record``, or None.
     :param node_args: ROS arguments for the node (``('-p', 'objects_rate:=100.0')``).
     """
-    from vehicle_sim.graph import GraphView
     from vehicle_sim.transport import dds
     from vehicle_sim.transport.dds import DdsNode
+    from vehicle_sim.transport.dds.graph import GraphView
     from vehicle_sim.transport.qos import BEST_EFFORT, QosProfile, TRANSIENT_LOCAL
     env = dict(os.environ, PYTHONPATH=REPO_ROOT + os.pathsep + os.environ.get('PYTHONPATH', ''))
     command = [sys.executable, '-m', 'vehicle_sim.tools.cli', 'run', '--world', WORLD,

@@ -30,7 +30,7 @@ from conftest import peer_env
 import pytest
 
 from vehicle_sim.core.specs.units import stamp_to_seconds
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.transport.dds import DdsNode
 from vehicle_sim.transport.qos import QOS_TF_STATIC_LISTENER
 
@@ -94,7 +94,7 @@ def stop_process(proc):
             proc.wait()
 
 
-class AutomobileClient:
+class VehicleClient:
     """
     A test-side node talking to one vehicle namespace of the automobile node.
 
@@ -238,14 +238,14 @@ def tester_fixture(node_name, name='tester'):
 
 def car_fixture(topics, namespace='', scope='module', node='sim', tester='tester', name='car'):
     """
-    Return a fixture giving an AutomobileClient of the ``tester`` fixture on ``namespace``.
+    Return a fixture giving an VehicleClient of the ``tester`` fixture on ``namespace``.
 
     It starts the ``node`` fixture first and returns once the node publishes ``topics``.
     """
     @pytest.fixture(scope=scope, name=name)
     def car(request):
         request.getfixturevalue(node)
-        client = AutomobileClient(request.getfixturevalue(tester), namespace)
+        client = VehicleClient(request.getfixturevalue(tester), namespace)
         client.wait_matched(list(topics))
         return client
     return car
@@ -257,7 +257,7 @@ def automobile_fixtures(tester_name, node_args, topics, namespace='', scope='mod
     Return the three fixtures of a module testing the automobile node over the wire.
 
     ``sim``: the node in a subprocess run with ``node_args`` (:func:`node_fixture`); ``tester``:
-    a client node (:func:`tester_fixture`); ``car``: an AutomobileClient of the tester on
+    a client node (:func:`tester_fixture`); ``car``: an VehicleClient of the tester on
     ``namespace`` once the node publishes ``topics`` (:func:`car_fixture`). A module binds them
     to the same names: ``sim, tester, car = automobile_fixtures(...)``.
 

@@ -22,7 +22,7 @@ Import it after ``pytest.importorskip('mcap', ...)``: recording needs the 'recor
 from rosbags.typesys import get_types_from_msg, get_typestore, Stores
 
 from vehicle_sim.recording.recorder import record_node
-from vehicle_sim.ros.automobile import AutomobileNode, NODE_NAME
+from vehicle_sim.ros.automobile_node import AutomobileNode, NODE_NAME
 from vehicle_sim.transport import create_node
 
 

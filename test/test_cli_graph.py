@@ -23,8 +23,8 @@ carries the same USER_DATA as the transport's own endpoints.
 from cyclonedds.qos import Policy
 import pytest
 
-from vehicle_sim.graph import DISCOVERY_TOPIC, GraphView
 from vehicle_sim.transport import dds
+from vehicle_sim.transport.dds.graph import DISCOVERY_TOPIC, GraphView
 
 pytestmark = pytest.mark.transport
 

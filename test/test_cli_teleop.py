@@ -30,7 +30,7 @@ from automobile_helpers import NodeProcess, stop_process, wait_for, WAIT_S
 from conftest import peer_env
 import pytest
 
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.tools.teleop import topic_names
 from vehicle_sim.tools.teleop_keys import (
     BRAKE,

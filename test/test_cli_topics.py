@@ -34,7 +34,7 @@ import yaml
 from vehicle_sim.tools.graph_commands import PrintRate
 from vehicle_sim.tools.topic_commands import rate_report
 from vehicle_sim.transport.dds import DdsNode
-from vehicle_sim.transport.dds_config import domain_id
+from vehicle_sim.transport.dds.domain_config import domain_id
 from vehicle_sim.transport.qos import QOS_ROSOUT
 
 NS = '/tp_topics'
@@ -143,7 +143,7 @@ def test_refusal_reaches_rosout_as_rcl_log_with_its_call_site(automobile):
         found = wait_for(lambda: [r for r in records if 'refused -500.0' in r.msg],
                          spin=listener)
         assert [(r.name, r.level, os.path.basename(r.file), r.function) for r in found] == [
-            ('automobile', 30, 'automobile.py', '_handle_setter')]
+            ('automobile', 30, 'automobile_node.py', '_handle_setter')]
         assert found[0].line > 0 and found[0].stamp.sec > 0
     finally:
         listener.shutdown()

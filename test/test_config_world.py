@@ -328,7 +328,7 @@ def test_sensors_doc_contains_the_generated_key_tables():
 ])
 def test_automobile_node_refuses_a_bad_sensor_at_start_naming_file_and_field(
         tmp_path, entry, fragment):
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     path = tmp_path / 'bad_world.yaml'
     path.write_text(f'vehicles: [{{name: Car, sensors: [{entry}]}}]\n')
     with pytest.raises(InvalidParameterError) as info:
@@ -338,7 +338,7 @@ def test_automobile_node_refuses_a_bad_sensor_at_start_naming_file_and_field(
 
 
 def test_automobile_node_refuses_a_bad_obstacle_at_start_naming_file_and_field(tmp_path):
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     path = tmp_path / 'bad_world.yaml'
     path.write_text('vehicles: [{name: Car}]\nobstacles: [{name: a, shape: box, '
                     'size: [1, .nan, 1], position: [5, 0, 0.5]}]\n')

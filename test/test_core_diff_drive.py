@@ -31,7 +31,6 @@ from vehicle_sim.core.bridge.params import (
     bridge_params_from_dict,
     DEFAULT_BRIDGE_PARAMS,
 )
-from vehicle_sim.core.bridge.speed_limiter import limit_wheel_speeds, SpeedLimiter
 from vehicle_sim.core.commands.watchdog import CommandWatchdog
 from vehicle_sim.core.diffdrive.kinematics import (
     integrate_pose,
@@ -41,6 +40,7 @@ from vehicle_sim.core.diffdrive.kinematics import (
     wheel_speeds_from_twist,
     yaw_rate_from_steering,
 )
+from vehicle_sim.core.diffdrive.speed_limiter import limit_wheel_speeds, SpeedLimiter
 from vehicle_sim.core.specs.errors import InvalidCommandError, InvalidParameterError
 
 TOL = 1e-12

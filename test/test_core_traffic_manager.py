@@ -25,7 +25,7 @@ from vehicle_sim.core.map.lane_graph import Boundary, Lane, LaneGraph
 from vehicle_sim.core.map.road_segments import lane_graph_from_roads
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.manager import OurVehicle, TrafficManager
-from vehicle_sim.core.traffic.traffic_params import traffic_from_dict
+from vehicle_sim.core.traffic.params import traffic_from_dict
 
 DT = 0.05
 DIMS = {'Car': (4.5, 1.8), 'Truck': (8.0, 2.4)}
@@ -300,7 +300,7 @@ def test_no_vehicle_starts_on_ours_across_two_lanes_or_off_every_lane():
 def test_docs_hold_the_generated_key_tables():
     from pathlib import Path
 
-    from vehicle_sim.core.traffic.traffic_params import traffic_markdown
+    from vehicle_sim.core.traffic.params import traffic_markdown
     text = (Path(__file__).resolve().parent.parent / 'docs' / 'traffic.md').read_text('utf-8')
     assert traffic_markdown() in text
 

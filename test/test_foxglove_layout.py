@@ -30,8 +30,8 @@ import vehicle_msgs_py
 from vehicle_sim.config import load_car
 from vehicle_sim.core.sensors.sets import enable_sensors
 from vehicle_sim.foxglove.live_view import SCENE_TOPIC, TRANSFORMS_TOPIC
-from vehicle_sim.ros import interfaces as itf
-from vehicle_sim.ros.automobile import NODE_NAME
+from vehicle_sim.ros import automobile_interfaces as itf
+from vehicle_sim.ros.automobile_node import NODE_NAME
 from vehicle_sim.ros.sensor_interfaces import sensor_rows
 from vehicle_sim.transport.names import resolve_name
 

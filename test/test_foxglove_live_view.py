@@ -33,7 +33,7 @@ import pytest
 pytest.importorskip('foxglove', reason="foxglove-sdk is not installed (pip install "
                                        "'vehicle_sim[foxglove]')")
 
-from vehicle_sim.ros.automobile import AutomobileNode  # noqa: E402
+from vehicle_sim.ros.automobile_node import AutomobileNode  # noqa: E402
 
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CLIENT_SCRIPT = os.path.join(REPO_ROOT, 'test', 'foxglove_client.js')

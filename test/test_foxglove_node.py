@@ -36,7 +36,7 @@ from vehicle_sim.foxglove import sdk as fox_sdk  # noqa: E402
 from vehicle_sim.foxglove.sdk import LiveViewError  # noqa: E402
 from vehicle_sim.foxglove.services import on_node_thread  # noqa: E402
 from vehicle_sim.foxglove.topics import LatchedChannelSink  # noqa: E402
-from vehicle_sim.ros.automobile import AutomobileNode  # noqa: E402
+from vehicle_sim.ros.automobile_node import AutomobileNode  # noqa: E402
 from vehicle_sim.transport.errors import TransportError
 
 

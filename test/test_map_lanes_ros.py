@@ -24,9 +24,9 @@ from automobile_helpers import automobile_fixtures, stamp_of, wait_for
 from lane_helpers import write_world
 import pytest
 
-from vehicle_sim.graph import GraphView
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros.map_interfaces import MAP_LANES
+from vehicle_sim.transport.dds.graph import GraphView
 
 pytest.importorskip('lanelet2', reason="lanelet2 is not installed (pip install "
                                        "'vehicle_sim[lanelet2]'; the test extra has it)")

@@ -34,7 +34,7 @@ from vehicle_sim.core.map.kinds import map_from_dict, MAP_KINDS
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.physics.map_layer import MAP_BUILDERS
 from vehicle_sim.physics.scene import build_scene
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros.endpoints import EACH_PUBLISH
 from vehicle_sim.ros.map_interfaces import MAP_TOPICS
 
@@ -48,7 +48,7 @@ ON_2001 = {'name': 'Car', 'namespace': 'ego', 'model': 'ToyotaPrius',
 
 
 def _node(world):
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     return AutomobileNode(transport='dds', parameter_overrides={
         'world': str(world), 'synchronous': True})
 

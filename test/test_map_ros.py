@@ -37,9 +37,9 @@ import numpy as np
 import pytest
 import yaml
 
-from vehicle_sim.graph import GraphView
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros.map_interfaces import MAP, MAP_METADATA
+from vehicle_sim.transport.dds.graph import GraphView
 from vehicle_sim.transport.qos import QOS_TF_STATIC_LISTENER
 
 pytestmark = pytest.mark.transport

@@ -102,7 +102,7 @@ def test_the_cycle_finder_finds_a_cycle_through_a_function_level_import():
 def test_the_graph_counts_imports_inside_functions():
     graph = import_graph(_modules())
     # automobile_client.py imports the interface table inside AutomobileClient.__init__ only
-    assert 'vehicle_sim.ros.interfaces' in graph['vehicle_sim.automobile_client']
+    assert 'vehicle_sim.ros.automobile_interfaces' in graph['vehicle_sim.automobile_client']
 
 
 def test_the_package_has_no_import_cycle():

@@ -41,7 +41,7 @@ from vehicle_sim.core.specs.errors import InvalidParameterError, InvalidPoseErro
 from vehicle_sim.core.specs.param_spec import ParamSpec, validate_table
 from vehicle_sim.core.traffic import models as traffic_models
 from vehicle_sim.core.traffic.manager import TrafficManager
-from vehicle_sim.core.traffic.traffic_params import traffic_from_dict, traffic_markdown
+from vehicle_sim.core.traffic.params import traffic_from_dict, traffic_markdown
 from vehicle_sim.core.world import params as world_params
 from vehicle_sim.foxglove import scene as foxglove_scene
 from vehicle_sim.maps import lane_maps

@@ -36,7 +36,7 @@ from vehicle_sim.core.sensors.sets import check_sensor_set, static_transforms
 from vehicle_sim.physics import World
 from vehicle_sim.physics.sensor_urdf import sensor_links_urdf
 from vehicle_sim.physics.sensors import Sensor, SENSOR_CLASSES, SensorSuite
-from vehicle_sim.physics.sensors.distance import DistanceSensor
+from vehicle_sim.physics.sensors.distance import RayDistanceSensor
 from vehicle_sim.physics.simulated_car import SimulatedCar
 from vehicle_sim.ros import messages as m
 from vehicle_sim.ros.sensor_interfaces import SENSOR_ROWS, sensor_rows
@@ -151,7 +151,7 @@ def test_a_new_type_registered_in_each_layer_works_with_no_other_change(monkeypa
                   else spec for spec in SENSOR_TYPES['distance'].specs)
     monkeypatch.setitem(sensor_params.SENSOR_TYPES, 'radar',
                         replace(SENSOR_TYPES['distance'], specs=specs))
-    monkeypatch.setitem(SENSOR_CLASSES, 'radar', DistanceSensor)
+    monkeypatch.setitem(SENSOR_CLASSES, 'radar', RayDistanceSensor)
     monkeypatch.setitem(SENSOR_ROWS, 'radar', SENSOR_ROWS['distance'])
     monkeypatch.setattr(devices, 'DEVICE_API',
                         DEVICE_API + (DeviceRow('DistanceSensor', 'radar', 'device', 'getRadar'),))

@@ -55,7 +55,7 @@ def _yaml(value):
 
 
 def _automobile(value):
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     app = AutomobileNode(['x', '--ros-args', '-r', f'__ns:={NAMESPACE}'], transport='dds',
                          parameter_overrides={'synchronous': True, 'time_step_ms': value})
     step_ms = app.world.time_step_s * 1000.0

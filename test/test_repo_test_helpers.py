@@ -18,7 +18,7 @@ The tests' same-shape set-ups are written once, in a helper, and the test module
 
 - the automobile node recorded in process (``record_node`` then ``AutomobileNode``, stepped,
   closed): ``record_helpers.record_automobile``;
-- the node in a subprocess, a client node and an ``AutomobileClient`` waiting for its topics:
+- the node in a subprocess, a client node and an ``VehicleClient`` waiting for its topics:
   ``automobile_helpers.automobile_fixtures``.
 """
 
@@ -60,5 +60,5 @@ def test_the_in_process_recording_is_set_up_once():
 
 
 def test_no_module_builds_the_node_process_client_and_automobile_client_itself():
-    assert _fixtures_calling('AutomobileClient') == []
+    assert _fixtures_calling('VehicleClient') == []
     assert _fixtures_calling('client_node') == []

@@ -17,8 +17,8 @@ Cross-process tests of the automobile node over real DDS (docs/ros_interface.md)
 
 The node runs in a subprocess in synchronous mode; the test talks to it with its own DdsNode
 and, for wire-level checks, with raw cyclonedds readers. Every service and topic comes from
-``vehicle_sim.ros.interfaces``. Simulated time is asserted exactly (deterministic stepping);
-waits are generous bounds on outcomes.
+``vehicle_sim.ros.automobile_interfaces``. Simulated time is asserted exactly (deterministic
+stepping); waits are generous bounds on outcomes.
 """
 
 import math
@@ -27,11 +27,11 @@ import struct
 
 from automobile_helpers import (
     automobile_fixtures,
-    AutomobileClient,
     car_fixture,
     node_fixture,
     NodeProcess,
     stamp_of,
+    VehicleClient,
     wait_for,
     WAIT_S,
 )
@@ -50,11 +50,11 @@ from vehicle_msgs_py import types as msg_types
 from vehicle_sim.config import load_car, read_yaml
 from vehicle_sim.core.car.logic import CarLogic
 from vehicle_sim.core.specs.errors import InvalidParameterError
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros import sim_params
-from vehicle_sim.ros.automobile import AutomobileNode
+from vehicle_sim.ros.automobile_node import AutomobileNode
 from vehicle_sim.transport import dds
-from vehicle_sim.transport.dds_config import domain_id
+from vehicle_sim.transport.dds.domain_config import domain_id
 from vehicle_sim.transport.parameter_types import Parameter
 from vehicle_sim.transport.qos import QOS_DEFAULT, QOS_DISCOVERY_INFO_READER, QOS_SERVICES
 
@@ -445,7 +445,7 @@ def test_publish_period_not_a_multiple_of_the_step_is_refused():
 def test_free_running_node_steps_while_serving_and_refuses_time_step(tester):
     process = NodeProcess('--ros-args', '-r', '__ns:=/fast', '-p', 'real_time_factor:=0.0')
     try:
-        fast = AutomobileClient(tester, 'fast')   # node namespace /fast: same names
+        fast = VehicleClient(tester, 'fast')   # node namespace /fast: same names
         start = fast.time_s()
         assert wait_for(lambda: fast.time_s() > start + 0.5)
         assert fast.call('robot/time_step', 10).success is False

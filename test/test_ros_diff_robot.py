@@ -26,7 +26,7 @@ from conftest import REPO_ROOT
 import pytest
 
 from vehicle_sim.ros.diff_robot_node import DiffRobotNode, ROBOT_NODE_PARAMETERS
-from vehicle_sim.transport.params import load_params_file, params_file_overrides
+from vehicle_sim.transport.ros_args import load_params_file, params_file_overrides
 
 pytestmark = pytest.mark.transport
 

@@ -32,7 +32,7 @@ import pytest
 from vehicle_sim.config import load_car
 from vehicle_sim.core.car.ackermann import ackermann_angles
 from vehicle_sim.core.specs.units import kmh_to_mps
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros import robot_interfaces as ri
 from vehicle_sim.testing import AutomobileSim, stamp_s
 

@@ -32,10 +32,10 @@ from conftest import REPO_ROOT
 import pytest
 
 from vehicle_msgs_py import types as msg_types
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros import autoware_interfaces as awi
 from vehicle_sim.ros import bridge_interfaces as bi
 from vehicle_sim.ros import endpoints
-from vehicle_sim.ros import interfaces as itf
 from vehicle_sim.ros import robot_interfaces as ri
 from vehicle_sim.transport import dds
 from vehicle_sim.transport.qos import as_qos, QOS_CLOCK, RELIABLE, VOLATILE
@@ -95,7 +95,7 @@ def _automobile_rows(namespaces, inputs=(itf.CMD_VEL, itf.DRIVE)):
 
 
 def _build_automobile(world):
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     app = AutomobileNode(['x', '--ros-args', '-r', f'__ns:={NAMESPACE}'], transport='dds',
                          parameter_overrides={**SYNCHRONOUS, 'world': world})
     return app, app.close

@@ -31,7 +31,7 @@ import pytest
 import yaml
 
 from vehicle_sim.config import read_yaml, world_path
-from vehicle_sim.graph import GraphView
+from vehicle_sim.transport.dds.graph import GraphView
 from vehicle_sim.transport.qos import (
     BEST_EFFORT,
     QosProfile,

@@ -40,7 +40,7 @@ REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 @linux_only
 def test_automobile_node_with_gui_and_no_display_is_refused_at_start(monkeypatch):
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     monkeypatch.delenv('DISPLAY', raising=False)
     with pytest.raises(GuiUnavailableError, match='DISPLAY is not set.*xvfb-run'):
         AutomobileNode(['x', '--ros-args', '-r', '__ns:=/gui_refused', '-p', 'gui:=true',
@@ -115,7 +115,7 @@ def test_a_closed_window_shuts_the_node_down_instead_of_raising(monkeypatch):
     # The window's Esc (or close button) disconnects PyBullet: World.step raises GuiClosedError;
     # the node logs it, asks its spin to end, and steps no more.
     from vehicle_sim.physics.gui import GuiClosedError
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     app = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/gui_closed', '-p',
                           'synchronous:=true'], transport='dds')
     try:
@@ -137,7 +137,7 @@ def test_a_closed_window_shuts_the_node_down_instead_of_raising(monkeypatch):
 
 
 def test_an_error_with_the_window_still_open_is_raised(monkeypatch):
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     app = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/gui_other_error', '-p',
                           'synchronous:=true'], transport='dds')
     try:

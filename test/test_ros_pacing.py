@@ -13,11 +13,11 @@
 # limitations under the License.
 
 """
-The automobile node says when it falls behind real time (ros/automobile.py, core/world/pacing.py).
+The automobile node says when it falls behind real time.
 
-The node runs in this process in real-time mode, but the test steps it itself with a fake wall
-clock injected into its pacing: each step "takes" a chosen wall time, so the achieved factor is
-exact and no test waits on the real clock.
+Code: ros/automobile_node.py, core/world/pacing.py. The node runs in this process in real-time
+mode, but the test steps it itself with a fake wall clock injected into its pacing: each step
+"takes" a chosen wall time, so the achieved factor is exact and no test waits on the real clock.
 """
 
 import pytest
@@ -38,7 +38,7 @@ class FakeClock:
 
 
 def run_node(name, clock, steps, **parameters):
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     app = AutomobileNode(['x', '--ros-args', '-r', f'__ns:=/{name}'], transport='dds',
                          parameter_overrides={'real_time_factor': 1.0, **parameters},
                          wall_clock=clock)

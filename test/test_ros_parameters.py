@@ -254,7 +254,7 @@ SYNCHRONOUS = {'synchronous': True}
 
 
 def _automobile(overrides):
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     return AutomobileNode(['x', '--ros-args', '-r', f'__ns:={NAMESPACE}'], transport='dds',
                           parameter_overrides={**SYNCHRONOUS, **overrides})
 

@@ -62,11 +62,11 @@ import time
 
 from automobile_helpers import (
     automobile_fixtures,
-    AutomobileClient,
     car_fixture,
     node_fixture,
     NodeProcess,
     stamp_of,
+    VehicleClient,
     wait_for,
     WAIT_S,
 )
@@ -79,7 +79,7 @@ from vehicle_sim.core.geometry.frames import (
     quaternion_from_rpy,
     rpy_from_quaternion,
 )
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros import robot_interfaces as ri
 from vehicle_sim.ros.sensor_interfaces import sensor_rows
 from vehicle_sim.ros.sim_control import INITIALPOSE
@@ -372,7 +372,7 @@ class TestTwoCars:
     """Two cars, /initialpose for the second (parameter initialpose_vehicle)."""
 
     def test_initialpose_vehicle_and_a_pose_in_its_odom_frame(self, two_cars, tester, initialpose):
-        car1, car2 = AutomobileClient(tester, 'car1'), AutomobileClient(tester, 'car2')
+        car1, car2 = VehicleClient(tester, 'car1'), VehicleClient(tester, 'car2')
         car1.wait_matched(['odom'])
         car2.wait_matched(['odom'])
         assert wait_for(lambda: initialpose.get_subscription_count() >= 1, spin=tester)

@@ -27,8 +27,8 @@ import yaml
 
 from vehicle_sim.config import load_car
 from vehicle_sim.core.sensors.sets import enable_sensors
-from vehicle_sim.ros import interfaces as itf
-from vehicle_sim.ros.automobile import NODE_NAME
+from vehicle_sim.ros import automobile_interfaces as itf
+from vehicle_sim.ros.automobile_node import NODE_NAME
 from vehicle_sim.ros.sensor_interfaces import sensor_rows
 from vehicle_sim.ros.sim_params import load_world
 from vehicle_sim.transport.names import resolve_name
@@ -119,7 +119,7 @@ def test_tf_display_is_on_and_the_only_tool_topic_is_initialpose(config):
 def test_launch_feeds_robot_state_publisher_the_urdf_the_node_publishes():
     # launch/automobile.launch.py rviz:=true calls robot_descriptions with the launch arguments
     # and the params file's sensors; the node publishes description() of each vehicle.
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     from vehicle_sim.ros.descriptions import robot_descriptions
     app = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/rviz_urdf', '-p', 'world:=two_cars',
                           '-p', 'synchronous:=true', '-p', 'sensors:=[lidar]'], transport='dds')

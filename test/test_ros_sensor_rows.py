@@ -172,7 +172,7 @@ NAMESPACE = '/sensor_rows'
 
 
 def _automobile(**overrides):
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     return AutomobileNode(['x', '--ros-args', '-r', f'__ns:={NAMESPACE}'], transport='dds',
                           parameter_overrides={'synchronous': True, **overrides})
 

@@ -29,14 +29,14 @@ import math
 
 from automobile_helpers import (
     automobile_fixtures,
-    AutomobileClient,
     NodeProcess,
     stamp_of,
+    VehicleClient,
     wait_for,
 )
 import pytest
 
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros.sensor_interfaces import QOS_SENSOR
 from vehicle_sim.transport.qos import QOS_TF_STATIC_LISTENER
 
@@ -250,7 +250,7 @@ def test_sensors_parameter_mounts_preset_sensors_and_refuses_an_unknown_name(tes
     process = NodeProcess('--ros-args', '-r', '__ns:=/param_sensors', '-p',
                           'synchronous:=true', '-p', 'sensors:=[lidar]')
     try:
-        client = AutomobileClient(tester, 'param_sensors')
+        client = VehicleClient(tester, 'param_sensors')
         found = Listener(tester, '/param_sensors', {'scan': COURSE_TOPICS['scan']})
         found.wait_matched()
         assert client.call('robot/time_step', 100).success

@@ -18,7 +18,7 @@
 from automobile_helpers import wait_for
 import pytest
 
-from vehicle_sim.ros.automobile import AutomobileNode
+from vehicle_sim.ros.automobile_node import AutomobileNode
 from vehicle_sim.transport.dds import DdsNode
 
 pytestmark = pytest.mark.transport

@@ -24,10 +24,10 @@ waits are generous bounds on outcomes.
 import signal
 
 from automobile_helpers import (
-    AutomobileClient,
     make_client_node,
     NodeProcess,
     stamp_of,
+    VehicleClient,
     wait_for,
     WAIT_S,
 )
@@ -61,7 +61,7 @@ def test_automobile_serves_setters_and_getters_while_a_huge_time_step_runs(teste
     ns = f'ts_huge_{stop_signal.name.lower()}'
     process = NodeProcess('--ros-args', '-r', f'__ns:=/{ns}', '-p', 'synchronous:=true')
     try:
-        car = AutomobileClient(tester, ns)
+        car = VehicleClient(tester, ns)
         step, request = _time_step_client(tester, f'/{ns}/robot/time_step')
         car.subscribe('automobile/current_speed')
         huge = step.call_async(request(value=HUGE_MS))

@@ -44,7 +44,7 @@ KEEP_ALL = QosProfile(depth=1000)
 
 @pytest.fixture(scope='module')
 def app():
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     node = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/traffic_test'], transport='dds',
                           parameter_overrides={'synchronous': True,
                                                'world': 'highway_traffic'})
@@ -120,7 +120,7 @@ def run_highway(tmp_path, name, steps, parameters=None, **keys):
     import yaml
 
     from vehicle_sim.config import read_yaml, world_path
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     data = copy.deepcopy(read_yaml(world_path('highway')))
     data.update(keys)
     path = tmp_path / f'{name}.yaml'

@@ -32,7 +32,7 @@ from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.world.collision import CollisionEvent
 from vehicle_sim.scenarios.criteria import CRITERIA, Sample, validate_criterion
 from vehicle_sim.scenarios.runner import run_scenario
-from vehicle_sim.scenarios.scene import Scene
+from vehicle_sim.scenarios.scene import CriteriaScene
 
 ROOT = Path(__file__).resolve().parent.parent
 STOP = ROOT / 'scenarios' / 'stop_before_obstacle.yaml'
@@ -46,7 +46,7 @@ POLE = circle_footprint('pole', (10.0, 5.0), 0.2)
 def _clearance(min_m, fixed=(WALL, POLE), moving=None):
     criterion = CRITERIA['clearance']('clearance', 'ego', validate_criterion(
         'clearance', {'min': min_m}), 10.0)
-    criterion.bind(Scene({'ego': CAR}, fixed, moving))
+    criterion.bind(CriteriaScene({'ego': CAR}, fixed, moving))
     return criterion
 
 

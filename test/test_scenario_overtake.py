@@ -26,7 +26,7 @@ from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.scenarios.criteria import Sample, validate_criterion
 from vehicle_sim.scenarios.overtake_criterion import Overtake
 from vehicle_sim.scenarios.runner import run_scenario
-from vehicle_sim.scenarios.scene import Scene
+from vehicle_sim.scenarios.scene import CriteriaScene
 from vehicle_sim.scenarios.schema import load_scenario
 from vehicle_sim.scenarios.yaml_lines import ScenarioError
 
@@ -93,8 +93,8 @@ def overtake(frames, values=None, duration_s=10.0):
     values = dict({'min_count': 1, 'lateral_m': 8.0, 'within_s': None}, **(values or {}))
     criterion = Overtake('overtake', 'Car', values, duration_s)
     now = []
-    criterion.bind(Scene({'Car': outline()},
-                         traffic=lambda: [(n, x, y, yaw, 4.0, 1.8) for n, x, y, yaw in now]))
+    criterion.bind(CriteriaScene(
+        {'Car': outline()}, traffic=lambda: [(n, x, y, yaw, 4.0, 1.8) for n, x, y, yaw in now]))
     for time_s, ego_x, cars in frames:
         now[:] = cars
         criterion.observe(Sample(time_s, ego_x, 0.0, 0.0, 20.0))
@@ -140,7 +140,7 @@ def test_a_pass_after_the_deadline_does_not_count_and_several_are_counted():
 def test_overtake_without_traffic_fails_saying_so():
     criterion = Overtake('overtake', 'Car', {'min_count': 1, 'lateral_m': 8.0,
                                              'within_s': None}, 10.0)
-    criterion.bind(Scene({'Car': outline()}))
+    criterion.bind(CriteriaScene({'Car': outline()}))
     criterion.observe(Sample(1.0, 0.0, 0.0, 0.0, 10.0))
     result = criterion.result()
     assert not result.passed and 'no traffic' in result.detail

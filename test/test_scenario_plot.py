@@ -37,7 +37,7 @@ from vehicle_sim.core.geometry.footprint import (
 from vehicle_sim.core.world.collision import CollisionEvent
 from vehicle_sim.scenarios.criteria import build_criteria, Sample
 from vehicle_sim.scenarios.runner import run_scenario, ScenarioResult, Track
-from vehicle_sim.scenarios.scene import Scene
+from vehicle_sim.scenarios.scene import CriteriaScene
 from vehicle_sim.scenarios.schema import load_scenario
 
 pytest.importorskip('matplotlib', reason='the plot needs matplotlib')
@@ -61,8 +61,8 @@ def _made_up_run(path, poses, outline, collisions=()):
     """Return a ScenarioResult of a track given as (x, y, yaw) every DT_S, judged for real."""
     spec = load_scenario(path)
     criteria = build_criteria(spec.criteria, spec.duration_s)
-    scene = Scene({spec.vehicle: outline},
-                  [obstacle_footprint(o) for o in spec.world.obstacles])
+    scene = CriteriaScene({spec.vehicle: outline},
+                          [obstacle_footprint(o) for o in spec.world.obstacles])
     track = Track(outline=outline)
     for index, (x, y, yaw) in enumerate(poses):
         track.time_s.append(round(index * DT_S, 9))

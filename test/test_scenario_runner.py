@@ -327,14 +327,14 @@ def test_hosted_driver_binds_to_the_host_car_and_leaves_it_in_the_world():
 def test_progress_draws_a_bar_on_a_terminal():
     import io
 
-    from vehicle_sim.tools.scenario_command import Progress
+    from vehicle_sim.tools.scenario_command import ScenarioProgress
 
     class Tty(io.StringIO):
         def isatty(self):
             return True
 
     stream = Tty()
-    progress = Progress(stream, 'demo')
+    progress = ScenarioProgress(stream, 'demo')
     progress(5.0, 10.0)
     progress.done()
     assert stream.getvalue() == '\rdemo [' + '#' * 15 + '.' * 15 + ']    5.00 / 10 s\n'

@@ -26,7 +26,7 @@ import yaml
 from vehicle_sim.core.geometry.footprint import Outline
 from vehicle_sim.scenarios.criteria import MinGap, Sample
 from vehicle_sim.scenarios.runner import run_scenario
-from vehicle_sim.scenarios.scene import Scene
+from vehicle_sim.scenarios.scene import CriteriaScene
 
 ROOT = Path(__file__).resolve().parent.parent
 CUT_IN = ROOT / 'scenarios' / 'cut_in.yaml'
@@ -58,7 +58,7 @@ def outline():
 
 def gap_of(traffic, sample, values=None):
     criterion = MinGap('min_gap', 'Car', values or {'min_m': 5.0, 'after_s': 0.0}, 10.0)
-    criterion.bind(Scene({'Car': outline()}, traffic=lambda: traffic))
+    criterion.bind(CriteriaScene({'Car': outline()}, traffic=lambda: traffic))
     criterion.observe(sample)
     return criterion.result()
 
@@ -84,7 +84,7 @@ def test_min_gap_waits_for_after_and_fails_without_traffic():
     early = gap_of([close], Sample(1.0, 0.0, 0.0, 0.0, 10.0), {'min_m': 5.0, 'after_s': 2.0})
     assert early.passed and early.value is None
     criterion = MinGap('min_gap', 'Car', {'min_m': 5.0, 'after_s': 0.0}, 10.0)
-    criterion.bind(Scene({'Car': outline()}))
+    criterion.bind(CriteriaScene({'Car': outline()}))
     criterion.observe(Sample(1.0, 0.0, 0.0, 0.0, 10.0))
     result = criterion.result()
     assert not result.passed and 'no traffic' in result.detail

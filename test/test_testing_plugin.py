@@ -153,8 +153,8 @@ def test_client_topics_subscribes_clock_and_the_named_topics_only_and_latest_is_
 
 
 def test_client_calls_every_service_the_node_serves_sim_reset_and_sim_pause_too():
-    from vehicle_sim.graph import demangle_service, GraphView
     from vehicle_sim.testing import AutomobileSim
+    from vehicle_sim.transport.dds.graph import demangle_service, GraphView
     sim = AutomobileSim(topics=('current_speed',))
     try:
         car = sim.client

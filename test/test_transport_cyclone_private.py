@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Pins the cyclonedds-python 11.0.1 behaviour that vehicle_sim.transport.cyclone_private relies on.
+Pins the cyclonedds-python 11.0.1 behaviour that transport/dds/cyclone_private.py relies on.
 
 If an upgrade changes any of it, these tests fail first; the module docstring says why each
 internal is used. One participant in this process; samples go through Cyclone's local delivery.
@@ -30,8 +30,9 @@ from cyclonedds.topic import Topic
 import pytest
 
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.transport import cyclone_private, dds
-from vehicle_sim.transport.dds_config import domain_id
+from vehicle_sim.transport import dds
+from vehicle_sim.transport.dds import cyclone_private
+from vehicle_sim.transport.dds.domain_config import domain_id
 from vehicle_sim.transport.qos import QOS_DEFAULT
 
 pytestmark = pytest.mark.transport

@@ -34,7 +34,7 @@ from vehicle_msgs_py import distro
 from vehicle_msgs_py import types as msg_types
 from vehicle_sim.transport import dds
 from vehicle_sim.transport.dds import DdsNode
-from vehicle_sim.transport.dds_config import domain_id
+from vehicle_sim.transport.dds.domain_config import domain_id
 from vehicle_sim.transport.parameter_types import (
     Parameter,
     PARAMETER_DOUBLE,

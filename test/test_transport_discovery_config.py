@@ -28,8 +28,8 @@ from automobile_helpers import make_client_node, NodeProcess, WAIT_S
 from conftest import peer_env
 import pytest
 
-from vehicle_sim.ros import interfaces as itf
-from vehicle_sim.transport import dds_config
+from vehicle_sim.ros import automobile_interfaces as itf
+from vehicle_sim.transport.dds import domain_config
 from vehicle_sim.transport.errors import TransportError
 
 RMW_LOCALHOST = (
@@ -74,18 +74,18 @@ def _env(scope, **more):
     (_env('SUBNET', ROS_LOCALHOST_ONLY='1', **PEERS), RMW_LOCALHOST.format(peers='')),
 ])
 def test_rmw_fragment_per_range_is_the_one_rmw_cyclonedds_builds(env, expected):
-    assert dds_config.rmw_fragment(env, pid=4242) == expected
+    assert domain_config.rmw_fragment(env, pid=4242) == expected
     if expected:
         ElementTree.fromstring(expected)   # well-formed
 
 
-@pytest.mark.parametrize('scope', dds_config.RANGES)
+@pytest.mark.parametrize('scope', domain_config.RANGES)
 def test_config_is_ours_then_rmw_then_the_user_uri_in_every_range(scope):
     user = '<CycloneDDS><Domain><Tracing><Verbosity>warning</Verbosity></Tracing></Domain>' \
            '</CycloneDDS>'
     env = _env(scope, CYCLONEDDS_URI=user, ROS_DOMAIN_ID='3')
-    parts = [dds_config.own_fragment(env), dds_config.rmw_fragment(env), user]
-    assert dds_config.cyclone_config(env) == ','.join(p for p in parts if p)
+    parts = [domain_config.own_fragment(env), domain_config.rmw_fragment(env), user]
+    assert domain_config.cyclone_config(env) == ','.join(p for p in parts if p)
     assert LINGER in parts[0]   # every range: no writer linger on shutdown
     assert (LOOPBACK_PIN in parts[0]) == (scope == 'LOCALHOST')
     # LOCALHOST announces every second: multicast-only peers (Humble's Fast DDS with
@@ -108,8 +108,8 @@ def test_config_is_ours_then_rmw_then_the_user_uri_in_every_range(scope):
 ])
 def test_localhost_pins_no_interface_when_the_user_uri_selects_one(user_uri):
     env = _env('LOCALHOST', CYCLONEDDS_URI=user_uri, ROS_DOMAIN_ID='3')
-    assert LOOPBACK_PIN not in dds_config.own_fragment(env)
-    assert dds_config.cyclone_config(env).endswith(user_uri)
+    assert LOOPBACK_PIN not in domain_config.own_fragment(env)
+    assert domain_config.cyclone_config(env).endswith(user_uri)
 
 
 def test_localhost_reads_interface_selections_from_configuration_files(tmp_path):
@@ -117,10 +117,10 @@ def test_localhost_reads_interface_selections_from_configuration_files(tmp_path)
     path.write_text('<?xml version="1.0" encoding="utf-8"?>\n' + USER_LO_ADDRESS)
     for uri in (str(path), f'file://{path}'):
         env = _env('LOCALHOST', CYCLONEDDS_URI=uri, ROS_DOMAIN_ID='3')
-        assert LOOPBACK_PIN not in dds_config.cyclone_config(env)
+        assert LOOPBACK_PIN not in domain_config.cyclone_config(env)
     # A file that cannot be read: leave the interfaces to the user's configuration, like rmw.
     env = _env('LOCALHOST', CYCLONEDDS_URI=str(tmp_path / 'missing.xml'))
-    assert LOOPBACK_PIN not in dds_config.cyclone_config(env)
+    assert LOOPBACK_PIN not in domain_config.cyclone_config(env)
 
 
 @pytest.mark.parametrize('user_uri', [
@@ -133,21 +133,21 @@ def test_localhost_reads_interface_selections_from_configuration_files(tmp_path)
 ])
 def test_localhost_pins_loopback_when_the_user_uri_selects_none(user_uri):
     env = _env('LOCALHOST', CYCLONEDDS_URI=user_uri, ROS_DOMAIN_ID='3')
-    assert LOOPBACK_PIN in dds_config.cyclone_config(env)
+    assert LOOPBACK_PIN in domain_config.cyclone_config(env)
 
 
 def test_bad_range_is_refused_and_localhost_only_is_honoured():
     with pytest.raises(TransportError, match='ROS_AUTOMATIC_DISCOVERY_RANGE'):
-        dds_config.discovery_range(_env('PLANET'))
-    assert dds_config.discovery_range({'ROS_LOCALHOST_ONLY': '1'}) == 'LOCALHOST'
-    assert dds_config.discovery_range({}) == 'SUBNET'
+        domain_config.discovery_range(_env('PLANET'))
+    assert domain_config.discovery_range({'ROS_LOCALHOST_ONLY': '1'}) == 'LOCALHOST'
+    assert domain_config.discovery_range({}) == 'SUBNET'
 
 
 def test_domain_error_is_one_line_naming_cyclone_reason_and_the_environment():
     uri = '<CycloneDDS><Domain><NoSuchSetting>1</NoSuchSetting></Domain></CycloneDDS>'
     env = _env('LOCALHOST', CYCLONEDDS_URI=uri, ROS_DOMAIN_ID='7')
     with pytest.raises(TransportError) as raised:
-        dds_config.create_domain(7, env)
+        domain_config.create_domain(7, env)
     message = str(raised.value)
     assert '\n' not in message
     assert message.startswith('Cyclone DDS refused domain 7: ')

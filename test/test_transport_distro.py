@@ -39,10 +39,10 @@ from rosbags.typesys import get_typestore, Stores
 
 from vehicle_msgs_py import distro
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.graph import GraphView
-from vehicle_sim.transport import cyclone_private, dds
-from vehicle_sim.transport.dds import DdsNode, discovery_info, peers, services
-from vehicle_sim.transport.dds_config import domain_id
+from vehicle_sim.transport import dds
+from vehicle_sim.transport.dds import cyclone_private, DdsNode, discovery_info, peers, services
+from vehicle_sim.transport.dds.domain_config import domain_id
+from vehicle_sim.transport.dds.graph import GraphView
 from vehicle_sim.transport.qos import QOS_DISCOVERY_INFO_READER
 
 GUID = bytes(range(1, 17))

@@ -35,9 +35,10 @@ from cyclonedds.core import InstanceState
 from cyclonedds.domain import DomainParticipant
 import pytest
 
-from vehicle_sim.graph import GraphView
-from vehicle_sim.transport import cyclone_private, dds
-from vehicle_sim.transport.dds_config import domain_id
+from vehicle_sim.transport import dds
+from vehicle_sim.transport.dds import cyclone_private
+from vehicle_sim.transport.dds.domain_config import domain_id
+from vehicle_sim.transport.dds.graph import GraphView
 
 pytestmark = pytest.mark.transport
 

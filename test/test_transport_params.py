@@ -16,11 +16,11 @@
 
 import pytest
 
-from vehicle_sim.transport import dds_config, params, selection
+from vehicle_sim.transport import ros_args, selection
+from vehicle_sim.transport.dds import domain_config
 from vehicle_sim.transport.errors import TransportError
 from vehicle_sim.transport.names import resolve_name
 from vehicle_sim.transport.parameter_types import run_validator
-from vehicle_sim.transport.params import params_file_overrides, parse_ros_args
 from vehicle_sim.transport.qos import (
     as_qos,
     BEST_EFFORT,
@@ -32,6 +32,7 @@ from vehicle_sim.transport.qos import (
     QosProfile,
     TRANSIENT_LOCAL,
 )
+from vehicle_sim.transport.ros_args import params_file_overrides, parse_ros_args
 
 
 def test_ros_args_param_values_are_read_as_yaml_like_rcl():
@@ -125,16 +126,16 @@ def test_qos_presets_match_rmw_qos_profiles():
 
 
 @pytest.mark.parametrize('read, env', [
-    (dds_config.domain_id, {'ROS_DOMAIN_ID': 'x'}),
-    (dds_config.domain_id, {'ROS_DOMAIN_ID': '300'}),
-    (dds_config.discovery_range, {'ROS_AUTOMATIC_DISCOVERY_RANGE': 'PLANET'})])
+    (domain_config.domain_id, {'ROS_DOMAIN_ID': 'x'}),
+    (domain_config.domain_id, {'ROS_DOMAIN_ID': '300'}),
+    (domain_config.discovery_range, {'ROS_AUTOMATIC_DISCOVERY_RANGE': 'PLANET'})])
 def test_bad_dds_environment_raises_transport_error(read, env):
     with pytest.raises(TransportError):
         read(env)
 
 
 def test_domain_id_defaults_to_zero():
-    assert dds_config.domain_id({}) == 0
+    assert domain_config.domain_id({}) == 0
 
 
 def test_selection_unknown_transport_lists_valid_values():
@@ -161,12 +162,12 @@ def test_parameter_validator_reasons():
 
 def test_read_only_reason_is_worded_like_rclpy():
     # rclpy Jazzy, Node._apply_descriptor
-    assert params.read_only_reason('car_model') == \
+    assert ros_args.read_only_reason('car_model') == \
         'Trying to set a read-only parameter: car_model.'
 
 
 def test_unknown_overrides_warning_names_the_stranger_a_close_match_and_every_parameter():
-    warning = params.unknown_overrides_warning(
+    warning = ros_args.unknown_overrides_warning(
         ['publish_period', 'car_model'], ['car_model', 'publish_period_ms', 'use_sim_time'])
     assert warning == (
         'ignored parameter override publish_period (did you mean publish_period_ms?): '
@@ -174,5 +175,5 @@ def test_unknown_overrides_warning_names_the_stranger_a_close_match_and_every_pa
 
 
 def test_unknown_overrides_warning_is_none_when_every_override_is_declared():
-    assert params.unknown_overrides_warning(['a'], ['a', 'b']) is None
-    assert params.unknown_overrides_warning([], ['a']) is None
+    assert ros_args.unknown_overrides_warning(['a'], ['a', 'b']) is None
+    assert ros_args.unknown_overrides_warning([], ['a']) is None

@@ -141,7 +141,7 @@ def test_rclpy_node_override_of_the_wrong_type_names_both_types_and_the_value(co
 
 
 def test_rclpy_node_read_only_refusal_matches_the_embedded_transport(context):
-    from vehicle_sim.transport.params import read_only_reason
+    from vehicle_sim.transport.ros_args import read_only_reason
     node = RclpyNode('read_only_user', context=context)
     try:
         node.declare_parameter('model', 'Car', read_only=True)
@@ -205,7 +205,7 @@ def test_rclpy_node_deferred_reply_is_sent_when_its_future_completes(context):
 
 def test_rclpy_automobile_time_step_is_answered_after_its_steps(context):
     pytest.importorskip('vehicle_msgs', reason='vehicle_msgs not built (export-interfaces)')
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     app = AutomobileNode(transport='rclpy', node=RclpyNode('automobile', '/rt_sync',
                                                              context=context,
                                                              parameter_overrides={
@@ -315,8 +315,8 @@ def test_sigint_after_the_node_exists_during_start_up_still_shuts_it_down():
 def test_rclpy_rows_publish_fast_cdr_bytes_and_a_raw_subscription_decodes_them(context):
     from types import SimpleNamespace
 
+    from vehicle_sim.ros import automobile_interfaces as itf
     from vehicle_sim.ros import endpoints
-    from vehicle_sim.ros import interfaces as itf
     publisher = RclpyNode('fast_pub', '/rfast', context=context)
     reader = RclpyNode('fast_sub', '/rfast', context=context)
     try:

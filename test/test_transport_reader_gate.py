@@ -21,9 +21,9 @@ from automobile_helpers import wait_for
 import pytest
 
 from vehicle_msgs_py import types as msg_types
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros import endpoints
-from vehicle_sim.ros import interfaces as itf
-from vehicle_sim.ros.automobile import AutomobileNode
+from vehicle_sim.ros.automobile_node import AutomobileNode
 from vehicle_sim.transport import port
 from vehicle_sim.transport.dds import DdsNode
 from vehicle_sim.transport.reader_gate import ALWAYS_OPEN

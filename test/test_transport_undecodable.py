@@ -28,11 +28,11 @@ from cyclonedds.topic import Topic
 import pytest
 
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.graph import GraphView
 from vehicle_sim.ros import bridge_interfaces as bi
-from vehicle_sim.transport import cyclone_private, dds
-from vehicle_sim.transport.dds import DdsNode
-from vehicle_sim.transport.dds_config import domain_id
+from vehicle_sim.transport import dds
+from vehicle_sim.transport.dds import cyclone_private, DdsNode
+from vehicle_sim.transport.dds.domain_config import domain_id
+from vehicle_sim.transport.dds.graph import GraphView
 from vehicle_sim.transport.parameter_types import PARAMETER_BOOL, PARAMETER_STRING
 from vehicle_sim.transport.qos import (
     QOS_DEFAULT,

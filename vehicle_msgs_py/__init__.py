@@ -24,6 +24,8 @@ for ROS machines.
 The names below are imported from :mod:`vehicle_msgs_py.types` on first use, so that the
 exporter (``vehicle_msgs_py.export``) runs with the standard library only: on a ROS machine it
 runs before cyclonedds or rosbags are installed, if they ever are.
+
+May import: no other layer.
 """
 
 import importlib

@@ -12,6 +12,10 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""vehicle_sim: a PyBullet car simulator with the Webots automobile API and ROS 2 nodes."""
+"""
+vehicle_sim: a PyBullet car simulator with the Webots automobile API and ROS 2 nodes.
+
+May import: no other layer.
+"""
 
 __version__ = '0.1.0'

@@ -109,7 +109,8 @@ class AutomobileClient:
 
     Endpoint names may be given in full (``/automobile/current_speed``, ``/clock``), relative to
     the vehicle (``automobile/current_speed``, ``robot/time_step``) or by their last part
-    (``current_speed``, ``set_gear``, ``clock``); types come from ``vehicle_sim.ros.interfaces``.
+    (``current_speed``, ``set_gear``, ``clock``); types come from
+    ``vehicle_sim.ros.automobile_interfaces``.
 
     :param namespace: the automobile node's namespace ('' or '/' for the root).
     :param transport: 'auto', 'rclpy' or 'dds' (default: ``VEHICLE_SIM_TRANSPORT``).
@@ -125,7 +126,7 @@ class AutomobileClient:
     def __init__(self, namespace: str = '', transport: Optional[str] = None,
                  publish_period_s: float = 0.0, timeout_s: float = DEFAULT_TIMEOUT_S,
                  topics: Optional[Iterable[str]] = None):
-        from vehicle_sim.ros import interfaces as itf
+        from vehicle_sim.ros import automobile_interfaces as itf
         from vehicle_sim.transport.selection import create_node
         self._itf = itf
         self.namespace = '/' + namespace.strip('/') if namespace.strip('/') else ''
@@ -170,7 +171,7 @@ class AutomobileClient:
             if name in (full, spec.name, spec.short_name, full.lstrip('/')):
                 found = self._found[(name, kind)] = (spec, full)
                 return found
-        from vehicle_sim.graph import close_names
+        from vehicle_sim.transport.dds.graph import close_names
         names = [self._full(s.name) for s in specs]
         close = close_names(name if name.startswith('/') else '/' + name, names)
         hint = f'; did you mean: {", ".join(close)}' if close else ''

@@ -12,4 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""ROS-free, PyBullet-free vehicle math: imports only the standard library and numpy."""
+"""
+ROS-free, PyBullet-free vehicle math: imports only the standard library and numpy.
+
+May import: no other layer.
+"""

@@ -31,4 +31,6 @@ channels), :mod:`.services` and :mod:`.parameters` (the capabilities, run on the
 thread), :mod:`.scene` (entities of the world, the registry of entity sources),
 :mod:`.scene_messages` (those as Foxglove messages), :mod:`.live_view` (what the node
 attaches).
+
+May import: core, transport, vehicle_msgs_py.
 """

@@ -24,6 +24,8 @@ Importing this package registers ``vehicle_sim/Drive-v0`` (registration.py)::
 
 :class:`DriveEnv` is one world; :class:`DriveVectorEnv` holds N worlds in one process and steps
 them in one call. docs/gym.md describes actions, observations, reward and options.
+
+May import: core, config, maps, physics, scenarios.
 """
 
 from vehicle_sim.gym.drive_env import DriveEnv

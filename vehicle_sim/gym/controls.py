@@ -32,8 +32,8 @@ the entry. Nothing is clipped here beyond float rounding at a bound: wrap the en
 
 import numpy as np
 
-from vehicle_sim.core.bridge.speed_limiter import limit_wheel_speeds
 from vehicle_sim.core.diffdrive.kinematics import wheel_speeds_from_twist
+from vehicle_sim.core.diffdrive.speed_limiter import limit_wheel_speeds
 from vehicle_sim.core.specs.units import mps_to_kmh, ros_steering_to_webots
 
 # Relative float rounding taken as the bound (float32 epsilon is 1.2e-7; a rescaled bound is a

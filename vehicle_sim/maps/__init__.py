@@ -13,4 +13,8 @@
 # limitations under the License.
 
 
-"""Map files (occupancy grids with Pillow, Lanelet2 with lanelet2), each into a core map type."""
+"""
+Map files (occupancy grids with Pillow, Lanelet2 with lanelet2), each into a core map type.
+
+May import: core, config.
+"""

@@ -12,7 +12,11 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""PyBullet physics: World, car bodies, URDF generation (the only place pybullet is imported)."""
+"""
+PyBullet physics: World, car bodies, URDF generation (the only place pybullet is imported).
+
+May import: core, config, maps.
+"""
 
 # First: pybullet without its start-up banner (the modules below import it too).
 from vehicle_sim.physics import _pybullet  # noqa: F401

@@ -27,4 +27,6 @@ dependent definitions, ``cdr`` messages exactly as they were on the wire, chunke
 - :mod:`.player`: republishing a file's messages at their recorded pace.
 
 The ``mcap`` package is an optional dependency: ``pip install 'vehicle_sim[record]'``.
+
+May import: core, transport, vehicle_msgs_py, vehicle_sim.
 """

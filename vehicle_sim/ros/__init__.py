@@ -12,4 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""ROS 2 nodes and their interface tables (one row kind, ``endpoints.py``) with converters."""
+"""
+ROS 2 nodes and their interface tables (one row kind, ``endpoints.py``) with converters.
+
+May import: core, config, maps, physics, transport, foxglove.
+"""

@@ -61,7 +61,7 @@ from vehicle_sim.core.commands.watchdog import (
 from vehicle_sim.core.specs.errors import InvalidCommandError, InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec
 from vehicle_sim.ros import autoware_interfaces as awi
-from vehicle_sim.ros.automobile import AutomobileNode  # composed on this node
+from vehicle_sim.ros.automobile_node import AutomobileNode  # composed on this node
 from vehicle_sim.ros.endpoints import EACH_STATUS, Outputs, serve, subscribe
 from vehicle_sim.ros.messages import stamp_builder
 from vehicle_sim.ros.node_support import declare_parameters, run_main

@@ -15,18 +15,18 @@
 """
 One car of the automobile node: the wiring context of its rows and their call context per step.
 
-:class:`CarContext` holds what the rows of ``ros/interfaces.py`` and ``ros/sensor_interfaces.py``
-read: the names and frames fixed when they are wired, and after :meth:`CarContext.sample` the
-car's state of that step, each part read from the car once, when the first row that needs it
-asks. Reset and teleport of the car go through it (``ros/sim_control.py``), so that its sensor
-feed, its drive inputs and the listeners of composing nodes follow.
+:class:`CarContext` holds what the rows of ``ros/automobile_interfaces.py`` and
+``ros/sensor_interfaces.py`` read: the names and frames fixed when they are wired, and after
+:meth:`CarContext.sample` the car's state of that step, each part read from the car once, when the
+first row that needs it asks. Reset and teleport of the car go through it (``ros/sim_control.py``),
+so that its sensor feed, its drive inputs and the listeners of composing nodes follow.
 """
 
 from vehicle_sim.core.car.drivetrain import ControlMode
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.geometry.frames import pose_in_frame, quaternion_from_yaw, twist_in_body
 from vehicle_sim.core.sensors.sets import static_transforms
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros.descriptions import vehicle_description
 
 
@@ -34,7 +34,7 @@ class CarContext:
     """
     One car: the wiring context of its rows and, after :meth:`sample`, their call context.
 
-    The attributes the rows' converters read are listed in ``ros/interfaces.py``.
+    The attributes the rows' converters read are listed in ``ros/automobile_interfaces.py``.
     """
 
     def __init__(self, spec, car, sensors):

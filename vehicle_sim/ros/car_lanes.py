@@ -16,11 +16,11 @@
 The lane rows of one car of the automobile node, in a world with a lane map (docs/maps.md).
 
 :func:`wire_car_lanes` gives the car (its CarContext) a VehicleLanes (core/map/vehicle_lanes.py)
-and wires its rows of ``ros/interfaces.py``: ``<ns>/lane_state`` and ``<ns>/lane_invasion``
-(``LANE_TOPICS``, published by :func:`publish_car_lanes` each publish period) and the service
-``<ns>/set_lane_pose`` (``LANE_SERVICES``: a teleport onto a lane, placed as a world file's
-``pose: {lanelet, s, offset}`` is, core/map/lane_placement.py). The car's reset and teleport
-(CarContext) reset its lane tracking.
+and wires its rows of ``ros/automobile_interfaces.py``: ``<ns>/lane_state`` and
+``<ns>/lane_invasion`` (``LANE_TOPICS``, published by :func:`publish_car_lanes` each publish
+period) and the service ``<ns>/set_lane_pose`` (``LANE_SERVICES``: a teleport onto a lane, placed
+as a world file's ``pose: {lanelet, s, offset}`` is, core/map/lane_placement.py). The car's reset
+and teleport (CarContext) reset its lane tracking.
 """
 
 from vehicle_sim.core.geometry.frames import quaternion_from_yaw
@@ -28,7 +28,7 @@ from vehicle_sim.core.map.lane_placement import pose_on_lane
 from vehicle_sim.core.map.vehicle_lanes import VehicleLanes
 from vehicle_sim.core.specs.errors import InvalidParameterError, InvalidPoseError
 from vehicle_sim.core.world.placement import ground_pose
-from vehicle_sim.ros import interfaces as itf
+from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros.endpoints import EACH_PUBLISH, ON_EVENT, Outputs, serve
 
 

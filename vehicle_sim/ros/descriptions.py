@@ -15,9 +15,10 @@
 """
 The URDF of each simulated car, as the automobile node publishes it on ``<ns>/robot_description``.
 
-One source for two users: the node (:mod:`.automobile`) and ``launch/automobile.launch.py``, whose
-``rviz:=true`` feeds the same text to one robot_state_publisher per vehicle (RViz's RobotModel
-needs the TF of every link, which robot_state_publisher computes from it and ``joint_states``).
+One source for two users: the node (:mod:`.automobile_node`) and ``launch/automobile.launch.py``,
+whose ``rviz:=true`` feeds the same text to one robot_state_publisher per vehicle (RViz's
+RobotModel needs the TF of every link, which robot_state_publisher computes from it and
+``joint_states``).
 """
 
 from dataclasses import replace
@@ -28,7 +29,7 @@ from vehicle_sim.core.sensors.sets import enable_sensors, selected_sensors
 from vehicle_sim.core.specs.errors import VehicleSimError
 from vehicle_sim.physics.sensor_urdf import with_sensor_links
 from vehicle_sim.physics.urdf import car_urdf
-from vehicle_sim.ros.interfaces import frame_prefix
+from vehicle_sim.ros.automobile_interfaces import frame_prefix
 from vehicle_sim.ros.sim_params import AUTOMOBILE_PARAMETERS, SimSettings, world_spec
 
 

@@ -15,15 +15,15 @@
 """
 The one kind of ROS interface table: every topic and service of every node is a row.
 
-A :class:`Topic` row is a name, a ROS type, a QoS profile, a cadence (when it is published) and
-its converter; a :class:`Service` row is a name, a service type and what the node maps it to.
-The tables are ``ros/interfaces.py`` (the automobile node), ``ros/bridge_interfaces.py`` (the
-bridge's vehicle side), ``ros/autoware_interfaces.py`` (the Autoware side of the bridge and
-``autoware_automobile``) and ``ros/robot_interfaces.py`` (the simulated robot); the
-rows every node shares, ``/clock``, ``/tf`` and ``/tf_static``, are defined once, here. Nodes
-wire rows with :class:`Outputs`, :func:`subscribe` and :func:`serve` (the only calls that create
-publishers, subscriptions and services in the ROS layer; a test checks it), and the docs' tables
-are generated from the rows (:func:`topic_table_markdown`).
+A :class:`Topic` row is a name, a ROS type, a QoS profile, a cadence (when it is published) and its
+converter; a :class:`Service` row is a name, a service type and what the node maps it to. The
+tables are ``ros/automobile_interfaces.py`` (the automobile node), ``ros/bridge_interfaces.py``
+(the bridge's vehicle side), ``ros/autoware_interfaces.py`` (the Autoware side of the bridge and
+``autoware_automobile``) and ``ros/robot_interfaces.py`` (the simulated robot); the rows every node
+shares, ``/clock``, ``/tf`` and ``/tf_static``, are defined once, here. Nodes wire rows with
+:class:`Outputs`, :func:`subscribe` and :func:`serve` (the only calls that create publishers,
+subscriptions and services in the ROS layer; a test checks it), and the docs' tables are generated
+from the rows (:func:`topic_table_markdown`).
 
 Converters. An output row's ``converter`` is a factory ``converter(kit, w)``, called once when
 a node wires the row, with a :class:`MessageKit` (the transport's message classes, builders

@@ -38,7 +38,7 @@ from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec, table_defaults
 from vehicle_sim.core.specs.simulation import FRICTION, TIME_STEP_MS
-from vehicle_sim.core.traffic.traffic_params import OBJECTS_RATE
+from vehicle_sim.core.traffic.params import OBJECTS_RATE
 from vehicle_sim.ros import node_support
 from vehicle_sim.ros.endpoints import CMD_VEL_STAMPED_PARAMETER, CMD_VEL_TIMEOUT_PARAMETER
 from vehicle_sim.ros.sensor_interfaces import SENSORS_PARAMETER

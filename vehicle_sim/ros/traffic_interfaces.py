@@ -24,7 +24,7 @@ a lanelet2 map, as Autoware expects, else ``world``; a frame the node's tree has
 None = nothing to publish) and ``obstacles`` (core ObstacleObjects, in PredictedObjects only).
 """
 
-from vehicle_sim.core.traffic.traffic_params import OBJECTS_RATE
+from vehicle_sim.core.traffic.params import OBJECTS_RATE
 from vehicle_sim.ros.endpoints import converter, Topic, topic_table_markdown
 from vehicle_sim.ros.traffic_cdr import predicted_objects_serializer, traffic_markers_serializer
 from vehicle_sim.ros.traffic_messages import (

@@ -20,7 +20,9 @@ pass criteria.
 
 Modules: :mod:`.yaml_lines` (YAML with line numbers), :mod:`.schema` (the file format),
 :mod:`.criteria` (pass criteria), :mod:`.actors` (waypoint followers), :mod:`.sim` (the
-simulation a scenario runs in), :mod:`.runner` (running one), :mod:`.external` (controllers
-in subprocesses), :mod:`.junit` and :mod:`.plot` (reports), :mod:`.pytest_items` (scenario files
-as pytest tests).
+simulation a scenario runs in, ROS-free) and :mod:`.served_sim` (the same served over ROS),
+:mod:`.runner` (running one), :mod:`.external` (controllers in subprocesses), :mod:`.junit` and
+:mod:`.plot` (reports), :mod:`.pytest_items` (scenario files as pytest tests).
+
+May import: core, config, maps, physics, webots, transport, ros, recording.
 """

@@ -21,7 +21,7 @@ up. Scripted commands and actors act in the world's ``pre_step`` (the runner's
 ground-truth odometry and feeds the criteria. An in-process controller is run like Webots runs
 one (its ``Driver()`` bound to the vehicle under test, :mod:`vehicle_sim.webots.host`); after
 it returns the world steps on to the duration with its last commands. External processes get
-the simulation served over ROS (:class:`~.sim.ServedSim`), paced at the driver's
+the simulation served over ROS (:class:`~.served_sim.ServedSim`), paced at the driver's
 ``real_time_factor``; their timing is not reproducible, so such runs report
 ``deterministic = False`` (``repeat`` gives the spread of the measured values).
 
@@ -50,7 +50,8 @@ from vehicle_sim.scenarios.external import run_processes, TopicWatcher
 from vehicle_sim.scenarios.pacing import Pacer
 from vehicle_sim.scenarios.scene import world_scene
 from vehicle_sim.scenarios.schema import load_scenario, ScenarioSpec
-from vehicle_sim.scenarios.sim import LocalSim, ServedSim
+from vehicle_sim.scenarios.served_sim import ServedSim
+from vehicle_sim.scenarios.sim import LocalSim
 from vehicle_sim.scenarios.yaml_lines import ScenarioError
 
 _EPS_S = 1e-9

@@ -15,13 +15,13 @@
 """
 What a run's criteria measure distances against: vehicle outlines and obstacle footprints.
 
-A :class:`Scene` holds each vehicle's footprint rectangle (core Outline) and gives the
+A :class:`CriteriaScene` holds each vehicle's footprint rectangle (core Outline) and gives the
 footprints around them now: fixed ones (static obstacles, and an occupancy map's walls,
 :func:`map_walls`) computed once, movable obstacles' read from the world at each call; and the
 traffic vehicles now (``traffic``: (name, x, y, yaw, length, width) of each, their box centre).
 Criteria get it through ``Criterion.bind``; unit tests build one by hand.
-:meth:`Scene.footprints_near` leaves out, by their boxes along the axes, the footprints too far
-to matter (a map has a thousand wall rectangles).
+:meth:`CriteriaScene.footprints_near` leaves out, by their boxes along the axes, the footprints too
+far to matter (a map has a thousand wall rectangles).
 """
 
 import math
@@ -50,7 +50,7 @@ def _box_distance(boxes, box):
     return np.hypot(dx, dy)
 
 
-class Scene:
+class CriteriaScene:
     """
     The outlines of the vehicles and the footprints of what surrounds them.
 
@@ -144,7 +144,7 @@ def map_walls(built) -> Tuple[Footprint, ...]:
 
 
 def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
-                lanes=None, traffic=None) -> Scene:
+                lanes=None, traffic=None) -> CriteriaScene:
     """
     Return the scene of a built simulation.
 
@@ -168,6 +168,6 @@ def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
         return [(v.name, *manager.pose(v), v.length_m, v.width_m)
                 for v in manager.vehicles if v.active]
 
-    return Scene({name: handle.outline for name, handle in vehicles.items()}, fixed,
-                 moving if movable else None, None if traffic is None else traffic_now,
-                 lanes, walls)
+    return CriteriaScene({name: handle.outline for name, handle in vehicles.items()}, fixed,
+                         moving if movable else None, None if traffic is None else traffic_now,
+                         lanes, walls)

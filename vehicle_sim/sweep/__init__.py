@@ -23,6 +23,8 @@ Modules: :mod:`.grid` (the variants: ``--set``, ``--seeds``, dotted keys, valida
 :mod:`.ray_tasks` (the Ray backend), :mod:`.results` (the results folder, table, JUnit XML),
 :mod:`.plot` (the summary plot), :mod:`.progress` (the progress display), :mod:`.run`
 (:func:`run_sweep`, which the ``vehicle-sim sweep`` command wraps).
+
+May import: core, config, scenarios, vehicle_sim.
 """
 
 from vehicle_sim.sweep.grid import SweepError

@@ -18,4 +18,7 @@ The command-line tools: the ``vehicle-sim`` command and the end-to-end scenario 
 ``cli`` parses ``vehicle-sim`` and dispatches to ``graph_commands`` (list, echo, call, param),
 ``run_command`` (run) and ``demo`` (which runs ``scenario``). ``python -m vehicle_sim ARGS``
 is ``vehicle-sim ARGS``.
+
+May import: core, vehicle_msgs_py, vehicle_sim, config, maps, physics, webots, transport,
+foxglove, ros, recording, scenarios, gym, sweep, testing.
 """

@@ -265,6 +265,6 @@ def teleop_main(argv: Optional[List[str]] = None) -> int:
     ``ros2 run`` may append ROS arguments (``--ros-args ...``); teleop takes its settings as
     options (``--namespace``, ``--robot``, ...), so those are dropped.
     """
-    from vehicle_sim.transport.params import parse_ros_args
+    from vehicle_sim.transport.ros_args import parse_ros_args
     argv = sys.argv[1:] if argv is None else list(argv)
     return main(['teleop', *parse_ros_args(argv).non_ros_args])

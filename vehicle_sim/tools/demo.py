@@ -31,7 +31,7 @@ _COLOURS = {'caster_robot': 'tab:blue', 'skid_steer_robot': 'tab:orange'}
 
 def plot(result, out_path):
     """
-    Write the figure of a ScenarioResult to ``out_path`` (PNG).
+    Write the figure of an EndToEndResult to ``out_path`` (PNG).
 
     :return: out_path.
     """
@@ -106,7 +106,7 @@ def run_demo(out_path=DEFAULT_OUT, car_model=None, short=False, stream=None):
     :param out_path: PNG path.
     :param car_model: car preset (default: end_to_end.DEFAULT_CAR).
     :param short: run the short variant (half-length segments).
-    :return: (ScenarioResult, out_path).
+    :return: (EndToEndResult, out_path).
     """
     stream = sys.stdout if stream is None else stream   # the stdout of the call, not of import
     os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'OFF')

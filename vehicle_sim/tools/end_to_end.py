@@ -36,8 +36,8 @@ from dataclasses import dataclass, field
 import math
 from typing import Callable, List, Optional, Sequence, Tuple
 
-from vehicle_sim.core.bridge.speed_limiter import SpeedLimiter
 from vehicle_sim.core.diffdrive.kinematics import integrate_pose
+from vehicle_sim.core.diffdrive.speed_limiter import SpeedLimiter
 from vehicle_sim.core.geometry.angles import wrap_angle_rad, yaw_from_quaternion
 from vehicle_sim.core.specs.simulation import TIME_STEP_MS
 from vehicle_sim.core.specs.units import kmh_to_mps
@@ -159,7 +159,7 @@ def bicycle_reference(applied, wheel_base_m, dt_s, start=(0.0, 0.0, 0.0)):
 
 
 @dataclass
-class Track:
+class EndToEndTrack:
     """What one vehicle did: times, ground truth, reference, wheel speeds, applied commands."""
 
     name: str
@@ -248,7 +248,7 @@ def _control_msg(node, msg_type, speed_mps, steer_rad):
 class _RobotRig:
     robot: object
     bridge: object
-    track: Track
+    track: EndToEndTrack
     last_tick_s: Optional[float] = None
 
 
@@ -263,7 +263,7 @@ def run_robots(stream, robots=ROBOTS, bridge_overrides=None, transport='dds',
     :param bridge_overrides: extra bridge parameters for every bridge.
     :param transport: transport of the nodes (they are driven in-process, never spun).
     :param record_every: record wheel speeds every n steps.
-    :return: {preset: Track}.
+    :return: {preset: EndToEndTrack}.
     """
     from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
     from vehicle_sim.core.world.params import WorldSpec
@@ -292,8 +292,8 @@ def run_robots(stream, robots=ROBOTS, bridge_overrides=None, transport='dds',
             bridge = AckermannToDifferentialNode([], transport=transport,
                                                  parameter_overrides=overrides,
                                                  node_name=f'bridge_{preset}_e2e')
-            track = Track(preset, params.wheel_tread_m,
-                          wheel_labels=('left', 'right'), wheel_unit='m/s')
+            track = EndToEndTrack(preset, params.wheel_tread_m,
+                                  wheel_labels=('left', 'right'), wheel_unit='m/s')
             track.silence_start_s = _bounds_or_none(stream, 'silence')
             rigs.append(_RobotRig(robot, bridge, track))
         for rig in rigs:
@@ -376,7 +376,7 @@ def run_car(stream, car_model=DEFAULT_CAR, transport='dds', record_every=5):
 
     :param stream: CommandStream.
     :param car_model: car preset (config/cars).
-    :return: Track (wheel speeds: the four wheels [rad/s], FR FL RR RL).
+    :return: EndToEndTrack (wheel speeds: the four wheels [rad/s], FR FL RR RL).
     """
     from vehicle_sim.ros import autoware_interfaces as awi
     from vehicle_sim.ros.autoware_automobile_node import AutowareAutomobileNode
@@ -388,9 +388,10 @@ def run_car(stream, car_model=DEFAULT_CAR, transport='dds', record_every=5):
         car = node.car
         logic = car.logic
         params = car.params
-        track = Track(car_model, params.wheelbase_m,
-                      wheel_labels=('front right', 'front left', 'rear right', 'rear left'),
-                      wheel_unit='rad/s')
+        track = EndToEndTrack(car_model, params.wheelbase_m,
+                              wheel_labels=('front right', 'front left', 'rear right',
+                                            'rear left'),
+                              wheel_unit='rad/s')
         track.silence_start_s = _bounds_or_none(stream, 'silence')
         # the car's cruise ramp: Car.proto's acceleration (100 km/h)/time0To100, up and down
         accel = kmh_to_mps(100.0) / params.time_0_to_100_s
@@ -429,13 +430,13 @@ def run_car(stream, car_model=DEFAULT_CAR, transport='dds', record_every=5):
 
 
 @dataclass
-class ScenarioResult:
+class EndToEndResult:
     """The tracks of one end-to-end run and the stream that drove them."""
 
     robot_stream: CommandStream
     car_stream: CommandStream
     robots: dict
-    car: Optional[Track]
+    car: Optional[EndToEndTrack]
 
 
 def run_scenario(car_model=DEFAULT_CAR, robots=ROBOTS, scale=1.0, transport='dds'):
@@ -445,7 +446,7 @@ def run_scenario(car_model=DEFAULT_CAR, robots=ROBOTS, scale=1.0, transport='dds
     :param car_model: car preset, or None to skip the car.
     :param robots: robot presets.
     :param scale: multiplies every segment duration (0.5 = the short variant).
-    :return: ScenarioResult.
+    :return: EndToEndResult.
     """
     def stream(speed, steer):
         return autoware_stream(speed, steer, straight_s=3.0 * scale, arc_s=4.0 * scale,
@@ -455,10 +456,10 @@ def run_scenario(car_model=DEFAULT_CAR, robots=ROBOTS, scale=1.0, transport='dds
     car_stream = stream(CAR_SPEED_MPS, CAR_STEER_RAD)
     tracks = run_robots(robot_stream, robots, transport=transport) if robots else {}
     car = run_car(car_stream, car_model, transport=transport) if car_model else None
-    return ScenarioResult(robot_stream, car_stream, tracks, car)
+    return EndToEndResult(robot_stream, car_stream, tracks, car)
 
 
-def summary(result: ScenarioResult) -> Sequence[str]:
+def summary(result: EndToEndResult) -> Sequence[str]:
     """Return printable lines: path errors per vehicle, skid-steer yaw efficiency."""
     lines = []
     arc = result.robot_stream.bounds('arc')

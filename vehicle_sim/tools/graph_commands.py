@@ -15,9 +15,9 @@
 """
 The graph commands of ``vehicle-sim``: ``list``, ``echo``, ``call`` and ``param``.
 
-They read the graph through :class:`~vehicle_sim.graph.GraphView` and talk to it through a
-hidden helper node (``_vehicle_sim_cli_<pid>``) on the embedded transport, created only when a
-command needs one.
+They read the graph through :class:`~vehicle_sim.transport.dds.graph.GraphView` and talk to it
+through a hidden helper node (``_vehicle_sim_cli_<pid>``) on the embedded transport, created only
+when a command needs one.
 """
 
 import argparse
@@ -60,7 +60,7 @@ def _hidden(name: str) -> bool:
 
 def _not_found(kind: str, name: str, graph, candidates, wait_s: float,
                hint: str = '', status: int = EXIT_FAILURE) -> CliError:
-    from vehicle_sim.graph import close_names
+    from vehicle_sim.transport.dds.graph import close_names
     close = close_names(name, candidates)
     hint = (f'; did you mean: {", ".join(close)}' if close else '') + hint
     if not graph.participants():
@@ -71,9 +71,9 @@ def _not_found(kind: str, name: str, graph, candidates, wait_s: float,
 
 def _nothing_found(domain_id: int) -> str:
     """Say which domain and discovery range saw no other participant at all, and the rule."""
-    from vehicle_sim.transport import dds_config
-    discovery = dds_config.discovery_range()
-    if dds_config.localhost_only():
+    from vehicle_sim.transport.dds import domain_config
+    discovery = domain_config.discovery_range()
+    if domain_config.localhost_only():
         setting = f'ROS_LOCALHOST_ONLY=1 ({discovery})'
     elif os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE', '').strip():
         setting = f'ROS_AUTOMATIC_DISCOVERY_RANGE={discovery}'
@@ -88,7 +88,7 @@ class GraphSession:
     """The CLI's graph view and (created on demand) its hidden helper node."""
 
     def __init__(self):
-        from vehicle_sim.graph import GraphView
+        from vehicle_sim.transport.dds.graph import GraphView
         self.graph = GraphView()
         self._node = None
 
@@ -165,7 +165,7 @@ def _check_message_type(ros_type: str) -> str:
     except ValueError as exc:
         raise CliError(str(exc)) from None
     if ros_type not in known_types():
-        from vehicle_sim.graph import close_names
+        from vehicle_sim.transport.dds.graph import close_names
         close = close_names(ros_type, known_types())
         hint = f'; did you mean: {", ".join(close)}' if close else ''
         raise CliError(f'message type {ros_type} is not known to vehicle_sim{hint}')
@@ -417,7 +417,7 @@ def cmd_param(args) -> int:
     from vehicle_msgs_py import service_types
     from vehicle_sim.transport.dds import param_messages
     from vehicle_sim.transport.errors import TransportError
-    from vehicle_sim.transport.params import parse_parameter_value
+    from vehicle_sim.transport.ros_args import parse_parameter_value
     session = GraphSession()
     try:
         fqn = _param_node(session, args.node, args.wait)

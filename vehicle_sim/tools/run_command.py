@@ -172,7 +172,7 @@ def _ros_arguments(after):
     ROS argument only inside ``--ros-args``).
     """
     from vehicle_sim.transport import TransportError
-    from vehicle_sim.transport.params import parse_ros_args
+    from vehicle_sim.transport.ros_args import parse_ros_args
     ros_args = list(after or [])
     if ros_args and ros_args[0] == '--':
         ros_args = ros_args[1:]
@@ -207,7 +207,7 @@ def cmd_run(args) -> int:
     node leaves the graph (exit 0). The status line and ``--duration`` are timers of the node.
     """
     from vehicle_sim.core.specs.errors import VehicleSimError
-    from vehicle_sim.ros.automobile import AutomobileNode
+    from vehicle_sim.ros.automobile_node import AutomobileNode
     from vehicle_sim.tools.foxglove_options import live_view_address
     from vehicle_sim.transport import run_node
     ros_args = _ros_arguments(args.ros_args)
@@ -295,7 +295,7 @@ def cmd_run(args) -> int:
 def _recorded_node(node_args, transport, overrides, path, recorders):
     """Create the automobile node with its publishers tapped into a recording of ``path``."""
     from vehicle_sim.recording.recorder import record_node
-    from vehicle_sim.ros.automobile import NODE_NAME
+    from vehicle_sim.ros.automobile_node import NODE_NAME
     from vehicle_sim.transport import create_node
     node = create_node(NODE_NAME, args=node_args, transport=transport,
                        parameter_overrides=overrides)

@@ -63,8 +63,8 @@ def add_arguments(parser):
                              'is served over ROS; with --repeat, the last run)')
 
 
-class Progress:
-    """A progress bar on a terminal, a line per quarter elsewhere."""
+class ScenarioProgress:
+    """A scenario run's progress: a bar on a terminal, a line per quarter elsewhere."""
 
     def __init__(self, stream, name):
         self.stream = stream
@@ -218,7 +218,7 @@ def cmd_scenario(args) -> int:
     seed = spec.seed if args.seed is None else args.seed
     print(f'scenario {spec.name} ({args.file}), seed {seed}, {spec.duration_s:g} s, driver: '
           f'{spec.driver.kind}')
-    progress = None if args.no_progress else Progress(sys.stderr, spec.name)
+    progress = None if args.no_progress else ScenarioProgress(sys.stderr, spec.name)
     _exit_on_sigterm()      # so that the driver's processes are stopped on the way out
     try:
         result = run_scenario(spec, seed=args.seed, gui=args.gui, progress=progress,

@@ -65,7 +65,7 @@ def add_arguments(parser):
 
 def topic_names(namespace, robot):
     """Return (cmd_vel, odom, steering or None) topic names of the vehicle."""
-    from vehicle_sim.ros import interfaces as itf
+    from vehicle_sim.ros import automobile_interfaces as itf
     from vehicle_sim.ros import robot_interfaces as ri
     prefix = '/' + namespace.strip('/') if namespace.strip('/') else ''
     if robot:
@@ -80,7 +80,7 @@ class Teleop:
 
     def __init__(self, namespace='', robot=False, stamped=False, transport=None):
         from vehicle_sim.core.specs.units import webots_steering_to_ros
-        from vehicle_sim.ros import interfaces as itf
+        from vehicle_sim.ros import automobile_interfaces as itf
         from vehicle_sim.transport.selection import create_node
         self._to_rep103 = webots_steering_to_ros
         self.robot = robot

@@ -17,6 +17,8 @@ The transport layer: one small port (``port``), two adapters (``dds``, ``rclpy_a
 
 Nodes import :func:`create_node` / :func:`run_node` from here and are written against
 :class:`NodePort`; docs/transport.md describes what users of the embedded one see.
+
+May import: vehicle_msgs_py, vehicle_sim.core.specs.errors.
 """
 
 from vehicle_sim.transport.errors import ServiceTimeoutError, TransportError

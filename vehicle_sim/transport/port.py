@@ -72,7 +72,9 @@ class Subscription(abc.ABC):
         return 0
 
 
-class Service(abc.ABC):
+class ServiceServer(abc.ABC):
+    """A service server, as ``create_service`` returns it (not an interface table's row)."""
+
     service_name: str
 
 
@@ -238,7 +240,7 @@ class NodePort(abc.ABC):
         return bytes(msg.serialize())
 
     @abc.abstractmethod
-    def create_service(self, srv_type: str, name: str, callback) -> Service:
+    def create_service(self, srv_type: str, name: str, callback) -> ServiceServer:
         """
         Serve ``name``: ``callback(request, response)`` returns the response or a Future of it.
 

@@ -68,8 +68,8 @@ from vehicle_sim.transport.parameter_types import (
     SetParametersResult,
     wrong_type_reason,
 )
-from vehicle_sim.transport.params import unknown_overrides_warning
 from vehicle_sim.transport.qos import as_qos, KEEP_ALL, QOS_SERVICES, RELIABLE, TRANSIENT_LOCAL
+from vehicle_sim.transport.ros_args import unknown_overrides_warning
 from vehicle_sim.transport.ros_time import Time
 from vehicle_sim.transport.stop_signals import StopSignals
 

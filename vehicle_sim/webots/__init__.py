@@ -16,6 +16,8 @@
 Webots-compatible automobile API: ``from vehicle_sim.webots import Driver, Car``.
 
 Replace ``from vehicle import Driver`` in a Webots controller with the import above.
+
+May import: core, config, maps, physics.
 """
 
 from vehicle_sim.webots.driver import Car, Driver, WebotsWarning

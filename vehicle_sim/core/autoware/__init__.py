@@ -13,4 +13,8 @@
 # limitations under the License.
 
 
-"""Autoware vehicle-interface codes and the Autoware-to-Webots-car adapter."""
+"""
+Autoware vehicle-interface codes and the Autoware-to-Webots-car adapter.
+
+May import (core): specs, geometry, sensors, map, traffic, diffdrive, car, commands.
+"""

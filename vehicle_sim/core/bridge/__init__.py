@@ -13,4 +13,8 @@
 # limitations under the License.
 
 
-"""The ackermann_to_differential bridge: mapping, limits, parameters, converter, states."""
+"""
+The ackermann_to_differential bridge: mapping, limits, parameters, converter, states.
+
+May import (core): specs, geometry, sensors, map, traffic, diffdrive, car, commands, autoware.
+"""

@@ -41,7 +41,6 @@ from vehicle_sim.core.bridge.converter import (
     DiffDriveCommand,
     STOP_COMMAND,
 )
-from vehicle_sim.core.bridge.speed_limiter import limit_wheel_speeds, SpeedLimiter
 from vehicle_sim.core.commands.watchdog import CommandWatchdog
 from vehicle_sim.core.diffdrive.kinematics import (
     check_speed_mps,
@@ -49,6 +48,7 @@ from vehicle_sim.core.diffdrive.kinematics import (
     twist_from_wheel_speeds,
     wheel_speeds_from_twist,
 )
+from vehicle_sim.core.diffdrive.speed_limiter import limit_wheel_speeds, SpeedLimiter
 
 # SpeedLimiter computes inf * 0 = NaN for a disabled limit at dt = 0; 1 ns moves an enabled ramp
 # by a negligible amount.

@@ -27,7 +27,6 @@ from vehicle_sim.core.bridge.ackermann_mapping import (
     wheel_base_plausibility,
 )
 from vehicle_sim.core.bridge.params import BridgeParams, DEFAULT_BRIDGE_PARAMS
-from vehicle_sim.core.bridge.speed_limiter import limit_wheel_speeds, SpeedLimiter
 from vehicle_sim.core.diffdrive.kinematics import (
     check_dt_s,
     check_speed_mps,
@@ -36,6 +35,7 @@ from vehicle_sim.core.diffdrive.kinematics import (
     twist_from_wheel_speeds,
     wheel_speeds_from_twist,
 )
+from vehicle_sim.core.diffdrive.speed_limiter import limit_wheel_speeds, SpeedLimiter
 from vehicle_sim.core.specs.errors import InvalidParameterError
 
 

@@ -13,4 +13,8 @@
 # limitations under the License.
 
 
-"""The Webots car: parameter table, CarLogic (driver and car libraries), drivetrain, engines."""
+"""
+The Webots car: parameter table, CarLogic (driver and car libraries), drivetrain, engines.
+
+May import (core): specs, geometry, sensors, map, traffic, diffdrive.
+"""

@@ -13,4 +13,8 @@
 # limitations under the License.
 
 
-"""Streamed commands: drive inputs (cmd_vel, drive) and the command watchdog."""
+"""
+Streamed commands: drive inputs (cmd_vel, drive) and the command watchdog.
+
+May import (core): specs, geometry, sensors, map, traffic, diffdrive, car.
+"""

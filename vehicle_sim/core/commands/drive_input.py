@@ -44,10 +44,10 @@ from dataclasses import dataclass
 import math
 from typing import Optional, Tuple
 
-from vehicle_sim.core.bridge.speed_limiter import limit_wheel_speeds
 from vehicle_sim.core.car.drivetrain import central_ratio
 from vehicle_sim.core.commands.watchdog import CommandWatchdog, DEFAULT_TIMEOUT_S
 from vehicle_sim.core.diffdrive.kinematics import wheel_speeds_from_twist
+from vehicle_sim.core.diffdrive.speed_limiter import limit_wheel_speeds
 from vehicle_sim.core.specs.errors import InvalidCommandError
 from vehicle_sim.core.specs.units import (
     kmh_to_mps,

@@ -13,4 +13,8 @@
 # limitations under the License.
 
 
-"""The differential-drive robot: its parameter table and differential-drive kinematics."""
+"""
+The differential-drive robot: its parameter table and differential-drive kinematics.
+
+May import (core): specs, geometry, sensors, map, traffic.
+"""

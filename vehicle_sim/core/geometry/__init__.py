@@ -13,4 +13,8 @@
 # limitations under the License.
 
 
-"""Geometry: angles, frames and quaternions, footprints, geodesy, the chase camera."""
+"""
+Geometry: angles, frames and quaternions, footprints, geodesy, the chase camera.
+
+May import (core): specs.
+"""

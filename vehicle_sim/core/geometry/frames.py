@@ -27,6 +27,8 @@ from typing import Tuple
 import numpy as np
 
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
+from vehicle_sim.core.specs.value_kinds import ParamRefused, register_kind
+from vehicle_sim.core.specs.value_text import brief
 
 Quaternion = Tuple[float, float, float, float]
 Vector = Tuple[float, float, float]
@@ -114,6 +116,34 @@ class Pose:
         """Return the pose as its configuration mapping (keys x, y, z, roll, pitch, yaw)."""
         return {'x': self.x_m, 'y': self.y_m, 'z': self.z_m, 'roll': self.roll_rad,
                 'pitch': self.pitch_rad, 'yaw': self.yaw_rad}
+
+
+POSE_KEYS = ('x', 'y', 'z', 'roll', 'pitch', 'yaw')
+
+
+def _check_pose(spec, value):
+    """Return a Pose from a mapping of POSE_KEYS (``spec.choices``: the keys it may hold)."""
+    if isinstance(value, Pose):
+        return value
+    keys = spec.choices or POSE_KEYS
+    if not isinstance(value, dict):
+        raise ParamRefused(f'must be a mapping of {", ".join(keys)}')
+    unknown = sorted(set(value) - set(keys))
+    if unknown:
+        raise ParamRefused(f'unknown key(s) {brief(unknown)}; valid: {", ".join(keys)}')
+    numbers = {}
+    for key in POSE_KEYS:
+        item = value.get(key, 0.0)
+        if not isinstance(item, (int, float)) or isinstance(item, bool) or \
+                not math.isfinite(float(item)):
+            raise ParamRefused('must be a finite number', item, key)
+        numbers[key] = float(item)
+    return Pose(numbers['x'], numbers['y'], numbers['z'], numbers['roll'], numbers['pitch'],
+                numbers['yaw'])
+
+
+# The ParamSpec kind of a pose (a mapping of POSE_KEYS, or a Pose); importing Pose registers it.
+POSE_KIND = register_kind('pose', 'pose', _check_pose)
 
 
 def quaternion_from_yaw(yaw_rad: float) -> Quaternion:

@@ -18,4 +18,7 @@ Learning math without ROS or PyBullet: progress measures and reward terms (numpy
 
 The Gym environment (``vehicle_sim.gym``) reads the ego vehicle's pose after each step and asks
 this package how far it got (:mod:`.progress`) and what that is worth (:mod:`.reward`).
+
+May import (core): specs, geometry, sensors, map, traffic, diffdrive, car, commands, autoware,
+bridge, world.
 """

@@ -23,4 +23,6 @@ physics part is ``physics/map_layer.py``.
 Lanes: every lane map kind (a Lanelet2 ``.osm`` file, the ``roads:`` segments of a world file)
 becomes one :class:`~vehicle_sim.core.map.lane_graph.LaneGraph`; what builds on lanes (lane
 state, lane invasion, the lane criteria of scenarios) reads only that.
+
+May import (core): specs, geometry, sensors.
 """

@@ -13,4 +13,8 @@
 # limitations under the License.
 
 
-"""Sensors, ROS-free: parameter tables and specs, default sets, readings, noise, sampling."""
+"""
+Sensors, ROS-free: parameter tables and specs, default sets, readings, noise, sampling.
+
+May import (core): specs, geometry.
+"""

@@ -27,7 +27,6 @@ from typing import Tuple
 import numpy as np
 
 from vehicle_sim.core.geometry.frames import rpy_from_quaternion
-from vehicle_sim.core.world.collision import CollisionEvent  # noqa: F401 (a reading kind too)
 
 Vector = Tuple[float, float, float]
 Covariance = Tuple[float, ...]       # 9 values, row-major 3 x 3

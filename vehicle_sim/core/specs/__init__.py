@@ -13,4 +13,8 @@
 # limitations under the License.
 
 
-"""The parameter language: ParamSpec rows, error types, units, quoting of refused values."""
+"""
+The parameter language: ParamSpec rows, error types, units, quoting of refused values.
+
+May import (core): no other core sub-package.
+"""

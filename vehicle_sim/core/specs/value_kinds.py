@@ -17,8 +17,9 @@ The kinds of value a ParamSpec row may hold, each with its checker, and the regi
 
 ``PARAM_KINDS`` maps each kind to its type column in the docs tables; a checker takes the row
 and a candidate value and returns the validated value or raises :class:`ParamRefused` with the
-reason. Domain modules add their own kinds with :func:`register_kind` (the sensors do), so this
-package knows no domain types. :mod:`.param_spec` holds the rows and the table validator.
+reason. Domain modules add their own kinds with :func:`register_kind` (``pose``: core/geometry;
+the sensors, traffic lane ids), so this package knows no domain types. :mod:`.param_spec` holds
+the rows and the table validator.
 """
 
 from dataclasses import dataclass
@@ -26,13 +27,11 @@ import math
 import re
 from typing import Tuple
 
-from vehicle_sim.core.specs.value_text import brief
-
 # kind -> the type column of the generated docs tables (ROS parameter types for node kinds).
 PARAM_KINDS = {
     'float': 'float', 'int': 'int', 'bool': 'bool', 'str': 'str', 'enum': 'str',
     'str_list': 'string[]', 'floats': 'float[]', 'float_list': 'float[]', 'vec3': 'float[3]',
-    'inertia': 'float[6]', 'boxes': 'boxes', 'pose': 'pose', 'rgba': 'float[4]', 'rows': 'rows',
+    'inertia': 'float[6]', 'boxes': 'boxes', 'rgba': 'float[4]', 'rows': 'rows',
     'ros_name': 'str', 'topic': 'str', 'namespace': 'str', 'raw': 'any',
 }
 
@@ -177,29 +176,6 @@ def _check_boxes(spec, value):
     return tuple(boxes)
 
 
-POSE_KEYS = ('x', 'y', 'z', 'roll', 'pitch', 'yaw')
-
-
-def _check_pose(spec, value):
-    from vehicle_sim.core.geometry.frames import Pose
-    if isinstance(value, Pose):
-        return value
-    keys = spec.choices or POSE_KEYS
-    if not isinstance(value, dict):
-        raise ParamRefused(f'must be a mapping of {", ".join(keys)}')
-    unknown = sorted(set(value) - set(keys))
-    if unknown:
-        raise ParamRefused(f'unknown key(s) {brief(unknown)}; valid: {", ".join(keys)}')
-    numbers = {}
-    for key in POSE_KEYS:
-        item = value.get(key, 0.0)
-        if not _is_number(item) or not math.isfinite(float(item)):
-            raise ParamRefused('must be a finite number', item, key)
-        numbers[key] = float(item)
-    return Pose(numbers['x'], numbers['y'], numbers['z'], numbers['roll'], numbers['pitch'],
-                numbers['yaw'])
-
-
 def _check_rgba(spec, value):
     color = _check_floats(spec, value, 4)
     if min(color) < 0.0 or max(color) > 1.0:
@@ -259,7 +235,6 @@ _CHECKERS: dict = {
     'vec3': _check_vec3,
     'inertia': lambda spec, value: _check_floats(spec, value, 6),
     'boxes': _check_boxes,
-    'pose': _check_pose,
     'rgba': _check_rgba,
     'rows': _check_rows,
     'ros_name': _check_ros_name,

@@ -19,8 +19,10 @@ Traffic: other vehicles that drive the lanes of a LaneGraph (ROS-free, PyBullet-
 One module per model: :mod:`~vehicle_sim.core.traffic.idm` (the Intelligent Driver Model, the
 speed) and :mod:`~vehicle_sim.core.traffic.mobil` (MOBIL, the lane changes), registered in
 :mod:`~vehicle_sim.core.traffic.models` (chosen by ``traffic: model:``); the ``traffic:``
-key of world files (:mod:`~vehicle_sim.core.traffic.traffic_params`), where the vehicles start
+key of world files (:mod:`~vehicle_sim.core.traffic.params`), where the vehicles start
 (:mod:`~vehicle_sim.core.traffic.spawn`, their state in :mod:`~vehicle_sim.core.traffic.vehicles`),
 the manager that moves them along the lanes (:mod:`~vehicle_sim.core.traffic.manager`) and
 their ground truth as objects (:mod:`~vehicle_sim.core.traffic.objects`).
+
+May import (core): specs, geometry, sensors, map.
 """

@@ -55,8 +55,8 @@ from vehicle_sim.core.geometry.angles import wrap_angle_rad
 from vehicle_sim.core.traffic.idm import advance
 from vehicle_sim.core.traffic.mobil import LaneChangeAccelerations
 from vehicle_sim.core.traffic.models import CAR_FOLLOWING_MODELS, LANE_CHANGE_MODELS
+from vehicle_sim.core.traffic.params import TrafficSpec
 from vehicle_sim.core.traffic.spawn import spawn_vehicles
-from vehicle_sim.core.traffic.traffic_params import TrafficSpec
 from vehicle_sim.core.traffic.vehicles import OurVehicle, TrafficVehicle
 
 __all__ = ['OurVehicle', 'TrafficManager', 'TrafficVehicle']

@@ -17,7 +17,7 @@
 Where the traffic vehicles start.
 
 First the placed ones (checked against the lane map: lane, s, route, overlaps), then the random
-ones on places ``spacing`` apart on the spawn lanes (core/traffic/traffic_params.py), drawn
+ones on places ``spacing`` apart on the spawn lanes (core/traffic/params.py), drawn
 without replacement, away from the placed vehicles and ours.
 
 Away from ours twice over: along the lane one of ours is on (no place within half the spacing

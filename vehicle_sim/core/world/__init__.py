@@ -13,4 +13,9 @@
 # limitations under the License.
 
 
-"""World files: obstacles, vehicles and origin; teleport placement; collision events."""
+"""
+World files: obstacles, vehicles and origin; teleport placement; collision events.
+
+May import (core): specs, geometry, sensors, map, traffic, diffdrive, car, commands, autoware,
+bridge.
+"""

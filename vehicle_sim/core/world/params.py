@@ -26,7 +26,7 @@ The form (every key optional except ``vehicles``)::
     roads:        # lanes from road segments: core/map/road_segments.py
       - {lanes: 2, segments: [{type: straight, length: 200.0}]}
     map: {type: occupancy_grid, file: maps/track.yaml}
-    traffic: {vehicles: 20, seed: 1}   # vehicles on the lanes: core/traffic/traffic_params.py
+    traffic: {vehicles: 20, seed: 1}   # vehicles on the lanes: core/traffic/params.py
 
 
 Each mapping is checked against a ParamSpec table (core/specs/param_spec.py), so an unknown key, a
@@ -53,7 +53,7 @@ from vehicle_sim.core.specs.param_spec import (
     validate_table,
 )
 from vehicle_sim.core.specs.value_text import brief
-from vehicle_sim.core.traffic.traffic_params import traffic_from_dict, TrafficSpec
+from vehicle_sim.core.traffic.params import traffic_from_dict, TrafficSpec
 from vehicle_sim.core.world.placement import check_in_world
 
 WORLD_KEYS = ('origin', 'vehicles', 'obstacles', 'roads', 'map', 'traffic')
@@ -300,7 +300,7 @@ class WorldSpec:
 
     ``roads`` are its road segments (core/map/road_segments.py); ``map`` is its map layer's spec
     (core/map/kinds.py: e.g. an OccupancyMapSpec), or None; ``traffic`` its traffic
-    (core/traffic/traffic_params.py), or None. ``lanes`` is its lane map (a core LaneGraph from a
+    (core/traffic/params.py), or None. ``lanes`` is its lane map (a core LaneGraph from a
     lanelet2 map or the roads) once loaded (vehicle_sim/maps/lane_maps.py, by the scene builder),
     with the vehicles placed by lane; None before that or without one.
     """

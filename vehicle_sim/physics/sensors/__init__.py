@@ -22,12 +22,12 @@ state after a world step; SensorSuite schedules them. See docs/sensors.md.
 
 from vehicle_sim.physics.sensors.camera import CameraSensor
 from vehicle_sim.physics.sensors.collisions import CollisionMonitor
-from vehicle_sim.physics.sensors.distance import DistanceSensor
+from vehicle_sim.physics.sensors.distance import RayDistanceSensor
 from vehicle_sim.physics.sensors.feed import SensorFeed
 from vehicle_sim.physics.sensors.inertial import GnssSensor, ImuSensor
 from vehicle_sim.physics.sensors.lidar import LidarSensor
 from vehicle_sim.physics.sensors.sensor import Sensor
 from vehicle_sim.physics.sensors.suite import SENSOR_CLASSES, SensorSuite
 
-__all__ = ['CameraSensor', 'CollisionMonitor', 'DistanceSensor', 'GnssSensor', 'ImuSensor',
-           'LidarSensor', 'SENSOR_CLASSES', 'Sensor', 'SensorFeed', 'SensorSuite']
+__all__ = ['CameraSensor', 'CollisionMonitor', 'GnssSensor', 'ImuSensor', 'LidarSensor',
+           'RayDistanceSensor', 'SENSOR_CLASSES', 'Sensor', 'SensorFeed', 'SensorSuite']

@@ -49,7 +49,7 @@ def cone_directions(rays, aperture_rad):
     return np.array(directions)
 
 
-class DistanceSensor(Sensor):
+class RayDistanceSensor(Sensor):
     """
     A distance sensor on a vehicle body.
 

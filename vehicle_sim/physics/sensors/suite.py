@@ -35,7 +35,7 @@ from vehicle_sim.core.sensors.params import check_layer
 from vehicle_sim.core.sensors.sampling import SampleSchedule, Scheduler
 from vehicle_sim.core.sensors.sets import mounted
 from vehicle_sim.physics.sensors.camera import CameraSensor
-from vehicle_sim.physics.sensors.distance import DistanceSensor
+from vehicle_sim.physics.sensors.distance import RayDistanceSensor
 from vehicle_sim.physics.sensors.inertial import GnssSensor, ImuSensor
 from vehicle_sim.physics.sensors.lidar import LidarSensor
 
@@ -45,7 +45,7 @@ SENSOR_CLASSES = {
     'lidar': LidarSensor,
     'imu': ImuSensor,
     'gnss': GnssSensor,
-    'distance': DistanceSensor,
+    'distance': RayDistanceSensor,
     'camera': CameraSensor,
 }
 check_layer('physics SENSOR_CLASSES (physics/sensors/suite.py)', SENSOR_CLASSES)

@@ -31,9 +31,12 @@ One concern per module:
 * ``executor``: the per-node WaitSet, timers and ``run_dds_node``;
 * ``parameters``: a node's parameters, ``/parameter_events`` and the rcl_interfaces services;
 * ``param_messages``: parameter values <-> rcl_interfaces messages (shared with the CLI);
-* ``node``: DdsNode, which wires them together.
+* ``node``: DdsNode, which wires them together;
+* ``domain_config``: ROS_DOMAIN_ID, the discovery range and the Cyclone domain they configure;
+* ``cyclone_private``: the cyclonedds internals the others need (below);
+* ``graph``: GraphView, the graph seen from a participant of its own (the CLI, the test client).
 
-The cyclonedds internals it needs are all in :mod:`vehicle_sim.transport.cyclone_private`,
+The cyclonedds internals it needs are all in :mod:`vehicle_sim.transport.dds.cyclone_private`,
 which says why each one is needed; everything else uses the public cyclonedds API.
 """
 

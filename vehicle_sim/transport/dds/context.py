@@ -36,8 +36,7 @@ from cyclonedds.topic import Topic
 
 from vehicle_msgs_py import distro
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.transport import cyclone_private, dds_config
-from vehicle_sim.transport.dds import discovery_info, peers
+from vehicle_sim.transport.dds import cyclone_private, discovery_info, domain_config, peers
 from vehicle_sim.transport.dds.qos import dds_qos, endpoint_user_data
 from vehicle_sim.transport.errors import TransportError
 from vehicle_sim.transport.qos import QOS_DISCOVERY_INFO_READER, QOS_DISCOVERY_INFO_WRITER
@@ -60,10 +59,10 @@ def ensure_domain(domain: Optional[int] = None) -> Domain:
 
     :param domain: the domain id; default ``ROS_DOMAIN_ID``.
     """
-    domain = dds_config.domain_id() if domain is None else domain
+    domain = domain_config.domain_id() if domain is None else domain
     with _domains_lock:
         if domain not in _domains:
-            _domains[domain] = dds_config.create_domain(domain)
+            _domains[domain] = domain_config.create_domain(domain)
         return _domains[domain]
 
 
@@ -86,13 +85,13 @@ class Context:
         except ValueError as exc:
             raise TransportError(str(exc)) from None
         self.gid_size = distro.gid_size(self.distro)
-        self.domain_id = dds_config.domain_id()
+        self.domain_id = domain_config.domain_id()
         ensure_domain(self.domain_id)
         try:
             self.participant = DomainParticipant(
                 self.domain_id, qos=Qos(Policy.Userdata(data=b'enclave=/;')))
         except DDSException as exc:
-            raise TransportError(dds_config.describe_domain_error(
+            raise TransportError(domain_config.describe_domain_error(
                 self.domain_id, str(exc))) from None
         try:
             self._set_up()

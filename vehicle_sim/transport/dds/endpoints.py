@@ -20,7 +20,8 @@ from cyclonedds.core import Listener
 from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
 
-from vehicle_sim.transport import cyclone_private, port
+from vehicle_sim.transport import port
+from vehicle_sim.transport.dds import cyclone_private
 from vehicle_sim.transport.errors import TransportError
 from vehicle_sim.transport.logger import ThrottledWarning
 from vehicle_sim.transport.reader_gate import ReaderGate

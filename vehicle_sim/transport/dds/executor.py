@@ -38,7 +38,8 @@ from typing import Callable, List, Optional
 
 from cyclonedds.core import DDSException, GuardCondition, WaitSet
 
-from vehicle_sim.transport import cyclone_private, port
+from vehicle_sim.transport import port
+from vehicle_sim.transport.dds import cyclone_private
 from vehicle_sim.transport.dds.context import Context
 from vehicle_sim.transport.dds.services import (
     CLIENT_CHECK_S,

@@ -29,7 +29,8 @@ from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
 
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.transport import cyclone_private, fast_cdr, port
+from vehicle_sim.transport import fast_cdr, port
+from vehicle_sim.transport.dds import cyclone_private
 from vehicle_sim.transport.dds.context import Context
 from vehicle_sim.transport.dds.endpoints import (
     DdsPublisher,
@@ -46,7 +47,6 @@ from vehicle_sim.transport.errors import TransportError
 from vehicle_sim.transport.logger import LOG_LEVEL_NAMES, Logger
 from vehicle_sim.transport.names import resolve_name, validate_node_name
 from vehicle_sim.transport.parameter_types import Parameter, SetParametersResult
-from vehicle_sim.transport.params import parse_ros_args
 from vehicle_sim.transport.qos import (
     as_qos,
     QOS_CLOCK,
@@ -56,6 +56,7 @@ from vehicle_sim.transport.qos import (
     VOLATILE,
 )
 from vehicle_sim.transport.reader_gate import ReaderGate
+from vehicle_sim.transport.ros_args import parse_ros_args
 from vehicle_sim.transport.ros_time import Time
 
 

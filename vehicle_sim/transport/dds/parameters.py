@@ -38,8 +38,8 @@ from vehicle_sim.transport.parameter_types import (
     SetParametersResult,
     wrong_type_reason,
 )
-from vehicle_sim.transport.params import read_only_reason, unknown_overrides_warning
 from vehicle_sim.transport.qos import QOS_PARAMETER_EVENTS, QOS_PARAMETERS
+from vehicle_sim.transport.ros_args import read_only_reason, unknown_overrides_warning
 
 SERVICE_PREFIX = 'rcl_interfaces/srv/'
 

@@ -39,8 +39,8 @@ from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
 
 from vehicle_msgs_py import types as msg_types
-from vehicle_sim.transport import cyclone_private, fast_cdr, port
-from vehicle_sim.transport.dds import peers
+from vehicle_sim.transport import fast_cdr, port
+from vehicle_sim.transport.dds import cyclone_private, peers
 from vehicle_sim.transport.dds.endpoints import Intake
 from vehicle_sim.transport.dds.qos import dds_qos, endpoint_user_data, userdata_tokens
 from vehicle_sim.transport.errors import ServiceTimeoutError, TransportError
@@ -118,7 +118,7 @@ class _PendingReply:
         self.deadline = deadline
 
 
-class DdsService(port.Service):
+class DdsService(port.ServiceServer):
     """
     A service server: request reader + reply writer sharing one ``serviceid`` token.
 

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Limits on the bridge's wheel command: one wheel-speed cap and a rate limiter per velocity.
+Limits on a differential drive's wheel command: one wheel-speed cap, a rate limiter per velocity.
 
 ROS-free; ``dt_s`` is passed in, the limiters keep no state of their own.
 """

@@ -169,10 +169,11 @@ class GraphView:
         from cyclonedds.topic import Topic
 
         from vehicle_msgs_py import types as msg_types
-        from vehicle_sim.transport import dds, dds_config
+        from vehicle_sim.transport import dds
+        from vehicle_sim.transport.dds import domain_config
         from vehicle_sim.transport.qos import QOS_DISCOVERY_INFO_READER
 
-        self.domain_id = dds_config.domain_id() if domain_id is None else domain_id
+        self.domain_id = domain_config.domain_id() if domain_id is None else domain_id
         dds.ensure_domain(self.domain_id)
         self._participant = DomainParticipant(self.domain_id)
         self._own_participants = {self._participant.guid.bytes}
@@ -209,7 +210,7 @@ class GraphView:
         if self._closed:
             return
         self._closed = True
-        from vehicle_sim.transport import cyclone_private
+        from vehicle_sim.transport.dds import cyclone_private
         cyclone_private.delete_participant(self._participant)
 
     def __enter__(self):
@@ -246,8 +247,7 @@ class GraphView:
 
     def _read_discovery_info(self) -> None:
         from vehicle_msgs_py import distro
-        from vehicle_sim.transport import cyclone_private
-        from vehicle_sim.transport.dds import discovery_info, peers
+        from vehicle_sim.transport.dds import cyclone_private, discovery_info, peers
         for data, info in cyclone_private.take_serialized(self._info_reader, 1000):
             if not info.valid_data:
                 continue
