@@ -27,6 +27,7 @@ import subprocess
 import sys
 from xml.etree import ElementTree
 
+from conftest import scaled_s
 import pytest
 
 from vehicle_sim.sweep import run_sweep, SweepError
@@ -34,7 +35,8 @@ from vehicle_sim.sweep import run_sweep, SweepError
 REPO = Path(__file__).resolve().parent.parent
 SCENARIO = str(REPO / 'scenarios' / 'stop_before_obstacle.yaml')
 GOOD = '../examples/lidar_stop_controller.py'
-TIMEOUT_S = 8.0     # well above a 2 s case's run (about 0.1 s, 1 s with a fresh worker's imports)
+# Well above a 2 s case's run (about 0.1 s, 1 s with a fresh worker's imports).
+TIMEOUT_S = scaled_s(8.0)
 
 
 @pytest.fixture
