@@ -51,6 +51,21 @@ def wait_for(predicate, timeout_s=WAIT_S, spin=None):
             time.sleep(0.01)
 
 
+def wait_node_matched(node, service, srv_type):
+    """
+    Return once the node serving ``service`` has matched every subscription ``node`` has made.
+
+    A subscription matches the node's publisher at once (``get_publisher_count``); the node
+    matches the subscription later, the later the more loaded the machine, and publishes
+    nothing to it before. A participant announces its readers in the order it creates them, and
+    a node answers a client only once it has matched the client's reply reader: the reply to a
+    client created after the subscriptions says that the node has matched them.
+    """
+    client = node.create_client(srv_type, service)
+    assert client.wait_for_service(WAIT_S), f'{service} not available'
+    client.call(node.srv(srv_type).Request(), WAIT_S)
+
+
 class NodeProcess:
     """A node (default: the automobile node) in a subprocess; its output is collected."""
 
@@ -158,8 +173,14 @@ class VehicleClient:
             self.history[key].append(msg)   # latched: several nodes may publish one each
 
     def wait_matched(self, table_names):
+        """Subscribe to topics; return once the node has matched the subscriptions too."""
         subs = [self.subscribe(name) for name in table_names]
         assert wait_for(lambda: all(s.get_publisher_count() for s in subs), spin=self.node)
+        self.wait_node_matched()
+
+    def wait_node_matched(self):
+        """Return once the node has matched every subscription of this test node."""
+        wait_node_matched(self.node, self.name('robot/get_time'), 'vehicle_msgs/srv/GetFloat')
 
     def time_s(self):
         return self.call('robot/get_time').value

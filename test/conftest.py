@@ -18,9 +18,15 @@ Shared test set-up.
 Before anything imports cyclonedds, DDS traffic of this test run is confined to the loopback
 interface (``ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST``) and to a ROS_DOMAIN_ID of its own, derived
 from the pid (1..101), so that concurrent runs do not see each other. Both are kept when set.
+
+Waits wait for their event, bounded generously. The few wall-clock budgets that cannot (a
+command's own ``--wait``, a case timeout that a hanging case must reach, a bound on how soon a
+process ends) and pytest-timeout's per-test limit are multiplied by ``TIME_FACTOR``, read here
+from ``VEHICLE_SIM_TEST_TIME_FACTOR`` (default 1) for a slow or heavily loaded machine.
 """
 
 import json
+import math
 import os
 import subprocess
 import sys
@@ -38,11 +44,46 @@ os.environ.setdefault('ROS_DOMAIN_ID', str(1 + os.getpid() % 101))
 PEER_SCRIPT = os.path.join(REPO_ROOT, 'test', 'transport_peer.py')
 # Generous bound for anything that waits on another process (start-up, discovery).
 PEER_START_TIMEOUT_S = 60.0
+TIME_FACTOR_ENV = 'VEHICLE_SIM_TEST_TIME_FACTOR'
+
+
+def time_factor(text):
+    """Return the factor of the wall-clock budgets from its environment variable's text."""
+    try:
+        factor = float(text)
+    except ValueError:
+        factor = math.nan
+    if not 1.0 <= factor < math.inf:
+        raise pytest.UsageError(f'{TIME_FACTOR_ENV} = {text!r}: must be a number >= 1 (how '
+                                'many times longer than usual the wall-clock budgets are)')
+    return factor
+
+
+TIME_FACTOR = time_factor(os.environ.get(TIME_FACTOR_ENV, '1'))
+
+
+def scaled_s(seconds):
+    """Return a wall-clock budget [s] that no event can replace, times ``TIME_FACTOR``."""
+    return seconds * TIME_FACTOR
 
 
 def pytest_configure(config):
     config.addinivalue_line(
         'markers', 'transport: cross-process tests over the embedded Cyclone DDS transport')
+
+
+def pytest_collection_modifyitems(config, items):
+    """Multiply pytest-timeout's per-test limit by ``TIME_FACTOR`` (a marker's too)."""
+    if TIME_FACTOR == 1.0 or not config.pluginmanager.hasplugin('timeout'):
+        return
+    limit = config.getoption('timeout', None) or os.environ.get('PYTEST_TIMEOUT') \
+        or config.getini('timeout')
+    for item in items:
+        marker = item.get_closest_marker('timeout')
+        own = marker.args[0] if marker is not None and marker.args else \
+            marker.kwargs.get('timeout') if marker is not None else limit
+        if own:
+            item.add_marker(pytest.mark.timeout(float(own) * TIME_FACTOR), append=False)
 
 
 def peer_env():

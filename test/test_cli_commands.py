@@ -25,7 +25,7 @@ import re
 import subprocess
 import sys
 
-from conftest import peer_env, PEER_START_TIMEOUT_S, stop_processes
+from conftest import peer_env, PEER_START_TIMEOUT_S, scaled_s, stop_processes
 import pytest
 
 from vehicle_msgs_py import distro
@@ -66,7 +66,7 @@ def automobile():
 
 
 def test_list_shows_the_peer_node_topics_and_services_with_types(peer):
-    result = vehicle_sim('list', '--wait', '3')
+    result = vehicle_sim('list', '--wait', str(scaled_s(3)))
     assert result.returncode == 0, result.stderr
     assert f'  {NS}/peer\n' in result.stdout
     assert f'  {NS}/echo_out [std_msgs/msg/String]' in result.stdout
@@ -75,7 +75,7 @@ def test_list_shows_the_peer_node_topics_and_services_with_types(peer):
 
 
 def test_list_ends_with_the_participants_their_vendor_and_distribution(peer):
-    result = vehicle_sim('list', '--wait', '3')
+    result = vehicle_sim('list', '--wait', str(scaled_s(3)))
     assert result.returncode == 0, result.stderr
     participants = result.stdout.split('participants:\n', 1)[1]
     spoken = distro.title(distro.choose(peer_env())[0])
@@ -97,7 +97,7 @@ def test_call_with_a_value_of_the_wrong_type_fails_without_calling(peer):
 
 
 def test_call_unknown_service_exits_1_and_names_the_close_match(peer):
-    result = vehicle_sim('call', f'{NS}/set_in', '2', '--wait', '2')
+    result = vehicle_sim('call', f'{NS}/set_in', '2', '--wait', str(scaled_s(2)))
     assert result.returncode == 1
     assert 'not found' in result.stderr and f'{NS}/set_int' in result.stderr
 
@@ -119,7 +119,7 @@ def test_param_set_rejected_by_the_node_reports_failure(peer):
 
 
 def test_param_unknown_node_exits_1_and_names_the_close_match(peer):
-    result = vehicle_sim('param', 'get', f'{NS}/pear', 'gain', '--wait', '2')
+    result = vehicle_sim('param', 'get', f'{NS}/pear', 'gain', '--wait', str(scaled_s(2)))
     assert result.returncode == 1
     assert "node '/tp_cli/pear' not found" in result.stderr and f'{NS}/peer' in result.stderr
 

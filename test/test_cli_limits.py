@@ -35,7 +35,7 @@ import sys
 import time
 
 from automobile_helpers import wait_for
-from conftest import peer_env
+from conftest import peer_env, scaled_s
 import pytest
 
 pytestmark = pytest.mark.transport
@@ -162,7 +162,7 @@ def test_sigterm_during_a_heavy_allowed_step_ends_the_node_at_once(tmp_path):
         run.proc.send_signal(signal.SIGTERM)
         # Waiting for the step would take about 12 s; the node must not (within a second, as
         # docs/transport.md says; the bound here is generous for a loaded machine).
-        assert run.proc.wait(6.0) == 0, run.read()
+        assert run.proc.wait(scaled_s(6.0)) == 0, run.read()
         assert 'Traceback' not in run.read()
     finally:
         run.kill()

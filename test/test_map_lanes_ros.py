@@ -86,6 +86,7 @@ def test_lane_state_names_the_lanelet_at_s_10_with_offset_0_in_frame_map(car):
     sub = car.node.create_subscription(itf.LANE_STATE.ros_type, car.name('lane_state'),
                                        received.append, itf.LANE_STATE.qos)
     assert wait_for(lambda: sub.get_publisher_count(), spin=car.node)
+    car.wait_node_matched()
     assert car.call('robot/time_step', 100).success
     assert wait_for(lambda: received, spin=car.node)
     state = received[-1]
@@ -112,6 +113,7 @@ def test_set_lane_pose_puts_the_car_on_a_lane_and_refuses_places_off_it(car):
     sub = car.node.create_subscription(itf.LANE_INVASION.ros_type, car.name('lane_invasion'),
                                        invasions.append, itf.LANE_INVASION.qos)
     assert wait_for(lambda: sub.get_publisher_count(), spin=car.node)
+    car.wait_node_matched()
     answer = _set_lane_pose(car, 2002, 20.0, 0.5)   # across the dashed line: no crossing
     assert answer.success and 'on lane 2002 at s 20.000 m' in answer.message
     for lanelet, s, offset, reason in ((9999, 10.0, 0.0, '9999'), (2002, 80.0, 0.0, '80'),

@@ -129,6 +129,7 @@ def test_driving_at_a_wall_of_the_map_gives_exactly_one_collision_message(car):
     sub = car.node.create_subscription(itf.COLLISION.ros_type, car.name('collision'),
                                        collisions.append, itf.COLLISION.qos)
     assert wait_for(lambda: sub.get_publisher_count(), spin=car.node)
+    car.wait_node_matched()
     assert car.call('automobile/set_cruising_speed', 20.0).success
     for _ in range(16):     # 8 s at 20 km/h: the nose reaches the east wall after about 5 m
         assert car.call('robot/time_step', 500).success

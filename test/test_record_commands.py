@@ -27,7 +27,7 @@ import sys
 import threading
 
 from automobile_helpers import wait_for
-from conftest import peer_env, PEER_START_TIMEOUT_S, stop_processes
+from conftest import peer_env, PEER_START_TIMEOUT_S, scaled_s, stop_processes
 import pytest
 
 pytest.importorskip('mcap', reason="recording needs the mcap package (the 'record' extra)")
@@ -86,11 +86,11 @@ def test_play_into_a_fresh_graph_reproduces_counts_stamps_and_clock(recording):
         node.create_subscription('tf2_msgs/msg/TFMessage', '/tf_static', static.append,
                                  QOS_TF_STATIC_LISTENER)
         play = subprocess.Popen([VEHICLE_SIM, 'play', recording, '--rate', '4', '--clock', '50',
-                                 '--delay', '2'], env=peer_env(), stdout=subprocess.PIPE,
-                                stderr=subprocess.PIPE, text=True)
+                                 '--delay', str(scaled_s(2))], env=peer_env(),
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         try:
             assert node.spin_until(lambda: play.poll() is not None, PEER_START_TIMEOUT_S)
-            node.spin_until(lambda: len(got) >= len(recorded), 5.0)
+            node.spin_until(lambda: len(got) >= len(recorded), PEER_START_TIMEOUT_S)
         finally:
             stop_processes([play])
         _, err = play.communicate()
@@ -115,10 +115,10 @@ def test_play_with_topics_and_start_plays_only_those_from_there(recording):
                                                       + m.header.stamp.nanosec),
                                  QosProfile(depth=2000))
         play = subprocess.run([VEHICLE_SIM, 'play', recording, '--rate', '10', '--start', '8',
-                               '--topics', SPEED, '--delay', '2'], env=peer_env(),
+                               '--topics', SPEED, '--delay', str(scaled_s(2))], env=peer_env(),
                               capture_output=True, text=True, timeout=PEER_START_TIMEOUT_S)
         assert play.returncode == 0, play.stderr
-        node.spin_until(lambda: len(got) >= 201, 5.0)
+        node.spin_until(lambda: len(got) >= 201, PEER_START_TIMEOUT_S)
     finally:
         node.shutdown()
     assert 'Playing' in play.stdout and '1 topics' in play.stdout

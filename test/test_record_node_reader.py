@@ -44,14 +44,16 @@ STEPS = 300
 
 
 @pytest.fixture(scope='module')
-def node_modules(request):
+def node_modules(request, tmp_path_factory):
     """Install the npm packages once into pytest's cache; skip when that cannot be done."""
     node, npm = shutil.which('node'), shutil.which('npm')
     if node is None or npm is None:
         reason = 'node and npm are needed for the independent reader (not found on PATH)'
         print(f'SKIPPED: {reason}')
         pytest.skip(reason)
-    prefix = str(request.config.cache.mkdir('record_npm'))
+    cache = getattr(request.config, 'cache', None)     # None with -p no:cacheprovider
+    prefix = str(cache.mkdir('record_npm') if cache is not None
+                 else tmp_path_factory.mktemp('record_npm'))
     modules = os.path.join(prefix, 'node_modules')
     if not all(os.path.isdir(os.path.join(modules, p.rsplit('@', 1)[0])) for p in PACKAGES):
         result = subprocess.run([npm, 'install', '--prefix', prefix, '--no-audit', '--no-fund',

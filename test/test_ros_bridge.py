@@ -28,6 +28,7 @@ import os
 import subprocess
 import sys
 
+from automobile_helpers import wait_node_matched
 from conftest import sleeper_process, stop_processes
 import numpy as np
 import pytest
@@ -246,6 +247,10 @@ def running_system():
             raise RuntimeError('nodes did not come up:\n' + '\n'.join(
                 p.stderr.read() if p.poll() is not None else f'pid {p.pid} running'
                 for p in procs))
+        for name in ['diff_robot', bi.BRIDGE_NODE_NAME] + [
+                f'bridge_in{i}' for i in range(len(OTHER_INPUTS))]:
+            wait_node_matched(node, f'/{name}/list_parameters',
+                              'rcl_interfaces/srv/ListParameters')
         yield env
     finally:
         if node is not None:

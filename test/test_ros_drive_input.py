@@ -26,7 +26,7 @@ mean angle differ slightly from the bicycle model; measured 0.1 % and 0.5 % for 
 
 import math
 
-from automobile_helpers import NodeProcess, wait_for, WAIT_S
+from automobile_helpers import NodeProcess, wait_for, wait_node_matched, WAIT_S
 import pytest
 
 from vehicle_sim.config import load_car
@@ -269,6 +269,8 @@ class Robot:
                                self.cmd_vel.get_subscription_count() > 0 and
                                self.sub.get_publisher_count() > 0, WAIT_S), \
             self.process.text()
+        wait_node_matched(node, f'{namespace}/diff_robot/list_parameters',
+                          'rcl_interfaces/srv/ListParameters')
 
     def step(self, ms):
         request = self.node.srv(ri.ROBOT_TIME_STEP.ros_type).Request()

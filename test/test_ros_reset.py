@@ -68,6 +68,7 @@ from automobile_helpers import (
     stamp_of,
     VehicleClient,
     wait_for,
+    wait_node_matched,
     WAIT_S,
 )
 import pytest
@@ -135,6 +136,7 @@ def lidar(car, tester, world_file):
     scans = []
     sub = tester.create_subscription(row.ros_type, '/' + row.name, scans.append, row.qos)
     assert wait_for(lambda: sub.get_publisher_count(), spin=tester)
+    car.wait_node_matched()
 
     def ahead():
         """Step one basic step; return the range of the middle ray of that step's scan."""
@@ -465,6 +467,8 @@ def robot(tester):
 
     try:
         assert wait_for(lambda: all(s.get_publisher_count() for s in subs), spin=tester)
+        wait_node_matched(tester, f'/{ri.ROBOT_NODE_NAME}/list_parameters',
+                          'rcl_interfaces/srv/ListParameters')
         yield call, step
     finally:
         process.stop()

@@ -33,6 +33,7 @@ from automobile_helpers import (
     stamp_of,
     VehicleClient,
     wait_for,
+    wait_node_matched,
 )
 import pytest
 
@@ -72,15 +73,18 @@ class Listener:
 
     def __init__(self, node, prefix, topics):
         self.node = node
+        self.prefix = prefix
         self.received = {topic: [] for topic in topics}
         self.subs = [node.create_subscription(
             ros_type, f'{prefix}/{topic}',
             lambda msg, key=topic: self.received[key].append(msg), QOS_SENSOR)
             for topic, (ros_type, *_rest) in topics.items()]
 
-    def wait_matched(self):
+    def wait_matched(self, service='robot/get_time', srv_type='vehicle_msgs/srv/GetFloat'):
+        """Return once the node, answering ``service`` under the prefix, has matched them."""
         assert wait_for(lambda: all(s.get_publisher_count() for s in self.subs),
                         spin=self.node)
+        wait_node_matched(self.node, f'{self.prefix}/{service}', srv_type)
 
     def wait_counts(self, counts):
         """Spin until each topic has ``counts[topic]`` messages; return whether it happened."""
@@ -193,6 +197,7 @@ def test_driving_into_the_wall_gives_exactly_one_collision_naming_it(car):
     sub = car.node.create_subscription(itf.COLLISION.ros_type, car.name('collision'),
                                        collisions.append, itf.COLLISION.qos)
     assert wait_for(lambda: sub.get_publisher_count(), spin=car.node)
+    car.wait_node_matched()
     start_s = car.time_s()
     assert car.call('automobile/set_cruising_speed', 20.0).success
     # 20 km/h from rest: the front (4.5 m ahead of base_link) reaches the wall after about
@@ -285,7 +290,7 @@ def test_diff_robot_publishes_its_lidar_and_imu_the_same_way(tester):
     try:
         prefix = '/sensed_robot/diff_robot'
         found = Listener(tester, prefix, ROBOT_TOPICS)
-        found.wait_matched()
+        found.wait_matched('list_parameters', 'rcl_interfaces/srv/ListParameters')
         time_step = tester.create_client('vehicle_msgs/srv/SetInt', f'{prefix}/robot/time_step')
         assert time_step.wait_for_service(60.0)
         request = tester.srv('vehicle_msgs/srv/SetInt').Request()

@@ -29,6 +29,7 @@ import subprocess
 import sys
 from xml.etree import ElementTree
 
+from conftest import scaled_s
 import pytest
 
 from vehicle_sim.sweep import run_sweep, SweepError
@@ -36,10 +37,14 @@ from vehicle_sim.sweep import run_sweep, SweepError
 REPO = Path(__file__).resolve().parent.parent
 SCENARIO = str(REPO / 'scenarios' / 'stop_before_obstacle.yaml')
 GOOD = '../examples/lidar_stop_controller.py'
-TIMEOUT_S = 8.0     # well above a 2 s case's run (about 0.1 s, 1 s with a fresh worker's imports)
+# Well above a 2 s case's run (about 0.1 s, 1 s with a fresh worker's imports).
+TIMEOUT_S = scaled_s(8.0)
+# Ray's counts from the task's submission, a fresh Ray worker's start-up and imports included
+# (27 s for the first cases at a load average of 8 on 2 cores).
+RAY_TIMEOUT_S = scaled_s(60.0)
 # Generous bound for a sweep command that gives up on a Ray address after 5 s (interpreter and
 # Ray imports, twice).
-NO_RAY_COMMAND_BOUND_S = 180.0
+NO_RAY_COMMAND_BOUND_S = scaled_s(180.0)
 
 
 @pytest.fixture
@@ -69,7 +74,7 @@ def _by_script(result):
             for r in result.records}
 
 
-def _check_errors(result, out):
+def _check_errors(result, out, timeout_s=TIMEOUT_S):
     assert len(result.records) == 5
     by = _by_script(result)
     assert by['lidar_stop_controller.py']['status'] == 'fail'      # reach_goal needs 2.77 s
@@ -78,7 +83,7 @@ def _check_errors(result, out):
     assert crash['status'] == hang['status'] == raised['status'] == 'error'
     assert 'died' in crash['error'] or 'WorkerCrashedError' in crash['error'], crash['error']
     assert 'about to abort' in crash['error']               # the end of its log
-    assert hang['error'].startswith(f'timed out: still running after {TIMEOUT_S:g} s')
+    assert hang['error'].startswith(f'timed out: still running after {timeout_s:g} s')
     assert 'about to hang' in hang['error']
     assert 'this controller fails on purpose' in raised['error']
     suite = ElementTree.parse(os.path.join(out, 'junit.xml')).getroot().find('testsuite')
@@ -111,11 +116,11 @@ def test_sweep_on_ray_reports_crashing_and_hanging_variants_as_errors(controller
     out = str(tmp_path / 'out')
     try:
         result = run_sweep(SCENARIO, _sets(controllers), out_dir=out, workers=2,
-                           backend='ray', timeout_s=TIMEOUT_S)
+                           backend='ray', timeout_s=RAY_TIMEOUT_S)
     finally:
         if ray.is_initialized():
             ray.shutdown()
-    _check_errors(result, out)
+    _check_errors(result, out, RAY_TIMEOUT_S)
 
 
 def test_sweep_resume_runs_only_the_missing_cases(tmp_path):
