@@ -58,6 +58,7 @@ from typing import Callable, Dict, Mapping, Optional, Protocol, Sequence
 from vehicle_sim.config import load_car, load_robot
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.core.specs.errors import InvalidParameterError, InvalidPoseError
+from vehicle_sim.core.specs.registry import register
 from vehicle_sim.core.world.params import RobotSpec, used_twice, WorldSpec
 from vehicle_sim.maps.lane_maps import with_lanes
 from vehicle_sim.physics.diff_robot import DiffRobotBody
@@ -102,10 +103,7 @@ SCENE_PARTS: Dict[str, ScenePartRow] = {}
 
 def register_scene_part(row: ScenePartRow) -> ScenePartRow:
     """Add a row to :data:`SCENE_PARTS` (its name must be new); rows build in this order."""
-    if row.name in SCENE_PARTS:
-        raise ValueError(f'scene part {row.name!r} is registered already')
-    SCENE_PARTS[row.name] = row
-    return row
+    return register(SCENE_PARTS, row, 'scene part')
 
 
 register_scene_part(ScenePartRow('map', lambda spec: spec.map is not None, MapLayer))

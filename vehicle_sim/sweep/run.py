@@ -25,6 +25,7 @@ import hashlib
 import os
 from typing import Callable, Dict, List, Optional
 
+from vehicle_sim.core.specs.registry import register
 from vehicle_sim.sweep import results
 from vehicle_sim.sweep.grid import (
     Axis,
@@ -70,10 +71,7 @@ BACKENDS: Dict[str, Backend] = {}
 
 def register_backend(backend: Backend) -> Backend:
     """Add a sweep backend to :data:`BACKENDS` (its name must be new)."""
-    if backend.name in BACKENDS:
-        raise ValueError(f'sweep backend {backend.name!r} is registered already')
-    BACKENDS[backend.name] = backend
-    return backend
+    return register(BACKENDS, backend, 'sweep backend')
 
 
 def _run_local(todo, workers, timeout_s, address, case_log, finished):

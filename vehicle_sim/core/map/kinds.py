@@ -40,6 +40,7 @@ from vehicle_sim.core.geometry.frames import Pose
 from vehicle_sim.core.map.lanelet2_params import LANELET2_SPECS, Lanelet2MapSpec
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec, REQUIRED, validate_table
+from vehicle_sim.core.specs.registry import register
 from vehicle_sim.core.specs.value_text import brief
 
 
@@ -168,10 +169,7 @@ MAP_KINDS: Dict[str, MapKind] = {}
 
 def register_map_kind(kind: MapKind) -> MapKind:
     """Add a map kind to :data:`MAP_KINDS` (its name must be new)."""
-    if kind.name in MAP_KINDS:
-        raise ValueError(f'map kind {kind.name!r} is registered already')
-    MAP_KINDS[kind.name] = kind
-    return kind
+    return register(MAP_KINDS, kind, 'map kind')
 
 
 register_map_kind(MapKind('occupancy_grid', OCCUPANCY_GRID_SPECS, _occupancy_grid,

@@ -42,6 +42,7 @@ from dataclasses import dataclass
 from typing import Callable, Dict, Tuple
 
 from vehicle_sim.core.specs.param_spec import ParamSpec
+from vehicle_sim.core.specs.registry import register
 from vehicle_sim.core.traffic import idm, mobil
 
 
@@ -92,11 +93,9 @@ LANE_CHANGE_MODELS: Dict[str, LaneChangeModel] = {}
 
 
 def _register(registry, model):
-    if model.name in CAR_FOLLOWING_MODELS or model.name in LANE_CHANGE_MODELS:
-        # one name, one key of parameters under traffic:
-        raise ValueError(f'traffic model {model.name!r} is registered already')
-    registry[model.name] = model
-    return model
+    # One name, one key of parameters under traffic: a name of either table is taken.
+    return register(registry, model, 'traffic model',
+                    taken=(CAR_FOLLOWING_MODELS, LANE_CHANGE_MODELS))
 
 
 def register_car_following_model(model: CarFollowingModel) -> CarFollowingModel:

@@ -52,6 +52,7 @@ from vehicle_sim.core.specs.param_spec import (
     REQUIRED,
     validate_table,
 )
+from vehicle_sim.core.specs.registry import register
 from vehicle_sim.core.specs.value_text import brief
 from vehicle_sim.core.traffic.params import traffic_from_dict, TrafficSpec
 from vehicle_sim.core.world.placement import check_in_world
@@ -100,10 +101,7 @@ OBSTACLE_SHAPES: Dict[str, ObstacleShape] = {}
 
 def register_obstacle_shape(shape: ObstacleShape) -> ObstacleShape:
     """Add an obstacle shape to :data:`OBSTACLE_SHAPES` (its name must be new)."""
-    if shape.name in OBSTACLE_SHAPES:
-        raise ValueError(f'obstacle shape {shape.name!r} is registered already')
-    OBSTACLE_SHAPES[shape.name] = shape
-    return shape
+    return register(OBSTACLE_SHAPES, shape, 'obstacle shape')
 
 
 def _obstacle_common(shape, color_rgba):
