@@ -84,6 +84,41 @@ def two_cars():
     world.close()
 
 
+
+def test_a_gui_world_holds_an_x_connection_until_pybullet_has_its_own(monkeypatch):
+    # An X server started without -noreset (Xvfb under xvfb-run) resets when its last client
+    # leaves; PyBullet, connecting during that reset, ended the process ('cannot connect to X
+    # server'; seen under load after the availability probe had closed its connection).
+    from contextlib import contextmanager
+
+    from vehicle_sim.physics import gui
+    held = []
+    seen = []
+
+    @contextmanager
+    def fake_display(display):
+        held.append(display)
+        try:
+            yield None, None, None
+        finally:
+            held.pop()
+
+    class Connected(Exception):
+        pass
+
+    def fake_connect(*args, **kwargs):
+        seen.append(list(held))
+        raise Connected
+
+    monkeypatch.setenv('DISPLAY', ':99')
+    monkeypatch.setattr(gui, '_x_display', fake_display)
+    monkeypatch.setattr(gui, 'screen_size', lambda environ=None: None)
+    monkeypatch.setattr(pybullet, 'connect', fake_connect)
+    with pytest.raises(Connected):
+        World(gui=True)
+    assert seen == [[':99']]
+    assert held == []
+
 def test_chase_camera_follows_the_first_vehicle_from_behind(two_cars):
     world, first, second = two_cars
     camera = ChaseCamera(world, [first, second], period_s=0.0)

@@ -34,6 +34,7 @@ import ctypes
 import ctypes.util
 import os
 import sys
+import time
 from typing import Dict, Optional, Sequence, Tuple
 
 import pybullet
@@ -74,6 +75,9 @@ class GuiClosedError(VehicleSimError):
     """The PyBullet window was closed (Esc or the window's close button): the world is gone."""
 
 
+# How long opening the X display is retried while its server is there but refuses (a reset) [s].
+OPEN_RETRY_S = 5.0
+
 def gui_unavailable_reason(environ=None) -> Optional[str]:
     """
     Return why PyBullet's window cannot open here, or None when it can.
@@ -112,6 +116,34 @@ def screen_size(environ=None) -> Optional[Tuple[int, int]]:
 
 
 @contextmanager
+def display_held(environ=None):
+    """
+    Keep a connection to the X display open for the block (Linux with DISPLAY set).
+
+    An X server started without -noreset (Xvfb, as xvfb-run starts it) resets when its last
+    client leaves and refuses connections while it does; PyBullet ends the process when its
+    window cannot connect. Holding a connection from the availability check until PyBullet has
+    its own keeps the server from resetting in between.
+
+    :param environ: the environment to read DISPLAY from (default ``os.environ``).
+    """
+    display = (os.environ if environ is None else environ).get('DISPLAY', '')
+    if not display or not sys.platform.startswith('linux'):
+        yield
+        return
+    with _x_display(display):
+        yield
+
+
+def _local_socket(display):
+    # True when the display is local (':N' or ':N.S') and its server's socket exists.
+    if not display.startswith(':'):
+        return False
+    number = display[1:].split('.')[0]
+    return number.isdigit() and os.path.exists(f'/tmp/.X11-unix/X{number}')
+
+
+@contextmanager
 def _x_display(display):
     # (libX11, the open display, None), or (None, None, why it cannot be opened); closed after.
     library = ctypes.util.find_library('X11')
@@ -129,6 +161,13 @@ def _x_display(display):
     x11.XDefaultScreen.argtypes = [ctypes.c_void_p]
     x11.XDisplayWidth.argtypes = x11.XDisplayHeight.argtypes = [ctypes.c_void_p, ctypes.c_int]
     handle = x11.XOpenDisplay(display.encode())
+    deadline = time.monotonic() + OPEN_RETRY_S
+    while not handle and _local_socket(display) and time.monotonic() < deadline:
+        # A server is there but refuses connections for now: one started without -noreset
+        # (Xvfb as xvfb-run starts it) resets when its last client leaves, and a loaded
+        # machine makes that reset slow.
+        time.sleep(0.05)
+        handle = x11.XOpenDisplay(display.encode())
     if not handle:
         yield None, None, f'cannot open X display {display!r}'
         return

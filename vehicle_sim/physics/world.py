@@ -192,18 +192,21 @@ class World:
             return client_id
         from vehicle_sim.physics.gui import (
             check_gui_available,
+            display_held,
             GuiUnavailableError,
             screen_size,
             window_size,
         )
-        check_gui_available()   # PyBullet would end the process without an X server
-        width, height = window_size(screen_size())
-        # The window's start-up notices come from its own thread: it makes two render targets
-        # (Bullet's GLRenderToTexture), each printing 'ven = <GL vendor>', the first before
-        # connect returns, the second 0.1-0.5 s later (some seconds on a cold GL driver).
-        with quiet_stdout(settle_on=b'ven = ', settle_count=2, max_wait_s=GUI_NOTICE_WAIT_S):
-            client_id = pybullet.connect(pybullet.GUI,
-                                         options=f'--width={width} --height={height}')
+        with display_held():    # no X server reset between the check and PyBullet's connection
+            check_gui_available()   # PyBullet would end the process without an X server
+            width, height = window_size(screen_size())
+            # The window's start-up notices come from its own thread: it makes two render
+            # targets (Bullet's GLRenderToTexture), each printing 'ven = <GL vendor>', the first
+            # before connect returns, the second 0.1-0.5 s later (some seconds on a cold GL
+            # driver).
+            with quiet_stdout(settle_on=b'ven = ', settle_count=2, max_wait_s=GUI_NOTICE_WAIT_S):
+                client_id = pybullet.connect(pybullet.GUI,
+                                             options=f'--width={width} --height={height}')
         if client_id < 0:
             raise GuiUnavailableError('PyBullet could not open its window: one is open in this '
                                       'process already (PyBullet allows one per process)')
