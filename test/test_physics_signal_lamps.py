@@ -1,0 +1,208 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+Traffic lights in the physics world: the camera sees the lamps in the state of their group.
+
+The world: lane 1 runs east from (-20, 0) to a crossing at x = 0 .. 20 (lanes 3 -> 4 go north at
+x = 10); its stop line is at x = -2 (s = 18 m), governed by group 11, whose light stands at the
+kerb south of the lane at (0, -2.6): red at 3.0 m, yellow at 2.6 m, green at 2.2 m, facing the
+traffic (west). Group 12 governs lane 3. The car stands on lane 1 at x = -10, looking east with
+a camera 1.5 m ahead of it.
+"""
+
+from dataclasses import replace
+import math
+
+import numpy as np
+import pybullet
+import pytest
+
+from vehicle_sim.config import world_from_data
+from vehicle_sim.core.map.lane_graph import Boundary, Lane, LaneGraph
+from vehicle_sim.core.map.lane_rules import (
+    Bulb,
+    Conflict,
+    LaneRules,
+    StopLine,
+    TrafficLightGroup,
+)
+from vehicle_sim.core.map.signal_lamps import DARK_LAMP_COLOR, HOUSING_DEPTH_M, LAMP_COLORS
+from vehicle_sim.core.map.signal_plan import FixedTimePlan, SignalController
+from vehicle_sim.physics.scene import build_scene, mount_suite
+from vehicle_sim.physics.signal_lamps import LAMPS_BODY_NAME, SignalLampsPart
+
+LIGHT_XY = (0.0, -2.6)
+BULB_Z = {'red': 3.0, 'yellow': 2.6, 'green': 2.2}
+CAR_X = -10.0
+CAMERA = {'type': 'camera', 'name': 'camera', 'pose': {'x': 1.5, 'y': 0.0, 'z': 1.3},
+          'width': 320, 'height': 240, 'fov': 1.1, 'rate_hz': 5.0}
+
+
+def straight(lane_id, x0, y0, x1, y1, successors=()):
+    """Return a 3.5 m lane from (x0, y0) to (x1, y1) (axis-aligned)."""
+    nx, ny = (0.0, 1.75) if y0 == y1 else (-1.75, 0.0)
+    sign = 1.0 if (x1 - x0) + (y1 - y0) > 0 else -1.0
+    nx, ny = sign * nx, sign * ny
+    left = Boundary(2 * lane_id, [(x0 + nx, y0 + ny), (x1 + nx, y1 + ny)], 'solid')
+    right = Boundary(2 * lane_id + 1, [(x0 - nx, y0 - ny), (x1 - nx, y1 - ny)], 'solid')
+    return Lane(lane_id, [(x0, y0), (x1, y1)], left, right, 10.0, successors=successors)
+
+
+def crossing_graph():
+    graph = LaneGraph([straight(1, -20, 0, 0, 0, [2]), straight(2, 0, 0, 20, 0),
+                       straight(3, 10, -30, 10, -10, [4]), straight(4, 10, -10, 10, 10)])
+    bulbs = tuple(Bulb(color, LIGHT_XY[0], LIGHT_XY[1], z) for color, z in BULB_Z.items())
+    graph.set_rules(LaneRules(
+        stop_lines=(StopLine(101, 1, 18.0, [(-2, -1.75), (-2, 1.75)], 'traffic_light', 11),
+                    StopLine(102, 3, 18.0, [(8.25, -12), (11.75, -12)], 'traffic_light', 12)),
+        groups=(TrafficLightGroup(11, (1,), (101,), bulbs),
+                TrafficLightGroup(12, (3,), (102,), tuple(
+                    Bulb(color, 12.6, -12.0, z) for color, z in BULB_Z.items()))),
+        conflicts=(Conflict(2, 4, (8.25, 11.75), (8.25, 11.75)),)))
+    return graph
+
+
+class StandInSignals:
+    """The 'signals' part as the world will have it: a SignalController advanced each step."""
+
+    name = 'signals'
+
+    def build(self, world, spec):
+        self.world = world
+        self.controller = SignalController(spec.lanes, FixedTimePlan(green_s=2.0, yellow_s=1.0,
+                                                                     all_red_s=1.0))
+        world.add_body(self)
+        return self
+
+    def post_step(self):
+        self.controller.update(self.world.time_s)
+
+
+def crossing_spec(sensors=(CAMERA,), x=CAR_X, y=0.0):
+    spec = world_from_data({'vehicles': [{'name': 'car', 'model': 'Car', 'sensors': list(sensors),
+                                          'pose': {'x': x, 'y': y, 'yaw': 0.0}}]}, 'lamps.yaml')
+    return replace(spec, lanes=crossing_graph())
+
+
+@pytest.fixture
+def scene():
+    built = []
+
+    def make(parts=(StandInSignals(), SignalLampsPart()), **kwargs):
+        built.append(build_scene(crossing_spec(**kwargs), mount=mount_suite, parts=parts))
+        return built[-1]
+    yield make
+    for one in built:
+        one.world.close()
+
+
+def _pixel(scene, bulb_z, offset_m=0.0):
+    """Return the (row, column) where the camera sees the front of a bulb of the light."""
+    frame = scene.vehicles['car'].sensors.sample('camera')
+    fx, cx, fy, cy = frame.k[0], frame.k[2], frame.k[4], frame.k[5]
+    base = scene.vehicles['car'].body.pose()
+    camera = (base[0] + 1.5, base[1], base[2] + 1.3)
+    depth = LIGHT_XY[0] - camera[0]
+    u = cx + fx * -(LIGHT_XY[1] + offset_m - camera[1]) / depth
+    v = cy + fy * -(bulb_z - camera[2]) / depth
+    return frame.rgb, int(round(v)), int(round(u))
+
+
+def _lamp_rgb(scene, color):
+    """Return the mean colour [0, 1] of the 3 x 3 pixels at the middle of a bulb of group 11."""
+    rgb, row, col = _pixel(scene, BULB_Z[color])
+    return rgb[row - 1:row + 2, col - 1:col + 2].reshape(-1, 3).mean(axis=0) / 255.0
+
+
+def _is_lit(rgb, color):
+    """Lit: the chromaticity of the lamp's colour (shaded: 30 .. 100 % brightness)."""
+    want = np.array(LAMP_COLORS[color][:3])
+    scale = rgb.sum() / want.sum()
+    return scale > 0.3 and np.abs(rgb - scale * want).max() < 0.08
+
+
+def _is_dark(rgb):
+    """Dark: grey (equal channels), no brighter than the dark lamp's grey."""
+    return np.ptp(rgb) < 0.04 and rgb.max() <= DARK_LAMP_COLOR[0] + 0.02
+
+
+def test_the_camera_sees_the_red_lamp_lit_when_the_group_is_forced_red_then_green(scene):
+    world = scene()
+    controller = world.parts['signals'].controller
+    controller.force(11, 'red')
+    lamps = {color: _lamp_rgb(world, color) for color in BULB_Z}
+    assert _is_lit(lamps['red'], 'red'), lamps
+    assert _is_dark(lamps['yellow']) and _is_dark(lamps['green']), lamps
+    controller.force(11, 'green')       # no step: the camera shows the state published now
+    lamps = {color: _lamp_rgb(world, color) for color in BULB_Z}
+    assert _is_lit(lamps['green'], 'green'), lamps
+    assert _is_dark(lamps['red']) and _is_dark(lamps['yellow']), lamps
+    controller.force(11, 'off')
+    assert all(_is_dark(_lamp_rgb(world, color)) for color in BULB_Z)
+
+
+def test_the_lamps_follow_the_plan_and_change_colour_only_when_a_state_changes(scene):
+    world = scene()
+    lamps, controller = world.parts['signal_lamps'], world.parts['signals'].controller
+    assert lamps.shown == controller.states() == {11: 'green', 12: 'red'}
+    changes = lamps.changes
+    for _ in range(150):                # 1.5 s: both groups hold their state
+        world.world.step()
+    assert lamps.changes == changes
+    seen = []
+    for _ in range(700):                # 7 s: green 2 s, yellow 1 s, all red 1 s, then group 12
+        world.world.step()
+        if lamps.shown != (seen[-1] if seen else None):
+            seen.append(dict(lamps.shown))
+        assert lamps.shown == controller.states()
+    assert [s[11] for s in seen][:3] == ['green', 'yellow', 'red']
+    assert {'green'} == {s[12] for s in seen} - {'red', 'yellow'}
+    # three bulbs per group, two of them change colour per state change (one goes dark, one on)
+    transitions = sum(1 for a, b in zip(seen, seen[1:]) for g in (11, 12) if a[g] != b[g])
+    assert lamps.changes - changes == 3 * transitions
+
+
+def test_the_pole_is_solid_and_named_the_housings_and_lamps_are_not(scene):
+    world = scene(sensors=())
+    lamps = world.parts['signal_lamps']
+    assert len(lamps.lamp_ids) == 6 and len(lamps.pole_ids) == 1 and len(lamps.housing_ids) == 1
+    assert lamps.visual_shape_count == 8
+    cid = world.world.client_id
+    pole = lamps.poles[0]
+    assert (pole.x_m, pole.y_m) == pytest.approx(
+        (LIGHT_XY[0] + HOUSING_DEPTH_M + 0.075, LIGHT_XY[1]))
+    hit = pybullet.rayTest((pole.x_m - 5.0, pole.y_m, 1.0), (pole.x_m + 5.0, pole.y_m, 1.0),
+                           physicsClientId=cid)[0]
+    assert world.world.body_name(hit[0]) == LAMPS_BODY_NAME
+    assert hit[3][0] == pytest.approx(pole.x_m - 0.075, abs=1e-3)
+    for body_id in lamps.lamp_ids + lamps.housing_ids:
+        assert pybullet.getCollisionShapeData(body_id, -1, physicsClientId=cid) == ()
+    # the lamps face the traffic of lane 1 (west), the pole stands behind them
+    assert {round(lamp.yaw_rad, 6) for lamp in lamps.lamps if lamp.group_id == 11} == {
+        round(math.pi, 6)}
+
+
+def test_a_vehicle_that_starts_inside_a_pole_is_refused_naming_it(scene):
+    pole_x = LIGHT_XY[0] + HOUSING_DEPTH_M + 0.075
+    with pytest.raises(Exception, match=LAMPS_BODY_NAME):
+        scene(sensors=(), x=pole_x - 2.0, y=LIGHT_XY[1])
+
+
+def test_without_a_signal_controller_every_lamp_is_dark_and_no_hook_is_added(scene):
+    world = scene(parts=(), sensors=(CAMERA,))
+    lamps = world.parts['signal_lamps']
+    assert lamps.controller is None and lamps not in world.world.bodies
+    assert all(_is_dark(_lamp_rgb(world, color)) for color in BULB_Z)
