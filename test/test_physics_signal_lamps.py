@@ -16,85 +16,34 @@
 """
 Traffic lights in the physics world: the camera sees the lamps in the state of their group.
 
-The world: lane 1 runs east from (-20, 0) to a crossing at x = 0 .. 20 (lanes 3 -> 4 go north at
-x = 10); its stop line is at x = -2 (s = 18 m), governed by group 11, whose light stands at the
-kerb south of the lane at (0, -2.6): red at 3.0 m, yellow at 2.6 m, green at 2.2 m, facing the
-traffic (west). Group 12 governs lane 3. The car stands on lane 1 at x = -10, looking east with
-a camera 1.5 m ahead of it.
+The world: lane_helpers.signal_crossing (lane 1 runs east to a crossing; its stop line at x = -2
+is governed by group 11, whose light stands at the kerb south of the lane at (0, -2.6): red at
+3.0 m, yellow at 2.6 m, green at 2.2 m, facing the traffic (west); group 12 governs lane 3). The
+car stands on lane 1 at x = -10, looking east with a camera 1.5 m ahead of it.
 """
 
 from dataclasses import replace
 import math
 
+from lane_helpers import BULB_Z, LIGHT_XY, signal_crossing, StandInSignals
 import numpy as np
 import pybullet
 import pytest
 
 from vehicle_sim.config import world_from_data
-from vehicle_sim.core.map.lane_graph import Boundary, Lane, LaneGraph
-from vehicle_sim.core.map.lane_rules import (
-    Bulb,
-    Conflict,
-    LaneRules,
-    StopLine,
-    TrafficLightGroup,
-)
 from vehicle_sim.core.map.signal_lamps import DARK_LAMP_COLOR, HOUSING_DEPTH_M, LAMP_COLORS
-from vehicle_sim.core.map.signal_plan import FixedTimePlan, SignalController
 from vehicle_sim.physics.scene import build_scene, mount_suite
 from vehicle_sim.physics.signal_lamps import LAMPS_BODY_NAME, SignalLampsPart
 
-LIGHT_XY = (0.0, -2.6)
-BULB_Z = {'red': 3.0, 'yellow': 2.6, 'green': 2.2}
 CAR_X = -10.0
 CAMERA = {'type': 'camera', 'name': 'camera', 'pose': {'x': 1.5, 'y': 0.0, 'z': 1.3},
           'width': 320, 'height': 240, 'fov': 1.1, 'rate_hz': 5.0}
 
 
-def straight(lane_id, x0, y0, x1, y1, successors=()):
-    """Return a 3.5 m lane from (x0, y0) to (x1, y1) (axis-aligned)."""
-    nx, ny = (0.0, 1.75) if y0 == y1 else (-1.75, 0.0)
-    sign = 1.0 if (x1 - x0) + (y1 - y0) > 0 else -1.0
-    nx, ny = sign * nx, sign * ny
-    left = Boundary(2 * lane_id, [(x0 + nx, y0 + ny), (x1 + nx, y1 + ny)], 'solid')
-    right = Boundary(2 * lane_id + 1, [(x0 - nx, y0 - ny), (x1 - nx, y1 - ny)], 'solid')
-    return Lane(lane_id, [(x0, y0), (x1, y1)], left, right, 10.0, successors=successors)
-
-
-def crossing_graph():
-    graph = LaneGraph([straight(1, -20, 0, 0, 0, [2]), straight(2, 0, 0, 20, 0),
-                       straight(3, 10, -30, 10, -10, [4]), straight(4, 10, -10, 10, 10)])
-    bulbs = tuple(Bulb(color, LIGHT_XY[0], LIGHT_XY[1], z) for color, z in BULB_Z.items())
-    graph.set_rules(LaneRules(
-        stop_lines=(StopLine(101, 1, 18.0, [(-2, -1.75), (-2, 1.75)], 'traffic_light', 11),
-                    StopLine(102, 3, 18.0, [(8.25, -12), (11.75, -12)], 'traffic_light', 12)),
-        groups=(TrafficLightGroup(11, (1,), (101,), bulbs),
-                TrafficLightGroup(12, (3,), (102,), tuple(
-                    Bulb(color, 12.6, -12.0, z) for color, z in BULB_Z.items()))),
-        conflicts=(Conflict(2, 4, (8.25, 11.75), (8.25, 11.75)),)))
-    return graph
-
-
-class StandInSignals:
-    """The 'signals' part as the world will have it: a SignalController advanced each step."""
-
-    name = 'signals'
-
-    def build(self, world, spec):
-        self.world = world
-        self.controller = SignalController(spec.lanes, FixedTimePlan(green_s=2.0, yellow_s=1.0,
-                                                                     all_red_s=1.0))
-        world.add_body(self)
-        return self
-
-    def post_step(self):
-        self.controller.update(self.world.time_s)
-
-
 def crossing_spec(sensors=(CAMERA,), x=CAR_X, y=0.0):
     spec = world_from_data({'vehicles': [{'name': 'car', 'model': 'Car', 'sensors': list(sensors),
                                           'pose': {'x': x, 'y': y, 'yaw': 0.0}}]}, 'lamps.yaml')
-    return replace(spec, lanes=crossing_graph())
+    return replace(spec, lanes=signal_crossing(areas=False))
 
 
 @pytest.fixture

@@ -23,7 +23,16 @@ once; the ``build`` it returns makes one message from a stamp and a core value
 
 import numpy as np
 
-from vehicle_sim.core.map.lane_geometry import DASH_M, GAP_M, surface_mesh
+from vehicle_sim.core.map.lane_geometry import (
+    area_color,
+    DASH_M,
+    GAP_M,
+    PAINT_COLOR,
+    polygon_mesh,
+    STOP_LINE_WIDTH_M,
+    surface_mesh,
+    zebra_stripes,
+)
 
 HEADER = 'std_msgs/msg/Header'
 POINT = 'geometry_msgs/msg/Point'
@@ -76,7 +85,12 @@ def lane_markers_builder(msg, frame_id: str):
 
     Namespaces: ``road_surface`` (one triangle list), ``lane_boundaries`` (one marker per
     boundary, its id the boundary's modulo 2^31: a line strip, dashes as a line list, coloured by
-    line type), ``centrelines`` (one line strip per lane, in lane order).
+    line type), ``centrelines`` (one line strip per lane, in lane order); and from the map's
+    rules (``graph.rules``, only those it has): ``stop_lines`` (a white line strip
+    ``STOP_LINE_WIDTH_M`` wide per stop line, its id the line's), ``crosswalks`` (a white
+    triangle list of its zebra stripes per crosswalk, its id the area's) and ``areas`` (a
+    triangle list per other area in its kind's colour, core/map/lane_geometry.py's
+    ``area_color``, its id the area's).
     """
     marker_type, array_type = msg(MARKER), msg(MARKER_ARRAY)
     header_type, point_type, color_type = msg(HEADER), msg(POINT), msg(COLOR)
@@ -95,11 +109,13 @@ def lane_markers_builder(msg, frame_id: str):
             item.scale.x = item.scale.y = item.scale.z = 1.0
         return item
 
+    def triangles(mesh, z):
+        return [point_type(x=float(v[0]), y=float(v[1]), z=z)
+                for v in mesh.vertices[mesh.triangles.reshape(-1)]]
+
     def build(stamp, graph):
-        mesh = surface_mesh(graph)
-        surface = [point_type(x=float(v[0]), y=float(v[1]), z=0.0)
-                   for v in mesh.vertices[mesh.triangles.reshape(-1)]]
-        markers = [marker(stamp, 'road_surface', 0, TRIANGLE_LIST, surface, SURFACE_COLOR, 1.0)]
+        markers = [marker(stamp, 'road_surface', 0, TRIANGLE_LIST,
+                          triangles(surface_mesh(graph), 0.0), SURFACE_COLOR, 1.0)]
         for boundary in graph.boundaries():
             rgba = LINE_COLORS[boundary.line_type]
             if 'dashed' in boundary.line_type:
@@ -112,6 +128,20 @@ def lane_markers_builder(msg, frame_id: str):
         for index, lane in enumerate(graph.lanes.values()):
             markers.append(marker(stamp, 'centrelines', index, LINE_STRIP,
                                   points(lane.centerline, 0.02), CENTRELINE_COLOR, 0.05))
+        rules = graph.rules
+        for line in rules.stop_lines:
+            markers.append(marker(stamp, 'stop_lines', line.id % 2 ** 31, LINE_STRIP,
+                                  points(line.points, 0.015), PAINT_COLOR, STOP_LINE_WIDTH_M))
+        for area in rules.areas:
+            if area.kind == 'crosswalk':
+                stripes = [polygon_mesh(stripe) for stripe in zebra_stripes(area.polygon)]
+                pts = [p for stripe in stripes for p in triangles(stripe, 0.012)]
+                ns = 'crosswalks'
+            else:
+                pts, ns = triangles(polygon_mesh(area.polygon), 0.005), 'areas'
+            if pts:
+                markers.append(marker(stamp, ns, area.id % 2 ** 31, TRIANGLE_LIST, pts,
+                                      area_color(area.kind), 1.0))
         return array_type(markers=markers)
     return build
 

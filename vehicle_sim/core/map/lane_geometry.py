@@ -261,6 +261,13 @@ def polygon_triangles(points) -> np.ndarray:
     return np.array(found, dtype=np.int64).reshape(-1, 3)
 
 
+def polygon_mesh(polygon, z_m=0.0) -> Mesh:
+    """Return a flat simple polygon (N, 2) at height ``z_m`` as a Mesh (ear-clipped)."""
+    builder = _MeshBuilder()
+    builder.polygon(np.asarray(polygon, dtype=float), z_m)
+    return builder.mesh()
+
+
 def _clip(polygon, normal, limit):
     """Return the part of a polygon where point . normal <= limit (Sutherland-Hodgman)."""
     out = []
