@@ -22,6 +22,7 @@ x = -2; lane 3's stop line 102 at y = -12; a crosswalk (501) over lane 2 at x 4 
 """
 
 import math
+from pathlib import Path
 
 from lane_helpers import CROSSWALK, PARKING, signal_crossing
 import numpy as np
@@ -30,10 +31,12 @@ import pytest
 
 from vehicle_msgs_py import message_type
 from vehicle_sim.core.map.lane_geometry import (
+    area_color,
     AREA_COLORS,
     area_meshes,
     crosswalk_mesh,
     MARKING_Z_M,
+    OTHER_AREA_COLOR,
     PAINT_COLOR,
     polygon_triangles,
     stop_line_mesh,
@@ -189,3 +192,18 @@ def test_foxglove_lane_entities_have_the_stop_lines_crosswalks_areas_and_poles()
     assert len(entities['lanes/signal_poles'].primitives) == 2        # one per light
     without = {e.id for e in map_scene.lane_map_entities(signal_crossing(areas=False))}
     assert 'lanes/areas' not in without and 'lanes/crosswalks' not in without
+
+
+# ------------------------------------------------------------------------------ docs
+
+def test_docs_maps_gives_every_area_colour_the_code_draws():
+    text = (Path(__file__).resolve().parents[1] / 'docs' / 'maps.md').read_text(encoding='utf-8')
+    rows = {}
+    for line in text.splitlines():
+        cells = [cell.strip() for cell in line.strip('|').split('|')]
+        if len(cells) == 3 and cells[1].startswith('(') and cells[1].endswith(')'):
+            rows[cells[0]] = tuple(float(v) for v in cells[1].strip('()').split(','))
+    for kind in list(AREA_COLORS) + ['crosswalk']:
+        assert rows[f'`{kind}`'] == area_color(kind)[:3]
+    (other,) = [colour for name, colour in rows.items() if name.startswith('any other')]
+    assert other == OTHER_AREA_COLOR[:3]
