@@ -36,49 +36,22 @@ a controller shows every lamp dark ('off').
 
 from typing import Dict, Optional, Tuple
 
-import numpy as np
 import pybullet
 
-from vehicle_sim.core.map.lane_geometry import Mesh
 from vehicle_sim.core.map.signal_lamps import (
+    box_mesh,
     HOUSING_COLOR,
+    housing_corners,
     lamp_color,
     LAMP_RADIUS_M,
     lamps,
     POLE_COLOR,
-    POLE_WIDTH_M,
+    pole_corners,
     poles,
 )
 from vehicle_sim.physics.lane_layer import inside_boxes, solid_box_bodies, visual_bodies
 
 LAMPS_BODY_NAME = 'signal_lamps'
-# The faces of a box from its 8 corners (0..3 at the bottom, 4..7 on top, counter-clockwise
-# seen from above): bottom, four sides and top, two triangles each, facing out.
-CLOSED_BOX_TRIANGLES = np.array(
-    [[0, 2, 1], [0, 3, 2], [0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6],
-     [3, 0, 4], [3, 4, 7], [4, 5, 6], [4, 6, 7]], dtype=np.int64)
-
-
-def box_corners(centres, sizes, yaws) -> np.ndarray:
-    """Return float (n, 8, 3): the corners of boxes (centre, size along x y z, yaw) [m]."""
-    centres, sizes = np.asarray(centres, float).reshape(-1, 3), np.asarray(sizes, float)
-    yaws = np.asarray(yaws, float)
-    half = 0.5 * sizes.reshape(-1, 3)
-    signs = np.array([(-1, -1), (1, -1), (1, 1), (-1, 1)], dtype=float)
-    c, s = np.cos(yaws)[:, None], np.sin(yaws)[:, None]
-    local_x, local_y = signs[None, :, 0] * half[:, :1], signs[None, :, 1] * half[:, 1:2]
-    ground = np.stack((centres[:, :1] + c * local_x - s * local_y,
-                       centres[:, 1:2] + s * local_x + c * local_y), axis=-1)
-    corners = np.empty((len(centres), 8, 3))
-    corners[:, :4, :2] = corners[:, 4:, :2] = ground
-    corners[:, :4, 2] = (centres[:, 2] - half[:, 2])[:, None]
-    corners[:, 4:, 2] = (centres[:, 2] + half[:, 2])[:, None]
-    return corners
-
-
-def _box_mesh(corners) -> Mesh:
-    triangles = CLOSED_BOX_TRIANGLES[None, :, :] + 8 * np.arange(len(corners))[:, None, None]
-    return Mesh(corners.reshape(-1, 3), triangles.reshape(-1, 3))
 
 
 class SignalLamps:
@@ -96,16 +69,12 @@ class SignalLamps:
         self.lamps = lamps(graph)
         self.poles = poles(graph, self.lamps)
         cid = self._cid = world.client_id
-        housings = box_corners([lamp.housing_centre_m for lamp in self.lamps],
-                               [lamp.housing_size_m for lamp in self.lamps],
-                               [lamp.yaw_rad for lamp in self.lamps])
-        self.housing_ids = visual_bodies(world, _box_mesh(housings), HOUSING_COLOR)
-        pole_corners = box_corners([(p.x_m, p.y_m, 0.5 * p.height_m) for p in self.poles],
-                                   [(POLE_WIDTH_M, POLE_WIDTH_M, p.height_m)
-                                    for p in self.poles], [0.0] * len(self.poles))
-        self.pole_ids = solid_box_bodies(world, pole_corners, POLE_COLOR)
+        self.housing_ids = visual_bodies(world, box_mesh(housing_corners(self.lamps)),
+                                         HOUSING_COLOR)
+        standing = pole_corners(self.poles)
+        self.pole_ids = solid_box_bodies(world, standing, POLE_COLOR)
         if self.pole_ids:
-            world.add_static(LAMPS_BODY_NAME, self.pole_ids, inside_boxes(pole_corners))
+            world.add_static(LAMPS_BODY_NAME, self.pole_ids, inside_boxes(standing))
         sphere = pybullet.createVisualShape(pybullet.GEOM_SPHERE, radius=LAMP_RADIUS_M,
                                             rgbaColor=list(lamp_color('red', 'off')),
                                             physicsClientId=cid)

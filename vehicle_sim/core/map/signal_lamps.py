@@ -33,8 +33,11 @@ the red bulbs, ...; 'off' none) and dark grey otherwise (:func:`lamp_color`). Th
 
 from dataclasses import dataclass
 import math
-from typing import List, Tuple
+from typing import List, Sequence, Tuple
 
+import numpy as np
+
+from vehicle_sim.core.map.lane_geometry import Mesh
 from vehicle_sim.core.map.lane_rules import Bulb
 
 LAMP_RADIUS_M = 0.12
@@ -48,6 +51,11 @@ LAMP_COLORS = {'red': (1.0, 0.1, 0.05, 1.0), 'yellow': (1.0, 0.75, 0.0, 1.0),
 DARK_LAMP_COLOR = (0.2, 0.2, 0.2, 1.0)
 HOUSING_COLOR = (0.05, 0.05, 0.06, 1.0)
 POLE_COLOR = (0.45, 0.45, 0.48, 1.0)
+# The faces of a box from its 8 corners (0..3 at the bottom, 4..7 on top, counter-clockwise
+# seen from above): bottom, four sides and top, two triangles each, facing out.
+CLOSED_BOX_TRIANGLES = np.array(
+    [[0, 2, 1], [0, 3, 2], [0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6],
+     [3, 0, 4], [3, 4, 7], [4, 5, 6], [4, 6, 7]], dtype=np.int64)
 
 
 @dataclass(frozen=True)
@@ -140,3 +148,41 @@ def poles(graph, found: Tuple[Lamp, ...]) -> Tuple[Pole, ...]:
         if height > 0.0 and graph.locate(x, y) is None:
             result.append(Pole(x, y, height))
     return tuple(result)
+
+
+def box_corners(centres, sizes, yaws) -> np.ndarray:
+    """Return float (n, 8, 3): the corners of boxes (centre, size along x y z, yaw) [m]."""
+    centres = np.asarray(centres, float).reshape(-1, 3)
+    half = 0.5 * np.asarray(sizes, float).reshape(-1, 3)
+    yaws = np.asarray(yaws, float).reshape(-1)
+    signs = np.array([(-1, -1), (1, -1), (1, 1), (-1, 1)], dtype=float)
+    c, s = np.cos(yaws)[:, None], np.sin(yaws)[:, None]
+    local_x, local_y = signs[None, :, 0] * half[:, :1], signs[None, :, 1] * half[:, 1:2]
+    ground = np.stack((centres[:, :1] + c * local_x - s * local_y,
+                       centres[:, 1:2] + s * local_x + c * local_y), axis=-1)
+    corners = np.empty((len(centres), 8, 3))
+    corners[:, :4, :2] = corners[:, 4:, :2] = ground
+    corners[:, :4, 2] = (centres[:, 2] - half[:, 2])[:, None]
+    corners[:, 4:, 2] = (centres[:, 2] + half[:, 2])[:, None]
+    return corners
+
+
+def housing_corners(found: Sequence[Lamp]) -> np.ndarray:
+    """Return the corners (n, 8, 3) of the lamps' housing boxes [m]."""
+    return box_corners([lamp.housing_centre_m for lamp in found],
+                       [lamp.housing_size_m for lamp in found],
+                       [lamp.yaw_rad for lamp in found])
+
+
+def pole_corners(standing: Sequence[Pole]) -> np.ndarray:
+    """Return the corners (n, 8, 3) of the poles' boxes [m]."""
+    return box_corners([(p.x_m, p.y_m, 0.5 * p.height_m) for p in standing],
+                       [(POLE_WIDTH_M, POLE_WIDTH_M, p.height_m) for p in standing],
+                       [0.0] * len(standing))
+
+
+def box_mesh(corners) -> Mesh:
+    """Return closed boxes (their corners, (n, 8, 3)) as one triangle mesh."""
+    corners = np.asarray(corners, float).reshape(-1, 8, 3)
+    triangles = CLOSED_BOX_TRIANGLES[None, :, :] + 8 * np.arange(len(corners))[:, None, None]
+    return Mesh(corners.reshape(-1, 3), triangles.reshape(-1, 3))
