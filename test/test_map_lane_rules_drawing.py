@@ -43,10 +43,17 @@ from vehicle_sim.core.map.lane_geometry import (
     STOP_LINE_WIDTH_M,
     zebra_stripes,
 )
+from vehicle_sim.core.map.signal_lamps import DARK_LAMP_COLOR, LAMP_COLORS, LAMP_RADIUS_M
 from vehicle_sim.foxglove import map_scene
 from vehicle_sim.physics import World
 from vehicle_sim.physics.lane_layer import build_lane_bodies, SURFACE_COLOR
-from vehicle_sim.ros.lane_messages import lane_markers_builder, LINE_STRIP, TRIANGLE_LIST
+from vehicle_sim.ros.lane_messages import (
+    lane_markers_builder,
+    LINE_STRIP,
+    SPHERE_LIST,
+    traffic_light_markers_builder,
+    TRIANGLE_LIST,
+)
 
 
 def _area(points, triangles):
@@ -170,6 +177,28 @@ def test_map_lanes_markers_have_the_stop_lines_crosswalks_and_areas():
         AREA_COLORS['parking'][:3], abs=1e-6)
     corners = {(p.x, p.y) for p in parking.points}
     assert corners == {tuple(map(float, c)) for c in PARKING}
+    data = array.serialize()
+    assert type(array).deserialize(data).serialize() == data
+
+
+def test_traffic_light_markers_show_each_bulb_in_its_groups_state():
+    stamp = message_type('builtin_interfaces/msg/Time')(sec=1, nanosec=0)
+    build = traffic_light_markers_builder(message_type, 'world', signal_crossing())
+    array = build(stamp, {11: 'red', 12: 'green'})
+    by_ns = {marker.ns: marker for marker in array.markers}
+    assert sorted(by_ns) == ['bulbs', 'housings', 'poles']
+    bulbs = by_ns['bulbs']
+    assert bulbs.type == SPHERE_LIST and bulbs.scale.x == 2 * LAMP_RADIUS_M
+    shown = {(p.x, p.y, p.z): (c.r, c.g, c.b) for p, c in zip(bulbs.points, bulbs.colors)}
+    assert len(shown) == 6
+    assert shown[(0.0, -2.6, 3.0)] == pytest.approx(LAMP_COLORS['red'][:3], abs=1e-6)
+    assert shown[(0.0, -2.6, 2.2)] == pytest.approx(DARK_LAMP_COLOR[:3], abs=1e-6)
+    assert shown[(12.6, -12.0, 2.2)] == pytest.approx(LAMP_COLORS['green'][:3], abs=1e-6)
+    assert by_ns['housings'].type == TRIANGLE_LIST
+    assert len(by_ns['housings'].points) == 6 * 12 * 3      # a closed box per bulb
+    assert len(by_ns['poles'].points) == 2 * 12 * 3         # a pole per light
+    again = build(stamp, {11: 'green', 12: 'red'}).markers[0]
+    assert again.colors[0].r == pytest.approx(DARK_LAMP_COLOR[0], abs=1e-6)
     data = array.serialize()
     assert type(array).deserialize(data).serialize() == data
 

@@ -16,6 +16,9 @@
 """
 Message builders of the lane topics: ``<ns>/lane_state``, ``<ns>/lane_invasion``, ``/map/lanes``.
 
+And of the traffic lights for RViz (:func:`traffic_light_markers_builder`): the lamps as the
+physics draws them (core/map/signal_lamps.py), in the colours of their groups' states.
+
 Same form as ros/messages.py's builders: ``<type>_builder(msg, frame_id)`` resolves the classes
 once; the ``build`` it returns makes one message from a stamp and a core value
 (core/map/lane_state.LaneState, core/map/lane_invasion.LaneInvasion, a LaneGraph).
@@ -33,6 +36,17 @@ from vehicle_sim.core.map.lane_geometry import (
     surface_mesh,
     zebra_stripes,
 )
+from vehicle_sim.core.map.signal_lamps import (
+    box_mesh,
+    HOUSING_COLOR,
+    housing_corners,
+    lamp_color,
+    LAMP_RADIUS_M,
+    lamps,
+    POLE_COLOR,
+    pole_corners,
+    poles,
+)
 
 HEADER = 'std_msgs/msg/Header'
 POINT = 'geometry_msgs/msg/Point'
@@ -42,7 +56,7 @@ MARKER = 'visualization_msgs/msg/Marker'
 MARKER_ARRAY = 'visualization_msgs/msg/MarkerArray'
 COLOR = 'std_msgs/msg/ColorRGBA'
 
-LINE_STRIP, LINE_LIST, TRIANGLE_LIST = 4, 5, 11      # visualization_msgs/Marker types
+LINE_STRIP, LINE_LIST, SPHERE_LIST, TRIANGLE_LIST = 4, 5, 7, 11   # visualization_msgs/Marker
 # marker colours (RGBA) of the line types; virtual and none lines are drawn faint
 LINE_COLORS = {
     'solid': (1.0, 1.0, 1.0, 1.0), 'solid_solid': (1.0, 1.0, 1.0, 1.0),
@@ -143,6 +157,49 @@ def lane_markers_builder(msg, frame_id: str):
                 markers.append(marker(stamp, ns, area.id % 2 ** 31, TRIANGLE_LIST, pts,
                                       area_color(area.kind), 1.0))
         return array_type(markers=markers)
+    return build
+
+
+def traffic_light_markers_builder(msg, frame_id: str, graph):
+    """
+    Return ``build(stamp, states)``: visualization_msgs/MarkerArray of a map's traffic lights.
+
+    ``states``: {group id: state} (SignalController.states()). Namespaces: ``bulbs`` (one
+    sphere list, a sphere of the lamp's diameter per bulb, lit in its colour or dark grey as
+    :func:`~vehicle_sim.core.map.signal_lamps.lamp_color` says), ``housings`` and ``poles``
+    (a triangle list each, the boxes the physics builds); id 0 each. The geometry is built once.
+    """
+    marker_type, array_type = msg(MARKER), msg(MARKER_ARRAY)
+    header_type, point_type, color_type = msg(HEADER), msg(POINT), msg(COLOR)
+    found = lamps(graph)
+    bulbs = [point_type(x=float(lamp.bulb.x_m), y=float(lamp.bulb.y_m), z=float(lamp.bulb.z_m))
+             for lamp in found]
+    boxes = []
+    for ns, corners, rgba in (('housings', housing_corners(found), HOUSING_COLOR),
+                              ('poles', pole_corners(poles(graph, found)), POLE_COLOR)):
+        mesh = box_mesh(corners)
+        if len(mesh.triangles):
+            boxes.append((ns, [point_type(x=float(v[0]), y=float(v[1]), z=float(v[2]))
+                               for v in mesh.vertices[mesh.triangles.reshape(-1)]], rgba))
+
+    def color(rgba):
+        r, g, b, a = rgba
+        return color_type(r=float(r), g=float(g), b=float(b), a=float(a))
+
+    def marker(stamp, ns, kind, pts, rgba, scale):
+        item = marker_type(header=header_type(stamp=stamp, frame_id=frame_id), ns=ns, id=0,
+                           type=kind, action=0, points=pts, color=color(rgba))
+        item.pose.orientation.w = 1.0
+        item.scale.x = item.scale.y = item.scale.z = scale
+        return item
+
+    def build(stamp, states):
+        lit = marker(stamp, 'bulbs', SPHERE_LIST, bulbs, (1.0, 1.0, 1.0, 1.0),
+                     2 * LAMP_RADIUS_M)
+        lit.colors = [color(lamp_color(lamp.bulb.color, states.get(lamp.group_id, 'off')))
+                      for lamp in found]
+        return array_type(markers=[lit] + [marker(stamp, ns, TRIANGLE_LIST, pts, rgba, 1.0)
+                                           for ns, pts, rgba in boxes])
     return build
 
 
