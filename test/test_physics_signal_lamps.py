@@ -32,8 +32,10 @@ import pytest
 
 from vehicle_sim.config import world_from_data
 from vehicle_sim.core.map.signal_lamps import DARK_LAMP_COLOR, HOUSING_DEPTH_M, LAMP_COLORS
+from vehicle_sim.core.map.signal_plan import FixedTimePlan, SignalController
+from vehicle_sim.physics import World
 from vehicle_sim.physics.scene import build_scene, mount_suite
-from vehicle_sim.physics.signal_lamps import LAMPS_BODY_NAME, SignalLampsPart
+from vehicle_sim.physics.signal_lamps import LAMPS_BODY_NAME, SignalLamps, SignalLampsPart
 
 CAR_X = -10.0
 CAMERA = {'type': 'camera', 'name': 'camera', 'pose': {'x': 1.5, 'y': 0.0, 'z': 1.3},
@@ -110,10 +112,12 @@ def test_the_lamps_follow_the_plan_and_change_colour_only_when_a_state_changes(s
     changes = lamps.changes
     for _ in range(150):                # 1.5 s: both groups hold their state
         world.world.step()
+        world.world.sync_bodies()
     assert lamps.changes == changes
     seen = []
     for _ in range(700):                # 7 s: green 2 s, yellow 1 s, all red 1 s, then group 12
         world.world.step()
+        world.world.sync_bodies()       # what any reader of the world does first (a camera)
         if lamps.shown != (seen[-1] if seen else None):
             seen.append(dict(lamps.shown))
         assert lamps.shown == controller.states()
@@ -124,11 +128,28 @@ def test_the_lamps_follow_the_plan_and_change_colour_only_when_a_state_changes(s
     assert lamps.changes - changes == 3 * transitions
 
 
+def test_with_a_gui_window_the_lamps_follow_each_step_without_a_reader():
+    graph = signal_crossing(areas=False)
+    controller = SignalController(graph, FixedTimePlan(green_s=2.0, yellow_s=1.0,
+                                                       all_red_s=1.0))
+    for gui in (False, True):
+        with World() as world:
+            world.gui = gui                 # as a window's world (no window needed here)
+            lamps = SignalLamps(world, graph, controller)
+            controller.force(11, 'red')
+            world.step()
+            assert lamps.shown[11] == ('red' if gui else 'green')
+            world.sync_bodies()
+            assert lamps.shown[11] == 'red'
+            controller.release()
+
+
 def test_the_pole_is_solid_and_named_the_housings_and_lamps_are_not(scene):
     world = scene(sensors=())
     lamps = world.parts['signal_lamps']
-    assert len(lamps.lamp_ids) == 6 and len(lamps.pole_ids) == 1 and len(lamps.housing_ids) == 1
-    assert lamps.visual_shape_count == 8
+    # a lamp per bulb, a pole per light, the housings one mesh
+    assert len(lamps.lamp_ids) == 6 and len(lamps.pole_ids) == 2 and len(lamps.housing_ids) == 1
+    assert lamps.visual_shape_count == 9
     cid = world.world.client_id
     pole = lamps.poles[0]
     assert (pole.x_m, pole.y_m) == pytest.approx(
@@ -137,8 +158,10 @@ def test_the_pole_is_solid_and_named_the_housings_and_lamps_are_not(scene):
                            physicsClientId=cid)[0]
     assert world.world.body_name(hit[0]) == LAMPS_BODY_NAME
     assert hit[3][0] == pytest.approx(pole.x_m - 0.075, abs=1e-3)
-    for body_id in lamps.lamp_ids + lamps.housing_ids:
-        assert pybullet.getCollisionShapeData(body_id, -1, physicsClientId=cid) == ()
+    car = world.vehicles['car'].body.body_id
+    for body_id in lamps.lamp_ids + lamps.housing_ids:    # nothing to be near: no shape
+        assert pybullet.getClosestPoints(body_id, car, 100.0, physicsClientId=cid) == ()
+    assert pybullet.getClosestPoints(lamps.pole_ids[0], car, 100.0, physicsClientId=cid) != ()
     # the lamps face the traffic of lane 1 (west), the pole stands behind them
     assert {round(lamp.yaw_rad, 6) for lamp in lamps.lamps if lamp.group_id == 11} == {
         round(math.pi, 6)}

@@ -186,3 +186,35 @@ def box_mesh(corners) -> Mesh:
     corners = np.asarray(corners, float).reshape(-1, 8, 3)
     triangles = CLOSED_BOX_TRIANGLES[None, :, :] + 8 * np.arange(len(corners))[:, None, None]
     return Mesh(corners.reshape(-1, 3), triangles.reshape(-1, 3))
+
+
+def lamp_mesh(subdivisions: int = 1) -> Mesh:
+    """
+    Return a lamp: a sphere of ``LAMP_RADIUS_M`` about the origin, an icosphere [m].
+
+    One subdivision of the icosahedron: 42 vertices, 80 triangles (PyBullet's own sphere
+    has several hundred, and PyBullet builds them for every body).
+    """
+    t = 0.5 * (1.0 + math.sqrt(5.0))
+    points = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
+              (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
+    vertices = [np.array(p, float) / np.linalg.norm(p) for p in points]
+    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4),
+             (11, 10, 2), (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8),
+             (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    for _ in range(subdivisions):
+        middle = {}
+
+        def between(a, b):
+            key = (min(a, b), max(a, b))
+            if key not in middle:
+                point = vertices[a] + vertices[b]
+                vertices.append(point / np.linalg.norm(point))
+                middle[key] = len(vertices) - 1
+            return middle[key]
+        split = []
+        for a, b, c in faces:
+            ab, bc, ca = between(a, b), between(b, c), between(c, a)
+            split += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
+        faces = split
+    return Mesh(LAMP_RADIUS_M * np.array(vertices), np.array(faces, dtype=np.int64))
