@@ -76,10 +76,10 @@ def _lane_pieces(lane):
     return centre, np.column_stack((-np.sin(heading), np.cos(heading))), half, s
 
 
-def _quads(centre, normal, half):
-    """Return the quads (K, 4, 2) between consecutive cross-sections, counter-clockwise."""
+def _quads(centre, normal, half, pieces):
+    """Return the quads (K, 4, 2) between the cross-sections ``pieces``, ``pieces + 1``."""
     left, right = centre + normal * half[:, None], centre - normal * half[:, None]
-    quads = np.stack((right[:-1], right[1:], left[1:], left[:-1]), axis=1)
+    quads = np.stack((right[pieces], right[pieces + 1], left[pieces + 1], left[pieces]), axis=1)
     x, y = quads[:, :, 0], quads[:, :, 1]
     area = (x * np.roll(y, -1, axis=1) - y * np.roll(x, -1, axis=1)).sum(axis=1)
     return np.where((area < 0.0)[:, None, None], quads[:, ::-1], quads)
@@ -189,17 +189,22 @@ def lane_conflicts(graph) -> Tuple[Conflict, ...]:
     :param graph: the LaneGraph.
     """
     lanes = sorted(graph.lanes.values(), key=lambda lane: lane.id)
-    full, shrunk, s_pieces, centres, lane_of = [], [], [], [], []
-    for index, lane in enumerate(lanes):
-        centre, normal, half, s = _lane_pieces(lane)
-        full.append(_quads(centre, normal, half))
-        shrunk.append(_quads(centre, normal, np.maximum(half - MARGIN_M, 0.0)))
-        s_pieces.append(np.column_stack((s[:-1], s[1:])))
-        centres.append(np.stack((centre[:-1], centre[1:]), axis=1))
-        lane_of.append(np.full(len(s) - 1, index))
-    full, shrunk = np.concatenate(full), np.concatenate(shrunk)
-    s_pieces, centres = np.concatenate(s_pieces), np.concatenate(centres)
-    lane_of = np.concatenate(lane_of)
+    sections = [_lane_pieces(lane) for lane in lanes]
+    centre = np.concatenate([section[0] for section in sections])
+    normal = np.concatenate([section[1] for section in sections])
+    half = np.concatenate([section[2] for section in sections])
+    s = np.concatenate([section[3] for section in sections])
+    counts = np.array([len(section[3]) for section in sections])
+    # piece k of the map runs from cross-section pieces[k] to pieces[k] + 1, within one lane
+    last = np.cumsum(counts) - 1
+    keep = np.ones(len(s), dtype=bool)
+    keep[last] = False
+    pieces = np.flatnonzero(keep)
+    lane_of = np.repeat(np.arange(len(lanes)), counts - 1)
+    full = _quads(centre, normal, half, pieces)
+    shrunk = _quads(centre, normal, np.maximum(half - MARGIN_M, 0.0), pieces)
+    s_pieces = np.column_stack((s[pieces], s[pieces + 1]))
+    centres = np.stack((centre[pieces], centre[pieces + 1]), axis=1)
     boxes = np.column_stack((full[:, :, 0].min(1), full[:, :, 1].min(1),
                              full[:, :, 0].max(1), full[:, :, 1].max(1)))
     a, b = _candidate_pairs(boxes, lane_of, 2.0 * PIECE_M)
