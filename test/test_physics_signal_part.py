@@ -29,6 +29,7 @@ from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.physics.scene import build_scene
 
 EAST, WEST, NORTH, SOUTH = 4000100101, 4000100151, 4000200101, 4000200151
+EAST_RING = 4000100101      # city_block_signals: eastbound on the ring, green first
 # Generous bound for one refused run (interpreter start and imports, on a loaded machine).
 RUN_TIMEOUT_S = 120.0
 
@@ -167,3 +168,21 @@ def test_the_docs_show_the_signals_table():
     from vehicle_sim.core.map.signal_params import signals_markdown
     text = (Path(__file__).resolve().parents[1] / 'docs' / 'signals.md').read_text()
     assert signals_markdown() in text
+
+
+def test_the_automobile_nodes_sim_reset_starts_the_signals_again():
+    from vehicle_sim.ros.automobile_node import AutomobileNode
+    node = AutomobileNode(['x', '--ros-args', '-r', '__ns:=/signals_reset_test'],
+                          transport='dds', parameter_overrides={
+                              'synchronous': True, 'world': 'city_block_signals'})
+    try:
+        controller = node.scene.parts['signals'].controller
+        node.step(100)
+        controller.force(EAST_RING, 'red')
+        node.step(1)
+        assert controller.time_s == pytest.approx(1.01) and controller.state(EAST_RING) == 'red'
+        message = node.reset()
+        assert 'signals: their 20 groups back at the plan start' in message
+        assert controller.time_s == 0.0 and controller.state(EAST_RING) == 'green'
+    finally:
+        node.close()
