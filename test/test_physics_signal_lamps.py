@@ -30,7 +30,7 @@ import numpy as np
 import pybullet
 import pytest
 
-from vehicle_sim.config import world_from_data
+from vehicle_sim.config import read_yaml, world_from_data, world_path
 from vehicle_sim.core.map.signal_lamps import DARK_LAMP_COLOR, HOUSING_DEPTH_M, LAMP_COLORS
 from vehicle_sim.core.map.signal_plan import FixedTimePlan, SignalController
 from vehicle_sim.physics import World
@@ -173,8 +173,78 @@ def test_a_vehicle_that_starts_inside_a_pole_is_refused_naming_it(scene):
         scene(sensors=(), x=pole_x - 2.0, y=LIGHT_XY[1])
 
 
-def test_without_a_signal_controller_every_lamp_is_dark_and_no_hook_is_added(scene):
-    world = scene(parts=(), sensors=(CAMERA,))
+class NoSignals:
+    """A 'signals' part that builds nothing: the world has no SignalController."""
+
+    name = 'signals'
+
+    def build(self, world, spec):
+        return None
+
+
+def test_without_a_signal_controller_every_lamp_is_dark(scene):
+    world = scene(parts=(NoSignals(),), sensors=(CAMERA,))
     lamps = world.parts['signal_lamps']
-    assert lamps.controller is None and lamps not in world.world.bodies
     assert all(_is_dark(_lamp_rgb(world, color)) for color in BULB_Z)
+    assert lamps.controller is None and lamps.changes == 0
+    with World() as alone:              # no controller, no parts: not even a hook
+        lamps = SignalLamps(alone, signal_crossing())
+        assert lamps not in alone.bodies
+
+
+def test_the_lamps_row_shows_the_world_signals_part_or_a_callers_own(scene):
+    world = scene(parts=())             # the rows: signals, then the lamps
+    assert world.parts['signal_lamps'].controller is world.parts['signals'].controller
+    world = scene(parts=(StandInSignals(),))    # built after the lamps row: found when looked
+    controller = world.parts['signals'].controller
+    controller.force(11, 'red')
+    assert _is_lit(_lamp_rgb(world, 'red'), 'red')
+    assert world.parts['signal_lamps'].controller is controller
+
+
+# ------------------------------------------------------------------------------ the shipped world
+
+def test_in_city_block_signals_the_camera_shows_each_state_the_controller_publishes():
+    # The car waits 20 m before the ring's southern intersection, looking east with a narrow
+    # camera; over one 100 s cycle of the plan, at every change of the state of the group
+    # governing its lane, the image shows that state's bulb lit and the others dark.
+    data = read_yaml(world_path('city_block_signals'))
+    data.pop('traffic')
+    camera = dict(CAMERA, fov=0.5)
+    data['vehicles'] = [{'name': 'car', 'model': 'Car', 'sensors': [camera],
+                         'pose': {'x': -25.0, 'y': -101.75, 'yaw': 0.0}}]
+    scene = build_scene(world_from_data(data, 'city_block_signals.yaml'), mount=mount_suite)
+    try:
+        lamps, controller = scene.parts['signal_lamps'], scene.parts['signals'].controller
+        assert lamps.controller is controller
+        graph = scene.lanes
+        here = graph.locate(-25.0, -101.75, 0.0)
+        line, _ = graph.rules.next_stop_line(graph, here.lane_id, here.s_m, 50.0)
+        group = graph.rules.group(line.group_id)
+        assert {bulb.color for bulb in group.bulbs} == set(BULB_Z)
+        camera_sensor = scene.vehicles['car'].sensors
+        seen, last = [], None
+        for _ in range(10001):                                  # 100 s: one cycle
+            state = controller.state(group.id)
+            if state != last:
+                frame = camera_sensor.sample('camera')
+                rgb = {bulb.color: _bulb_rgb(scene, frame, bulb) for bulb in group.bulbs}
+                assert _is_lit(rgb[state], state), (scene.world.time_s, state, rgb)
+                assert all(_is_dark(rgb[c]) for c in rgb if c != state), (state, rgb)
+                seen.append(state)
+                last = state
+            scene.world.step()
+        assert set(seen) == {'red', 'yellow', 'green'}
+    finally:
+        scene.world.close()
+
+
+def _bulb_rgb(scene, frame, bulb):
+    """Return the mean colour [0, 1] of the 3 x 3 pixels where the camera sees a bulb's front."""
+    fx, cx, fy, cy = frame.k[0], frame.k[2], frame.k[4], frame.k[5]
+    base = scene.vehicles['car'].body.pose()            # the car faces +x (yaw 0)
+    camera = (base[0] + 1.5, base[1], base[2] + 1.3)
+    depth = bulb.x_m - camera[0]
+    col = int(round(cx + fx * -(bulb.y_m - camera[1]) / depth))
+    row = int(round(cy + fy * -(bulb.z_m - camera[2]) / depth))
+    return frame.rgb[row - 1:row + 2, col - 1:col + 2].reshape(-1, 3).mean(axis=0) / 255.0

@@ -67,12 +67,17 @@ class SignalLamps:
 
     :param world: the World.
     :param graph: the lane map (a core LaneGraph with rules).
-    :param controller: the world's SignalController, or None (every lamp dark).
+    :param controller: the world's SignalController, or None: the one of ``parts``.
+    :param parts: the scene's parts by name (``Scene.parts``, filled as they are built): the
+        controller is ``parts['signals'].controller``, looked up when the lamps are first
+        coloured after the build (a caller's own 'signals' part is built after the rows).
+        Neither: every lamp stays dark ('off').
     """
 
-    def __init__(self, world, graph, controller=None):
+    def __init__(self, world, graph, controller=None, parts=None):
         self.world = world
         self.controller = controller
+        self._parts = parts
         self.lamps = lamps(graph)
         self.poles = poles(graph, self.lamps)
         cid = self._cid = world.client_id
@@ -96,7 +101,7 @@ class SignalLamps:
         self.changes = 0            # lamp colours changed so far (changeVisualShape calls)
         self._states = None         # every group's state when the lamps were last coloured
         self.refresh()
-        if controller is not None:
+        if controller is not None or parts is not None:
             world.add_body(self)
             if world.gui:   # the window draws every frame: the lamps follow after each step
                 world.add_body(_AfterEachStep(self.refresh))
@@ -124,9 +129,15 @@ class SignalLamps:
 
     def refresh(self) -> int:
         """Recolour the lamps of the groups whose state changed; return how many lamps."""
-        if self.controller is None:
-            return 0
-        states = self.controller.states()
+        controller = self.controller
+        if controller is None:
+            if self._parts is None:
+                return 0
+            controller = self.controller = getattr(self._parts.get('signals'), 'controller',
+                                                   None)
+            if controller is None:
+                return 0
+        states = controller.states()
         if states == self._states:  # what nearly every step finds
             return 0
         self._states = states
@@ -167,12 +178,12 @@ class SignalLampsPart:
     """
     The scene part ``signal_lamps``: the lamps of the lane map's traffic light groups.
 
-    :param controller: the SignalController to show; None = the world's (``parts['signals']``,
-        the parts built before it).
+    :param controller: the SignalController to show; None = the world's (``parts['signals']
+        .controller`` of the scene's parts).
     """
 
     name = 'signal_lamps'
-    reads_parts = True          # build() takes the parts built before it
+    reads_parts = True          # build() takes the scene's parts
 
     def __init__(self, controller=None):
         self.controller = controller
@@ -180,10 +191,8 @@ class SignalLampsPart:
     def build(self, world, spec, parts=None) -> Optional[SignalLamps]:
         if not wants_lamps(spec):
             return None
-        controller = self.controller
-        if controller is None:
-            controller = getattr((parts or {}).get('signals'), 'controller', None)
-        return SignalLamps(world, spec.lanes, controller)
+        return SignalLamps(world, spec.lanes, self.controller,
+                           None if self.controller is not None or parts is None else parts)
 
 
 def wants_lamps(spec) -> bool:
