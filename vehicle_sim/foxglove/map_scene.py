@@ -41,6 +41,7 @@ per bulb, lit in its colour or dark as the physics shows it (``scene.parts['sign
 
 import math
 from typing import List
+import weakref
 
 import numpy as np
 
@@ -231,7 +232,16 @@ def lamp_entities(scene) -> List[Entity]:
     if shown is None:
         return []
     shown.refresh()
+    cached = _LAMP_ENTITIES.get(shown)
+    if cached is not None and cached[0] == shown.changes:   # no lamp changed colour since
+        return list(cached[1])
     groups = {}
     for lamp, rgba in shown.lamp_colors():
         groups.setdefault(lamp.group_id, []).append((lamp, rgba))
-    return [group_lamps_entity(group_id, colored) for group_id, colored in groups.items()]
+    found = [group_lamps_entity(group_id, colored) for group_id, colored in groups.items()]
+    _LAMP_ENTITIES[shown] = (shown.changes, found)
+    return list(found)
+
+
+# The lamp entities last built for each world's lamps: (their colour changes then, entities).
+_LAMP_ENTITIES = weakref.WeakKeyDictionary()
