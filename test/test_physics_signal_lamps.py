@@ -167,6 +167,22 @@ def test_the_pole_is_solid_and_named_the_housings_and_lamps_are_not(scene):
         round(math.pi, 6)}
 
 
+def test_a_car_pushed_into_a_pole_touches_it_and_is_stopped(scene):
+    # The car 4 m west of the pole, pushed east at 5 m/s: it hits the pole and stays west of it.
+    pole_x = LIGHT_XY[0] + HOUSING_DEPTH_M + 0.075
+    world = scene(sensors=(), x=pole_x - 6.0, y=LIGHT_XY[1])
+    lamps, cid = world.parts['signal_lamps'], world.world.client_id
+    car = world.vehicles['car'].body.body_id
+    pybullet.resetBaseVelocity(car, (5.0, 0.0, 0.0), physicsClientId=cid)
+    touched = False
+    for _ in range(300):
+        world.world.step()
+        touched = touched or bool(pybullet.getContactPoints(car, lamps.pole_ids[0],
+                                                            physicsClientId=cid))
+    assert touched
+    assert world.vehicles['car'].body.pose()[0] < pole_x
+
+
 def test_a_vehicle_that_starts_inside_a_pole_is_refused_naming_it(scene):
     pole_x = LIGHT_XY[0] + HOUSING_DEPTH_M + 0.075
     with pytest.raises(Exception, match=LAMPS_BODY_NAME):
