@@ -24,7 +24,7 @@ x = -2; lane 3's stop line 102 at y = -12; a crosswalk (501) over lane 2 at x 4 
 import math
 from pathlib import Path
 
-from lane_helpers import CROSSWALK, PARKING, signal_crossing
+from lane_helpers import BULB_Z, CROSSWALK, PARKING, signal_crossing
 import numpy as np
 import pybullet
 import pytest
@@ -177,6 +177,11 @@ def test_map_lanes_markers_have_the_stop_lines_crosswalks_and_areas():
         AREA_COLORS['parking'][:3], abs=1e-6)
     corners = {(p.x, p.y) for p in parking.points}
     assert corners == {tuple(map(float, c)) for c in PARKING}
+    heads = by_ns['traffic_lights']         # the static parts of the lights: housings, poles
+    assert heads[0].type == heads[1].type == TRIANGLE_LIST
+    assert len(heads[0].points) == 6 * 12 * 3          # a closed box per bulb
+    assert len(heads[1].points) == 2 * 12 * 3          # a pole per light
+    assert max(p.z for p in heads[1].points) == pytest.approx(BULB_Z['red'] + 0.18)
     data = array.serialize()
     assert type(array).deserialize(data).serialize() == data
 
@@ -185,18 +190,14 @@ def test_traffic_light_markers_show_each_bulb_in_its_groups_state():
     stamp = message_type('builtin_interfaces/msg/Time')(sec=1, nanosec=0)
     build = traffic_light_markers_builder(message_type, 'world', signal_crossing())
     array = build(stamp, {11: 'red', 12: 'green'})
-    by_ns = {marker.ns: marker for marker in array.markers}
-    assert sorted(by_ns) == ['bulbs', 'housings', 'poles']
-    bulbs = by_ns['bulbs']
-    assert bulbs.type == SPHERE_LIST and bulbs.scale.x == 2 * LAMP_RADIUS_M
+    (bulbs,) = array.markers
+    assert (bulbs.ns, bulbs.id, bulbs.type) == ('traffic_light_bulbs', 0, SPHERE_LIST)
+    assert bulbs.scale.x == 2 * LAMP_RADIUS_M
     shown = {(p.x, p.y, p.z): (c.r, c.g, c.b) for p, c in zip(bulbs.points, bulbs.colors)}
     assert len(shown) == 6
     assert shown[(0.0, -2.6, 3.0)] == pytest.approx(LAMP_COLORS['red'][:3], abs=1e-6)
     assert shown[(0.0, -2.6, 2.2)] == pytest.approx(DARK_LAMP_COLOR[:3], abs=1e-6)
     assert shown[(12.6, -12.0, 2.2)] == pytest.approx(LAMP_COLORS['green'][:3], abs=1e-6)
-    assert by_ns['housings'].type == TRIANGLE_LIST
-    assert len(by_ns['housings'].points) == 6 * 12 * 3      # a closed box per bulb
-    assert len(by_ns['poles'].points) == 2 * 12 * 3         # a pole per light
     again = build(stamp, {11: 'green', 12: 'red'}).markers[0]
     assert again.colors[0].r == pytest.approx(DARK_LAMP_COLOR[0], abs=1e-6)
     data = array.serialize()

@@ -38,9 +38,11 @@ from vehicle_sim.core.map.lane_geometry import (
 )
 from vehicle_sim.core.map.signal_lamps import (
     box_mesh,
+    DARK_LAMP_COLOR,
     HOUSING_COLOR,
     housing_corners,
     lamp_color,
+    LAMP_COLORS,
     LAMP_RADIUS_M,
     lamps,
     POLE_COLOR,
@@ -102,9 +104,11 @@ def lane_markers_builder(msg, frame_id: str):
     line type), ``centrelines`` (one line strip per lane, in lane order); and from the map's
     rules (``graph.rules``, only those it has): ``stop_lines`` (a white line strip
     ``STOP_LINE_WIDTH_M`` wide per stop line, its id the line's), ``crosswalks`` (a white
-    triangle list of its zebra stripes per crosswalk, its id the area's) and ``areas`` (a
+    triangle list of its zebra stripes per crosswalk, its id the area's), ``areas`` (a
     triangle list per other area in its kind's colour, core/map/lane_geometry.py's
-    ``area_color``, its id the area's).
+    ``area_color``, its id the area's) and ``traffic_lights`` (the lamps' housings, id 0, and
+    their poles, id 1: triangle lists of the boxes the physics builds; the bulbs change with
+    the signals: :func:`traffic_light_markers_builder`).
     """
     marker_type, array_type = msg(MARKER), msg(MARKER_ARRAY)
     header_type, point_type, color_type = msg(HEADER), msg(POINT), msg(COLOR)
@@ -123,8 +127,9 @@ def lane_markers_builder(msg, frame_id: str):
             item.scale.x = item.scale.y = item.scale.z = 1.0
         return item
 
-    def triangles(mesh, z):
-        return [point_type(x=float(v[0]), y=float(v[1]), z=z)
+    def triangles(mesh, z=None):
+        """Return a mesh's triangles' corners: at height ``z`` [m] (flat), or its own."""
+        return [point_type(x=float(v[0]), y=float(v[1]), z=float(v[2]) if z is None else z)
                 for v in mesh.vertices[mesh.triangles.reshape(-1)]]
 
     def build(stamp, graph):
@@ -146,6 +151,13 @@ def lane_markers_builder(msg, frame_id: str):
         for line in rules.stop_lines:
             markers.append(marker(stamp, 'stop_lines', line.id % 2 ** 31, LINE_STRIP,
                                   points(line.points, 0.015), PAINT_COLOR, STOP_LINE_WIDTH_M))
+        found = lamps(graph)
+        for index, (corners, rgba) in enumerate((
+                (housing_corners(found), HOUSING_COLOR),
+                (pole_corners(poles(graph, found)), POLE_COLOR))):
+            if len(corners):
+                markers.append(marker(stamp, 'traffic_lights', index, TRIANGLE_LIST,
+                                      triangles(box_mesh(corners)), rgba, 1.0))
         for area in rules.areas:
             if area.kind == 'crosswalk':
                 stripes = [polygon_mesh(stripe) for stripe in zebra_stripes(area.polygon)]
@@ -162,44 +174,32 @@ def lane_markers_builder(msg, frame_id: str):
 
 def traffic_light_markers_builder(msg, frame_id: str, graph):
     """
-    Return ``build(stamp, states)``: visualization_msgs/MarkerArray of a map's traffic lights.
+    Return ``build(stamp, states)``: visualization_msgs/MarkerArray of a map's lamps now.
 
-    ``states``: {group id: state} (SignalController.states()). Namespaces: ``bulbs`` (one
-    sphere list, a sphere of the lamp's diameter per bulb, lit in its colour or dark grey as
-    :func:`~vehicle_sim.core.map.signal_lamps.lamp_color` says), ``housings`` and ``poles``
-    (a triangle list each, the boxes the physics builds); id 0 each. The geometry is built once.
+    ``states``: {group id: state} (SignalController.states()). One marker, namespace
+    ``traffic_light_bulbs``, id 0: a sphere list, a sphere of the lamp's diameter per bulb, lit
+    in its colour or dark grey as :func:`~vehicle_sim.core.map.signal_lamps.lamp_color` says
+    (the housings and poles do not change: they are in ``/map/lanes``).
     """
     marker_type, array_type = msg(MARKER), msg(MARKER_ARRAY)
     header_type, point_type, color_type = msg(HEADER), msg(POINT), msg(COLOR)
     found = lamps(graph)
     bulbs = [point_type(x=float(lamp.bulb.x_m), y=float(lamp.bulb.y_m), z=float(lamp.bulb.z_m))
              for lamp in found]
-    boxes = []
-    for ns, corners, rgba in (('housings', housing_corners(found), HOUSING_COLOR),
-                              ('poles', pole_corners(poles(graph, found)), POLE_COLOR)):
-        mesh = box_mesh(corners)
-        if len(mesh.triangles):
-            boxes.append((ns, [point_type(x=float(v[0]), y=float(v[1]), z=float(v[2]))
-                               for v in mesh.vertices[mesh.triangles.reshape(-1)]], rgba))
-
-    def color(rgba):
-        r, g, b, a = rgba
-        return color_type(r=float(r), g=float(g), b=float(b), a=float(a))
-
-    def marker(stamp, ns, kind, pts, rgba, scale):
-        item = marker_type(header=header_type(stamp=stamp, frame_id=frame_id), ns=ns, id=0,
-                           type=kind, action=0, points=pts, color=color(rgba))
-        item.pose.orientation.w = 1.0
-        item.scale.x = item.scale.y = item.scale.z = scale
-        return item
+    colors = {rgba: color_type(r=float(rgba[0]), g=float(rgba[1]), b=float(rgba[2]),
+                               a=float(rgba[3]))
+              for rgba in list(LAMP_COLORS.values()) + [DARK_LAMP_COLOR]}
 
     def build(stamp, states):
-        lit = marker(stamp, 'bulbs', SPHERE_LIST, bulbs, (1.0, 1.0, 1.0, 1.0),
-                     2 * LAMP_RADIUS_M)
-        lit.colors = [color(lamp_color(lamp.bulb.color, states.get(lamp.group_id, 'off')))
-                      for lamp in found]
-        return array_type(markers=[lit] + [marker(stamp, ns, TRIANGLE_LIST, pts, rgba, 1.0)
-                                           for ns, pts, rgba in boxes])
+        item = marker_type(header=header_type(stamp=stamp, frame_id=frame_id),
+                           ns='traffic_light_bulbs', id=0, type=SPHERE_LIST, action=0,
+                           points=bulbs, color=colors[DARK_LAMP_COLOR], colors=[
+                               colors[lamp_color(lamp.bulb.color,
+                                                 states.get(lamp.group_id, 'off'))]
+                               for lamp in found])
+        item.pose.orientation.w = 1.0
+        item.scale.x = item.scale.y = item.scale.z = 2 * LAMP_RADIUS_M
+        return array_type(markers=[item])
     return build
 
 

@@ -56,8 +56,8 @@ MAP_LANES = Topic('/map/lanes', MARKER_ARRAY, QOS_LATCHED, ONCE_LATCHED,
                             lambda w: (w.lanes_frame,)),
                   unit='m', doc='the lane map for RViz: road surface (triangle list), lane '
                                 'boundaries by line type, centrelines, and the stop lines, '
-                                'crosswalks and areas of its rules; frame map (a lanelet2 map) '
-                                'or world (roads:)')
+                                'crosswalks, areas and traffic light heads and poles of its '
+                                'rules; frame map (a lanelet2 map) or world (roads:)')
 
 # map kind (core/map/kinds.py MAP_KINDS) -> its rows.
 MAP_TOPICS: Dict[str, Tuple[Topic, ...]] = {
