@@ -99,6 +99,13 @@ def test_areas_are_their_polygons_flat_in_their_kinds_colour_and_concave_ones_to
         triangles = polygon_triangles(points)
         areas = _area(points, triangles)
         assert len(triangles) == 4 and np.all(areas > 0) and areas.sum() == pytest.approx(6.0)
+    angles = np.linspace(0.0, 2.0 * np.pi, 100, endpoint=False)       # a star: 50 reflex corners
+    radius = np.where(np.arange(100) % 2, 10.0, 6.0)
+    star = np.column_stack((radius * np.cos(angles), radius * np.sin(angles)))
+    areas = _area(star, polygon_triangles(star))
+    x, y = star.T
+    assert len(areas) == 98 and np.all(areas > 0)
+    assert areas.sum() == pytest.approx(0.5 * (x @ np.roll(y, -1) - y @ np.roll(x, -1)))
     assert len(polygon_triangles([(0, 0), (1, 1), (2, 2)])) == 0       # no area, no triangle
 
 

@@ -220,6 +220,11 @@ def _cross(o, a, b):
     return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
 
 
+def _cross_many(o, a, points):
+    # _cross(o, a, p) for every row p of points (M, 2).
+    return (a[0] - o[0]) * (points[:, 1] - o[1]) - (a[1] - o[1]) * (points[:, 0] - o[0])
+
+
 def polygon_triangles(points) -> np.ndarray:
     """
     Return the triangles (M, 3) of a simple polygon (N, 2) by ear clipping, counter-clockwise.
@@ -233,30 +238,32 @@ def polygon_triangles(points) -> np.ndarray:
     if abs(area) < 1e-9:
         return np.zeros((0, 3), dtype=np.int64)
     order = list(range(n)) if area > 0 else list(range(n - 1, -1, -1))
-    pts = points.tolist()
     found: List[Tuple[int, int, int]] = []
-    guard = 0
-    while len(order) > 3 and guard < 2 * n * n:
-        guard += 1
+    i, misses = 0, 0
+    while len(order) > 3 and misses < len(order):   # a full round without an ear: stop
         count = len(order)
-        for i in range(count):
-            a, b, c = order[i - 1], order[i], order[(i + 1) % count]
-            turn = _cross(pts[a], pts[b], pts[c])
-            if turn <= 1e-12:
-                if abs(turn) <= 1e-12:          # collinear: drop the middle point
-                    order.pop(i)
-                    break
-                continue                         # a reflex corner is no ear
-            if any(_cross(pts[a], pts[b], pts[p]) >= 0.0 and _cross(pts[b], pts[c], pts[p]) >= 0.0
-                   and _cross(pts[c], pts[a], pts[p]) >= 0.0
-                   for p in order if p not in (a, b, c)):
-                continue                         # another corner inside it
-            found.append((a, b, c))
+        i %= count
+        a, b, c = order[i - 1], order[i], order[(i + 1) % count]
+        pa, pb, pc = points[a], points[b], points[c]
+        turn = _cross(pa, pb, pc)
+        if abs(turn) <= 1e-12:                  # collinear: the middle point adds nothing
             order.pop(i)
-            break
-        else:
-            break                                # no ear left (a self-touching polygon)
-    if len(order) == 3 and _cross(*(pts[i] for i in order)) > 1e-12:
+            misses = 0
+            continue
+        if turn > 0.0:                          # a convex corner: an ear if nothing is in it
+            rest = np.array(order)
+            rest = rest[(rest != a) & (rest != b) & (rest != c)]
+            q = points[rest]
+            inside = ((_cross_many(pa, pb, q) >= 0.0) & (_cross_many(pb, pc, q) >= 0.0)
+                      & (_cross_many(pc, pa, q) >= 0.0))
+            if not inside.any():
+                found.append((a, b, c))
+                order.pop(i)
+                i, misses = max(i - 1, 0), 0
+                continue
+        i += 1
+        misses += 1
+    if len(order) == 3 and _cross(*(points[k] for k in order)) > 1e-12:
         found.append(tuple(order))
     return np.array(found, dtype=np.int64).reshape(-1, 3)
 
