@@ -20,7 +20,8 @@ A :class:`Lane` is one lanelet: a centreline polyline (its direction is the dire
 travel), a left and a right :class:`Boundary` (a polyline with a line type: solid, dashed,
 curbstone, ...), the lane's width along it, a speed limit, its successors and its left and right
 neighbours of the same direction (with whether a lane change onto them is allowed).
-:class:`LaneGraph` holds the lanes and answers the two queries everything else needs:
+:class:`LaneGraph` holds the lanes (and ``rules``: the map's stop lines, signals, right of way,
+conflicts and areas, core/map/lane_rules.py) and answers the two queries everything else needs:
 
 - :meth:`LaneGraph.locate`: which lane a point is on, and where: the arc length ``s`` along
   the centreline, the lateral offset (+ = left of the centreline, REP 103), the heading error
@@ -41,6 +42,7 @@ from typing import Dict, Optional, Sequence, Tuple
 import numpy as np
 
 from vehicle_sim.core.geometry.angles import wrap_angle_rad
+from vehicle_sim.core.map.lane_rules import LaneRules
 from vehicle_sim.core.specs.errors import InvalidParameterError
 
 # Line types of lane boundaries. The two-part types read as seen along the line: 'dashed_solid'
@@ -306,6 +308,12 @@ class LaneGraph:
             for successor in lane.successors:
                 self.predecessors[successor] += (lane.id,)
         self._index_segments()
+        self.rules = LaneRules()
+
+    def set_rules(self, rules: LaneRules):
+        """Attach the map's rules (core/map/lane_rules.py), checked against the lanes."""
+        rules.check(self, self.source)
+        self.rules = rules
 
     def _index_segments(self):
         lanes = list(self.lanes.values())

@@ -1,0 +1,221 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+The signal plan of a lane map's traffic light groups, and their state at a simulation time.
+
+A :class:`SignalController` holds the state of every TrafficLightGroup of a LaneGraph's rules
+(core/map/lane_rules.py) and is advanced by the world's clock (:meth:`SignalController.update`).
+Everything that reads signals (the traffic, the lane state, the criteria, the ROS topic, the
+lamps) reads :meth:`SignalController.state` of the one controller of the world.
+
+The fixed-time plan (:class:`FixedTimePlan`): the groups whose paths conflict form one
+intersection; an intersection's groups are split into phases (groups in one phase never
+conflict; by default the fewest phases a greedy colouring of the groups' conflicts finds, in
+order of group id), and the phases follow each other: green, yellow, all red. A group is green
+in its phase's green time, yellow in its yellow time and red otherwise. ``offset_s`` shifts the
+cycle of every intersection.
+
+A scenario may force a group's state (:meth:`SignalController.force`) until the plan is resumed
+(:meth:`SignalController.release`).
+"""
+
+from dataclasses import dataclass
+import math
+from typing import Dict, List, Optional, Sequence, Tuple
+
+from vehicle_sim.core.map.lane_rules import LaneRules, SIGNAL_STATES
+from vehicle_sim.core.specs.errors import InvalidParameterError
+
+
+@dataclass(frozen=True)
+class FixedTimePlan:
+    """
+    A fixed-time plan: the same cycle for every intersection.
+
+    :param green_s: green time of each phase [s].
+    :param yellow_s: yellow time after each green [s].
+    :param all_red_s: all-red time after each yellow [s].
+    :param offset_s: the cycle's start [s] (a group whose phase starts at 0 is green from then).
+    """
+
+    green_s: float = 20.0
+    yellow_s: float = 3.0
+    all_red_s: float = 2.0
+    offset_s: float = 0.0
+
+    def __post_init__(self):
+        for name in ('green_s', 'yellow_s', 'all_red_s', 'offset_s'):
+            value = getattr(self, name)
+            if not (isinstance(value, (int, float)) and math.isfinite(value)):
+                raise InvalidParameterError(f'signal plan: {name} = {value!r} must be a finite '
+                                            'number [s]')
+        if self.green_s <= 0.0 or self.yellow_s < 0.0 or self.all_red_s < 0.0:
+            raise InvalidParameterError('signal plan: green must be > 0 s, yellow and all red '
+                                        '>= 0 s')
+
+    @property
+    def phase_s(self) -> float:
+        return self.green_s + self.yellow_s + self.all_red_s
+
+
+def group_conflicts(rules: LaneRules, graph) -> Dict[int, set]:
+    """
+    Return {group id: ids of the groups whose paths conflict with its own}.
+
+    A group's path is its lanes and their successors (its stop lines may lie at the end of the
+    lanes it controls, the intersection beyond).
+    """
+    lane_groups: Dict[int, set] = {}
+    for group in rules.groups:
+        for lane_id in group.lanes:
+            for one in (lane_id,) + graph.lanes[lane_id].successors:
+                lane_groups.setdefault(one, set()).add(group.id)
+    conflicts = {group.id: set() for group in rules.groups}
+    for conflict in rules.conflicts:
+        for a in lane_groups.get(conflict.lane_id, ()):
+            for b in lane_groups.get(conflict.other_id, ()):
+                if a != b:
+                    conflicts[a].add(b)
+                    conflicts[b].add(a)
+    return conflicts
+
+
+def default_phases(rules: LaneRules, graph) -> Tuple[Tuple[Tuple[int, ...], ...], ...]:
+    """
+    Return the phases of each intersection: ((phase: group ids, ...), ...) per intersection.
+
+    An intersection is a connected set of conflicting groups (a group without conflicts is an
+    intersection of one phase); its phases colour its groups greedily in order of id.
+    """
+    conflicts = group_conflicts(rules, graph)
+    seen, intersections = set(), []
+    for group_id in sorted(conflicts):
+        if group_id in seen:
+            continue
+        todo, members = [group_id], set()
+        while todo:
+            one = todo.pop()
+            if one in members:
+                continue
+            members.add(one)
+            todo.extend(conflicts[one] - members)
+        seen |= members
+        phases: List[List[int]] = []
+        for one in sorted(members):
+            for phase in phases:
+                if not conflicts[one] & set(phase):
+                    phase.append(one)
+                    break
+            else:
+                phases.append([one])
+        intersections.append(tuple(tuple(phase) for phase in phases))
+    return tuple(intersections)
+
+
+def check_phases(rules: LaneRules, graph, phases) -> None:
+    """Refuse phases in which two conflicting groups are green together, naming them."""
+    conflicts = group_conflicts(rules, graph)
+    for intersection in phases:
+        for phase in intersection:
+            for a in phase:
+                clash = sorted(conflicts.get(a, set()) & set(phase))
+                if clash:
+                    raise InvalidParameterError(
+                        f'signal plan: groups {a} and {clash[0]} are green together but their '
+                        'lanes conflict')
+
+
+class SignalController:
+    """
+    The state of every traffic light group of a map, at the world's time.
+
+    :param graph: the map's LaneGraph (its ``rules``: the groups and conflicts).
+    :param plan: the FixedTimePlan.
+    :param phases: per intersection, its phases (group ids green together); None = computed
+        (:func:`default_phases`).
+    :raises InvalidParameterError: a phase names a group not in the map, or conflicting groups
+        are green together.
+    """
+
+    def __init__(self, graph, plan: FixedTimePlan = FixedTimePlan(),
+                 phases: Optional[Sequence] = None):
+        rules = graph.rules
+        self.rules = rules
+        self.plan = plan
+        self.phases = default_phases(rules, graph) if phases is None else tuple(
+            tuple(tuple(phase) for phase in intersection) for intersection in phases)
+        for intersection in self.phases:
+            for phase in intersection:
+                for group_id in phase:
+                    rules.group(group_id)           # names the group when it is not in the map
+        check_phases(rules, graph, self.phases)
+        self._slot: Dict[int, Tuple[int, int]] = {}     # group -> (phase index, phase count)
+        for intersection in self.phases:
+            for index, phase in enumerate(intersection):
+                for group_id in phase:
+                    self._slot[group_id] = (index, len(intersection))
+        self._forced: Dict[int, str] = {}
+        self.time_s = 0.0
+        self._states: Dict[int, str] = {}
+        self.update(0.0)
+
+    def update(self, time_s: float) -> None:
+        """Set every group's state for simulation time ``time_s`` [s]."""
+        self.time_s = time_s
+        self._states = {group.id: self._planned(group.id, time_s) for group in self.rules.groups}
+        self._states.update(self._forced)
+
+    def _planned(self, group_id, time_s):
+        slot = self._slot.get(group_id)
+        if slot is None:
+            return 'off'
+        index, count = slot
+        plan = self.plan
+        t = (time_s - plan.offset_s) % (count * plan.phase_s) - index * plan.phase_s
+        if 0.0 <= t < plan.green_s:
+            return 'green'
+        if plan.green_s <= t < plan.green_s + plan.yellow_s:
+            return 'yellow'
+        return 'red'
+
+    def state(self, group_id) -> str:
+        """Return a group's state now: one of SIGNAL_STATES."""
+        state = self._states.get(group_id)
+        if state is None:
+            self.rules.group(group_id)      # raises naming the id
+        return state
+
+    def states(self) -> Dict[int, str]:
+        """Return {group id: state} of every group now."""
+        return dict(self._states)
+
+    def force(self, group_id, state: str) -> None:
+        """Hold a group in ``state`` (one of SIGNAL_STATES) until :meth:`release`."""
+        self.rules.group(group_id)
+        if state not in SIGNAL_STATES:
+            raise InvalidParameterError(f'signal state {state!r} is not one of '
+                                        + ', '.join(SIGNAL_STATES))
+        self._forced[group_id] = state
+        self._states[group_id] = state
+
+    def release(self, group_id=None) -> None:
+        """Return a group (None: every group) to its plan."""
+        if group_id is None:
+            self._forced.clear()
+        else:
+            self.rules.group(group_id)
+            self._forced.pop(group_id, None)
+        self.update(self.time_s)
