@@ -186,7 +186,8 @@ def test_bad_files_are_refused_naming_the_file(tmp_path):
 
 # What the refusals below tell the user to write.
 ORIGIN_HINT = ("set the world file's origin: near the map, e.g. origin: {latitude: 48.1, "
-               'longitude: 11.5}')
+               "longitude: 11.5} (or, its nodes having local_x/local_y tags, the map's "
+               'projector: autoware_local)')
 
 
 def test_a_map_far_from_the_worlds_origin_is_refused_naming_the_origin_key(osm):
