@@ -24,7 +24,8 @@ two-way lanelet's inverted lane gets none):
 - ``traffic_light`` (Lanelet2's, with Autoware's ``light_bulbs``): a TrafficLightGroup (the
   element's id) of the lanes, a stop line on each at its ``ref_line`` (none: the lane's end),
   the bulbs of its ``light_bulbs`` line strings (their points' ``color`` and ``arrow`` tags, the
-  height above the lane); a light without bulbs gets red, yellow and green ones (its subtype's
+  height above the lane; bulbs the map puts on the ground, without ``ele`` tags, are lifted
+  4.5 m); a light without bulbs gets red, yellow and green ones (its subtype's
   colours) stacked over the middle of its line string, ``height`` metres tall (default 1 m), its
   bottom at the line's height, or 4.5 m above the lane where the line lies on the ground.
   A group that only crosswalk lanelets refer to is a pedestrians' signal: no lanes, its bulbs;
@@ -126,7 +127,7 @@ class _Builder:
         A line that lies before the lane (at the end of a lane leading to it, as Lanelet2 maps
         draw the stop lines of lanes inside an intersection) is put on that lane.
 
-        :return: the StopLine's id, or None when the line lies on neither (noted in off_lane).
+        :return: the StopLine, or None when the line lies on neither (noted in off_lane).
         """
         if line is None:
             lane = self.graph.lanes[lane_id]
@@ -155,7 +156,7 @@ class _Builder:
         stop = StopLine(line_id, lane.id, float(s_m),
                         [(x + nx, y + ny), (x - nx, y - ny)], kind, group_id)
         self.stop_lines.append(stop)
-        return stop.id
+        return stop
 
     def area(self, area_id, kind, points, lanes=()):
         points = np.array(points, dtype=float).reshape(-1, 2)
@@ -221,11 +222,14 @@ def _bulbs(element, ground_z):
     bulbs = []
     parameters = element.parameters
     for line in (parameters['light_bulbs'] if 'light_bulbs' in parameters else []):
-        for point in line:
+        lamps = [point for point in line
+                 if l2.tags_of(point).get('color') in ('red', 'yellow', 'green')]
+        heights = [point.z - ground_z for point in lamps]
+        lift = LIGHT_ON_POLE_M if heights and max(heights) < 1.0 else 0.0   # no ele tags
+        for point, height in zip(lamps, heights):
             tags = l2.tags_of(point)
-            if tags.get('color') in ('red', 'yellow', 'green'):
-                bulbs.append(Bulb(tags['color'], point.x, point.y, point.z - ground_z,
-                                  _ARROWS.get(tags.get('arrow', ''), 'circle')))
+            bulbs.append(Bulb(tags['color'], point.x, point.y, height + lift,
+                              _ARROWS.get(tags.get('arrow', ''), 'circle')))
     if bulbs:
         return tuple(bulbs)
     for light in element.trafficLights:
@@ -305,13 +309,13 @@ def rules_of(lanelet_map, routing_graph, graph, walking, unknown, path, source):
 
 
 def _traffic_light(build, element, lanes, walking_ids):
-    line = element.stopLine
-    stop_ids = [build.stop_line(lane_id, line, 'traffic_light', element.id, element.id)
-                for lane_id in lanes]
-    lanes = [lane for lane, stop in zip(lanes, stop_ids) if stop is not None]
-    ground = _ground_z(build.map, lanes or sorted(walking_ids))
-    build.groups.append(TrafficLightGroup(element.id, tuple(lanes),
-                                          tuple(s for s in stop_ids if s is not None),
+    stops = [build.stop_line(lane_id, element.stopLine, 'traffic_light', element.id, element.id)
+             for lane_id in lanes]
+    stops = [stop for stop in stops if stop is not None]
+    controlled = tuple(dict.fromkeys(stop.lane_id for stop in stops))   # in order, once each
+    ground = _ground_z(build.map, [abs(i) for i in controlled] or sorted(walking_ids))
+    build.groups.append(TrafficLightGroup(element.id, controlled,
+                                          tuple(stop.id for stop in stops),
                                           _bulbs(element, ground), str(element.id)))
 
 
@@ -323,8 +327,8 @@ def _right_of_way(build, element):
                      if l2.lane_id_of(ll) in lanes)
     if not priority or not yielding:
         return
-    stops = tuple(s for s in (build.stop_line(lane_id, element.stopLine, 'yield', element.id)
-                              for lane_id in yielding if element.stopLine is not None)
+    stops = tuple(s.id for s in (build.stop_line(lane_id, element.stopLine, 'yield', element.id)
+                                 for lane_id in yielding if element.stopLine is not None)
                   if s is not None)
     build.right_of_way.append(RightOfWay(element.id, priority, yielding, stops))
 
