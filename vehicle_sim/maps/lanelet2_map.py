@@ -53,6 +53,7 @@ The projectors are described in core/map/lanelet2_params.py (and docs/lanes.md).
 import math
 import os
 import re
+import tempfile
 import warnings
 import xml.etree.ElementTree as ElementTree
 
@@ -159,6 +160,8 @@ def _projector(lanelet2, projector, origin):
     where = lanelet2.io.Origin(origin.latitude_deg, origin.longitude_deg, origin.altitude_m)
     if projector == 'utm':
         return lanelet2.projection.UtmProjector(where)
+    if projector == 'autoware_local':     # x, y: the local tags; Mercator keeps z = ele as is
+        return lanelet2.projection.MercatorProjector(lanelet2.io.Origin(0.0, 0.0, 0.0))
     return lanelet2.projection.LocalCartesianProjector(where)
 
 
@@ -219,6 +222,37 @@ def _check_near_origin(lanes, path, source, origin, projector):
         f"projector '{projector}', which places the map's lat/lon around that origin: {what}")
 
 
+_NODE = re.compile(r'<node\b([^>]*?)(/?)>(.*?</node>)?', re.S)
+_LAT_LON = re.compile(r'\s(lat|lon)\s*=\s*("[^"]*"|\'[^\']*\')')
+_LOCAL_TAG = re.compile(r'<tag\s+k\s*=\s*["\'](local_[xy])["\']\s+v\s*=\s*["\']([^"\']*)["\']')
+EARTH_RADIUS_M = 6378137.0       # lanelet2's MercatorProjector's sphere
+
+
+def _local_positions_as_lat_lon(path):
+    """
+    Return the file's text with each node's lat/lon where its local_x/local_y tags are.
+
+    For projector autoware_local, which parses with lanelet2's Mercator projector at latitude
+    0, longitude 0: lanelet2 builds areas and orients lanelets' bounds while parsing, from the
+    nodes' lat/lon, which Autoware's local and MGRS maps may leave empty or 0 (a node without
+    the tags keeps its lat/lon; :func:`_use_local_tags` refuses it).
+    """
+    def placed(match):
+        head, closed, body = match.group(1), match.group(2), match.group(3) or ''
+        tags = dict(_LOCAL_TAG.findall(body))
+        try:
+            x, y = float(tags['local_x']), float(tags['local_y'])
+        except (KeyError, ValueError):
+            return match.group(0)
+        lat = math.degrees(2.0 * math.atan(math.exp(y / EARTH_RADIUS_M)) - 0.5 * math.pi)
+        lon = math.degrees(x / EARTH_RADIUS_M)
+        head = _LAT_LON.sub('', head) + f' lat="{lat!r}" lon="{lon!r}"'
+        return f'<node{head}{closed}>{body}'
+
+    with open(path, encoding='utf-8', errors='replace') as text:
+        return _NODE.sub(placed, text.read())
+
+
 def _use_local_tags(lanelet_map, path, source):
     """Autoware's rule: every node's x, y are its local_x, local_y tags (z: its ele tag)."""
     for point in lanelet_map.pointLayer:
@@ -229,7 +263,7 @@ def _use_local_tags(lanelet_map, path, source):
                 f"'autoware_local' reads every node's position from them)")
         try:
             x, y = float(tags['local_x']), float(tags['local_y'])
-            z = float(tags['ele']) if 'ele' in tags else 0.0
+            z = float(tags['ele']) if 'ele' in tags else point.z   # lanelet2 reads ele as z
         except ValueError:
             raise InvalidParameterError(f'{source}: {path}: node {point.id}: local_x/local_y/'
                                         f'ele are not numbers') from None
@@ -267,6 +301,21 @@ def _sorted_errors(errors):
 
 def lane_id_of(lanelet):
     return -lanelet.id if lanelet.inverted() else lanelet.id
+
+
+def _centerline(lanelet):
+    """
+    Return Lanelet2's centreline of a lanelet, from the bounds' start to their end.
+
+    Lanelet2 draws the centreline of a taper (its bounds meeting at the end) from the meeting
+    point back: such a centreline is turned round.
+    """
+    points = [(p.x, p.y) for p in lanelet.centerline]
+    left, right = lanelet.leftBound, lanelet.rightBound
+    start = (0.5 * (left[0].x + right[0].x), 0.5 * (left[0].y + right[0].y))
+    if math.dist(points[-1], start) < math.dist(points[0], start):
+        points.reverse()
+    return points
 
 
 def _boundary(line):
@@ -312,12 +361,20 @@ def load_lanelet2(path, origin=GeodeticOrigin(), projector='local_cartesian',
     _check_osm(path, source)
     if projector != 'autoware_local':
         _check_lat_lon(path, source, projector)
+    parsed = path
+    if projector == 'autoware_local':        # parse where the local tags put the nodes
+        handle, parsed = tempfile.mkstemp(suffix='.osm')
+        with os.fdopen(handle, 'w', encoding='utf-8') as copy:
+            copy.write(_local_positions_as_lat_lon(path))
     try:
-        lanelet_map, errors = lanelet2.io.loadRobust(path, _projector(lanelet2, projector,
-                                                                      origin))
+        lanelet_map, errors = lanelet2.io.loadRobust(parsed, _projector(lanelet2, projector,
+                                                                        origin))
     except RuntimeError as error:
         raise InvalidParameterError(f'{source}: {path}: lanelet2 cannot read it: '
                                     f'{error}') from None
+    finally:
+        if parsed != path:
+            os.unlink(parsed)
     zone = next((str(e) for e in errors if UTM_ZONE_ERROR in str(e)), None)
     if zone is not None:      # the utm projector: the origin's zone is not the map's
         where, what = _origin_hint(path, origin)
@@ -402,7 +459,7 @@ def _lane(lanelet, graph, rules, default_mps):
     left_lane = left if left is not None else adjacent_left
     right_lane = right if right is not None else adjacent_right
     return Lane(
-        lane_id_of(lanelet), [(p.x, p.y) for p in lanelet.centerline],
+        lane_id_of(lanelet), _centerline(lanelet),
         _boundary(lanelet.leftBound), _boundary(lanelet.rightBound),
         _speed_limit_mps(rules, lanelet, True, default_mps),
         successors=[lane_id_of(f) for f in graph.following(lanelet)],
@@ -433,7 +490,7 @@ def _other_lanes(lanelets, rules, default_mps, path, source):
     for lanelet in views:
         try:
             lanes.append(Lane(
-                lane_id_of(lanelet), [(p.x, p.y) for p in lanelet.centerline],
+                lane_id_of(lanelet), _centerline(lanelet),
                 _boundary(lanelet.leftBound), _boundary(lanelet.rightBound),
                 _speed_limit_mps(rules, lanelet, False, default_mps),
                 successors=[i for i in by_start.get(ends(lanelet, -1), ())

@@ -114,8 +114,8 @@ class _Builder:
                                                    lanelet_map.lineStringLayer)
                                 for p in layer if p.id < 2 ** 53] + [0])
         self.off_lane = []
-        self.lanes_of = {}              # regulatory element id -> [lane ids referring to it]
-        for lanelet in lanelet_map.laneletLayer:
+        self.lanes_of = {}      # regulatory element id -> [lane ids referring to it], sorted
+        for lanelet in sorted(lanelet_map.laneletLayer, key=lambda one: one.id):
             if lanelet.id in graph.lanes:
                 for element in lanelet.regulatoryElements:
                     self.lanes_of.setdefault(element.id, []).append(lanelet.id)

@@ -70,7 +70,7 @@ def _contains(polygon, points):
 
 
 def lanes_through(graph, polygon):
-    """Return the ids of the lanes whose centreline passes through a polygon (N, 2) [m]."""
+    """Return the ids of the lanes whose centreline passes through a polygon (N, 2) [m], sorted."""
     polygon = np.asarray(polygon, dtype=float)[:, :2]
     low, high = polygon.min(axis=0), polygon.max(axis=0)
     found = []
@@ -81,4 +81,4 @@ def lanes_through(graph, polygon):
         points = np.array([lane.centre_pose(s)[:2] for s in _samples(lane)])
         if _contains(polygon, points).any():
             found.append(lane.id)
-    return tuple(found)
+    return tuple(sorted(found))
