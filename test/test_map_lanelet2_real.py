@@ -32,6 +32,7 @@ import yaml
 
 from vehicle_sim.config import load_world
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
+from vehicle_sim.maps.lane_maps import with_lanes
 from vehicle_sim.physics.scene import build_scene
 
 pytest.importorskip('lanelet2', reason="lanelet2 is not installed (pip install "
@@ -202,3 +203,60 @@ def test_a_car_placed_on_a_lane_of_a_real_map_drives_2_s_along_it(name, tmp_path
         assert abs(found.offset_m) < 0.5 * found.width_m
     finally:
         scene.world.close()
+
+
+# ----------------------------------------------------------------- the shipped urban map
+
+REPO = Path(__file__).resolve().parent.parent
+
+
+def test_the_shipped_urban_map_is_what_its_script_draws():
+    import importlib.util
+    spec = importlib.util.spec_from_file_location('make_urban_map',
+                                                  REPO / 'config' / 'maps' / 'make_urban_map.py')
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    assert script.osm_text() == (REPO / 'config' / 'maps' / 'urban_map.osm').read_text('utf-8')
+
+
+def test_the_urban_world_has_signals_crosswalks_right_of_way_and_a_taper():
+    from vehicle_sim.core.map.signal_plan import default_phases, group_conflicts
+    with warnings.catch_warnings():
+        warnings.simplefilter('error', Lanelet2MapWarning)          # nothing left out
+        spec = with_lanes(load_world(str(REPO / 'config' / 'worlds' / 'urban.yaml'),
+                                     'ToyotaPrius'))
+    graph = spec.lanes
+    rules = graph.rules
+    # a traffic light per arm on its incoming lane, its stop line 15 m from the centre, three
+    # bulbs (green, yellow, red) 5.25 m up
+    assert sorted((g.id, g.lanes) for g in rules.groups) == [
+        (400, (100,)), (401, (110,)), (402, (120,)), (403, (130,))]
+    for group in rules.groups:
+        assert [b.color for b in group.bulbs] == ['green', 'yellow', 'red']
+        assert {round(b.z_m, 6) for b in group.bulbs} == {5.25}
+        (line,) = [s for s in rules.stop_lines if s.group_id == group.id]
+        x, y, _ = graph.lanes[line.lane_id].centre_pose(line.s_m)
+        assert math.hypot(x, y) == pytest.approx(math.hypot(15.0, 1.75), abs=1e-6)
+    # right of way: each straight movement before the opposite left turn
+    assert sorted((r.priority_lanes, r.yield_lanes) for r in rules.right_of_way) == [
+        ((200,), (221,)), ((210,), (231,)), ((220,), (201,)), ((230,), (211,))]
+    # four crosswalks, each across its arm's lanes
+    assert sorted((a.id, a.lanes) for a in rules.areas if a.kind == 'crosswalk') == [
+        (300, (100, 101)), (301, (110, 111)), (302, (120, 121, 190)), (303, (130, 131))]
+    # the taper: lane 191 narrows to nothing; its neighbour on the left takes its traffic
+    taper = graph.lanes[191]
+    assert taper.widths[-1] == 0.0 and taper.successors == ()
+    assert (taper.left_lane, taper.left_change) == (125, True)
+    # every left turn crosses the opposite straight movement; the signal plan's phases
+    # never hold two conflicting groups
+    pairs = {(c.lane_id, c.other_id) for c in rules.conflicts}
+    assert {(200, 221), (201, 220), (210, 231), (211, 230)} <= pairs
+    conflicts = group_conflicts(rules, graph)
+    for intersection in default_phases(rules, graph):
+        for phase in intersection:
+            assert not any(conflicts[a] & set(phase) for a in phase)
+    # the car is on the west arm's incoming lane, 25 m before its stop line
+    car = spec.vehicles[0]
+    found = graph.locate(car.x_m, car.y_m, car.yaw_rad)
+    assert (found.lane_id, round(found.s_m, 6)) == (100, 30.0)
+    assert rules.next_stop_line(graph, 100, 30.0, 100.0)[1] == pytest.approx(25.0)

@@ -540,3 +540,31 @@ def test_a_50_mb_map_loads_in_bounded_memory(tmp_path):
     print(f'50 MB map: {lanelets} lanelets, peak RSS {peak_kb / 1024:.0f} MB')
     assert lanes == lanelets
     assert peak_kb < 1_500_000           # about 15 bytes of memory per byte of XML, 0.75 GB
+
+
+def test_a_lanelet_lanelet2_cannot_make_is_left_out_with_its_error_not_a_crash(tmp_path):
+    # lanelet 2302 names two left bounds: lanelet2 reports it and keeps a broken lanelet, whose
+    # routing graph ended the process (a segmentation fault)
+    text = ('<?xml version="1.0"?>\n<osm version="0.6">\n'
+            + ''.join(local_node(i + 1, 30.0 * (i % 2), 3.5 * (i // 2)) for i in range(6))
+            + _way(11, (1, 2), 'line_thin', 'solid') + _way(12, (3, 4), 'line_thin', 'dashed')
+            + _way(13, (5, 6), 'line_thin', 'solid') + _lanelet_xml(2301, 12, 11, 'road')
+            + _lanelet_xml(2302, 13, 12, 'road').replace(
+                'role="left"/>', 'role="left"/><member type="way" ref="11" role="left"/>')
+            + '</osm>\n')
+    path = tmp_path / 'two_lefts.osm'
+    path.write_text(text, encoding='utf-8')
+    script = ('import warnings\n'
+              'from vehicle_sim.maps.lanelet2_map import load_lanelet2\n'
+              'with warnings.catch_warnings(record=True) as caught:\n'
+              '    warnings.simplefilter("always")\n'
+              f'    graph = load_lanelet2({str(path)!r}, projector="autoware_local")[0]\n'
+              'print(sorted(graph.lanes))\n'
+              'print(*(str(w.message) for w in caught), sep="\\n")\n')
+    done = subprocess.run([sys.executable, '-c', script], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr[-2000:]
+    lanes, message = done.stdout.splitlines()
+    assert lanes == '[2301]'
+    assert message == (f'map: {path}: lanelet2 reports 1 error(s), the map is loaded without '
+                       'the primitives they name: Error parsing primitive 2302: Lanelet has not '
+                       'exactly one left border!')

@@ -90,6 +90,7 @@ MAX_OSM_BYTES = 100_000_000
 # lanelet2's words for a regulatory element type it has no class for, and for a reference to one.
 _UNKNOWN_RULE = re.compile(r'Error parsing primitive (-?\d+): Creating a regulatory element of '
                            r'type (\S+) failed: No regulatory element found that implements')
+_PRIMITIVE = re.compile(r'Error parsing primitive (-?\d+)')
 _MISSING_ID = re.compile(r'Error parsing primitive (-?\d+): Failed to get id (-?\d+) from map')
 
 
@@ -109,6 +110,7 @@ def warn(message):
 def _lanelet2():
     try:
         import lanelet2
+        import lanelet2.core
         import lanelet2.io
         import lanelet2.projection
         import lanelet2.routing
@@ -382,6 +384,7 @@ def load_lanelet2(path, origin=GeodeticOrigin(), projector='local_cartesian',
             f"{source}: {path}: its nodes lie outside the UTM zone of {where}, as lanelet2 "
             f"says: '{zone.rsplit(': ', 1)[-1]}': {what}")
     unknown, others = _sorted_errors(errors)
+    broken = {int(found.group(1)) for found in map(_PRIMITIVE.search, others) if found}
     if others:
         shown = '; '.join(others[:3])
         more = f' (and {len(others) - 3} more)' if len(others) > 3 else ''
@@ -392,7 +395,7 @@ def load_lanelet2(path, origin=GeodeticOrigin(), projector='local_cartesian',
     traffic_rules = lanelet2.traffic_rules
     rules = traffic_rules.create(traffic_rules.Locations.Germany,
                                  traffic_rules.Participants.Vehicle)
-    drivable, other_lanes, walking, skipped = _sort_lanelets(lanelet_map, rules)
+    drivable, other_lanes, walking, skipped = _sort_lanelets(lanelet_map, rules, broken)
     if not drivable and not other_lanes:
         count = len(lanelet_map.laneletLayer)
         raise InvalidParameterError(
@@ -402,7 +405,10 @@ def load_lanelet2(path, origin=GeodeticOrigin(), projector='local_cartesian',
     for subtype, ids in sorted(skipped.items()):
         warn(f'{source}: {path}: {counted(ids, "lanelet")} of subtype {subtype!r} '
              f'{id_list(ids)} skipped: not a lane the simulator drives')
-    graph = lanelet2.routing.RoutingGraph(lanelet_map, rules)
+    # a lanelet lanelet2 could not make whole (a bound missing) crashes its routing graph
+    whole = broken.isdisjoint(ll.id for ll in lanelet_map.laneletLayer)
+    routed = lanelet_map if whole else lanelet2.core.createMapFromLanelets(drivable)
+    graph = lanelet2.routing.RoutingGraph(routed, rules)
     lanes = []
     for lanelet in drivable:
         both = (lanelet,) if rules.isOneWay(lanelet) else (lanelet, lanelet.invert())
@@ -428,10 +434,16 @@ def id_list(ids, shown=10):
     return f"({'id' if len(ids) == 1 else 'ids'} {', '.join(map(str, ids[:shown]))}{more})"
 
 
-def _sort_lanelets(lanelet_map, rules):
-    """Return (vehicle lanelets, other lane lanelets, walking lanelets, {subtype: [ids]})."""
+def _sort_lanelets(lanelet_map, rules, broken):
+    """
+    Return (vehicle lanelets, other lane lanelets, walking lanelets, {subtype: [ids]}).
+
+    The lanelets lanelet2 reports errors about (``broken`` ids) are left out.
+    """
     drivable, others, walking, skipped = [], [], [], {}
     for lanelet in lanelet_map.laneletLayer:
+        if lanelet.id in broken:
+            continue
         subtype = tags_of(lanelet).get('subtype', 'road')
         if rules.canPass(lanelet):
             drivable.append(lanelet)

@@ -21,7 +21,8 @@ Both sample a lane's centreline every :data:`SAMPLE_M` (and at its ends):
 - :func:`overlap_range`: the part of one lane where a vehicle on its centreline, as wide as the
   lane, touches the other lane's area: the centreline point lies within half of both widths of
   the other lane's centreline, between the other lane's ends;
-- :func:`lanes_through`: the lanes whose centreline passes through a polygon.
+- :func:`lanes_through`: the lanes whose centreline passes through a polygon (a lane that
+  only touches it with an end does not).
 """
 
 import math
@@ -78,7 +79,7 @@ def lanes_through(graph, polygon):
         xs, ys = np.asarray(lane.xs), np.asarray(lane.ys)
         if xs.max() < low[0] or xs.min() > high[0] or ys.max() < low[1] or ys.min() > high[1]:
             continue
-        points = np.array([lane.centre_pose(s)[:2] for s in _samples(lane)])
-        if _contains(polygon, points).any():
+        points = np.array([lane.centre_pose(s)[:2] for s in _samples(lane)[1:-1]])
+        if len(points) and _contains(polygon, points).any():
             found.append(lane.id)
     return tuple(sorted(found))
