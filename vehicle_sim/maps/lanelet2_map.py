@@ -85,7 +85,8 @@ WALKING_SUBTYPES = {'crosswalk': 'crosswalk', 'walkway': 'walkway', 'shared_walk
 FAR_FROM_ORIGIN_M = 100_000.0
 UTM_ZONE_ERROR = 'out of legal range for UTM zone'
 # The largest .osm file read [bytes], checked before parsing: lanelet2 holds about 15 bytes of
-# memory per byte of OSM XML (a 50 MB map: 0.75 GB, 10 s; benchmarks/bench_lanelet2_maps.py).
+# memory per byte of OSM XML (a 50 MB map of 18,000 lanelets: 0.85 GB at the peak, 17 s of CPU;
+# benchmarks/bench_lanelet2_maps.py).
 MAX_OSM_BYTES = 100_000_000
 # lanelet2's words for a regulatory element type it has no class for, and for a reference to one.
 _UNKNOWN_RULE = re.compile(r'Error parsing primitive (-?\d+): Creating a regulatory element of '
@@ -167,16 +168,35 @@ def _projector(lanelet2, projector, origin):
     return lanelet2.projection.LocalCartesianProjector(where)
 
 
-def _first_node(path):
-    # (node id, lat text, lon text, has local_x/local_y tags) of the file's first node, or None.
+def _first_nodes(path, count=1):
+    """Return [(node id, lat text, lon text, has local_x/local_y tags)] of the first nodes."""
+    found = []
     for _, element in ElementTree.iterparse(path, events=('end',)):
         if element.tag == 'node':
             keys = {tag.get('k') for tag in element.iter('tag')}
-            return (element.get('id'), element.get('lat', ''), element.get('lon', ''),
-                    {'local_x', 'local_y'} <= keys)
-        if element.tag in ('way', 'relation'):
-            return None
-    return None
+            found.append((element.get('id'), element.get('lat', ''), element.get('lon', ''),
+                          {'local_x', 'local_y'} <= keys))
+            if len(found) == count:
+                break
+        elif element.tag in ('way', 'relation'):
+            break
+    return found
+
+
+def _first_node(path):
+    # the file's first node (as _first_nodes gives it), or None
+    return next(iter(_first_nodes(path)), None)
+
+
+def _lat_lon_unused(path, sample=20):
+    """Return whether the first nodes' lat/lon are not places (empty, not numbers, all equal)."""
+    places = set()
+    for _, lat, lon, _ in _first_nodes(path, sample):
+        try:
+            places.add((float(lat), float(lon)))
+        except ValueError:
+            return True
+    return len(places) < 2
 
 
 def _check_lat_lon(path, source, projector):
@@ -236,8 +256,9 @@ def _local_positions_as_lat_lon(path):
 
     For projector autoware_local, which parses with lanelet2's Mercator projector at latitude
     0, longitude 0: lanelet2 builds areas and orients lanelets' bounds while parsing, from the
-    nodes' lat/lon, which Autoware's local and MGRS maps may leave empty or 0 (a node without
-    the tags keeps its lat/lon; :func:`_use_local_tags` refuses it).
+    nodes' lat/lon, which Autoware's local maps may leave empty, 0 or anything
+    (:func:`_lat_lon_unused`: the first 20 nodes' are not numbers or all the same); a node
+    without the tags keeps its lat/lon (:func:`_use_local_tags` refuses it).
     """
     def placed(match):
         head, closed, body = match.group(1), match.group(2), match.group(3) or ''
@@ -364,7 +385,7 @@ def load_lanelet2(path, origin=GeodeticOrigin(), projector='local_cartesian',
     if projector != 'autoware_local':
         _check_lat_lon(path, source, projector)
     parsed = path
-    if projector == 'autoware_local':        # parse where the local tags put the nodes
+    if projector == 'autoware_local' and _lat_lon_unused(path):   # parse where the tags say
         handle, parsed = tempfile.mkstemp(suffix='.osm')
         with os.fdopen(handle, 'w', encoding='utf-8') as copy:
             copy.write(_local_positions_as_lat_lon(path))
