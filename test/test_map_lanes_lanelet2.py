@@ -39,13 +39,13 @@ from vehicle_sim.maps.lane_maps import with_lanes
 pytest.importorskip('lanelet2', reason="lanelet2 is not installed (pip install "
                                        "'vehicle_sim[lanelet2]'; the test extra has it)")
 
+from vehicle_sim.maps.lanelet2_file import MAX_OSM_BYTES  # noqa: E402
 from vehicle_sim.maps.lanelet2_map import (  # noqa: E402  (after the skip)
     lane_graph_from_map,
     Lanelet2MapWarning,
     Lanelet2Unavailable,
     line_type_of,
     load_lanelet2,
-    MAX_OSM_BYTES,
 )
 
 
