@@ -260,3 +260,19 @@ def test_the_urban_world_has_signals_crosswalks_right_of_way_and_a_taper():
     found = graph.locate(car.x_m, car.y_m, car.yaw_rad)
     assert (found.lane_id, round(found.s_m, 6)) == (100, 30.0)
     assert rules.next_stop_line(graph, 100, 30.0, 100.0)[1] == pytest.approx(25.0)
+
+
+def test_the_car_of_the_urban_world_drives_towards_its_stop_line():
+    scene = build_scene(load_world(str(REPO / 'config' / 'worlds' / 'urban.yaml'), 'ToyotaPrius'))
+    try:
+        car = scene.cars['Car']
+        car.logic.set_cruising_speed_kmh(10.0)
+        for _ in range(round(2.0 / scene.world.time_step_s)):
+            scene.world.step()
+        x, y, _, qx, qy, qz, qw = car.body.pose()
+        found = scene.lanes.locate(x, y, 2.0 * math.atan2(qz, qw))
+        assert found.lane_id == 100 and found.s_m > 31.0
+        line, distance = scene.lanes.rules.next_stop_line(scene.lanes, 100, found.s_m, 100.0)
+        assert (line.group_id, distance) == (400, pytest.approx(55.0 - found.s_m))
+    finally:
+        scene.world.close()
