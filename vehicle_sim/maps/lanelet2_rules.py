@@ -45,19 +45,22 @@ two-way lanelet's inverted lane gets none):
 Each type drawn only or skipped gets one :class:`~vehicle_sim.maps.lanelet2_map.Lanelet2MapWarning`
 naming how many and their ids, as does every stop line that does not lie on its lane (skipped).
 Conflicts are those of Lanelet2's routing graph (``RoutingGraph.conflicting``) between lanes
-that neither follow nor diverge from each other, with the arc-length range where the two lanes'
-areas overlap (core/map/lane_overlap.py). Crosswalk and walkway lanelets and Lanelet2's areas
+that neither follow nor diverge from each other, with the arc-length ranges where the two lanes'
+areas overlap (core/map/lane_conflicts.py). Crosswalk and walkway lanelets and Lanelet2's areas
 (parking, keepout, building, ...; Autoware's parking_lot polygons as parking) are areas.
 """
 
+import copy
+from dataclasses import replace
+from types import SimpleNamespace
 import xml.etree.ElementTree as ElementTree
 
 import numpy as np
 
-from vehicle_sim.core.map.lane_overlap import lanes_through, overlap_range
+from vehicle_sim.core.map.lane_conflicts import lane_conflicts
+from vehicle_sim.core.map.lane_polygons import lanes_through
 from vehicle_sim.core.map.lane_rules import (
     Bulb,
-    Conflict,
     LaneRules,
     MapArea,
     RightOfWay,
@@ -65,7 +68,6 @@ from vehicle_sim.core.map.lane_rules import (
     StopLine,
     TrafficLightGroup,
 )
-from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.maps import lanelet2_map as l2
 
 # Autoware's regulatory elements that are areas here (drawn, not simulated): the role of their
@@ -379,42 +381,40 @@ def _autoware(build, elements):
 
 
 def _conflicts(routing_graph, lanelet_map, graph):
-    """Return the Conflicts of the routing graph's conflicting lanelets, each pair once."""
-    conflicts, seen = [], set()
+    """
+    Return the Conflicts of the routing graph's conflicting lanelets, each pair once.
+
+    Lanelet2 names the pairs; their ranges are core/map/lane_conflicts.py's, from the lanes'
+    areas (computed for the lanes of those pairs only; a pair whose areas only touch is left
+    out, as are forks: lanes leaving one lane).
+    """
     lanes = graph.lanes
-    for lane in list(lanes.values()):
+    pairs = set()
+    for lane in lanes.values():
         if abs(lane.id) not in lanelet_map.laneletLayer:
             continue
         lanelet = lanelet_map.laneletLayer[abs(lane.id)]
         if lane.id < 0:
             lanelet = lanelet.invert()
-        try:
-            others = routing_graph.conflicting(lanelet)
-        except (RuntimeError, InvalidParameterError):
-            continue
-        for other in others:
+        for other in routing_graph.conflicting(lanelet):
             other_id = l2.lane_id_of(other)
-            pair = (min(lane.id, other_id), max(lane.id, other_id))
-            if other_id not in lanes or other_id == lane.id or pair in seen:
-                continue
-            seen.add(pair)
-            conflict = _conflict(graph, lanes[pair[0]], lanes[pair[1]])
-            if conflict is not None:
-                conflicts.append(conflict)
-    return tuple(conflicts)
-
-
-def _conflict(graph, lane, other):
-    """Return the Conflict of two lanes, or None (one follows the other, they diverge)."""
-    if other.id in lane.successors or lane.id in other.successors or \
-            other.id in (lane.left_lane, lane.right_lane):
-        return None
-    here = overlap_range(graph, lane.id, other.id)
-    there = overlap_range(graph, other.id, lane.id)
-    if here is None or there is None:
-        return None
-    diverging = set(graph.predecessors[lane.id]) & set(graph.predecessors[other.id])
-    if diverging and here[0] == 0.0 and there[0] == 0.0:
-        return None
-    merging = set(lane.successors) & set(other.successors)
-    return Conflict(lane.id, other.id, here, there, 'merging' if merging else 'crossing')
+            if other_id in lanes and other_id != lane.id and not (
+                    set(graph.predecessors[lane.id]) & set(graph.predecessors[other_id])):
+                pairs.add((min(lane.id, other_id), max(lane.id, other_id)))
+    if not pairs:
+        return ()
+    involved = {i for pair in pairs for i in pair}
+    only = {}                       # the lanes of the pairs, their references among them
+    for lane_id in involved:
+        lane = copy.copy(lanes[lane_id])
+        lane.successors = tuple(i for i in lane.successors if i in involved)
+        lane.left_lane = lane.left_lane if lane.left_lane in involved else None
+        lane.right_lane = lane.right_lane if lane.right_lane in involved else None
+        only[lane_id] = lane
+    found = []
+    for conflict in lane_conflicts(SimpleNamespace(lanes=only)):
+        if (conflict.lane_id, conflict.other_id) in pairs:
+            common = set(lanes[conflict.lane_id].successors) & set(
+                lanes[conflict.other_id].successors)
+            found.append(replace(conflict, kind='merging' if common else 'crossing'))
+    return tuple(found)

@@ -14,15 +14,11 @@
 
 
 """
-Where lanes overlap a lane or a polygon: a conflict's arc-length range, a crosswalk's lanes.
+The lanes that pass through a polygon (a crosswalk's lanes): :func:`lanes_through`.
 
-Both sample a lane's centreline every :data:`SAMPLE_M` (and at its ends):
-
-- :func:`overlap_range`: the part of one lane where a vehicle on its centreline, as wide as the
-  lane, touches the other lane's area: the centreline point lies within half of both widths of
-  the other lane's centreline, between the other lane's ends;
-- :func:`lanes_through`: the lanes whose centreline passes through a polygon (a lane that
-  only touches it with an end does not).
+A lane passes through a polygon when a point of its centreline, sampled every
+:data:`SAMPLE_M`, lies inside it (its end points left out: a lane that only touches the polygon
+with an end does not pass through it). Lanes that overlap each other: core/map/lane_conflicts.py.
 """
 
 import math
@@ -35,28 +31,6 @@ SAMPLE_M = 0.5
 def _samples(lane):
     count = max(2, int(math.ceil(lane.length_m / SAMPLE_M)) + 1)
     return np.linspace(0.0, lane.length_m, count)
-
-
-def overlap_range(graph, lane_id, other_id):
-    """
-    Return (first, last) arc length [m] on lane ``lane_id`` where it overlaps ``other_id``.
-
-    :return: the range, or None where the lanes' areas do not overlap.
-    """
-    lane, other = graph.lanes[lane_id], graph.lanes[other_id]
-    last = other.segment_count - 1
-    inside = []
-    k = 0
-    for s_m in _samples(lane):
-        x, y, _ = lane.centre_pose(s_m)
-        k, t, offset = other.walk(x, y, k)
-        if (k == 0 and t < 0.0) or (k == last and t > other.seg_len[k]):
-            continue
-        j = lane.segment_at(s_m)
-        reach = 0.5 * other.width_at(k, t) + 0.5 * lane.width_at(j, s_m - lane.s0[j])
-        if abs(offset) <= reach:
-            inside.append(float(s_m))
-    return (inside[0], inside[-1]) if inside else None
 
 
 def _contains(polygon, points):
