@@ -262,7 +262,7 @@ def test_the_urban_world_has_signals_crosswalks_right_of_way_and_a_taper():
     assert rules.next_stop_line(graph, 100, 30.0, 100.0)[1] == pytest.approx(25.0)
 
 
-def test_the_car_of_the_urban_world_drives_towards_its_stop_line():
+def test_the_car_of_the_urban_world_drives_towards_its_green_light():
     scene = build_scene(load_world(str(REPO / 'config' / 'worlds' / 'urban.yaml'), 'ToyotaPrius'))
     try:
         car = scene.cars['Car']
@@ -274,5 +274,8 @@ def test_the_car_of_the_urban_world_drives_towards_its_stop_line():
         assert found.lane_id == 100 and found.s_m > 31.0
         line, distance = scene.lanes.rules.next_stop_line(scene.lanes, 100, found.s_m, 100.0)
         assert (line.group_id, distance) == (400, pytest.approx(55.0 - found.s_m))
+        # the map's groups run the default plan: one phase per arm, the west arm's first
+        assert scene.parts['signals'].controller.states() == {
+            400: 'green', 401: 'red', 402: 'red', 403: 'red'}
     finally:
         scene.world.close()
