@@ -109,6 +109,7 @@ class _Builder:
     def __init__(self, lanelet_map, graph, path, source):
         self.map, self.graph, self.path, self.source = lanelet_map, graph, path, source
         self.stop_lines, self.groups, self.right_of_way, self.areas = [], [], [], []
+        self.area_ids = set()
         self.used_ids = set()
         # ids for more stop lines on one line string: above the map's (lanelet2 gives the
         # primitives it makes ids near 2**63: left out)
@@ -161,11 +162,15 @@ class _Builder:
         return stop
 
     def area(self, area_id, kind, points, lanes=()):
+        """Add an area (a polygon of 3 points or more); an id seen before is not added again."""
+        if area_id in self.area_ids:
+            return
         points = np.array(points, dtype=float).reshape(-1, 2)
         if len(points) > 1 and np.allclose(points[0], points[-1]):
             points = points[:-1]
         if len(points) >= 3:
             self.areas.append(MapArea(area_id, kind, points, tuple(lanes)))
+            self.area_ids.add(area_id)
 
 
 def _crossing_s(lane, points):
@@ -299,7 +304,7 @@ def rules_of(lanelet_map, routing_graph, graph, walking, unknown, path, source):
         build.area(area.id, kind, _polygon(area.outerBoundPolygon()))
     for polygon in lanelet_map.polygonLayer:
         kind = POLYGON_KINDS.get(l2.tags_of(polygon).get('type'))
-        if kind is not None and polygon.id not in {a.id for a in build.areas}:
+        if kind is not None:
             build.area(polygon.id, kind, _polygon(polygon))
     if build.off_lane:
         l2.warn(f'{source}: {path}: {l2.counted(build.off_lane, "stop line")} off the lanes '
