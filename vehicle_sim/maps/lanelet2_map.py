@@ -293,10 +293,12 @@ def load_lanelet2(path, origin=GeodeticOrigin(), projector='local_cartesian',
 
 
 def counted(ids, what):
+    """Return '1 lanelet' or '3 lanelets': how many ``ids``, ``what`` they are."""
     return f'{len(ids)} {what}' + ('' if len(ids) == 1 else 's')
 
 
 def id_list(ids, shown=10):
+    """Return '(id 7)' or '(ids 1, 2, ... (5 more))': the first ``shown`` ids, sorted."""
     ids = sorted(ids)
     more = f', ... ({len(ids) - shown} more)' if len(ids) > shown else ''
     return f"({'id' if len(ids) == 1 else 'ids'} {', '.join(map(str, ids[:shown]))}{more})"
