@@ -18,8 +18,9 @@ What a run's criteria measure distances against: vehicle outlines and obstacle f
 A :class:`CriteriaScene` holds each vehicle's footprint rectangle (core Outline) and gives the
 footprints around them now: fixed ones (static obstacles, and an occupancy map's walls,
 :func:`map_walls`) computed once, movable obstacles' read from the world at each call; and the
-traffic vehicles now (``traffic``: (name, x, y, yaw, length, width) of each, their box centre).
-Criteria get it through ``Criterion.bind``; unit tests build one by hand.
+traffic vehicles now (``traffic``: (name, x, y, yaw, length, width) of each, their box centre),
+the vehicles of the scenario now (``samples``) and the world's signals (``signals``, its
+SignalController). Criteria get it through ``Criterion.bind``; unit tests build one by hand.
 :meth:`CriteriaScene.footprints_near` leaves out, by their boxes along the axes, the footprints too
 far to matter (a map has a thousand wall rectangles).
 """
@@ -61,13 +62,19 @@ class CriteriaScene:
         of its box centre [m, rad]; None = the world has no traffic.
     :param lanes: the world's lane map (a core LaneGraph; the lane criteria read it), or None.
     :param walls: an occupancy map's walls (:func:`map_walls`): fixed footprints too.
+    :param samples: returns {name: Sample} of every vehicle of the scenario now; None = none.
+    :param signals: the world's SignalController (core/map/signal_plan.py; the traffic rule
+        criteria read it), or None.
     """
 
     def __init__(self, outlines: Dict[str, Outline], fixed: Sequence[Footprint] = (),
                  moving: Callable[[], Iterable[Footprint]] = None,
                  traffic: Callable[[], Iterable[tuple]] = None, lanes=None,
-                 walls: Sequence[Footprint] = ()):
+                 walls: Sequence[Footprint] = (), samples: Callable[[], dict] = None,
+                 signals=None):
         self.lanes = lanes
+        self.samples = samples
+        self.signals = signals
         self.walls = tuple(walls)
         self._outlines = dict(outlines)
         self._fixed = tuple(fixed) + self.walls
@@ -143,8 +150,14 @@ def map_walls(built) -> Tuple[Footprint, ...]:
     return tuple(walls)
 
 
+def signal_controller(built):
+    """Return a built scene's SignalController (its part 'signals'), None without one."""
+    part = None if built is None else built.parts.get('signals')
+    return None if part is None else part.controller
+
+
 def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
-                lanes=None, traffic=None) -> CriteriaScene:
+                lanes=None, traffic=None, signals=None) -> CriteriaScene:
     """
     Return the scene of a built simulation.
 
@@ -154,6 +167,7 @@ def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
     :param walls: further fixed footprints (a map's walls).
     :param lanes: the world's lane map (the built scene's ``lanes``), or None.
     :param traffic: the world's traffic (physics TrafficBodies), or None.
+    :param signals: the world's SignalController, or None.
     """
     fixed = [obstacle_footprint(spec) for spec in obstacles if spec.static]
     movable = [spec for spec in obstacles if not spec.static]
@@ -168,6 +182,9 @@ def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
         return [(v.name, *manager.pose(v), v.length_m, v.width_m)
                 for v in manager.vehicles if v.active]
 
+    def samples():
+        return {name: handle.sample(world.time_s) for name, handle in vehicles.items()}
+
     return CriteriaScene({name: handle.outline for name, handle in vehicles.items()}, fixed,
                          moving if movable else None, None if traffic is None else traffic_now,
-                         lanes, walls)
+                         lanes, walls, samples, signals)
