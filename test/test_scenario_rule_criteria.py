@@ -24,10 +24,13 @@ through the intersection), north along x = 1.75 (approach 200001 from y = -60 to
 .. 0 on 200101 (s 2.5 .. 6). The vehicle's front is 4 m ahead of its reference point.
 """
 
+from dataclasses import replace
 import math
+from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
+import yaml
 
 from vehicle_sim.core.geometry.footprint import Outline
 from vehicle_sim.core.map.lane_rules import (
@@ -41,9 +44,13 @@ from vehicle_sim.core.map.priority import priority_conflicts
 from vehicle_sim.core.map.road_segments import lane_graph_from_roads, roads_from_list
 from vehicle_sim.core.map.signal_plan import SignalController
 from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.maps.lane_maps import with_lanes
+from vehicle_sim.physics.scene import SCENE_PARTS, ScenePartRow
 from vehicle_sim.scenarios.criteria import CRITERIA, Sample, validate_criterion
 from vehicle_sim.scenarios.lane_criteria import NO_MAP
 from vehicle_sim.scenarios.rule_criteria import NO_SIGNALS
+from vehicle_sim.scenarios.runner import run_scenario
+from vehicle_sim.scenarios.schema import load_scenario
 
 DURATION_S = 30.0
 OUTLINE = Outline(-1.0, 4.0, -0.9, 0.9)
@@ -303,3 +310,102 @@ def test_yield_fails_on_a_map_without_priorities():
 def test_bad_rule_criteria_are_refused_naming_the_field(kind, data, match):
     with pytest.raises(InvalidParameterError, match=match):
         validate_criterion(kind, data)
+
+
+# ----------------------------------------------------------------- through the runner
+RED_LIGHT = Path(__file__).resolve().parent / 'scenarios' / 'red_light.yaml'
+
+
+class _HeldRed:
+    """A scene part 'signals' for these tests: the crossing's controller, group 10 held red."""
+
+    name = 'signals'
+
+    def build(self, world, spec):
+        part = SimpleNamespace(controller=SignalController(spec.lanes), pre_step=None)
+        part.controller.force(10, 'red')
+        part.pre_step = lambda: part.controller.update(world.time_s)
+        world.add_body(part)
+        return part
+
+
+def _run_red_light(monkeypatch, tmp_path, brake=True):
+    monkeypatch.setitem(SCENE_PARTS, 'signals', ScenePartRow(
+        'signals', lambda spec: spec.lanes is not None and bool(spec.lanes.rules.groups),
+        _HeldRed))
+    data = yaml.safe_load(RED_LIGHT.read_text(encoding='utf-8'))
+    if not brake:
+        data['driver']['commands'] = data['driver']['commands'][:1]
+    path = tmp_path / 'red_light.yaml'
+    path.write_text(yaml.safe_dump(data), encoding='utf-8')
+    spec = load_scenario(path)
+    world = with_lanes(spec.world)
+    world.lanes.set_rules(signalised()[0].rules)
+    return run_scenario(replace(spec, world=world))
+
+
+def test_a_car_braking_to_a_stop_before_a_red_light_passes(monkeypatch, tmp_path):
+    result = _run_red_light(monkeypatch, tmp_path)
+    assert result.passed and result.error is None
+    light = result.criterion('traffic_light')
+    # at 30 km/h, full brake at 5.2 s: its front stops 2.35 m before line 1 (x = -7)
+    assert light.value == 0
+    assert light.detail.startswith('passed no traffic light stop line; closest to a red line: '
+                                   '2.3')
+    assert 'm before line 1 (group 10) at ' in light.detail
+    track = result.tracks['Car']
+    front = track.x_m[-1] + track.outline.x_max_m
+    assert front == pytest.approx(-7.0 - 2.35, abs=0.05)
+
+
+def test_a_car_driving_through_a_red_light_fails_with_the_time_and_the_line(monkeypatch,
+                                                                              tmp_path):
+    result = _run_red_light(monkeypatch, tmp_path, brake=False)
+    assert not result.passed
+    light = result.criterion('traffic_light')
+    assert light.value == 1 and light.at_s is not None
+    # the moment its front reached the line: from the track, the first step with the front
+    # at x >= -7
+    track = result.tracks['Car']
+    crossed = next(t for t, x in zip(track.time_s, track.x_m)
+                   if x + track.outline.x_max_m >= -7.0)
+    assert light.at_s == pytest.approx(crossed)
+    assert light.detail.startswith(f'passed stop line 1 (lane 100001, group 10) on red at '
+                                   f'{crossed:.2f} s at 8.3')
+    assert light.points_m[0] == pytest.approx((-7.0, -1.75), abs=0.1)
+
+
+YIELD_CROSSING = Path(__file__).resolve().parent / 'scenarios' / 'yield_crossing.yaml'
+
+
+def _run_yield(tmp_path, wait=True):
+    data = yaml.safe_load(YIELD_CROSSING.read_text(encoding='utf-8'))
+    if not wait:
+        data['driver']['commands'] = data['driver']['commands'][:1]
+    path = tmp_path / 'yield_crossing.yaml'
+    path.write_text(yaml.safe_dump(data), encoding='utf-8')
+    spec = load_scenario(path)
+    world = with_lanes(spec.world)
+    world.lanes.set_rules(with_stop_sign(right_of_way=True).rules)
+    return run_scenario(replace(spec, world=world))
+
+
+def test_a_car_that_waits_for_the_priority_car_passes_and_one_that_goes_fails(tmp_path):
+    waited = _run_yield(tmp_path)
+    assert waited.passed, [c.detail for c in waited.criteria]
+    assert waited.criterion('yield').detail == ('entered 1 conflict zone(s) of a priority lane, '
+                                                'no priority vehicle coming (gap 3 s)')
+    went = _run_yield(tmp_path, wait=False)
+    result = went.criterion('yield')
+    assert not result.passed and result.others == ('other',)
+    # both at 30 km/h from 40 m: its front enters the zone (y = -3.5) about half a second
+    # before 'other' (8 m/s) would reach it; they collide
+    assert result.value == pytest.approx(0.53, abs=0.05)
+    assert result.detail.startswith('entered the conflict zone of lane 200101 with priority '
+                                    f'lane 100101 at {result.at_s:.2f} s while other was ')
+    assert result.detail.endswith('m at 8.00 m/s); gap 3 s')
+    track = went.tracks['Car']
+    entered = next(t for t, y in zip(track.time_s, track.y_m)
+                   if y + track.outline.x_max_m >= -3.5)
+    assert result.at_s == pytest.approx(entered)
+    assert went.criterion('no_collision').others == ('other',)
