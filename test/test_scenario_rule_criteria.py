@@ -243,14 +243,15 @@ def test_priority_comes_from_a_right_of_way_rule_or_a_stop_sign_on_one_way_only(
 
 def _traffic(clock, x0, speed):
     # one traffic car driving east on the priority lane (its box centre; 4.5 m long)
-    return lambda: [('traffic_0', x0 + speed * clock['t'], -1.75, EAST, 4.5, 1.8)]
+    return {'traffic': lambda: [('traffic_0', x0 + speed * clock['t'], -1.75, EAST, 4.5, 1.8)],
+            'traffic_speeds': lambda: {'traffic_0': speed}}
 
 
 def test_entering_in_front_of_a_priority_vehicle_within_the_gap_fails_naming_it():
     # the front enters the zone (y = -3.5) when y = -7.5: t = 4.5 s at 5 m/s from y = -30
     clock = {'t': 0.0}
     criterion = _criterion('yield', with_stop_sign(right_of_way=True),
-                           traffic=_traffic(clock, -70.0, 10.0))
+                           **_traffic(clock, -70.0, 10.0))
     result = _drive(criterion, north_moves([5.0] * 60), clock=clock)
     assert not result.passed and result.unit == 's'
     # at 4.5 s the traffic car's front is at x = -22.75, 22.75 m from the zone (x = 0)
@@ -264,14 +265,16 @@ def test_entering_in_front_of_a_priority_vehicle_within_the_gap_fails_naming_it(
 def test_entering_well_ahead_of_or_after_the_priority_vehicle_passes():
     clock = {'t': 0.0}
     early = _drive(_criterion('yield', with_stop_sign(right_of_way=True),
-                              traffic=_traffic(clock, -100.0, 10.0)),
+                              **_traffic(clock, -90.0, 8.0)),
                    north_moves([5.0] * 60), clock=clock)
-    assert early.passed and early.value == pytest.approx(5.275, abs=0.01)
-    assert 'the nearest priority vehicle traffic_0 5.27 s from' in early.detail
+    # at 4.5 s its front is at x = -51.75: 6.47 s from the zone at 8 m/s
+    assert early.passed and early.value == pytest.approx(51.75 / 8.0)
+    assert "the nearest priority vehicle traffic_0 6.47 s from lane 100101's zone at 4.50 s " \
+           '(gap 3 s)' in early.detail
     # it waits at the line until the traffic car has gone by, then crosses
     clock = {'t': 0.0}
     waited = _drive(_criterion('yield', with_stop_sign(right_of_way=True),
-                               traffic=_traffic(clock, -70.0, 10.0)),
+                               **_traffic(clock, -70.0, 10.0)),
                     north_moves([5.0] * 42 + [0.0] * 40 + [5.0] * 20), clock=clock)
     assert waited.passed and waited.value is None
     assert waited.detail == 'entered 1 conflict zone(s) of a priority lane, no priority ' \
@@ -287,7 +290,7 @@ def test_one_of_our_vehicles_in_the_zone_counts_and_the_gap_is_a_parameter():
     assert 'while car2 was in it; gap 3 s' in result.detail
     clock = {'t': 0.0}
     short = _drive(_criterion('yield', with_stop_sign(), data={'gap': 2.0},
-                              traffic=_traffic(clock, -70.0, 10.0)),
+                              **_traffic(clock, -70.0, 10.0)),
                    north_moves([5.0] * 60), clock=clock)
     assert short.passed and short.value == pytest.approx(2.275, abs=0.01)
 
@@ -409,3 +412,25 @@ def test_a_car_that_waits_for_the_priority_car_passes_and_one_that_goes_fails(tm
                    if y + track.outline.x_max_m >= -3.5)
     assert result.at_s == pytest.approx(entered)
     assert went.criterion('no_collision').others == ('other',)
+
+
+def test_going_in_front_of_a_traffic_car_with_priority_fails_with_its_speed(tmp_path):
+    data = yaml.safe_load(YIELD_CROSSING.read_text(encoding='utf-8'))
+    data['driver']['commands'] = data['driver']['commands'][:1]
+    data['world']['vehicles'] = data['world']['vehicles'][:1]
+    del data['actors']
+    # a traffic car (docs/traffic.md) going straight over the crossing at 0.6 x 13.9 m/s
+    data['world']['traffic'] = {'placed': [{
+        'model': 'ToyotaPrius', 'lanelet': 100001, 's': 5.0, 'speed': 8.0, 'speed_factor': 0.6,
+        'route': [100101, 100201]}]}
+    path = tmp_path / 'yield_traffic.yaml'
+    path.write_text(yaml.safe_dump(data), encoding='utf-8')
+    spec = load_scenario(path)
+    world = with_lanes(spec.world)
+    world.lanes.set_rules(with_stop_sign(right_of_way=True).rules)
+    result = run_scenario(replace(spec, world=world)).criterion('yield')
+    assert not result.passed and result.others == ('traffic_0',)
+    assert 0.0 < result.value < 1.5
+    # its speed is the traffic's own (its pose changes only at the traffic's 0.1 s updates)
+    assert result.detail.endswith(' m at 8.34 m/s); gap 3 s') or \
+        result.detail.endswith(' m at 8.33 m/s); gap 3 s')

@@ -273,7 +273,6 @@ class Yield(_RuleCriterion):
         self.closest = None         # (time to the zone, time, name, conflict, distance, speed)
         self.bad = []               # the entries in front of a priority vehicle (as closest)
         self.scene = None
-        self.last_traffic = {}      # name: (time, x, y) at the previous step (their speeds)
 
     def bind_rules(self, scene, rules):
         self.watch = priority_conflicts(self.lanes)
@@ -283,33 +282,29 @@ class Yield(_RuleCriterion):
         self.scene = scene
 
     def observe_front(self, sample, state, passed):
-        traffic = self._traffic(sample.time_s)
         inside = set()
         if state.on_lane:
             for conflict in self.watch.get(state.lane_id, ()):
                 if conflict.s_m[0] <= state.s_m <= conflict.s_m[1]:
                     inside.add((conflict.lane_id, conflict.other_id))
                     if (conflict.lane_id, conflict.other_id) not in self.inside:
-                        self._entered(sample, conflict, traffic)
+                        self._entered(sample, conflict)
         self.inside = inside
 
-    def _traffic(self, time_s):
-        # the traffic vehicles now: (name, front, rear, yaw, speed), speeds from the last step
+    def _traffic(self):
+        # the traffic vehicles now: (name, front, rear, yaw, speed)
         source = getattr(self.scene, 'traffic', None)
         if source is None:
             return []
-        now, last = [], self.last_traffic
-        self.last_traffic = {}
+        speeds = getattr(self.scene, 'traffic_speeds', None)
+        speeds = {} if speeds is None else speeds()
+        now = []
         for name, x, y, yaw, length, _ in source():
-            self.last_traffic[name] = (time_s, x, y)
-            seen = last.get(name)
-            speed = 0.0 if seen is None or time_s <= seen[0] else \
-                math.hypot(x - seen[1], y - seen[2]) / (time_s - seen[0])
             c, s = 0.5 * length * math.cos(yaw), 0.5 * length * math.sin(yaw)
-            now.append((name, (x + c, y + s), (x - c, y - s), yaw, speed))
+            now.append((name, (x + c, y + s), (x - c, y - s), yaw, abs(speeds.get(name, 0.0))))
         return now
 
-    def _ours(self, time_s):
+    def _ours(self):
         samples = getattr(self.scene, 'samples', None)
         if samples is None:
             return []
@@ -325,9 +320,9 @@ class Yield(_RuleCriterion):
                          sample.yaw_rad, abs(sample.speed_mps)))
         return ours
 
-    def _entered(self, sample, conflict, traffic):
+    def _entered(self, sample, conflict):
         self.entries += 1
-        for name, front, rear, yaw, speed in traffic + self._ours(sample.time_s):
+        for name, front, rear, yaw, speed in self._traffic() + self._ours():
             way = self._to_zone(conflict, front, rear, yaw)
             if way is None:
                 continue

@@ -65,16 +65,19 @@ class CriteriaScene:
     :param samples: returns {name: Sample} of every vehicle of the scenario now; None = none.
     :param signals: the world's SignalController (core/map/signal_plan.py; the traffic rule
         criteria read it), or None.
+    :param traffic_speeds: returns {name: speed [m/s]} of the traffic vehicles now (their
+        poses change only at the traffic's updates); None = not known.
     """
 
     def __init__(self, outlines: Dict[str, Outline], fixed: Sequence[Footprint] = (),
                  moving: Callable[[], Iterable[Footprint]] = None,
                  traffic: Callable[[], Iterable[tuple]] = None, lanes=None,
                  walls: Sequence[Footprint] = (), samples: Callable[[], dict] = None,
-                 signals=None):
+                 signals=None, traffic_speeds: Callable[[], Dict[str, float]] = None):
         self.lanes = lanes
         self.samples = samples
         self.signals = signals
+        self.traffic_speeds = traffic_speeds
         self.walls = tuple(walls)
         self._outlines = dict(outlines)
         self._fixed = tuple(fixed) + self.walls
@@ -182,9 +185,13 @@ def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
         return [(v.name, *manager.pose(v), v.length_m, v.width_m)
                 for v in manager.vehicles if v.active]
 
+    def traffic_speeds():
+        return {v.name: v.speed_mps for v in traffic.manager.vehicles if v.active}
+
     def samples():
         return {name: handle.sample(world.time_s) for name, handle in vehicles.items()}
 
     return CriteriaScene({name: handle.outline for name, handle in vehicles.items()}, fixed,
                          moving if movable else None, None if traffic is None else traffic_now,
-                         lanes, walls, samples, signals)
+                         lanes, walls, samples, signals,
+                         None if traffic is None else traffic_speeds)
