@@ -153,12 +153,6 @@ def map_walls(built) -> Tuple[Footprint, ...]:
     return tuple(walls)
 
 
-def signal_controller(built):
-    """Return a built scene's SignalController (its part 'signals'), None without one."""
-    part = None if built is None else built.parts.get('signals')
-    return None if part is None else part.controller
-
-
 def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
                 lanes=None, traffic=None, signals=None) -> CriteriaScene:
     """

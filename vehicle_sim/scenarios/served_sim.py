@@ -28,7 +28,7 @@ import tempfile
 import yaml
 
 from vehicle_sim.physics.scene import build_scene
-from vehicle_sim.scenarios.scene import map_walls, signal_controller
+from vehicle_sim.scenarios.scene import map_walls
 from vehicle_sim.scenarios.sim import VehicleHandle
 from vehicle_sim.scenarios.yaml_lines import ScenarioError
 
@@ -57,7 +57,6 @@ class ServedSim:
         self.vehicles = {}
         self.lanes = None               # the lane criteria's lane map (None: none)
         self.walls = ()                 # an occupancy map's walls (Footprints)
-        self.signals = None             # the world's SignalController (None: none)
         step_ms = spec.time_step_ms
 
         def tapped(name, overrides):
@@ -89,7 +88,6 @@ class ServedSim:
                 world = self.automobile.world
                 self.lanes = self.automobile.scene.lanes
                 self.walls = map_walls(self.automobile.scene)
-                self.signals = signal_controller(self.automobile.scene)
                 for vehicle in spec.world.vehicles:
                     built = self.automobile.scene.vehicles[vehicle.name]
                     self.vehicles[vehicle.name] = VehicleHandle(
@@ -110,7 +108,6 @@ class ServedSim:
                     # the obstacles (no car: no vehicles) and the lane map
                     built_scene = build_scene(spec.world, world)
                     self.lanes, self.walls = built_scene.lanes, map_walls(built_scene)
-                    self.signals = signal_controller(built_scene)
                 self.vehicles[robot.name] = VehicleHandle(robot.name, node.robot)
             self.world = world
             world.add_body(director)
@@ -133,6 +130,13 @@ class ServedSim:
         if self.automobile is None:
             return None
         return self.automobile.scene.parts.get('traffic')
+
+    @property
+    def signals(self):
+        """The world's signals (physics WorldSignals: ``controller``), or None."""
+        if self.automobile is None:
+            return None
+        return self.automobile.scene.parts.get('signals')
 
     @property
     def live_view(self):

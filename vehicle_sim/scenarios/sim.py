@@ -31,7 +31,7 @@ import struct
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.scenarios.criteria import Sample
-from vehicle_sim.scenarios.scene import map_walls, signal_controller
+from vehicle_sim.scenarios.scene import map_walls
 
 # One odometry row: time, pose (x, y, z, qx, qy, qz, qw), linear and angular velocity (world).
 ODOMETRY_ROW = struct.Struct('<14d')
@@ -118,8 +118,8 @@ class LocalSim:
 
     @property
     def signals(self):
-        """The world's SignalController (its scene part 'signals'), or None."""
-        return signal_controller(self.scene)
+        """The world's signals (physics WorldSignals: ``controller``), or None."""
+        return self.scene.parts.get('signals')
 
     def step(self):
         """Advance one basic step; return the time [s]."""
