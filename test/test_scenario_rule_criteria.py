@@ -24,7 +24,6 @@ through the intersection), north along x = 1.75 (approach 200001 from y = -60 to
 .. 0 on 200101 (s 2.5 .. 6). The vehicle's front is 4 m ahead of its reference point.
 """
 
-from dataclasses import replace
 import math
 from pathlib import Path
 from types import SimpleNamespace
@@ -44,13 +43,11 @@ from vehicle_sim.core.map.priority import priority_conflicts
 from vehicle_sim.core.map.road_segments import lane_graph_from_roads, roads_from_list
 from vehicle_sim.core.map.signal_plan import SignalController
 from vehicle_sim.core.specs.errors import InvalidParameterError
-from vehicle_sim.maps.lane_maps import with_lanes
-from vehicle_sim.physics.scene import SCENE_PARTS, ScenePartRow
+from vehicle_sim.scenarios import schema  # noqa: F401  (first: it registers the criteria in the docs' order)
 from vehicle_sim.scenarios.criteria import CRITERIA, Sample, validate_criterion
 from vehicle_sim.scenarios.lane_criteria import NO_MAP
 from vehicle_sim.scenarios.rule_criteria import NO_SIGNALS
 from vehicle_sim.scenarios.runner import run_scenario
-from vehicle_sim.scenarios.schema import load_scenario
 
 DURATION_S = 30.0
 OUTLINE = Outline(-1.0, 4.0, -0.9, 0.9)
@@ -316,121 +313,121 @@ def test_bad_rule_criteria_are_refused_naming_the_field(kind, data, match):
 
 
 # ----------------------------------------------------------------- through the runner
-RED_LIGHT = Path(__file__).resolve().parent / 'scenarios' / 'red_light.yaml'
+# test/scenarios/red_light.yaml and yield_crossing.yaml: the same crossing as a world's roads:
+# (its rules from the intersection's signals: or stop_signs:, docs/signals.md): the eastbound
+# group 4000100101 and its stop line 3000100001 across the end of lane 100001 (x = -6); the
+# northbound stop sign line 3000200001 across the end of lane 200001 (y = -6).
+SCENARIOS = Path(__file__).resolve().parent / 'scenarios'
+RED_LIGHT = SCENARIOS / 'red_light.yaml'
+YIELD_CROSSING = SCENARIOS / 'yield_crossing.yaml'
 
 
-class _HeldRed:
-    """A scene part 'signals' for these tests: the crossing's controller, group 10 held red."""
-
-    name = 'signals'
-
-    def build(self, world, spec):
-        part = SimpleNamespace(controller=SignalController(spec.lanes), pre_step=None)
-        part.controller.force(10, 'red')
-        part.pre_step = lambda: part.controller.update(world.time_s)
-        world.add_body(part)
-        return part
-
-
-def _run_red_light(monkeypatch, tmp_path, brake=True):
-    monkeypatch.setitem(SCENE_PARTS, 'signals', ScenePartRow(
-        'signals', lambda spec: spec.lanes is not None and bool(spec.lanes.rules.groups),
-        _HeldRed))
-    data = yaml.safe_load(RED_LIGHT.read_text(encoding='utf-8'))
-    if not brake:
-        data['driver']['commands'] = data['driver']['commands'][:1]
-    path = tmp_path / 'red_light.yaml'
+def _variant(tmp_path, source, change):
+    data = yaml.safe_load(source.read_text(encoding='utf-8'))
+    change(data)
+    path = tmp_path / source.name
     path.write_text(yaml.safe_dump(data), encoding='utf-8')
-    spec = load_scenario(path)
-    world = with_lanes(spec.world)
-    world.lanes.set_rules(signalised()[0].rules)
-    return run_scenario(replace(spec, world=world))
+    return path
 
 
-def test_a_car_braking_to_a_stop_before_a_red_light_passes(monkeypatch, tmp_path):
-    result = _run_red_light(monkeypatch, tmp_path)
+def _no_brake(data):
+    data['driver']['commands'] = data['driver']['commands'][:1]
+
+
+def test_a_car_braking_to_a_stop_before_a_red_light_passes():
+    result = run_scenario(RED_LIGHT)
     assert result.passed and result.error is None
     light = result.criterion('traffic_light')
-    # at 30 km/h, full brake at 5.2 s: its front stops 2.35 m before line 1 (x = -7)
+    # at 30 km/h, full brake at 5.3 s: its front stops 2.5 m before the line (x = -6)
     assert light.value == 0
     assert light.detail.startswith('passed no traffic light stop line; closest to a red line: '
-                                   '2.3')
-    assert 'm before line 1 (group 10) at ' in light.detail
+                                   '2.5')
+    assert 'm before line 3000100001 (group 4000100101) at 7.' in light.detail
     track = result.tracks['Car']
     front = track.x_m[-1] + track.outline.x_max_m
-    assert front == pytest.approx(-7.0 - 2.35, abs=0.05)
+    assert front == pytest.approx(-6.0 - 2.51, abs=0.05)
 
 
-def test_a_car_driving_through_a_red_light_fails_with_the_time_and_the_line(monkeypatch,
-                                                                              tmp_path):
-    result = _run_red_light(monkeypatch, tmp_path, brake=False)
+def test_a_car_driving_through_a_red_light_fails_with_the_time_and_the_line(tmp_path):
+    result = run_scenario(_variant(tmp_path, RED_LIGHT, _no_brake))
     assert not result.passed
     light = result.criterion('traffic_light')
-    assert light.value == 1 and light.at_s is not None
-    # the moment its front reached the line: from the track, the first step with the front
-    # at x >= -7
+    assert light.value == 1 and light.unit == 'crossing'
+    # the moment: the first step with its front at or beyond the line (x = -6), from the track
     track = result.tracks['Car']
     crossed = next(t for t, x in zip(track.time_s, track.x_m)
-                   if x + track.outline.x_max_m >= -7.0)
-    assert light.at_s == pytest.approx(crossed)
-    assert light.detail.startswith(f'passed stop line 1 (lane 100001, group 10) on red at '
-                                   f'{crossed:.2f} s at 8.3')
-    assert light.points_m[0] == pytest.approx((-7.0, -1.75), abs=0.1)
+                   if x + track.outline.x_max_m >= -6.0)
+    assert light.at_s == pytest.approx(crossed) and 6.0 < crossed < 7.0
+    assert light.detail == (f'passed stop line 3000100001 (lane 100001, group 4000100101) on '
+                            f'red at {crossed:.2f} s at 8.33 m/s')
+    assert light.points_m[0] == pytest.approx((-6.0, -1.75), abs=0.1)
 
 
-YIELD_CROSSING = Path(__file__).resolve().parent / 'scenarios' / 'yield_crossing.yaml'
+@pytest.mark.parametrize('green_s, passed, passing', [
+    (5.0, True, 'passed line 3000100001 (group 4000100101) on yellow at 6.'),
+    (3.0, False, 'passed stop line 3000100001 (lane 100001, group 4000100101) on red at 6.'),
+])
+def test_the_plan_decides_when_no_command_forces_the_group(tmp_path, green_s, passed, passing):
+    # no forced state: the plan's first phase is the eastbound group's: green, yellow 3 s,
+    # all red 2 s; the car's front reaches the line at about 6.5 s
+    def plan_only(data):
+        _no_brake(data)
+        data['driver']['commands'][0].pop('signal')
+        data['world']['signals'] = {'green': green_s}
+
+    light = run_scenario(_variant(tmp_path, RED_LIGHT, plan_only)).criterion('traffic_light')
+    assert light.passed is passed and light.detail.startswith(passing)
 
 
-def _run_yield(tmp_path, wait=True):
-    data = yaml.safe_load(YIELD_CROSSING.read_text(encoding='utf-8'))
-    if not wait:
-        data['driver']['commands'] = data['driver']['commands'][:1]
-    path = tmp_path / 'yield_crossing.yaml'
-    path.write_text(yaml.safe_dump(data), encoding='utf-8')
-    spec = load_scenario(path)
-    world = with_lanes(spec.world)
-    world.lanes.set_rules(with_stop_sign(right_of_way=True).rules)
-    return run_scenario(replace(spec, world=world))
+def test_a_car_that_stops_and_waits_for_the_priority_car_passes():
+    result = run_scenario(YIELD_CROSSING)
+    assert result.passed, [c.detail for c in result.criteria]
+    stop = result.criterion('stop_sign')
+    assert stop.value < 0.01
+    assert stop.detail.startswith('stopped before all 1 stop sign line(s) passed; the least '
+                                  'full stop: line 3000200001: slowest 0.000 m/s within 3 m '
+                                  'before it at ')
+    assert result.criterion('yield').detail.endswith('no priority vehicle coming (gap 3 s)')
 
 
-def test_a_car_that_waits_for_the_priority_car_passes_and_one_that_goes_fails(tmp_path):
-    waited = _run_yield(tmp_path)
-    assert waited.passed, [c.detail for c in waited.criteria]
-    assert waited.criterion('yield').detail == ('entered 1 conflict zone(s) of a priority lane, '
-                                                'no priority vehicle coming (gap 3 s)')
-    went = _run_yield(tmp_path, wait=False)
-    result = went.criterion('yield')
-    assert not result.passed and result.others == ('other',)
-    # both at 30 km/h from 40 m: its front enters the zone (y = -3.5) about half a second
-    # before 'other' (8 m/s) would reach it; they collide
-    assert result.value == pytest.approx(0.53, abs=0.05)
-    assert result.detail.startswith('entered the conflict zone of lane 200101 with priority '
-                                    f'lane 100101 at {result.at_s:.2f} s while other was ')
-    assert result.detail.endswith('m at 8.00 m/s); gap 3 s')
-    track = went.tracks['Car']
+def test_a_car_that_rolls_through_the_stop_sign_in_front_of_the_priority_car_fails(tmp_path):
+    result = run_scenario(_variant(tmp_path, YIELD_CROSSING, _no_brake))
+    stop = result.criterion('stop_sign')
+    assert not stop.passed and stop.value == pytest.approx(8.33, abs=0.01)
+    track = result.tracks['Car']
+    crossed = next(t for t, y in zip(track.time_s, track.y_m)
+                   if y + track.outline.x_max_m >= -6.0)
+    assert stop.detail.startswith(f'rolled through stop line 3000200001 (lane 200001) at '
+                                  f'{crossed:.2f} s at 8.33 m/s: slowest 8.333 m/s within 3 m '
+                                  f'before it at ')
+    given = result.criterion('yield')
+    assert not given.passed and given.others == ('other',)
+    # both at 30 km/h from 40 m: its front enters the first priority lane's zone (y = -3.5)
+    # about half a second before 'other' (8 m/s) would reach it; they collide
+    assert given.value == pytest.approx(0.53, abs=0.05)
     entered = next(t for t, y in zip(track.time_s, track.y_m)
                    if y + track.outline.x_max_m >= -3.5)
-    assert result.at_s == pytest.approx(entered)
-    assert went.criterion('no_collision').others == ('other',)
+    assert given.at_s == pytest.approx(entered)
+    assert given.detail.startswith('entered the conflict zone of lane 200101 with priority '
+                                   f'lane 100101 at {entered:.2f} s while other was 0.5')
+    assert ' m at 8.00 m/s); gap 3 s' in given.detail
+    assert result.criterion('no_collision').others == ('other',)
 
 
 def test_going_in_front_of_a_traffic_car_with_priority_fails_with_its_speed(tmp_path):
-    data = yaml.safe_load(YIELD_CROSSING.read_text(encoding='utf-8'))
-    data['driver']['commands'] = data['driver']['commands'][:1]
-    data['world']['vehicles'] = data['world']['vehicles'][:1]
-    del data['actors']
-    # a traffic car (docs/traffic.md) going straight over the crossing at 0.6 x 13.9 m/s
-    data['world']['traffic'] = {'placed': [{
-        'model': 'ToyotaPrius', 'lanelet': 100001, 's': 5.0, 'speed': 8.0, 'speed_factor': 0.6,
-        'route': [100101, 100201]}]}
-    path = tmp_path / 'yield_traffic.yaml'
-    path.write_text(yaml.safe_dump(data), encoding='utf-8')
-    spec = load_scenario(path)
-    world = with_lanes(spec.world)
-    world.lanes.set_rules(with_stop_sign(right_of_way=True).rules)
-    result = run_scenario(replace(spec, world=world)).criterion('yield')
-    assert not result.passed and result.others == ('traffic_0',)
-    assert 0.0 < result.value < 1.5
+    def traffic_instead(data):
+        _no_brake(data)
+        data['world']['vehicles'] = data['world']['vehicles'][:1]
+        del data['actors']
+        # a traffic car (docs/traffic.md) going straight over the crossing at 0.6 x 13.9 m/s
+        data['world']['traffic'] = {'placed': [{
+            'model': 'ToyotaPrius', 'lanelet': 100001, 's': 5.0, 'speed': 8.0,
+            'speed_factor': 0.6, 'route': [100101, 100201]}]}
+
+    result = run_scenario(_variant(tmp_path, YIELD_CROSSING, traffic_instead))
+    given = result.criterion('yield')
+    assert not given.passed and given.others == ('traffic_0',)
+    assert 0.0 < given.value < 1.5
     # its speed is the traffic's own (its pose changes only at the traffic's 0.1 s updates)
-    assert result.detail.endswith(' m at 8.34 m/s); gap 3 s') or \
-        result.detail.endswith(' m at 8.33 m/s); gap 3 s')
+    speed = float(given.detail.split(' m at ')[1].split(' m/s')[0])
+    assert speed == pytest.approx(8.34, abs=0.2)
