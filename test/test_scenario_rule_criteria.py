@@ -28,6 +28,7 @@ import math
 from pathlib import Path
 from types import SimpleNamespace
 
+import numpy as np
 import pytest
 import yaml
 
@@ -431,3 +432,26 @@ def test_going_in_front_of_a_traffic_car_with_priority_fails_with_its_speed(tmp_
     # its speed is the traffic's own (its pose changes only at the traffic's 0.1 s updates)
     speed = float(given.detail.split(' m at ')[1].split(' m/s')[0])
     assert speed == pytest.approx(8.34, abs=0.2)
+
+
+def test_in_the_gym_env_driving_through_the_red_light_ends_the_episode(make, tmp_path):
+    pytest.importorskip('gymnasium', reason="needs the 'gym' extra (gymnasium)")
+    import vehicle_sim.gym  # noqa: F401  (registers the ids)
+
+    def red_by_the_plan(data):
+        # the agent drives (the scenario's commands do not run): the plan's cycle shifted so
+        # that the eastbound group's phase is 25 s away: red from the start
+        data['world']['signals'] = {'offset': 25.0}
+
+    env = make(scenario=str(_variant(tmp_path, RED_LIGHT, red_by_the_plan)), action_repeat=10)
+    _, info = env.reset(seed=0)
+    controller = env.unwrapped.sim.scene.parts['signals'].controller
+    assert controller.state(4000100101) == 'red'
+    assert info['criteria'] == {'traffic_light': 'undecided'}
+    for _ in range(150):
+        _, _, terminated, _, info = env.step(np.array([0.0, 8.0], dtype=np.float32))
+        if terminated:
+            break
+    assert terminated and info['criteria'] == {'traffic_light': 'failed'}
+    front = env.unwrapped.sim.scene.vehicles['Car'].body.pose()[0] + 3.585
+    assert -6.0 <= front < -6.0 + 0.8 * 1.0 + 0.1     # the env step (0.1 s) that passed it

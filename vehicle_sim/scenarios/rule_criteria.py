@@ -122,6 +122,15 @@ class _RuleCriterion(Criterion):
     def observe_front(self, sample, state, passed):
         raise NotImplementedError
 
+    @property
+    def violated(self) -> bool:
+        """Return whether it has failed already (a rule broken, or nothing to watch)."""
+        return self.error is not None or bool(self.violations())
+
+    def violations(self):
+        """Return the rule breaches so far, first first."""
+        raise NotImplementedError
+
 
 class TrafficLight(_RuleCriterion):
     """The vehicle's front never passes a traffic light's stop line while its group is red."""
@@ -171,10 +180,13 @@ class TrafficLight(_RuleCriterion):
                 (self.closest_red is None or ahead[1] < self.closest_red[0]):
             self.closest_red = (ahead[1], sample.time_s, ahead[0])
 
+    def violations(self):
+        return [c for c in self.crossings if c[2] == 'red']
+
     def result(self):
         if self.error:
             return self._result(False, None, self.error)
-        red = [c for c in self.crossings if c[2] == 'red']
+        red = self.violations()
         if red:
             time_s, line, _, speed, point = red[0]
             more = f'; {len(red) - 1} more on red' if len(red) > 1 else ''
@@ -228,6 +240,10 @@ class StopSign(_RuleCriterion):
             best = self.slowest.get(ahead[0].id)
             if best is None or speed < best[0]:
                 self.slowest[ahead[0].id] = (speed, sample.time_s)
+
+    def violations(self):
+        bound = self.values['stop_speed_mps']
+        return [p for p in self.passed if p[3] is None or p[3][0] > bound]
 
     def result(self):
         if self.error:
@@ -358,6 +374,9 @@ class Yield(_RuleCriterion):
                 if on and abs(position.heading_error_rad) < _HALF_TURN:
                     return graph.lanes[lane_id].length_m - position.s_m + extra + first
         return None
+
+    def violations(self):
+        return list(self.bad)
 
     def result(self):
         if self.error:
