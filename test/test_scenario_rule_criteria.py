@@ -364,6 +364,26 @@ def test_a_car_driving_through_a_red_light_fails_with_the_time_and_the_line(tmp_
     assert light.points_m[0] == pytest.approx((-6.0, -1.75), abs=0.1)
 
 
+def test_served_over_ros_the_criterion_reads_the_automobile_nodes_signals(tmp_path):
+    # a topic criterion serves the world (the automobile node builds it, with its signals part;
+    # the signal command forces that one), the commands one step later than in a local run
+    def served(data):
+        _no_brake(data)
+        data['criteria'].append({'kind': 'topic', 'topic': '/automobile/current_speed',
+                                 'type': 'vehicle_msgs/msg/Float64Stamped', 'field': 'data',
+                                 'op': '>', 'value': 25.0, 'mode': 'eventually'})
+
+    result = run_scenario(_variant(tmp_path, RED_LIGHT, served))
+    light = result.criterion('traffic_light')
+    assert not light.passed and result.criterion('topic').passed
+    track = result.tracks['Car']
+    crossed = next(t for t, x in zip(track.time_s, track.x_m)
+                   if x + track.outline.x_max_m >= -6.0)
+    assert light.at_s == pytest.approx(crossed)
+    assert light.detail == (f'passed stop line 3000100001 (lane 100001, group 4000100101) on '
+                            f'red at {crossed:.2f} s at 8.33 m/s')
+
+
 @pytest.mark.parametrize('green_s, passed, passing', [
     (5.0, True, 'passed line 3000100001 (group 4000100101) on yellow at 6.'),
     (3.0, False, 'passed stop line 3000100001 (lane 100001, group 4000100101) on red at 6.'),
