@@ -146,6 +146,7 @@ class TrafficLight(_RuleCriterion):
     def __init__(self, *args):
         super().__init__(*args)
         self.signals = None
+        self.lines = set()          # ids of the stop lines it watches
         self.crossings = []         # (time, StopLine, state, speed, front point)
         self.closest_red = None     # (distance, time, StopLine): nearest to a red line ahead
 
