@@ -56,6 +56,7 @@ from vehicle_sim.scenarios.driver_schema import (
 )
 import vehicle_sim.scenarios.lane_criteria  # noqa: F401  (registers the lane criteria)
 import vehicle_sim.scenarios.overtake_criterion  # noqa: F401  (registers overtake)
+import vehicle_sim.scenarios.rule_criteria  # noqa: F401  (registers the traffic rule ones)
 from vehicle_sim.scenarios.yaml_lines import error_at, line_of, load_with_lines, ScenarioError
 
 SCENARIO_SPECS = (
