@@ -70,8 +70,26 @@ def _lanelet(rel_id, left, right, one_way='yes', extra=''):
             f'<tag k="one_way" v="{one_way}"/>{extra}</relation>\n')
 
 
-def write_map(path, lanelets=True, local_tags=True):
-    """Write the map of the module docstring; return its path."""
+def local_node(node_id, x, y, ele=0.0, tags=''):
+    """
+    Return a node at local (x, y) [m] of the map, as Autoware's local maps write one.
+
+    Its local_x/local_y tags are (x, y) shifted by LOCAL_SHIFT; its lat/lon are 0 (for
+    projector autoware_local only).
+    """
+    return (f'  <node id="{node_id}" lat="0" lon="0"><tag k="local_x" '
+            f'v="{x + LOCAL_SHIFT[0]!r}"/><tag k="local_y" v="{y + LOCAL_SHIFT[1]!r}"/>'
+            f'<tag k="ele" v="{ele!r}"/>{tags}</node>\n')
+
+
+def write_map(path, lanelets=True, local_tags=True, extra='', members=None):
+    """
+    Write the map of the module docstring; return its path.
+
+    :param extra: OSM XML added at the end (nodes from :func:`local_node`, ways, relations).
+    :param members: {lanelet id: XML added to its relation} (members, tags).
+    """
+    members = members or {}
     plane = LocalTangentPlane(ORIGIN)
     grid = {}                       # (x, y) -> node id; several points per boundary on 0..50
     text = '<?xml version="1.0" encoding="UTF-8"?>\n<osm version="0.6" generator="test">\n'
@@ -93,12 +111,13 @@ def write_map(path, lanelets=True, local_tags=True):
     text += _way(1007, line(0.0, 100, 150), 'curbstone', 'high')
     text += _way(1008, line(3.5, 100, 150), 'line_thin', 'solid')
     if lanelets:
-        text += _lanelet(2001, 1002, 1001)
-        text += _lanelet(2002, 1003, 1002)
-        text += _lanelet(2003, 1005, 1004)
-        text += _lanelet(2004, 1006, 1005, extra='<tag k="speed_limit" v="30"/>')
-        text += _lanelet(2005, 1008, 1007, one_way='no')
-    path.write_text(text + '</osm>\n', encoding='utf-8')
+        text += _lanelet(2001, 1002, 1001, extra=members.get(2001, ''))
+        text += _lanelet(2002, 1003, 1002, extra=members.get(2002, ''))
+        text += _lanelet(2003, 1005, 1004, extra=members.get(2003, ''))
+        text += _lanelet(2004, 1006, 1005,
+                         extra='<tag k="speed_limit" v="30"/>' + members.get(2004, ''))
+        text += _lanelet(2005, 1008, 1007, one_way='no', extra=members.get(2005, ''))
+    path.write_text(text + extra + '</osm>\n', encoding='utf-8')
     return path
 
 

@@ -131,7 +131,8 @@ def test_a_lanelet2_world_without_origin_is_refused_naming_the_key(tmp_path):
         build_scene(load_world(str(world), 'ToyotaPrius'))
     assert str(refused.value).endswith(
         "set the world file's origin: near the map, e.g. origin: {latitude: "
-        f"{origin['latitude']:g}, longitude: {origin['longitude']:g}}}")
+        f"{origin['latitude']:g}, longitude: {origin['longitude']:g}}} (or, its nodes having "
+        "local_x/local_y tags, the map's projector: autoware_local)")
     assert f'{world}: map.file: ' in str(refused.value)
 
 

@@ -126,7 +126,7 @@ class LaneTracker:
         error = wrap_angle_rad(yaw_rad - heading)
         if turn_limit is not None and abs(error) > turn_limit:
             return None
-        return (abs(offset) / width + abs(error),
+        return (abs(offset) / max(width, 1e-6) + abs(error),     # a taper's end: width 0
                 LaneState(True, lane.id, lane.s0[k] + tc, offset, error, width,
                           lane.speed_limit_mps))
 
