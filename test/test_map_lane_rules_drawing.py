@@ -30,6 +30,7 @@ import pybullet
 import pytest
 
 from vehicle_msgs_py import message_type
+from vehicle_sim.config import load_world
 from vehicle_sim.core.map.lane_geometry import (
     area_color,
     AREA_COLORS,
@@ -47,6 +48,7 @@ from vehicle_sim.core.map.signal_lamps import DARK_LAMP_COLOR, LAMP_COLORS, LAMP
 from vehicle_sim.foxglove import map_scene
 from vehicle_sim.physics import World
 from vehicle_sim.physics.lane_layer import build_lane_bodies, SURFACE_COLOR
+from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.ros.lane_messages import (
     lane_markers_builder,
     LINE_STRIP,
@@ -115,11 +117,11 @@ TOP_PX, TOP_FOV_DEG, TOP_HEIGHT_M = 400, 60.0, 30.0
 TOP_CENTRE = (-2.0, -3.0)
 
 
-def _top_view(world):
-    """Render the ground from TOP_HEIGHT_M above TOP_CENTRE; return ``pixel(x, y)`` -> RGB."""
+def _top_view(world, centre=TOP_CENTRE, height_m=TOP_HEIGHT_M):
+    """Render the ground from ``height_m`` above ``centre``; return ``pixel(x, y)`` -> RGB."""
     cid = world.client_id
-    cx, cy = TOP_CENTRE
-    view = pybullet.computeViewMatrix((cx, cy, TOP_HEIGHT_M), (cx, cy, 0.0), (0.0, 1.0, 0.0),
+    cx, cy = centre
+    view = pybullet.computeViewMatrix((cx, cy, height_m), (cx, cy, 0.0), (0.0, 1.0, 0.0),
                                      physicsClientId=cid)
     projection = pybullet.computeProjectionMatrixFOV(TOP_FOV_DEG, 1.0, 1.0, 100.0,
                                                      physicsClientId=cid)
@@ -131,8 +133,8 @@ def _top_view(world):
     f = 0.5 * TOP_PX / math.tan(math.radians(TOP_FOV_DEG) / 2)
 
     def pixel(x, y):
-        u = 0.5 * TOP_PX + f * (x - cx) / TOP_HEIGHT_M
-        v = 0.5 * TOP_PX - f * (y - cy) / TOP_HEIGHT_M
+        u = 0.5 * TOP_PX + f * (x - cx) / height_m
+        v = 0.5 * TOP_PX - f * (y - cy) / height_m
         return image[int(v), int(u)]
     return pixel
 
@@ -159,6 +161,34 @@ def test_the_camera_sees_the_stop_line_the_zebra_and_the_parking_area_on_the_roa
         parking = pixel(-10.0, -6.5)
         assert _hue(parking) == pytest.approx(_hue(AREA_COLORS['parking']), abs=0.02)
         assert _hue(asphalt) == pytest.approx(_hue(SURFACE_COLOR), abs=0.02)
+
+
+def test_the_shipped_urban_map_shows_its_zebras_stop_lines_and_lamps():
+    # config/worlds/urban.yaml (a Lanelet2 map in Autoware's format): crosswalk 301 spans the
+    # southern arm (x -4.5 .. 4.5, y -14 .. -10); its stripes run along the road (y), 0.5 m
+    # wide and apart across it (x). Four groups of three bulbs, each light on a pole off the
+    # road.
+    pytest.importorskip('lanelet2', reason="lanelet2 is not installed (pip install "
+                                           "'vehicle_sim[lanelet2]'; the test extra has it)")
+    scene = build_scene(load_world('urban'))
+    try:
+        rules = scene.lanes.rules
+        assert sorted(a.id for a in rules.areas if a.kind == 'crosswalk') == [300, 301, 302, 303]
+        lamps = scene.parts['signal_lamps']
+        assert (len(lamps.lamps), len(lamps.poles)) == (12, 4)
+        assert lamps.controller is scene.parts['signals'].controller
+        scene.world.show_ground()
+        pixel = _top_view(scene.world, centre=(0.0, -12.0), height_m=15.0)
+        asphalt = pixel(0.0, -8.0)                    # inside the intersection, no paint
+        # 9 stripes centred on the 9 m: at x = -4, -3, ..., 4; gaps at -3.5, ..., 3.5
+        across = [pixel(x, -12.0).min() for x in np.arange(-4.0, 4.01, 0.5)]
+        painted = [value > 2.5 * asphalt.max() for value in across]
+        assert painted == [k % 2 == 0 for k in range(len(across))], across
+        seen = [line.points.mean(axis=0) for line in rules.stop_lines
+                if np.abs(line.points.mean(axis=0) - (0.0, -12.0)).max() < 8.0]
+        assert seen and all(pixel(*middle).min() > 2.5 * asphalt.max() for middle in seen)
+    finally:
+        scene.world.close()
 
 
 # ------------------------------------------------------------------------------ RViz
