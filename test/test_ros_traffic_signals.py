@@ -114,3 +114,28 @@ def test_a_world_without_signal_groups_has_no_signals_topic(tmp_path):
         assert node.scene.parts.get('signals') is None and node._signals is None
     finally:
         node.close()
+
+
+def test_the_cars_lane_state_names_the_next_stop_line_and_its_signal(app):
+    from vehicle_sim.ros import automobile_interfaces as itf
+    controller = app.scene.parts['signals'].controller
+    received = []
+    with client_node('lane_state_listener') as client:
+        sub = client.create_subscription(itf.LANE_STATE.ros_type,
+                                         '/signals_test/lane_state', received.append,
+                                         itf.LANE_STATE.qos)
+        assert wait_for(lambda: sub.get_publisher_count(), spin=client)
+        controller.force(7001, 'red')
+        try:
+            stepped_to_s = app.step(10)
+            assert wait_for(lambda: received and seconds(received[-1].header.stamp)
+                            == pytest.approx(stepped_to_s), spin=client)
+        finally:
+            controller.release()
+    state = received[-1]
+    assert (state.on_lane, state.lane_id) == (True, 100001)
+    assert (state.stop_line_ahead, state.stop_line_id, state.stop_line_kind,
+            state.traffic_light_group_id, state.signal_state) == (
+        True, 9001, 'traffic_light', 7001, 'red')
+    assert state.stop_line_distance == pytest.approx(50.0 - state.s, abs=1e-9)
+    assert state.stop_line_distance == pytest.approx(30.0, abs=0.05)    # the car at x = 20

@@ -278,7 +278,7 @@ class AutomobileNode:
         taken = {global_name(row.name): 'a topic of the node'
                  for row in itf.WORLD_TOPICS + object_topics(bool(scene.traffic),
                                                              bool(scene.obstacles))
-                 + signal_topics(self._signal_controller())}
+                 + signal_topics(self.signal_controller)}
         taken.update({global_name(row.name): 'an endpoint of the node'
                       for row in itf.WORLD_SERVICES + itf.WORLD_INPUTS})
         for spec in scene.vehicles:
@@ -318,7 +318,7 @@ class AutomobileNode:
         vehicle.services += serve_vehicle(node, itf.POSE_SERVICES, vehicle, resolve).values()
         if self.scene.lanes is not None:    # lane_state, lane_invasion, set_lane_pose
             wire_car_lanes(node, vehicle, self.scene.lanes, fixed_frame(self.scene.spec),
-                           resolve)
+                           resolve, self.signal_controller)
         vehicle.drive = CarDriveInput(vehicle.logic, self.settings.cmd_vel_timeout_s)
         if self._drive_inputs:
             self._wire_inputs(vehicle, resolve)
@@ -385,7 +385,7 @@ class AutomobileNode:
                                   f'{self.settings.objects_rate_hz:g} Hz not used)')
         # The signals' row, for a world whose lane map has traffic light groups: at the objects'
         # rate and at the step a group changes state (ros/traffic_interfaces.py).
-        controller = self._signal_controller()
+        controller = self.signal_controller
         rows = signal_topics(controller)
         if rows:
             rate_hz = objects_rate_hz(self.settings.objects_rate_hz, self.scene.spec.traffic)
@@ -396,9 +396,6 @@ class AutomobileNode:
                                              self.world.step_count))
             self._signals.outputs = Outputs(self.node, rows, self._signals)
 
-    def _signal_controller(self):
-        # The world's SignalController (its 'signals' scene part), or None.
-        return getattr(self.scene.parts.get('signals'), 'controller', None)
 
     @staticmethod
     def _bind(handler, spec, vehicle, name):
@@ -623,6 +620,11 @@ class AutomobileNode:
     def paused(self) -> bool:
         """True while /sim/pause holds simulated time (real-time mode)."""
         return self._control.paused
+
+    @property
+    def signal_controller(self):
+        """The world's SignalController (its 'signals' scene part), or None."""
+        return getattr(self.scene.parts.get('signals'), 'controller', None)
 
     @property
     def live_view(self):
