@@ -59,6 +59,7 @@ def test_fields_are_in_the_definitions_order():
 
 @pytest.mark.parametrize('ros_type, digest', [
     # regression values (REP 2011 over the definitions in vehicle_msgs_py)
+    # (LaneState's: also what ROS 2 Jazzy's rosidl wrote for the exported vehicle_msgs)
     ('vehicle_msgs/msg/LaneState',
      '38eb5bcb8dff1b864f3610eef459eeafd659fc9467ad9116d63ff781b9208be8'),
     ('vehicle_msgs/msg/LaneInvasion',
