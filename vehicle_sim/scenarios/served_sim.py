@@ -56,7 +56,6 @@ class ServedSim:
         self._temp = None
         self.vehicles = {}
         self.lanes = None               # the lane criteria's lane map (None: none)
-        self.signals = None             # the world's SignalController (None: none)
         self.walls = ()                 # an occupancy map's walls (Footprints)
         step_ms = spec.time_step_ms
 
@@ -88,7 +87,6 @@ class ServedSim:
                                                  node=tapped(NODE_NAME, overrides))
                 world = self.automobile.world
                 self.lanes = self.automobile.scene.lanes
-                self.signals = self.automobile.signal_controller
                 self.walls = map_walls(self.automobile.scene)
                 for vehicle in spec.world.vehicles:
                     built = self.automobile.scene.vehicles[vehicle.name]

@@ -98,7 +98,6 @@ class LocalSim:
                                          gui=gui, robots=spec.robots, hooks=(director,))
         self.world = world = scene.world
         self.lanes = scene.lanes        # the lane criteria's lane map (None: none)
-        self.signals = getattr(scene.parts.get('signals'), 'controller', None)
         self.walls = map_walls(scene)   # an occupancy map's walls (Footprints)
         self.vehicles = {
             name: VehicleHandle(name, built.body, built.car,
