@@ -18,7 +18,8 @@ The Webots facade's ``Driver.getLaneState()`` names the next stop line and its s
 
 On test/signal_helpers.py's road with its hand-made 'signals' part: a Driver of its own world
 file, and a controller hosted by the scenario runner, read the traffic light line 9001 ahead
-(group 7001) at its distance and the group's state as the world's controller gives it.
+(group 7001) at its distance and the group's state as the world's controller gives it; on the
+shipped config/worlds/city_block_signals.yaml, a Driver reads the ring intersection's line.
 """
 
 import pytest
@@ -70,3 +71,19 @@ def test_a_hosted_controller_reads_the_signal_ahead(tmp_path, monkeypatch):
     result = run_scenario(str(scenario))
     assert result.passed
     assert record.read_text() == '9001 green 30.0 | 9001 red 30.0'     # red from 0.75 s
+
+
+def test_on_the_shipped_signalised_city_the_driver_reads_the_intersections_signal():
+    from vehicle_sim.webots import Driver
+    driver = Driver(world_file='config/worlds/city_block_signals.yaml')
+    try:
+        driver.step()
+        state = driver.getLaneState()
+        # the car at x = -60 on the ring's south side heading east: the ring's first
+        # intersection's entry at x = -6; its group is in the first phase: green from 0 s
+        assert (state.lane_id, state.stop_line_id, state.stop_line_kind,
+                state.traffic_light_group_id, state.signal_state) == (
+            100001, 3000100001, 'traffic_light', 4000100101, 'green')
+        assert state.stop_line_distance_m == pytest.approx(54.0, abs=0.01)
+    finally:
+        driver.close()
