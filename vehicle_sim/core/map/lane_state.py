@@ -137,7 +137,7 @@ class LaneTracker:
 
     def _commit(self, lane, k, s_m, offset_m, error_rad, width_m):
         self._lane, self._k = lane, k
-        ahead = self._stop_line_ahead(lane, s_m)
+        ahead = self._stop_line_ahead(lane, s_m) if self.graph.rules.stop_lines else None
         if ahead is None:
             state = LaneState(True, lane.id, s_m, offset_m, error_rad, width_m,
                               lane.speed_limit_mps)
@@ -157,8 +157,6 @@ class LaneTracker:
         rules = self.graph.rules
         if rules is not self._rules:            # the map's rules changed: forget the lookups
             self._rules, self._beyond = rules, {}
-        if not rules.stop_lines:
-            return None
         horizon = self.horizon_m
         for line in rules.stop_lines_on(lane.id):
             if line.s_m >= s_m:
