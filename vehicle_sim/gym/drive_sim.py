@@ -275,7 +275,8 @@ class DriveSim:
         if self._criteria_specs:
             self._watch = CriteriaWatch(self._criteria_specs, self.episode_s, self.world,
                                         self._handles, self.scene.spec.obstacles,
-                                        self.scene.lanes)
+                                        self.scene.lanes, None if signals is None
+                                        else signals.controller)
         x, y, yaw = self._ego_state()
         if self.lanes is not None:       # after the teleport: the jump is no crossing
             self.lanes.reset()

@@ -176,7 +176,8 @@ class Director:
         self.collisions = {name: [] for name in self.vehicles}
         scene = world_scene(self.world, self.vehicles, self.spec.world.obstacles,
                             walls=getattr(sim, 'walls', ()), lanes=getattr(sim, 'lanes', None),
-                            traffic=getattr(sim, 'traffic', None))
+                            traffic=getattr(sim, 'traffic', None),
+                            signals=self.signals)
         for criterion in self.criteria:
             criterion.bind(scene)
         self.scene = scene
