@@ -150,7 +150,8 @@ class DriveSim:
             self.ego = self.scene.vehicles[self.ego_name]
             graph = self.scene.lanes
             # the ego's lane state and the markings it crosses (None: a world without lanes)
-            self.lanes = None if graph is None else VehicleLanes(graph)
+            signals = getattr(self.scene.parts.get('signals'), 'controller', None)
+            self.lanes = None if graph is None else VehicleLanes(graph, signals)
             self.lane_ids = () if graph is None else tuple(sorted(graph.lanes))
             self._terms = TERMS if graph is None else LANE_TERMS
             self._crossed = ()

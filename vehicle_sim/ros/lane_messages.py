@@ -80,7 +80,13 @@ def lane_state_builder(msg, frame_id: str):
                           on_lane=bool(state.on_lane), lane_id=int(state.lane_id),
                           s=float(state.s_m), offset=float(state.offset_m),
                           heading_error=float(state.heading_error_rad),
-                          width=float(state.width_m), speed_limit=float(state.speed_limit_mps))
+                          width=float(state.width_m), speed_limit=float(state.speed_limit_mps),
+                          stop_line_ahead=bool(state.stop_line_ahead),
+                          stop_line_id=int(state.stop_line_id),
+                          stop_line_kind=state.stop_line_kind,
+                          stop_line_distance=float(state.stop_line_distance_m),
+                          traffic_light_group_id=int(state.traffic_light_group_id),
+                          signal_state=state.signal_state)
     return build
 
 

@@ -409,7 +409,8 @@ def _run_controller(spec, sim, director, step):
     from vehicle_sim.webots.host import ControllerHost, ControllerStopped, hosting
     vut = director.vut
     host = ControllerHost(sim.world, vut.car, vut.sensors, spec.world.origin, spec.duration_s,
-                          step, lanes=getattr(sim, 'lanes', None))
+                          step, lanes=getattr(sim, 'lanes', None),
+                          signals=director.signals)
     script = spec.driver.controller
     saved_argv, saved_path = sys.argv, list(sys.path)
     saved_seed = os.environ.get('VEHICLE_SIM_SEED')
