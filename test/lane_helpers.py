@@ -180,7 +180,7 @@ def signal_crossing(areas=True):
 
 
 class StandInSignals:
-    """The 'signals' part as the world will have it: a SignalController advanced each step."""
+    """A 'signals' part with a short plan (2 s green, 1 s yellow, 1 s all red), stepped."""
 
     name = 'signals'
 
