@@ -29,7 +29,11 @@ from automobile_helpers import client_node, wait_for
 import pytest
 from signal_helpers import with_hand_signals, write_world
 
-from vehicle_sim.ros.traffic_interfaces import QOS_SIGNALS, TRAFFIC_SIGNALS
+from vehicle_sim.ros.traffic_interfaces import (
+    QOS_SIGNALS,
+    TRAFFIC_LIGHT_MARKERS,
+    TRAFFIC_SIGNALS,
+)
 from vehicle_sim.transport.qos import QosProfile, TRANSIENT_LOCAL
 
 pytestmark = pytest.mark.transport
@@ -58,7 +62,7 @@ def seconds(stamp):
 
 def test_the_row_is_wired_with_its_type_and_qos(app):
     publishers = app._signals.outputs.publishers
-    assert tuple(publishers) == (TRAFFIC_SIGNALS,)
+    assert tuple(publishers) == (TRAFFIC_SIGNALS, TRAFFIC_LIGHT_MARKERS)    # the lamps' too
     assert TRAFFIC_SIGNALS.ros_type == 'autoware_perception_msgs/msg/TrafficLightGroupArray'
     assert (QOS_SIGNALS.reliability, QOS_SIGNALS.durability, QOS_SIGNALS.depth) == \
         ('reliable', 'transient_local', 1)

@@ -90,6 +90,7 @@ from vehicle_sim.ros.sim_params import (
 from vehicle_sim.ros.time_step import TimeStepService
 from vehicle_sim.ros.traffic_interfaces import (
     AT_OBJECTS_RATE,
+    AT_SIGNAL_CHANGES,
     AT_SIGNALS,
     object_topics,
     objects_rate_hz,
@@ -384,14 +385,16 @@ class AutomobileNode:
                 self._logger.info(f'{spec.traffic.source}: objects_rate {rate_hz:g} Hz (the '
                                   f"world's; parameter objects_rate "
                                   f'{self.settings.objects_rate_hz:g} Hz not used)')
-        # The signals' row, for a world whose lane map has traffic light groups: at the objects'
-        # rate and at the step a group changes state (ros/traffic_interfaces.py).
+        # The signals' rows, for a world whose lane map has traffic light groups: the states at
+        # the objects' rate and at the step a group changes state, the lamps' markers at the
+        # changes (ros/traffic_interfaces.py).
         controller = self.signal_controller
         rows = signal_topics(controller)
         if rows:
             rate_hz = objects_rate_hz(self.settings.objects_rate_hz, self.scene.spec.traffic)
             self._signals = SimpleNamespace(
                 controller=controller, read=signal_groups_reader(controller.rules),
+                frame=fixed_frame(self.scene.spec), lanes=self.scene.lanes,
                 outputs=None, stamp=None, groups=None, states=None,
                 due=SampleSchedule.from_rate(rate_hz, self.settings.time_step_s,
                                              self.world.step_count))
@@ -541,13 +544,17 @@ class AutomobileNode:
                                                  self._obstacle_pose)
             self._traffic_outputs.publish(AT_OBJECTS_RATE, traffic)
         signals = self._signals
-        if signals is not None and signals.outputs.wanted(AT_SIGNALS):
+        if signals is not None and (signals.outputs.wanted(AT_SIGNALS)
+                                    or signals.outputs.wanted(AT_SIGNAL_CHANGES)):
             due = signals.due.due(self.world.step_count)
             states = signals.controller.states()
-            if due or states != signals.states:
+            changed = states != signals.states
+            if due or changed:
                 signals.stamp, signals.states = stamp, states
                 signals.groups = signals.read(states)
                 signals.outputs.publish(AT_SIGNALS, signals)
+                if changed:         # the lamps' markers (RViz): only when a light changes
+                    signals.outputs.publish(AT_SIGNAL_CHANGES, signals)
         for vehicle in self._sensing:
             self._publish_sensors(vehicle)
 

@@ -28,11 +28,15 @@ The signals' row (:data:`TRAFFIC_SIGNALS`, a world whose lane map has traffic li
 :func:`signal_topics`) is published at the same rate and, besides, at the step any group
 changes state (:data:`AT_SIGNALS`), so a planner never waits a period for a change; it is
 transient-local, so a node that starts late gets the current states at once. Call context:
-``stamp`` and ``groups`` (``traffic_messages.signal_groups_reader``'s).
+``stamp`` and ``groups`` (``traffic_messages.signal_groups_reader``'s). The lamps' markers for
+RViz (:data:`TRAFFIC_LIGHT_MARKERS`) go with it, published only at the step a group changes
+state (:data:`AT_SIGNAL_CHANGES`, the first step too), transient-local: wiring context ``frame``
+and ``lanes`` (the LaneGraph: where the bulbs are), call context ``stamp`` and ``states``.
 """
 
 from vehicle_sim.core.traffic.params import OBJECTS_RATE
 from vehicle_sim.ros.endpoints import converter, Topic, topic_table_markdown
+from vehicle_sim.ros.lane_messages import traffic_light_markers_builder
 from vehicle_sim.ros.traffic_cdr import (
     predicted_objects_serializer,
     traffic_markers_serializer,
@@ -60,6 +64,8 @@ QOS_SIGNALS = QosProfile(depth=1, durability=TRANSIENT_LOCAL)
 AT_OBJECTS_RATE = f'objects_rate ({OBJECTS_RATE.default:g} Hz by default)'
 # The signals' cadence: the objects' rate, and the step at which any group changes state.
 AT_SIGNALS = f'{AT_OBJECTS_RATE} and at the step a group changes state'
+# The lamps' cadence: the first step, then the step at which any group changes state.
+AT_SIGNAL_CHANGES = 'the first step, then at the step a group changes state'
 
 
 def _objects(ctx):
@@ -97,7 +103,15 @@ TRAFFIC_SIGNALS = Topic(
         "element's id); per group one element (color RED / AMBER / GREEN, status SOLID_ON, "
         "confidence 1) per shape of its bulbs of the lit colour (CIRCLE without bulbs); a dark "
         "group ('off'): color and shape UNKNOWN, SOLID_OFF")
-SIGNAL_TOPICS = (TRAFFIC_SIGNALS,)
+TRAFFIC_LIGHT_MARKERS = Topic(
+    '/sim/traffic_lights/markers', MARKER_ARRAY, QOS_SIGNALS, AT_SIGNAL_CHANGES,
+    converter(traffic_light_markers_builder, lambda ctx: (ctx.stamp, ctx.states),
+              lambda w: (w.frame, w.lanes)),
+    unit='m', doc='the bulbs of the traffic lights for RViz in the states of their groups: one '
+                  'SPHERE_LIST (namespace traffic_light_bulbs), lit in the colour or dark grey '
+                  'as the camera sees them (the housings and poles are in /map/lanes); frame '
+                  'map (a lanelet2 map) or world')
+SIGNAL_TOPICS = (TRAFFIC_SIGNALS, TRAFFIC_LIGHT_MARKERS)
 
 
 def object_topics(has_traffic: bool, has_obstacles: bool):
