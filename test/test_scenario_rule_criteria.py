@@ -223,7 +223,7 @@ def test_rolling_through_a_stop_line_fails_with_the_time_and_the_slowest_speed()
 def test_a_stop_further_back_than_the_distance_does_not_count():
     # stopped with its front 4 m before the line, then creeping on at 0.5 m/s
     approach = [5.0] * 30 + [0.0] * 10 + [0.5] * 100
-    lenient = _drive(_criterion('stop_sign', with_stop_sign(), data={'distance': 4.5}),
+    lenient = _drive(_criterion('stop_sign', with_stop_sign(), data={'stop_within': 4.5}),
                      north_moves(approach))
     strict = _drive(_criterion('stop_sign', with_stop_sign()), north_moves(approach))
     assert lenient.passed and lenient.value == 0.0
@@ -303,7 +303,7 @@ def test_yield_fails_on_a_map_without_priorities():
     ('traffic_light', {'groups': 10}, "field 'groups' = 10: must be a list of group ids"),
     ('traffic_light', {'groups': ['a']}, "field 'groups'.*must be a list of group ids"),
     ('stop_sign', {'stop_speed': 0.0}, "field 'stop_speed' = 0.0: must be > 0"),
-    ('stop_sign', {'distance': -1.0}, "field 'distance' = -1.0: must be > 0"),
+    ('stop_sign', {'stop_within': -1.0}, "field 'stop_within' = -1.0: must be > 0"),
     ('yield', {'gap': 0.0}, "field 'gap' = 0.0: must be > 0"),
     ('yield', {'gap': 'long'}, "field 'gap'"),
     ('yield', {'within': 3.0}, "unknown field 'within'"),

@@ -55,7 +55,6 @@ import math
 import os
 import re
 import tempfile
-import warnings
 
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.core.map.lane_graph import Boundary, Lane, LaneGraph
@@ -71,6 +70,16 @@ from vehicle_sim.maps.lanelet2_file import (
     use_local_tags,
     UTM_ZONE_ERROR,
 )
+from vehicle_sim.maps.lanelet2_primitives import (  # noqa: F401  (Lanelet2MapWarning: users')
+    counted,
+    id_list,
+    lane_id_of,
+    Lanelet2MapWarning,
+    tags_of,
+    WALKING_SUBTYPES,
+    warn,
+)
+from vehicle_sim.maps.lanelet2_rules import rules_of
 
 EXTRA_HINT = "pip install 'vehicle_sim[lanelet2]' (or pip install lanelet2)"
 
@@ -84,9 +93,6 @@ _LINE_TYPES_BY_TAG = {'curbstone': 'curbstone', 'road_border': 'road_border',
 # here (with their subtype): Lanelet2's and Autoware's (its extra lanelet subtypes).
 OTHER_LANE_SUBTYPES = ('road_shoulder', 'bicycle_lane', 'bus_lane', 'emergency_lane',
                        'roadside_lane', 'road', 'highway', 'play_street', 'exit')
-# Lanelet subtypes that are walking areas, and the area kind each becomes.
-WALKING_SUBTYPES = {'crosswalk': 'crosswalk', 'walkway': 'walkway', 'shared_walkway': 'walkway',
-                    'pedestrian_lane': 'walkway', 'stairs': 'walkway'}
 
 # lanelet2's words for a regulatory element type it has no class for, and for a reference to one.
 _UNKNOWN_RULE = re.compile(r'Error parsing primitive (-?\d+): Creating a regulatory element of '
@@ -97,15 +103,6 @@ _MISSING_ID = re.compile(r'Error parsing primitive (-?\d+): Failed to get id (-?
 
 class Lanelet2Unavailable(InvalidParameterError):
     """The lanelet2 package is not installed."""
-
-
-class Lanelet2MapWarning(UserWarning):
-    """Part of a Lanelet2 map is not simulated (named in the message); the rest is loaded."""
-
-
-def warn(message):
-    """Warn about a map (one :class:`Lanelet2MapWarning`)."""
-    warnings.warn(message, Lanelet2MapWarning, stacklevel=3)
 
 
 def _lanelet2():
@@ -129,11 +126,6 @@ def line_type_of(attributes):
         subtype = attributes.get('subtype', 'solid')
         return subtype if subtype in _LINE_SUBTYPES else 'solid'
     return _LINE_TYPES_BY_TAG.get(kind, 'none')
-
-
-def tags_of(primitive):
-    """Return a lanelet2 primitive's attributes as a plain dict of strings."""
-    return {key: str(value) for key, value in primitive.attributes.items()}
 
 
 def _projector(lanelet2, projector, origin):
@@ -167,10 +159,6 @@ def _sorted_errors(errors):
     skipped = {i for ids in unknown.values() for i in ids}
     others += [text.lstrip('- ') for ref, text in refs if ref not in skipped]
     return unknown, others
-
-
-def lane_id_of(lanelet):
-    return -lanelet.id if lanelet.inverted() else lanelet.id
 
 
 def _centerline(lanelet):
@@ -225,7 +213,6 @@ def load_lanelet2(path, origin=GeodeticOrigin(), projector='local_cartesian',
         lanelet whose geometry is wrong (naming it).
     :raises Lanelet2Unavailable: lanelet2 is not installed (with the extra to install).
     """
-    from vehicle_sim.maps.lanelet2_rules import rules_of  # the regulatory elements
     source = source or 'map'
     lanelet2 = _lanelet2()
     check_osm(path, source)
@@ -290,18 +277,6 @@ def load_lanelet2(path, origin=GeodeticOrigin(), projector='local_cartesian',
     lane_graph.set_rules(rules_of(lanelet_map, graph, lane_graph, walking, unknown, path,
                                   source))
     return lane_graph, lanelet_map, graph
-
-
-def counted(ids, what):
-    """Return '1 lanelet' or '3 lanelets': how many ``ids``, ``what`` they are."""
-    return f'{len(ids)} {what}' + ('' if len(ids) == 1 else 's')
-
-
-def id_list(ids, shown=10):
-    """Return '(id 7)' or '(ids 1, 2, ... (5 more))': the first ``shown`` ids, sorted."""
-    ids = sorted(ids)
-    more = f', ... ({len(ids) - shown} more)' if len(ids) > shown else ''
-    return f"({'id' if len(ids) == 1 else 'ids'} {', '.join(map(str, ids[:shown]))}{more})"
 
 
 def _sort_lanelets(lanelet_map, rules, broken):

@@ -68,7 +68,7 @@ from vehicle_sim.core.map.lane_rules import (
     StopLine,
     TrafficLightGroup,
 )
-from vehicle_sim.maps import lanelet2_map as l2
+from vehicle_sim.maps import lanelet2_primitives as l2
 
 # Autoware's regulatory elements that are areas here (drawn, not simulated): the role of their
 # polygons.

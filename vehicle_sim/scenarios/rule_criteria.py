@@ -215,7 +215,7 @@ class StopSign(_RuleCriterion):
     SPECS = (
         ParamSpec('stop_speed', 'stop_speed_mps', 'float', 0.1, 'm/s', 'a stop: the speed at '
                   'or below this', gt=0.0),
-        ParamSpec('distance', 'distance_m', 'float', 3.0, 'm', "the stop counts with the "
+        ParamSpec('stop_within', 'stop_within_m', 'float', 3.0, 'm', "the stop counts with the "
                   "vehicle's front at most this far before the line (along its lanes)", gt=0.0),
     )
 
@@ -236,7 +236,7 @@ class StopSign(_RuleCriterion):
         if not state.on_lane:
             return
         ahead = self.lanes.rules.next_stop_line(self.lanes, state.lane_id, state.s_m,
-                                                self.values['distance_m'])
+                                                self.values['stop_within_m'])
         if ahead is not None and ahead[0].kind in STOP_SIGN_KINDS:
             best = self.slowest.get(ahead[0].id)
             if best is None or speed < best[0]:
@@ -249,7 +249,7 @@ class StopSign(_RuleCriterion):
     def result(self):
         if self.error:
             return self._result(False, None, self.error)
-        bound, distance = self.values['stop_speed_mps'], self.values['distance_m']
+        bound, distance = self.values['stop_speed_mps'], self.values['stop_within_m']
         if not self.passed:
             return self._result(True, None, 'passed no stop sign line')
         worst = None                # the crossing whose slowest approach was fastest
