@@ -170,13 +170,28 @@ class SignalController:
         self._forced: Dict[int, str] = {}
         self.time_s = 0.0
         self._states: Dict[int, str] = {}
+        self._unchanged = (math.inf, -math.inf)     # times whose states are those computed
         self.update(0.0)
 
     def update(self, time_s: float) -> None:
         """Set every group's state for simulation time ``time_s`` [s]."""
         self.time_s = time_s
+        start, end = self._unchanged
+        if start <= time_s < end:        # no phase boundary since the states were computed
+            return
         self._states = {group.id: self._planned(group.id, time_s) for group in self.rules.groups}
         self._states.update(self._forced)
+        self._unchanged = self._window(time_s)
+
+    def _window(self, time_s):
+        """Return [start, end) around ``time_s`` without a boundary of any phase's timing."""
+        plan = self.plan
+        u = (time_s - plan.offset_s) % plan.phase_s
+        edges = (0.0, plan.green_s, plan.green_s + plan.yellow_s, plan.phase_s)
+        before = max(edge for edge in edges if edge <= u)
+        after = min((edge for edge in edges if edge > u), default=plan.phase_s)
+        margin = 1e-9 * max(1.0, abs(time_s))      # recompute next to a boundary: rounding
+        return time_s - (u - before) + margin, time_s + (after - u) - margin
 
     def _planned(self, group_id, time_s):
         slot = self._slot.get(group_id)
@@ -210,6 +225,7 @@ class SignalController:
                                         + ', '.join(SIGNAL_STATES))
         self._forced[group_id] = state
         self._states[group_id] = state
+        self._unchanged = (math.inf, -math.inf)
 
     def release(self, group_id=None) -> None:
         """Return a group (None: every group) to its plan."""
@@ -218,4 +234,5 @@ class SignalController:
         else:
             self.rules.group(group_id)
             self._forced.pop(group_id, None)
+        self._unchanged = (math.inf, -math.inf)
         self.update(self.time_s)
