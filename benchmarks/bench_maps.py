@@ -89,15 +89,14 @@ def draw_map(folder):
     return path
 
 
-def _world(map_path, sensors=()):
+def _world(map_path, sensors=(), unknown='free', car=None):
     from vehicle_sim.config import world_from_data
     # the car in the free patch: 200 cells from the bottom, columns 180 .. 320
-    x = ORIGIN[0] + 200 * RESOLUTION_M
-    y = ORIGIN[1] + 200 * RESOLUTION_M
+    x, y = car or (ORIGIN[0] + 200 * RESOLUTION_M, ORIGIN[1] + 200 * RESOLUTION_M)
     data = {'vehicles': [{'name': 'car', 'model': 'Car', 'pose': {'x': x, 'y': y},
                           'sensors': list(sensors)}]}
     if map_path:
-        data['map'] = {'type': 'occupancy_grid', 'file': map_path}
+        data['map'] = {'type': 'occupancy_grid', 'file': map_path, 'unknown': unknown}
     return world_from_data(data, 'bench_maps.yaml')
 
 
@@ -112,8 +111,8 @@ from bench_maps import _world
 from vehicle_sim.physics.map_layer import MapLayer
 from vehicle_sim.physics.scene import build_scene
 import PIL.Image
-spec = _world({path!r})
-scene = build_scene(_world(None))          # the same world without its map: the baseline
+spec = _world({path!r}, unknown={unknown!r}, car={car!r})
+scene = build_scene(_world(None, car={car!r}))   # the same world without its map: the baseline
 before = rss_mb('VmRSS')
 open('/proc/self/clear_refs', 'w').write('5')   # reset the peak
 start = time.perf_counter()
@@ -126,9 +125,15 @@ print(json.dumps({{'load_s': load_s, 'rss_after_mb': after - before,
 """
 
 
-def measure_load(map_path):
-    """Load the map in a fresh process; return its figures (time, RSS added, rectangles)."""
-    script = _LOAD_SCRIPT.format(root=os.path.dirname(HERE), path=map_path)
+def measure_load(map_path, unknown='free', car=None):
+    """
+    Load the map in a fresh process; return its figures (time, RSS added, rectangles).
+
+    :param unknown: the map's ``unknown`` (free or occupied).
+    :param car: the car's (x, y) [m] in free space; None: this benchmark's map's spot.
+    """
+    script = _LOAD_SCRIPT.format(root=os.path.dirname(HERE), path=map_path, unknown=unknown,
+                                 car=car)
     env = dict(os.environ, PYTHONPATH=HERE + os.pathsep + os.environ.get('PYTHONPATH', ''))
     out = subprocess.run([sys.executable, '-c', script], capture_output=True, text=True,
                          env=env, check=True, timeout=300)
