@@ -129,38 +129,81 @@ class GridRays:
             return result
         ids = np.flatnonzero(live)
         t, high = low[live], high[live]
-        state = [self._axis(direction[live, axis]) for axis in (0, 1)]
-        (x0, y0), stride, table = start, self._stride, self._distances
-        while len(t):
-            (dx, inverse_x, sign_x, back_x, nudge_x), (dy, inverse_y, sign_y, back_y, nudge_y) \
-                = state
-            x = x0 + t * dx
-            y = y0 + t * dy
+        state = self._axis(direction[live, 0]) + self._axis(direction[live, 1])
+        # a step whose exits along both axes are this close [fraction] may end on a corner
+        inverse = np.stack([state[4], state[9]])
+        state.append(np.where(np.isfinite(inverse).all(axis=0), 4.0 * _NUDGE_CELLS, 0.0)
+                     * np.where(np.isfinite(inverse), inverse, 0.0).max(axis=0))
+        with np.errstate(invalid='ignore'):      # inf * 0 on an axis a ray does not move along
+            return self._march(result, ids, t, high, state, start + 1.0)
+
+    def _march(self, result, ids, t, high, state, start):
+        # The jumps from square to square of the rays still going (see the module text).
+        (x0, y0), stride, table = start, self._stride, self._distances   # padded cells
+        while True:
+            (dx, nudge_x, sign_x, back_x, inverse_x, dy, nudge_y, sign_y, back_y, inverse_y,
+             tie) = state
+            x = t * dx
+            x += x0
+            y = t * dy
+            y += y0
             column = np.floor(x + nudge_x)
             row = np.floor(y + nudge_y)
             k = table[(row * stride + column).astype(np.intp)]
-            step = np.minimum(((column - 1.0 - x) * sign_x + (k - back_x)) * inverse_x,
-                              ((row - 1.0 - y) * sign_y + (k - back_y)) * inverse_y)
+            # the fraction to the square's exit along each axis, the nearer one
+            column -= x
+            column *= sign_x
+            column += k
+            column -= back_x
+            column *= inverse_x
+            row -= y
+            row *= sign_y
+            row += k
+            row -= back_y
+            row *= inverse_y
+            tie = np.abs(column - row) <= tie
+            np.minimum(column, row, out=column)
             hit = k == 0
-            t = np.where(hit, t, t + step)
-            done = hit | (t > high)
+            column[hit] = 0.0
+            t += column
+            if tie.any():
+                hit |= self._corner_hits(np.flatnonzero(tie & ~hit), t, high, state, start)
+            done = t > high
+            done |= hit
             if done.any():
                 result[ids[done]] = np.where(hit[done], t[done], 1.0)
                 keep = ~done
+                if not keep.any():
+                    return result
                 ids, t, high = ids[keep], t[keep], high[keep]
-                state = [[part[keep] for part in axis] for axis in state]
-        return result
+                state = [part[keep] for part in state]
+
+    def _corner_hits(self, rays, t, high, state, start):
+        # Rays whose step ended on a cell corner touch the two cells beside the one ahead
+        # too: a ray between two wall cells that share a corner meets them there.
+        hit = np.zeros(len(t), dtype=bool)
+        dx, nudge_x, _, _, _, dy, nudge_y = (part[rays] for part in state[:7])
+        x = start[0] + t[rays] * dx
+        y = start[1] + t[rays] * dy
+        ahead_x, behind_x = np.floor(x + nudge_x), np.floor(x - nudge_x)
+        ahead_y, behind_y = np.floor(y + nudge_y), np.floor(y - nudge_y)
+        stride, table = self._stride, self._distances
+        beside = np.minimum(table[(behind_y * stride + ahead_x).astype(np.intp)],
+                            table[(ahead_y * stride + behind_x).astype(np.intp)])
+        hit[rays] = ((ahead_x != behind_x) & (ahead_y != behind_y) & (beside == 0)
+                     & (t[rays] <= high[rays]))
+        return hit
 
     @staticmethod
     def _axis(speed):
-        # Per ray along one grid axis: its speed [cells per fraction], 1 / |speed|, its sign,
-        # 1 where it runs down (the square it is in then ends at cell - k + 1, else at
-        # cell + k: the fraction to the exit is ((cell - position) * sign + k - back) / |speed|)
-        # and where its cell is looked up (+ 1: the padded border).
+        # Per ray along one grid axis: its speed [cells per fraction]; the nudge to where its
+        # cell is looked up; its sign; back = 1 where it runs down (the square it is in then
+        # ends at cell - k + 1, else at cell + k: the fraction to the exit is
+        # ((cell - position) * sign + k - back) / |speed|); 1 / |speed|.
         with np.errstate(divide='ignore'):
             inverse = np.where(speed != 0.0, 1.0 / np.abs(speed), np.inf)
         sign = np.sign(speed)
-        return [speed, inverse, sign, (speed < 0.0).astype(float), sign * _NUDGE_CELLS + 1.0]
+        return [speed, sign * _NUDGE_CELLS, sign, (speed < 0.0).astype(float), inverse]
 
     def _band(self, z, dz, start, direction):
         # The fractions [low, high] of each ray that lie between the ground and the walls' top
