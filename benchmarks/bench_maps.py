@@ -24,10 +24,9 @@ round pillars and 12 diagonal walls (the worst case for merging: about one recta
 Loading is measured in a fresh process (its RSS before and its peak after, the peak reset by
 ``/proc/self/clear_refs``); the step ratio in interleaved blocks of steps in one process, and
 the lidar's cost per sample, as this process's CPU time (one thread: less moved by other work on
-a shared machine than wall time). Where the lidar's time goes: PyBullet's rayTestBatch costs
-about 0.8 us per ray before any geometry (1080 rays: 0.85 ms on an empty plane), and Bullet's
-closest-hit ray test walks a static mesh's tree along the whole ray (30 m here, through several
-rooms), not only up to the first wall: about 2 us more per ray on this map. Run:
+a shared machine than wall time). The lidar finds the walls over the grid (core/map/grid_rays.py)
+and casts Bullet's rays only up to them; benchmarks/bench_occupancy_lidar.py measures it on a
+map like a SLAM map, against the same lidar in an empty world. Run:
 ``.venv/bin/python benchmarks/bench_maps.py [--quick]``.
 """
 

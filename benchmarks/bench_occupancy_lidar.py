@@ -51,7 +51,7 @@ RESOLUTION_M = 0.05
 ORIGIN = (-10.0, -10.0, 0.0)
 FREE, OCCUPIED, UNKNOWN = 254, 0, 205           # map_saver's shades
 LIDAR = bench_maps.LIDAR
-# The car: in the room whose lower-left inner corner is CAR_ROOM (row, column of the grid).
+# The car's cell (row, column of the grid, from the lower left): in a large room.
 CAR_CELL = (900, 1100)
 TARGETS = {'lidar_share': 0.15, 'lidar_ratio': 1.3, 'load_s': 2.0}
 
