@@ -60,7 +60,8 @@ def chessboard_distances(walls: np.ndarray) -> np.ndarray:
     """
     height, width = walls.shape
     far = np.int16(min(height + width, 32000))
-    distances = np.where(walls, np.int16(0), far).astype(np.int16)
+    distances = np.full(walls.shape, far, dtype=np.int16)
+    distances[walls] = 0
     columns = np.arange(width, dtype=np.int16)
     above = np.empty(width + 2, dtype=np.int16)
     for rows in (range(height), range(height - 1, -1, -1)):
@@ -75,7 +76,8 @@ def chessboard_distances(walls: np.ndarray) -> np.ndarray:
             back = line[::-1]
             np.minimum(back, np.minimum.accumulate(back - columns) + columns, out=back)
             above[1:-1] = line
-    return np.minimum(distances, MAX_DISTANCE_CELLS).astype(np.uint8)
+    np.minimum(distances, MAX_DISTANCE_CELLS, out=distances)
+    return distances.astype(np.uint8)
 
 
 class GridRays:
