@@ -24,10 +24,9 @@ round pillars and 12 diagonal walls (the worst case for merging: about one recta
 Loading is measured in a fresh process (its RSS before and its peak after, the peak reset by
 ``/proc/self/clear_refs``); the step ratio in interleaved blocks of steps in one process, and
 the lidar's cost per sample, as this process's CPU time (one thread: less moved by other work on
-a shared machine than wall time). Where the lidar's time goes: PyBullet's rayTestBatch costs
-about 0.8 us per ray before any geometry (1080 rays: 0.85 ms on an empty plane), and Bullet's
-closest-hit ray test walks a static mesh's tree along the whole ray (30 m here, through several
-rooms), not only up to the first wall: about 2 us more per ray on this map. Run:
+a shared machine than wall time). The lidar finds the walls over the grid (core/map/grid_rays.py)
+and casts Bullet's rays only up to them; benchmarks/bench_occupancy_lidar.py measures it on a
+map like a SLAM map, against the same lidar in an empty world. Run:
 ``.venv/bin/python benchmarks/bench_maps.py [--quick]``.
 """
 
@@ -89,15 +88,14 @@ def draw_map(folder):
     return path
 
 
-def _world(map_path, sensors=()):
+def _world(map_path, sensors=(), unknown='free', car=None):
     from vehicle_sim.config import world_from_data
     # the car in the free patch: 200 cells from the bottom, columns 180 .. 320
-    x = ORIGIN[0] + 200 * RESOLUTION_M
-    y = ORIGIN[1] + 200 * RESOLUTION_M
+    x, y = car or (ORIGIN[0] + 200 * RESOLUTION_M, ORIGIN[1] + 200 * RESOLUTION_M)
     data = {'vehicles': [{'name': 'car', 'model': 'Car', 'pose': {'x': x, 'y': y},
                           'sensors': list(sensors)}]}
     if map_path:
-        data['map'] = {'type': 'occupancy_grid', 'file': map_path}
+        data['map'] = {'type': 'occupancy_grid', 'file': map_path, 'unknown': unknown}
     return world_from_data(data, 'bench_maps.yaml')
 
 
@@ -112,8 +110,8 @@ from bench_maps import _world
 from vehicle_sim.physics.map_layer import MapLayer
 from vehicle_sim.physics.scene import build_scene
 import PIL.Image
-spec = _world({path!r})
-scene = build_scene(_world(None))          # the same world without its map: the baseline
+spec = _world({path!r}, unknown={unknown!r}, car={car!r})
+scene = build_scene(_world(None, car={car!r}))   # the same world without its map: the baseline
 before = rss_mb('VmRSS')
 open('/proc/self/clear_refs', 'w').write('5')   # reset the peak
 start = time.perf_counter()
@@ -126,9 +124,15 @@ print(json.dumps({{'load_s': load_s, 'rss_after_mb': after - before,
 """
 
 
-def measure_load(map_path):
-    """Load the map in a fresh process; return its figures (time, RSS added, rectangles)."""
-    script = _LOAD_SCRIPT.format(root=os.path.dirname(HERE), path=map_path)
+def measure_load(map_path, unknown='free', car=None):
+    """
+    Load the map in a fresh process; return its figures (time, RSS added, rectangles).
+
+    :param unknown: the map's ``unknown`` (free or occupied).
+    :param car: the car's (x, y) [m] in free space; None: this benchmark's map's spot.
+    """
+    script = _LOAD_SCRIPT.format(root=os.path.dirname(HERE), path=map_path, unknown=unknown,
+                                 car=car)
     env = dict(os.environ, PYTHONPATH=HERE + os.pathsep + os.environ.get('PYTHONPATH', ''))
     out = subprocess.run([sys.executable, '-c', script], capture_output=True, text=True,
                          env=env, check=True, timeout=300)

@@ -16,7 +16,8 @@
 Every performance figure of issues 10, 20 and 21 in one table: measured, target, met or missed.
 
 Issue 20's are the Gymnasium environment's (bench_gym.py); issue 21's the recorder's
-(bench_record.py); issue 28's highway_traffic over ROS in real time (bench_traffic_ros.py).
+(bench_record.py); issue 28's highway_traffic over ROS in real time (bench_traffic_ros.py);
+issue 30's the lidar on a SLAM-like occupancy map (bench_occupancy_lidar.py).
 
 ``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
 also run alone and say more); each ratio is measured in this run, its two sides interleaved or
@@ -119,6 +120,7 @@ def collect(quick):
     """Run every benchmark; return (rows, floors)."""
     import bench_lane_world
     import bench_maps
+    import bench_occupancy_lidar
     import bench_plugin
     import bench_record
     import bench_ros_sync
@@ -151,6 +153,7 @@ def collect(quick):
     plugin = bench_plugin.figures(1000 if quick else 6000)
     plugin_subset = bench_plugin.figures(1000 if quick else 6000, bench_plugin.SUBSET)
     maps = bench_maps.figures(quick)
+    slam = bench_occupancy_lidar.figures(quick)
     import tempfile
     with tempfile.TemporaryDirectory(prefix='bench_record_') as folder:
         rec_plain, rec_published, rec_us = bench_record.measure_in_process(
@@ -189,6 +192,13 @@ def collect(quick):
         ('  same: in-process step with the map / without', maps['step_ratio'], '<=', 1.1, 'x'),
         ('  same: lidar 1080 rays, 270 deg, 40 Hz on the map, share of one core',
          maps['lidar_share'] * 100.0, '<=', 15.0, '%'),
+        (f'SLAM-like map {bench_occupancy_lidar.WIDTH} x {bench_occupancy_lidar.HEIGHT} cells '
+         '(thick walls, unknown occupied): lidar 1080 rays at 40 Hz, share of one core',
+         slam['lidar_share'] * 100.0, '<=', 15.0, '%'),
+        ('  same lidar: on the SLAM-like map / in an empty world', slam['lidar_ratio'], '<=',
+         1.3, 'x'),
+        ('  same map: load time', slam['load_s'], '<=', 2.0, 's'),
+        ('  same map: RSS added by loading it (stated)', slam['rss_mb'], None, None, 'MB'),
         ('in-process step, every topic recorded (--record) / not recorded', rec_plain, '<=',
          bench_record.TARGET_RATIO, 'x'),
         ('  same, recorded / every topic published without recording', rec_published, None,
@@ -257,6 +267,10 @@ def collect(quick):
         f'occupancy map: {maps["rectangles"]} wall rectangles in {maps["bodies"]} static mesh '
         f'bodies; step {maps["step_mapped_us"]:.0f} us with it, {maps["step_plain_us"]:.0f} us '
         f'without; lidar {maps["lidar_ms"]:.2f} ms per sample (CPU)',
+        f'SLAM-like map: {slam["solid_share"]:.0%} of the cells walls, {slam["rectangles"]} '
+        f'wall rectangles in {slam["bodies"]} bodies; lidar {slam["lidar_ms"]:.2f} ms per '
+        f'sample on it, {slam["empty_ms"]:.2f} ms in the empty world (CPU); RSS '
+        f'{slam["rss_after_mb"]:.0f} MB after loading, {slam["rss_peak_mb"]:.0f} MB at the peak',
     ] + gym_context
     floors.append('highway_traffic over ROS at real time (vehicle-sim run): ' + '; '.join(
         bench_traffic_ros.describe(name, run) for name, run in traffic_ros.items()))

@@ -197,25 +197,58 @@ def test_a_scenario_with_a_map_next_to_it_fails_no_collision_at_the_map_s_wall(t
     assert 'map' in result.criterion('no_collision').detail
 
 
-@pytest.mark.parametrize('split_m', [8.0, 10.0, 19.7, 20.3])
-def test_rays_cast_near_then_far_hit_what_one_cast_hits(split_m):
-    # The obstacle course: a wall whose faces are at x = 19.5 and 20.5 m, a pole at (10, 5).
-    # A split inside the wall (19.7, 20.3) must not lose it: the near part hits its face.
+def test_lidar_over_the_grid_sees_what_bullet_sees_of_the_wall_meshes(tmp_path, scenes):
+    # The same rays with the map's grid (walls over the grid, Bullet up to them) and without it
+    # (Bullet alone, walking the map's meshes): the same hits, an obstacle in front of a wall
+    # included; rays that graze a corner may differ.
     from vehicle_sim.physics.sensors.rays import cast_rays
-    scene = build_scene(load_world('obstacle_course'))
-    try:
-        world = scene.world
-        origin = np.array([1.0, 0.0, 0.8])
-        angles = np.linspace(-0.6, 0.6, 241)
-        ends = origin + 40.0 * np.stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)],
-                                        axis=1)
-        whole = cast_rays(world, origin, ends, -1)
-        world.ray_split_m = split_m
-        split = cast_rays(world, origin, ends, -1)
-    finally:
-        scene.world.close()
-    assert np.count_nonzero(whole < 1.0) > 50            # the wall and the pole are hit
-    # the same hits; on the round pole within 2 mm (Bullet's ray cast against a curved convex
-    # shape converges to about a millimetre, from wherever the ray starts)
-    assert np.array_equal(split < 1.0, whole < 1.0)
-    assert np.max(np.abs(split - whole)) * 40.0 < 2e-3
+    data = world_data(write_map(tmp_path, pixels=room_pixels(200)))
+    data['obstacles'] = [{'name': 'pole', 'shape': 'cylinder', 'radius': 0.3, 'height': 2.0,
+                          'position': [3.0, -3.0, 1.0]}]
+    scene = scenes(data)
+    world = scene.world
+    origin = np.array([1.0, 0.0, 0.5])
+    angles = np.linspace(-math.pi, math.pi, 2000, endpoint=False)
+    for z, length in ((0.0, 30.0), (-0.02, 30.0), (0.0, 4.0)):     # level, downwards, short
+        ends = origin + length * np.stack([np.cos(angles), np.sin(angles),
+                                           np.full(angles.shape, z)], axis=1)
+        mask = world.ray_mask_excluding(scene.vehicles['car'].body.body_id)
+        over_grid = cast_rays(world, origin, ends, mask)
+        grids, world.ray_grids = world.ray_grids, []
+        try:
+            bullet = cast_rays(world, origin, ends, mask)
+        finally:
+            world.ray_grids = grids
+        assert np.count_nonzero(over_grid < 1.0) > (1900 if length > 10.0 else 100)
+        differ = np.abs(over_grid - bullet) * length > 1e-4
+        assert np.count_nonzero(differ) <= 4
+    pole = np.abs(angles - math.atan2(-3.0, 2.0)) < 0.05
+    assert np.all(over_grid[pole] * 4.0 < math.hypot(2.0, 3.0))      # the pole, not the wall
+
+
+def test_a_lidar_inside_a_wall_reads_closer_than_its_minimum_range(tmp_path, scenes):
+    # mounted 6.4 m ahead of the car, 2.4 m to the left: in the middle of the pillar (x 6 ..
+    # 6.8 m, y 2 .. 2.8 m); every ray starts in the wall (the ray march: 0 m), so every range
+    # reads -inf (REP 117: closer than min_range); Bullet's rays saw the pillar's faces from
+    # inside, 0.4 .. 0.57 m away
+    lidar = dict(LIDAR, pose={'x': 6.4, 'y': 2.4, 'z': 0.5}, horizontal_resolution=90)
+    scene = scenes(world_data(write_map(tmp_path), sensors=[lidar]), mount=mount_suite)
+    scene.world.step()
+    scan = scene.vehicles['car'].sensors.sample('lidar')
+    assert np.all(scan.scan == -np.inf)
+
+
+def test_a_lidar_sampled_every_step_leaves_the_walls_where_they_collide(tmp_path, scenes):
+    # Bullet's rays are cast with the wall meshes moved out of their way and back: the car still
+    # meets the wall where it did without a lidar, once
+    scene = scenes(world_data(write_map(tmp_path), sensors=[LIDAR]), mount=mount_suite)
+    car = scene.vehicles['car']
+    monitor = CollisionMonitor(scene.world, car.body)
+    car.car.logic.set_cruising_speed_kmh(20.0)
+    events = []
+    for _ in range(800):
+        scene.world.step()
+        car.sensors.sample('lidar')
+        events.extend(monitor.fresh)
+    assert [e.other for e in events] == ['map']
+    assert car.body.pose()[0] + 4.5 == pytest.approx(10.0 - 0.3, abs=0.1)

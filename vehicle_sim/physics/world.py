@@ -64,6 +64,8 @@ GROUND_COLOR = (0.45, 0.45, 0.45, 1.0)
 # every body's mask accepts all groups. A body whose own rays must not see it gets a group bit of
 # its own instead (same collisions: every mask accepts it); its rays use a mask without it.
 _FIRST_RAY_GROUP_BIT = 4
+# Where the bodies of a ray grid stand while Bullet casts rays (World.rays_past_grids) [m].
+_AWAY_Z_M = -1.0e4
 _LAST_RAY_GROUP_BIT = 30
 ALL_GROUPS = -1
 # A teleported body overlaps another when they interpenetrate by more than this [m] (touching,
@@ -157,9 +159,11 @@ class World:
         self._obstacle_specs = {}     # obstacle name -> its ObstacleSpec (reset_obstacles)
         self._static_names = set()    # names of static geometry (a map's walls): add_static
         self._blocked = []            # (name, blocked(x, y)) of static geometry: add_static
-        # Ray sensors cast near then far beyond this distance [m] (physics/sensors/rays.py);
-        # None: in one go. A map layer sets it: its meshes cost per metre of ray.
-        self.ray_split_m = None
+        # Static geometry that ray sensors find by other means than Bullet (a map's walls:
+        # core/map/grid_rays.py's GridRays), each with a cast(origin, ends) -> fractions, and
+        # the bodies it stands for (add_ray_grid).
+        self.ray_grids = []
+        self._ray_grid_bodies = []
         self._ray_masks = {}          # body id -> ray mask excluding that body
         self._ground_visual = False
         self._broadphase_stale = True   # bodies added since the last step: rays miss them
@@ -427,6 +431,46 @@ class World:
         if blocked is not None:
             self._blocked.append((name, blocked))
         self._broadphase_stale = True
+
+    def add_ray_grid(self, grid_rays, body_ids):
+        """
+        Let ray sensors find static bodies through ``grid_rays`` instead of Bullet.
+
+        A map's walls (physics/map_layer.py): Bullet walks a static mesh's tree along the whole
+        of each ray, past its first hit, so a large map's meshes cost rays dearly; the grid
+        gives the same hits (physics/sensors/rays.py casts Bullet's rays only up to them, with
+        the bodies out of the way: :meth:`rays_past_grids`).
+
+        :param grid_rays: an object with ``cast(origin, ends)`` -> (n,) fractions (1.0: none):
+            core/map/grid_rays.py's GridRays.
+        :param body_ids: the static bodies it stands for, at the origin unturned (their
+            vertices in the world frame), already named with add_static.
+        """
+        self.ray_grids.append(grid_rays)
+        self._ray_grid_bodies.extend(body_ids)
+
+    @contextmanager
+    def rays_past_grids(self):
+        """
+        Within the block, the ray grids' bodies stand 10 km below the world (rays miss them).
+
+        PyBullet's ray mask drops a body's hits only after Bullet has walked its mesh's tree
+        (measured: a 1080-ray batch costs the same with the map masked out), while a ray far
+        from a body's box skips it at once. Moving the static bodies and back costs about
+        3 us each; contacts are untouched (the next step finds them where they were).
+        """
+        cid = self.client_id
+        try:
+            for body_id in self._ray_grid_bodies:
+                pybullet.resetBasePositionAndOrientation(body_id, (0.0, 0.0, _AWAY_Z_M),
+                                                         (0.0, 0.0, 0.0, 1.0),
+                                                         physicsClientId=cid)
+            yield
+        finally:
+            for body_id in self._ray_grid_bodies:
+                pybullet.resetBasePositionAndOrientation(body_id, (0.0, 0.0, 0.0),
+                                                         (0.0, 0.0, 0.0, 1.0),
+                                                         physicsClientId=cid)
 
     def _centre(self, body_id):
         # (x, y) of a body's centre of mass.

@@ -17,7 +17,8 @@ Maps, ROS-, PyBullet- and file-free (numbers in, numbers out).
 
 The map layer: ``kinds`` (the ``map:`` key of world files, one registry of map kinds),
 ``occupancy`` (nav2 map_server's YAML and thresholding, cells, a ray march for tests),
-``rectangles`` (wall cells merged into few boxes). Files are read by ``vehicle_sim/maps``; the
+``rectangles`` (wall cells merged into few boxes), ``grid_rays`` (rays against the walls over
+the grid: what lidar and distance sensors meet). Files are read by ``vehicle_sim/maps``; the
 physics part is ``physics/map_layer.py``.
 
 Lanes: every lane map kind (a Lanelet2 ``.osm`` file, the ``roads:`` segments of a world file)

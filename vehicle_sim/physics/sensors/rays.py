@@ -17,11 +17,12 @@
 Ray casting for the lidar and the distance sensor (PyBullet rayTestBatch).
 
 Rays use a collision mask that skips the sensor's own vehicle (World.ray_mask_excluding), so a
-sensor mounted inside or behind the body sees past it. In a world with map walls
-(``World.ray_split_m`` set by physics/map_layer.py) each ray is cast up to that distance first
-and on from there only where it hit nothing: Bullet walks a static mesh's tree along the whole
-ray, so long rays in a dense map cost about 2 us more each (benchmarks/bench_maps.py); the hits
-are the same (on curved convex shapes within Bullet's ray-cast precision, about 1 mm).
+sensor mounted inside or behind the body sees past it. In a world with an occupancy map
+(``World.ray_grids``, added by physics/map_layer.py) the walls are found over the map's grid
+(core/map/grid_rays.py), and Bullet's rays, cast with the walls' meshes moved out of their way
+(World.rays_past_grids), stop where the walls are: Bullet walks a static mesh's tree along the
+whole ray, past its first hit, so a large map's meshes made each ray cost several times more
+(benchmarks/bench_occupancy_lidar.py).
 """
 
 import numpy as np
@@ -46,21 +47,15 @@ def cast_rays(world, origin, ends, mask):
     world.update_collision_state()
     origin = np.asarray(origin, dtype=float)
     ends = np.asarray(ends, dtype=float)
-    split_m = world.ray_split_m
-    if split_m is None or len(ends) < 2:
-        return _fractions(world, [origin.tolist()] * len(ends), ends, mask)
-    # Near, then far: Bullet walks a static mesh's tree along the whole ray, not only up to its
-    # first hit, so in a world with map walls each ray is cast up to split_m first, and only
-    # the rays that hit nothing there go on from that point to their end.
-    vectors = ends - origin
-    scale = np.minimum(split_m / np.maximum(np.linalg.norm(vectors, axis=1), 1e-12), 1.0)
-    middles = origin + vectors * scale[:, None]
-    fractions = _fractions(world, [origin.tolist()] * len(ends), middles, mask) * scale
-    far = (fractions >= scale) & (scale < 1.0)
-    if far.any():
-        rest = _fractions(world, middles[far].tolist(), ends[far], mask)
-        fractions[far] = np.where(rest < 1.0, scale[far] + rest * (1.0 - scale[far]), 1.0)
-    return fractions
+    starts = [origin.tolist()] * len(ends)
+    if not world.ray_grids or len(ends) == 0:
+        return _fractions(world, starts, ends, mask)
+    # The walls over their grid, then Bullet's rays up to them, the walls' meshes away.
+    walls = np.minimum.reduce([grid.cast(origin, ends) for grid in world.ray_grids])
+    near = origin + (ends - origin) * walls[:, None]
+    with world.rays_past_grids():
+        fractions = _fractions(world, starts, near, mask)
+    return np.where(fractions < 1.0, fractions * walls, walls)
 
 
 def _fractions(world, starts, ends, mask):
