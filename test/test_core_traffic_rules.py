@@ -1,0 +1,192 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""The traffic obeys signals, stop signs, right of way and conflicts (core/traffic/rules.py)."""
+
+import pytest
+
+from vehicle_sim.core.map.lane_graph import Boundary, Lane, LaneGraph
+from vehicle_sim.core.map.lane_rules import (
+    Conflict,
+    LaneRules,
+    RightOfWay,
+    StopLine,
+    TrafficLightGroup,
+)
+from vehicle_sim.core.map.signal_plan import FixedTimePlan, SignalController
+from vehicle_sim.core.traffic.manager import TrafficManager
+from vehicle_sim.core.traffic.params import traffic_from_dict
+
+DT = 0.1
+DIMS = {'Car': (4.5, 1.8)}
+HALF = 2.25
+# lanes 1 -> 2 -> 5 east along y = 0, 3 -> 4 -> 6 north along x = 10; 2 and 4 cross at (10, 0)
+EAST_IN, EAST_X, EAST_OUT, NORTH_IN, NORTH_X, NORTH_OUT = 1, 2, 5, 3, 4, 6
+EAST_LINE_S, NORTH_LINE_S = 198.0, 188.0     # x = -2 on lane 1, y = -12 on lane 3
+ZONE = (8.25, 11.75)                         # the crossing on lanes 2 and 4
+
+
+def straight(lane_id, x0, y0, x1, y1, successors=()):
+    """Return a 3.5 m lane from (x0, y0) to (x1, y1) (axis-aligned), 10 m/s."""
+    nx, ny = (0.0, 1.75) if y0 == y1 else (-1.75, 0.0)
+    sign = 1.0 if (x1 - x0) + (y1 - y0) > 0 else -1.0
+    nx, ny = sign * nx, sign * ny
+    left = Boundary(2 * lane_id, [(x0 + nx, y0 + ny), (x1 + nx, y1 + ny)], 'solid')
+    right = Boundary(2 * lane_id + 1, [(x0 - nx, y0 - ny), (x1 - nx, y1 - ny)], 'solid')
+    return Lane(lane_id, [(x0, y0), (x1, y1)], left, right, 10.0, successors=successors)
+
+
+def crossing(lines='traffic_light', right_of_way=False):
+    """Return the crossing's LaneGraph with its rules: stop lines of ``lines`` kind or none."""
+    graph = LaneGraph([straight(1, -200, 0, 0, 0, [2]), straight(2, 0, 0, 20, 0, [5]),
+                       straight(5, 20, 0, 200, 0),
+                       straight(3, 10, -200, 10, -10, [4]), straight(4, 10, -10, 10, 10, [6]),
+                       straight(6, 10, 10, 10, 200)])
+    stop_lines, groups = (), ()
+    if lines is not None:
+        group = (lambda g: g) if lines == 'traffic_light' else (lambda g: None)
+        stop_lines = (StopLine(101, EAST_IN, EAST_LINE_S, [(-2, -1.75), (-2, 1.75)], lines,
+                               group(11)),
+                      StopLine(102, NORTH_IN, NORTH_LINE_S, [(8.25, -12), (11.75, -12)], lines,
+                               group(12)))
+    if lines == 'traffic_light':
+        groups = (TrafficLightGroup(11, (EAST_IN,), (101,)),
+                  TrafficLightGroup(12, (NORTH_IN,), (102,)))
+    rules = (RightOfWay(1, (EAST_IN, EAST_X), (NORTH_IN, NORTH_X)),) if right_of_way else ()
+    graph.set_rules(LaneRules(stop_lines=stop_lines, groups=groups, right_of_way=rules,
+                              conflicts=(Conflict(EAST_X, NORTH_X, ZONE, ZONE),)))
+    return graph
+
+
+def manager(graph, placed, signals=None):
+    data = {'models': ['Car'], 'placed': [
+        {'model': 'Car', 'lanelet': lane, 's': s, 'speed': speed, 'route': route}
+        for lane, s, speed, route in placed]}
+    return TrafficManager(graph, traffic_from_dict(data, 'w.yaml: traffic'), DIMS,
+                          signals=signals)
+
+
+EAST = (EAST_IN, 100.0, 10.0, [EAST_X, EAST_OUT])
+NORTH = (NORTH_IN, 90.0, 10.0, [NORTH_X, NORTH_OUT])
+
+
+def front_on_approach(v, lane):
+    """Return the front's arc length on the approach lane ``lane`` (inf once past it)."""
+    return v.s_m + HALF if v.lane == lane else float('inf')
+
+
+def test_a_vehicle_stops_before_a_red_line_and_goes_at_green():
+    graph = crossing()
+    signals = SignalController(graph, FixedTimePlan())
+    signals.force(11, 'red')
+    m = manager(graph, [EAST], signals)
+    v = m.vehicles[0]
+    for _ in range(int(40.0 / DT)):
+        m.step(DT)
+        signals.update(m.time_s)
+        assert v.lane == EAST_IN and v.s_m + HALF < EAST_LINE_S
+    assert v.speed_mps < 0.01
+    # the front stands within the model's least gap (2 m) and a half metre before the line
+    assert EAST_LINE_S - (v.s_m + HALF) == pytest.approx(m.idm.min_gap_m, abs=0.5)
+    signals.force(11, 'green')
+    for _ in range(int(10.0 / DT)):
+        m.step(DT)
+    assert v.lane == EAST_OUT and v.speed_mps > 5.0
+
+
+def test_on_yellow_a_vehicle_that_can_stop_stops_and_one_too_close_goes_on_through_red():
+    graph = crossing()
+    signals = SignalController(graph, FixedTimePlan())
+    signals.force(11, 'green')
+    # at 10 m/s the comfortable stop (b = 2 m/s^2) takes 25 m: 45 m ahead stops, 12 m goes
+    far = manager(graph, [(EAST_IN, EAST_LINE_S - HALF - 45.0, 10.0, [EAST_X, EAST_OUT])],
+                  signals)
+    near = manager(graph, [(EAST_IN, EAST_LINE_S - HALF - 12.0, 10.0, [EAST_X, EAST_OUT])],
+                   signals)
+    signals.force(11, 'yellow')
+    for step in range(int(20.0 / DT)):
+        if step == 20:
+            signals.force(11, 'red')
+        far.step(DT)
+        near.step(DT)
+        assert front_on_approach(far.vehicles[0], EAST_IN) < EAST_LINE_S
+    assert far.vehicles[0].speed_mps < 0.01
+    assert near.vehicles[0].lane == EAST_OUT
+
+
+def zone_holders(m):
+    """Return the vehicles whose footprint overlaps the crossing on lanes 2 and 4."""
+    inside = set()
+    for v in m.vehicles:
+        for lane, lo, hi in ((v.lane, v.s_m - HALF, v.s_m + HALF),
+                             (v.prev_lane, v.s_m - HALF + 20.0, v.s_m + HALF + 20.0),
+                             (v.next_lane, v.s_m - HALF - 20.0, v.s_m + HALF - 20.0)):
+            if lane in (EAST_X, NORTH_X) and lo < ZONE[1] and hi > ZONE[0]:
+                inside.add((v.index, lane))
+    return inside
+
+
+@pytest.mark.parametrize('lead', [0.0, 0.3, -0.3, 1.0])
+def test_two_vehicles_at_an_unsignalled_crossing_are_never_both_inside(lead):
+    graph = crossing(lines=None)
+    # both reach the zone at the same time (lead = 0) or one a little before the other
+    east = (EAST_IN, 100.0 + 10.0 * lead, 10.0, [EAST_X, EAST_OUT])
+    m = manager(graph, [east, NORTH])
+    both_seen, reached = set(), set()
+    for _ in range(int(25.0 / DT)):
+        m.step(DT)
+        inside = zone_holders(m)
+        assert len({lane for _, lane in inside}) < 2, (m.time_s, inside)
+        both_seen |= {lane for _, lane in inside}
+        reached |= {(v.index, v.lane) for v in m.vehicles}
+    assert both_seen == {EAST_X, NORTH_X}
+    assert {(0, EAST_OUT), (1, NORTH_OUT)} <= reached
+
+
+def test_a_yielding_vehicle_lets_the_priority_one_go_first():
+    graph = crossing(lines=None, right_of_way=True)
+    # the yielding (north) vehicle would arrive a little first
+    m = manager(graph, [EAST, (NORTH_IN, 92.0, 10.0, [NORTH_X, NORTH_OUT])])
+    entered = {}
+    for _ in range(int(40.0 / DT)):
+        m.step(DT)
+        for index, lane in zone_holders(m):
+            entered.setdefault(index, m.time_s)
+        assert len({lane for _, lane in zone_holders(m)}) < 2
+    assert entered[0] < entered[1]
+    reference = manager(crossing(lines=None), [EAST, (NORTH_IN, 92.0, 10.0,
+                                                      [NORTH_X, NORTH_OUT])])
+    first = {}
+    for _ in range(int(40.0 / DT)):
+        reference.step(DT)
+        for index, _ in zone_holders(reference):
+            first.setdefault(index, reference.time_s)
+    assert first[1] < first[0]          # without the rule, first come goes first
+
+
+def test_a_stop_sign_makes_a_vehicle_stand_still_at_the_line_then_go():
+    graph = crossing(lines='stop_sign')
+    m = manager(graph, [EAST])
+    v = m.vehicles[0]
+    stood, passed_at = 0.0, None
+    for _ in range(int(40.0 / DT)):
+        m.step(DT)
+        if v.lane == EAST_IN and v.speed_mps < 0.1:
+            assert EAST_LINE_S - (v.s_m + HALF) < m.idm.min_gap_m + 1.5
+            stood += DT
+        if passed_at is None and front_on_approach(v, EAST_IN) > EAST_LINE_S:
+            passed_at = m.time_s
+            assert stood >= 1.0 - 1e-9
+    assert passed_at is not None and v.lane == EAST_OUT
