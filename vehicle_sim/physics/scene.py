@@ -31,7 +31,9 @@ contract):
 Extension points: a *scene part* is any object with ``name`` and ``build(world, spec)``; it adds
 what the WorldSpec asks of it (a map layer's ground and walls, traffic vehicles) once the
 obstacles and vehicles are in, and returns what callers read later, kept in
-:attr:`Scene.parts` under its name. The parts a world gets by itself are the rows of
+:attr:`Scene.parts` under its name (a part with ``reads_parts = True`` is built as
+``build(world, spec, parts)``, given what the parts before it returned: the traffic reads the
+signals' controller). The parts a world gets by itself are the rows of
 :data:`SCENE_PARTS`, one per world key the obstacles and vehicles leave (a test checks them
 against core/world/params.py's ``WORLD_KEYS``), each added when the WorldSpec asks for it: a
 ``map`` gets the map layer (physics/map_layer.py), ``scene.parts['map']``; ``roads:`` the road
@@ -261,4 +263,5 @@ def _build_bodies(scene, spec, robots, params, hooks, parts):
                              (robot.x_m, robot.y_m, robot.yaw_rad), name=robot.name)
         scene.vehicles[robot.name] = SceneVehicle(robot.name, robot, body)
     for part in parts:
-        scene.parts[part.name] = part.build(world, spec)
+        scene.parts[part.name] = part.build(world, spec, scene.parts) if getattr(
+            part, 'reads_parts', False) else part.build(world, spec)

@@ -286,7 +286,7 @@ class TrafficRules:
                 grants.pop(v.index, None)
                 continue
             stop_at = self._line(v, dt_s)
-            self._release_passed(v, held)
+            self._release_passed(v, held, stop_at)
             ask = self._zones_ahead(v, stop_at)
             if ask is None:
                 self._asked.pop(v.index, None)
@@ -382,15 +382,20 @@ class TrafficRules:
             self._stood.pop(index, None)
         return True
 
-    def _release_passed(self, v, held):
-        """Drop the zones ``v`` no longer needs: behind it and not under its footprint."""
+    def _release_passed(self, v, held, stop_at):
+        """
+        Drop the zones ``v`` no longer needs: behind it, or beyond a line it now stops at.
+
+        A zone under its footprint it keeps.
+        """
         mine = self._grants.get(v.index)
         if not mine:
             return
         ahead = set()
+        beyond = math.inf if stop_at is None else stop_at
         for lane, start in self._path(v):
             for zone in self.zones.get(lane, ()):
-                if start + zone.s1 > -v.length_m - SPAN_MARGIN_M:
+                if -v.length_m - SPAN_MARGIN_M < start + zone.s1 and start + zone.s0 < beyond:
                     ahead.add(zone.key)
         keep = {key for key in mine if key in ahead or v.index in held.get(key, ())}
         if keep:
