@@ -26,6 +26,7 @@ from vehicle_sim.core.map.lane_rules import (
     TrafficLightGroup,
 )
 from vehicle_sim.core.map.signal_plan import FixedTimePlan, SignalController
+from vehicle_sim.core.traffic.footprints import footprint_overlaps, overlapping
 from vehicle_sim.core.traffic.manager import TrafficManager
 from vehicle_sim.core.traffic.params import traffic_from_dict
 
@@ -190,3 +191,26 @@ def test_a_stop_sign_makes_a_vehicle_stand_still_at_the_line_then_go():
             passed_at = m.time_s
             assert stood >= 1.0 - 1e-9
     assert passed_at is not None and v.lane == EAST_OUT
+
+
+def test_footprints_overlap_where_the_cars_would_touch_and_not_on_parallel_lanes():
+    graph = crossing(lines=None)
+    found = footprint_overlaps(graph, {EAST_X: (0.0, 20.0), NORTH_X: (0.0, 20.0),
+                                       EAST_OUT: (0.0, 20.0)}, 4.5, 1.8,
+                               skip=[(EAST_X, EAST_OUT)])
+    # a car on lane 2 centred at s touches one at the crossing on lane 4 while
+    # |s - 10| < 2.25 + 0.9 + 2 x 0.15 (margins) = 3.45 m; the range is widened by a step
+    assert list(found) == [(EAST_X, NORTH_X)]
+    (lo, hi), (lo_n, hi_n) = found[(EAST_X, NORTH_X)]
+    assert (lo, hi) == pytest.approx((10.0 - 3.45 - 0.5, 10.0 + 3.45 + 0.5), abs=0.5)
+    assert (lo_n, hi_n) == pytest.approx((lo, hi))
+    parallel = LaneGraph([straight(1, 0, 0, 50, 0), straight(2, 0, 3.5, 50, 3.5)])
+    assert footprint_overlaps(parallel, {1: (0.0, 50.0), 2: (0.0, 50.0)}, 4.5, 1.8) == {}
+
+
+def test_overlapping_names_the_pairs_of_rectangles_that_overlap():
+    boxes = [(0.0, 0.0, 0.0, 4.5, 1.8), (4.4, 0.0, 0.0, 4.5, 1.8),      # 0.1 m into each other
+             (20.0, 0.0, 0.0, 4.5, 1.8), (20.0, 2.0, 0.0, 4.5, 1.8),    # 0.2 m apart side by side
+             (40.0, 0.0, 0.0, 4.5, 1.8), (40.0, 3.5, 1.5708, 4.5, 1.8)]  # a T: 0.35 m apart
+    assert overlapping(boxes) == [(0, 1)]
+    assert overlapping([(0.0, 0.0, 0.7854, 4.5, 1.8), (2.2, 2.2, -0.7854, 4.5, 1.8)]) == [(0, 1)]

@@ -130,7 +130,8 @@ class TrafficManager:
         self._entries = sorted(i for i, pred in graph.predecessors.items()
                                if not pred and i in self._driven)
         rules = TrafficRules(graph, signals, self,
-                             max(d[1] for d in dimensions.values()) if dimensions else 0.0)
+                             max((d[0] for d in dimensions.values()), default=0.0),
+                             max((d[1] for d in dimensions.values()), default=0.0))
         self.rules = None if rules.empty else rules
         self.vehicles = spawn_vehicles(graph, spec, dimensions, ours, self.rng, self._driven,
                                        self.rules)

@@ -66,6 +66,7 @@ from typing import Dict, List, Tuple
 import numpy as np
 
 from vehicle_sim.core.map.lane_graph import distances_to_polyline
+from vehicle_sim.core.traffic.footprints import footprint_overlaps
 
 STAND_REACH_M = 1.5         # a vehicle stands "at" a stop line within its model's gap + this
 STOP_SIGN_WAIT_S = 1.0      # how long it stands there before it goes on
@@ -79,6 +80,7 @@ SLOW_MPS = 2.0              # a leader slower than this may not clear the exit i
 GAP_S = 1.5                 # a yielding vehicle clears its zones this long before a priority one
 ROOM_MARGIN_M = 1.0         # room beyond the zones a vehicle needs besides its length and gap
 FORK_SAMPLE_M = 0.5         # sampling step of the fork overlaps
+SWEPT_LEAVING_M = 10.0      # footprints are sampled this far onto the lanes leaving a junction
 FORK_REACH_M = 30.0         # fork overlaps are measured over at most this of each branch
 
 
@@ -129,10 +131,11 @@ class TrafficRules:
     :param signals: the world's SignalController, or None (every light is then off: dark
         signals, the vehicles yield by the conflicts alone).
     :param manager: the TrafficManager (its car-following model and parameters).
-    :param width_m: the widest traffic vehicle [m] (the fork overlaps).
+    :param length_m: the longest traffic vehicle [m] (footprint overlaps).
+    :param width_m: the widest traffic vehicle [m] (the fork and footprint overlaps).
     """
 
-    def __init__(self, graph, signals, manager, width_m):
+    def __init__(self, graph, signals, manager, length_m, width_m):
         self.graph = graph
         self.signals = signals
         self.manager = manager
@@ -150,14 +153,20 @@ class TrafficRules:
                         return True
             return False
 
+        self.forks = fork_lengths(graph, width_m + 0.5)
+        self.siblings = {}
+        for lane in graph.lanes.values():
+            if len(lane.successors) > 1:
+                for one in lane.successors:
+                    self.siblings[one] = tuple(s for s in lane.successors if s != one)
+        pairs = [(c.lane_id, c.other_id, c.s_m, c.other_s_m) for c in rules.conflicts]
+        pairs += self._swept(graph, pairs, length_m, width_m)
         zones: Dict[int, List[Zone]] = {}
-        for pair, c in enumerate(rules.conflicts):
-            zones.setdefault(c.lane_id, []).append(Zone(
-                (pair, 0), (pair, 1), c.lane_id, min(c.s_m), max(c.s_m),
-                yields(c.lane_id, c.other_id)))
-            zones.setdefault(c.other_id, []).append(Zone(
-                (pair, 1), (pair, 0), c.other_id, min(c.other_s_m), max(c.other_s_m),
-                yields(c.other_id, c.lane_id)))
+        for pair, (a, b, on_a, on_b) in enumerate(pairs):
+            zones.setdefault(a, []).append(Zone(
+                (pair, 0), (pair, 1), a, min(on_a), max(on_a), yields(a, b)))
+            zones.setdefault(b, []).append(Zone(
+                (pair, 1), (pair, 0), b, min(on_b), max(on_b), yields(b, a)))
         self.zones = {lane: tuple(sorted(z, key=lambda zone: (zone.s0, zone.key)))
                       for lane, z in zones.items()}
         self._other = {zone.key: zone for z in zones.values() for zone in z}
@@ -165,12 +174,6 @@ class TrafficRules:
                                   if line.kind != 'yield')
                       for lane in graph.lanes if rules.stop_lines_on(lane)}
         self.lines = {lane: lines for lane, lines in self.lines.items() if lines}
-        self.forks = fork_lengths(graph, width_m + 0.5)
-        self.siblings = {}
-        for lane in graph.lanes.values():
-            if len(lane.successors) > 1:
-                for one in lane.successors:
-                    self.siblings[one] = tuple(s for s in lane.successors if s != one)
         # the lanes where anything happens (a vehicle elsewhere costs two look-ups)
         self.busy = set(self.zones) | set(self.lines) | set(self.forks) | {
             lane.id for lane in graph.lanes.values() if len(lane.successors) > 1}
@@ -184,6 +187,39 @@ class TrafficRules:
         self._grants: Dict[int, set] = {}                   # vehicle -> zone keys it holds
         self._asked: Dict[int, float] = {}                  # vehicle -> time it first asked
         self.waiting = {}                                   # vehicle -> why it stops (reading)
+
+    def _swept(self, graph, pairs, length_m, width_m):
+        """
+        Return the conflicts of footprints beyond the lanes' areas (footprints.py).
+
+        Sampled on the lanes of the conflicts and the forks' branches, and the first
+        ``SWEPT_LEAVING_M`` of the lanes they lead to; a lane and the lane it follows, and
+        neighbours, are not tested. Branches of a fork that overlap lengthen its overlap
+        (``forks``) instead.
+        """
+        lanes = graph.lanes
+        inside = {a for a, b, _, _ in pairs} | {b for a, b, _, _ in pairs} | set(self.forks)
+        if not inside or length_m <= 0.0:
+            return []
+        ranges = {lane: (0.0, lanes[lane].length_m) for lane in inside}
+        for lane in inside:
+            for after in lanes[lane].successors:
+                ranges.setdefault(after, (0.0, SWEPT_LEAVING_M))
+        skip = set()
+        for lane in ranges:
+            for other in lanes[lane].successors + (lanes[lane].left_lane,
+                                                   lanes[lane].right_lane):
+                if other is not None:
+                    skip.add((lane, other))
+        extra = []
+        for (a, b), (on_a, on_b) in footprint_overlaps(graph, ranges, length_m, width_m,
+                                                       skip).items():
+            if b in self.siblings.get(a, ()):
+                self.forks[a] = max(self.forks.get(a, 0.0), on_a[1])
+                self.forks[b] = max(self.forks.get(b, 0.0), on_b[1])
+            else:
+                extra.append((a, b, on_a, on_b))
+        return extra
 
     @property
     def empty(self):
@@ -204,12 +240,20 @@ class TrafficRules:
 
     # ------------------------------------------------------------------ the step
     def _path(self, v):
-        """Yield (lane id, distance from ``v``'s front to the lane's start) along its path."""
+        """
+        Yield (lane id, distance from ``v``'s front to the lane's start) along its path.
+
+        Its lane, its next lane, and the lane after that when it is the only one.
+        """
         lanes = self.graph.lanes
         front = v.s_m + 0.5 * v.length_m
         yield v.lane, -front
         if v.next_lane is not None:
-            yield v.next_lane, lanes[v.lane].length_m - front
+            start = lanes[v.lane].length_m - front
+            yield v.next_lane, start
+            after = lanes[v.next_lane].successors
+            if len(after) == 1:
+                yield after[0], start + lanes[v.next_lane].length_m
 
     def _spans(self, v):
         """Yield (lane id, rear s, front s) of the lanes ``v``'s footprint occupies."""
