@@ -107,6 +107,33 @@ def test_a_vehicle_stops_before_a_red_line_and_goes_at_green():
     assert v.lane == EAST_OUT and v.speed_mps > 5.0
 
 
+def test_a_queue_forms_at_red_and_discharges_at_green():
+    graph = crossing()
+    signals = SignalController(graph, FixedTimePlan())
+    signals.force(11, 'red')
+    m = manager(graph, [(EAST_IN, s, 10.0, [EAST_X, EAST_OUT]) for s in (40, 70, 100, 130)],
+                signals)
+    for _ in range(int(40.0 / DT)):
+        m.step(DT)
+    fronts = sorted((v.s_m + HALF for v in m.vehicles), reverse=True)
+    assert all(v.lane == EAST_IN and v.speed_mps < 0.01 for v in m.vehicles)
+    assert fronts[0] < EAST_LINE_S
+    # bumper to bumper gaps of about s0 = 2 m: a queue of 4 within 4 x 4.5 + 4 x 2.5 m
+    gaps = [a - b - 2 * HALF for a, b in zip(fronts, fronts[1:])]
+    assert all(m.idm.min_gap_m - 0.3 < gap < m.idm.min_gap_m + 0.5 for gap in gaps), gaps
+    signals.force(11, 'green')
+    crossed = {}
+    for _ in range(int(20.0 / DT)):
+        m.step(DT)
+        for v in m.vehicles:
+            if v.index not in crossed and front_on_approach(v, EAST_IN) > EAST_LINE_S:
+                crossed[v.index] = m.time_s - 40.0
+    print('crossed the line after green [s]:', crossed)
+    # all four over the line within 12 s of green, the first one first
+    assert sorted(crossed, key=crossed.get) == [3, 2, 1, 0]
+    assert max(crossed.values()) < 12.0, crossed
+
+
 def test_on_yellow_a_vehicle_that_can_stop_stops_and_one_too_close_goes_on_through_red():
     graph = crossing()
     signals = SignalController(graph, FixedTimePlan())
