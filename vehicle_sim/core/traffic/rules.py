@@ -60,6 +60,7 @@ Everything is computed in a fixed order from the manager's state (no randomness)
 inputs give the same decisions.
 """
 
+from bisect import bisect_left
 import math
 from typing import Dict, List, Tuple
 
@@ -81,6 +82,7 @@ GAP_S = 1.5                 # a yielding vehicle clears its zones this long befo
 ROOM_MARGIN_M = 1.0         # room beyond the zones a vehicle needs besides its length and gap
 FORK_SAMPLE_M = 0.5         # sampling step of the fork overlaps
 SWEPT_LEAVING_M = 10.0      # footprints are sampled this far onto the lanes leaving a junction
+FORK_NEAR_M = 60.0          # a vehicle follows the other branches' vehicles from this far
 FORK_REACH_M = 30.0         # fork overlaps are measured over at most this of each branch
 
 
@@ -161,8 +163,19 @@ class TrafficRules:
                     self.siblings[one] = tuple(s for s in lane.successors if s != one)
         pairs = [(c.lane_id, c.other_id, c.s_m, c.other_s_m) for c in rules.conflicts]
         pairs += self._swept(graph, pairs, length_m, width_m)
+        merged: Dict[Tuple[int, int], list] = {}    # one zone pair per lane pair: the union
+        for a, b, on_a, on_b in pairs:
+            if a > b:
+                a, b, on_a, on_b = b, a, on_b, on_a
+            got = merged.get((a, b))
+            if got is None:
+                merged[(a, b)] = [min(on_a), max(on_a), min(on_b), max(on_b)]
+            else:
+                got[0], got[1] = min(got[0], min(on_a)), max(got[1], max(on_a))
+                got[2], got[3] = min(got[2], min(on_b)), max(got[3], max(on_b))
         zones: Dict[int, List[Zone]] = {}
-        for pair, (a, b, on_a, on_b) in enumerate(pairs):
+        for pair, ((a, b), (a0, a1, b0, b1)) in enumerate(sorted(merged.items())):
+            on_a, on_b = (a0, a1), (b0, b1)
             zones.setdefault(a, []).append(Zone(
                 (pair, 0), (pair, 1), a, min(on_a), max(on_a), yields(a, b)))
             zones.setdefault(b, []).append(Zone(
@@ -174,6 +187,14 @@ class TrafficRules:
                                   if line.kind != 'yield')
                       for lane in graph.lanes if rules.stop_lines_on(lane)}
         self.lines = {lane: lines for lane, lines in self.lines.items() if lines}
+        # where a zone or a stop line starts, per lane (sorted): the quick test of each step
+        self._starts = {}
+        for lane, items in self.zones.items():
+            self._starts.setdefault(lane, []).extend(zone.s0 for zone in items)
+        for lane, items in self.lines.items():
+            self._starts.setdefault(lane, []).extend(line.s_m for line in items)
+        for items in self._starts.values():
+            items.sort()
         # the lanes where anything happens (a vehicle elsewhere costs two look-ups)
         self.busy = set(self.zones) | set(self.lines) | set(self.forks) | {
             lane.id for lane in graph.lanes.values() if len(lane.successors) > 1}
@@ -241,34 +262,42 @@ class TrafficRules:
     # ------------------------------------------------------------------ the step
     def _path(self, v):
         """
-        Yield (lane id, distance from ``v``'s front to the lane's start) along its path.
+        Return [(lane id, distance from ``v``'s front to the lane's start)] along its path.
 
         Its lane, its next lane, and the lane after that when it is the only one.
         """
         lanes = self.graph.lanes
         front = v.s_m + 0.5 * v.length_m
-        yield v.lane, -front
-        if v.next_lane is not None:
-            start = lanes[v.lane].length_m - front
-            yield v.next_lane, start
-            after = lanes[v.next_lane].successors
-            if len(after) == 1:
-                yield after[0], start + lanes[v.next_lane].length_m
+        nxt = v.next_lane
+        if nxt is None:
+            return [(v.lane, -front)]
+        start = lanes[v.lane].length_m - front
+        after = lanes[nxt].successors
+        if len(after) == 1:
+            return [(v.lane, -front), (nxt, start), (after[0], start + lanes[nxt].length_m)]
+        return [(v.lane, -front), (nxt, start)]
 
-    def _spans(self, v):
-        """Yield (lane id, rear s, front s) of the lanes ``v``'s footprint occupies."""
+    def _first_ahead(self, v):
+        """Return the distance from ``v``'s front to the next zone or stop line on its path."""
+        starts = self._starts
+        front = v.s_m + 0.5 * v.length_m
+        here = starts.get(v.lane)
+        if here is not None:
+            i = bisect_left(here, front)
+            if i < len(here):
+                return here[i] - front
         lanes = self.graph.lanes
-        half = 0.5 * v.length_m + SPAN_MARGIN_M
-        lo, hi = v.s_m - half, v.s_m + half
-        yield v.lane, lo, hi
-        length = lanes[v.lane].length_m
-        if hi > length and v.next_lane is not None:
-            yield v.next_lane, lo - length, hi - length
-        if lo < 0.0 and v.prev_lane is not None:
-            before = lanes[v.prev_lane].length_m
-            yield v.prev_lane, lo + before, hi + before
-        if v.from_lane is not None:
-            yield v.from_lane, v.from_s_m - half, v.from_s_m + half
+        nxt = v.next_lane
+        if nxt is None:
+            return math.inf
+        start = lanes[v.lane].length_m - front
+        here = starts.get(nxt)
+        if here is not None:
+            return start + here[0]
+        after = lanes[nxt].successors
+        if len(after) == 1 and after[0] in starts:
+            return start + lanes[nxt].length_m + starts[after[0]][0]
+        return math.inf
 
     def start_speed_limit(self, v):
         """Return the highest speed at which ``v`` stops comfortably before what is ahead."""
@@ -308,11 +337,38 @@ class TrafficRules:
         self.waiting = {}
         held = {}                     # zone key -> vehicles whose footprint holds it
         zones = self.zones
+        lanes = self.graph.lanes
         for v in vehicles:
-            for lane, lo, hi in self._spans(v):
-                for zone in zones.get(lane, ()):
-                    if lo < zone.s1 and hi > zone.s0:
-                        held.setdefault(zone.key, set()).add(v.index)
+            on, nxt, prev, old = (zones.get(v.lane), zones.get(v.next_lane),
+                                  zones.get(v.prev_lane), zones.get(v.from_lane))
+            if not (on or nxt or prev or old):
+                continue
+            index, half = v.index, 0.5 * v.length_m + SPAN_MARGIN_M
+            lo, hi = v.s_m - half, v.s_m + half
+            if on:
+                for zone in on:                 # by their start
+                    if zone.s0 >= hi:
+                        break
+                    if lo < zone.s1:
+                        held.setdefault(zone.key, set()).add(index)
+            length = lanes[v.lane].length_m
+            if nxt and hi > length:
+                for zone in nxt:
+                    if zone.s0 >= hi - length:
+                        break
+                    held.setdefault(zone.key, set()).add(index)
+            if prev and lo < 0.0:
+                rear = lo + lanes[v.prev_lane].length_m
+                for zone in prev:
+                    if zone.s1 > rear:
+                        held.setdefault(zone.key, set()).add(index)
+            if old:
+                lo, hi = v.from_s_m - half, v.from_s_m + half
+                for zone in old:
+                    if zone.s0 >= hi:
+                        break
+                    if lo < zone.s1:
+                        held.setdefault(zone.key, set()).add(index)
         for k, o in enumerate(m._ours):
             at = m._ours_at.get(o.name)
             if at is None or at[0] not in zones:
@@ -325,28 +381,36 @@ class TrafficRules:
         for index in [i for i, v in grants.items() if not m.vehicles[i].active]:
             del grants[index]       # it left the map
         asks = []
+        gap_kept, b2 = m._gap_kept, 2.0 * self._b
+        forks = self.forks
         for v in vehicles:
+            index = v.index
             if v.stopped:           # collided: what its footprint holds, it holds
-                grants.pop(v.index, None)
+                grants.pop(index, None)
                 continue
-            stop_at = self._line(v, dt_s)
-            self._release_passed(v, held, stop_at)
-            ask = self._zones_ahead(v, stop_at)
-            if ask is None:
-                self._asked.pop(v.index, None)
-                if stop_at is not None:
-                    self._stop(v, stop_at, 'stop line')
+            speed = v.speed_mps
+            if self._first_ahead(v) > gap_kept(speed) + speed * speed / b2 + LINE_MARGIN_M:
+                stop_at, ask = None, None       # nothing within its reach
+                if index in grants:
+                    self._release_passed(v, self._path(v), held, None)
+            else:
+                path = self._path(v)
+                stop_at = self._line(v, path, dt_s)
+                if index in grants:
+                    self._release_passed(v, path, held, stop_at)
+                ask = self._zones_ahead(v, path)
+            if stop_at is not None:
+                self._stop(v, stop_at, 'stop line')
+            if ask is None or (stop_at is not None and stop_at < ask[0]):
+                self._asked.pop(index, None)
             else:
                 first, group = ask
-                if stop_at is not None and stop_at < first:
-                    self._stop(v, stop_at, 'stop line')
-                    self._asked.pop(v.index, None)
-                    continue
-                if stop_at is not None:
-                    self._stop(v, stop_at, 'stop line')
-                since = self._asked.setdefault(v.index, m.time_s)
-                asks.append((any(z.yields for z in group), since, v.index, v, first, group))
-            self._fork(v)
+                since = self._asked.setdefault(index, m.time_s)
+                asks.append((any(z.yields for z in group), since, index, v, first, group))
+            lane = lanes[v.lane]
+            if (len(lane.successors) > 1 and lane.length_m - v.s_m < FORK_NEAR_M) or (
+                    v.lane in forks and v.s_m - 0.5 * v.length_m < forks[v.lane]):
+                self._fork(v)
         asks.sort(key=lambda a: a[:3])
         for v_index, keys in grants.items():
             for key in keys:
@@ -380,12 +444,12 @@ class TrafficRules:
             v.acc_mps2 = acc
         self.waiting[v.index] = why
 
-    def _line(self, v, dt_s):
+    def _line(self, v, path, dt_s):
         """Return the distance from ``v``'s front to the stop line it must stop at, or None."""
         speed = v.speed_mps
         horizon = self.manager._gap_kept(speed) + speed * speed / (2.0 * self._b) + \
             LINE_MARGIN_M
-        for lane, start in self._path(v):
+        for lane, start in path:
             if start > horizon:
                 return None
             for line in self.lines.get(lane, ()):
@@ -426,7 +490,7 @@ class TrafficRules:
             self._stood.pop(index, None)
         return True
 
-    def _release_passed(self, v, held, stop_at):
+    def _release_passed(self, v, path, held, stop_at):
         """
         Drop the zones ``v`` no longer needs: behind it, or beyond a line it now stops at.
 
@@ -437,7 +501,7 @@ class TrafficRules:
             return
         ahead = set()
         beyond = math.inf if stop_at is None else stop_at
-        for lane, start in self._path(v):
+        for lane, start in path:
             for zone in self.zones.get(lane, ()):
                 if -v.length_m - SPAN_MARGIN_M < start + zone.s1 and start + zone.s0 < beyond:
                     ahead.add(zone.key)
@@ -447,14 +511,14 @@ class TrafficRules:
         else:
             del self._grants[v.index]
 
-    def _zones_ahead(self, v, stop_at):
+    def _zones_ahead(self, v, path):
         """Return (distance to the first, the zones to ask for) when ``v`` asks, else None."""
         speed = v.speed_mps
         reach = self.manager._gap_kept(speed) + speed * speed / (2.0 * self._b) + \
             REQUEST_MARGIN_M
         mine = self._grants.get(v.index, ())
         first, group = None, []
-        for lane, start in self._path(v):
+        for lane, start in path:
             for zone in self.zones.get(lane, ()):
                 d = start + zone.s0
                 if d < 0.0 or zone.key in mine:
@@ -510,10 +574,7 @@ class TrafficRules:
         half = 0.5 * v.length_m
         lane = lanes[v.lane]
         if len(lane.successors) > 1:
-            base, branches = lane.length_m - v.s_m, lane.successors
-            if base > 60.0:
-                return
-            here = 0.0
+            base, branches, here = lane.length_m - v.s_m, lane.successors, 0.0
         elif v.lane in forks and v.s_m - half < forks[v.lane]:
             base, branches, here = 0.0, self.siblings.get(v.lane, ()), v.s_m
         else:
