@@ -261,6 +261,9 @@ class DriveSim:
             self._offset_start(rng, traffic, traffic_seed)
         elif traffic is not None:
             traffic.reset(traffic_seed)
+        signals = self.scene.parts.get('signals')
+        if signals is not None:         # the plan from its start, nothing forced
+            signals.reset()
         for part in self._parts:
             reseed = getattr(part, 'reseed', None)
             if reseed is not None:

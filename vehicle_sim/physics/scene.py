@@ -37,10 +37,12 @@ signals' controller). The parts a world gets by itself are the rows of
 :data:`SCENE_PARTS`, one per world key the obstacles and vehicles leave (a test checks them
 against core/world/params.py's ``WORLD_KEYS``), each added when the WorldSpec asks for it: a
 ``map`` gets the map layer (physics/map_layer.py), ``scene.parts['map']``; ``roads:`` the road
-layer (physics/lane_layer.py), ``scene.parts['roads']``; both before the caller's ``parts``;
-``traffic:`` the traffic part (physics/traffic_bodies.py), on its lane map, after them. A part
-of the caller's with a row's name takes that row's place; a world that asks for none gets no
-part and pays nothing.
+layer (physics/lane_layer.py), ``scene.parts['roads']``; a lane map with traffic lights (or a
+``signals:`` key) the world's one SignalController (physics/signal_part.py),
+``scene.parts['signals'].controller``; these before the caller's ``parts``; ``traffic:`` the
+traffic part (physics/traffic_bodies.py), on its lane map, after them. A part of the caller's
+with a row's name takes that row's place; a world that asks for none gets no part and pays
+nothing.
 
 Lanes: before anything is built, the world's lane map (a lanelet2 map or its roads) is loaded
 and the vehicles placed by lane get their pose (vehicle_sim/maps/lane_maps.py), so a bad file
@@ -68,6 +70,7 @@ from vehicle_sim.physics.gui import GuiClosedError
 from vehicle_sim.physics.lane_layer import RoadLayer
 from vehicle_sim.physics.map_layer import MapLayer
 from vehicle_sim.physics.sensors import SensorSuite
+from vehicle_sim.physics.signal_part import SignalPart, signals_wanted
 from vehicle_sim.physics.simulated_car import SimulatedCar
 from vehicle_sim.physics.traffic_bodies import TrafficPart
 from vehicle_sim.physics.vehicle_body import VehicleBody
@@ -110,6 +113,7 @@ def register_scene_part(row: ScenePartRow) -> ScenePartRow:
 
 register_scene_part(ScenePartRow('map', lambda spec: spec.map is not None, MapLayer))
 register_scene_part(ScenePartRow('roads', lambda spec: bool(spec.roads), RoadLayer))
+register_scene_part(ScenePartRow('signals', signals_wanted, SignalPart))
 register_scene_part(ScenePartRow(
     'traffic', lambda spec: getattr(spec, 'traffic', None) is not None, TrafficPart,
     before_given=False))

@@ -226,12 +226,13 @@ class AutomobileNode:
             self._logger.info(f'PyBullet window open; keys: {shortcuts_text()}')
         self._wire_world()
         # /sim/reset, /sim/pause, /initialpose (ros/sim_control.py).
-        traffic = self.scene.parts.get('traffic')
+        # the traffic and the signals start again with the world
+        resets = tuple(part for part in (self.scene.parts.get(name)
+                                         for name in ('traffic', 'signals')) if part is not None)
         self._control = WorldControl(
             node, self.world, self._vehicles, settings.synchronous,
             self._vehicles[initialpose_index(settings, spec)],
-            map_in_world=None if spec.map is None else map_in_world(spec.map),
-            resets=() if traffic is None else (traffic,))
+            map_in_world=None if spec.map is None else map_in_world(spec.map), resets=resets)
         self._publish_latched()
         self._publish_step(self.world.time_s)
         if not settings.synchronous:

@@ -18,6 +18,11 @@ The ``driver`` section of a scenario file: what drives the vehicle under test.
 One of three kinds (``DRIVER_KINDS``): timed Webots setter ``commands``, a Webots-API
 ``controller`` script, or ``processes`` served over ROS (with lockstep ``sync`` topics).
 :mod:`.schema` validates the rest of the file and calls :func:`driver_from_data`.
+
+A command may also force a traffic light group of the world's lane map into a state
+(``signal: {group, state}``, :data:`SIGNAL_COMMAND_KEYS`): ``state`` one of red, yellow, green,
+off (held until another command for the group), or ``plan`` (the group follows its plan again).
+The group must be one of the world's lane map (checked when the file is loaded).
 """
 
 from dataclasses import dataclass
@@ -25,6 +30,8 @@ import os
 import shlex
 from typing import Any, Optional, Tuple
 
+from vehicle_sim.core.map.lane_rules import SIGNAL_STATES
+from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec
 from vehicle_sim.core.specs.value_text import brief
 from vehicle_sim.scenarios.yaml_lines import line_of
@@ -71,6 +78,15 @@ DRIVER_SPECS = (
 # wrapper (api_table ``prop``), applied through the strict core setter.
 COMMAND_ROWS = {row.prop: row for row in DRIVER_API + CAR_API
                 if row.setter is not None and row.prop is not None}
+# The command key that forces a traffic light group, its keys (one table: the loader, the
+# runner and docs/scenarios.md read it) and the states it takes ('plan': back to the plan).
+SIGNAL_COMMAND = 'signal'
+SIGNAL_COMMAND_KEYS = (
+    ('group', 'int', "the traffic light group id (the map's; roads: docs/signals.md)"),
+    ('state', 'enum', 'one of ' + ', '.join(SIGNAL_STATES + ('plan',)) + ': held from this '
+     'step until another command for the group; plan: the group follows its plan again'),
+)
+SIGNAL_COMMAND_STATES = SIGNAL_STATES + ('plan',)
 
 
 @dataclass(frozen=True)
@@ -80,6 +96,7 @@ class Command:
     t_s: float
     setters: Tuple[Tuple[str, Any, str], ...]
     line: Optional[int] = None
+    signals: Tuple[Tuple[int, str], ...] = ()     # (group id, state) forced at ``t_s``
 
 
 @dataclass(frozen=True)
@@ -99,7 +116,7 @@ class DriverSpec:
     sync_timeout_s: float = 5.0
 
 
-def driver_from_data(ctx, value, drives_car):
+def driver_from_data(ctx, value, drives_car, world=None):
     """
     Validate a scenario's ``driver`` mapping into a :class:`DriverSpec`.
 
@@ -108,6 +125,7 @@ def driver_from_data(ctx, value, drives_car):
     :param value: the ``driver`` value of the file.
     :param drives_car: whether the vehicle under test is a car (commands and controllers drive
         cars; a robot takes processes).
+    :param world: the scenario's WorldSpec (its lane map names the groups of signal commands).
     :raises ScenarioError: naming the file, the line and the key.
     """
     path = ('driver',)
@@ -121,7 +139,7 @@ def driver_from_data(ctx, value, drives_car):
         if not drives_car:
             raise ctx.fail(path + ('commands',), 'commands drive a car (Webots driver '
                                                  'setters); a robot takes processes')
-        return DriverSpec(kind, commands=_commands(ctx, values['commands']))
+        return DriverSpec(kind, commands=_commands(ctx, values['commands'], world))
     if kind == 'controller':
         if not drives_car:
             raise ctx.fail(path + ('controller',), 'a Webots controller drives a car')
@@ -152,11 +170,11 @@ def _sync(ctx, value):
     return tuple(topics)
 
 
-def _commands(ctx, value):
+def _commands(ctx, value, world):
     path = ('driver', 'commands')
     if not isinstance(value, list) or not value:
         raise ctx.fail(path, 'commands must be a non-empty list of {t: s, <setter>: value}')
-    commands, last_t = [], 0.0
+    commands, last_t, groups = [], 0.0, _GroupCheck(ctx, world)
     for index, entry in enumerate(value):
         where = path + (index,)
         if not isinstance(entry, dict) or 't' not in entry:
@@ -169,20 +187,62 @@ def _commands(ctx, value):
             raise ctx.fail(where + ('t',), f't = {brief(t_s)}: commands must be in time order '
                                            f'(previous t = {brief(last_t)})')
         last_t = t_s
-        setters = []
+        setters, signals = [], []
         for key, item in entry.items():
             if key == 't':
+                continue
+            if key == SIGNAL_COMMAND:
+                signals.append(_signal(ctx, where + (key,), item, groups))
                 continue
             row = COMMAND_ROWS.get(key)
             if row is None:
                 raise ctx.fail(where + (key,), f'unknown setter {brief(key)}; valid: '
-                                               + ', '.join(sorted(COMMAND_ROWS)))
+                                               + ', '.join(sorted(COMMAND_ROWS))
+                                               + f' (and {SIGNAL_COMMAND})')
             setters.append((row.core_setter, _command_value(ctx, where + (key,), row, item),
                             row.setter))
-        if not setters:
+        if not setters and not signals:
             raise ctx.fail(where, 'a command needs at least one setter besides t')
-        commands.append(Command(float(t_s), tuple(setters), line_of(ctx.lines, where)))
+        commands.append(Command(float(t_s), tuple(setters), line_of(ctx.lines, where),
+                                tuple(signals)))
     return tuple(commands)
+
+
+class _GroupCheck:
+    """The traffic light groups of the scenario's world, its lane map loaded when first asked."""
+
+    def __init__(self, ctx, world):
+        self.ctx, self.world, self.rules = ctx, world, None
+
+    def check(self, path, group_id):
+        if self.rules is None:
+            from vehicle_sim.maps.lane_maps import load_lane_graph
+            graph = None if self.world is None else load_lane_graph(self.world)
+            if graph is None:
+                raise self.ctx.fail(path, f'signal.group = {brief(group_id)}: the world has no '
+                                          'lane map (roads: or a Lanelet2 map) with traffic '
+                                          'lights')
+            self.rules = graph.rules
+        try:
+            self.rules.group(group_id)
+        except InvalidParameterError as error:
+            raise self.ctx.fail(path, f'signal.group = {brief(group_id)}: {error}') from None
+
+
+def _signal(ctx, path, value, groups):
+    keys = tuple(key for key, _, _ in SIGNAL_COMMAND_KEYS)
+    if not isinstance(value, dict) or set(value) != set(keys):
+        raise ctx.fail(path, f'{SIGNAL_COMMAND} = {brief(value)}: must be {{group: id, state: '
+                             f'{"|".join(SIGNAL_COMMAND_STATES)}}}')
+    group, state = value['group'], value['state']
+    if isinstance(group, bool) or not isinstance(group, int):
+        raise ctx.fail(path + ('group',), f'signal.group = {brief(group)}: must be a traffic '
+                                          'light group id (an integer)')
+    if state not in SIGNAL_COMMAND_STATES:
+        raise ctx.fail(path + ('state',), f'signal.state = {brief(state)}: unknown; valid: '
+                                          + ', '.join(SIGNAL_COMMAND_STATES))
+    groups.check(path + ('group',), group)
+    return group, state
 
 
 def _command_value(ctx, path, row, value):

@@ -157,6 +157,7 @@ class Director:
         self.digest = hashlib.sha256()
         self._commands = list(spec.driver.commands)
         self._next = 0
+        self.signals = None         # the world's SignalController (a signals part), or None
         self.notes = []             # ScenarioResult.notes
         self._noted = set()         # the setters a note was taken of
 
@@ -164,6 +165,8 @@ class Director:
         """Bind to the built simulation: vehicles, actors, collision monitors."""
         self.world = sim.world
         self.vehicles = sim.vehicles
+        signals = getattr(sim, 'signals', None)     # the world's one SignalController
+        self.signals = None if signals is None else signals.controller
         traffic = getattr(sim, 'traffic', None)
         self.actors = [make_actor(actor, self.vehicles, traffic) for actor in self.spec.actors]
         for name, handle in self.vehicles.items():   # every vehicle: the plot marks them
@@ -197,6 +200,17 @@ class Director:
             actor.control()
 
     def _apply(self, command):
+        for group, state in command.signals:
+            if self.signals is None:
+                raise ScenarioError(self.spec.source, command.line,
+                                    f'command at t = {command.t_s:g} s: signal {group}: the '
+                                    'world has no traffic lights')
+            if state == 'plan':
+                self.signals.release(group)
+            else:
+                self.signals.force(group, state)
+        if not command.setters:
+            return
         logic = self.vut.car.logic
         for core_setter, value, webots_name in command.setters:
             try:

@@ -51,6 +51,8 @@ from vehicle_sim.scenarios.driver_schema import (
     DRIVER_SPECS,
     DriverSpec,
     MAX_DURATION_S,
+    SIGNAL_COMMAND,
+    SIGNAL_COMMAND_KEYS,
 )
 import vehicle_sim.scenarios.lane_criteria  # noqa: F401  (registers the lane criteria)
 import vehicle_sim.scenarios.overtake_criterion  # noqa: F401  (registers overtake)
@@ -236,7 +238,7 @@ def scenario_from_data(data, lines, source) -> ScenarioSpec:
         raise ctx.fail(('vehicle',), f'vehicle {brief(vehicle)}: not in the world; vehicles: '
                                      f'{", ".join(names)}')
     actors = _actors(ctx, values['actors'], names, vehicle)
-    driver = driver_from_data(ctx, values['driver'], vehicle in cars)
+    driver = driver_from_data(ctx, values['driver'], vehicle in cars, world)
     paced = driver.kind == 'processes' and driver.real_time_factor > 0.0
     if paced and values['duration_s'] / driver.real_time_factor > MAX_DURATION_S:
         raise ctx.fail(('driver', 'real_time_factor'),
@@ -367,6 +369,12 @@ def schema_markdown():
              '| key | Webots setter | value | unit | description |\n|---|---|---|---|---|\n']
     for key, row in sorted(COMMAND_ROWS.items()):
         parts.append(f'| `{key}` | `{row.setter}` | {row.kind} | {row.unit} | {row.doc} |\n')
+    parts.append(f'| `{SIGNAL_COMMAND}` | - | mapping |  | forces a traffic light group of the '
+                 "world's lane map: {"
+                 + ', '.join(key for key, _, _ in SIGNAL_COMMAND_KEYS) + '} (below) |\n')
+    parts += [f'\n#### `driver.commands` `{SIGNAL_COMMAND}` keys\n\n',
+              '| key | value | description |\n|---|---|---|\n']
+    parts += [f'| `{key}` | {kind} | {doc} |\n' for key, kind, doc in SIGNAL_COMMAND_KEYS]
     parts += ['\n#### Keys of every criterion\n\n',
               parameter_table_markdown(common_specs(), 'key')]
     for kind, cls in CRITERIA.items():

@@ -132,6 +132,13 @@ class ServedSim:
         return self.automobile.scene.parts.get('traffic')
 
     @property
+    def signals(self):
+        """The world's signals (physics WorldSignals: ``controller``), or None."""
+        if self.automobile is None:
+            return None
+        return self.automobile.scene.parts.get('signals')
+
+    @property
     def live_view(self):
         """The automobile node's Foxglove LiveView (``foxglove``), or None."""
         return None if self.automobile is None else self.automobile.live_view

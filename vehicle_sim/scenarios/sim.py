@@ -116,6 +116,11 @@ class LocalSim:
         """The world's traffic (physics TrafficBodies), or None."""
         return self.scene.parts.get('traffic')
 
+    @property
+    def signals(self):
+        """The world's signals (physics WorldSignals: ``controller``), or None."""
+        return self.scene.parts.get('signals')
+
     def step(self):
         """Advance one basic step; return the time [s]."""
         return self.world.step()

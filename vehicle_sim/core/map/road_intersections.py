@@ -30,6 +30,24 @@ boundaries (no markings, no lane invasion), the arriving lane's width and the lo
 speed limits. Connector ``k`` (in the order found) has id ``CONNECTOR_ID + k`` and boundaries
 ``CONNECTOR_BOUNDARY_ID + 2 k`` (left) and ``+ 2 k + 1`` (right); each becomes a successor of
 its arriving lane, and its leaving lane its successor.
+
+The rules of an intersection (:func:`intersection_rules`; ``LaneGraph.rules``) come from its
+segments' ``signals`` and ``stop_signs``:
+
+- every lane arriving at an intersection whose road says ``signals`` or ``stop_signs`` gets a
+  stop line across its end (the intersection's entry), id ``STOP_LINE_ID`` + the lane's id, of
+  kind 'traffic_light' or 'stop_sign'; an approach without either has no line (its vehicles
+  give way at the conflicts themselves, which are there in every case);
+- a signalised intersection (every road through it must say ``signals``: a road without lights
+  at a signalised intersection is refused) has one TrafficLightGroup per direction of approach,
+  id ``GROUP_ID`` + the id of the intersection segment's innermost lane in that direction,
+  controlling the arriving lanes; its bulbs are a lamp stack on a pole :data:`KERB_OFFSET_M`
+  beyond the right-hand edge of the road at the stop line: red, yellow and green lamp centres
+  at :data:`LAMP_HEIGHTS_M` above the road;
+- where some roads stop at stop signs and others do not (a two-way stop), one RightOfWay, id
+  ``RIGHT_OF_WAY_ID`` + the lowest of the intersection's segment lane ids above, gives the
+  arriving lanes without signs priority over those with (and names their stop lines); at an
+  all-way stop nobody has priority.
 """
 
 from dataclasses import dataclass
@@ -40,12 +58,20 @@ import numpy as np
 
 from vehicle_sim.core.geometry.angles import wrap_angle_rad
 from vehicle_sim.core.map.lane_graph import Boundary, Lane
+from vehicle_sim.core.map.lane_rules import Bulb, RightOfWay, StopLine, TrafficLightGroup
+from vehicle_sim.core.specs.errors import InvalidParameterError
 
 SAME_CENTRE_M = 1.0
 CONNECTOR_ID = 1_000_000_000
 CONNECTOR_BOUNDARY_ID = 2_000_000_000
 KAPPA = 0.5523                  # 4 (sqrt(2) - 1) / 3: a cubic Bezier's quarter circle
 TURN_POINTS = 17
+STOP_LINE_ID = 3_000_000_000
+GROUP_ID = 4_000_000_000
+RIGHT_OF_WAY_ID = 5_000_000_000
+KERB_OFFSET_M = 1.0             # the signal pole beyond the road's right edge [m]
+LAMP_HEIGHTS_M = (('red', 3.2), ('yellow', 2.9), ('green', 2.6))   # lamp centres above the road
+CONTROLS = ('signals', 'stop_signs', 'none')
 
 
 @dataclass(frozen=True)
@@ -58,6 +84,10 @@ class Approach:
     :param heading_rad: the direction of travel through it.
     :param arriving: ids of the lanes that end at its entry, innermost first.
     :param leaving: ids of the lanes that start at its exit, innermost first.
+    :param control: one of :data:`CONTROLS`: what its arriving lanes stop at.
+    :param key: the id of the intersection segment's innermost lane in this direction.
+    :param name: a readable name (road/segment/direction).
+    :param where: the segment in the world file (quoted in errors).
     """
 
     road: int
@@ -65,6 +95,10 @@ class Approach:
     heading_rad: float
     arriving: Tuple[int, ...]
     leaving: Tuple[int, ...]
+    control: str = 'none'
+    key: int = 0
+    name: str = ''
+    where: str = ''
 
 
 def _bezier(p0, t0, p3, t1):
@@ -131,3 +165,76 @@ def _connector(arriving, leaving, k):
     return Lane(CONNECTOR_ID + k, points, left, right,
                 min(arriving.speed_limit_mps, leaving.speed_limit_mps), (leaving.id,),
                 widths=width, name=f'turn {arriving.name} -> {leaving.name}')
+
+
+def _intersections(approaches):
+    """Return the approaches grouped by intersection (centres within SAME_CENTRE_M)."""
+    groups: List[List[Approach]] = []
+    for approach in approaches:
+        for group in groups:
+            x, y = group[0].centre
+            if math.hypot(approach.centre[0] - x, approach.centre[1] - y) <= SAME_CENTRE_M:
+                group.append(approach)
+                break
+        else:
+            groups.append([approach])
+    return groups
+
+
+def _stop_line(lane, kind, group_id=None):
+    x, y, heading = lane.xs[-1], lane.ys[-1], lane.headings[-1]
+    nx, ny = -math.sin(heading) * 0.5 * lane.widths[-1], math.cos(heading) * 0.5 * lane.widths[-1]
+    return StopLine(STOP_LINE_ID + lane.id, lane.id, lane.length_m,
+                    [(x + nx, y + ny), (x - nx, y - ny)], kind, group_id)
+
+
+def _lamps(lane):
+    """Return the Bulbs of the lamp stack beside the end of an approach's outermost lane."""
+    x, y, heading = lane.xs[-1], lane.ys[-1], lane.headings[-1]
+    out = 0.5 * lane.widths[-1] + KERB_OFFSET_M
+    px, py = x + math.sin(heading) * out, y - math.cos(heading) * out
+    return tuple(Bulb(color, px, py, z) for color, z in LAMP_HEIGHTS_M)
+
+
+def intersection_rules(approaches: List[Approach], graph, source='roads'):
+    """
+    Return the stop lines, traffic light groups and right of way of the intersections.
+
+    :param approaches: every Approach of the roads' intersection segments.
+    :param graph: the roads' LaneGraph.
+    :raises InvalidParameterError: a road without ``signals`` through a signalised intersection.
+    """
+    stop_lines, groups, right_of_way = [], [], []
+    for approaches_here in _intersections(approaches):
+        signalled = [a for a in approaches_here if a.control == 'signals']
+        if signalled and len(signalled) < len(approaches_here):
+            other = next(a for a in approaches_here if a.control != 'signals')
+            x, y = signalled[0].centre
+            raise InvalidParameterError(
+                f"{other.where}: field 'signals' is false, but {signalled[0].where} signals "
+                f'the intersection at ({x:.1f}, {y:.1f}): every road through it must say '
+                'signals: true')
+        priority, yielding, yield_lines = [], [], []
+        for approach in approaches_here:
+            lanes = [graph.lanes[i] for i in approach.arriving]
+            if not lanes:
+                continue
+            if approach.control == 'signals':
+                group_id = GROUP_ID + approach.key
+                lines = [_stop_line(lane, 'traffic_light', group_id) for lane in lanes]
+                groups.append(TrafficLightGroup(group_id, approach.arriving,
+                                                tuple(line.id for line in lines),
+                                                _lamps(lanes[-1]), approach.name))
+                stop_lines.extend(lines)
+            elif approach.control == 'stop_signs':
+                lines = [_stop_line(lane, 'stop_sign') for lane in lanes]
+                stop_lines.extend(lines)
+                yielding.extend(approach.arriving)
+                yield_lines.extend(line.id for line in lines)
+            else:
+                priority.extend(approach.arriving)
+        if priority and yielding:
+            right_of_way.append(RightOfWay(
+                RIGHT_OF_WAY_ID + min(a.key for a in approaches_here), tuple(priority),
+                tuple(yielding), tuple(yield_lines)))
+    return tuple(stop_lines), tuple(groups), tuple(right_of_way)

@@ -45,7 +45,9 @@ Ids: road ``r`` (1-based), segment ``j`` (0-based): forward lane ``i`` is
 ``r * 100000 + j * 100 + 1 + i``, backward lane ``i`` is ``... + 51 + i``, the boundary at
 ``m`` lane widths left of the reference line ``... + 30 + m``. A boundary's points run along the
 chain. Where intersection segments of two roads share their centre, turn lanes connect them
-(core/map/road_intersections.py: ids from 1e9).
+(core/map/road_intersections.py: ids from 1e9); its stop lines, signal groups and right of way
+(``signals``/``stop_signs``) and every pair of conflicting lanes (core/map/lane_conflicts.py)
+are the graph's rules (``LaneGraph.rules``).
 """
 
 from dataclasses import dataclass
@@ -56,6 +58,7 @@ import numpy as np
 
 from vehicle_sim.core.geometry.angles import wrap_angle_rad
 from vehicle_sim.core.geometry.frames import Pose
+from vehicle_sim.core.map.lane_conflicts import lane_conflicts
 from vehicle_sim.core.map.lane_graph import (
     Boundary,
     Lane,
@@ -63,7 +66,12 @@ from vehicle_sim.core.map.lane_graph import (
     line_crossable,
     LINE_TYPES,
 )
-from vehicle_sim.core.map.road_intersections import Approach, connector_lanes
+from vehicle_sim.core.map.lane_rules import LaneRules
+from vehicle_sim.core.map.road_intersections import (
+    Approach,
+    connector_lanes,
+    intersection_rules,
+)
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import (
     parameter_table_markdown,
@@ -129,7 +137,13 @@ SEGMENT_SPECS = {
                   ge=-359.0, le=359.0,
                   check=lambda v: 'must not be 0' if v == 0 else None),
         _LANE_LINE),
-    'intersection': _segment_common('intersection') + (_LENGTH,),
+    'intersection': _segment_common('intersection') + (
+        _LENGTH,
+        ParamSpec('signals', 'signals', 'bool', False, doc='traffic lights: one signal group per '
+                  'direction of approach, a stop line at the entry of every arriving lane; every '
+                  'road through the intersection must say so'),
+        ParamSpec('stop_signs', 'stop_signs', 'bool', False, doc="this road's approaches stop "
+                  'at a stop sign (a stop line at the entry; the roads without give them way)')),
 }
 
 
@@ -143,6 +157,8 @@ class SegmentSpec:
     radius_m: float = 0.0
     angle_deg: float = 0.0
     lane_line: Optional[str] = None
+    signals: bool = False
+    stop_signs: bool = False
 
 
 @dataclass(frozen=True)
@@ -178,7 +194,11 @@ def _segment(data, where):
         what = 'is required' if kind is REQUIRED else f'= {brief(kind)}: unknown segment type'
         raise InvalidParameterError(f"{where}: field 'type' {what}; valid: "
                                     + ', '.join(SEGMENT_TYPES))
-    return SegmentSpec(**validate_table(SEGMENT_SPECS[kind], data, where, what='a segment'))
+    segment = SegmentSpec(**validate_table(SEGMENT_SPECS[kind], data, where, what='a segment'))
+    if segment.signals and segment.stop_signs:
+        raise InvalidParameterError(f"{where}: fields 'signals' and 'stop_signs' are both true: "
+                                    'an intersection has traffic lights or stop signs')
+    return segment
 
 
 def roads_from_list(data, source) -> Tuple[RoadSpec, ...]:
@@ -313,11 +333,15 @@ def lane_graph_from_roads(roads, source='roads') -> LaneGraph:
         lanes.extend(_road_lanes(road, index + 1, source))
     by_id = {lane.id: lane for lane in lanes}
     approaches = [approach for index, road in enumerate(roads)
-                  for approach in _approaches(road, index + 1, by_id)]
-    return LaneGraph(lanes + connector_lanes(approaches, by_id), source)
+                  for approach in _approaches(road, index + 1, by_id, source)]
+    graph = LaneGraph(lanes + connector_lanes(approaches, by_id), source)
+    stop_lines, groups, right_of_way = intersection_rules(approaches, graph, source)
+    graph.set_rules(LaneRules(stop_lines=stop_lines, groups=groups, right_of_way=right_of_way,
+                              conflicts=lane_conflicts(graph)))
+    return graph
 
 
-def _approaches(road, r, lanes):
+def _approaches(road, r, lanes, source):
     """Yield the Approaches (both directions) of a road's intersection segments."""
     count = len(road.segments)
     for j, segment in enumerate(road.segments):
@@ -331,7 +355,12 @@ def _approaches(road, r, lanes):
 
         def ids(k, backward, n):
             return () if k is None else tuple(_lane_id(r, k, backward, i) for i in range(n))
+        control = 'signals' if segment.signals else (
+            'stop_signs' if segment.stop_signs else 'none')
+        where = f'{source}[{r - 1}].segments[{j}]'
         yield Approach(r, centre, heading, ids(prv, False, road.lanes),
-                       ids(nxt, False, road.lanes))
+                       ids(nxt, False, road.lanes), control, _lane_id(r, j, False, 0),
+                       f'{road.name}/{j}/+', where)
         yield Approach(r, centre, heading + math.pi, ids(nxt, True, road.backward_lanes),
-                       ids(prv, True, road.backward_lanes))
+                       ids(prv, True, road.backward_lanes), control, _lane_id(r, j, True, 0),
+                       f'{road.name}/{j}/-', where)

@@ -27,6 +27,7 @@ The form (every key optional except ``vehicles``)::
       - {lanes: 2, segments: [{type: straight, length: 200.0}]}
     map: {type: occupancy_grid, file: maps/track.yaml}
     traffic: {vehicles: 20, seed: 1}   # vehicles on the lanes: core/traffic/params.py
+    signals: {green: 20.0}             # the traffic lights' plan: core/map/signal_params.py
 
 
 Each mapping is checked against a ParamSpec table (core/specs/param_spec.py), so an unknown key, a
@@ -43,6 +44,7 @@ from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.core.map.kinds import is_lane_map, map_from_dict
 from vehicle_sim.core.map.lane_placement import is_lane_pose, LANE_POSE_SPECS
 from vehicle_sim.core.map.road_segments import roads_from_list, RoadSpec
+from vehicle_sim.core.map.signal_params import signals_from_dict, SignalSpec
 from vehicle_sim.core.sensors.params import SensorSpec
 from vehicle_sim.core.sensors.sets import merge_sensors
 from vehicle_sim.core.specs.errors import InvalidParameterError, InvalidPoseError
@@ -57,7 +59,7 @@ from vehicle_sim.core.specs.value_text import brief
 from vehicle_sim.core.traffic.params import traffic_from_dict, TrafficSpec
 from vehicle_sim.core.world.placement import check_in_world
 
-WORLD_KEYS = ('origin', 'vehicles', 'obstacles', 'roads', 'map', 'traffic')
+WORLD_KEYS = ('origin', 'vehicles', 'obstacles', 'roads', 'map', 'traffic', 'signals')
 
 ORIGIN_SPECS = (
     ParamSpec('latitude', 'latitude_deg', 'float', 0.0, 'deg', 'WGS-84 latitude of the world '
@@ -298,9 +300,11 @@ class WorldSpec:
 
     ``roads`` are its road segments (core/map/road_segments.py); ``map`` is its map layer's spec
     (core/map/kinds.py: e.g. an OccupancyMapSpec), or None; ``traffic`` its traffic
-    (core/traffic/params.py), or None. ``lanes`` is its lane map (a core LaneGraph from a
-    lanelet2 map or the roads) once loaded (vehicle_sim/maps/lane_maps.py, by the scene builder),
-    with the vehicles placed by lane; None before that or without one.
+    (core/traffic/params.py), or None; ``signals`` the plan of its traffic lights
+    (core/map/signal_params.py), or None (the default plan where the lane map has any).
+    ``lanes`` is its lane map (a core LaneGraph from a lanelet2 map or the roads) once loaded
+    (vehicle_sim/maps/lane_maps.py, by the scene builder), with the vehicles placed by lane;
+    None before that or without one.
     """
 
     origin: GeodeticOrigin
@@ -311,6 +315,7 @@ class WorldSpec:
     map: Optional[object] = None
     traffic: Optional[TrafficSpec] = None
     lanes: Optional[object] = field(default=None, compare=False, repr=False)
+    signals: Optional[SignalSpec] = None
 
 
 @dataclass(frozen=True)
@@ -383,8 +388,11 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
     traffic = data.get('traffic')
     if traffic is not None:
         traffic = traffic_from_dict(traffic, f'{source}: traffic', preset_sensors)
+    signals = data.get('signals')
+    if signals is not None:
+        signals = signals_from_dict(signals, f'{source}: signals')
     return WorldSpec(origin, vehicles, obstacles, source, roads=roads, map=world_map,
-                     traffic=traffic)
+                     traffic=traffic, signals=signals)
 
 
 def _vehicle(entry, where, index, default_model, preset_sensors):
