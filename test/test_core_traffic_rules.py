@@ -134,6 +134,27 @@ def test_a_queue_forms_at_red_and_discharges_at_green():
     assert max(crossed.values()) < 12.0, crossed
 
 
+def test_a_vehicle_held_at_red_does_not_keep_the_green_crossing_traffic_waiting():
+    # the stop lines at the very ends of the approaches, where the crossing's lanes start, and
+    # the north lane's side of the zone from its start
+    graph = crossing()
+    rules = graph.rules
+    lines = (StopLine(101, EAST_IN, 200.0, [(0, -1.75), (0, 1.75)], 'traffic_light', 11),
+             StopLine(102, NORTH_IN, 190.0, [(8.25, -10), (11.75, -10)], 'traffic_light', 12))
+    graph.set_rules(LaneRules(stop_lines=lines, groups=rules.groups,
+                              conflicts=(Conflict(EAST_X, NORTH_X, ZONE, (0.0, ZONE[1])),)))
+    signals = SignalController(graph, FixedTimePlan())
+    signals.force(11, 'green')
+    signals.force(12, 'red')
+    m = manager(graph, [(NORTH_IN, 150.0, 5.0, [NORTH_X, NORTH_OUT]),
+                        (EAST_IN, 20.0, 10.0, [EAST_X, EAST_OUT])], signals)
+    north, east = m.vehicles
+    for _ in range(int(25.0 / DT)):
+        m.step(DT)
+        assert m.rules.waiting.get(east.index) is None      # it never waits
+    assert east.lane == EAST_OUT and north.lane == NORTH_IN and north.speed_mps < 0.01
+
+
 def test_on_yellow_a_vehicle_that_can_stop_stops_and_one_too_close_goes_on_through_red():
     graph = crossing()
     signals = SignalController(graph, FixedTimePlan())

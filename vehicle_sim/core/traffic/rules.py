@@ -401,7 +401,8 @@ class TrafficRules:
                 ask = self._zones_ahead(v, path)
             if stop_at is not None:
                 self._stop(v, stop_at, 'stop line')
-            if ask is None or (stop_at is not None and stop_at < ask[0]):
+            if ask is None or (stop_at is not None and stop_at <= ask[0] + ZONE_MARGIN_M):
+                # a line at (or before) the first zone holds it before any zone
                 self._asked.pop(index, None)
             else:
                 first, group = ask
