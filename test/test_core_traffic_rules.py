@@ -15,6 +15,9 @@
 
 """The traffic obeys signals, stop signs, right of way and conflicts (core/traffic/rules.py)."""
 
+import math
+import random
+
 import pytest
 
 from vehicle_sim.core.map.lane_graph import Boundary, Lane, LaneGraph
@@ -262,3 +265,28 @@ def test_overlapping_names_the_pairs_of_rectangles_that_overlap():
              (40.0, 0.0, 0.0, 4.5, 1.8), (40.0, 3.5, 1.5708, 4.5, 1.8)]  # a T: 0.35 m apart
     assert overlapping(boxes) == [(0, 1)]
     assert overlapping([(0.0, 0.0, 0.7854, 4.5, 1.8), (2.2, 2.2, -0.7854, 4.5, 1.8)]) == [(0, 1)]
+    rng = random.Random(1)
+    for _ in range(50):                 # as a plain separating-axis test of each pair
+        boxes = [(rng.uniform(0, 30), rng.uniform(0, 30), rng.uniform(-3, 3),
+                  rng.uniform(3, 6), rng.uniform(1.5, 2.5)) for _ in range(25)]
+        expected = [(i, j) for i in range(25) for j in range(i + 1, 25)
+                    if separated(boxes[i], boxes[j]) is False]
+        assert overlapping(boxes) == expected
+
+
+def separated(a, b):
+    """Return whether two rectangles (x, y, yaw, length, width) have a separating axis."""
+    def corners(x, y, yaw, length, width):
+        c, s = math.cos(yaw), math.sin(yaw)
+        return [(x + c * u - s * v, y + s * u + c * v)
+                for u, v in ((length / 2, width / 2), (-length / 2, width / 2),
+                             (-length / 2, -width / 2), (length / 2, -width / 2))]
+    pa, pb = corners(*a), corners(*b)
+    for poly in (pa, pb):
+        for k in range(2):
+            ex, ey = poly[k + 1][0] - poly[k][0], poly[k + 1][1] - poly[k][1]
+            on_a = [-ey * x + ex * y for x, y in pa]
+            on_b = [-ey * x + ex * y for x, y in pb]
+            if max(on_a) <= min(on_b) or max(on_b) <= min(on_a):
+                return True
+    return False
