@@ -21,10 +21,11 @@ import math
 import numpy as np
 import pytest
 
-from vehicle_sim.config import read_yaml, world_from_data, world_path
+from vehicle_sim.config import load_world, read_yaml, world_from_data, world_path
 from vehicle_sim.core.map.lane_rules import LaneRules, StopLine, TrafficLightGroup
 from vehicle_sim.core.map.signal_plan import SignalController
 from vehicle_sim.core.specs.errors import InvalidParameterError, InvalidPoseError
+from vehicle_sim.core.traffic.footprints import overlapping
 from vehicle_sim.maps.lane_maps import with_lanes
 from vehicle_sim.physics.scene import build_scene, mount_suite
 from vehicle_sim.physics.sensors import CollisionMonitor
@@ -268,3 +269,24 @@ def test_the_traffic_part_obeys_the_signals_part_controller(scenes):
     for _ in range(500):
         scene.world.step()
     assert box_x(scene, body) - half > x
+
+
+def test_the_shipped_city_block_signals_traffic_stops_at_red_and_never_overlaps(scenes):
+    scene = scenes(load_world('city_block_signals'))
+    controller = scene.parts['signals'].controller
+    manager = scene.parts['traffic'].manager
+    assert manager.signals is controller
+    lines = {line.lane_id: line for line in scene.lanes.rules.stop_lines}
+    at_red = set()
+    for step in range(3000):                    # 30 s of the world
+        scene.world.step()
+        if step % 10 == 9:                      # after each traffic update
+            assert overlapping([(*manager.pose(v), v.length_m, v.width_m)
+                                for v in manager.vehicles if v.active]) == []
+            for v in manager.vehicles:
+                line = lines.get(v.lane)
+                if line is not None and v.speed_mps < 0.01 and \
+                        controller.state(line.group_id) == 'red' and \
+                        0.0 < line.s_m - (v.s_m + 0.5 * v.length_m) < 3.0:
+                    at_red.add(v.index)
+    assert len(at_red) >= 5                     # the first of each queue, at its line
