@@ -26,7 +26,7 @@ test_core_traffic_rules.py).
 
 import pytest
 
-from vehicle_sim.config import load_world
+from vehicle_sim.config import load_world, read_yaml, world_from_data, world_path
 from vehicle_sim.core.map.signal_params import SignalSpec
 from vehicle_sim.core.map.signal_plan import SignalController
 from vehicle_sim.core.traffic.footprints import overlapping
@@ -41,7 +41,15 @@ SIZES = {m: model_dimensions(m)[:2] for m in MODELS}
 
 
 def city(world, vehicles=80, seed=1):
-    spec = with_lanes(load_world(world))
+    if world == 'city_block_stop_signs':         # every intersection an all-way stop
+        data = read_yaml(world_path('city_block'))
+        for road in data['roads']:
+            for segment in road['segments']:
+                if segment['type'] == 'intersection':
+                    segment['stop_signs'] = True
+        spec = with_lanes(world_from_data(data, 'city_block_stop_signs.yaml'))
+    else:
+        spec = with_lanes(load_world(world))
     graph = spec.lanes
     signals = None
     if graph.rules.groups:
@@ -93,3 +101,26 @@ def test_city_traffic_at_signals_is_deterministic():
             rows.append(tuple((v.lane, v.s_m, v.speed_mps) for v in m.vehicles))
         return rows
     assert run() == run()
+
+
+def test_an_all_way_stop_city_block_stands_at_every_line_and_never_overlaps():
+    m, _ = city('city_block_stop_signs', vehicles=60)
+    assert {line.kind for line in m.graph.rules.stop_lines} == {'stop_sign'}
+    standing, passed = set(), 0
+    lines = {line.lane_id: line for line in m.graph.rules.stop_lines}
+    for _ in range(int(180.0 / DT)):
+        before = [v.lane for v in m.vehicles]
+        m.step(DT)
+        assert overlapping([(*m.pose(v), v.length_m, v.width_m)
+                            for v in m.vehicles if v.active]) == []
+        for v in m.vehicles:
+            line = lines.get(v.lane)
+            if line is not None and v.speed_mps < 0.1 and \
+                    line.s_m - (v.s_m + 0.5 * v.length_m) < m.idm.min_gap_m + 1.5:
+                standing.add((v.index, line.id))
+            if before[v.index] in lines and v.lane != before[v.index] and v.active:
+                passed += 1
+                key = (v.index, lines[before[v.index]].id)
+                assert key in standing          # it stood at the line, then went on
+                standing.discard(key)
+    assert passed >= 100

@@ -29,6 +29,7 @@ from vehicle_sim.core.map.lane_rules import (
     TrafficLightGroup,
 )
 from vehicle_sim.core.map.signal_plan import FixedTimePlan, SignalController
+from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.footprints import footprint_overlaps, overlapping
 from vehicle_sim.core.traffic.manager import TrafficManager
 from vehicle_sim.core.traffic.params import traffic_from_dict
@@ -290,3 +291,22 @@ def separated(a, b):
             if max(on_a) <= min(on_b) or max(on_b) <= min(on_a):
                 return True
     return False
+
+
+def test_traffic_drives_road_and_highway_lanes_only():
+    # lane 1 forks into a road (2) and a bicycle lane (3); lane 4, a shoulder, enters nowhere
+    lanes = [straight(1, -200, 0, 0, 0, [2, 3]), straight(2, 0, 0, 200, 0),
+             straight(3, 0, 0, 0, 200), straight(4, -200, 10, 0, 10)]
+    lanes[2].subtype, lanes[3].subtype = 'bicycle_lane', 'road_shoulder'
+    graph = LaneGraph(lanes)
+    data = {'vehicles': 5, 'seed': 2, 'models': ['Car'], 'spawn': {'spacing': 30.0}}
+    m = TrafficManager(graph, traffic_from_dict(data, 'w.yaml: traffic'), DIMS)
+    seen = set()
+    for _ in range(int(120.0 / DT)):
+        m.step(DT)
+        seen |= {v.lane for v in m.vehicles if v.active}
+    assert seen == {1, 2}
+    with pytest.raises(InvalidParameterError, match=r"w\.yaml: traffic: spawn: field 'lanes': "
+                                                    r"lane 4 is a 'road_shoulder' lane"):
+        TrafficManager(graph, traffic_from_dict({**data, 'spawn': {'lanes': [1, 4]}},
+                                                'w.yaml: traffic'), DIMS)
