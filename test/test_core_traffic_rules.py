@@ -20,6 +20,7 @@ import random
 
 import pytest
 
+from vehicle_sim.config import load_world
 from vehicle_sim.core.map.lane_graph import Boundary, Lane, LaneGraph
 from vehicle_sim.core.map.lane_rules import (
     Conflict,
@@ -28,6 +29,7 @@ from vehicle_sim.core.map.lane_rules import (
     StopLine,
     TrafficLightGroup,
 )
+from vehicle_sim.core.map.road_segments import lane_graph_from_roads
 from vehicle_sim.core.map.signal_plan import FixedTimePlan, SignalController
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.footprints import footprint_overlaps, overlapping
@@ -310,3 +312,29 @@ def test_traffic_drives_road_and_highway_lanes_only():
                                                     r"lane 4 is a 'road_shoulder' lane"):
         TrafficManager(graph, traffic_from_dict({**data, 'spawn': {'lanes': [1, 4]}},
                                                 'w.yaml: traffic'), DIMS)
+
+
+def test_no_lane_change_reaches_a_conflict_zone():
+    # the highway's three forward lanes cross a (hand-made) zone at 300 .. 310 m, paired with
+    # its first backward lane; a car behind a slow truck wants to pass it
+    graph = lane_graph_from_roads(load_world('highway').roads)
+    lanes = (100001, 100002, 100003)
+    other = next(i for i in sorted(graph.lanes) if i % 100 >= 51)
+    graph.set_rules(LaneRules(conflicts=tuple(
+        Conflict(lane, other, (300.0, 310.0), (10.0, 20.0)) for lane in lanes)))
+    data = {'models': ['Car', 'Truck'], 'placed': [
+        {'model': 'Car', 'lanelet': 100002, 's': 230.0, 'speed': 25.0},
+        {'model': 'Truck', 'lanelet': 100002, 's': 280.0, 'speed': 8.0, 'speed_factor': 0.25,
+         'route': [100102]}]}
+    m = TrafficManager(graph, traffic_from_dict(data, 'w.yaml: traffic'),
+                       {'Car': (4.5, 1.8), 'Truck': (8.0, 2.4)})
+    car = m.vehicles[0]
+    starts = []
+    for _ in range(int(20.0 / DT)):
+        before = car.lane
+        m.step(DT)
+        if car.lane != before and car.changing:
+            starts.append((car.s_m, car.speed_mps))
+    assert starts, 'the car never passed the truck'
+    for s, speed in starts:     # the change (3 s at its speed, its length) ends before the zone
+        assert s + speed * 3.0 + 4.5 < 300.0 - 3.0 or s - 2.25 - 3.0 > 310.0, starts
