@@ -21,7 +21,9 @@ A vehicle drives the shipped highway (config/worlds/highway.yaml: 3 + 3 lanes, 2
 computes its lane state (core LaneTracker.update) and its lane invasions
 (LaneInvasionDetector.update), as a node would for ``<ns>/lane_state`` and
 ``<ns>/lane_invasion``. The same drive runs on a map 50 times larger (50 highways side by side,
-1500 lanes) to show that the per-step cost does not grow with the map; the whole-map search
+1500 lanes) to show that the per-step cost does not grow with the map, and on the highway with a
+stop line every 100 m of each forward lane (the lane state's next stop line ahead found each
+step: core/map/lane_state.py); the whole-map search
 (``LaneGraph.locate``, what a step costs only after a teleport or when a vehicle leaves every
 lane) is printed for context. Figures: best of 5 runs of the whole drive, per step.
 
@@ -39,6 +41,7 @@ sys.path.insert(0, os.path.dirname(HERE))
 
 from vehicle_sim.config import load_world  # noqa: E402
 from vehicle_sim.core.map.lane_invasion import LaneInvasionDetector  # noqa: E402
+from vehicle_sim.core.map.lane_rules import LaneRules, StopLine  # noqa: E402
 from vehicle_sim.core.map.lane_state import LaneTracker  # noqa: E402
 from vehicle_sim.core.map.road_segments import (  # noqa: E402
     lane_graph_from_roads,
@@ -112,6 +115,24 @@ def large_graph(copies):
     return lane_graph_from_roads(roads_from_list(roads, 'bench'), 'bench')
 
 
+def with_stop_lines(world, every_m=100.0):
+    """Return the highway's graph with a stop sign's line every ``every_m`` on forward lanes."""
+    graph = lane_graph_from_roads(world.roads, world.source)
+    lines = []
+    for lane in graph.lanes.values():
+        if lane.id % 100 >= 50:               # the backward lanes: none
+            continue
+        s = every_m / 2.0
+        while s < lane.length_m:
+            x, y, yaw = graph.pose_at(lane.id, s)
+            nx, ny = -math.sin(yaw) * 1.5, math.cos(yaw) * 1.5
+            lines.append(StopLine(len(lines) + 1, lane.id, s,
+                                  [(x - nx, y - ny), (x + nx, y + ny)], 'stop_sign'))
+            s += every_m
+    graph.set_rules(LaneRules(stop_lines=tuple(lines)))
+    return graph
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split('\n')[1])
     parser.add_argument('--quick', action='store_true', help='fewer steps')
@@ -121,11 +142,13 @@ def main(argv=None):
     highway = lane_graph_from_roads(world.roads, world.source)
     poses = _drive(highway, steps)
     big = large_graph(50)
+    lined = with_stop_lines(world)
     print(f'load average {"/".join(f"{x:.1f}" for x in os.getloadavg())}; {steps} steps of '
           f'{DT_S * 1000:g} ms at {SPEED_MPS:g} m/s, weaving across 2 lane lines every 8 s')
     rows = []
-    for name, graph in (('highway (30 lanes)', highway), (f'50 highways ({len(big.lanes)} '
-                                                           'lanes)', big)):
+    for name, graph in (('highway (30 lanes)', highway),
+                        (f'50 highways ({len(big.lanes)} lanes)', big),
+                        (f'highway, {len(lined.rules.stop_lines)} stop lines', lined)):
         both, crossings = per_step_us(graph, poses)
         state_only, _ = per_step_us(graph, poses, with_invasion=False)
         rows.append((name, both, state_only, locate_us(graph, poses), crossings))

@@ -335,3 +335,40 @@ def test_invasions_found_through_the_grid_equal_a_test_of_every_boundary_segment
         total += len(found)
         point = nxt
     assert total > 100
+
+
+def tapered_lane():
+    # a merge taper: 3.5 m wide at x = 0, its bounds meet at x = 30 (zero width there)
+    left = Boundary(11, [[0.0, 3.5], [30.0, 0.0]], 'dashed')
+    right = Boundary(12, [[0.0, 0.0], [30.0, 0.0]], 'solid')
+    return Lane(9, [[0.0, 1.75], [15.0, 0.875], [30.0, 0.0]], left, right, 10.0)
+
+
+def test_a_tapered_lane_loads_and_its_zero_width_end_is_located_without_division_by_zero():
+    lane = tapered_lane()
+    assert lane.widths[0] == pytest.approx(3.5, abs=0.02) and lane.widths[-1] == 0.0
+    graph = LaneGraph([lane])
+    end = graph.locate(30.0, 0.0, 0.0)           # on the point where the bounds meet
+    assert (end.lane_id, end.width_m) == (9, 0.0)
+    assert end.s_m == pytest.approx(lane.length_m)
+    assert graph.locate(30.0, 0.01, 0.0) is None  # beside it: off the lane
+    assert graph.pose_at(9, lane.length_m, 0.0)[:2] == (pytest.approx(30.0), pytest.approx(0.0))
+    with pytest.raises(InvalidParameterError, match=r'\|offset\| <= 0.000 m there'):
+        graph.pose_at(9, lane.length_m, 0.1)
+    tracker = LaneTracker(graph)
+    states = [tracker.update(x, 1.75 * (1.0 - x / 30.0), lane.headings[0])
+              for x in (0.0, 10.0, 20.0, 30.0)]
+    assert [s.lane_id for s in states] == [9, 9, 9, 9]
+    assert states[-1].width_m == 0.0 and math.isfinite(states[-1].offset_m)
+
+
+def test_a_lane_of_zero_width_everywhere_is_refused_and_its_subtype_is_kept():
+    edge = Boundary(1, [[0.0, 0.0], [10.0, 0.0]], 'solid')
+    with pytest.raises(InvalidParameterError, match='lane 5: its width must be > 0 somewhere'):
+        Lane(5, [[0.0, 0.0], [10.0, 0.0]], edge, edge, 10.0)
+    with pytest.raises(InvalidParameterError, match=r'lane 6: its width must be >= 0 '):
+        Lane(6, [[0.0, 0.0], [10.0, 0.0]], edge, edge, 10.0, widths=[3.0, -1.0])
+    other = Boundary(2, [[0.0, 3.0], [10.0, 3.0]], 'solid')
+    assert Lane(7, [[0.0, 1.5], [10.0, 1.5]], other, edge, 10.0).subtype == 'road'
+    shoulder = Lane(8, [[0.0, 1.5], [10.0, 1.5]], other, edge, 10.0, subtype='road_shoulder')
+    assert shoulder.subtype == 'road_shoulder'

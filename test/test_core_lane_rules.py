@@ -109,3 +109,16 @@ def test_phases_that_put_conflicting_groups_green_together_are_refused():
         graph = crossing()
         graph.set_rules(rules_of_crossing())
         SignalController(graph, phases=[[[11, 12]]])
+
+
+def test_skipping_the_recomputation_between_phase_boundaries_gives_the_same_states():
+    graph = crossing()
+    graph.set_rules(rules_of_crossing())
+    plan = FixedTimePlan(green_s=7.3, yellow_s=2.9, all_red_s=1.1, offset_s=0.37)
+    fast, fresh = SignalController(graph, plan), None
+    for step in range(0, 5000):
+        t = step * 0.01
+        fast.update(t)
+        fresh = SignalController(graph, plan)
+        fresh.update(t)
+        assert fast.states() == fresh.states(), t

@@ -117,7 +117,7 @@ def test_a_registered_source_adds_its_entities_after_the_built_in_ones(monkeypat
     scene = SimpleNamespace(vehicles={}, spec=SimpleNamespace(obstacles=()), obstacles={})
     assert fs.scene_entities(scene) == [sign]
     assert list(fs.ENTITY_SOURCES) == ['vehicles', 'obstacles', 'traffic', 'map', 'lanes',
-                                       'signs']
+                                       'signals', 'signs']
     assert fs.STATIC_SOURCES == {'map', 'lanes'}
 
 

@@ -20,22 +20,29 @@ The map, its ids and its two kinds of coordinates are drawn in test/lane_helpers
 """
 
 import math
+from pathlib import Path
+import subprocess
 import sys
 
-from lane_helpers import DEFAULT_MPS, LOCAL_SHIFT, ORIGIN, write_map
+from lane_helpers import DEFAULT_MPS, local_node, LOCAL_SHIFT, ORIGIN, write_map
 import pytest
+import yaml
 
+from vehicle_sim.config import load_world
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.core.map.lane_invasion import LaneInvasionDetector
 from vehicle_sim.core.map.lane_state import LaneTracker
 from vehicle_sim.core.map.lanelet2_params import lanelet2_map_from_dict
 from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.maps.lane_maps import with_lanes
 
 pytest.importorskip('lanelet2', reason="lanelet2 is not installed (pip install "
                                        "'vehicle_sim[lanelet2]'; the test extra has it)")
 
+from vehicle_sim.maps.lanelet2_file import MAX_OSM_BYTES  # noqa: E402
 from vehicle_sim.maps.lanelet2_map import (  # noqa: E402  (after the skip)
     lane_graph_from_map,
+    Lanelet2MapWarning,
     Lanelet2Unavailable,
     line_type_of,
     load_lanelet2,
@@ -186,7 +193,8 @@ def test_bad_files_are_refused_naming_the_file(tmp_path):
 
 # What the refusals below tell the user to write.
 ORIGIN_HINT = ("set the world file's origin: near the map, e.g. origin: {latitude: 48.1, "
-               'longitude: 11.5}')
+               "longitude: 11.5} (or, its nodes having local_x/local_y tags, the map's "
+               'projector: autoware_local)')
 
 
 def test_a_map_far_from_the_worlds_origin_is_refused_naming_the_origin_key(osm):
@@ -220,3 +228,343 @@ def test_without_lanelet2_the_error_names_the_extra(monkeypatch, osm):
     monkeypatch.setitem(sys.modules, 'lanelet2', None)
     with pytest.raises(Lanelet2Unavailable, match=r"pip install 'vehicle_sim\[lanelet2\]'"):
         load_lanelet2(str(osm), ORIGIN)
+
+
+# ------------------------------------------------------------- Autoware's maps, bad input
+
+def _way(way_id, nodes, kind, subtype=None, tags=''):
+    sub = f'<tag k="subtype" v="{subtype}"/>' if subtype else ''
+    refs = ''.join(f'<nd ref="{n}"/>' for n in nodes)
+    return f'  <way id="{way_id}">{refs}<tag k="type" v="{kind}"/>{sub}{tags}</way>\n'
+
+
+def _element(rel_id, subtype, members):
+    refs = ''.join(f'<member type="{kind}" ref="{ref}" role="{role}"/>'
+                   for kind, ref, role in members)
+    return (f'  <relation id="{rel_id}">{refs}<tag k="type" v="regulatory_element"/>'
+            f'<tag k="subtype" v="{subtype}"/></relation>\n')
+
+
+def _refers(*ids):
+    return ''.join(f'<member type="relation" ref="{i}" role="regulatory_element"/>' for i in ids)
+
+
+def _square(first_node, way_id, x, y, size=2.0):
+    corners = [(x, y), (x + size, y), (x + size, y + size), (x, y + size)]
+    nodes = ''.join(local_node(first_node + i, cx, cy) for i, (cx, cy) in enumerate(corners))
+    return nodes + _way(way_id, range(first_node, first_node + 4), 'area_polygon',
+                        tags='<tag k="area" v="yes"/>')
+
+
+# Every regulatory element type of Autoware's format (autoware_lanelet2_extension's
+# docs/lanelet2_format_extension.md), none of which the PyPI lanelet2 can construct, and one
+# no one knows: lanelets 2001 and 2003 refer to all of them.
+AUTOWARE_ELEMENTS = (
+    # road marking 3001: stop line 1101 at x = 40 across lanelet 2001
+    local_node(5001, 40.0, 0.0) + local_node(5002, 40.0, 3.5)
+    + _way(1101, (5001, 5002), 'stop_line')
+    + _element(3001, 'road_marking', [('way', 1101, 'refers')])
+    # crosswalk 3002: crosswalk lanelet 2101 across lanelet 2003 at x = 70 .. 74, its polygon
+    # 1103, its stop line 1104 at x = 68
+    + local_node(5003, 70.0, -1.0) + local_node(5004, 70.0, 8.0) + local_node(5005, 74.0, -1.0)
+    + local_node(5006, 74.0, 8.0) + local_node(5007, 68.0, 0.0) + local_node(5008, 68.0, 3.5)
+    + _way(1102, (5003, 5004), 'line_thin', 'dashed')
+    + _way(1105, (5005, 5006), 'line_thin', 'dashed')
+    + _way(1103, (5003, 5005, 5006, 5004), 'crosswalk_polygon', tags='<tag k="area" v="yes"/>')
+    + _way(1104, (5007, 5008), 'stop_line')
+    + '  <relation id="2101"><member type="way" ref="1102" role="left"/><member type="way" '
+      'ref="1105" role="right"/><tag k="type" v="lanelet"/><tag k="subtype" v="crosswalk"/>'
+      '<tag k="one_way" v="no"/><tag k="participant:pedestrian" v="yes"/></relation>\n'
+    + _element(3002, 'crosswalk', [('relation', 2101, 'refers'), ('way', 1103,
+                                                                  'crosswalk_polygon'),
+                                   ('way', 1104, 'ref_line')])
+    # areas: detection area 3003, no stopping 3004, no parking 3005, bus stop 3006, speed
+    # bump 3007 (polygons 1111 .. 1115 beside the road)
+    + ''.join(_square(5100 + 4 * i, 1111 + i, 10.0 * i, -10.0) for i in range(5))
+    + _element(3003, 'detection_area', [('way', 1111, 'refers'), ('way', 1101, 'ref_line')])
+    + _element(3004, 'no_stopping_area', [('way', 1112, 'refers')])
+    + _element(3005, 'no_parking_area', [('way', 1113, 'refers')])
+    + _element(3006, 'bus_stop_area', [('way', 1114, 'refers')])
+    + _element(3007, 'speed_bump', [('way', 1115, 'refers')])
+    # skipped: a virtual traffic light 3008 (its stop line 1101), a roundabout 3009, and 3010
+    + _element(3008, 'virtual_traffic_light', [('way', 1101, 'stop_line')])
+    + _element(3009, 'roundabout', [('relation', 2003, 'entry')])
+    + _element(3010, 'nobody_knows_this', [('way', 1101, 'refers')]))
+
+
+def test_a_map_whose_regulatory_elements_all_fail_in_lanelet2_loads_warning_once_per_type(
+        tmp_path):
+    path = write_map(tmp_path / 'autoware.osm', extra=AUTOWARE_ELEMENTS, members={
+        2001: _refers(3001, 3003, 3004, 3005, 3008, 3010),
+        2003: _refers(3002, 3006, 3007, 3009)})
+    with pytest.warns(Lanelet2MapWarning) as caught:
+        graph = load_lanelet2(str(path), ORIGIN, 'autoware_local', DEFAULT_MPS,
+                              'w.yaml: map.file')[0]
+    messages = sorted(str(w.message).replace(f'w.yaml: map.file: {path}: ', '')
+                      for w in caught)
+    assert messages == [
+        '1 bus_stop_area regulatory element (id 3006) drawn as areas only: the simulator does '
+        'not act on them',
+        '1 detection_area regulatory element (id 3003) drawn as areas only: the simulator does '
+        'not act on them',
+        '1 no_parking_area regulatory element (id 3005) drawn as areas only: the simulator '
+        'does not act on them',
+        '1 no_stopping_area regulatory element (id 3004) drawn as areas only: the simulator '
+        'does not act on them',
+        '1 nobody_knows_this regulatory element (id 3010) skipped: the simulator does not use '
+        'them',
+        '1 roundabout regulatory element (id 3009) skipped: the simulator does not use them',
+        '1 speed_bump regulatory element (id 3007) drawn as areas only: the simulator does not '
+        'act on them',
+        '1 virtual_traffic_light regulatory element (id 3008) skipped: the simulator does not '
+        'use them']
+    assert all(str(w.message).startswith(f'w.yaml: map.file: {path}: ') for w in caught)
+    assert sorted(graph.lanes) == [-2005, 2001, 2002, 2003, 2004, 2005]
+    rules = graph.rules
+    # the road marking's stop line on 2001 at x = 40; the crosswalk's on 2003 at x = 68
+    assert [(s.id, s.lane_id, s.kind, round(s.s_m, 6)) for s in rules.stop_lines] == [
+        (1101, 2001, 'road_marking', 40.0), (1104, 2003, 'yield', 18.0)]
+    areas = {a.kind: a for a in rules.areas}
+    assert sorted(areas) == ['bus_stop_area', 'crosswalk', 'detection_area', 'no_parking_area',
+                             'no_stopping_area', 'speed_bump']
+    crosswalk = areas['crosswalk']
+    assert (crosswalk.id, crosswalk.lanes, crosswalk.walkable) == (2101, (2003, 2004), True)
+    assert crosswalk.polygon.min(axis=0).tolist() == [70.0 + LOCAL_SHIFT[0],
+                                                      -1.0 + LOCAL_SHIFT[1]]
+    assert areas['detection_area'].lanes == (2001,)
+    assert areas['speed_bump'].polygon.shape == (4, 2)
+
+
+# A traffic light (3020: light 1120, bulbs 1121, stop line 1122 at x = 45) on lanelets 2001 and
+# 2002, a right of way (3021: 2003 before 2004, 2004's stop line 1123 at x = 55) and a stop
+# sign (3022: sign 1124, stop line 1125 at x = 120 on 2005).
+SIGNALS = (
+    local_node(5201, 48.0, -1.0, 5.0) + local_node(5202, 48.0, -1.5, 5.0)
+    + _way(1120, (5201, 5202), 'traffic_light', 'red_yellow_green',
+           '<tag k="height" v="0.9"/>')
+    + local_node(5203, 48.0, -1.25, 5.75, '<tag k="color" v="red"/>')
+    + local_node(5204, 48.0, -1.25, 5.45, '<tag k="color" v="yellow"/>')
+    + local_node(5205, 48.0, -1.25, 5.15, '<tag k="color" v="green"/>')
+    + local_node(5206, 48.0, -1.0, 5.15, '<tag k="color" v="green"/><tag k="arrow" v="left"/>')
+    + _way(1121, (5203, 5204, 5205, 5206), 'light_bulbs', tags='<tag k="traffic_light_id" '
+                                                               'v="1120"/>')
+    + local_node(5207, 45.0, 0.0) + local_node(5208, 45.0, 7.0)
+    + _way(1122, (5207, 5208), 'stop_line')
+    + _element(3020, 'traffic_light', [('way', 1120, 'refers'), ('way', 1122, 'ref_line'),
+                                       ('way', 1121, 'light_bulbs')])
+    + local_node(5209, 55.0, 3.5) + local_node(5210, 55.0, 7.0)
+    + _way(1123, (5209, 5210), 'stop_line')
+    + _element(3021, 'right_of_way', [('relation', 2003, 'right_of_way'),
+                                      ('relation', 2004, 'yield'), ('way', 1123, 'ref_line')])
+    + local_node(5211, 122.0, -1.0) + local_node(5212, 122.0, -1.5)
+    + _way(1124, (5211, 5212), 'traffic_sign', 'stop_sign')
+    + local_node(5213, 120.0, 0.0) + local_node(5214, 120.0, 3.5)
+    + _way(1125, (5213, 5214), 'stop_line')
+    + _element(3022, 'traffic_sign', [('way', 1124, 'refers'), ('way', 1125, 'ref_line')]))
+
+
+def test_traffic_lights_right_of_way_and_stop_signs_become_the_lane_graphs_rules(tmp_path):
+    path = write_map(tmp_path / 'signals.osm', extra=SIGNALS, members={
+        2001: _refers(3020), 2002: _refers(3020), 2003: _refers(3021), 2004: _refers(3021),
+        2005: _refers(3022)})
+    graph = load_lanelet2(str(path), ORIGIN, 'autoware_local', DEFAULT_MPS)[0]
+    rules = graph.rules
+    group = rules.group(3020)
+    assert (group.lanes, len(group.stop_lines)) == ((2001, 2002), 2)
+    assert [(b.color, b.shape, round(b.z_m, 3)) for b in group.bulbs] == [
+        ('red', 'circle', 5.75), ('yellow', 'circle', 5.45), ('green', 'circle', 5.15),
+        ('green', 'left_arrow', 5.15)]
+    assert (group.bulbs[0].x_m, group.bulbs[0].y_m) == (48.0 + LOCAL_SHIFT[0],
+                                                        -1.25 + LOCAL_SHIFT[1])
+    lines = {(s.lane_id, s.kind): s for s in rules.stop_lines}
+    assert lines[(2001, 'traffic_light')].id == 1122          # the map's line, then a new id
+    assert lines[(2002, 'traffic_light')].id not in (1122, 2001, 2002)
+    for lane_id in (2001, 2002):
+        line = lines[(lane_id, 'traffic_light')]
+        assert (round(line.s_m, 6), line.group_id) == (45.0, 3020)
+        assert rules.next_stop_line(graph, lane_id, 10.0, 100.0)[1] == pytest.approx(35.0)
+    (rule,) = rules.right_of_way
+    assert (rule.id, rule.priority_lanes, rule.yield_lanes) == (3021, (2003,), (2004,))
+    assert [s.s_m for s in rules.stop_lines if s.id in rule.stop_lines] == [
+        pytest.approx(5.0)]
+    assert (round(lines[(2005, 'stop_sign')].s_m, 6), lines[(2005, 'stop_sign')].id) == (
+        20.0, 1125)
+    assert (-2005, 'stop_sign') not in lines            # the inverted lane: its direction only
+
+
+def test_speed_limits_of_lanelets_with_regulatory_elements_load(tmp_path):
+    # a lanelet referring to any regulatory element crashed the speed limit's lookup
+    path = write_map(tmp_path / 'limits.osm', extra=SIGNALS, members={2004: _refers(3021)})
+    graph = load_lanelet2(str(path), ORIGIN, 'autoware_local', DEFAULT_MPS)[0]
+    assert graph.lanes[2004].speed_limit_mps == pytest.approx(30.0 / 3.6)
+    assert graph.lanes[2003].speed_limit_mps == DEFAULT_MPS
+
+
+def _lanelet_xml(rel_id, left, right, subtype, one_way='yes'):
+    return (f'  <relation id="{rel_id}"><member type="way" ref="{left}" role="left"/>'
+            f'<member type="way" ref="{right}" role="right"/><tag k="type" v="lanelet"/>'
+            f'<tag k="subtype" v="{subtype}"/><tag k="location" v="urban"/>'
+            f'<tag k="one_way" v="{one_way}"/></relation>\n')
+
+
+def _subtypes_map(path):
+    # 2201: a road whose left bound meets its right one at x = 30 (a taper); 2202: a road
+    # shoulder on its right; rows 10 m apart above: one lanelet of each other subtype
+    text = '<?xml version="1.0" encoding="UTF-8"?>\n<osm version="0.6">\n'
+    text += (local_node(1, 0.0, 3.5) + local_node(2, 0.0, 0.0) + local_node(3, 30.0, 0.0)
+             + local_node(4, 0.0, -3.0) + local_node(5, 30.0, -3.0))
+    text += (_way(11, (1, 3), 'line_thin', 'solid') + _way(12, (2, 3), 'line_thin', 'solid')
+             + _way(13, (4, 5), 'road_border'))
+    text += _lanelet_xml(2201, 11, 12, 'road') + _lanelet_xml(2202, 12, 13, 'road_shoulder')
+    subtypes = ('bicycle_lane', 'highway', 'exit', 'play_street', 'crosswalk', 'walkway',
+                'rail')
+    for i, subtype in enumerate(subtypes):
+        y, first = 10.0 * (i + 1), 100 + 4 * i
+        text += (local_node(first, 0.0, y + 3.0) + local_node(first + 1, 30.0, y + 3.0)
+                 + local_node(first + 2, 0.0, y) + local_node(first + 3, 30.0, y))
+        text += (_way(200 + 2 * i, (first, first + 1), 'line_thin', 'solid')
+                 + _way(201 + 2 * i, (first + 2, first + 3), 'line_thin', 'solid'))
+        text += _lanelet_xml(2203 + i, 200 + 2 * i, 201 + 2 * i, subtype)
+    for i, subtype in enumerate(('parking', 'keepout', 'building')):     # multipolygons
+        first = 300 + 4 * i
+        text += ''.join(local_node(first + k, 40.0 + 10.0 * i + dx, dy) for k, (dx, dy) in
+                        enumerate(((0, 0), (5, 0), (5, 5), (0, 5))))
+        text += (_way(400 + 2 * i, (first, first + 1, first + 2), 'line_thin', 'solid')
+                 + _way(401 + 2 * i, (first + 2, first + 3, first), 'line_thin', 'solid'))
+        text += (f'  <relation id="{2401 + i}"><member type="way" ref="{400 + 2 * i}" '
+                 f'role="outer"/><member type="way" ref="{401 + 2 * i}" role="outer"/>'
+                 f'<tag k="type" v="multipolygon"/><tag k="subtype" v="{subtype}"/>'
+                 '</relation>\n')
+    path.write_text(text + '</osm>\n', encoding='utf-8')
+    return path
+
+
+def test_tapers_other_subtypes_walking_lanelets_and_areas_load(tmp_path):
+    path = _subtypes_map(tmp_path / 'subtypes.osm')
+    with pytest.warns(Lanelet2MapWarning) as caught:
+        graph = load_lanelet2(str(path), ORIGIN, 'autoware_local', DEFAULT_MPS)[0]
+    assert [str(w.message) for w in caught] == [
+        f"map: {path}: 1 lanelet of subtype 'rail' (id 2209) skipped: not a lane the simulator "
+        'drives']
+    assert {i: lane.subtype for i, lane in graph.lanes.items()} == {
+        2201: 'road', 2202: 'road_shoulder', 2203: 'bicycle_lane', 2204: 'highway',
+        2205: 'exit', 2206: 'play_street'}
+    taper = graph.lanes[2201]
+    assert taper.widths[-1] == 0.0 and taper.widths[0] == pytest.approx(3.5, abs=0.2)
+    end = graph.locate(30.0 + LOCAL_SHIFT[0], LOCAL_SHIFT[1], 0.0)
+    assert end is not None and end.width_m == 0.0
+    assert {a.id: (a.kind, a.walkable) for a in graph.rules.areas} == {
+        2207: ('crosswalk', True), 2208: ('walkway', True), 2401: ('parking', False),
+        2402: ('keepout', False), 2403: ('building', False)}
+
+
+def test_a_wrong_vehicle_lanelet_is_refused_naming_the_world_file_the_map_and_the_lanelet(
+        tmp_path):
+    text = ('<?xml version="1.0"?>\n<osm version="0.6">\n' + local_node(1, 0.0, 0.0)
+            + local_node(2, 30.0, 0.0) + _way(11, (1, 2), 'line_thin', 'solid')
+            + _lanelet_xml(2301, 11, 11, 'road') + '</osm>\n')
+    path = tmp_path / 'flat.osm'
+    path.write_text(text, encoding='utf-8')
+    with pytest.raises(InvalidParameterError) as refused:
+        load_lanelet2(str(path), ORIGIN, 'autoware_local', DEFAULT_MPS, 'w.yaml: map.file')
+    assert str(refused.value) == (f'w.yaml: map.file: {path}: lanelet 2301: lane 2301: its '
+                                  'width must be > 0 somewhere (its bounds coincide)')
+
+
+def test_a_map_with_empty_lat_lon_needs_autoware_local_and_no_origin(tmp_path):
+    # Autoware's local and MGRS maps: lat="" lon="", local_x/local_y on every node
+    real = Path(__file__).resolve().parent / 'data' / 'lanelet2_maps' / 'autoware_core'
+    world = tmp_path / 'w.yaml'
+    data = {'vehicles': [{'name': 'Car', 'namespace': '', 'model': 'ToyotaPrius',
+                          'pose': {'lanelet': 45, 's': 5.0}}],
+            'map': {'type': 'lanelet2', 'file': str(real / 'vm_06_01.osm')}}
+    world.write_text(yaml.safe_dump(data), encoding='utf-8')
+    with pytest.raises(InvalidParameterError) as refused:
+        with_lanes(load_world(str(world), 'ToyotaPrius'))
+    assert str(refused.value) == (
+        f"{world}: map.file: {real / 'vm_06_01.osm'}: node 1 has lat '', lon '', not numbers: "
+        "projector 'local_cartesian' reads them: its local_x/local_y tags are Autoware's map "
+        "frame: set the map's projector: autoware_local")
+    data['map']['projector'] = 'autoware_local'              # and still no origin:
+    world.write_text(yaml.safe_dump(data), encoding='utf-8')
+    spec = with_lanes(load_world(str(world), 'ToyotaPrius'))
+    car = spec.vehicles[0]
+    assert spec.lanes.locate(car.x_m, car.y_m, car.yaw_rad).lane_id == 45
+
+
+def test_a_file_over_the_size_limit_is_refused_before_parsing(tmp_path):
+    path = tmp_path / 'huge.osm'
+    with open(path, 'wb') as sparse:          # no disk used: nothing is read
+        sparse.truncate(MAX_OSM_BYTES + 1)
+    with pytest.raises(InvalidParameterError, match=(
+            r'huge.osm: 100 MB is larger than the 100 MB a lanelet2 map may have')):
+        load_lanelet2(str(path), ORIGIN, 'autoware_local')
+
+
+def _write_big_map(path, megabytes):
+    # rows of two-lane straight roads, 100 m long, 20 m apart, until the file has ``megabytes``
+    rows, size = 0, 0
+    with open(path, 'w', encoding='utf-8') as out:
+        out.write('<?xml version="1.0"?>\n<osm version="0.6">\n')
+        node, way, lanelet = 1, 10_000_000, 20_000_000
+        while size < megabytes * 1_000_000:
+            text, lines = '', []
+            for k in range(3):
+                first = node
+                for i in range(11):
+                    text += local_node(node, 10.0 * i, 20.0 * rows + 3.5 * k)
+                    node += 1
+                text += _way(way, range(first, node), 'line_thin', 'solid')
+                lines.append(way)
+                way += 1
+            for k in range(2):
+                text += _lanelet_xml(lanelet, lines[k + 1], lines[k], 'road')
+                lanelet += 1
+            out.write(text)
+            size += len(text)
+            rows += 1
+        out.write('</osm>\n')
+    return 2 * rows
+
+
+def test_a_50_mb_map_loads_in_bounded_memory(tmp_path):
+    path = tmp_path / 'big.osm'
+    lanelets = _write_big_map(path, 50)
+    script = ('import resource, sys\n'
+              'from vehicle_sim.maps.lanelet2_map import load_lanelet2\n'
+              f'graph = load_lanelet2({str(path)!r}, projector="autoware_local")[0]\n'
+              'print(len(graph.lanes), resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)\n')
+    done = subprocess.run([sys.executable, '-c', script], capture_output=True, text=True,
+                          check=True)
+    lanes, peak_kb = map(int, done.stdout.split())
+    print(f'50 MB map: {lanelets} lanelets, peak RSS {peak_kb / 1024:.0f} MB')
+    assert lanes == lanelets
+    assert peak_kb < 1_500_000           # about 15 bytes of memory per byte of XML, 0.75 GB
+
+
+def test_a_lanelet_lanelet2_cannot_make_is_left_out_with_its_error_not_a_crash(tmp_path):
+    # lanelet 2302 names two left bounds: lanelet2 reports it and keeps a broken lanelet, whose
+    # routing graph ended the process (a segmentation fault)
+    text = ('<?xml version="1.0"?>\n<osm version="0.6">\n'
+            + ''.join(local_node(i + 1, 30.0 * (i % 2), 3.5 * (i // 2)) for i in range(6))
+            + _way(11, (1, 2), 'line_thin', 'solid') + _way(12, (3, 4), 'line_thin', 'dashed')
+            + _way(13, (5, 6), 'line_thin', 'solid') + _lanelet_xml(2301, 12, 11, 'road')
+            + _lanelet_xml(2302, 13, 12, 'road').replace(
+                'role="left"/>', 'role="left"/><member type="way" ref="11" role="left"/>')
+            + '</osm>\n')
+    path = tmp_path / 'two_lefts.osm'
+    path.write_text(text, encoding='utf-8')
+    script = ('import warnings\n'
+              'from vehicle_sim.maps.lanelet2_map import load_lanelet2\n'
+              'with warnings.catch_warnings(record=True) as caught:\n'
+              '    warnings.simplefilter("always")\n'
+              f'    graph = load_lanelet2({str(path)!r}, projector="autoware_local")[0]\n'
+              'print(sorted(graph.lanes))\n'
+              'print(*(str(w.message) for w in caught), sep="\\n")\n')
+    done = subprocess.run([sys.executable, '-c', script], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr[-2000:]
+    lanes, message = done.stdout.splitlines()
+    assert lanes == '[2301]'
+    assert message == (f'map: {path}: lanelet2 reports 1 error(s), the map is loaded without '
+                       'the primitives they name: Error parsing primitive 2302: Lanelet has not '
+                       'exactly one left border!')

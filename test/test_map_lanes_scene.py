@@ -131,7 +131,8 @@ def test_a_lanelet2_world_without_origin_is_refused_naming_the_key(tmp_path):
         build_scene(load_world(str(world), 'ToyotaPrius'))
     assert str(refused.value).endswith(
         "set the world file's origin: near the map, e.g. origin: {latitude: "
-        f"{origin['latitude']:g}, longitude: {origin['longitude']:g}}}")
+        f"{origin['latitude']:g}, longitude: {origin['longitude']:g}}} (or, its nodes having "
+        "local_x/local_y tags, the map's projector: autoware_local)")
     assert f'{world}: map.file: ' in str(refused.value)
 
 
@@ -140,8 +141,9 @@ def test_the_road_surface_has_no_collision_shape_and_rays_pass_it(tmp_path):
     scene = build_scene(load_world(str(write_world(tmp_path, [ON_2001])), 'ToyotaPrius'))
     try:
         cid = scene.world.client_id
-        for body_id in scene.parts['map'].visual_ids:
-            assert pybullet.getCollisionShapeData(body_id, -1, physicsClientId=cid) == ()
+        car = scene.vehicles['Car'].body.body_id
+        for body_id in scene.parts['map'].visual_ids:     # nothing to be near: no shape
+            assert pybullet.getClosestPoints(body_id, car, 100.0, physicsClientId=cid) == ()
         hit = pybullet.rayTest((20.0, 1.75, 2.0), (20.0, 1.75, -1.0), physicsClientId=cid)[0]
         assert hit[0] not in scene.parts['map'].visual_ids
     finally:

@@ -186,3 +186,101 @@ def test_the_automobile_nodes_sim_reset_starts_the_signals_again():
         assert controller.time_s == 0.0 and controller.state(EAST_RING) == 'green'
     finally:
         node.close()
+
+
+def two_crossings(signals):
+    """Return a world mapping: an east-west road crossed by two roads, at x = 0 and x = 100."""
+    def road(name, start, yaw, crossings):
+        segments = [{'type': 'straight', 'length': 44}]
+        for _ in range(crossings):
+            segments += [{'type': 'intersection', 'length': 12, 'signals': True},
+                         {'type': 'straight', 'length': 88 if crossings > 1 else 44}]
+        return {'name': name, 'start': {'x': start[0], 'y': start[1], 'yaw': yaw},
+                'segments': segments}
+    north = 1.5707963267948966
+    return {'vehicles': [{'name': 'Car', 'model': 'ToyotaPrius',
+                          'pose': {'x': -40.0, 'y': -1.75, 'yaw': 0.0}}],
+            'roads': [road('ew', (-50, 0), 0.0, 2), road('ns1', (0, -50), north, 1),
+                      road('ns2', (100, -50), north, 1)],
+            'signals': signals}
+
+
+def _eastbound_group_at(rules, x_m):
+    """Return the id of the group whose stop line lies on the eastbound lane before x_m."""
+    for line in rules.stop_lines:
+        mid_x, mid_y = line.points.mean(axis=0)
+        if line.group_id is not None and abs(mid_x - (x_m - 6.0)) < 1.0 and mid_y < 0.0:
+            return line.group_id
+    raise AssertionError(f'no eastbound stop line before x = {x_m}')
+
+
+def test_an_intersection_runs_its_own_times_and_offset(tmp_path):
+    times = {'green': 2.0, 'yellow': 1.0, 'all_red': 1.0}
+    plain = load_world(str(write(tmp_path, two_crossings(times), 'plain.yaml')))
+    scene = build_scene(plain)
+    try:
+        rules = scene.lanes.rules
+        first, second = _eastbound_group_at(rules, 0.0), _eastbound_group_at(rules, 100.0)
+    finally:
+        scene.world.close()
+    wave = dict(times, intersections=[{'group': second, 'offset': 1.5, 'green': 3.0}])
+    scene = build_scene(load_world(str(write(tmp_path, two_crossings(wave), 'wave.yaml'))))
+    try:
+        controller = scene.parts['signals'].controller
+        seen = {}
+        for _ in range(4500):                   # 45 s: two cycles of 16 s and of 20 s
+            now = round(scene.world.step(), 2)
+            seen[now] = (controller.state(first), controller.state(second))
+        for group, green_s, phase_s, offset_s in ((first, 2.0, 4.0, 0.0),
+                                                  (second, 3.0, 5.0, 1.5)):
+            index, count, _ = controller._slot[group]
+            column = 0 if group == first else 1
+            greens, since = [], None           # complete green intervals (start, end)
+            for now in sorted(seen):
+                lit = seen[now][column] == 'green'
+                if lit and since is None:
+                    since = now
+                elif not lit and since is not None:
+                    greens.append((since, now))
+                    since = None
+            greens = [g for g in greens if g[0] > 0.01]         # the first may start at 0
+            cycle = count * phase_s
+            assert len(greens) >= 2, greens
+            for begin, end in greens:
+                assert end - begin == pytest.approx(green_s, abs=0.011), greens
+                assert (begin - offset_s - index * phase_s) % cycle == pytest.approx(
+                    0.0, abs=0.011) or (begin - offset_s - index * phase_s) % cycle == \
+                    pytest.approx(cycle, abs=0.011), (group, greens)
+    finally:
+        scene.world.close()
+
+
+@pytest.mark.parametrize('entries, fragment', [
+    ([{'group': 123}], "field 'intersections': traffic light group 123 is not in the map"),
+    ([{'group': 'east'}], "intersections[0]: field 'group' = 'east': must be an integer"),
+    ([{'group': 1, 'green': 0.0}], "intersections[0]: field 'green' = 0.0: must be > 0"),
+    ([{'group': 1, 'hue': 3}], "intersections[0]: unknown field 'hue'"),
+    ({'group': 1}, "field 'intersections' = {'group': 1}: must be a list"),
+])
+def test_bad_intersection_plans_are_refused_naming_the_field(tmp_path, entries, fragment):
+    world = two_crossings({'intersections': entries})
+    with pytest.raises(InvalidParameterError) as error:
+        build_scene(load_world(str(write(tmp_path, world))))
+    assert fragment in str(error.value), str(error.value)
+    assert 'w.yaml: signals' in str(error.value), str(error.value)
+
+
+def test_two_plans_for_one_intersection_are_refused(tmp_path):
+    scene = build_scene(load_world(str(write(tmp_path, two_crossings({}), 'plain.yaml'))))
+    try:
+        rules = scene.lanes.rules
+        first = _eastbound_group_at(rules, 0.0)
+        phases = scene.parts['signals'].controller.phases
+        crossing = next(i for i in phases if any(first in phase for phase in i))
+        other = next(g for phase in crossing for g in phase if g != first)
+    finally:
+        scene.world.close()
+    world = two_crossings({'intersections': [{'group': first}, {'group': other, 'offset': 1}]})
+    with pytest.raises(InvalidParameterError, match=rf'groups {first} and {other} are of one '
+                       'intersection: give its plan once'):
+        build_scene(load_world(str(write(tmp_path, world))))

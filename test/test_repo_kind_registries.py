@@ -86,7 +86,8 @@ REGISTRIES = {
     }),
     'scene part': (lambda: set(world_params.WORLD_KEYS) - ROOT_KEYS, {
         'vehicle_sim/core/world/params.py': lambda: set(world_params.WORLD_KEYS) - ROOT_KEYS,
-        'vehicle_sim/physics/scene.py': lambda: set(physics_scene.SCENE_PARTS),
+        'vehicle_sim/physics/scene.py': lambda: {
+            name for name, row in physics_scene.SCENE_PARTS.items() if row.world_key},
     }),
     'sweep backend': (lambda: set(sweep_run.BACKENDS), {
         'vehicle_sim/sweep/run.py': lambda: set(sweep_run.BACKENDS),

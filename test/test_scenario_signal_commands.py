@@ -80,10 +80,11 @@ def test_a_forced_state_is_what_the_controller_reads_from_its_time(tmp_path, mon
 @pytest.mark.parametrize('signal, fragment', [
     ({'group': 123, 'state': 'red'}, 'signal.group = 123: traffic light group 123 is not in '
      'the map (its groups: 4000100101, 4000100151, 4000200101, 4000200151)'),
-    ({'group': EAST, 'state': 'blue'}, "signal.state = 'blue': unknown; valid: red, yellow, "
-     'green, off, plan'),
-    ({'group': 'east', 'state': 'red'}, "signal.group = 'east': must be a traffic light group"),
-    ({'group': EAST}, "signal = {'group': 4000100101}: must be {group: id, state: "),
+    ({'group': EAST, 'state': 'blue'}, "signal: field 'state' = 'blue': must be one of red, "
+     'yellow, green, off, plan'),
+    ({'group': 'east', 'state': 'red'}, "signal: field 'group' = 'east': must be an integer"),
+    ({'group': EAST}, "signal: field 'state' is required"),
+    ({'group': EAST, 'state': 'red', 'for': 3}, "signal: unknown field 'for'"),
 ])
 def test_a_bad_signal_command_is_refused_at_load_naming_the_field(tmp_path, signal, fragment):
     path = scenario(tmp_path, [{'t': 0.0, 'brake_intensity': 1.0},

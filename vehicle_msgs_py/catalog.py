@@ -20,9 +20,9 @@ Every definition lives once, under ``definitions/<package>/<msg|srv>/<Name>.<msg
 * ``vehicle_msgs``: our own Webots-shaped types (docs/ros_interface.md); exported as an ament
 package.
 * ``autoware_control_msgs``, ``autoware_auto_control_msgs``, ``autoware_vehicle_msgs``,
-  ``autoware_perception_msgs`` (the PredictedObjects of traffic), ``ackermann_msgs``: copies
-  of the real packages' definitions (autoware_msgs 1.9.0, ackermann_msgs 2.0), so the embedded
-  transport can speak them without ROS installed.
+  ``autoware_perception_msgs`` (traffic's PredictedObjects, the signals' TrafficLightGroupArray),
+  ``ackermann_msgs``: copies of the real packages' definitions (autoware_msgs 1.9.0,
+  ackermann_msgs 2.0), so the embedded transport can speak them without ROS installed.
 * ``rcl_interfaces`` / ``std_srvs`` services, which rosbags' Jazzy type store lacks.
 
 This module only finds and splits the files; ``vehicle_msgs_py.types`` turns them into types.

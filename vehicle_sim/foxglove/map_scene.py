@@ -27,22 +27,45 @@ the scene builder already made, in the ``world`` frame, with the very geometry t
   ``lanes/surface`` (the road surface, one triangle list), ``lanes/markings`` (each painted
   stripe a line ``LINE_WIDTH_M`` wide: a line strip for a solid one, a line list of its dashes
   for a dashed one, coloured by stripe type), ``lanes/barriers`` (a cube per curbstone, road
-  border or wall piece) and ``lanes/centerlines`` (thin line strips, one per lane).
+  border or wall piece) and ``lanes/centerlines`` (thin line strips, one per lane); from the
+  map's rules (``graph.rules``), when it has them: ``lanes/areas`` (each area's polygon in its
+  kind's colour, core/map/lane_geometry.py's ``area_color``: one triangle list per kind),
+  ``lanes/stop_lines`` (a white line ``STOP_LINE_WIDTH_M`` wide per stop line),
+  ``lanes/crosswalks`` (the zebra stripes, one white triangle list) and ``lanes/signal_poles``
+  (a cube per traffic light pole, core/map/signal_lamps.py).
+
+The traffic lights' heads change with their state: ``signals/<group id>`` (:func:`lamp_entities`,
+the entity source ``'signals'``, sent when it changes): a cube per bulb's housing and a sphere
+per bulb, lit in its colour or dark as the physics shows it (``scene.parts['signal_lamps']``).
 """
 
 import math
 from typing import List
+import weakref
 
 import numpy as np
 
 from vehicle_sim.core.geometry.frames import quaternion_from_rpy
 from vehicle_sim.core.map.lane_geometry import (
+    area_color,
+    area_meshes,
     BARRIER_WIDTH_M,
     barriers,
+    crosswalk_mesh,
     LINE_WIDTH_M,
     MARKING_Z_M,
+    PAINT_COLOR,
     painted_pieces,
+    STOP_LINE_WIDTH_M,
     surface_mesh,
+)
+from vehicle_sim.core.map.signal_lamps import (
+    HOUSING_COLOR,
+    LAMP_RADIUS_M,
+    lamps,
+    POLE_COLOR,
+    POLE_WIDTH_M,
+    poles,
 )
 from vehicle_sim.core.map.wall_boxes import WallBoxes
 from vehicle_sim.foxglove.entities import Entity, Lines, Primitive, Triangles, WORLD_FRAME
@@ -130,17 +153,95 @@ def centerlines_entity(graph) -> Entity:
               CENTERLINE_WIDTH_M, CENTERLINE_COLOR) for lane in graph.lanes.values()))
 
 
+def rules_entities(graph) -> List[Entity]:
+    """
+    Return what a LaneGraph's rules draw on the road: areas, stop lines, crosswalks, poles.
+
+    Each entity only when the rules have some of its kind.
+    """
+    found = []
+    rules = graph.rules
+    areas = area_meshes(graph)
+    if areas:
+        found.append(Entity('lanes/areas', WORLD_FRAME, (), triangles=tuple(
+            Triangles(mesh.vertices, mesh.triangles, area_color(kind))
+            for kind, mesh in areas.items())))
+    if rules.stop_lines:
+        found.append(Entity('lanes/stop_lines', WORLD_FRAME, (), lines=tuple(
+            Lines('line_strip', _at(line.points, MARKING_Z_M), STOP_LINE_WIDTH_M, PAINT_COLOR)
+            for line in rules.stop_lines)))
+    stripes = crosswalk_mesh(graph)
+    if len(stripes.triangles):
+        found.append(Entity('lanes/crosswalks', WORLD_FRAME, (), triangles=(
+            Triangles(stripes.vertices, stripes.triangles, PAINT_COLOR),)))
+    standing = poles(graph, lamps(graph))
+    if standing:
+        found.append(Entity('lanes/signal_poles', WORLD_FRAME, tuple(
+            Primitive('cube', (pole.x_m, pole.y_m, 0.5 * pole.height_m), (0.0, 0.0, 0.0, 1.0),
+                      (POLE_WIDTH_M, POLE_WIDTH_M, pole.height_m), POLE_COLOR)
+            for pole in standing)))
+    return found
+
+
 def lane_map_entities(graph) -> List[Entity]:
-    """Return a LaneGraph's entities: surface, markings, barriers (when any), centrelines."""
+    """
+    Return a LaneGraph's entities.
+
+    Surface, markings, barriers (when any), centrelines, then its rules' (:func:`rules_entities`).
+    """
     found = [surface_entity(graph), markings_entity(graph)]
     wall_pieces = barriers_entity(graph)
     if wall_pieces.primitives:
         found.append(wall_pieces)
     found.append(centerlines_entity(graph))
-    return found
+    return found + rules_entities(graph)
 
 
 def lane_entities(scene) -> List[Entity]:
     """Return the scene's lane map (the entity source ``'lanes'``); none without lanes."""
     graph = getattr(scene, 'lanes', None)
     return [] if graph is None else lane_map_entities(graph)
+
+
+# ------------------------------------------------------------------------------ traffic lights
+
+def group_lamps_entity(group_id, colored) -> Entity:
+    """
+    Return one traffic light group's heads ``signals/<group id>``.
+
+    :param colored: [(Lamp, RGBA)] of the group's lamps: a housing cube and a bulb sphere each.
+    """
+    primitives = []
+    for lamp, rgba in colored:
+        orientation = quaternion_from_rpy(0.0, 0.0, lamp.yaw_rad)
+        primitives.append(Primitive('cube', lamp.housing_centre_m, orientation,
+                                    lamp.housing_size_m, HOUSING_COLOR))
+        bulb = lamp.bulb
+        primitives.append(Primitive('sphere', (bulb.x_m, bulb.y_m, bulb.z_m), orientation,
+                                    (2 * LAMP_RADIUS_M,) * 3, tuple(rgba)))
+    return Entity(f'signals/{group_id}', WORLD_FRAME, tuple(primitives))
+
+
+def lamp_entities(scene) -> List[Entity]:
+    """
+    Return the traffic lights' heads as the physics shows them now (the entity source 'signals').
+
+    One entity per group with bulbs (``scene.parts['signal_lamps']``); none without lamps.
+    """
+    shown = getattr(scene, 'parts', {}).get('signal_lamps')
+    if shown is None:
+        return []
+    shown.refresh()
+    cached = _LAMP_ENTITIES.get(shown)
+    if cached is not None and cached[0] == shown.changes:   # no lamp changed colour since
+        return list(cached[1])
+    groups = {}
+    for lamp, rgba in shown.lamp_colors():
+        groups.setdefault(lamp.group_id, []).append((lamp, rgba))
+    found = [group_lamps_entity(group_id, colored) for group_id, colored in groups.items()]
+    _LAMP_ENTITIES[shown] = (shown.changes, found)
+    return list(found)
+
+
+# The lamp entities last built for each world's lamps: (their colour changes then, entities).
+_LAMP_ENTITIES = weakref.WeakKeyDictionary()

@@ -27,10 +27,13 @@ entities of the scene builder's ``Scene``; :func:`register_entity_source` adds o
 of thing plugs in there, under its own name), either *static* (built once per scene, sent when
 a client subscribes) or moving (called at every update; :func:`boxes_entity` draws a body as
 posed boxes).
+A source may also be *on change*: called at every update, its entities sent only when they
+differ from the ones sent last.
 Built in: ``'vehicles'`` (each vehicle's chassis boxes, posed at each update), ``'obstacles'``
-(the world's cubes, cylinders and spheres), ``'traffic'`` (the traffic vehicles' boxes), and
-the static ``'map'`` (an occupancy map's walls)
-and ``'lanes'`` (road surface, markings, barriers, centrelines) of :mod:`.map_scene`.
+(the world's cubes, cylinders and spheres), ``'traffic'`` (the traffic vehicles' boxes), the
+static ``'map'`` (an occupancy map's walls) and ``'lanes'`` (road surface, markings, barriers,
+centrelines, the rules' areas, stop lines, crosswalks and traffic light poles), and the on-change
+``'signals'`` (the traffic lights' heads in their colours) of :mod:`.map_scene`.
 """
 
 from typing import Callable, Dict, Iterable, List, Optional, Sequence, Tuple
@@ -186,9 +189,13 @@ ENTITY_SOURCES: Dict[str, EntitySource] = {}
 # The names of the sources whose entities never change for one scene (drawn once per
 # subscriber, not at every update).
 STATIC_SOURCES: set = set()
+# The names of the sources whose entities change now and then (traffic lights): called at every
+# update, an entity is sent when it differs from what was sent last.
+CHANGING_SOURCES: set = set()
 
 
-def register_entity_source(name: str, source: EntitySource, *, static: bool = False) -> None:
+def register_entity_source(name: str, source: EntitySource, *, static: bool = False,
+                           on_change: bool = False) -> None:
     """
     Add an entity source under ``name`` (a map layer, lanes, traffic).
 
@@ -197,14 +204,20 @@ def register_entity_source(name: str, source: EntitySource, *, static: bool = Fa
     :param static: True: its entities never change for one scene (a map, lanes): they are
         built once and sent when a client subscribes. False: called at every update (moving
         bodies); an id it gave before and no longer gives is deleted from the view.
-    :raises ValueError: for a name already registered.
+    :param on_change: (not static) its entities are sent only when they differ from those sent
+        last (and in full updates): lights that change colour now and then.
+    :raises ValueError: for a name already registered, or static and on_change both.
     """
     if name in ENTITY_SOURCES:
         raise ValueError(f'entity source {name!r} is already registered; registered: '
                          f'{", ".join(ENTITY_SOURCES)}')
+    if static and on_change:
+        raise ValueError(f'entity source {name!r}: static or on_change, not both')
     ENTITY_SOURCES[name] = source
     if static:
         STATIC_SOURCES.add(name)
+    if on_change:
+        CHANGING_SOURCES.add(name)
 
 
 def scene_entities(scene, sources: Optional[Iterable[str]] = None) -> List[Entity]:
@@ -232,3 +245,4 @@ register_entity_source('obstacles', obstacle_entities)
 register_entity_source('traffic', traffic_entities)
 register_entity_source('map', map_scene.wall_entities, static=True)
 register_entity_source('lanes', map_scene.lane_entities, static=True)
+register_entity_source('signals', map_scene.lamp_entities, on_change=True)

@@ -20,7 +20,9 @@ Static sources (a map, lanes) are built once per scene and sent in full updates 
 one, and the one after a client subscribes (a SceneUpdate goes to every subscriber of the
 channel; the others receive the same entities again, which replaces them with themselves).
 Moving sources (vehicles, movable obstacles, traffic) are sent in every update; an id one of
-them gave in the previous update and no longer gives (a traffic car gone) is deleted.
+them gave in the previous update and no longer gives (a traffic car gone) is deleted. The
+entities of on-change sources (traffic lights) are sent in full updates and when they differ
+from the ones sent last (a light changed colour); gone ones are deleted as moving ones are.
 """
 
 from dataclasses import dataclass
@@ -45,6 +47,7 @@ class SceneStream:
         self._scene = None
         self._static: List[Entity] = []
         self._moving_ids = set()
+        self._sent = {}               # id -> the entity of an on-change source sent last
 
     def frame(self, scene, full: bool) -> SceneFrame:
         """
@@ -55,8 +58,11 @@ class SceneStream:
         """
         static_names = [n for n in scene_sources.ENTITY_SOURCES
                         if n in scene_sources.STATIC_SOURCES]
+        changing_names = [n for n in scene_sources.ENTITY_SOURCES
+                          if n in scene_sources.CHANGING_SOURCES]
         moving_names = [n for n in scene_sources.ENTITY_SOURCES
-                        if n not in scene_sources.STATIC_SOURCES]
+                        if n not in scene_sources.STATIC_SOURCES
+                        and n not in scene_sources.CHANGING_SOURCES]
         deleted = set()
         if scene is not self._scene:
             previous = {entity.id for entity in self._static} | self._moving_ids
@@ -64,7 +70,16 @@ class SceneStream:
             self._scene, full = scene, True
             deleted = previous - {entity.id for entity in self._static}
         moving = scene_sources.scene_entities(scene, moving_names)
+        changing = scene_sources.scene_entities(scene, changing_names)
+        changed = [entity for entity in changing
+                   if full or self._sent.get(entity.id) != entity]
+        self._sent = {entity.id: entity for entity in changing}
         moving_ids = {entity.id for entity in moving}
+        twice = moving_ids & set(self._sent)
+        if twice:
+            raise ValueError(f'entity id {sorted(twice)[0]!r} given by a moving and an '
+                             'on-change source')
+        moving_ids |= set(self._sent)
         static_ids = {entity.id for entity in self._static}
         both = moving_ids & static_ids
         if both:
@@ -73,5 +88,6 @@ class SceneStream:
         deleted |= self._moving_ids - moving_ids
         deleted -= moving_ids | static_ids
         self._moving_ids = moving_ids
-        entities = tuple(self._static) + tuple(moving) if full else tuple(moving)
+        moving = tuple(moving) + tuple(changed)
+        entities = tuple(self._static) + moving if full else moving
         return SceneFrame(entities, tuple(sorted(deleted)))

@@ -150,7 +150,8 @@ class DriveSim:
             self.ego = self.scene.vehicles[self.ego_name]
             graph = self.scene.lanes
             # the ego's lane state and the markings it crosses (None: a world without lanes)
-            self.lanes = None if graph is None else VehicleLanes(graph)
+            signals = getattr(self.scene.parts.get('signals'), 'controller', None)
+            self.lanes = None if graph is None else VehicleLanes(graph, signals)
             self.lane_ids = () if graph is None else tuple(sorted(graph.lanes))
             self._terms = TERMS if graph is None else LANE_TERMS
             self._crossed = ()
@@ -274,7 +275,8 @@ class DriveSim:
         if self._criteria_specs:
             self._watch = CriteriaWatch(self._criteria_specs, self.episode_s, self.world,
                                         self._handles, self.scene.spec.obstacles,
-                                        self.scene.lanes)
+                                        self.scene.lanes, None if signals is None
+                                        else signals.controller)
         x, y, yaw = self._ego_state()
         if self.lanes is not None:       # after the teleport: the jump is no crossing
             self.lanes.reset()

@@ -28,6 +28,9 @@ step); :func:`verdict_now` says whether a criterion is already decided:
   is faster than its lane's limit (plus the tolerance); ``reach_lanelet`` passed once the
   lanelet is reached (it ends nothing), failed once its deadline passed without; each failed
   from the start in a world without a lane map;
+- the traffic rule criteria (``traffic_light``, ``stop_sign``, ``yield``): failed as soon as the
+  ego breaks the rule (passes a red line, rolls through a stop line, enters a conflict zone in
+  front of a vehicle with priority), and from the start when the world lacks what they watch;
 - otherwise undecided until the end.
 
 The episode is *terminated* when a criterion failed, or when every ``reach_goal`` criterion
@@ -40,6 +43,7 @@ import math
 import warnings
 
 from vehicle_sim.scenarios.criteria import build_criteria, Sample
+from vehicle_sim.scenarios.rule_criteria import RULE_CRITERIA
 from vehicle_sim.scenarios.scene import world_scene
 
 PASSED, FAILED, UNDECIDED = 'passed', 'failed', 'undecided'
@@ -82,6 +86,8 @@ def verdict_now(criterion, elapsed_s):
         return FAILED if criterion.worst_m > values['max_distance_m'] else UNDECIDED
     if kind in _LANE_KINDS:
         return _lane_verdict(criterion, elapsed_s)
+    if kind in RULE_CRITERIA:
+        return FAILED if criterion.violated else UNDECIDED
     if kind == 'clearance':
         nearest = min((d for d, _, _, _ in criterion.nearest.values()), default=math.inf)
         return FAILED if nearest < values['min_m'] else UNDECIDED
@@ -120,12 +126,13 @@ class CriteriaWatch:
     :param duration_s: the scenario's duration [s].
     :param world: the World; ``handles``: {name: VehicleHandle} of the vehicles;
         ``obstacles``: the world's ObstacleSpecs (clearance); ``lanes``: the world's LaneGraph
-        or None (the lane criteria).
+        or None (the lane criteria); ``signals``: the world's SignalController or None (the
+        traffic rule criteria).
     """
 
-    def __init__(self, specs, duration_s, world, handles, obstacles, lanes=None):
+    def __init__(self, specs, duration_s, world, handles, obstacles, lanes=None, signals=None):
         self.criteria = build_criteria(specs, duration_s)
-        scene = world_scene(world, handles, obstacles, lanes=lanes)
+        scene = world_scene(world, handles, obstacles, lanes=lanes, signals=signals)
         for criterion in self.criteria:
             criterion.bind(scene)
         self.goals = [c for c in self.criteria if c.KIND == 'reach_goal']

@@ -18,9 +18,11 @@ Lanes in the physics world: the road surface and its markings, drawn, and the ba
 A world's lane map (``spec.lanes``: a LaneGraph from a lanelet2 map or from ``roads:``, loaded
 by vehicle_sim/maps/lane_maps.py before the bodies) becomes, through core/map/lane_geometry.py:
 
-- the road surface and the painted lines: a few visual-only meshes just above the ground (no
+- the road surface and the painted lines, and the rules' paint and areas (``graph.rules``:
+  stop lines as white bars, crosswalks as zebra stripes, the other areas flat in their kind's
+  colour, core/map/lane_geometry.py): a few visual-only meshes just above the ground (no
   collision shape: cars drive on the ground plane as before, rays pass through, cameras see
-  them);
+  them), one body per colour (all the white paint in one) and per VERTICES_PER_BODY vertices;
 - curbstones, road borders and walls/fences/guard rails: one box per line piece
   (``BARRIER_WIDTH_M`` wide, the height of its type), merged into static triangle meshes as the
   occupancy grid's walls are, named ``lanes`` through ``World.add_static`` (collisions report
@@ -39,10 +41,16 @@ import numpy as np
 import pybullet
 
 from vehicle_sim.core.map.lane_geometry import (
+    area_color,
+    area_meshes,
     BARRIER_WIDTH_M,
     barriers,
+    crosswalk_mesh,
+    join_meshes,
     marking_mesh,
     Mesh,
+    PAINT_COLOR,
+    stop_line_mesh,
     surface_mesh,
 )
 from vehicle_sim.core.map.lane_graph import LaneGraph
@@ -50,7 +58,7 @@ from vehicle_sim.core.specs.value_text import count
 
 LANES_BODY_NAME = 'lanes'
 SURFACE_COLOR = (0.3, 0.3, 0.32, 1.0)     # asphalt
-MARKING_COLOR = (0.95, 0.95, 0.95, 1.0)   # white paint
+MARKING_COLOR = PAINT_COLOR               # white paint
 BARRIER_COLOR = (0.7, 0.7, 0.68, 1.0)     # concrete
 # Vertices of one mesh body (PyBullet takes at most 131072 per mesh).
 VERTICES_PER_BODY = 65536
@@ -99,14 +107,29 @@ def _chunks(mesh: Mesh):
         yield mesh.vertices[used].tolist(), local.astype(np.int64).tolist()
 
 
-def _visual_bodies(world, mesh: Mesh, rgba) -> Tuple[int, ...]:
-    # Visual-only static bodies (no collision shape: nothing collides with them, rays pass).
+def visual_body(world, visual, position=(0.0, 0.0, 0.0)) -> int:
+    """
+    Return a visual-only static body of a visual shape: drawn, and free for the physics step.
+
+    Nothing collides with it and rays pass it. It is a Bullet rigid body put to sleep (a
+    multibody, PyBullet's default, costs every step about 1 us, even static and shapeless).
+    """
+    cid = world.client_id
+    body_id = pybullet.createMultiBody(0.0, -1, visual, basePosition=list(position),
+                                       useMaximalCoordinates=True, physicsClientId=cid)
+    pybullet.changeDynamics(body_id, -1, activationState=pybullet.ACTIVATION_STATE_SLEEP,
+                            physicsClientId=cid)
+    return body_id
+
+
+def visual_bodies(world, mesh: Mesh, rgba) -> Tuple[int, ...]:
+    """Return visual-only static bodies of a mesh (:func:`visual_body`)."""
     cid, ids = world.client_id, []
     for vertices, indices in _chunks(mesh):
         visual = pybullet.createVisualShape(pybullet.GEOM_MESH, vertices=vertices,
                                             indices=indices, rgbaColor=list(rgba),
                                             physicsClientId=cid)
-        ids.append(pybullet.createMultiBody(0.0, -1, visual, physicsClientId=cid))
+        ids.append(visual_body(world, visual))
     return tuple(ids)
 
 
@@ -129,8 +152,12 @@ def barrier_boxes(graph: LaneGraph) -> np.ndarray:
     return corners
 
 
-def _barrier_bodies(world, corners) -> Tuple[int, ...]:
-    # Static triangle meshes (Bullet's BVH meshes), as the occupancy grid's walls.
+def solid_box_bodies(world, corners, rgba=BARRIER_COLOR) -> Tuple[int, ...]:
+    """
+    Return static triangle-mesh bodies (Bullet's BVH meshes) of boxes, as a map's walls are.
+
+    :param corners: float (n, 8, 3): each box's corners as :func:`barrier_boxes` gives them.
+    """
     cid, ids = world.client_id, []
     per_body = VERTICES_PER_BODY // 8
     for start in range(0, len(corners), per_body):
@@ -142,14 +169,14 @@ def _barrier_bodies(world, corners) -> Tuple[int, ...]:
             pybullet.GEOM_MESH, vertices=vertices, indices=indices,
             flags=pybullet.GEOM_FORCE_CONCAVE_TRIMESH, physicsClientId=cid)
         visual = pybullet.createVisualShape(pybullet.GEOM_MESH, vertices=vertices,
-                                            indices=indices, rgbaColor=list(BARRIER_COLOR),
+                                            indices=indices, rgbaColor=list(rgba),
                                             physicsClientId=cid)
         ids.append(pybullet.createMultiBody(0.0, collision, visual, physicsClientId=cid))
     return tuple(ids)
 
 
-def _inside_barriers(corners):
-    # blocked(x, y): the point lies within a barrier piece's footprint.
+def inside_boxes(corners):
+    """Return ``blocked(x, y)``: the point lies within a box's footprint (None: no boxes)."""
     if len(corners) == 0:
         return None
     a = corners[:, 0, :2]
@@ -172,11 +199,14 @@ def build_lane_bodies(world, graph: LaneGraph, spec=None) -> LaneMap:
     :raises InvalidPoseError: a vehicle that starts inside a barrier (nothing is kept).
     """
     corners = barrier_boxes(graph)
-    barrier_ids = _barrier_bodies(world, corners)
+    barrier_ids = solid_box_bodies(world, corners)
     if barrier_ids:
-        world.add_static(LANES_BODY_NAME, barrier_ids, _inside_barriers(corners))
-    visual_ids = (_visual_bodies(world, surface_mesh(graph), SURFACE_COLOR)
-                  + _visual_bodies(world, marking_mesh(graph), MARKING_COLOR))
+        world.add_static(LANES_BODY_NAME, barrier_ids, inside_boxes(corners))
+    visual_ids = visual_bodies(world, surface_mesh(graph), SURFACE_COLOR)
+    for kind, mesh in area_meshes(graph).items():
+        visual_ids += visual_bodies(world, mesh, area_color(kind))
+    paint = join_meshes(marking_mesh(graph), stop_line_mesh(graph), crosswalk_mesh(graph))
+    visual_ids += visual_bodies(world, paint, MARKING_COLOR)
     return LaneMap(spec, graph, visual_ids, barrier_ids, len(corners))
 
 

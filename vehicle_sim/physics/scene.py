@@ -31,18 +31,20 @@ contract):
 Extension points: a *scene part* is any object with ``name`` and ``build(world, spec)``; it adds
 what the WorldSpec asks of it (a map layer's ground and walls, traffic vehicles) once the
 obstacles and vehicles are in, and returns what callers read later, kept in
-:attr:`Scene.parts` under its name (a part with ``reads_parts = True`` is built as
-``build(world, spec, parts)``, given what the parts before it returned: the traffic reads the
-signals' controller). The parts a world gets by itself are the rows of
+:attr:`Scene.parts` under its name (a part with ``reads_parts = True`` is built with
+``build(world, spec, parts)``: the scene's parts by name, those built before it in, e.g. the
+lamps reading ``parts['signals'].controller``). The parts a world gets by itself are the rows of
 :data:`SCENE_PARTS`, one per world key the obstacles and vehicles leave (a test checks them
-against core/world/params.py's ``WORLD_KEYS``), each added when the WorldSpec asks for it: a
+against core/world/params.py's ``WORLD_KEYS``) and those with ``world_key=False`` that draw what
+other parts made, each added when the WorldSpec asks for it: a
 ``map`` gets the map layer (physics/map_layer.py), ``scene.parts['map']``; ``roads:`` the road
 layer (physics/lane_layer.py), ``scene.parts['roads']``; a lane map with traffic lights (or a
 ``signals:`` key) the world's one SignalController (physics/signal_part.py),
-``scene.parts['signals'].controller``; these before the caller's ``parts``; ``traffic:`` the
-traffic part (physics/traffic_bodies.py), on its lane map, after them. A part of the caller's
-with a row's name takes that row's place; a world that asks for none gets no part and pays
-nothing.
+``scene.parts['signals'].controller``; a lane map with traffic light bulbs the lamps
+(physics/signal_lamps.py), ``scene.parts['signal_lamps']``, after the signals, whose
+controller they show; these before the caller's ``parts``; ``traffic:`` the traffic part
+(physics/traffic_bodies.py), on its lane map, after them. A part of the caller's with a row's
+name takes that row's place; a world that asks for none gets no part and pays nothing.
 
 Lanes: before anything is built, the world's lane map (a lanelet2 map or its roads) is loaded
 and the vehicles placed by lane get their pose (vehicle_sim/maps/lane_maps.py), so a bad file
@@ -70,6 +72,7 @@ from vehicle_sim.physics.gui import GuiClosedError
 from vehicle_sim.physics.lane_layer import RoadLayer
 from vehicle_sim.physics.map_layer import MapLayer
 from vehicle_sim.physics.sensors import SensorSuite
+from vehicle_sim.physics.signal_lamps import SignalLampsPart, wants_lamps
 from vehicle_sim.physics.signal_part import SignalPart, signals_wanted
 from vehicle_sim.physics.simulated_car import SimulatedCar
 from vehicle_sim.physics.traffic_bodies import TrafficPart
@@ -95,12 +98,15 @@ class ScenePartRow:
     :param wanted: ``wanted(spec)`` -> whether a WorldSpec asks for it.
     :param make: ``make()`` -> the part (a ScenePart of that name).
     :param before_given: built before the caller's ``parts`` (True), or after them.
+    :param world_key: its name is the world key it builds (True), or it draws what other
+        parts made (False: the lamps of a lane map's traffic lights).
     """
 
     name: str
     wanted: Callable[[WorldSpec], bool]
     make: Callable[[], ScenePart]
     before_given: bool = True
+    world_key: bool = True
 
 
 SCENE_PARTS: Dict[str, ScenePartRow] = {}
@@ -114,6 +120,8 @@ def register_scene_part(row: ScenePartRow) -> ScenePartRow:
 register_scene_part(ScenePartRow('map', lambda spec: spec.map is not None, MapLayer))
 register_scene_part(ScenePartRow('roads', lambda spec: bool(spec.roads), RoadLayer))
 register_scene_part(ScenePartRow('signals', signals_wanted, SignalPart))
+register_scene_part(ScenePartRow('signal_lamps', wants_lamps, SignalLampsPart,
+                                 world_key=False))
 register_scene_part(ScenePartRow(
     'traffic', lambda spec: getattr(spec, 'traffic', None) is not None, TrafficPart,
     before_given=False))
@@ -267,5 +275,7 @@ def _build_bodies(scene, spec, robots, params, hooks, parts):
                              (robot.x_m, robot.y_m, robot.yaw_rad), name=robot.name)
         scene.vehicles[robot.name] = SceneVehicle(robot.name, robot, body)
     for part in parts:
-        scene.parts[part.name] = part.build(world, spec, scene.parts) if getattr(
-            part, 'reads_parts', False) else part.build(world, spec)
+        if getattr(part, 'reads_parts', False):     # it reads the parts built before it
+            scene.parts[part.name] = part.build(world, spec, scene.parts)
+        else:
+            scene.parts[part.name] = part.build(world, spec)

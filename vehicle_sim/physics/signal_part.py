@@ -61,6 +61,13 @@ class SignalPart:
             controller = SignalController(graph, settings.fixed_time_plan(), phases)
         except InvalidParameterError as error:     # a group not in the map, conflicting greens
             raise InvalidParameterError(f"{settings.source}: field 'phases': {error}") from None
+        if settings.intersections:
+            try:
+                controller = SignalController(graph, settings.fixed_time_plan(), phases,
+                                              settings.intersection_plans())
+            except InvalidParameterError as error:     # a group not in the map, given twice
+                raise InvalidParameterError(
+                    f"{settings.source}: field 'intersections': {error}") from None
         if phases is not None:
             listed = {group for phase in settings.phases for group in phase}
             missing = sorted(g.id for g in graph.rules.groups if g.id not in listed)

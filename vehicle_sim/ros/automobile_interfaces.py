@@ -166,8 +166,10 @@ LANE_STATE = Topic('lane_state', lm.LANE_STATE, QOS_DEFAULT, EACH_PUBLISH,
                              lambda w: (w.lanes_frame,)),
                    unit='m, rad, m/s',
                    doc='the lane base_link is on: lane id, s along its centreline, offset '
-                       '(+ left), heading error, width, speed limit; on_lane false off every '
-                       'lane; frame of the lane map (map or world)')
+                       '(+ left), heading error, width, speed limit; the next stop line ahead '
+                       '(id, kind, distance along the lanes) and its traffic light group and '
+                       'state; on_lane false off every lane; frame of the lane map (map or '
+                       'world)')
 LANE_INVASION = Topic('lane_invasion', lm.LANE_INVASION, QOS_SENSOR, ON_EVENT,
                       converter(lm.lane_invasion_builder,
                                 lambda v: (v.lane_event_stamp, v.lane_event),

@@ -88,7 +88,15 @@ from vehicle_sim.ros.sim_params import (
     world_spec,
 )
 from vehicle_sim.ros.time_step import TimeStepService
-from vehicle_sim.ros.traffic_interfaces import AT_OBJECTS_RATE, object_topics, objects_rate_hz
+from vehicle_sim.ros.traffic_interfaces import (
+    AT_OBJECTS_RATE,
+    AT_SIGNAL_CHANGES,
+    AT_SIGNALS,
+    object_topics,
+    objects_rate_hz,
+    signal_topics,
+)
+from vehicle_sim.ros.traffic_messages import signal_groups_reader
 from vehicle_sim.transport import create_node
 from vehicle_sim.transport.logger import ThrottledWarning
 from vehicle_sim.transport.names import resolve_name
@@ -166,6 +174,7 @@ class AutomobileNode:
         self._sensing = []
         self._traffic = None
         self._objects_due = None
+        self._signals = None
         self._gui_closed = False
         self._live = None
         try:
@@ -270,7 +279,8 @@ class AutomobileNode:
         global_name = self._full_name('')
         taken = {global_name(row.name): 'a topic of the node'
                  for row in itf.WORLD_TOPICS + object_topics(bool(scene.traffic),
-                                                             bool(scene.obstacles))}
+                                                             bool(scene.obstacles))
+                 + signal_topics(self.signal_controller)}
         taken.update({global_name(row.name): 'an endpoint of the node'
                       for row in itf.WORLD_SERVICES + itf.WORLD_INPUTS})
         for spec in scene.vehicles:
@@ -310,7 +320,7 @@ class AutomobileNode:
         vehicle.services += serve_vehicle(node, itf.POSE_SERVICES, vehicle, resolve).values()
         if self.scene.lanes is not None:    # lane_state, lane_invasion, set_lane_pose
             wire_car_lanes(node, vehicle, self.scene.lanes, fixed_frame(self.scene.spec),
-                           resolve)
+                           resolve, self.signal_controller)
         vehicle.drive = CarDriveInput(vehicle.logic, self.settings.cmd_vel_timeout_s)
         if self._drive_inputs:
             self._wire_inputs(vehicle, resolve)
@@ -375,6 +385,21 @@ class AutomobileNode:
                 self._logger.info(f'{spec.traffic.source}: objects_rate {rate_hz:g} Hz (the '
                                   f"world's; parameter objects_rate "
                                   f'{self.settings.objects_rate_hz:g} Hz not used)')
+        # The signals' rows, for a world whose lane map has traffic light groups: the states at
+        # the objects' rate and at the step a group changes state, the lamps' markers at the
+        # changes (ros/traffic_interfaces.py).
+        controller = self.signal_controller
+        rows = signal_topics(controller)
+        if rows:
+            rate_hz = objects_rate_hz(self.settings.objects_rate_hz, self.scene.spec.traffic)
+            self._signals = SimpleNamespace(
+                controller=controller, read=signal_groups_reader(controller.rules),
+                frame=fixed_frame(self.scene.spec), lanes=self.scene.lanes,
+                outputs=None, stamp=None, groups=None, states=None,
+                due=SampleSchedule.from_rate(rate_hz, self.settings.time_step_s,
+                                             self.world.step_count))
+            self._signals.outputs = Outputs(self.node, rows, self._signals)
+
 
     @staticmethod
     def _bind(handler, spec, vehicle, name):
@@ -518,6 +543,18 @@ class AutomobileNode:
             traffic.obstacles = obstacle_objects(self.scene.spec.obstacles,
                                                  self._obstacle_pose)
             self._traffic_outputs.publish(AT_OBJECTS_RATE, traffic)
+        signals = self._signals
+        if signals is not None and (signals.outputs.wanted(AT_SIGNALS)
+                                    or signals.outputs.wanted(AT_SIGNAL_CHANGES)):
+            due = signals.due.due(self.world.step_count)
+            states = signals.controller.states()
+            changed = states != signals.states
+            if due or changed:
+                signals.stamp, signals.states = stamp, states
+                signals.groups = signals.read(states)
+                signals.outputs.publish(AT_SIGNALS, signals)
+                if changed:         # the lamps' markers (RViz): only when a light changes
+                    signals.outputs.publish(AT_SIGNAL_CHANGES, signals)
         for vehicle in self._sensing:
             self._publish_sensors(vehicle)
 
@@ -591,6 +628,11 @@ class AutomobileNode:
     def paused(self) -> bool:
         """True while /sim/pause holds simulated time (real-time mode)."""
         return self._control.paused
+
+    @property
+    def signal_controller(self):
+        """The world's SignalController (its 'signals' scene part), or None."""
+        return getattr(self.scene.parts.get('signals'), 'controller', None)
 
     @property
     def live_view(self):

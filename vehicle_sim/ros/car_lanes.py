@@ -32,7 +32,7 @@ from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros.endpoints import EACH_PUBLISH, ON_EVENT, Outputs, serve
 
 
-def wire_car_lanes(node, vehicle, lanes, frame, resolve):
+def wire_car_lanes(node, vehicle, lanes, frame, resolve, signals=None):
     """
     Wire a car's lane rows.
 
@@ -40,8 +40,9 @@ def wire_car_lanes(node, vehicle, lanes, frame, resolve):
     :param lanes: the world's LaneGraph.
     :param frame: the frame of the lane messages ('map' or 'world').
     :param resolve: row name -> the name to create (under the car's namespace).
+    :param signals: the world's SignalController (the next stop line's signal state), or None.
     """
-    vehicle.lanes = VehicleLanes(lanes)
+    vehicle.lanes = VehicleLanes(lanes, signals)
     vehicle.lanes_frame = frame
     vehicle.lane_outputs = Outputs(node, itf.LANE_TOPICS, vehicle, resolve)
     logger = node.get_logger()

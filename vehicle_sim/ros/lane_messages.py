@@ -16,6 +16,9 @@
 """
 Message builders of the lane topics: ``<ns>/lane_state``, ``<ns>/lane_invasion``, ``/map/lanes``.
 
+And of the traffic lights for RViz (:func:`traffic_light_markers_builder`): the lamps as the
+physics draws them (core/map/signal_lamps.py), in the colours of their groups' states.
+
 Same form as ros/messages.py's builders: ``<type>_builder(msg, frame_id)`` resolves the classes
 once; the ``build`` it returns makes one message from a stamp and a core value
 (core/map/lane_state.LaneState, core/map/lane_invasion.LaneInvasion, a LaneGraph).
@@ -23,7 +26,29 @@ once; the ``build`` it returns makes one message from a stamp and a core value
 
 import numpy as np
 
-from vehicle_sim.core.map.lane_geometry import DASH_M, GAP_M, surface_mesh
+from vehicle_sim.core.map.lane_geometry import (
+    area_color,
+    DASH_M,
+    GAP_M,
+    PAINT_COLOR,
+    polygon_mesh,
+    STOP_LINE_WIDTH_M,
+    surface_mesh,
+    zebra_stripes,
+)
+from vehicle_sim.core.map.signal_lamps import (
+    box_mesh,
+    DARK_LAMP_COLOR,
+    HOUSING_COLOR,
+    housing_corners,
+    lamp_color,
+    LAMP_COLORS,
+    LAMP_RADIUS_M,
+    lamps,
+    POLE_COLOR,
+    pole_corners,
+    poles,
+)
 
 HEADER = 'std_msgs/msg/Header'
 POINT = 'geometry_msgs/msg/Point'
@@ -33,7 +58,7 @@ MARKER = 'visualization_msgs/msg/Marker'
 MARKER_ARRAY = 'visualization_msgs/msg/MarkerArray'
 COLOR = 'std_msgs/msg/ColorRGBA'
 
-LINE_STRIP, LINE_LIST, TRIANGLE_LIST = 4, 5, 11      # visualization_msgs/Marker types
+LINE_STRIP, LINE_LIST, SPHERE_LIST, TRIANGLE_LIST = 4, 5, 7, 11   # visualization_msgs/Marker
 # marker colours (RGBA) of the line types; virtual and none lines are drawn faint
 LINE_COLORS = {
     'solid': (1.0, 1.0, 1.0, 1.0), 'solid_solid': (1.0, 1.0, 1.0, 1.0),
@@ -55,7 +80,13 @@ def lane_state_builder(msg, frame_id: str):
                           on_lane=bool(state.on_lane), lane_id=int(state.lane_id),
                           s=float(state.s_m), offset=float(state.offset_m),
                           heading_error=float(state.heading_error_rad),
-                          width=float(state.width_m), speed_limit=float(state.speed_limit_mps))
+                          width=float(state.width_m), speed_limit=float(state.speed_limit_mps),
+                          stop_line_ahead=bool(state.stop_line_ahead),
+                          stop_line_id=int(state.stop_line_id),
+                          stop_line_kind=state.stop_line_kind,
+                          stop_line_distance=float(state.stop_line_distance_m),
+                          traffic_light_group_id=int(state.traffic_light_group_id),
+                          signal_state=state.signal_state)
     return build
 
 
@@ -76,7 +107,14 @@ def lane_markers_builder(msg, frame_id: str):
 
     Namespaces: ``road_surface`` (one triangle list), ``lane_boundaries`` (one marker per
     boundary, its id the boundary's modulo 2^31: a line strip, dashes as a line list, coloured by
-    line type), ``centrelines`` (one line strip per lane, in lane order).
+    line type), ``centrelines`` (one line strip per lane, in lane order); and from the map's
+    rules (``graph.rules``, only those it has): ``stop_lines`` (a white line strip
+    ``STOP_LINE_WIDTH_M`` wide per stop line, its id the line's), ``crosswalks`` (a white
+    triangle list of its zebra stripes per crosswalk, its id the area's), ``areas`` (a
+    triangle list per other area in its kind's colour, core/map/lane_geometry.py's
+    ``area_color``, its id the area's) and ``traffic_lights`` (the lamps' housings, id 0, and
+    their poles, id 1: triangle lists of the boxes the physics builds; the bulbs change with
+    the signals: :func:`traffic_light_markers_builder`).
     """
     marker_type, array_type = msg(MARKER), msg(MARKER_ARRAY)
     header_type, point_type, color_type = msg(HEADER), msg(POINT), msg(COLOR)
@@ -95,11 +133,14 @@ def lane_markers_builder(msg, frame_id: str):
             item.scale.x = item.scale.y = item.scale.z = 1.0
         return item
 
+    def triangles(mesh, z=None):
+        """Return a mesh's triangles' corners: at height ``z`` [m] (flat), or its own."""
+        return [point_type(x=float(v[0]), y=float(v[1]), z=float(v[2]) if z is None else z)
+                for v in mesh.vertices[mesh.triangles.reshape(-1)]]
+
     def build(stamp, graph):
-        mesh = surface_mesh(graph)
-        surface = [point_type(x=float(v[0]), y=float(v[1]), z=0.0)
-                   for v in mesh.vertices[mesh.triangles.reshape(-1)]]
-        markers = [marker(stamp, 'road_surface', 0, TRIANGLE_LIST, surface, SURFACE_COLOR, 1.0)]
+        markers = [marker(stamp, 'road_surface', 0, TRIANGLE_LIST,
+                          triangles(surface_mesh(graph), 0.0), SURFACE_COLOR, 1.0)]
         for boundary in graph.boundaries():
             rgba = LINE_COLORS[boundary.line_type]
             if 'dashed' in boundary.line_type:
@@ -112,7 +153,59 @@ def lane_markers_builder(msg, frame_id: str):
         for index, lane in enumerate(graph.lanes.values()):
             markers.append(marker(stamp, 'centrelines', index, LINE_STRIP,
                                   points(lane.centerline, 0.02), CENTRELINE_COLOR, 0.05))
+        rules = graph.rules
+        for line in rules.stop_lines:
+            markers.append(marker(stamp, 'stop_lines', line.id % 2 ** 31, LINE_STRIP,
+                                  points(line.points, 0.015), PAINT_COLOR, STOP_LINE_WIDTH_M))
+        found = lamps(graph)
+        for index, (corners, rgba) in enumerate((
+                (housing_corners(found), HOUSING_COLOR),
+                (pole_corners(poles(graph, found)), POLE_COLOR))):
+            if len(corners):
+                markers.append(marker(stamp, 'traffic_lights', index, TRIANGLE_LIST,
+                                      triangles(box_mesh(corners)), rgba, 1.0))
+        for area in rules.areas:
+            if area.kind == 'crosswalk':
+                stripes = [polygon_mesh(stripe) for stripe in zebra_stripes(area.polygon)]
+                pts = [p for stripe in stripes for p in triangles(stripe, 0.012)]
+                ns = 'crosswalks'
+            else:
+                pts, ns = triangles(polygon_mesh(area.polygon), 0.005), 'areas'
+            if pts:
+                markers.append(marker(stamp, ns, area.id % 2 ** 31, TRIANGLE_LIST, pts,
+                                      area_color(area.kind), 1.0))
         return array_type(markers=markers)
+    return build
+
+
+def traffic_light_markers_builder(msg, frame_id: str, graph):
+    """
+    Return ``build(stamp, states)``: visualization_msgs/MarkerArray of a map's lamps now.
+
+    ``states``: {group id: state} (SignalController.states()). One marker, namespace
+    ``traffic_light_bulbs``, id 0: a sphere list, a sphere of the lamp's diameter per bulb, lit
+    in its colour or dark grey as :func:`~vehicle_sim.core.map.signal_lamps.lamp_color` says
+    (the housings and poles do not change: they are in ``/map/lanes``).
+    """
+    marker_type, array_type = msg(MARKER), msg(MARKER_ARRAY)
+    header_type, point_type, color_type = msg(HEADER), msg(POINT), msg(COLOR)
+    found = lamps(graph)
+    bulbs = [point_type(x=float(lamp.bulb.x_m), y=float(lamp.bulb.y_m), z=float(lamp.bulb.z_m))
+             for lamp in found]
+    colors = {rgba: color_type(r=float(rgba[0]), g=float(rgba[1]), b=float(rgba[2]),
+                               a=float(rgba[3]))
+              for rgba in list(LAMP_COLORS.values()) + [DARK_LAMP_COLOR]}
+
+    def build(stamp, states):
+        item = marker_type(header=header_type(stamp=stamp, frame_id=frame_id),
+                           ns='traffic_light_bulbs', id=0, type=SPHERE_LIST, action=0,
+                           points=bulbs, color=colors[DARK_LAMP_COLOR], colors=[
+                               colors[lamp_color(lamp.bulb.color,
+                                                 states.get(lamp.group_id, 'off'))]
+                               for lamp in found])
+        item.pose.orientation.w = 1.0
+        item.scale.x = item.scale.y = item.scale.z = 2 * LAMP_RADIUS_M
+        return array_type(markers=[item])
     return build
 
 

@@ -55,8 +55,9 @@ MAP_LANES = Topic('/map/lanes', MARKER_ARRAY, QOS_LATCHED, ONCE_LATCHED,
                   converter(lane_markers_builder, lambda ctx: (ctx.stamp, ctx.lanes),
                             lambda w: (w.lanes_frame,)),
                   unit='m', doc='the lane map for RViz: road surface (triangle list), lane '
-                                'boundaries by line type, centrelines; frame map (a lanelet2 '
-                                'map) or world (roads:)')
+                                'boundaries by line type, centrelines, and the stop lines, '
+                                'crosswalks, areas and traffic light heads and poles of its '
+                                'rules; frame map (a lanelet2 map) or world (roads:)')
 
 # map kind (core/map/kinds.py MAP_KINDS) -> its rows.
 MAP_TOPICS: Dict[str, Tuple[Topic, ...]] = {

@@ -47,6 +47,8 @@ _VECTOR3 = struct.Struct('<3d')
 _IDS = struct.Struct('<3i')             # Marker id, type, action
 # Marker pose, scale, color, lifetime (0 s), frame_locked (false)
 _MARKER_BODY = struct.Struct('<7d3d4fiI?')
+_GROUP_HEAD = struct.Struct('<qI')      # traffic_light_group_id, element count
+_ELEMENT = struct.Struct('<3Bxf')       # color, shape, status, confidence (4-aligned start)
 
 
 def _time_step(step_s):
@@ -155,5 +157,31 @@ def traffic_markers_serializer(frame_id: str, colours=()):
             raw(4, tail)
         shown.clear()
         shown.update(present)
+        return out.data()
+    return serialize
+
+
+def traffic_signals_serializer():
+    """Return ``serialize(stamp, groups)``: the TrafficLightGroupArray's bytes (its builder's)."""
+    elements_bytes = {}
+
+    def elements_of(elements):
+        # each group's elements, then its empty predictions: constant bytes per Elements, from
+        # the 4-aligned offset after the element count (an element is 8 bytes, 4-aligned)
+        found = elements_bytes.get(elements)
+        if found is None:
+            found = elements_bytes[elements] = b''.join(
+                _ELEMENT.pack(color, shape, status, 1.0)
+                for color, shape, status in elements) + _U32.pack(0)
+        return found
+
+    def serialize(stamp, groups):
+        out = CdrWriter()
+        pack, raw = out.pack, out.raw
+        pack(4, _STAMP, stamp.sec, stamp.nanosec)
+        pack(4, _U32, len(groups))
+        for group_id, elements in groups:
+            pack(8, _GROUP_HEAD, group_id, len(elements))
+            raw(4, elements_of(elements))
         return out.data()
     return serialize

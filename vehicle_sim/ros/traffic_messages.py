@@ -14,7 +14,7 @@
 
 
 """
-Message builders of the traffic topics: PredictedObjects (ground truth) and markers.
+Message builders of the traffic topics: PredictedObjects (ground truth), markers, signals.
 
 Same form as ros/messages.py's builders: ``<type>_builder(msg, frame_id)`` resolves the classes
 once; the ``build(stamp, objects)`` it returns makes one message from a stamp and the core
@@ -29,12 +29,18 @@ TrafficObjects (core/traffic/objects.py).
 - ``visualization_msgs/MarkerArray``: one CUBE per object (namespace ``traffic``, id = the
   vehicle's index), coloured like its body; objects that left the map since the last message
   are deleted (action DELETE).
+- ``autoware_perception_msgs/TrafficLightGroupArray``: the state of every traffic light group
+  of the map (its id the map's: a lanelet2 traffic light regulatory element's id), as
+  Autoware's planning simulator and scenario_simulator_v2 give them to the planners: per
+  group, one element per bulb shape lit in its state (:func:`signal_elements`), confidence 1.
 """
 
 import math
+from typing import Dict, Tuple
 import uuid
 
 from vehicle_sim.core.geometry.frames import quaternion_from_yaw
+from vehicle_sim.core.map.lane_rules import BULB_SHAPES, SIGNAL_STATES
 
 HEADER = 'std_msgs/msg/Header'
 PREDICTED_OBJECTS = 'autoware_perception_msgs/msg/PredictedObjects'
@@ -50,12 +56,24 @@ DURATION = 'builtin_interfaces/msg/Duration'
 MARKER = 'visualization_msgs/msg/Marker'
 MARKER_ARRAY = 'visualization_msgs/msg/MarkerArray'
 COLOR = 'std_msgs/msg/ColorRGBA'
+TRAFFIC_LIGHT_GROUP_ARRAY = 'autoware_perception_msgs/msg/TrafficLightGroupArray'
+TRAFFIC_LIGHT_GROUP = 'autoware_perception_msgs/msg/TrafficLightGroup'
+TRAFFIC_LIGHT_ELEMENT = 'autoware_perception_msgs/msg/TrafficLightElement'
+TIME = 'builtin_interfaces/msg/Time'
 
 UNKNOWN, CAR = 0, 1      # ObjectClassification
 BOUNDING_BOX, CYLINDER = 0, 1    # Shape
 # obstacle shape (core/world/params.py OBSTACLE_SHAPES) -> its Shape type as an object.
 OBJECT_SHAPE_OF_OBSTACLE = {'box': BOUNDING_BOX, 'cylinder': CYLINDER, 'sphere': CYLINDER}
 CUBE, ADD, DELETE = 1, 0, 2     # visualization_msgs/Marker
+# TrafficLightElement: colour, shape and status values (UNKNOWN = 0 for each).
+ELEMENT_UNKNOWN = 0
+ELEMENT_COLOR = {'red': 1, 'yellow': 2, 'green': 3}      # RED, AMBER, GREEN
+ELEMENT_SHAPE = {'circle': 1, 'left_arrow': 2, 'right_arrow': 3, 'up_arrow': 4,
+                 'down_arrow': 7}                         # CIRCLE, *_ARROW (core BULB_SHAPES)
+SOLID_OFF, SOLID_ON = 1, 2
+# What a dark group ('off') shows: one element, colour and shape UNKNOWN, SOLID_OFF.
+DARK = ((ELEMENT_UNKNOWN, ELEMENT_UNKNOWN, SOLID_OFF),)
 # the namespace of the objects' UUIDs (uuid5 of the vehicle's name): stable across runs
 UUID_NAMESPACE = uuid.uuid5(uuid.NAMESPACE_URL, 'vehicle_sim/traffic')
 
@@ -146,4 +164,59 @@ def traffic_markers_builder(msg, frame_id: str, colours=()):
         shown.clear()
         shown.update(present)
         return array_type(markers=markers)
+    return build
+
+
+# (colour, shape, status) of each TrafficLightElement of a group in one state.
+Elements = Tuple[Tuple[int, int, int], ...]
+
+
+def signal_elements(group, state: str) -> Elements:
+    """
+    Return the TrafficLightElements (colour, shape, status) a group shows in a state.
+
+    Lit ('red', 'yellow', 'green'): one SOLID_ON element of the state's colour per shape of the
+    group's bulbs of that colour (in the order of core BULB_SHAPES), a CIRCLE when it has none
+    (a group without bulbs); 'off': :data:`DARK`.
+    """
+    if state == 'off':
+        return DARK
+    shapes = {bulb.shape for bulb in group.bulbs if bulb.color == state} or {'circle'}
+    return tuple((ELEMENT_COLOR[state], ELEMENT_SHAPE[shape], SOLID_ON)
+                 for shape in BULB_SHAPES if shape in shapes)
+
+
+def signal_groups_reader(rules):
+    """
+    Return ``groups(states)`` -> ((group id, Elements), ...) of every group of ``rules``.
+
+    ``states`` is ``{group id: state}`` (SignalController.states()); the groups come in the
+    map's order. The elements of each (group, state) are worked out once, here.
+    """
+    table: Dict[int, Dict[str, Elements]] = {
+        group.id: {state: signal_elements(group, state) for state in SIGNAL_STATES}
+        for group in rules.groups}
+
+    def groups(states):
+        return tuple((group_id, by_state[states[group_id]])
+                     for group_id, by_state in table.items())
+    return groups
+
+
+def traffic_signals_builder(msg):
+    """
+    Return ``build(stamp, groups)``: autoware_perception_msgs/TrafficLightGroupArray.
+
+    ``groups``: ((group id, Elements), ...) as :func:`signal_groups_reader` gives them; every
+    element has confidence 1.0 and no group has predictions.
+    """
+    array_type, group_type = msg(TRAFFIC_LIGHT_GROUP_ARRAY), msg(TRAFFIC_LIGHT_GROUP)
+    element_type = msg(TRAFFIC_LIGHT_ELEMENT)
+
+    def build(stamp, groups):
+        return array_type(stamp=stamp, traffic_light_groups=[
+            group_type(traffic_light_group_id=int(group_id), elements=[
+                element_type(color=color, shape=shape, status=status, confidence=1.0)
+                for color, shape, status in elements])
+            for group_id, elements in groups])
     return build

@@ -20,7 +20,7 @@ One of three kinds (``DRIVER_KINDS``): timed Webots setter ``commands``, a Webot
 :mod:`.schema` validates the rest of the file and calls :func:`driver_from_data`.
 
 A command may also force a traffic light group of the world's lane map into a state
-(``signal: {group, state}``, :data:`SIGNAL_COMMAND_KEYS`): ``state`` one of red, yellow, green,
+(``signal: {group, state}``, :data:`SIGNAL_COMMAND_SPECS`): ``state`` one of red, yellow, green,
 off (held until another command for the group), or ``plan`` (the group follows its plan again).
 The group must be one of the world's lane map (checked when the file is loaded).
 """
@@ -32,7 +32,7 @@ from typing import Any, Optional, Tuple
 
 from vehicle_sim.core.map.lane_rules import SIGNAL_STATES
 from vehicle_sim.core.specs.errors import InvalidParameterError
-from vehicle_sim.core.specs.param_spec import ParamSpec
+from vehicle_sim.core.specs.param_spec import ParamSpec, REQUIRED, validate_table
 from vehicle_sim.core.specs.value_text import brief
 from vehicle_sim.scenarios.yaml_lines import line_of
 from vehicle_sim.webots.api_table import CAR_API, DRIVER_API
@@ -81,12 +81,14 @@ COMMAND_ROWS = {row.prop: row for row in DRIVER_API + CAR_API
 # The command key that forces a traffic light group, its keys (one table: the loader, the
 # runner and docs/scenarios.md read it) and the states it takes ('plan': back to the plan).
 SIGNAL_COMMAND = 'signal'
-SIGNAL_COMMAND_KEYS = (
-    ('group', 'int', "the traffic light group id (the map's; roads: docs/signals.md)"),
-    ('state', 'enum', 'one of ' + ', '.join(SIGNAL_STATES + ('plan',)) + ': held from this '
-     'step until another command for the group; plan: the group follows its plan again'),
-)
 SIGNAL_COMMAND_STATES = SIGNAL_STATES + ('plan',)
+SIGNAL_COMMAND_SPECS = (
+    ParamSpec('group', 'group', 'int', REQUIRED, '',
+              "the traffic light group id (the map's; roads: docs/signals.md)"),
+    ParamSpec('state', 'state', 'enum', REQUIRED, '',
+              'held from this step until another command for the group; plan: the group '
+              'follows its plan again', choices=SIGNAL_COMMAND_STATES),
+)
 
 
 @dataclass(frozen=True)
@@ -230,19 +232,13 @@ class _GroupCheck:
 
 
 def _signal(ctx, path, value, groups):
-    keys = tuple(key for key, _, _ in SIGNAL_COMMAND_KEYS)
-    if not isinstance(value, dict) or set(value) != set(keys):
-        raise ctx.fail(path, f'{SIGNAL_COMMAND} = {brief(value)}: must be {{group: id, state: '
-                             f'{"|".join(SIGNAL_COMMAND_STATES)}}}')
-    group, state = value['group'], value['state']
-    if isinstance(group, bool) or not isinstance(group, int):
-        raise ctx.fail(path + ('group',), f'signal.group = {brief(group)}: must be a traffic '
-                                          'light group id (an integer)')
-    if state not in SIGNAL_COMMAND_STATES:
-        raise ctx.fail(path + ('state',), f'signal.state = {brief(state)}: unknown; valid: '
-                                          + ', '.join(SIGNAL_COMMAND_STATES))
-    groups.check(path + ('group',), group)
-    return group, state
+    try:
+        values = validate_table(SIGNAL_COMMAND_SPECS, value, SIGNAL_COMMAND,
+                                what='a signal command {group, state}')
+    except InvalidParameterError as error:
+        raise ctx.fail(path, str(error)) from None
+    groups.check(path + ('group',), values['group'])
+    return values['group'], values['state']
 
 
 def _command_value(ctx, path, row, value):

@@ -176,7 +176,8 @@ class Director:
         self.collisions = {name: [] for name in self.vehicles}
         scene = world_scene(self.world, self.vehicles, self.spec.world.obstacles,
                             walls=getattr(sim, 'walls', ()), lanes=getattr(sim, 'lanes', None),
-                            traffic=getattr(sim, 'traffic', None))
+                            traffic=getattr(sim, 'traffic', None),
+                            signals=self.signals)
         for criterion in self.criteria:
             criterion.bind(scene)
         self.scene = scene
@@ -408,7 +409,8 @@ def _run_controller(spec, sim, director, step):
     from vehicle_sim.webots.host import ControllerHost, ControllerStopped, hosting
     vut = director.vut
     host = ControllerHost(sim.world, vut.car, vut.sensors, spec.world.origin, spec.duration_s,
-                          step, lanes=getattr(sim, 'lanes', None))
+                          step, lanes=getattr(sim, 'lanes', None),
+                          signals=director.signals)
     script = spec.driver.controller
     saved_argv, saved_path = sys.argv, list(sys.path)
     saved_seed = os.environ.get('VEHICLE_SIM_SEED')

@@ -18,8 +18,9 @@ What a run's criteria measure distances against: vehicle outlines and obstacle f
 A :class:`CriteriaScene` holds each vehicle's footprint rectangle (core Outline) and gives the
 footprints around them now: fixed ones (static obstacles, and an occupancy map's walls,
 :func:`map_walls`) computed once, movable obstacles' read from the world at each call; and the
-traffic vehicles now (``traffic``: (name, x, y, yaw, length, width) of each, their box centre).
-Criteria get it through ``Criterion.bind``; unit tests build one by hand.
+traffic vehicles now (``traffic``: (name, x, y, yaw, length, width) of each, their box centre),
+the vehicles of the scenario now (``samples``) and the world's signals (``signals``, its
+SignalController). Criteria get it through ``Criterion.bind``; unit tests build one by hand.
 :meth:`CriteriaScene.footprints_near` leaves out, by their boxes along the axes, the footprints too
 far to matter (a map has a thousand wall rectangles).
 """
@@ -61,13 +62,22 @@ class CriteriaScene:
         of its box centre [m, rad]; None = the world has no traffic.
     :param lanes: the world's lane map (a core LaneGraph; the lane criteria read it), or None.
     :param walls: an occupancy map's walls (:func:`map_walls`): fixed footprints too.
+    :param samples: returns {name: Sample} of every vehicle of the scenario now; None = none.
+    :param signals: the world's SignalController (core/map/signal_plan.py; the traffic rule
+        criteria read it), or None.
+    :param traffic_speeds: returns {name: speed [m/s]} of the traffic vehicles now (their
+        poses change only at the traffic's updates); None = not known.
     """
 
     def __init__(self, outlines: Dict[str, Outline], fixed: Sequence[Footprint] = (),
                  moving: Callable[[], Iterable[Footprint]] = None,
                  traffic: Callable[[], Iterable[tuple]] = None, lanes=None,
-                 walls: Sequence[Footprint] = ()):
+                 walls: Sequence[Footprint] = (), samples: Callable[[], dict] = None,
+                 signals=None, traffic_speeds: Callable[[], Dict[str, float]] = None):
         self.lanes = lanes
+        self.samples = samples
+        self.signals = signals
+        self.traffic_speeds = traffic_speeds
         self.walls = tuple(walls)
         self._outlines = dict(outlines)
         self._fixed = tuple(fixed) + self.walls
@@ -144,7 +154,7 @@ def map_walls(built) -> Tuple[Footprint, ...]:
 
 
 def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
-                lanes=None, traffic=None) -> CriteriaScene:
+                lanes=None, traffic=None, signals=None) -> CriteriaScene:
     """
     Return the scene of a built simulation.
 
@@ -154,6 +164,7 @@ def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
     :param walls: further fixed footprints (a map's walls).
     :param lanes: the world's lane map (the built scene's ``lanes``), or None.
     :param traffic: the world's traffic (physics TrafficBodies), or None.
+    :param signals: the world's SignalController, or None.
     """
     fixed = [obstacle_footprint(spec) for spec in obstacles if spec.static]
     movable = [spec for spec in obstacles if not spec.static]
@@ -168,6 +179,13 @@ def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
         return [(v.name, *manager.pose(v), v.length_m, v.width_m)
                 for v in manager.vehicles if v.active]
 
+    def traffic_speeds():
+        return {v.name: v.speed_mps for v in traffic.manager.vehicles if v.active}
+
+    def samples():
+        return {name: handle.sample(world.time_s) for name, handle in vehicles.items()}
+
     return CriteriaScene({name: handle.outline for name, handle in vehicles.items()}, fixed,
                          moving if movable else None, None if traffic is None else traffic_now,
-                         lanes, walls)
+                         lanes, walls, samples, signals,
+                         None if traffic is None else traffic_speeds)

@@ -52,10 +52,11 @@ from vehicle_sim.scenarios.driver_schema import (
     DriverSpec,
     MAX_DURATION_S,
     SIGNAL_COMMAND,
-    SIGNAL_COMMAND_KEYS,
+    SIGNAL_COMMAND_SPECS,
 )
 import vehicle_sim.scenarios.lane_criteria  # noqa: F401  (registers the lane criteria)
 import vehicle_sim.scenarios.overtake_criterion  # noqa: F401  (registers overtake)
+import vehicle_sim.scenarios.rule_criteria  # noqa: F401  (registers the traffic rule ones)
 from vehicle_sim.scenarios.yaml_lines import error_at, line_of, load_with_lines, ScenarioError
 
 SCENARIO_SPECS = (
@@ -371,13 +372,12 @@ def schema_markdown():
         parts.append(f'| `{key}` | `{row.setter}` | {row.kind} | {row.unit} | {row.doc} |\n')
     parts.append(f'| `{SIGNAL_COMMAND}` | - | mapping |  | forces a traffic light group of the '
                  "world's lane map: {"
-                 + ', '.join(key for key, _, _ in SIGNAL_COMMAND_KEYS) + '} (below) |\n')
+                 + ', '.join(spec.key for spec in SIGNAL_COMMAND_SPECS) + '} (below) |\n')
     parts += [f'\n#### `driver.commands` `{SIGNAL_COMMAND}` keys\n\n',
-              '| key | value | description |\n|---|---|---|\n']
-    parts += [f'| `{key}` | {kind} | {doc} |\n' for key, kind, doc in SIGNAL_COMMAND_KEYS]
+              parameter_table_markdown(SIGNAL_COMMAND_SPECS, 'key')]
     parts += ['\n#### Keys of every criterion\n\n',
               parameter_table_markdown(common_specs(), 'key')]
-    for kind, cls in CRITERIA.items():
+    for kind, cls in sorted(CRITERIA.items()):     # not import order: one order everywhere
         table = (parameter_table_markdown(cls.SPECS, 'key') if cls.SPECS
                  else 'No keys of its own.\n')
         unit = cls.UNIT or "the field's unit"

@@ -35,7 +35,10 @@ car preset's sensors, which carry the Webots car PROTOs' device names).
 
 Lanes: in a world with a lane map (a lanelet2 map or ``roads:``; docs/maps.md),
 ``driver.getLaneState()`` returns the car's lane state now (a core LaneState: lane id, s,
-offset, heading error, width, speed limit), an addition of ours (Webots has no lane map).
+offset, heading error, width, speed limit, the next stop line ahead and its signal's state), an
+addition of ours (Webots has no lane map, and no device for a traffic light's state: its
+GenericTrafficLight is a robot of its own, seen by a car only through its camera; here the
+lane state carries the state, and the camera sees the lamps; docs/maps.md).
 """
 
 from dataclasses import replace
@@ -236,7 +239,8 @@ class Driver:
         self.simulated_car = scene.vehicles[name].car
         self.logic = self.simulated_car.logic
         self.sensors = scene.vehicles[name].sensors
-        self._lanes = None if scene.lanes is None else LaneTracker(scene.lanes)
+        self._lanes = None if scene.lanes is None else LaneTracker(
+            scene.lanes, getattr(scene.parts.get('signals'), 'controller', None))
         self._devices = devices_of(self.sensors)
         self._duration_s = duration_s
         self._sync = _WorldSync.of(world)
@@ -255,7 +259,7 @@ class Driver:
             specs = enable_sensors(specs, sensors, 'Driver(sensors=...)')
         self.sensors = SensorSuite(world, host.car.body, specs, host.origin)
         lanes = getattr(host, 'lanes', None)
-        self._lanes = None if lanes is None else LaneTracker(lanes)
+        self._lanes = None if lanes is None else LaneTracker(lanes, host.signals)
         self._devices = devices_of(self.sensors)
         self._duration_s = host.duration_s
         self._sync = _WorldSync.of(world)
@@ -390,8 +394,11 @@ class Driver:
 
         A core LaneState (core/map/lane_state.py) of base_link's ground-truth pose:
         ``on_lane``, ``lane_id``, ``s_m``, ``offset_m`` (+ left), ``heading_error_rad``,
-        ``width_m``, ``speed_limit_mps`` (off every lane: ``on_lane`` False, the rest 0). The
-        values ``<ns>/lane_state`` carries on ROS (docs/maps.md).
+        ``width_m``, ``speed_limit_mps`` (off every lane: ``on_lane`` False, the rest 0), and
+        the next stop line ahead: ``stop_line_ahead``, ``stop_line_id``, ``stop_line_kind``,
+        ``stop_line_distance_m``, ``traffic_light_group_id``, ``signal_state`` (the world's
+        signal controller's state of its group: 'red', 'yellow', 'green', 'off'; docs/lanes.md).
+        The values ``<ns>/lane_state`` carries on ROS (docs/maps.md).
         """
         if self._lanes is None:
             return None

@@ -54,6 +54,7 @@ class ControllerHost:
     :param step: advances the world one basic step (and serves it, when the host publishes it);
         None = ``world.step``.
     :param lanes: the world's lane map (a core LaneGraph; ``Driver.getLaneState``), or None.
+    :param signals: the world's SignalController (the signal state in ``getLaneState``), or None.
     """
 
     world: Any
@@ -65,6 +66,7 @@ class ControllerHost:
     drivers: List[Any] = field(default_factory=list)
     calls_after_end: int = 0
     lanes: Any = None
+    signals: Any = None
 
     def after_end(self):
         """Return -1 for a step() at or after the end; stop a controller that insists."""

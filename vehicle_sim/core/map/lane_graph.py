@@ -57,6 +57,8 @@ SOLID_TYPES = ('solid', 'solid_solid', 'dashed_solid', 'solid_dashed', 'curbston
                'road_border', 'wall')
 
 _ON_LINE_M = 1e-6
+# Lane subtypes the traffic drives on (Lanelet2's lanelet subtypes; roads: 'road').
+TRAFFIC_SUBTYPES = ('road', 'highway')
 
 
 def line_crossable(line_type, from_left_side):
@@ -131,13 +133,17 @@ class Lane:
     :param left_change: a lane change onto ``left_lane`` is allowed.
     :param right_change: a lane change onto ``right_lane`` is allowed.
     :param widths: the width at each centreline point [m]; None = measured between the
-        boundaries.
+        boundaries. A width may be 0 at points (a taper, where the bounds meet at a merge), not
+        everywhere.
     :param name: a readable name ('' = none).
+    :param subtype: what the lane is for, as Lanelet2's lanelet subtypes say: 'road' (the
+        default), 'highway', 'road_shoulder', 'bicycle_lane', 'exit', 'play_street', ...
+        (:data:`TRAFFIC_SUBTYPES`: the ones traffic drives).
     """
 
     def __init__(self, lane_id, centerline, left, right, speed_limit_mps, successors=(),
                  left_lane=None, right_lane=None, left_change=False, right_change=False,
-                 widths=None, name=''):
+                 widths=None, name='', subtype='road'):
         self.id = int(lane_id)
         self.centerline = _points(centerline, f'lane {lane_id}: centerline')
         self.left = left
@@ -153,13 +159,18 @@ class Lane:
         self.left_change = bool(left_change) and self.left_lane is not None
         self.right_change = bool(right_change) and self.right_lane is not None
         self.name = name
+        self.subtype = str(subtype)
         pts = self.centerline
         if widths is None:
             widths = (distances_to_polyline(pts, left.points)
                       + distances_to_polyline(pts, right.points))
         widths = np.broadcast_to(np.asarray(widths, dtype=float), (len(pts),))
-        if not np.all(np.isfinite(widths)) or np.any(widths <= 0.0):
-            raise InvalidParameterError(f'lane {lane_id}: its width must be > 0 everywhere')
+        if not np.all(np.isfinite(widths)) or np.any(widths < 0.0):
+            raise InvalidParameterError(f'lane {lane_id}: its width must be >= 0 and finite '
+                                        f'everywhere')
+        if not np.any(widths > 0.0):
+            raise InvalidParameterError(f'lane {lane_id}: its width must be > 0 somewhere (its '
+                                        f'bounds coincide)')
         seg = np.diff(pts, axis=0)
         lengths = np.hypot(seg[:, 0], seg[:, 1])
         # plain lists: the per-step walk reads single values, faster from lists than arrays
@@ -358,7 +369,8 @@ class LaneGraph:
         candidates = np.flatnonzero(inside)
         if not len(candidates):
             return None
-        score = dist[candidates] / half[candidates]
+        # a taper's zero-width end: a point on it scores 0 (on the centreline), not 0 / 0
+        score = dist[candidates] / np.maximum(half[candidates], _ON_LINE_M)
         if yaw_rad is not None:
             turn = np.abs(np.angle(np.exp(1j * (yaw_rad - self._heading[candidates]))))
             score = score + 4.0 * turn / math.pi

@@ -21,6 +21,13 @@ the vehicle stays on it (so that overlapping lanes at an intersection do not fli
 to a successor past the lane's end, a predecessor before its start, or a neighbour across a
 boundary, and only searches the whole map when none of those holds it. A step that stays on its
 lane costs one projection on a segment or two of the centreline (docs/lanes.md has the figure).
+
+The state also names the next stop line ahead (the lane map's rules, core/map/lane_rules.py):
+the first on the lane beyond the vehicle, else on the lanes that follow it (the first
+successor at a fork: the tracker does not know the vehicle's route), within
+:data:`STOP_LINE_HORIZON_M` along the lanes; with its traffic light group and that group's state
+when a signal controller is given (core/map/signal_plan.py). What lies beyond each lane's end is
+looked up once per lane, so a step costs a look at the lines of the current lane.
 """
 
 from dataclasses import dataclass
@@ -30,6 +37,9 @@ from vehicle_sim.core.geometry.angles import wrap_angle_rad
 from vehicle_sim.core.map.lane_graph import LaneGraph
 
 _HALF_TURN = 0.5 * math.pi
+# How far ahead along the lanes the next stop line is looked for [m].
+STOP_LINE_HORIZON_M = 200.0
+_UNKNOWN = object()
 
 
 @dataclass(frozen=True)
@@ -44,6 +54,15 @@ class LaneState:
     :param heading_error_rad: vehicle yaw minus the lane's direction, in (-pi, pi] [rad].
     :param width_m: the lane's width there [m].
     :param speed_limit_mps: the lane's speed limit [m/s].
+    :param stop_line_ahead: a stop line lies ahead within :data:`STOP_LINE_HORIZON_M` along the
+        lanes; False: the stop line values below are 0 and ''.
+    :param stop_line_id: the next stop line's id.
+    :param stop_line_kind: its kind: 'traffic_light', 'stop_sign', 'yield' or 'road_marking'.
+    :param stop_line_distance_m: from the vehicle's reference point (``s_m``) to the line,
+        along the lanes [m] (0: on it).
+    :param traffic_light_group_id: the group of a traffic light stop line; 0 for other kinds.
+    :param signal_state: that group's state now ('red', 'yellow', 'green', 'off'); '' for other
+        kinds, or when no signal controller runs.
     """
 
     on_lane: bool
@@ -53,6 +72,12 @@ class LaneState:
     heading_error_rad: float
     width_m: float
     speed_limit_mps: float
+    stop_line_ahead: bool = False
+    stop_line_id: int = 0
+    stop_line_kind: str = ''
+    stop_line_distance_m: float = 0.0
+    traffic_light_group_id: int = 0
+    signal_state: str = ''
 
 
 OFF_LANE = LaneState(False, 0, 0.0, 0.0, 0.0, 0.0, 0.0)
@@ -62,13 +87,20 @@ class LaneTracker:
     """
     The lane state of one vehicle, updated each step from its pose.
 
-    :param graph: the LaneGraph.
+    :param graph: the LaneGraph (its ``rules``: the stop lines and groups).
+    :param signals: the world's SignalController (``state(group_id)``), or None: traffic light
+        stop lines then have no ``signal_state``.
+    :param horizon_m: how far ahead the next stop line is looked for [m].
     """
 
-    def __init__(self, graph: LaneGraph):
+    def __init__(self, graph: LaneGraph, signals=None, horizon_m: float = STOP_LINE_HORIZON_M):
         self.graph = graph
+        self.signals = signals
+        self.horizon_m = horizon_m
         self._lane = None
         self._k = 0
+        self._rules = None
+        self._beyond = {}       # lane id -> (StopLine, distance from the lane's end) or None
         self.state = OFF_LANE
 
     def reset(self):
@@ -84,34 +116,67 @@ class LaneTracker:
             k, t, offset = lane.walk(x_m, y_m, self._k)
             fit = self._fit(lane, k, t, offset, yaw_rad)
             if fit is not None:
-                return self._commit(lane, k, fit[1])
+                return self._commit(lane, k, *fit[1:])
             best = None             # where lanes fork, the one the vehicle fits best
             for other, near_s in self._nearby(lane, k, t, offset):
                 k, t, offset = other.walk(x_m, y_m, other.segment_at(near_s))
                 fit = self._fit(other, k, t, offset, yaw_rad, turn_limit=_HALF_TURN)
-                if fit is not None and (best is None or fit[0] < best[0]):
-                    best = (fit[0], other, k, fit[1])
+                if fit is not None and (best is None or fit[0] < best[0][0]):
+                    best = (fit, other, k)
             if best is not None:
-                return self._commit(best[1], best[2], best[3])
+                fit, other, k = best
+                return self._commit(other, k, *fit[1:])
         found = self.graph.locate(x_m, y_m, yaw_rad)
         if found is None:
             self._lane = None
             self.state = OFF_LANE
             return OFF_LANE
         lane = self.graph.lanes[found.lane_id]
-        self._lane = lane
-        self._k = lane.segment_at(found.s_m)
-        self.state = LaneState(True, found.lane_id, found.s_m, found.offset_m,
-                               found.heading_error_rad, found.width_m, found.speed_limit_mps)
-        return self.state
+        return self._commit(lane, lane.segment_at(found.s_m), found.s_m, found.offset_m,
+                            found.heading_error_rad, found.width_m)
 
-    def _commit(self, lane, k, state):
-        self._lane, self._k, self.state = lane, k, state
+    def _commit(self, lane, k, s_m, offset_m, error_rad, width_m):
+        self._lane, self._k = lane, k
+        ahead = self._stop_line_ahead(lane, s_m) if self.graph.rules.stop_lines else None
+        if ahead is None:
+            state = LaneState(True, lane.id, s_m, offset_m, error_rad, width_m,
+                              lane.speed_limit_mps)
+        else:
+            line, distance = ahead
+            group_id = line.group_id if line.kind == 'traffic_light' else None
+            signals = self.signals
+            state = LaneState(
+                True, lane.id, s_m, offset_m, error_rad, width_m, lane.speed_limit_mps, True,
+                line.id, line.kind, distance, 0 if group_id is None else group_id,
+                '' if group_id is None or signals is None else signals.state(group_id))
+        self.state = state
         return state
+
+    def _stop_line_ahead(self, lane, s_m):
+        """Return (StopLine, distance along the lanes) of the next line ahead, or None."""
+        rules = self.graph.rules
+        if rules is not self._rules:            # the map's rules changed: forget the lookups
+            self._rules, self._beyond = rules, {}
+        horizon = self.horizon_m
+        for line in rules.stop_lines_on(lane.id):
+            if line.s_m >= s_m:
+                distance = line.s_m - s_m
+                return (line, distance) if distance <= horizon else None
+        beyond = self._beyond.get(lane.id, _UNKNOWN)
+        if beyond is _UNKNOWN:
+            # the first line from the lane's end on, within the horizon from there: the first
+            # from anywhere on the lane (a nearer one would be on the lane or first after it)
+            beyond = self._beyond[lane.id] = rules.next_stop_line(
+                self.graph, lane.id, lane.length_m, horizon)
+        if beyond is None:
+            return None
+        line, distance = beyond
+        distance += lane.length_m - s_m
+        return (line, distance) if distance <= horizon else None
 
     @staticmethod
     def _fit(lane, k, t, offset, yaw_rad, turn_limit=None):
-        """Return (how badly it fits, LaneState) when the pose is on ``lane``, else None."""
+        """Return (how badly it fits, s, offset, heading error, width) on ``lane``, or None."""
         lengths = lane.seg_len
         if (k == 0 and t < -1e-6) or (k == len(lengths) - 1 and t > lengths[k] + 1e-6):
             return None
@@ -126,9 +191,9 @@ class LaneTracker:
         error = wrap_angle_rad(yaw_rad - heading)
         if turn_limit is not None and abs(error) > turn_limit:
             return None
-        return (abs(offset) / width + abs(error),
-                LaneState(True, lane.id, lane.s0[k] + tc, offset, error, width,
-                          lane.speed_limit_mps))
+        # a taper's end has width 0
+        return (abs(offset) / max(width, 1e-6) + abs(error), lane.s0[k] + tc, offset, error,
+                width)
 
     def _nearby(self, lane, k, t, offset):
         """Yield (lane, arc length to search from) for a vehicle leaving ``lane``."""

@@ -28,7 +28,8 @@ Projectors (how the file's nodes become world x, y):
   by the meridian convergence, so a GNSS fix and the map disagree slightly away from the origin;
 - ``autoware_local``: each node's ``local_x``/``local_y`` tags, as they are (Autoware's map
   loader does the same for its local and MGRS maps: the tags are the map frame); every node must
-  carry both. ``lat``/``lon`` are not used.
+  carry both. ``lat``/``lon`` are not used (they may be empty), and the world needs no
+  ``origin:`` for the map.
 """
 
 from dataclasses import dataclass

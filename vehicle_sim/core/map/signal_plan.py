@@ -26,7 +26,8 @@ intersection; an intersection's groups are split into phases (groups in one phas
 conflict; by default the fewest phases a greedy colouring of the groups' conflicts finds, in
 order of group id), and the phases follow each other: green, yellow, all red. A group is green
 in its phase's green time, yellow in its yellow time and red otherwise. ``offset_s`` shifts the
-cycle of every intersection.
+cycle. Every intersection runs the controller's plan unless it is given its own (``plans``: its
+times and offset, e.g. a green wave along a street).
 
 A scenario may force a group's state (:meth:`SignalController.force`) until the plan is resumed
 (:meth:`SignalController.release`).
@@ -143,15 +144,18 @@ class SignalController:
     The state of every traffic light group of a map, at the world's time.
 
     :param graph: the map's LaneGraph (its ``rules``: the groups and conflicts).
-    :param plan: the FixedTimePlan.
+    :param plan: the FixedTimePlan of every intersection without one of its own.
     :param phases: per intersection, its phases (group ids green together); None = computed
         (:func:`default_phases`).
-    :raises InvalidParameterError: a phase names a group not in the map, or conflicting groups
-        are green together.
+    :param plans: {group id: FixedTimePlan} the plan of the intersection that has that group
+        (one entry per intersection); None = ``plan`` everywhere.
+    :raises InvalidParameterError: a phase or a plan names a group not in the map, conflicting
+        groups are green together, two plans for one intersection.
     """
 
     def __init__(self, graph, plan: FixedTimePlan = FixedTimePlan(),
-                 phases: Optional[Sequence] = None):
+                 phases: Optional[Sequence] = None,
+                 plans: Optional[Dict[int, FixedTimePlan]] = None):
         rules = graph.rules
         self.rules = rules
         self.plan = plan
@@ -162,28 +166,63 @@ class SignalController:
                 for group_id in phase:
                     rules.group(group_id)           # names the group when it is not in the map
         check_phases(rules, graph, self.phases)
-        self._slot: Dict[int, Tuple[int, int]] = {}     # group -> (phase index, phase count)
-        for intersection in self.phases:
+        own = self._intersection_plans(plans or {})
+        # group -> (phase index, phase count, its intersection's plan)
+        self._slot: Dict[int, Tuple[int, int, FixedTimePlan]] = {}
+        for number, intersection in enumerate(self.phases):
             for index, phase in enumerate(intersection):
                 for group_id in phase:
-                    self._slot[group_id] = (index, len(intersection))
+                    self._slot[group_id] = (index, len(intersection), own.get(number, plan))
+        self._timings = tuple({id(p): p for _, _, p in self._slot.values()}.values()) or (plan,)
         self._forced: Dict[int, str] = {}
         self.time_s = 0.0
         self._states: Dict[int, str] = {}
+        self._unchanged = (math.inf, -math.inf)     # times whose states are those computed
         self.update(0.0)
+
+    def _intersection_plans(self, plans):
+        """Return {intersection index: plan} of ``plans`` ({group id: plan})."""
+        own, by = {}, {}
+        for group_id, one in plans.items():
+            self.rules.group(group_id)                  # names a group not in the map
+            number = next((n for n, intersection in enumerate(self.phases)
+                           if any(group_id in phase for phase in intersection)), None)
+            if number is None:
+                raise InvalidParameterError(f'signal plan: group {group_id} is in no phase')
+            if number in own:
+                raise InvalidParameterError(
+                    f'signal plan: groups {by[number]} and {group_id} are of one intersection: '
+                    'give its plan once')
+            own[number], by[number] = one, group_id
+        return own
 
     def update(self, time_s: float) -> None:
         """Set every group's state for simulation time ``time_s`` [s]."""
         self.time_s = time_s
+        start, end = self._unchanged
+        if start <= time_s < end:        # no phase boundary since the states were computed
+            return
         self._states = {group.id: self._planned(group.id, time_s) for group in self.rules.groups}
         self._states.update(self._forced)
+        self._unchanged = self._window(time_s)
+
+    def _window(self, time_s):
+        """Return [start, end) around ``time_s`` without a boundary of any plan's timing."""
+        start, end = -math.inf, math.inf
+        for plan in self._timings:
+            u = (time_s - plan.offset_s) % plan.phase_s
+            edges = (0.0, plan.green_s, plan.green_s + plan.yellow_s, plan.phase_s)
+            before = max(edge for edge in edges if edge <= u)
+            after = min((edge for edge in edges if edge > u), default=plan.phase_s)
+            start, end = max(start, time_s - (u - before)), min(end, time_s + (after - u))
+        margin = 1e-9 * max(1.0, abs(time_s))      # recompute next to a boundary: rounding
+        return start + margin, end - margin
 
     def _planned(self, group_id, time_s):
         slot = self._slot.get(group_id)
         if slot is None:
             return 'off'
-        index, count = slot
-        plan = self.plan
+        index, count, plan = slot
         t = (time_s - plan.offset_s) % (count * plan.phase_s) - index * plan.phase_s
         if 0.0 <= t < plan.green_s:
             return 'green'
@@ -210,6 +249,7 @@ class SignalController:
                                         + ', '.join(SIGNAL_STATES))
         self._forced[group_id] = state
         self._states[group_id] = state
+        self._unchanged = (math.inf, -math.inf)
 
     def release(self, group_id=None) -> None:
         """Return a group (None: every group) to its plan."""
@@ -218,4 +258,5 @@ class SignalController:
         else:
             self.rules.group(group_id)
             self._forced.pop(group_id, None)
+        self._unchanged = (math.inf, -math.inf)
         self.update(self.time_s)

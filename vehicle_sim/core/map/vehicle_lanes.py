@@ -35,12 +35,14 @@ class VehicleLanes:
     A vehicle's lane state and lane invasions.
 
     :param graph: the world's LaneGraph.
+    :param signals: the world's SignalController, or None (LaneTracker: the signal state of the
+        next stop line).
     :attr state: the LaneState of the last update (OFF_LANE before the first).
     """
 
-    def __init__(self, graph: LaneGraph):
+    def __init__(self, graph: LaneGraph, signals=None):
         self.graph = graph
-        self.tracker = LaneTracker(graph)
+        self.tracker = LaneTracker(graph, signals)
         self.detector = LaneInvasionDetector(graph)
         self.state: LaneState = OFF_LANE
 

@@ -63,8 +63,10 @@ LANE_IDS = register_kind('lane_ids', 'int[]', _check_lane_ids)
 # its objects at 10 Hz, and 60 vehicles with predicted paths each step cost more than the step.
 OBJECTS_RATE = ParamSpec(
     'objects_rate', 'objects_rate_hz', 'float', 10.0, 'Hz',
-    'rate of /perception/object_recognition/objects and /sim/traffic/markers on simulated time '
-    "(at the first basic step at or after each k / rate; Autoware's perception: 10 Hz)",
+    'rate of /perception/object_recognition/objects, /sim/traffic/markers and '
+    '/perception/traffic_light_recognition/traffic_signals (that also at each change) on '
+    "simulated time (at the first basic step at or after each k / rate; Autoware's perception: "
+    '10 Hz)',
     gt=0.0)
 
 TRAFFIC_SPECS = (
@@ -93,7 +95,7 @@ TRAFFIC_SPECS = (
     ParamSpec('placed', 'placed', 'raw', None, '', 'individually placed vehicles (table below)',
               optional=True),
     replace(OBJECTS_RATE, default=None, optional=True,
-            doc='rate of the objects and markers over ROS on simulated time (null: the '
+            doc='rate of the objects, markers and signals over ROS on simulated time (null: the '
                 "node's objects_rate parameter, 10 Hz by default); wins over the parameter"),
 )
 
