@@ -21,8 +21,12 @@ import math
 import numpy as np
 import pytest
 
-from vehicle_sim.config import read_yaml, world_from_data, world_path
+from vehicle_sim.config import load_world, read_yaml, world_from_data, world_path
+from vehicle_sim.core.map.lane_rules import LaneRules, StopLine, TrafficLightGroup
+from vehicle_sim.core.map.signal_plan import SignalController
 from vehicle_sim.core.specs.errors import InvalidParameterError, InvalidPoseError
+from vehicle_sim.core.traffic.footprints import overlapping
+from vehicle_sim.maps.lane_maps import with_lanes
 from vehicle_sim.physics.scene import build_scene, mount_suite
 from vehicle_sim.physics.sensors import CollisionMonitor
 from vehicle_sim.physics.traffic_bodies import model_dimensions
@@ -225,3 +229,64 @@ def test_the_camera_shows_the_traffic_car_ahead_in_its_colour(scenes):
     empty = scene.vehicles['Car'].sensors.sample('camera').rgb[56:64, 76:84].astype(float)
     assert not (np.abs(empty / 255.0 - (empty.sum(axis=-1, keepdims=True) / 255.0 /
                                          colour.sum()) * colour).max(axis=-1) < 0.05).all()
+
+
+def box_x(scene, body):
+    return scene.world.body_state(body)[0][0][0]
+
+
+class SignalsPart:
+    """A stand-in for the world's signals part: its controller, built before the traffic."""
+
+    name = 'signals'
+
+    def __init__(self, controller):
+        self.controller = controller
+
+    def build(self, world, spec):
+        return self
+
+
+def test_the_traffic_part_obeys_the_signals_part_controller(scenes):
+    spec = with_lanes(highway({'placed': [{'model': 'ToyotaPrius', 'lanelet': MIDDLE,
+                                           's': 60.0, 'speed': 15.0, 'route': [100102]}]}))
+    x, y, _ = spec.lanes.pose_at(MIDDLE, 150.0)
+    line = StopLine(7, MIDDLE, 150.0, [(x, y - 1.5), (x, y + 1.5)], 'traffic_light', 70)
+    spec.lanes.set_rules(LaneRules(stop_lines=(line,),
+                                   groups=(TrafficLightGroup(70, (MIDDLE,), (7,)),)))
+    signals = SignalController(spec.lanes)
+    signals.force(70, 'red')
+    scene = scenes(spec, parts=[SignalsPart(signals)])
+    traffic = scene.parts['traffic']
+    assert traffic.manager.signals is signals
+    half = model_dimensions('ToyotaPrius')[0] / 2
+    body = traffic.body_ids[0]
+    for _ in range(1500):                        # 15 s: it stops before the line
+        scene.world.step()
+        assert box_x(scene, body) + half < x
+    assert traffic.manager.vehicles[0].speed_mps < 0.01
+    signals.force(70, 'green')
+    for _ in range(500):
+        scene.world.step()
+    assert box_x(scene, body) - half > x
+
+
+def test_the_shipped_city_block_signals_traffic_stops_at_red_and_never_overlaps(scenes):
+    scene = scenes(load_world('city_block_signals'))
+    controller = scene.parts['signals'].controller
+    manager = scene.parts['traffic'].manager
+    assert manager.signals is controller
+    lines = {line.lane_id: line for line in scene.lanes.rules.stop_lines}
+    at_red = set()
+    for step in range(3000):                    # 30 s of the world
+        scene.world.step()
+        if step % 10 == 9:                      # after each traffic update
+            assert overlapping([(*manager.pose(v), v.length_m, v.width_m)
+                                for v in manager.vehicles if v.active]) == []
+            for v in manager.vehicles:
+                line = lines.get(v.lane)
+                if line is not None and v.speed_mps < 0.01 and \
+                        controller.state(line.group_id) == 'red' and \
+                        0.0 < line.s_m - (v.s_m + 0.5 * v.length_m) < 3.0:
+                    at_red.add(v.index)
+    assert len(at_red) >= 5                     # the first of each queue, at its line

@@ -84,16 +84,24 @@ class TrafficPart:
     """
     The scene part of ``traffic:``.
 
+    The traffic obeys the world's signals: the SignalController of the scene part ``signals``
+    (``parts['signals'].controller``), built before it, when the world has one.
+
     :param graph: the lane map (a core LaneGraph); None = the world's ``roads:``.
     """
 
     name = 'traffic'
+    reads_parts = True          # built as build(world, spec, parts): the parts built before it
 
     def __init__(self, graph=None):
         self.graph = graph
 
-    def build(self, world, spec):
-        """Add the traffic of ``spec`` to ``world``; return its TrafficBodies (None: none)."""
+    def build(self, world, spec, parts=None):
+        """
+        Add the traffic of ``spec`` to ``world``; return its TrafficBodies (None: none).
+
+        :param parts: the scene parts built before it, by name (the signals part's controller).
+        """
         traffic = spec.traffic
         if traffic is None:
             return None
@@ -104,7 +112,9 @@ class TrafficPart:
                                         f'(roads: in the world file, or a Lanelet2 map)')
         sizes = {model: model_dimensions(model) for model in traffic.all_models}
         ours = [our_vehicle(body) for body in world.vehicle_bodies()]
-        manager = TrafficManager(graph, traffic, {m: d[:2] for m, d in sizes.items()}, ours)
+        signals = getattr((parts or {}).get('signals'), 'controller', None)
+        manager = TrafficManager(graph, traffic, {m: d[:2] for m, d in sizes.items()}, ours,
+                                 signals)
         return TrafficBodies(world, manager, sizes)
 
 
@@ -174,7 +184,7 @@ class TrafficBodies:
         old = self.manager
         spec = old.spec if seed is None else replace(old.spec, seed=seed)
         ours = [our_vehicle(body, outline) for body, outline in zip(self._ours, self._outlines)]
-        self.manager = TrafficManager(old.graph, spec, old.dimensions, ours)
+        self.manager = TrafficManager(old.graph, spec, old.dimensions, ours, old.signals)
         self._start_step = self.world.step_count
         self._parked = set()
         self._place()

@@ -56,10 +56,14 @@ from vehicle_sim.core.traffic.idm import advance
 from vehicle_sim.core.traffic.mobil import LaneChangeAccelerations
 from vehicle_sim.core.traffic.models import CAR_FOLLOWING_MODELS, LANE_CHANGE_MODELS
 from vehicle_sim.core.traffic.params import TrafficSpec
+from vehicle_sim.core.traffic.rules import TrafficRules
 from vehicle_sim.core.traffic.spawn import spawn_vehicles
 from vehicle_sim.core.traffic.vehicles import OurVehicle, TrafficVehicle
 
 __all__ = ['OurVehicle', 'TrafficManager', 'TrafficVehicle']
+
+# the lane subtypes traffic drives (Lane.subtype; a lane without one is a road)
+DRIVEN_SUBTYPES = ('road', 'highway')
 
 LOOKAHEAD_M = 250.0       # leaders further ahead do not count (IDM's interaction is ~0 there)
 LOOKBACK_M = 150.0        # followers further behind do not count in MOBIL
@@ -89,13 +93,16 @@ class TrafficManager:
     :param spec: the TrafficSpec (``traffic:`` of the world).
     :param dimensions: {model: (length, width)} [m] of every model the spec names.
     :param ours: our vehicles at the start (no vehicle is spawned on them).
+    :param signals: the world's SignalController (core/map/signal_plan.py), whose lights the
+        traffic obeys; None = every light is off (the vehicles still yield at conflicts and
+        stop at stop signs: core/traffic/rules.py).
     :raises InvalidParameterError: a spawn or placed lane not in the map, ``s`` off its lane,
         a route through a lane not in the map or not a successor, placed vehicles on top of each
         other, or more vehicles than fit; naming the file and field.
     """
 
     def __init__(self, graph, spec: TrafficSpec, dimensions: Dict[str, Tuple[float, float]],
-                 ours: Sequence[OurVehicle] = ()):
+                 ours: Sequence[OurVehicle] = (), signals=None):
         self.graph = graph
         self.spec = spec
         self.idm = spec.idm                   # scenario actors follow with these
@@ -117,8 +124,17 @@ class TrafficManager:
         self._ours_at = {}                    # our vehicle's name -> (lane, s) last located
         self._occ: Dict[int, Tuple[list, list]] = {}
         self.dimensions = dimensions
-        self._entries = sorted(i for i, pred in graph.predecessors.items() if not pred)
-        self.vehicles = spawn_vehicles(graph, spec, dimensions, ours, self.rng)
+        self.signals = signals
+        self._driven = {i for i, lane in graph.lanes.items()
+                        if getattr(lane, 'subtype', 'road') in DRIVEN_SUBTYPES}
+        self._entries = sorted(i for i, pred in graph.predecessors.items()
+                               if not pred and i in self._driven)
+        rules = TrafficRules(graph, signals, self,
+                             max((d[0] for d in dimensions.values()), default=0.0),
+                             max((d[1] for d in dimensions.values()), default=0.0))
+        self.rules = None if rules.empty else rules
+        self.vehicles = spawn_vehicles(graph, spec, dimensions, ours, self.rng, self._driven,
+                                       self.rules)
         for v in self.vehicles:
             v.next_lane = self._choose_next(v)
         self.set_ours(ours)
@@ -126,17 +142,24 @@ class TrafficManager:
         for v in self.vehicles:               # start speeds: safe behind the leaders
             if v.speed_mps < 0.0:
                 gap, leader = self._leader(v, v.lane, v.s_m)
-                v.speed_mps = self._safe_speed(v, gap, leader)
+                v.speed_mps = self._start_speed(v, gap, leader)
 
     def _choose_next(self, v):
         successors = self.graph.lanes[v.lane].successors
         if v.route:
             return v.route.pop(0)
+        if len(successors) > 1 or (successors and successors[0] not in self._driven):
+            successors = [s for s in successors if s in self._driven]
         if not successors:
             return None
         if len(successors) == 1:
             return successors[0]
         return successors[self.rng.randrange(len(successors))]
+
+    def _start_speed(self, v, gap, leader):
+        """Return the safe speed behind the leader and before the stops ahead (the rules)."""
+        speed = self._safe_speed(v, gap, leader)
+        return speed if self.rules is None else min(speed, self.rules.start_speed_limit(v))
 
     def _safe_speed(self, v, gap, leader):
         """Return the highest start speed <= desired at which the model brakes at most b."""
@@ -331,6 +354,8 @@ class TrafficManager:
             raise ValueError(f'dt_s = {dt_s!r}: must be finite and > 0')
         self._occupancy()
         self._accelerations()
+        if self.rules is not None:
+            self.rules.apply(dt_s)
         vehicles = self.vehicles
         period = max(1, int(round(self.spec.lane_change_period_s / dt_s)))
         for v in vehicles:
@@ -415,7 +440,7 @@ class TrafficManager:
                 v.active, v.from_lane, v.offset_m = False, None, 0.0
                 return
             v.s_m -= lanes[v.lane].length_m
-            v.lane = v.next_lane
+            v.prev_lane, v.lane = v.lane, v.next_lane
             v.next_lane = self._choose_next(v)
 
     def _reenter(self):
@@ -433,9 +458,9 @@ class TrafficManager:
                 gap = None if leader is None else dist - leader.half - v.length_m
                 if gap is not None and gap < self._gap_kept(0.0) + ENTRY_MARGIN_M:
                     continue
-                v.lane, v.s_m, v.active = lane_id, s, True
+                v.lane, v.s_m, v.active, v.prev_lane = lane_id, s, True, None
                 v.next_lane = self._choose_next(v)
-                v.speed_mps = self._safe_speed(v, gap, leader)
+                v.speed_mps = self._start_speed(v, gap, leader)
                 self._add(lane_id, _Occupant(s, v.speed_mps, 0.5 * v.length_m, v.index,
                                              self._v0(v)))
                 break
@@ -449,7 +474,8 @@ class TrafficManager:
         best, best_gain = None, None
         for target, allowed, side in ((lane.left_lane, lane.left_change, 1.0),
                                       (lane.right_lane, lane.right_change, -1.0)):
-            if not allowed:
+            if not allowed or (self.rules is not None and
+                               not self.rules.change_allowed(v, target, reach)):
                 continue
             gain = self._change_gain(v, lane, target, reach)
             if gain is not None and (best_gain is None or gain > best_gain):

@@ -39,7 +39,8 @@ from vehicle_sim.core.traffic.vehicles import TrafficVehicle
 CLEARANCE_M = 1.0
 
 
-def spawn_vehicles(graph, spec, dims, ours, rng) -> List[TrafficVehicle]:
+def spawn_vehicles(graph, spec, dims, ours, rng, driven=None,
+                   rules=None) -> List[TrafficVehicle]:
     """
     Return the traffic vehicles at their start: the placed ones, then the random ones.
 
@@ -51,6 +52,10 @@ def spawn_vehicles(graph, spec, dims, ours, rng) -> List[TrafficVehicle]:
     :param dims: {model: (length, width)} [m].
     :param ours: our vehicles (OurVehicle): no vehicle is spawned on them.
     :param rng: the manager's random.Random (consumed: places, models, speed factors).
+    :param driven: ids of the lanes traffic drives (the default spawn lanes; a spawn lane not
+        among them is refused); None = every lane.
+    :param rules: the manager's TrafficRules (no random vehicle starts in a conflict zone or
+        where a fork's branches overlap: ``TrafficRules.keep_clear``), or None.
     :raises InvalidParameterError: see TrafficManager.
     """
     src = spec.source
@@ -95,13 +100,19 @@ def spawn_vehicles(graph, spec, dims, ours, rng) -> List[TrafficVehicle]:
         if p.change_lane != 'none':
             v.scripted, v.keep_lane = (p.change_lane, p.change_at_s), True
         vehicles.append(v)
-    spawn = spec.spawn_lanes if spec.spawn_lanes is not None else sorted(lanes)
+    driven = set(lanes) if driven is None else driven
+    spawn = spec.spawn_lanes if spec.spawn_lanes is not None else sorted(driven)
     for lane_id in spawn:
         if lane_id not in lanes:
             raise InvalidParameterError(f"{src}: spawn: field 'lanes': lane {lane_id} is not "
                                         f'in the map ({graph.source})')
+        if lane_id not in driven:
+            raise InvalidParameterError(
+                f"{src}: spawn: field 'lanes': lane {lane_id} is a "
+                f"{getattr(lanes[lane_id], 'subtype', 'road')!r} lane: traffic drives road "
+                'and highway lanes only')
     size = (max(dims[m][0] for m in spec.models), max(dims[m][1] for m in spec.models))
-    slots, length_km = _slots(spec, spawn, graph, taken, size, ours)
+    slots, length_km = _slots(spec, spawn, graph, taken, size, ours, rules)
     count = spec.vehicles if spec.density_per_km is None else int(
         round(spec.density_per_km * length_km))
     if count > len(slots):
@@ -151,7 +162,7 @@ def _centres(lane, places):
     return np.interp(places, along, lane.xs), np.interp(places, along, lane.ys)
 
 
-def _slots(spec, spawn, graph, taken, size, ours):
+def _slots(spec, spawn, graph, taken, size, ours, rules=None):
     # (the places free of the placed vehicles and ours, the spawn lanes' length [km]); a place
     # is free of ours for the longest and widest model
     lanes = graph.lanes
@@ -167,8 +178,10 @@ def _slots(spec, spawn, graph, taken, size, ours):
         length_m += hi - lo
         places = []
         s = lo + 0.5 * spacing
+        clear = () if rules is None else rules.keep_clear(lane_id, 0.5 * size[0])
         while s <= hi - 0.5 * spacing + 1e-9:
-            if all(abs(s - t) >= 0.5 * spacing + half for t, half in taken.get(lane_id, ())):
+            if all(abs(s - t) >= 0.5 * spacing + half for t, half in taken.get(lane_id, ())) \
+                    and not any(a < s < b for a, b in clear):
                 places.append(s)
             s += spacing
         # the exact test only for the places whose centre is near one of ours

@@ -41,8 +41,8 @@ class TrafficVehicle:
 
     __slots__ = ('index', 'name', 'model', 'length_m', 'width_m', 'factor', 'lane', 's_m',
                  'speed_mps', 'acc_mps2', 'offset_m', 'from_lane', 'from_s_m', 'change_s',
-                 'change_from_m', 'next_lane', 'route', 'keep_lane', 'scripted', 'active',
-                 'stopped')
+                 'change_from_m', 'next_lane', 'prev_lane', 'route', 'keep_lane', 'scripted',
+                 'active', 'stopped')
 
     def __init__(self, index, model, length_m, width_m, factor, lane, s_m, route):
         self.index = index
@@ -55,6 +55,7 @@ class TrafficVehicle:
         self.change_s = 0.0          # time since the change began [s]
         self.change_from_m = 0.0     # the offset the change began at
         self.next_lane = None
+        self.prev_lane = None        # the lane it came from (its rear may still be there)
         self.route = list(route)
         self.keep_lane = bool(route)  # a routed vehicle drives its route: no lane changes
         self.scripted = None          # (side 'left' | 'right', from time [s]): a scripted change
