@@ -29,7 +29,7 @@ to an intersection, whose conflicts lie on the lanes that follow them. A conflic
 holds for (two signed or two unsigned ways, a merge with no rule) gives no one priority.
 """
 
-from typing import Dict, Iterable, Set, Tuple
+from typing import Callable, Dict, Iterable, Set, Tuple
 
 from vehicle_sim.core.map.lane_rules import Conflict
 
@@ -46,33 +46,47 @@ def way_of(graph, lane_ids: Iterable[int]) -> Set[int]:
     return way
 
 
+def priority_test(graph) -> Callable[[int, int], bool]:
+    """
+    Return ``has_priority(lane_id, other_id)``: whether the other lane's way goes first.
+
+    The rules of the module's text, for any two lanes of the graph (the traffic asks it of the
+    pairs whose vehicles' footprints meet as well as of the map's conflicts).
+
+    :param graph: a LaneGraph with its rules (``graph.rules``).
+    """
+    rules = graph.rules
+    ruled = set()
+    for rule in rules.right_of_way:
+        first = way_of(graph, rule.priority_lanes)
+        ruled.update((lane_id, other_id) for lane_id in way_of(graph, rule.yield_lanes)
+                     for other_id in first)
+    signalled = way_of(graph, (lane for group in rules.groups for lane in group.lanes))
+    signed = way_of(graph, (line.lane_id for line in rules.stop_lines
+                            if line.kind in GIVE_WAY_KINDS))
+
+    def has_priority(lane_id, other_id):
+        if (lane_id, other_id) in ruled:
+            return True
+        if lane_id in signalled or other_id in signalled:
+            return False
+        return lane_id in signed and other_id not in signed
+
+    return has_priority
+
+
 def priority_conflicts(graph) -> Dict[int, Tuple[Conflict, ...]]:
     """
     Return {lane id: the conflicts of that lane (seen from it) whose other lane has priority}.
 
     :param graph: a LaneGraph with its rules (``graph.rules``).
     """
-    rules = graph.rules
+    has_priority = priority_test(graph)
     found: Dict[int, list] = {}
-
-    def add(conflict):
-        known = found.setdefault(conflict.lane_id, [])
-        if conflict not in known:
-            known.append(conflict)
-
-    for rule in rules.right_of_way:
-        first = way_of(graph, rule.priority_lanes)
-        for lane_id in sorted(way_of(graph, rule.yield_lanes)):
-            for conflict in rules.conflicts_of(lane_id):
-                if conflict.other_id in first:
-                    add(conflict)
-    signalled = way_of(graph, (lane for group in rules.groups for lane in group.lanes))
-    signed = way_of(graph, (line.lane_id for line in rules.stop_lines
-                            if line.kind in GIVE_WAY_KINDS))
-    for conflict in rules.conflicts:
+    for conflict in graph.rules.conflicts:
         for one in (conflict, conflict.reversed()):
-            if one.lane_id in signalled or one.other_id in signalled:
-                continue
-            if one.lane_id in signed and one.other_id not in signed:
-                add(one)
+            if has_priority(one.lane_id, one.other_id):
+                known = found.setdefault(one.lane_id, [])
+                if one not in known:
+                    known.append(one)
     return {lane_id: tuple(conflicts) for lane_id, conflicts in found.items()}

@@ -46,12 +46,13 @@ deceleration when seen in time):
   the vehicle: "don't block the box"); else it stops ``ZONE_MARGIN_M`` before the first one. It
   keeps each zone until its rear is past it. A vehicle held by a stop line before a zone does
   not ask for it: a red light's queue never blocks the crossing traffic;
-- **right of way** (``LaneRules.right_of_way``): a vehicle whose lane (or the lane before it)
-  yields to a priority lane of a zone asks after the vehicles that do not yield, so that a
-  priority vehicle asking in the same step goes first; a yielding vehicle waits while any
-  vehicle on a priority lane is close enough to ask. On a signalised intersection the signal
-  keeps conflicting flows apart; the zones still make a green vehicle wait for the vehicles
-  already inside (the previous phase's last ones);
+- **right of way** (who goes first: core/map/priority.py, the rule the ``yield`` criterion
+  checks too: a ``RightOfWay``'s priority lanes, and at an unsignalled conflict the way without
+  a stop or yield line): a vehicle whose way yields to the other way of a zone asks after the
+  vehicles that do not yield, so that a priority vehicle asking in the same step goes first; a
+  yielding vehicle waits while any vehicle on a priority lane is close enough to ask. On a
+  signalised intersection the signal keeps conflicting flows apart; the zones still make a
+  green vehicle wait for the vehicles already inside (the previous phase's last ones);
 - **forks**: lanes that leave one lane overlap near their start; a vehicle approaching a fork,
   or at the start of one branch, follows the vehicles on the other branches that are still
   within the overlap (``fork_lengths``), as it follows its own leader.
@@ -67,6 +68,7 @@ from typing import Dict, List, Tuple
 import numpy as np
 
 from vehicle_sim.core.map.lane_graph import distances_to_polyline
+from vehicle_sim.core.map.priority import priority_test
 from vehicle_sim.core.traffic.footprints import footprint_overlaps
 
 STAND_REACH_M = 1.5         # a vehicle stands "at" a stop line within its model's gap + this
@@ -142,19 +144,7 @@ class TrafficRules:
         self.signals = signals
         self.manager = manager
         rules = graph.rules
-        yielding = set()
-        for rule in rules.right_of_way:
-            for y in rule.yield_lanes:
-                for p in rule.priority_lanes:
-                    yielding.add((y, p))
-
-        def yields(lane, other):
-            for a in (lane,) + graph.predecessors.get(lane, ()):
-                for b in (other,) + graph.predecessors.get(other, ()):
-                    if (a, b) in yielding:
-                        return True
-            return False
-
+        yields = priority_test(graph)       # the one rule of who goes first (core/map)
         self.forks = fork_lengths(graph, width_m + 0.5)
         self.siblings = {}
         for lane in graph.lanes.values():
