@@ -15,22 +15,13 @@
 
 """The lane map's rules (stop lines, groups, conflicts) and the fixed-time signal plan."""
 
+from lane_helpers import straight
 import pytest
 
-from vehicle_sim.core.map.lane_graph import Boundary, Lane, LaneGraph
+from vehicle_sim.core.map.lane_graph import LaneGraph
 from vehicle_sim.core.map.lane_rules import Conflict, LaneRules, StopLine, TrafficLightGroup
 from vehicle_sim.core.map.signal_plan import FixedTimePlan, SignalController
 from vehicle_sim.core.specs.errors import InvalidParameterError
-
-
-def straight(lane_id, x0, y0, x1, y1, successors=()):
-    """Return a 3.5 m lane from (x0, y0) to (x1, y1) (axis-aligned)."""
-    nx, ny = (0.0, 1.75) if y0 == y1 else (-1.75, 0.0)
-    sign = 1.0 if (x1 - x0) + (y1 - y0) > 0 else -1.0
-    nx, ny = sign * nx, sign * ny
-    left = Boundary(2 * lane_id, [(x0 + nx, y0 + ny), (x1 + nx, y1 + ny)], 'solid')
-    right = Boundary(2 * lane_id + 1, [(x0 - nx, y0 - ny), (x1 - nx, y1 - ny)], 'solid')
-    return Lane(lane_id, [(x0, y0), (x1, y1)], left, right, 10.0, successors=successors)
 
 
 def crossing():

@@ -18,10 +18,11 @@
 import math
 import random
 
+from lane_helpers import straight
 import pytest
 
 from vehicle_sim.config import load_world
-from vehicle_sim.core.map.lane_graph import Boundary, Lane, LaneGraph
+from vehicle_sim.core.map.lane_graph import LaneGraph
 from vehicle_sim.core.map.lane_rules import (
     Conflict,
     LaneRules,
@@ -43,16 +44,6 @@ HALF = 2.25
 EAST_IN, EAST_X, EAST_OUT, NORTH_IN, NORTH_X, NORTH_OUT = 1, 2, 5, 3, 4, 6
 EAST_LINE_S, NORTH_LINE_S = 198.0, 188.0     # x = -2 on lane 1, y = -12 on lane 3
 ZONE = (8.25, 11.75)                         # the crossing on lanes 2 and 4
-
-
-def straight(lane_id, x0, y0, x1, y1, successors=()):
-    """Return a 3.5 m lane from (x0, y0) to (x1, y1) (axis-aligned), 10 m/s."""
-    nx, ny = (0.0, 1.75) if y0 == y1 else (-1.75, 0.0)
-    sign = 1.0 if (x1 - x0) + (y1 - y0) > 0 else -1.0
-    nx, ny = sign * nx, sign * ny
-    left = Boundary(2 * lane_id, [(x0 + nx, y0 + ny), (x1 + nx, y1 + ny)], 'solid')
-    right = Boundary(2 * lane_id + 1, [(x0 - nx, y0 - ny), (x1 - nx, y1 - ny)], 'solid')
-    return Lane(lane_id, [(x0, y0), (x1, y1)], left, right, 10.0, successors=successors)
 
 
 def crossing(lines='traffic_light', right_of_way=False):
