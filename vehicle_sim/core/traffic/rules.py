@@ -55,7 +55,7 @@ deceleration when seen in time):
   green vehicle wait for the vehicles already inside (the previous phase's last ones);
 - **forks**: lanes that leave one lane overlap near their start; a vehicle approaching a fork,
   or at the start of one branch, follows the vehicles on the other branches that are still
-  within the overlap (``fork_lengths``), as it follows its own leader.
+  within the overlap (``fork_lengths``, conflict_zones.py), as it follows its own leader.
 
 Everything is computed in a fixed order from the manager's state (no randomness): the same
 inputs give the same decisions.
@@ -63,13 +63,10 @@ inputs give the same decisions.
 
 from bisect import bisect_left
 import math
-from typing import Dict, List, Tuple
+from typing import Dict, Tuple
 
-import numpy as np
-
-from vehicle_sim.core.map.lane_graph import distances_to_polyline
 from vehicle_sim.core.map.priority import priority_test
-from vehicle_sim.core.traffic.footprints import footprint_overlaps
+from vehicle_sim.core.traffic.conflict_zones import conflict_zones
 
 STAND_REACH_M = 1.5         # a vehicle stands "at" a stop line within its model's gap + this
 STOP_SIGN_WAIT_S = 1.0      # how long it stands there before it goes on
@@ -82,49 +79,7 @@ LINE_MARGIN_M = 10.0        # stop lines further than the braking reach + this d
 SLOW_MPS = 2.0              # a leader slower than this may not clear the exit in time
 GAP_S = 1.5                 # a yielding vehicle clears its zones this long before a priority one
 ROOM_MARGIN_M = 1.0         # room beyond the zones a vehicle needs besides its length and gap
-FORK_SAMPLE_M = 0.5         # sampling step of the fork overlaps
-SWEPT_LEAVING_M = 10.0      # footprints are sampled this far onto the lanes leaving a junction
 FORK_NEAR_M = 60.0          # a vehicle follows the other branches' vehicles from this far
-FORK_REACH_M = 30.0         # fork overlaps are measured over at most this of each branch
-
-
-class Zone:
-    """One side of a conflict: its lane's range, the pair it belongs to and its precedence."""
-
-    __slots__ = ('key', 'other', 'lane', 's0', 's1', 'yields')
-
-    def __init__(self, key, other, lane, s0, s1, yields):
-        self.key, self.other, self.lane, self.s0, self.s1 = key, other, lane, s0, s1
-        self.yields = yields
-
-
-def fork_lengths(graph, width_m) -> Dict[int, float]:
-    """
-    Return {lane id: arc length from its start within which it overlaps a sibling} [m].
-
-    Siblings are lanes that leave the same lane; a branch overlaps another while their
-    centrelines are closer than ``width_m`` (the widest vehicle plus a margin). Lanes without
-    a sibling are not in the result.
-    """
-    lanes, out = graph.lanes, {}
-    for lane in lanes.values():
-        branches = lane.successors
-        if len(branches) < 2:
-            continue
-        for one in branches:
-            this = lanes[one]
-            reach = min(this.length_m, FORK_REACH_M)
-            places = np.arange(0.0, reach + 1e-9, FORK_SAMPLE_M)
-            along = np.append(this.s0, this.length_m)
-            points = np.c_[np.interp(places, along, this.xs), np.interp(places, along, this.ys)]
-            near = np.zeros(len(places), dtype=bool)
-            for other in branches:
-                if other != one:
-                    near |= distances_to_polyline(points, lanes[other].centerline) < width_m
-            length = float(places[near].max()) + FORK_SAMPLE_M if near.any() else 0.0
-            if length > 0.0:
-                out[one] = max(out.get(one, 0.0), min(length, this.length_m))
-    return out
 
 
 class TrafficRules:
@@ -145,34 +100,9 @@ class TrafficRules:
         self.manager = manager
         rules = graph.rules
         yields = priority_test(graph)       # the one rule of who goes first (core/map)
-        self.forks = fork_lengths(graph, width_m + 0.5)
-        self.siblings = {}
-        for lane in graph.lanes.values():
-            if len(lane.successors) > 1:
-                for one in lane.successors:
-                    self.siblings[one] = tuple(s for s in lane.successors if s != one)
-        pairs = [(c.lane_id, c.other_id, c.s_m, c.other_s_m) for c in rules.conflicts]
-        pairs += self._swept(graph, pairs, length_m, width_m)
-        merged: Dict[Tuple[int, int], list] = {}    # one zone pair per lane pair: the union
-        for a, b, on_a, on_b in pairs:
-            if a > b:
-                a, b, on_a, on_b = b, a, on_b, on_a
-            got = merged.get((a, b))
-            if got is None:
-                merged[(a, b)] = [min(on_a), max(on_a), min(on_b), max(on_b)]
-            else:
-                got[0], got[1] = min(got[0], min(on_a)), max(got[1], max(on_a))
-                got[2], got[3] = min(got[2], min(on_b)), max(got[3], max(on_b))
-        zones: Dict[int, List[Zone]] = {}
-        for pair, ((a, b), (a0, a1, b0, b1)) in enumerate(sorted(merged.items())):
-            on_a, on_b = (a0, a1), (b0, b1)
-            zones.setdefault(a, []).append(Zone(
-                (pair, 0), (pair, 1), a, min(on_a), max(on_a), yields(a, b)))
-            zones.setdefault(b, []).append(Zone(
-                (pair, 1), (pair, 0), b, min(on_b), max(on_b), yields(b, a)))
-        self.zones = {lane: tuple(sorted(z, key=lambda zone: (zone.s0, zone.key)))
-                      for lane, z in zones.items()}
-        self._other = {zone.key: zone for z in zones.values() for zone in z}
+        found = conflict_zones(graph, length_m, width_m, yields)
+        self.zones, self._other = found.zones, found.other
+        self.forks, self.siblings = found.forks, found.siblings
         self.lines = {lane: tuple(line for line in rules.stop_lines_on(lane)
                                   if line.kind != 'yield')
                       for lane in graph.lanes if rules.stop_lines_on(lane)}
@@ -198,39 +128,6 @@ class TrafficRules:
         self._grants: Dict[int, set] = {}                   # vehicle -> zone keys it holds
         self._asked: Dict[int, float] = {}                  # vehicle -> time it first asked
         self.waiting = {}                                   # vehicle -> why it stops (reading)
-
-    def _swept(self, graph, pairs, length_m, width_m):
-        """
-        Return the conflicts of footprints beyond the lanes' areas (footprints.py).
-
-        Sampled on the lanes of the conflicts and the forks' branches, and the first
-        ``SWEPT_LEAVING_M`` of the lanes they lead to; a lane and the lane it follows, and
-        neighbours, are not tested. Branches of a fork that overlap lengthen its overlap
-        (``forks``) instead.
-        """
-        lanes = graph.lanes
-        inside = {a for a, b, _, _ in pairs} | {b for a, b, _, _ in pairs} | set(self.forks)
-        if not inside or length_m <= 0.0:
-            return []
-        ranges = {lane: (0.0, lanes[lane].length_m) for lane in inside}
-        for lane in inside:
-            for after in lanes[lane].successors:
-                ranges.setdefault(after, (0.0, SWEPT_LEAVING_M))
-        skip = set()
-        for lane in ranges:
-            for other in lanes[lane].successors + (lanes[lane].left_lane,
-                                                   lanes[lane].right_lane):
-                if other is not None:
-                    skip.add((lane, other))
-        extra = []
-        for (a, b), (on_a, on_b) in footprint_overlaps(graph, ranges, length_m, width_m,
-                                                       skip).items():
-            if b in self.siblings.get(a, ()):
-                self.forks[a] = max(self.forks.get(a, 0.0), on_a[1])
-                self.forks[b] = max(self.forks.get(b, 0.0), on_b[1])
-            else:
-                extra.append((a, b, on_a, on_b))
-        return extra
 
     @property
     def empty(self):
