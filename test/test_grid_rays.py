@@ -25,6 +25,7 @@ import math
 import numpy as np
 import pytest
 
+from vehicle_sim.core.map import grid_rays
 from vehicle_sim.core.map.grid_rays import free_squares, GridRays, quadrant_squares
 from vehicle_sim.core.map.occupancy import OccupancyGrid, ray_march
 
@@ -135,6 +136,37 @@ def test_a_ray_through_the_corner_two_walls_share_is_stopped_there():
     rays = GridRays(walls, 1.0, (0.0, 0.0, 0.0), HEIGHT_M)
     got = _cast(rays, 2.5, 7.5, 0.5, np.array([-math.pi / 4]), 10.0)
     assert got[0] == pytest.approx(2.5 * math.sqrt(2.0), abs=1e-9)
+
+
+@pytest.mark.parametrize('seed', range(3))
+def test_the_walk_over_the_next_cells_meets_the_walls_where_the_ray_march_does(seed,
+                                                                               monkeypatch):
+    # one jump, then every ray walks (GridRays._window), on a speckle of single wall cells
+    monkeypatch.setattr(grid_rays, '_JUMPS_PER_LOOK', 1)
+    walls = _speckled_walls(seed)
+    grid = OccupancyGrid(np.where(walls, 100, 0).astype(np.int8), 0.1, (0.0, 0.0, 0.0))
+    rays = GridRays(walls, 0.1, (0.0, 0.0, 0.0), HEIGHT_M)
+    rng = np.random.default_rng(200 + seed)
+    angles = rng.uniform(-math.pi, math.pi, 60)
+    for row, column in np.argwhere(~walls)[rng.integers(0, (~walls).sum(), 6)]:
+        x, y = 0.1 * (column + rng.random()), 0.1 * (row + rng.random())
+        marched = _marched(grid, walls, x, y, angles, 30.0)
+        got = _cast(rays, x, y, 0.5, angles, 30.0)
+        assert np.array_equal(np.isinf(got), np.isinf(marched))
+        near = np.isfinite(got)
+        assert np.max(np.abs(got[near] - marched[near]), initial=0.0) < 1e-9
+
+
+@pytest.mark.parametrize('cells', [[(5, 5)], [(4, 4)], [(5, 5), (4, 4)]])
+def test_the_walk_stops_a_ray_at_the_corner_of_a_wall_cell_beside_it(cells, monkeypatch):
+    # as the jumps do: a ray passing exactly through a corner touches the cells beside it
+    monkeypatch.setattr(grid_rays, '_JUMPS_PER_LOOK', 1)
+    walls = np.zeros((10, 10), dtype=bool)
+    walls[tuple(np.transpose(cells))] = True
+    walls[9, 3] = True                  # off the ray: its first jump ends at (3, 7)
+    rays = GridRays(walls, 1.0, (0.0, 0.0, 0.0), HEIGHT_M)
+    got = _cast(rays, 0.5, 9.5, 0.5, np.array([-math.pi / 4]), 10.0)
+    assert got[0] == pytest.approx(4.5 * math.sqrt(2.0), abs=1e-9)
 
 
 def test_a_ray_that_starts_inside_a_filled_area_meets_it_at_once():

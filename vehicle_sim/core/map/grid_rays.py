@@ -278,12 +278,15 @@ class GridRays:
             along = (line[axis] - (sign[axis] < 0.0))[:, None] + sign[axis][:, None] * steps
             along *= weight
             beside = start[other][:, None] + speed[other][:, None] * inside
-            wall = np.zeros(fractions.shape, dtype=bool)
-            for nudge in (_NUDGE_CELLS, -_NUDGE_CELLS):
-                index = np.floor(beside + nudge)
-                index *= other_weight
-                index += along
-                wall |= squares[index.astype(np.intp)] == 0
+            below = np.floor(beside - _NUDGE_CELLS)
+            above = np.floor(beside + _NUDGE_CELLS, out=beside)
+            # the cells a nudge to both sides differ only where a border is crossed on a corner
+            wall = None
+            for near in (below, above) if (above != below).any() else (below,):
+                near *= other_weight
+                near += along
+                meets = squares[near.astype(np.intp)] == 0
+                wall = meets if wall is None else wall | meets
             found.append(np.where(wall, fractions, np.inf).min(axis=1))
         limit = np.minimum(np.minimum(reach[0], reach[1]), end)
         meet = np.minimum(found[0], found[1])
