@@ -197,32 +197,23 @@ class GridRays:
         tie = np.maximum(inverse[0], inverse[1], out=rays[_TIE])
         tie *= 4.0 * _NUDGE_CELLS
         tie[tie == np.inf] = 0.0
-        stride, squares = float(self._stride), self._squares
+        squares, weights = self._squares, np.array([1.0, float(self._stride)])
         while True:
-            (speed_x, speed_y), (nudged_x, nudged_y), (sign_x, sign_y) = (
-                rays[_SPEED], rays[_NUDGED], rays[_SIGN])
-            (offset_x, offset_y), (inverse_x, inverse_y) = rays[_OFFSET], rays[_INVERSE]
+            speed, nudged, sign, offset, inverse = (
+                rays[_SPEED], rays[_NUDGED], rays[_SIGN], rays[_OFFSET], rays[_INVERSE])
             t, high, tie = rays[_T], rays[_HIGH], rays[_TIE]
             corner = None
             for _ in range(_JUMPS_PER_LOOK):
-                x = speed_x * t
-                x += nudged_x
-                np.floor(x, out=x)
-                y = speed_y * t
-                y += nudged_y
-                np.floor(y, out=y)
-                cell = y * stride
-                cell += x
-                k = squares[cell.astype(np.intp)]
+                cells = speed * t
+                cells += nudged
+                np.floor(cells, out=cells)
+                k = squares[(weights @ cells).astype(np.intp)]
                 # the fraction where the ray leaves the square along each axis, the nearer
-                x *= sign_x
-                x += k
-                x -= offset_x
-                x *= inverse_x
-                y *= sign_y
-                y += k
-                y -= offset_y
-                y *= inverse_y
+                cells *= sign
+                cells += k
+                cells -= offset
+                cells *= inverse
+                x, y = cells
                 ties = np.abs(x - y) <= tie
                 # a ray on a wall cell (k = 0) stands still, one past its band stops at its end
                 np.fmin(x, y, out=x)
