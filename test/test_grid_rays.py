@@ -25,7 +25,8 @@ import math
 import numpy as np
 import pytest
 
-from vehicle_sim.core.map.grid_rays import chessboard_distances, GridRays
+from vehicle_sim.core.map import grid_rays
+from vehicle_sim.core.map.grid_rays import free_squares, GridRays, quadrant_squares
 from vehicle_sim.core.map.occupancy import OccupancyGrid, ray_march
 
 HEIGHT_M = 1.0
@@ -42,6 +43,16 @@ def _blobby_walls(seed, shape=(90, 120)):
     return walls
 
 
+def _speckled_walls(seed, shape=(90, 120)):
+    # ragged: a few large free rooms in a speckle of single wall cells (a SLAM map's edges)
+    rng = np.random.default_rng(seed)
+    walls = rng.random(shape) < 0.3
+    for _ in range(6):
+        r, c = rng.integers(0, shape[0]), rng.integers(0, shape[1])
+        walls[r:r + rng.integers(5, 40), c:c + rng.integers(5, 40)] = False
+    return walls
+
+
 def _marched(grid, walls, x, y, angles, length):
     return np.array([ray_march(grid, walls, x, y, a, length) for a in angles])
 
@@ -54,32 +65,51 @@ def _cast(rays, x, y, z, angles, length, dz=0.0):
     return np.where(fractions < 1.0, fractions * length * math.sqrt(1.0 + dz * dz), np.inf)
 
 
+def _largest_free_square(walls, row, column, rows, columns):
+    # brute force: the largest j with the j x j cells from (row, column) towards (rows,
+    # columns) (+1 / -1) all free; cells beyond the grid are free
+    size = 0
+    while size < 255:
+        r = row + rows * np.arange(size + 1)
+        c = column + columns * np.arange(size + 1)
+        r, c = r[(r >= 0) & (r < walls.shape[0])], c[(c >= 0) & (c < walls.shape[1])]
+        if walls[np.ix_(r, c)].any():
+            break
+        size += 1
+    return size
+
+
 @pytest.mark.parametrize('seed', range(4))
-def test_chessboard_distances_are_the_distance_to_the_nearest_wall_cell(seed):
+def test_free_squares_reach_from_each_cell_to_the_nearest_wall_cell_in_each_quadrant(seed):
     walls = _blobby_walls(seed, (40, 55))
-    rows, columns = np.nonzero(walls)
-    expected = np.array([[np.min(np.maximum(np.abs(rows - r), np.abs(columns - c)))
-                          for c in range(walls.shape[1])] for r in range(walls.shape[0])])
-    assert np.array_equal(chessboard_distances(walls), np.minimum(expected, 255))
+    squares = quadrant_squares(walls)
+    assert np.array_equal(squares[0], free_squares(walls))
+    for quadrant, (rows, columns) in enumerate([(1, 1), (1, -1), (-1, 1), (-1, -1)]):
+        expected = np.array([[_largest_free_square(walls, r, c, rows, columns)
+                              for c in range(walls.shape[1])] for r in range(walls.shape[0])])
+        assert np.array_equal(squares[quadrant], expected), quadrant
 
 
-def test_chessboard_distances_are_capped_at_255_far_from_any_wall():
-    walls = np.zeros((3, 700), dtype=bool)
+def test_free_squares_are_capped_at_255_far_from_any_wall():
+    walls = np.zeros((300, 700), dtype=bool)
     walls[:, 0] = True
-    distances = chessboard_distances(walls)
-    assert distances[0, 255] == 255 and distances[0, 699] == 255 and distances[0, 254] == 254
+    squares = quadrant_squares(walls)
+    assert squares[0, 0, 1] == 255 and squares[1, 0, 1] == 1 and squares[1, 0, 256] == 255
+    assert squares[1, 0, 254] == 254 and squares[0, 0, 0] == 0
 
 
 @pytest.mark.parametrize('seed', range(6))
 @pytest.mark.parametrize('yaw', [0.0, 0.4])
-def test_rays_meet_the_walls_where_the_ray_march_does(seed, yaw):
-    walls = _blobby_walls(seed)
+@pytest.mark.parametrize('draw', [_blobby_walls, _speckled_walls])
+def test_rays_meet_the_walls_where_the_ray_march_does(seed, yaw, draw):
+    # 400 rays, and few (the last rays walk cell by cell: GridRays._window)
+    walls = draw(seed)
     resolution = 0.1
     origin = (-3.0, 2.0, yaw)
     grid = OccupancyGrid(np.where(walls, 100, 0).astype(np.int8), resolution, origin)
     rays = GridRays(walls, resolution, origin, HEIGHT_M)
     rng = np.random.default_rng(100 + seed)
-    angles = rng.uniform(-math.pi, math.pi, 400)
+    angles = np.concatenate([[0.0, math.pi / 2, -math.pi], rng.uniform(-math.pi, math.pi, 400)])
     starts = 0
     while starts < 5:
         u, v = rng.uniform(-20, 140), rng.uniform(-20, 110)      # also outside the grid
@@ -94,6 +124,9 @@ def test_rays_meet_the_walls_where_the_ray_march_does(seed, yaw):
             assert np.array_equal(np.isinf(got), np.isinf(marched) | (marched > length))
             near = np.isfinite(got)
             assert np.max(np.abs(got[near] - marched[near]), initial=0.0) < 1e-9
+            few = _cast(rays, x, y, 0.5, angles[:7], length)
+            assert np.array_equal(np.isinf(few), np.isinf(got[:7]))
+            assert np.allclose(few, got[:7], rtol=0.0, atol=1e-9)
 
 
 def test_a_ray_through_the_corner_two_walls_share_is_stopped_there():
@@ -103,6 +136,37 @@ def test_a_ray_through_the_corner_two_walls_share_is_stopped_there():
     rays = GridRays(walls, 1.0, (0.0, 0.0, 0.0), HEIGHT_M)
     got = _cast(rays, 2.5, 7.5, 0.5, np.array([-math.pi / 4]), 10.0)
     assert got[0] == pytest.approx(2.5 * math.sqrt(2.0), abs=1e-9)
+
+
+@pytest.mark.parametrize('seed', range(3))
+def test_the_walk_over_the_next_cells_meets_the_walls_where_the_ray_march_does(seed,
+                                                                               monkeypatch):
+    # one jump, then every ray walks (GridRays._window), on a speckle of single wall cells
+    monkeypatch.setattr(grid_rays, '_JUMPS_PER_LOOK', 1)
+    walls = _speckled_walls(seed)
+    grid = OccupancyGrid(np.where(walls, 100, 0).astype(np.int8), 0.1, (0.0, 0.0, 0.0))
+    rays = GridRays(walls, 0.1, (0.0, 0.0, 0.0), HEIGHT_M)
+    rng = np.random.default_rng(200 + seed)
+    angles = rng.uniform(-math.pi, math.pi, 60)
+    for row, column in np.argwhere(~walls)[rng.integers(0, (~walls).sum(), 6)]:
+        x, y = 0.1 * (column + rng.random()), 0.1 * (row + rng.random())
+        marched = _marched(grid, walls, x, y, angles, 30.0)
+        got = _cast(rays, x, y, 0.5, angles, 30.0)
+        assert np.array_equal(np.isinf(got), np.isinf(marched))
+        near = np.isfinite(got)
+        assert np.max(np.abs(got[near] - marched[near]), initial=0.0) < 1e-9
+
+
+@pytest.mark.parametrize('cells', [[(5, 5)], [(4, 4)], [(5, 5), (4, 4)]])
+def test_the_walk_stops_a_ray_at_the_corner_of_a_wall_cell_beside_it(cells, monkeypatch):
+    # as the jumps do: a ray passing exactly through a corner touches the cells beside it
+    monkeypatch.setattr(grid_rays, '_JUMPS_PER_LOOK', 1)
+    walls = np.zeros((10, 10), dtype=bool)
+    walls[tuple(np.transpose(cells))] = True
+    walls[9, 3] = True                  # off the ray: its first jump ends at (3, 7)
+    rays = GridRays(walls, 1.0, (0.0, 0.0, 0.0), HEIGHT_M)
+    got = _cast(rays, 0.5, 9.5, 0.5, np.array([-math.pi / 4]), 10.0)
+    assert got[0] == pytest.approx(4.5 * math.sqrt(2.0), abs=1e-9)
 
 
 def test_a_ray_that_starts_inside_a_filled_area_meets_it_at_once():

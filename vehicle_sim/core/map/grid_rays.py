@@ -22,62 +22,98 @@ cell while between the ground and the walls' top (a ray from above meets a top f
 starts inside a wall meets it at 0). It is the same answer as
 :func:`~vehicle_sim.core.map.occupancy.ray_march`, vectorised over the rays.
 
-Each ray skips empty space in squares: the chessboard distance k of a cell to the nearest wall
-cell (:func:`chessboard_distances`, computed once when the map is loaded) says that the
-(2k - 1) x (2k - 1) cells centred on it hold no wall, so the ray jumps to where it leaves that
-square, then looks again; at k = 0 it has entered a wall cell. Far from walls a ray crosses a
-room in one or two jumps; near a wall the squares shrink to single cells (a ray that runs
-along a wall takes a jump per cell or two: on a SLAM-like map a 1080-ray scan takes about 40
-rounds of jumps, 1.5 to 2 ms of numpy). A ray leaves the grid once (it is convex) and nothing
+Each ray skips empty space in squares: :func:`quadrant_squares` (computed once when the map is
+loaded) gives each cell the largest square of free cells reaching from it towards each quadrant
+(up and right, up and left, ...); a ray in a cell whose square towards the ray's quadrant is k
+cells wide cannot meet a wall before it leaves that square, so it jumps to where it does, then
+looks again; at k = 0 it has entered a wall cell. Far from walls a ray crosses a room in one or
+two jumps, and walls behind it or beside it do not shorten its jumps; among ragged walls the
+squares shrink to a cell or two, so the last few rays left walk the next cells one by one, in one
+go (:meth:`GridRays._window`). The rays jump three times between looks at which are done (a
+done ray stands still). On a SLAM-like map a 1080-ray scan takes about 1 ms of numpy
+(benchmarks/bench_occupancy_lidar.py). A ray leaves the grid once (it is convex) and nothing
 outside it is a wall. Why not Bullet: a ray cast against a map's static meshes walks the
 meshes' trees along its whole length, past its first hit, and a SLAM map's ragged walls hold
-a hundred thousand faces: 8 times the cost of the same lidar in an empty world there
-(benchmarks/bench_occupancy_lidar.py), about 1.6 times over the grid.
+a hundred thousand faces: 8 times the cost of the same lidar in an empty world there.
 """
 
 import math
+from typing import Optional
 
 import numpy as np
 
-# The chessboard distances are stored in a byte: at most this many cells (a square of 509 cells
-# is empty; a ray through a larger empty area takes a few more jumps).
-MAX_DISTANCE_CELLS = 255
+# The squares are stored in a byte: at most this many cells wide (a ray through a larger empty
+# area takes a few more jumps).
+MAX_SQUARE_CELLS = 255
 # Where a ray stands exactly on a cell border, its cell is looked up this far [cells] along it.
 _NUDGE_CELLS = 1e-6
+# Jumps between looks at which rays are done (a done ray stands still meanwhile).
+_JUMPS_PER_LOOK = 3
+# Where this few rays are left, each look is followed by a walk over their next cells.
+_WINDOW_RAYS = 64
+# Cell borders a walk crosses along each axis.
+_WINDOW_CELLS = 64
+# The rows of the rays' state (GridRays._march): per ray its speed along x and y [cells per unit
+# of fraction], start [cells] (padded, its quadrant's rows up), start nudged ahead, sign,
+# offset (back + sign * start), inverse (1 / |speed|), tie tolerance, t (its fraction now),
+# high (its band's end) and index among the rays cast.
+_ROWS = ('speed_x', 'speed_y', 'start_x', 'start_y', 'nudged_x', 'nudged_y', 'sign_x', 'sign_y',
+         'offset_x', 'offset_y', 'inverse_x', 'inverse_y', 'tie', 't', 'high', 'id')
+_SPEED, _START, _NUDGED, _SIGN = slice(0, 2), slice(2, 4), slice(4, 6), slice(6, 8)
+_OFFSET, _INVERSE, _TIE, _T, _HIGH, _ID = slice(8, 10), slice(10, 12), 12, 13, 14, 15
 
 
-def chessboard_distances(walls: np.ndarray) -> np.ndarray:
+def free_squares(walls: np.ndarray, out: Optional[np.ndarray] = None) -> np.ndarray:
     """
-    Return each cell's chessboard distance to the nearest wall cell, capped at 255.
+    Return each cell's largest free square reaching up and right from it, capped at 255.
 
-    The chessboard distance of cells (r, c) and (r', c') is max(|r - r'|, |c - c'|): 0 on a
-    wall cell, 1 next to one (also diagonally). Two raster passes (Rosenfeld and Pfaltz's
-    chamfer with unit weights, exact for this distance), each row vectorised: about 0.2 s for
-    a 3000 x 2250 grid.
+    Cell (r, c) gets the largest j such that the cells ``walls[r:r + j, c:c + j]`` are all
+    free (0 on a wall cell; cells beyond the grid's top and right edges count as free). One
+    pass from the top row down (the largest-square recurrence
+    ``f(r, c) = 1 + min(f(r + 1, c), f(r, c + 1), f(r + 1, c + 1))``, each row vectorised
+    as a running minimum): about 0.05 s for a 3000 x 2250 grid.
 
-    :param walls: bool (height, width) wall mask.
+    :param walls: bool (height, width) wall mask (row 0 = the bottom row).
+    :param out: where to write them (a view will do), else a new array.
     :return: uint8 (height, width).
     """
     height, width = walls.shape
-    far = np.int16(min(height + width, 32000))
-    distances = np.full(walls.shape, far, dtype=np.int16)
-    distances[walls] = 0
+    cap = np.int16(MAX_SQUARE_CELLS)
     columns = np.arange(width, dtype=np.int16)
-    above = np.empty(width + 2, dtype=np.int16)
-    for rows in (range(height), range(height - 1, -1, -1)):
-        above[:] = far
-        for row in rows:
-            line = distances[row]
-            np.minimum(line, above[:-2] + 1, out=line)
-            np.minimum(line, above[1:-1] + 1, out=line)
-            np.minimum(line, above[2:] + 1, out=line)
-            # along the row, both ways: min over j of d[j] + |i - j|
-            np.minimum(line, np.minimum.accumulate(line - columns) + columns, out=line)
-            back = line[::-1]
-            np.minimum(back, np.minimum.accumulate(back - columns) + columns, out=back)
-            above[1:-1] = line
-    np.minimum(distances, MAX_DISTANCE_CELLS, out=distances)
-    return distances.astype(np.uint8)
+    squares = np.empty(walls.shape, dtype=np.uint8) if out is None else out
+    above = np.full(width + 1, cap, dtype=np.int16)
+    line = np.empty(width, dtype=np.int16)
+    for row in range(height - 1, -1, -1):
+        # 1 + the squares above and above-right; 0 on a wall
+        np.minimum(above[:-1], above[1:], out=line)
+        line += 1
+        line[walls[row]] = 0
+        # along the row, from the right: f(c) = min over j >= c of line(j) + (j - c)
+        line += columns
+        back = line[::-1]
+        np.minimum.accumulate(back, out=back)
+        line -= columns
+        np.minimum(line, cap, out=line)
+        above[:-1] = line
+        squares[row] = line
+    return squares
+
+
+def quadrant_squares(walls: np.ndarray, out: Optional[np.ndarray] = None) -> np.ndarray:
+    """
+    Return :func:`free_squares` towards each quadrant: uint8 (4, height, width).
+
+    Quadrant q = 2 * (down) + (left): 0 reaches up and right from a cell, 1 up and left,
+    2 down and right, 3 down and left.
+
+    :param out: where to write them (a view will do), else a new array.
+    """
+    squares = np.empty((4,) + walls.shape, dtype=np.uint8) if out is None else out
+    for quadrant in range(4):
+        flip = (slice(None, None, -1 if quadrant & 2 else 1),
+                slice(None, None, -1 if quadrant & 1 else 1))
+        free_squares(walls[flip], out=squares[quadrant][flip])
+    return squares
 
 
 class GridRays:
@@ -94,22 +130,25 @@ class GridRays:
     def __init__(self, walls: np.ndarray, resolution_m: float, corner, height_m: float):
         self.height_m = float(height_m)
         self._shape = walls.shape
-        padded = np.full((walls.shape[0] + 2, walls.shape[1] + 2), MAX_DISTANCE_CELLS,
+        padded = np.full((4, walls.shape[0] + 2, walls.shape[1] + 2), MAX_SQUARE_CELLS,
                          dtype=np.uint8)
-        padded[1:-1, 1:-1] = chessboard_distances(walls)
-        self._distances = padded.ravel()
-        self._stride = padded.shape[1]
+        quadrant_squares(walls, out=padded[:, 1:-1, 1:-1])
+        self._squares = padded.ravel()
+        self._stride = padded.shape[2]
+        self._quadrant_rows = padded.shape[1]
         x, y, yaw = corner
         self._corner = (float(x), float(y))
         # frame -> grid: cells per metre along the grid's axes
         scale = 1.0 / resolution_m
         self._axes = np.array([[math.cos(yaw), math.sin(yaw)],
                                [-math.sin(yaw), math.cos(yaw)]]) * scale
+        # the band's three slabs: z [m], then x and y [cells]: [0, top]
+        self._tops = np.array([self.height_m, float(walls.shape[1]), float(walls.shape[0])])
 
     @property
     def nbytes(self) -> int:
-        """Memory held [bytes]: the distances, one byte a cell (with a border)."""
-        return self._distances.nbytes
+        """Memory held [bytes]: the squares, four bytes a cell (with a border)."""
+        return self._squares.nbytes
 
     def cast(self, origin, ends) -> np.ndarray:
         """
@@ -124,106 +163,164 @@ class GridRays:
         result = np.ones(count)
         if count == 0:
             return result
-        # In grid cells: the origin, and each ray's direction per unit of its fraction.
-        start = self._axes @ (origin[:2] - self._corner)
-        direction = vectors[:, :2] @ self._axes.T            # (n, 2) cells per fraction
-        low, high = self._band(origin[2], vectors[:, 2], start, direction)
-        live = low <= high
-        if not live.any():
-            return result
-        ids = np.flatnonzero(live)
-        t, high = low[live], high[live]
-        state = self._axis(direction[live, 0]) + self._axis(direction[live, 1])
-        # a step whose exits along both axes are this close [fraction] may end on a corner
-        inverse = np.stack([state[4], state[9]])
-        state.append(np.where(np.isfinite(inverse).all(axis=0), 4.0 * _NUDGE_CELLS, 0.0)
-                     * np.where(np.isfinite(inverse), inverse, 0.0).max(axis=0))
-        with np.errstate(invalid='ignore'):      # inf * 0 on an axis a ray does not move along
-            return self._march(result, ids, t, high, state, start + 1.0)
+        # Per ray, a column of the rays' state (the rows named in _ROWS); in grid cells.
+        rays = np.empty((len(_ROWS), count))
+        speed, start, t, high = rays[_SPEED], rays[_START], rays[_T], rays[_HIGH]
+        np.matmul(self._axes, vectors[:, :2].T, out=speed)     # cells per unit of fraction
+        start[:] = (self._axes @ (origin[:2] - self._corner))[:, None]
+        with np.errstate(divide='ignore', invalid='ignore'):
+            self._band(origin[2], vectors[:, 2], start[:, 0], speed, t, high)
+            live = t <= high
+            if not live.all():
+                if not live.any():
+                    return result
+                rays = rays.compress(live, axis=1)
+            rays[_ID] = np.flatnonzero(live)
+            return self._march(result, rays)
 
-    def _march(self, result, ids, t, high, state, start):
-        # The jumps from square to square of the rays still going (see the module text).
-        (x0, y0), stride, table = start, self._stride, self._distances   # padded cells
+    def _march(self, result, rays):
+        # The jumps from square to square (see the module text), in padded cells, the
+        # quadrants' squares stacked above each other (a ray's rows are shifted up by its
+        # quadrant's): x = start + t * speed; the cell is looked up a nudge ahead; the ray
+        # leaves the square of k cells from cell c along an axis where
+        # sign * x = sign * c + k - back (back = 1 running down), at
+        # t = (sign * c + k - back - sign * start) * inverse.
+        speed, start, sign, inverse = rays[_SPEED], rays[_START], rays[_SIGN], rays[_INVERSE]
+        back = speed < 0.0
+        np.sign(speed, out=sign)
+        np.abs(speed, out=inverse)
+        np.divide(1.0, inverse, out=inverse)
+        start += 1.0
+        start[1] += (2.0 * back[1] + back[0]) * self._quadrant_rows
+        np.multiply(sign, _NUDGE_CELLS, out=rays[_NUDGED])
+        rays[_NUDGED] += start
+        np.multiply(sign, start, out=rays[_OFFSET])
+        rays[_OFFSET] += back
+        # a jump whose exits along both axes are this close [fraction] may end on a corner
+        # (none for a ray along an axis)
+        tie = np.maximum(inverse[0], inverse[1], out=rays[_TIE])
+        tie *= 4.0 * _NUDGE_CELLS
+        tie[tie == np.inf] = 0.0
+        squares, weights = self._squares, np.array([1.0, float(self._stride)])
         while True:
-            (dx, nudge_x, sign_x, back_x, inverse_x, dy, nudge_y, sign_y, back_y, inverse_y,
-             tie) = state
-            x = t * dx
-            x += x0
-            y = t * dy
-            y += y0
-            column = np.floor(x + nudge_x)
-            row = np.floor(y + nudge_y)
-            k = table[(row * stride + column).astype(np.intp)]
-            # the fraction to the square's exit along each axis, the nearer one
-            column -= x
-            column *= sign_x
-            column += k
-            column -= back_x
-            column *= inverse_x
-            row -= y
-            row *= sign_y
-            row += k
-            row -= back_y
-            row *= inverse_y
-            tie = np.abs(column - row) <= tie
-            np.minimum(column, row, out=column)
+            speed, nudged, sign, offset, inverse = (
+                rays[_SPEED], rays[_NUDGED], rays[_SIGN], rays[_OFFSET], rays[_INVERSE])
+            t, high, tie = rays[_T], rays[_HIGH], rays[_TIE]
+            corner = None
+            for _ in range(_JUMPS_PER_LOOK):
+                cells = speed * t
+                cells += nudged
+                np.floor(cells, out=cells)
+                k = squares[(weights @ cells).astype(np.intp)]
+                # the fraction where the ray leaves the square along each axis, the nearer
+                cells *= sign
+                cells += k
+                cells -= offset
+                cells *= inverse
+                x, y = cells
+                ties = np.abs(x - y) <= tie
+                # a ray on a wall cell (k = 0) stands still, one past its band stops at its end
+                np.fmin(x, y, out=x)
+                np.fmax(t, x, out=t)
+                np.fmin(t, high, out=t)
+                if ties.any():
+                    stopped = self._corner_hits(np.flatnonzero(ties & (k > 0)), rays)
+                    if stopped.any():
+                        high[stopped] = t[stopped]
+                        corner = stopped if corner is None else corner | stopped
             hit = k == 0
-            column[hit] = 0.0
-            t += column
-            if tie.any():
-                hit |= self._corner_hits(np.flatnonzero(tie & ~hit), t, high, state, start)
-            done = t > high
+            if corner is not None:
+                hit |= corner
+            done = t >= high
             done |= hit
+            if len(t) <= _WINDOW_RAYS:
+                self._window(rays, hit, done)
             if done.any():
-                result[ids[done]] = np.where(hit[done], t[done], 1.0)
+                # (a ray still going gets its fraction when it is done)
+                result[rays[_ID].astype(np.intp)] = np.where(hit, t, 1.0)
                 keep = ~done
                 if not keep.any():
                     return result
-                ids, t, high = ids[keep], t[keep], high[keep]
-                state = [part[keep] for part in state]
+                rays = rays.compress(keep, axis=1)
 
-    def _corner_hits(self, rays, t, high, state, start):
-        # Rays whose step ended on a cell corner touch the two cells beside the one ahead
+    def _window(self, rays, hit, done):
+        # The rays still going walk the next _WINDOW_CELLS cell borders along each axis, cell
+        # by cell (where few rays are left, most of them run past ragged walls, a cell or two
+        # a jump): at each border the cell entered is looked up a nudge to both sides along
+        # the other axis (both cells beside a corner the ray passes). Sets the rays' t (the
+        # first wall cell entered, else the window's end) and their hit and done in place.
+        going = np.flatnonzero(~done)
+        if len(going) == 0:
+            return
+        now, end = rays[_T, going], rays[_HIGH, going]
+        speed, sign, start = rays[_SPEED, going], rays[_SIGN, going], rays[_START, going]
+        inverse, squares, stride = rays[_INVERSE, going], self._squares, float(self._stride)
+        position = start + speed * now
+        # the cell the ray is in now (its last jump's end) may be a wall
+        cell = np.floor(position + sign * _NUDGE_CELLS)
+        first = squares[(cell[1] * stride + cell[0]).astype(np.intp)] == 0
+        # the borders ahead along each axis: the fractions where the ray crosses them
+        line = cell + (sign > 0.0)
+        moves = np.isfinite(inverse)
+        cross = np.where(moves, (line - start) * sign * inverse, np.inf)
+        between = np.where(moves, inverse, 0.0)
+        steps = np.arange(_WINDOW_CELLS, dtype=float)
+        found, reach = [], []
+        for axis, other, weight, other_weight in ((0, 1, 1.0, stride), (1, 0, stride, 1.0)):
+            fractions = cross[axis][:, None] + between[axis][:, None] * steps
+            reach.append(fractions[:, -1])
+            inside = np.minimum(fractions, end[:, None])         # where the cells are looked up
+            along = (line[axis] - (sign[axis] < 0.0))[:, None] + sign[axis][:, None] * steps
+            along *= weight
+            beside = start[other][:, None] + speed[other][:, None] * inside
+            below = np.floor(beside - _NUDGE_CELLS)
+            above = np.floor(beside + _NUDGE_CELLS, out=beside)
+            # the cells a nudge to both sides differ only where a border is crossed on a corner
+            wall = None
+            for near in (below, above) if (above != below).any() else (below,):
+                near *= other_weight
+                near += along
+                meets = squares[near.astype(np.intp)] == 0
+                wall = meets if wall is None else wall | meets
+            found.append(np.where(wall, fractions, np.inf).min(axis=1))
+        limit = np.minimum(np.minimum(reach[0], reach[1]), end)
+        meet = np.minimum(found[0], found[1])
+        meets = first | (meet < np.inf) & (meet <= limit)
+        rays[_T, going] = np.where(first, now, np.where(meets, meet, limit))
+        hit[going] = meets
+        done[going] = meets | (limit >= end)
+
+    def _corner_hits(self, which, rays):
+        # Rays whose jump ended on a cell corner touch the two cells beside the one ahead
         # too: a ray between two wall cells that share a corner meets them there.
-        hit = np.zeros(len(t), dtype=bool)
-        dx, nudge_x, _, _, _, dy, nudge_y = (part[rays] for part in state[:7])
-        x = start[0] + t[rays] * dx
-        y = start[1] + t[rays] * dy
-        ahead_x, behind_x = np.floor(x + nudge_x), np.floor(x - nudge_x)
-        ahead_y, behind_y = np.floor(y + nudge_y), np.floor(y - nudge_y)
-        stride, table = self._stride, self._distances
-        beside = np.minimum(table[(behind_y * stride + ahead_x).astype(np.intp)],
-                            table[(ahead_y * stride + behind_x).astype(np.intp)])
-        hit[rays] = ((ahead_x != behind_x) & (ahead_y != behind_y) & (beside == 0)
-                     & (t[rays] <= high[rays]))
+        t, high = rays[_T, which], rays[_HIGH, which]
+        hit = np.zeros(rays.shape[1], dtype=bool)
+        position = rays[_NUDGED, which] + rays[_SPEED, which] * t       # nudged ahead
+        nudge = rays[_SIGN, which] * (2.0 * _NUDGE_CELLS)
+        ahead, behind = np.floor(position), np.floor(position - nudge)
+        squares, stride = self._squares, self._stride
+        beside = np.minimum(squares[(behind[1] * stride + ahead[0]).astype(np.intp)],
+                            squares[(ahead[1] * stride + behind[0]).astype(np.intp)])
+        hit[which] = ((ahead[0] != behind[0]) & (ahead[1] != behind[1]) & (beside == 0)
+                      & (t < high))
         return hit
 
-    @staticmethod
-    def _axis(speed):
-        # Per ray along one grid axis: its speed [cells per fraction]; the nudge to where its
-        # cell is looked up; its sign; back = 1 where it runs down (the square it is in then
-        # ends at cell - k + 1, else at cell + k: the fraction to the exit is
-        # ((cell - position) * sign + k - back) / |speed|); 1 / |speed|.
-        with np.errstate(divide='ignore'):
-            inverse = np.where(speed != 0.0, 1.0 / np.abs(speed), np.inf)
-        sign = np.sign(speed)
-        return [speed, sign * _NUDGE_CELLS, sign, (speed < 0.0).astype(float), inverse]
-
-    def _band(self, z, dz, start, direction):
+    def _band(self, z, speed_z, start, speed, low, high):
         # The fractions [low, high] of each ray that lie between the ground and the walls' top
-        # and inside the grid's rectangle (outside it nothing is a wall), within [0, 1].
-        low = np.zeros(len(dz))
-        high = np.ones(len(dz))
-        with np.errstate(divide='ignore', invalid='ignore'):
-            for position, speed, top in ((z, dz, self.height_m),
-                                         (start[0], direction[:, 0], float(self._shape[1])),
-                                         (start[1], direction[:, 1], float(self._shape[0]))):
-                enter = np.where(speed > 0.0, (0.0 - position) / speed, (top - position) / speed)
-                leave = np.where(speed > 0.0, (top - position) / speed, (0.0 - position) / speed)
-                still = speed == 0.0
-                inside = (0.0 <= position) & (position <= top)
-                enter = np.where(still, np.where(inside, -np.inf, np.inf), enter)
-                leave = np.where(still, np.where(inside, np.inf, -np.inf), leave)
-                np.maximum(low, enter, out=low)
-                np.minimum(high, leave, out=high)
-        return low, high
+        # and inside the grid's rectangle (outside it nothing is a wall), within [0, 1]:
+        # along z [m], x and y [cells]; written into low and high.
+        position = np.array([z, start[0], start[1]])
+        speeds = np.concatenate([speed_z[None, :], speed])
+        inverse = 1.0 / speeds
+        near = -position[:, None] * inverse
+        far = (self._tops - position)[:, None] * inverse
+        enter, leave = np.fmin(near, far), np.fmax(near, far)
+        # a ray that does not move along an axis: inside the slab (-inf, inf) else empty,
+        # which the above gives but for a start on the slab's border (0 * inf)
+        if ((position == 0.0) | (position == self._tops)).any():
+            still = speeds == 0.0
+            inside = ((0.0 <= position) & (position <= self._tops))[:, None]
+            enter = np.where(still, np.where(inside, -np.inf, np.inf), enter)
+            leave = np.where(still, np.where(inside, np.inf, -np.inf), leave)
+        np.maximum(enter.max(axis=0), 0.0, out=low)
+        np.minimum(leave.min(axis=0), 1.0, out=high)
