@@ -45,6 +45,9 @@ import numpy as np
 # The squares are stored in a byte: at most this many cells wide (a ray through a larger empty
 # area takes a few more jumps).
 MAX_SQUARE_CELLS = 255
+# The loop's emptiness tests: np.count_nonzero is a plain C call, ndarray.any() goes through
+# numpy's Python wrapper (a few microseconds each, dozens of times a scan).
+count_nonzero = np.count_nonzero
 # Where a ray stands exactly on a cell border, its cell is looked up this far [cells] along it.
 _NUDGE_CELLS = 1e-6
 # Jumps between looks at which rays are done (a done ray stands still meanwhile).
@@ -223,9 +226,9 @@ class GridRays:
                 np.fmin(x, y, out=x)
                 np.fmax(t, x, out=t)
                 np.fmin(t, high, out=t)
-                if ties.any():
+                if count_nonzero(ties):
                     stopped = self._corner_hits(np.flatnonzero(ties & (k > 0)), rays)
-                    if stopped.any():
+                    if count_nonzero(stopped):
                         high[stopped] = t[stopped]
                         corner = stopped if corner is None else corner | stopped
             hit = k == 0
@@ -235,11 +238,11 @@ class GridRays:
             done |= hit
             if len(t) <= _WINDOW_RAYS:
                 self._window(rays, hit, done)
-            if done.any():
+            if count_nonzero(done):
                 # (a ray still going gets its fraction when it is done)
                 result[rays[_ID].astype(np.intp)] = np.where(hit, t, 1.0)
                 keep = ~done
-                if not keep.any():
+                if not count_nonzero(keep):
                     return result
                 rays = rays.compress(keep, axis=1)
 
@@ -277,7 +280,7 @@ class GridRays:
             above = np.floor(beside + _NUDGE_CELLS, out=beside)
             # the cells a nudge to both sides differ only where a border is crossed on a corner
             wall = None
-            for near in (below, above) if (above != below).any() else (below,):
+            for near in (below, above) if count_nonzero(above != below) else (below,):
                 near *= other_weight
                 near += along
                 meets = squares[near.astype(np.intp)] == 0
