@@ -37,6 +37,7 @@ from typing import List, Sequence, Tuple
 
 import numpy as np
 
+from vehicle_sim.core.geometry.angles import wrap_angle_rad
 from vehicle_sim.core.map.lane_geometry import Mesh
 from vehicle_sim.core.map.lane_rules import Bulb
 
@@ -121,7 +122,7 @@ def lamps(graph) -> Tuple[Lamp, ...]:
     found = []
     for group in graph.rules.groups:
         if group.bulbs:
-            yaw = math.atan2(math.sin(_facing(graph, group)), math.cos(_facing(graph, group)))
+            yaw = wrap_angle_rad(_facing(graph, group))
             found.extend(Lamp(group.id, bulb, yaw) for bulb in group.bulbs)
     return tuple(found)
 
