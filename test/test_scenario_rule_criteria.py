@@ -44,7 +44,7 @@ from vehicle_sim.core.map.priority import priority_conflicts
 from vehicle_sim.core.map.road_segments import lane_graph_from_roads, roads_from_list
 from vehicle_sim.core.map.signal_plan import SignalController
 from vehicle_sim.core.specs.errors import InvalidParameterError
-from vehicle_sim.scenarios import schema  # noqa: F401  (first: it registers the criteria in the docs' order)
+from vehicle_sim.scenarios import schema  # noqa: F401  (registers every criterion kind)
 from vehicle_sim.scenarios.criteria import CRITERIA, Sample, validate_criterion
 from vehicle_sim.scenarios.lane_criteria import NO_MAP
 from vehicle_sim.scenarios.rule_criteria import NO_SIGNALS

@@ -78,7 +78,7 @@ class CriterionResult:
 def common_specs():
     """Return the keys every criterion has: kind, name, vehicle."""
     return (
-        ParamSpec('kind', 'kind', 'enum', REQUIRED, choices=tuple(CRITERIA),
+        ParamSpec('kind', 'kind', 'enum', REQUIRED, choices=tuple(sorted(CRITERIA)),
                   doc='criterion kind (the sections below)'),
         ParamSpec('name', 'name', 'str', '', empty=True,
                   doc="test case name; '' = the kind (numbered when repeated)"),
@@ -563,14 +563,15 @@ def criteria_from_list(ctx, data, names, default_vehicle):
         raise ctx.fail(path, 'criteria must be a non-empty list of {kind: ..., ...}; kinds: '
                              + ', '.join(CRITERIA))
     specs, counts = [], {}
+    kinds = ', '.join(sorted(CRITERIA))
     for index, entry in enumerate(data):
         where = path + (index,)
         kind = entry.get('kind') if isinstance(entry, dict) else None
         if isinstance(entry, dict) and 'kind' not in entry:
-            raise ctx.fail(where, "a criterion needs 'kind': one of " + ', '.join(CRITERIA))
+            raise ctx.fail(where, "a criterion needs 'kind': one of " + kinds)
         if kind not in CRITERIA:
             raise ctx.fail(where + ('kind',) if isinstance(entry, dict) else where,
-                           f'criterion kind {brief(kind)}: valid kinds: ' + ', '.join(CRITERIA))
+                           f'criterion kind {brief(kind)}: valid kinds: ' + kinds)
         values = ctx.validated(criterion_specs(kind), entry, where, 'a criterion')
         vehicle = values.pop('vehicle') or default_vehicle
         if vehicle not in names:
