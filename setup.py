@@ -34,6 +34,9 @@ EXTRAS = {
     'foxglove': ['foxglove-sdk>=0.30,<0.31'],      # the live view (docs/foxglove.md)
     'gym': ['gymnasium>=1.0'],                     # vehicle_sim.gym (docs/gym.md)
     'record': ['mcap', 'zstandard', 'lz4'],        # MCAP recordings and their compressors
+    # SUMO networks, netconvert (OpenDRIVE, OSM) and the SUMO traffic engine (docs/sumo.md):
+    # libsumo in process, traci where libsumo cannot load.
+    'sumo': ['eclipse-sumo>=1.20', 'libsumo>=1.20', 'sumolib>=1.20', 'traci>=1.20'],
 }
 # pyarrow: a sweep writes results.parquet when it imports. protobuf: the Foxglove scene tests
 # decode a SceneUpdate with the schema its channel advertises.

@@ -39,13 +39,14 @@ from vehicle_sim.core.map.lane_graph import LaneGraph
 from vehicle_sim.core.map.road_segments import lane_graph_from_roads
 from vehicle_sim.core.specs.errors import InvalidParameterError, InvalidPoseError
 from vehicle_sim.core.specs.param_spec import ParamSpec, validate_table
+from vehicle_sim.core.traffic import engines as traffic_engines
 from vehicle_sim.core.traffic import models as traffic_models
 from vehicle_sim.core.traffic.manager import TrafficManager
 from vehicle_sim.core.traffic.params import traffic_from_dict, traffic_markdown
 from vehicle_sim.core.world import params as world_params
 from vehicle_sim.foxglove import scene as foxglove_scene
 from vehicle_sim.maps import lane_maps
-from vehicle_sim.physics import map_layer, obstacles
+from vehicle_sim.physics import map_layer, obstacles, traffic_bodies
 from vehicle_sim.physics import scene as physics_scene
 from vehicle_sim.physics.scene import build_scene, ScenePartRow
 from vehicle_sim.ros import map_interfaces, traffic_messages
@@ -84,6 +85,10 @@ REGISTRIES = {
     'traffic model': (lambda: set(traffic_models.all_models()), {
         'vehicle_sim/core/traffic/models.py': lambda: set(traffic_models.all_models()),
     }),
+    'traffic engine': (lambda: set(traffic_engines.TRAFFIC_ENGINES), {
+        'vehicle_sim/core/traffic/engines.py': lambda: set(traffic_engines.TRAFFIC_ENGINES),
+        'vehicle_sim/physics/traffic_bodies.py': lambda: set(traffic_bodies.TRAFFIC_BUILDERS),
+    }),
     'scene part': (lambda: set(world_params.WORLD_KEYS) - ROOT_KEYS, {
         'vehicle_sim/core/world/params.py': lambda: set(world_params.WORLD_KEYS) - ROOT_KEYS,
         'vehicle_sim/physics/scene.py': lambda: {
@@ -98,6 +103,7 @@ DOC_SECTIONS = {
     'A new obstacle shape': ('obstacle shape',),
     'A new map type': ('map type',),
     'A new traffic model': ('traffic model',),
+    'A new traffic engine': ('traffic engine',),
     'A new scene part': ('scene part',),
     'A new sweep backend': ('sweep backend',),
 }
@@ -249,6 +255,55 @@ def test_an_unknown_map_type_lists_the_registered_ones():
                        match=r"map: field 'type' = 'tiles': unknown; valid: lanelet2, "
                              r'occupancy_grid$'):
         world_from_data({'vehicles': [CAR], 'map': {'type': 'tiles'}}, 'w.yaml')
+
+
+# ------------------------------------------------------------------------------ traffic engines
+
+def _still_parse(data, source, check_model):
+    # The builtin table without the engine key, then the new engine's name on the spec.
+    rest = {k: v for k, v in data.items() if k != 'engine'}
+    return replace(traffic_from_dict(rest, source, check_model), engine='still')
+
+
+def _still_build(part, world, spec, parts):
+    # The builtin bodies, each vehicle driving at a tenth of its desired speed.
+    bodies = traffic_bodies.TrafficPart.build_builtin(part, world, spec, parts)
+    for v in bodies.manager.vehicles:
+        v.factor = 0.1
+    return bodies
+
+
+def test_a_new_traffic_engine_registered_in_each_layer_works_with_no_other_change(monkeypatch):
+    monkeypatch.setitem(traffic_engines.TRAFFIC_ENGINES, 'still', traffic_engines.TrafficEngine(
+        'still', _still_parse, traffic_markdown, 'slow vehicles'))
+    monkeypatch.setitem(traffic_bodies.TRAFFIC_BUILDERS, 'still', _still_build)
+    data = _highway_data()
+    data['traffic'] = {'engine': 'still', 'placed': [
+        {'model': 'Car', 'lanelet': 100002, 's': 50.0, 'speed': 0.0}]}
+    spec = world_from_data(data, 'highway.yaml')
+    assert spec.traffic.engine == 'still'
+    scene = build_scene(spec)
+    try:
+        bodies = scene.parts['traffic']
+        for _ in range(100):
+            scene.world.step()
+        (name, x, y, _, length, _, speed), = bodies.agents()
+        limit = scene.spec.lanes.lane(100002).speed_limit_mps
+        assert name in bodies.moving_names() and 0.5 < speed <= 0.1 * limit and length > 3.0
+        obj, = bodies.objects()
+        assert (obj.name, obj.object_class) == (name, 'car')
+        assert obj.x_m == pytest.approx(x + speed * bodies.since_update_s, abs=1e-6)
+    finally:
+        scene.world.close()
+
+
+def test_an_unknown_traffic_engine_lists_the_registered_ones():
+    data = _highway_data()
+    data['traffic'] = {'engine': 'vissim'}
+    with pytest.raises(InvalidParameterError,
+                       match=r"highway.yaml: traffic: field 'engine' = 'vissim': unknown "
+                             r'traffic engine; valid: builtin'):
+        world_from_data(data, 'highway.yaml')
 
 
 # ------------------------------------------------------------------------------ traffic models

@@ -302,7 +302,7 @@ class DriveSim:
         half = np.asarray(self.options['start_noise'])
         body = self.ego.body
         x, y, yaw = body.spawn[:3]
-        moving = set() if traffic is None else {v.name for v in traffic.manager.vehicles}
+        moving = set() if traffic is None else traffic.moving_names()
         for _ in range(START_DRAWS):
             dx, dy, dyaw = rng.uniform(-half, half)
             body.rebuild((x + dx, y + dy, yaw + dyaw))

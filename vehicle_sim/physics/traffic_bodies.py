@@ -46,6 +46,7 @@ from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.geometry.footprint import car_outline
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.manager import OurVehicle, TrafficManager
+from vehicle_sim.core.traffic.objects import traffic_objects
 from vehicle_sim.core.world.params import ObstacleSpec
 from vehicle_sim.physics.gui import FRAME_PERIOD_S
 
@@ -105,6 +106,11 @@ class TrafficPart:
         traffic = spec.traffic
         if traffic is None:
             return None
+        return TRAFFIC_BUILDERS[traffic.engine](self, world, spec, parts or {})
+
+    def build_builtin(self, world, spec, parts):
+        """Return the TrafficBodies of the builtin engine (``TRAFFIC_BUILDERS['builtin']``)."""
+        traffic = spec.traffic
         # The world's lane map, loaded once by the scene builder (vehicle_sim/maps/lane_maps.py).
         graph = self.graph if self.graph is not None else getattr(spec, 'lanes', None)
         if graph is None:
@@ -112,7 +118,7 @@ class TrafficPart:
                                         f'(roads: in the world file, or a Lanelet2 map)')
         sizes = {model: model_dimensions(model) for model in traffic.all_models}
         ours = [our_vehicle(body) for body in world.vehicle_bodies()]
-        signals = getattr((parts or {}).get('signals'), 'controller', None)
+        signals = getattr(parts.get('signals'), 'controller', None)
         manager = TrafficManager(graph, traffic, {m: d[:2] for m, d in sizes.items()}, ours,
                                  signals)
         return TrafficBodies(world, manager, sizes)
@@ -121,6 +127,12 @@ class TrafficPart:
 class TrafficBodies:
     """
     The traffic vehicles' bodies in a World, moved by a TrafficManager (a world step hook).
+
+    What every engine's traffic part offers (the traffic-body contract, read by the node, the
+    scenarios, the Gym environment and the live view; docs/traffic.md): :meth:`reset`,
+    :meth:`agents`, :meth:`moving_names`, :meth:`objects`, :meth:`boxes`, :meth:`body_of`,
+    :attr:`follow_params`, ``colours`` and :attr:`since_update_s`. Each body is a named
+    obstacle of the World, placed (never moved by Bullet).
 
     Each box is a Bullet rigid body that is only ever placed (it costs a physics step almost
     nothing, where a moving body costs Bullet some 0.4 us a step each). Between two updates a
@@ -318,9 +330,40 @@ class TrafficBodies:
                  colours[v.index % len(colours)])
                 for v, body_id in zip(self.manager.vehicles, self.body_ids) if v.active]
 
+    def agents(self):
+        """
+        Return every traffic body on the map now, as the scenarios see it.
+
+        :return: [(name, x, y, yaw, length, width, speed)]: footprint centre and heading [m,
+            rad], footprint size [m], speed along the heading [m/s], at the last update.
+        """
+        manager = self.manager
+        return [(v.name, *manager.pose(v), v.length_m, v.width_m, v.speed_mps)
+                for v in manager.vehicles if v.active]
+
+    def moving_names(self):
+        """Return the names of every body the traffic moves (on the map or waiting)."""
+        return {v.name for v in self.manager.vehicles}
+
+    def objects(self):
+        """Return the traffic on the map as core TrafficObjects now (core/traffic/objects.py)."""
+        return traffic_objects(self.manager, self.heights, since_s=self.since_update_s)
+
+    @property
+    def follow_params(self):
+        """The IdmParams scenario actors follow their leaders with (the traffic's own)."""
+        return self.manager.idm
+
     def body_of(self, name):
         """Return the body id of the traffic vehicle called ``name`` (``traffic_<i>``)."""
         for v, body_id in zip(self.manager.vehicles, self.body_ids):
             if v.name == name:
                 return body_id
         raise KeyError(name)
+
+
+# traffic engine (core/traffic/engines.py TRAFFIC_ENGINES) -> build(part, world, spec, parts)
+# -> its bodies (the traffic-body contract of TrafficBodies).
+TRAFFIC_BUILDERS = {
+    'builtin': TrafficPart.build_builtin,
+}

@@ -51,7 +51,7 @@ from vehicle_sim.core.commands.drive_input import CarDriveInput
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.sensors.sampling import SampleSchedule
 from vehicle_sim.core.specs.errors import InvalidCommandError
-from vehicle_sim.core.traffic.objects import obstacle_objects, traffic_objects
+from vehicle_sim.core.traffic.objects import obstacle_objects
 from vehicle_sim.core.world.pacing import RealTimeMeter
 from vehicle_sim.physics import SimulatedCar
 from vehicle_sim.physics.gui import ChaseCamera, GuiClosedError, shortcuts_text
@@ -538,8 +538,7 @@ class AutomobileNode:
                 and self._traffic_outputs.wanted(AT_OBJECTS_RATE)):
             traffic.stamp = stamp
             bodies = traffic.bodies
-            traffic.objects = () if bodies is None else traffic_objects(
-                bodies.manager, bodies.heights, since_s=bodies.since_update_s)
+            traffic.objects = () if bodies is None else bodies.objects()
             traffic.obstacles = obstacle_objects(self.scene.spec.obstacles,
                                                  self._obstacle_pose)
             self._traffic_outputs.publish(AT_OBJECTS_RATE, traffic)

@@ -243,9 +243,7 @@ def vehicles_around(vehicles, name, traffic=None):
             found.append((other, x + c * cx - s * cy, y + s * cx + c * cy, yaw,
                           outline.length_m, outline.width_m, handle.body.forward_speed_mps()))
         if traffic is not None:
-            manager = traffic.manager
-            found += [(v.name, *manager.pose(v), v.length_m, v.width_m, v.speed_mps)
-                      for v in manager.vehicles if v.active]
+            found += traffic.agents()
         return found
     return others
 
@@ -263,6 +261,6 @@ def make_actor(spec, vehicles, traffic=None):
     """
     handle = vehicles[spec.vehicle]
     idm = IdmSpeed(handle.outline, vehicles_around(vehicles, spec.vehicle, traffic),
-                   None if traffic is None else traffic.manager.idm)
+                   None if traffic is None else traffic.follow_params)
     return (CarActor(spec, handle.car, idm) if handle.is_car
             else RobotActor(spec, handle.body, idm))

@@ -175,12 +175,10 @@ def world_scene(world, vehicles, obstacles, walls: Sequence[Footprint] = (),
             yield obstacle_footprint(spec, position, orientation)
 
     def traffic_now():
-        manager = traffic.manager
-        return [(v.name, *manager.pose(v), v.length_m, v.width_m)
-                for v in manager.vehicles if v.active]
+        return [agent[:6] for agent in traffic.agents()]
 
     def traffic_speeds():
-        return {v.name: v.speed_mps for v in traffic.manager.vehicles if v.active}
+        return {agent[0]: agent[6] for agent in traffic.agents()}
 
     def samples():
         return {name: handle.sample(world.time_s) for name, handle in vehicles.items()}

@@ -30,6 +30,9 @@ import math
 from typing import Mapping, Tuple
 
 PREDICTION_HORIZON_S = 5.0
+# The classes of traffic objects (autoware_perception_msgs/ObjectClassification's labels but
+# UNKNOWN, lower case; the ROS layer maps each to its label).
+OBJECT_CLASSES = ('car', 'truck', 'bus', 'trailer', 'motorcycle', 'bicycle', 'pedestrian')
 PREDICTION_STEP_S = 0.5
 
 
@@ -49,6 +52,9 @@ class TrafficObject:
     :param height_m: box height [m].
     :param path: predicted poses (x, y, yaw), one per ``step_s``, the first at ``step_s``.
     :param step_s: time between the path's poses [s].
+    :param object_class: what it is, one of :data:`OBJECT_CLASSES` (Autoware's
+        ObjectClassification labels, lower case): the builtin engine's are all cars; SUMO's
+        come from their vehicle classes (docs/sumo.md).
     """
 
     index: int
@@ -62,6 +68,7 @@ class TrafficObject:
     height_m: float
     path: Tuple[Tuple[float, float, float], ...]
     step_s: float
+    object_class: str = 'car'
 
 
 def _path(manager, v, horizon_s, step_s, since_s):

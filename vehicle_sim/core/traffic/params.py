@@ -70,6 +70,9 @@ OBJECTS_RATE = ParamSpec(
     gt=0.0)
 
 TRAFFIC_SPECS = (
+    ParamSpec('engine', 'engine', 'enum', 'builtin', '', 'the traffic engine, a name of '
+              'TRAFFIC_ENGINES (core/traffic/engines.py): builtin (this table) or sumo '
+              '(docs/sumo.md)', choices=('builtin',)),
     ParamSpec('vehicles', 'vehicles', 'int', None, '', 'number of vehicles spawned at random '
               '(null: from density)', ge=0, le=10000, optional=True),
     ParamSpec('density', 'density_per_km', 'float', None, '1/km', 'vehicles per km per lane of '
@@ -198,6 +201,7 @@ class TrafficSpec:
     placed: Tuple[PlacedVehicle, ...] = ()
     source: str = 'traffic'
     objects_rate_hz: Optional[float] = None
+    engine: str = 'builtin'          # core/traffic/engines.py
 
     def params_of(self, model: str):
         """Return the validated parameters of a traffic model (``traffic: <model>:``)."""
@@ -221,7 +225,10 @@ class TrafficSpec:
 
 def traffic_from_dict(data, source, check_model=None) -> TrafficSpec:
     """
-    Validate a ``traffic:`` mapping.
+    Validate a ``traffic:`` mapping of the builtin engine (``engine: builtin`` or none).
+
+    A world's ``traffic:`` goes through ``core/traffic/engines.traffic_spec_from_dict``, which
+    calls this for the builtin engine.
 
     :param data: the YAML content.
     :param source: quoted in errors ('world.yaml: traffic').

@@ -56,7 +56,8 @@ from vehicle_sim.core.specs.param_spec import (
 )
 from vehicle_sim.core.specs.registry import register
 from vehicle_sim.core.specs.value_text import brief
-from vehicle_sim.core.traffic.params import traffic_from_dict, TrafficSpec
+from vehicle_sim.core.traffic.engines import traffic_spec_from_dict
+from vehicle_sim.core.traffic.params import TrafficSpec
 from vehicle_sim.core.world.placement import check_in_world
 
 WORLD_KEYS = ('origin', 'vehicles', 'obstacles', 'roads', 'map', 'traffic', 'signals')
@@ -299,8 +300,9 @@ class WorldSpec:
     A validated world: origin, vehicles, obstacles, roads, map, traffic; ``source`` = its file.
 
     ``roads`` are its road segments (core/map/road_segments.py); ``map`` is its map layer's spec
-    (core/map/kinds.py: e.g. an OccupancyMapSpec), or None; ``traffic`` its traffic
-    (core/traffic/params.py), or None; ``signals`` the plan of its traffic lights
+    (core/map/kinds.py: e.g. an OccupancyMapSpec), or None; ``traffic`` its traffic: the spec
+    of its engine (core/traffic/engines.py; the builtin engine's TrafficSpec of
+    core/traffic/params.py), or None; ``signals`` the plan of its traffic lights
     (core/map/signal_params.py), or None (the default plan where the lane map has any).
     ``lanes`` is its lane map (a core LaneGraph from a lanelet2 map or the roads) once loaded
     (vehicle_sim/maps/lane_maps.py, by the scene builder), with the vehicles placed by lane;
@@ -313,7 +315,7 @@ class WorldSpec:
     source: str = ''
     roads: Tuple[RoadSpec, ...] = ()
     map: Optional[object] = None
-    traffic: Optional[TrafficSpec] = None
+    traffic: Optional[TrafficSpec] = None      # or another engine's spec (engines.py)
     lanes: Optional[object] = field(default=None, compare=False, repr=False)
     signals: Optional[SignalSpec] = None
 
@@ -387,7 +389,7 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
                                     'world has one lane map; keep one of them')
     traffic = data.get('traffic')
     if traffic is not None:
-        traffic = traffic_from_dict(traffic, f'{source}: traffic', preset_sensors)
+        traffic = traffic_spec_from_dict(traffic, f'{source}: traffic', preset_sensors)
     signals = data.get('signals')
     if signals is not None:
         signals = signals_from_dict(signals, f'{source}: signals')
