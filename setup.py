@@ -66,7 +66,7 @@ setup(
         ('share/' + package_name + '/config/worlds', _data('config/worlds/*.yaml')),
         ('share/' + package_name + '/config/maps',
          _data('config/maps/*.yaml') + _data('config/maps/*.png')
-         + _data('config/maps/*.osm')),
+         + _data('config/maps/*.osm') + _data('config/maps/*.net.xml')),
         ('share/' + package_name + '/config/rviz', _data('config/rviz/*.rviz')),
         ('share/' + package_name + '/config/foxglove', _data('config/foxglove/*.json')),
     ],

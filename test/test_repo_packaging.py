@@ -94,7 +94,8 @@ def test_install_data_puts_configs_launch_files_and_the_ament_marker_in_share(bu
     share = data / 'share' / 'vehicle_sim'
     for pattern in ('config/*.yaml', 'config/cars/*.yaml', 'config/robots/*.yaml',
                     'config/worlds/*.yaml', 'config/maps/*.yaml', 'config/maps/*.png',
-                    'config/maps/*.osm', 'config/rviz/*.rviz', 'config/foxglove/*.json',
+                    'config/maps/*.osm', 'config/maps/*.net.xml', 'config/rviz/*.rviz',
+                    'config/foxglove/*.json',
                     'launch/*.launch.py'):
         expected = {p.name for p in REPO.glob(pattern)}
         assert expected and {p.name for p in share.glob(pattern)} == expected, pattern
