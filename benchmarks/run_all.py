@@ -17,7 +17,8 @@ Every performance figure of issues 10, 20 and 21 in one table: measured, target,
 
 Issue 20's are the Gymnasium environment's (bench_gym.py); issue 21's the recorder's
 (bench_record.py); issue 28's highway_traffic over ROS in real time (bench_traffic_ros.py);
-issue 30's the lidar on a SLAM-like occupancy map (bench_occupancy_lidar.py).
+issue 30's the lidar on a SLAM-like occupancy map (bench_occupancy_lidar.py); issue 31's the city
+on SUMO (bench_sumo.py).
 
 ``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
 also run alone and say more); each ratio is measured in this run, its two sides interleaved or
@@ -116,6 +117,12 @@ def _gym_figures(quick):
         return [], [f'gym figures skipped: {error}']
 
 
+def _sumo_figures(quick):
+    # SUMO alone, netconvert and the co-simulated city (bench_sumo.py); the sumo extra is in test.
+    import bench_sumo
+    return bench_sumo.figures(quick)
+
+
 def collect(quick):
     """Run every benchmark; return (rows, floors)."""
     import bench_lane_world
@@ -164,6 +171,7 @@ def collect(quick):
         rss_start, rss_end, long_size, _ = bench_record.measure_memory(long_steps, folder)
     lane_world = bench_lane_world.figures(quick)
     traffic_ros = bench_traffic_ros.figures(quick)
+    sumo_rows, sumo_context = _sumo_figures(quick)
     found['write_us'] = bare_write_us()
     found['matched_write_us'] = matched_write_us()
     bare_p50, bare_p99 = service['bare']
@@ -224,7 +232,7 @@ def collect(quick):
          bench_traffic.TARGETS[50], 'x'),
         ('highway with 200 traffic cars, in-process real-time factor', traffic[200][0], '>=',
          bench_traffic.TARGETS[200], 'x'),
-    ] + gym_rows
+    ] + gym_rows + sumo_rows
     if highway_env is not None:
         rows.append(('steps/s with 50 traffic cars / highway-env highway-fast-v0 with 50',
                      traffic[50][1] / highway_env[0], '>=',
@@ -271,7 +279,7 @@ def collect(quick):
         f'wall rectangles in {slam["bodies"]} bodies; lidar {slam["lidar_ms"]:.2f} ms per '
         f'sample on it, {slam["empty_ms"]:.2f} ms in the empty world (CPU); RSS '
         f'{slam["rss_after_mb"]:.0f} MB after loading, {slam["rss_peak_mb"]:.0f} MB at the peak',
-    ] + gym_context
+    ] + gym_context + sumo_context
     floors.append('highway_traffic over ROS at real time (vehicle-sim run): ' + '; '.join(
         bench_traffic_ros.describe(name, run) for name, run in traffic_ros.items()))
     floors.append(

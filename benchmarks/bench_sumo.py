@@ -1,0 +1,244 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Cities on SUMO (docs/sumo.md): SUMO alone, netconvert of a 1 MB OpenDRIVE file, memory.
+
+SUMO alone: libsumo steps the shipped city (config/maps/city_sumo.net.xml: a 4 x 4 signalised
+grid with sidewalks and crossings) at 0.1 s with about 200 vehicles and 50 pedestrians (routes
+made by SUMO's randomTrips.py in a temporary folder, seeded: a vehicle every 0.5 s and a person
+every 5.5 s from anywhere to anywhere, which keeps about that many in the city once it has filled;
+the first 300 simulated seconds fill it and are not timed): simulated seconds / wall seconds
+over the next 60 (30 with ``--quick``), the mean numbers of vehicles and persons over that
+window printed beside it, and the process's RSS.
+
+netconvert: an OpenDRIVE file of about 1 MB made by the benchmark (netgenerate's 6 x 6 grid of
+two-lane roads with traffic lights, written as OpenDRIVE by netconvert ``--opendrive-output``)
+converted back into a SUMO network by the ``netconvert`` the ``eclipse-sumo`` package ships;
+wall time (best of 3) and netconvert's peak RSS.
+
+Each part runs in a fresh process (libsumo holds one simulation per process, and a fresh
+process's RSS is the simulation's). Needs the ``sumo`` extra (``pip install
+'vehicle_sim[sumo]'``; the ``test`` extra has it).
+
+Run: ``.venv/bin/python benchmarks/bench_sumo.py [--quick]``.
+"""
+
+import argparse
+import contextlib
+import io
+import json
+import os
+from pathlib import Path
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = Path(__file__).resolve().parent
+REPO = HERE.parent
+CITY = REPO / 'config' / 'maps' / 'city_sumo.net.xml'
+STEP_S = 0.1
+VEHICLE_PERIOD_S = 0.5       # randomTrips: one vehicle every 0.5 s -> about 200 in the city
+PERSON_PERIOD_S = 5.5        # one person every 5.5 s -> about 50 walking
+FILL_S = 300.0               # simulated seconds before timing: the city fills up
+XODR_GRID = 6                # netgenerate grid of 6 x 6 junctions: about 1 MB of OpenDRIVE
+TARGET_RTF = 20.0            # co-simulated real-time factor (docs/sumo.md)
+
+
+def sumo_home():
+    """Return the eclipse-sumo package's SUMO_HOME (bin/netconvert, tools/randomTrips.py)."""
+    import sumo
+    return sumo.SUMO_HOME
+
+
+def _run(command, cwd=None):
+    env = dict(os.environ, SUMO_HOME=sumo_home())
+    result = subprocess.run(command, capture_output=True, text=True, env=env, cwd=cwd,
+                            check=False)
+    if result.returncode != 0:
+        raise RuntimeError(f'{Path(command[0]).name} failed: '
+                           f'{(result.stderr or result.stdout).strip()[-2000:]}')
+    return result
+
+
+def city_routes(folder, end_s, seed=1):
+    """Write seeded vehicle routes and person trips for the city into ``folder``; return paths."""
+    tool = os.path.join(sumo_home(), 'tools', 'randomTrips.py')
+    folder = Path(folder)
+    vehicles, persons = folder / 'vehicles.rou.xml', folder / 'persons.rou.xml'
+    _run([sys.executable, tool, '-n', str(CITY), '-o', str(folder / 'vehicles.trips.xml'),
+          '-r', str(vehicles), '--seed', str(seed), '--begin', '0', '--end', f'{end_s:g}',
+          '--period', f'{VEHICLE_PERIOD_S:g}', '--fringe-factor', '10', '--validate',
+          '--prefix', 'v'])
+    _run([sys.executable, tool, '-n', str(CITY), '-o', str(persons), '--seed', str(seed + 1),
+          '--begin', '0', '--end', f'{end_s:g}', '--period', f'{PERSON_PERIOD_S:g}',
+          '--pedestrians', '--prefix', 'p'])
+    return vehicles, persons
+
+
+def import_libsumo():
+    """Import libsumo without the note it prints about pyarrow's version."""
+    with contextlib.redirect_stdout(io.StringIO()):
+        import libsumo
+    return libsumo
+
+
+def _rss_mb(key='VmRSS'):
+    with open('/proc/self/status', encoding='ascii') as stream:
+        for line in stream:
+            if line.startswith(key + ':'):
+                return int(line.split()[1]) / 1024.0
+    return float('nan')
+
+
+def sumo_alone(measure_s, seed=1):
+    """Return the SUMO-alone figures (this process runs libsumo: call it in a fresh one)."""
+    libsumo = import_libsumo()
+    with tempfile.TemporaryDirectory(prefix='bench_sumo_') as folder:
+        vehicles, persons = city_routes(folder, FILL_S + measure_s + 60.0, seed)
+        rss_before = _rss_mb()
+        libsumo.start(['sumo', '-n', str(CITY), '-r', f'{vehicles},{persons}',
+                       '--step-length', f'{STEP_S:g}', '--seed', str(seed),
+                       '--no-step-log', 'true', '--no-warnings', 'true'])
+        try:
+            for _ in range(int(round(FILL_S / STEP_S))):
+                libsumo.simulationStep()
+            steps = int(round(measure_s / STEP_S))
+            vehicle_sum = person_sum = 0
+            wall = cpu = 0.0
+            for _ in range(steps):
+                start, start_cpu = time.perf_counter(), time.process_time()
+                libsumo.simulationStep()
+                wall += time.perf_counter() - start
+                cpu += time.process_time() - start_cpu
+                vehicle_sum += libsumo.vehicle.getIDCount()
+                person_sum += libsumo.person.getIDCount()
+            rss = _rss_mb()
+        finally:
+            libsumo.close()
+    return {'rtf': measure_s / wall, 'cpu_rtf': measure_s / cpu,
+            'step_ms': wall / steps * 1e3, 'vehicles': vehicle_sum / steps,
+            'persons': person_sum / steps, 'rss_mb': rss, 'rss_added_mb': rss - rss_before}
+
+
+def make_xodr(folder, grid=XODR_GRID):
+    """Write an OpenDRIVE file of a netgenerate grid into ``folder``; return its path."""
+    folder = Path(folder)
+    net, xodr = folder / 'grid.net.xml', folder / 'grid.xodr'
+    home = sumo_home()
+    _run([os.path.join(home, 'bin', 'netgenerate'), '--grid', '--grid.number', str(grid),
+          '--grid.length', '100', '--default.lanenumber', '2', '--tls.guess',
+          '--no-turnarounds', '-o', str(net)])
+    _run([os.path.join(home, 'bin', 'netconvert'), '-s', str(net), '--opendrive-output',
+          str(xodr)])
+    return xodr
+
+
+def netconvert_xodr(repeats=3):
+    """Return (file size [MB], best conversion time [s], netconvert peak RSS [MB], edges)."""
+    with tempfile.TemporaryDirectory(prefix='bench_sumo_xodr_') as folder:
+        xodr = make_xodr(folder)
+        output = Path(folder) / 'converted.net.xml'
+        command = [os.path.join(sumo_home(), 'bin', 'netconvert'), '--opendrive-files',
+                   str(xodr), '-o', str(output)]
+        best = float('inf')
+        for _ in range(repeats):
+            start = time.perf_counter()
+            _run(command)
+            best = min(best, time.perf_counter() - start)
+        # ru_maxrss of the children: the largest netconvert run by this process [KiB]
+        peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024.0
+        edges = output.read_text('utf-8').count('<edge id="') - output.read_text(
+            'utf-8').count('function="internal"')
+        return xodr.stat().st_size / 1e6, best, peak, edges
+
+
+def _in_fresh_process(part, quick):
+    command = [sys.executable, str(Path(__file__).resolve()), '--part', part]
+    if quick:
+        command.append('--quick')
+    env = dict(os.environ, PYTHONPATH=str(REPO) + os.pathsep + os.environ.get('PYTHONPATH', ''))
+    result = subprocess.run(command, capture_output=True, text=True, env=env, check=False)
+    if result.returncode != 0:
+        raise RuntimeError(f'bench_sumo --part {part} failed: {result.stderr[-3000:]}')
+    return json.loads(result.stdout.strip().splitlines()[-1])
+
+
+def measure(quick=False):
+    """Return every figure of this benchmark, each part measured in a fresh process."""
+    return {'alone': _in_fresh_process('alone', quick),
+            'netconvert': _in_fresh_process('netconvert', quick)}
+
+
+def figures(quick=False):
+    """Return (rows, context lines) for run_all.py; ([], [why]) without the sumo extra."""
+    import importlib.util
+    missing = [name for name in ('sumo', 'libsumo') if importlib.util.find_spec(name) is None]
+    if missing:
+        return [], [f"SUMO figures skipped: no {', '.join(missing)} "
+                    "(pip install 'vehicle_sim[sumo]')"]
+    found = measure(quick)
+    alone, convert = found['alone'], found['netconvert']
+    rows = [
+        (f'SUMO alone (libsumo, city_sumo, {alone["vehicles"]:.0f} vehicles + '
+         f'{alone["persons"]:.0f} persons, 0.1 s steps): real-time factor', alone['rtf'],
+         None, None, 'x'),
+        (f'netconvert of a {convert["size_mb"]:.2f} MB OpenDRIVE file', convert['seconds'],
+         None, None, 's'),
+    ]
+    context = [describe(found)]
+    return rows, context
+
+
+def describe(found):
+    """Return one line of context about the figures."""
+    alone, convert = found['alone'], found['netconvert']
+    return (f'SUMO alone: {alone["step_ms"]:.2f} ms per 0.1 s step, {alone["rtf"]:.0f}x real '
+            f'time ({alone["cpu_rtf"]:.0f}x on CPU time), {alone["vehicles"]:.0f} vehicles and '
+            f'{alone["persons"]:.0f} persons on average, RSS {alone["rss_mb"]:.0f} MB '
+            f'({alone["rss_added_mb"]:+.0f} MB by the simulation); netconvert: '
+            f'{convert["size_mb"]:.2f} MB OpenDRIVE ({convert["edges"]} edges) in '
+            f'{convert["seconds"]:.2f} s, peak RSS {convert["peak_mb"]:.0f} MB')
+
+
+def _part(name, quick):
+    if name == 'alone':
+        return sumo_alone(30.0 if quick else 60.0)
+    size, seconds, peak, edges = netconvert_xodr(2 if quick else 3)
+    return {'size_mb': size, 'seconds': seconds, 'peak_mb': peak, 'edges': edges}
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    parser.add_argument('--quick', action='store_true', help='fewer samples')
+    parser.add_argument('--part', choices=('alone', 'netconvert'),
+                        help='measure one part in this process and print it as JSON')
+    options = parser.parse_args(argv)
+    if options.part:
+        print(json.dumps(_part(options.part, options.quick)))
+        return 0
+    found = measure(options.quick)
+    alone, convert = found['alone'], found['netconvert']
+    print(f'SUMO alone, real-time factor: {alone["rtf"]:.1f}x')
+    print(f'netconvert of {convert["size_mb"]:.2f} MB of OpenDRIVE: {convert["seconds"]:.2f} s')
+    print(describe(found))
+    print(f'load average {"/".join(f"{x:.1f}" for x in os.getloadavg())} on '
+          f'{os.cpu_count()} cores')
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
