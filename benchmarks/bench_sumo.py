@@ -56,6 +56,12 @@ PERSON_PERIOD_S = 5.5        # one person every 5.5 s -> about 50 walking
 FILL_S = 300.0               # simulated seconds before timing: the city fills up
 XODR_GRID = 6                # netgenerate grid of 6 x 6 junctions: about 1 MB of OpenDRIVE
 TARGET_RTF = 20.0            # co-simulated real-time factor (docs/sumo.md)
+TARGET_COST = 2.0            # co-simulated / (SUMO alone + the empty world), per simulated s
+# The ego car: at rest on the right lane of A1B1 (eastbound, row 1), 20 m in; its lidar as the
+# other benchmarks' (1080 rays over 270 degrees, 30 m, 40 Hz).
+EGO_POSE = {'x': 90.0, 'y': 155.2, 'yaw': 0.0}
+LIDAR = {'name': 'lidar', 'type': 'lidar', 'fov': 4.71238898, 'horizontal_resolution': 1080,
+         'max_range': 30.0, 'pose': {'x': 1.0, 'z': 0.5}, 'rate_hz': 40.0}
 
 
 def sumo_home():
@@ -132,6 +138,67 @@ def sumo_alone(measure_s, seed=1):
     return {'rtf': measure_s / wall, 'cpu_rtf': measure_s / cpu,
             'step_ms': wall / steps * 1e3, 'vehicles': vehicle_sum / steps,
             'persons': person_sum / steps, 'rss_mb': rss, 'rss_added_mb': rss - rss_before}
+
+
+def _ego_world(folder, routes=None, seed=1):
+    """Return the WorldSpec of the ego car and its lidar: in the city with SUMO, or alone."""
+    from vehicle_sim.config import world_from_data
+    data = {'vehicles': [{'name': 'ego', 'model': 'ToyotaPrius', 'pose': dict(EGO_POSE),
+                          'sensors': [dict(LIDAR)]}]}
+    if routes is not None:
+        data['map'] = {'type': 'sumo', 'net': str(CITY)}
+        data['traffic'] = {'engine': 'sumo', 'routes': [str(path) for path in routes],
+                           'step': STEP_S, 'seed': seed}
+    return world_from_data(data, 'bench_sumo.yaml', base_dir=str(folder))
+
+
+def _timed_steps(world, steps):
+    start, start_cpu = time.perf_counter(), time.process_time()
+    for _ in range(steps):
+        world.step()
+    return time.perf_counter() - start, time.process_time() - start_cpu
+
+
+def cosim(measure_s, seed=1):
+    """
+    Return the co-simulation figures (this process runs libsumo: call it in a fresh one).
+
+    First the empty world (the ego car and its lidar, nothing else), then the city with SUMO's
+    traffic filled for :data:`FILL_S` simulated seconds (not timed, the lidar off), each
+    stepped by ``World.step`` at 10 ms for ``measure_s`` simulated seconds with the lidar
+    sampled at its 40 Hz.
+    """
+    from vehicle_sim.physics.scene import build_scene, mount_suite
+    found = {}
+    with tempfile.TemporaryDirectory(prefix='bench_sumo_') as folder:
+        empty = build_scene(_ego_world(folder), mount=mount_suite)
+        try:
+            world = empty.world
+            empty.vehicles['ego'].sensors.start(['lidar'])
+            _timed_steps(world, 100)
+            steps = int(round(measure_s / world.time_step_s))
+            wall, cpu = _timed_steps(world, steps)
+            found['empty_rtf'], found['empty_cpu_rtf'] = measure_s / wall, measure_s / cpu
+        finally:
+            empty.world.close()
+        routes = city_routes(folder, FILL_S + measure_s + 60.0, seed)
+        rss_before = _rss_mb()
+        start = time.perf_counter()
+        city = build_scene(_ego_world(folder, routes, seed), mount=mount_suite)
+        found['build_s'] = time.perf_counter() - start
+        try:
+            world = city.world
+            _timed_steps(world, int(round(FILL_S / world.time_step_s)))
+            traffic = city.parts['traffic'] if hasattr(city, 'parts') else None
+            city.vehicles['ego'].sensors.start(['lidar'])
+            wall, cpu = _timed_steps(world, steps)
+            found['rtf'], found['cpu_rtf'] = measure_s / wall, measure_s / cpu
+            found['agents'] = len(traffic.agents()) if traffic is not None else -1
+            found['rss_mb'] = _rss_mb()
+            found['rss_added_mb'] = found['rss_mb'] - rss_before
+        finally:
+            city.world.close()
+    return found
 
 
 def make_xodr(folder, grid=XODR_GRID):
