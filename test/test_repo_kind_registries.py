@@ -266,7 +266,7 @@ def test_an_unknown_map_type_lists_the_registered_ones():
 
 # ------------------------------------------------------------------------------ traffic engines
 
-def _still_parse(data, source, check_model):
+def _still_parse(data, source, check_model, base_dir):
     # The builtin table without the engine key, then the new engine's name on the spec.
     rest = {k: v for k, v in data.items() if k != 'engine'}
     return replace(traffic_from_dict(rest, source, check_model), engine='still')
@@ -309,7 +309,7 @@ def test_an_unknown_traffic_engine_lists_the_registered_ones():
     data['traffic'] = {'engine': 'vissim'}
     with pytest.raises(InvalidParameterError,
                        match=r"highway.yaml: traffic: field 'engine' = 'vissim': unknown "
-                             r'traffic engine; valid: builtin'):
+                             r'traffic engine; valid: builtin, sumo'):
         world_from_data(data, 'highway.yaml')
 
 

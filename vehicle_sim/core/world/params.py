@@ -390,7 +390,7 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
                                     'world has one lane map; keep one of them')
     traffic = data.get('traffic')
     if traffic is not None:
-        traffic = traffic_spec_from_dict(traffic, f'{source}: traffic', preset_sensors)
+        traffic = traffic_spec_from_dict(traffic, f'{source}: traffic', preset_sensors, base_dir)
     signals = data.get('signals')
     if signals is not None:
         signals = signals_from_dict(signals, f'{source}: signals')
