@@ -22,11 +22,12 @@ first by name when there are several); that configuration names the network (``n
 the routes (``route-files``), relative to the configuration's folder. A folder without any
 ``.sumocfg`` is read here as ``sumo.net.xml`` and, when it exists, ``sumo.rou.xml``.
 
-:func:`read_sumo_folder` returns the files; the world key ``sumo_folder:`` (core/world/params.py)
-makes them the world's map (``{type: sumo, net: ...}``) and its SUMO traffic's ``routes``
-(docs/sumo.md, "Webots users"). Webots' ``useNetconvert`` (a network made at start from
-``sumo.netccfg``) is not repeated: the folder needs its ``.net.xml`` (``netconvert -c
-sumo.netccfg`` makes it, as Webots would). The standard library only (xml.etree).
+:func:`read_sumo_folder` returns the files; with the world key ``sumo_folder:``
+(core/world/params.py), :func:`with_sumo_folder` makes them the world's map (``{type: sumo,
+net: ...}``) and its SUMO traffic's ``routes`` (docs/sumo.md, "Webots users"). Webots'
+``useNetconvert`` (a network made at start from ``sumo.netccfg``) is not repeated: the folder
+needs its ``.net.xml`` (``netconvert -c sumo.netccfg`` makes it, as Webots would). The standard
+library only (xml.etree).
 """
 
 from dataclasses import dataclass
@@ -35,7 +36,9 @@ from typing import Tuple
 import xml.etree.ElementTree as ElementTree
 
 from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.traffic.sumo_params import ENGINE
 
+KEY = 'sumo_folder'          # the world key (core/world/params.py)
 CONFIG = 'sumo.sumocfg'
 NET = 'sumo.net.xml'
 ROUTES = 'sumo.rou.xml'
@@ -111,3 +114,40 @@ def read_sumo_folder(folder, where='sumo_folder') -> SumoFolder:
         raise InvalidParameterError(f'{where}: {config or folder} names route file(s) that do '
                                     f'not exist: {", ".join(missing)}')
     return SumoFolder(folder, net, routes, config)
+
+
+def with_sumo_folder(data, where, base_dir):
+    """
+    Return a world mapping whose ``sumo_folder:`` became its ``map:`` and its SUMO ``traffic:``.
+
+    ``map: {type: sumo, net: <the folder's network>}``; ``traffic:`` the world's (engine sumo by
+    default: its step, seed, demand, options stay) with ``routes`` the folder's route files.
+    A world that also gives ``map:``, another engine or ``routes:`` is refused: the folder
+    gives them.
+
+    :param data: the world mapping, with the key ``sumo_folder`` (a folder, relative to
+        ``base_dir``).
+    :param where: quoted in errors (the world file and the key).
+    :raises InvalidParameterError: naming the key and what is wrong.
+    """
+    folder = data[KEY]
+    if not isinstance(folder, str) or not folder:
+        raise InvalidParameterError(f"{where}: must be a folder name (a Webots project's "
+                                    f"'<world>_net'), not {folder!r}")
+    for key in ('map',):
+        if data.get(key) is not None:
+            raise InvalidParameterError(f'{where}: the folder gives the map: leave out {key}:')
+    traffic = data.get('traffic') or {}
+    if not isinstance(traffic, dict):
+        raise InvalidParameterError(f'{where}: traffic: must be a mapping beside it')
+    if traffic.get('engine', ENGINE) != ENGINE:
+        raise InvalidParameterError(f"{where}: the folder's traffic runs on the engine "
+                                    f"{ENGINE}, not {traffic.get('engine')!r}")
+    if traffic.get('routes') is not None:
+        raise InvalidParameterError(f'{where}: the folder gives the routes: leave out '
+                                    'traffic.routes (a demand: may add random trips)')
+    found = read_sumo_folder(os.path.join(base_dir, folder), where)
+    expanded = {key: value for key, value in data.items() if key != KEY}
+    expanded['map'] = {'type': 'sumo', 'net': found.net}
+    expanded['traffic'] = dict(traffic, engine=ENGINE, routes=list(found.routes) or None)
+    return expanded

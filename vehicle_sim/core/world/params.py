@@ -56,6 +56,7 @@ from vehicle_sim.core.specs.param_spec import (
 )
 from vehicle_sim.core.specs.registry import register
 from vehicle_sim.core.specs.value_text import brief
+from vehicle_sim.core.traffic import sumo_folder
 from vehicle_sim.core.traffic.engines import traffic_spec_from_dict
 from vehicle_sim.core.traffic.params import TrafficSpec
 from vehicle_sim.core.world.placement import check_in_world
@@ -355,10 +356,13 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
     """
     if not isinstance(data, dict):
         raise InvalidParameterError(f'{source}: a world must be a mapping with "vehicles"')
-    unknown = sorted(set(data) - set(WORLD_KEYS))
+    base_dir = os.path.dirname(source) if base_dir is None else base_dir
+    if data.get(sumo_folder.KEY) is not None:     # a Webots SUMO folder: its map and traffic
+        data = sumo_folder.with_sumo_folder(data, f'{source}: {sumo_folder.KEY}', base_dir)
+    unknown = sorted(set(data) - set(WORLD_KEYS) - {sumo_folder.KEY})
     if unknown:
         raise InvalidParameterError(f'{source}: unknown key(s) {brief(unknown)}; valid: '
-                                    + ', '.join(WORLD_KEYS))
+                                    + ', '.join(WORLD_KEYS + (sumo_folder.KEY,)))
     entries = data.get('vehicles')
     if not entries and not vehicles_required:
         entries = []
@@ -383,7 +387,6 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
                                     f'{brief(sorted(taken))}')
     roads = data.get('roads')
     roads = () if roads is None else roads_from_list(roads, f'{source}: roads')
-    base_dir = os.path.dirname(source) if base_dir is None else base_dir
     world_map = map_from_dict(data.get('map'), f'{source}: map', base_dir)
     if roads and is_lane_map(world_map):
         raise InvalidParameterError(f'{source}: has both roads: and a {world_map.type} map: a '
