@@ -206,3 +206,9 @@ def test_a_sumo_folder_beside_a_map_or_routes_is_refused(tmp_path):
     with pytest.raises(InvalidParameterError, match=r"'.*elsewhere_net' is not a folder"):
         world_from_data({'vehicles': [{'name': 'Car'}], 'sumo_folder': 'elsewhere_net'},
                         str(tmp_path / 'my_world.yaml'))
+
+
+def test_docs_sumo_md_has_the_engine_keys_as_generated():
+    from vehicle_sim.core.traffic.engines import TRAFFIC_ENGINES
+    text = (REPO / 'docs' / 'sumo.md').read_text(encoding='utf-8')
+    assert TRAFFIC_ENGINES['sumo'].markdown() in text
