@@ -22,8 +22,12 @@ pass, and fail without their brake, through the scenario runner; a world with ``
 runs a folder laid out as Webots' SUMO interface reads it (docs/sumo.md).
 """
 
+import os
 from pathlib import Path
+import subprocess
+import sys
 
+from conftest import peer_env
 import pytest
 import yaml
 
@@ -124,6 +128,19 @@ def test_without_the_brake_the_car_runs_into_the_queue(tmp_path):
     assert result.criterion('min_gap').value <= 0.0
     # it hit the queue before the line: the light itself was not run
     assert result.criterion('traffic_light').value == 0
+
+
+def test_the_installed_command_runs_the_red_light_scenario(tmp_path):
+    # what a user types: exit 0, every criterion printed
+    command = os.path.join(os.path.dirname(sys.executable), 'vehicle-sim')
+    done = subprocess.run([command, 'scenario', str(RED_LIGHT), '--junit',
+                           str(tmp_path / 'red_light.xml')],
+                          env=dict(peer_env(), VEHICLE_SIM_CACHE=str(tmp_path / 'cache')),
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert '  PASS  traffic_light: 0 crossings' in done.stdout
+    assert '  PASS  min_gap: 3.' in done.stdout and 'PASS: 3/3 criteria passed' in done.stdout
+    assert 'testsuite' in (tmp_path / 'red_light.xml').read_text(encoding='utf-8')
 
 
 # ----------------------------------------------------------------------- pedestrian crossing
