@@ -249,6 +249,8 @@ class LaneRules:
             both.setdefault(conflict.lane_id, []).append(conflict)
             both.setdefault(conflict.other_id, []).append(conflict.reversed())
         self._conflicts_of = {lane: tuple(c) for lane, c in both.items()}
+        # by id: an engine driving a city's signals looks up hundreds of groups a step
+        self._group_of = {group.id: group for group in self.groups}
 
     @property
     def empty(self) -> bool:
@@ -257,9 +259,12 @@ class LaneRules:
 
     def group(self, group_id) -> TrafficLightGroup:
         """Return a group by id; InvalidParameterError naming the id and the groups if none."""
-        for group in self.groups:
-            if group.id == group_id and not isinstance(group_id, bool):
-                return group
+        try:
+            group = None if isinstance(group_id, bool) else self._group_of.get(group_id)
+        except TypeError:                   # an unhashable id is no group's
+            group = None
+        if group is not None:
+            return group
         known = ', '.join(str(g.id) for g in self.groups) or 'none'
         raise InvalidParameterError(f'traffic light group {group_id!r} is not in the map '
                                     f'(its groups: {known})')
