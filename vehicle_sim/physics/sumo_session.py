@@ -87,14 +87,9 @@ def load_traci():
     return traci
 
 
-def _errors(*modules):
-    found = []
-    for module in modules:
-        if module is None:
-            continue
-        exceptions = getattr(module, 'exceptions', module)
-        found += [exceptions.TraCIException, exceptions.FatalTraCIError]
-    return tuple(found)
+def _errors(module):
+    # libsumo's own exception classes (its ``exceptions`` attribute is traci's), or traci's
+    return (module.TraCIException, module.FatalTraCIError)
 
 
 class SumoSession:
@@ -130,7 +125,8 @@ class SumoSession:
         self._folder = tempfile.mkdtemp(prefix='vehicle_sim_sumo_')
         self.log_path = os.path.join(self._folder, 'sumo.log')
         command = [binary, *args, '--error-log', self.log_path, '--no-step-log', 'true']
-        self._catch = _errors(libsumo if transport == 'libsumo' else load_traci())
+        self._catch = _errors(libsumo if transport == 'libsumo' else load_traci().exceptions)
+        self.refusal = self._catch[0]       # SUMO refused a call (TraCIException); it runs on
         self._libsumo = libsumo if transport == 'libsumo' else None
         self.api = None
         try:
@@ -159,6 +155,10 @@ class SumoSession:
         except OSError:
             lines = []
         lines = [line for line in lines if not line.startswith('Quitting')]
+        process = getattr(self.api, '_process', None)
+        status = None if process is None else process.poll()
+        if status is not None:
+            text += f' (the sumo process ended with status {status})'
         if lines and (not text or text.startswith('Connection closed')):
             return '; '.join(lines[-LOG_LINES:]) + (f' ({text})' if text else '')
         return text or type(error).__name__

@@ -255,7 +255,7 @@ class SumoBodies:
     def _push_ours(self):
         """Put each of our vehicles into SUMO where the physics has it (its front bumper)."""
         api = self.session.api
-        sumo_errors = self.session._catch
+        sumo_errors = self.session.refusal      # a call refused; SUMO's end goes on up
         ours = []
         for body, outline in zip(self._ours, self._outlines):
             o = our_vehicle(body, outline)
