@@ -12,30 +12,63 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-
 """
-SUMO networks and route files for the tests of the SUMO traffic engine.
+SUMO networks the tests make with the eclipse-sumo package's netgenerate and netconvert.
 
-:func:`grid_net` makes a 3 x 3 signalised grid with netgenerate (the eclipse-sumo package's):
-100 m blocks, one lane each way (lane 1 of each edge; lane 0 its sidewalk), crossings, a
-traffic light at every junction (A0 ... C2). Edge A0A1 runs north along x = 1.6 from y = 5.2 to
-92.8.
+Import it after ``pytest.importorskip('sumolib', ...)``: the networks need the 'sumo' extra.
+
+:func:`one_lane_grid_net`: the SUMO engine's tests' grid: 100 m blocks, one lane each way (lane 1
+of each edge; lane 0 its sidewalk), crossings, a traffic light at every junction (A0 ... C2); edge
+A0A1 runs north along x = 1.6 from y = 5.2 to 92.8. :func:`write_routes`: a route file.
+
+:func:`grid_net`: a signalised 3 x 3 grid (``netgenerate --grid``), 100 m blocks, two lanes each
+way and a sidewalk, crossings at every junction, traffic lights at the inner ones.
 """
 
 import os
 import subprocess
 
+import sumo
+
+BIN = os.path.join(sumo.SUMO_HOME, 'bin')
+ENV = dict(os.environ, SUMO_HOME=sumo.SUMO_HOME)
+GRID_OPTIONS = ('--grid', '--grid.number', '3', '--grid.length', '100', '--default.lanenumber',
+                '2', '--tls.guess', '--sidewalks.guess', '--crossings.guess',
+                '--no-turnarounds', 'false')
+
+
+def run_tool(tool, *args):
+    """Run a SUMO tool (netgenerate, netconvert); return its completed process (checked)."""
+    done = subprocess.run([os.path.join(BIN, tool), *map(str, args)], capture_output=True,
+                          text=True, env=ENV, check=False)
+    assert done.returncode == 0, done.stderr
+    return done
+
+
+def grid_net(folder, name='grid.net.xml', *extra):
+    """Write the grid network (module text) into ``folder``; return its path."""
+    path = os.path.join(str(folder), name)
+    run_tool('netgenerate', *GRID_OPTIONS, *extra, '-o', path)
+    return path
+
+
+def opendrive_of(net, folder, name='grid.xodr'):
+    """Write a network as OpenDRIVE (netconvert --opendrive-output); return its path."""
+    path = os.path.join(str(folder), name)
+    run_tool('netconvert', '-s', net, '--opendrive-output', path)
+    return path
+
+
 # netgenerate's options of the test grid
-GRID_OPTIONS = ('--grid', '--grid.number', '3', '--grid.length', '100',
+ONE_LANE_GRID_OPTIONS = ('--grid', '--grid.number', '3', '--grid.length', '100',
                 '--default.lanenumber', '1', '--default-junction-type', 'traffic_light',
                 '--sidewalks.guess', '--crossings.guess', '--seed', '1')
 
 
-def grid_net(folder):
-    """Write grid.net.xml into ``folder`` (``netgenerate`` + GRID_OPTIONS); return its path."""
-    import sumo
+def one_lane_grid_net(folder):
+    """Write grid.net.xml into ``folder`` (netgenerate, ONE_LANE_GRID_OPTIONS); return its path."""
     path = os.path.join(str(folder), 'grid.net.xml')
-    subprocess.run([os.path.join(sumo.SUMO_HOME, 'bin', 'netgenerate'), *GRID_OPTIONS,
+    subprocess.run([os.path.join(sumo.SUMO_HOME, 'bin', 'netgenerate'), *ONE_LANE_GRID_OPTIONS,
                     '-o', path], check=True, capture_output=True, timeout=120)
     return path
 

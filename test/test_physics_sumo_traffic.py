@@ -31,7 +31,7 @@ import pytest
 
 pytest.importorskip('libsumo', reason="needs the 'sumo' extra")
 
-from sumo_helpers import grid_net, write_routes  # noqa: E402
+from sumo_helpers import one_lane_grid_net, write_routes  # noqa: E402
 
 from vehicle_sim.config import world_from_data  # noqa: E402
 from vehicle_sim.physics import sumo_session  # noqa: E402
@@ -43,7 +43,7 @@ STEPS_PER_S = 100     # world steps a second (the default step, 0.01 s)
 
 @pytest.fixture(scope='module')
 def net(tmp_path_factory):
-    return grid_net(tmp_path_factory.mktemp('sumo_net'))
+    return one_lane_grid_net(tmp_path_factory.mktemp('sumo_net'))
 
 
 @pytest.fixture(autouse=True)
