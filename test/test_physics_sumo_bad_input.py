@@ -31,7 +31,7 @@ import pytest
 
 pytest.importorskip('libsumo', reason="needs the 'sumo' extra")
 
-from sumo_helpers import grid_net, write_routes  # noqa: E402
+from sumo_helpers import one_lane_grid_net, write_routes  # noqa: E402
 
 from vehicle_sim.config import world_from_data  # noqa: E402
 from vehicle_sim.core.specs.errors import InvalidParameterError  # noqa: E402
@@ -45,13 +45,13 @@ OFF_ROAD = (-30.0, -30.0, 0.0)       # our car's pose: 30 m from every road of t
 
 @pytest.fixture(scope='module')
 def net(tmp_path_factory):
-    return grid_net(tmp_path_factory.mktemp('sumo_net'))
+    return one_lane_grid_net(tmp_path_factory.mktemp('sumo_net'))
 
 
 def _spec(net, traffic, folder, ego=OFF_ROAD, time_step=None):
     x, y, yaw = ego
     data = {'vehicles': [{'name': 'ego', 'model': 'Car', 'pose': {'x': x, 'y': y, 'yaw': yaw}}],
-            'traffic': {'engine': 'sumo', 'net': net, **traffic}}
+            'map': {'type': 'sumo', 'net': net}, 'traffic': {'engine': 'sumo', **traffic}}
     return world_from_data(data, 'w.yaml', base_dir=str(folder))
 
 
@@ -101,8 +101,8 @@ def test_sumo_missing_names_the_extra(net, tmp_path, monkeypatch):
     routes = write_routes(tmp_path, [('a', 0, 'A0A1')])
     monkeypatch.setitem(sys.modules, 'sumo', None)          # import sumo fails
     with pytest.raises(SumoUnavailable,
-                       match=r"needs Eclipse SUMO \(the eclipse-sumo package\): install the "
-                             r"sumo extra: pip install 'vehicle_sim\[sumo\]'"):
+                       match=r'^the sumo traffic engine needs the eclipse-sumo package: pip '
+                             r"install 'vehicle_sim\[sumo\]'"):
         build_scene(_spec(net, {'routes': routes}, tmp_path))
 
 
@@ -112,8 +112,8 @@ def test_without_libsumo_auto_runs_sumo_over_traci_and_libsumo_is_refused(net, t
     monkeypatch.setattr(sumo_session, 'load_libsumo', lambda: None)
     with pytest.raises(SumoUnavailable,
                        match=r"field 'transport' = 'libsumo': libsumo does not load in this "
-                             r'Python \(transport: traci runs SUMO as a process\): install the '
-                             r'sumo extra'):
+                             r'Python \(transport: traci runs SUMO as a process\): pip install '
+                             r"'vehicle_sim\[sumo\]'"):
         build_scene(_spec(net, {'routes': routes, 'transport': 'libsumo'}, tmp_path))
     scene = build_scene(_spec(net, {'routes': routes}, tmp_path))
     try:

@@ -49,14 +49,14 @@ def net(tmp_path_factory):
 @pytest.fixture(autouse=True)
 def _cache(tmp_path_factory, monkeypatch):
     # the demand's trips are made once for the module, not in the user's cache
-    monkeypatch.setenv('VEHICLE_SIM_CACHE', str(tmp_path_factory.getbasetemp() / 'cache'))
+    monkeypatch.setenv('XDG_CACHE_HOME', str(tmp_path_factory.getbasetemp() / 'cache'))
 
 
 def _world(net, traffic, ego=(LANE_X, 40.0, math.pi / 2), folder=None):
     x, y, yaw = ego
     data = {'vehicles': [{'name': 'ego', 'model': 'Car',
                           'pose': {'x': x, 'y': y, 'yaw': yaw}}],
-            'traffic': {'engine': 'sumo', 'net': net, **traffic}}
+            'map': {'type': 'sumo', 'net': net}, 'traffic': {'engine': 'sumo', **traffic}}
     return build_scene(world_from_data(data, 'w.yaml', base_dir=str(folder or '.')))
 
 

@@ -37,34 +37,21 @@ import subprocess
 import tempfile
 
 from vehicle_sim.core.specs.errors import InvalidParameterError, VehicleSimError
+from vehicle_sim.maps.netconvert import sumo_home
+from vehicle_sim.maps.sumo_net import EXTRA_HINT, SumoUnavailable
 
-EXTRA_HINT = "install the sumo extra: pip install 'vehicle_sim[sumo]'"
 LOG_LINES = 6          # the last lines of SUMO's error log an error quotes
 _labels = itertools.count()
 _libsumo_user = [None]  # the session that holds libsumo in this process
-
-
-class SumoUnavailable(InvalidParameterError):
-    """SUMO (the eclipse-sumo package, libsumo or traci) is not installed."""
 
 
 class SumoError(VehicleSimError):
     """SUMO stopped or refused a call while a world ran: SUMO's message."""
 
 
-def sumo_home():
-    """Return SUMO_HOME of the ``eclipse-sumo`` package (its bin/ and tools/)."""
-    try:
-        import sumo
-    except ImportError:
-        raise SumoUnavailable('the sumo traffic engine needs Eclipse SUMO (the eclipse-sumo '
-                              'package): ' + EXTRA_HINT) from None
-    return sumo.SUMO_HOME
-
-
 def sumo_binary():
     """Return the path of the ``sumo`` program of the ``eclipse-sumo`` package."""
-    return os.path.join(sumo_home(), 'bin', 'sumo')
+    return os.path.join(sumo_home('the sumo traffic engine'), 'bin', 'sumo')
 
 
 def load_libsumo():
@@ -100,7 +87,8 @@ class SumoSession:
     :param transport: 'auto', 'libsumo' or 'traci' (core/traffic/sumo_params.py TRANSPORTS).
     :param source: quoted in errors ('world.yaml: traffic').
     :raises InvalidParameterError: SUMO refused to start (its message); libsumo asked for and
-        taken or not loadable; SumoUnavailable: SUMO not installed.
+        taken; SumoUnavailable (maps/sumo_net.py): SUMO, libsumo (asked for) or traci not
+        installed, naming the extra.
     """
 
     def __init__(self, args, transport='auto', source='traffic'):

@@ -49,6 +49,8 @@ import math
 
 import pybullet
 
+from vehicle_sim.core.map.signal_programs import SUMO_STATES
+from vehicle_sim.core.map.sumo_net_params import SumoNetMapSpec
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.idm import IdmParams
 from vehicle_sim.core.traffic.objects import PREDICTION_HORIZON_S, PREDICTION_STEP_S, TrafficObject
@@ -68,9 +70,6 @@ from vehicle_sim.physics.traffic_boxes import (
 OURS_PREFIX = 'vehicle_sim.'     # our vehicles' SUMO ids: this + their names
 NAME_PREFIX = 'sumo_'            # the bodies' names: this + the pool index
 PERSON_COLOUR = (0.95, 0.55, 0.15, 1.0)
-# our signal state of each of SUMO's state characters (until the map's signal programs land)
-SUMO_STATES = {'G': 'green', 'g': 'green', 's': 'green', 'y': 'yellow', 'Y': 'yellow',
-               'r': 'red', 'u': 'red', 'o': 'off', 'O': 'off'}
 # SUMO's state character of each of our signal states (what a forced state is pushed as)
 SUMO_CHARACTER = {'green': 'G', 'yellow': 'y', 'red': 'r', 'off': 'O'}
 
@@ -79,21 +78,24 @@ __all__ = ['build_sumo', 'SumoBodies', 'SumoError', 'sumo_network']
 
 def sumo_network(spec):
     """
-    Return the .net.xml path of a world (its map of a SUMO kind, else ``traffic: net:``).
+    Return the .net.xml path of a world's map of a SUMO kind (sumo, opendrive, osm).
 
-    :raises InvalidParameterError: the world has no SUMO network, naming its map.
+    The map's own network, or netconvert's of an OpenDRIVE or OSM file (maps/netconvert.py,
+    cached: the lane map was read from it).
+
+    :raises InvalidParameterError: the world has no SUMO network, naming its map's kind.
     """
-    traffic = spec.traffic
-    net = getattr(getattr(spec, 'map', None), 'net', None) or traffic.net
-    if net is None:
-        kind = getattr(getattr(spec, 'map', None), 'type', None)
-        have = 'no map' if kind is None and getattr(spec, 'map', None) is None else \
-            f'a map of kind {kind or type(spec.map).__name__}'
+    world_map = getattr(spec, 'map', None)
+    if not isinstance(world_map, SumoNetMapSpec):
+        kind = getattr(world_map, 'type', None) or getattr(world_map, 'kind', None)
+        have = ('roads: only' if getattr(spec, 'roads', None) else 'no map') \
+            if world_map is None else f'a map of kind {kind or type(world_map).__name__}'
         raise InvalidParameterError(
-            f'{traffic.source}: the sumo engine runs on a SUMO network: give the world a map of '
-            f'kind sumo (map: {{type: sumo, net: city.net.xml}}), opendrive or osm; it has '
-            f'{have}')
-    return net
+            f'{spec.traffic.source}: the sumo engine runs on a SUMO network: give the world a '
+            f'map of kind sumo (map: {{type: sumo, net: city.net.xml}}), opendrive or osm; it '
+            f'has {have}')
+    from vehicle_sim.maps.netconvert import net_file
+    return net_file(world_map)
 
 
 def sumo_arguments(spec, net, seed, routes):
@@ -224,8 +226,10 @@ class SumoBodies:
             if self._tls_links:
                 for tls in {tls for tls, _ in self._tls_links.values()}:
                     api.trafficlight.subscribe(tls, (c.TL_RED_YELLOW_GREEN_STATE,))
-            self._programs_of = {tls: api.trafficlight.getProgram(tls)
-                                 for tls, _ in self._tls_links.values()}
+            self._programs_of = {program.tls_id: program.program_id for program in self.programs}
+            if self._tls_links:
+                self._drive_signals(api, {tls: api.trafficlight.getRedYellowGreenState(tls)
+                                          for tls in self._programs_of})
         self._start_step = self.world.step_count
         self._placed_at = self.world.time_s
         self._synced_step = self.world.step_count
@@ -462,14 +466,15 @@ class SumoBodies:
         self.world.mark_moved()
 
     # ------------------------------------------------------------------ signals
-    def _drive_signals(self, api):
-        """Give the world's signal controller SUMO's states, group by group."""
+    def _drive_signals(self, api, strings=None):
+        """Give the world's signal controller SUMO's states ({tls: state string}: now)."""
         controller = self.signals
         if controller is None or not self._tls_links:
             return
-        c = self._constants
-        strings = {tls: values[c.TL_RED_YELLOW_GREEN_STATE]
-                   for tls, values in api.trafficlight.getAllSubscriptionResults().items()}
+        if strings is None:
+            c = self._constants
+            strings = {tls: values[c.TL_RED_YELLOW_GREEN_STATE]
+                       for tls, values in api.trafficlight.getAllSubscriptionResults().items()}
         states = {}
         for group, (tls, link) in self._tls_links.items():
             text = strings.get(tls)
@@ -483,7 +488,7 @@ class SumoBodies:
         if controller is None or not self._tls_links:
             return
         api = self.session.api
-        forced = dict(getattr(controller, 'forced', lambda: {})())
+        forced = controller.forced()
         for group, state in forced.items():
             where = self._tls_links.get(group)
             if where is not None and self._pushed.get(group) != state:

@@ -103,8 +103,6 @@ SUMO_TRAFFIC_SPECS = (
     ParamSpec('options', 'options', 'str_list', None, '', 'further sumo command-line options, '
               "e.g. ['--time-to-teleport', '-1'] (not those the engine sets: "
               + ', '.join(OWN_OPTIONS) + '); null = none', optional=True, empty=True),
-    ParamSpec('net', 'net', 'str', None, '', 'the SUMO network, relative to the world file '
-              "(null: the world's map, of kind sumo)", optional=True),
     replace(OBJECTS_RATE, default=None, optional=True,
             doc='rate of the objects, markers and signals over ROS on simulated time (null: the '
                 "node's objects_rate parameter, 10 Hz by default); wins over the parameter"),
@@ -155,7 +153,7 @@ class SumoTrafficSpec:
     """
     A validated ``traffic:`` of the SUMO engine; ``source`` = 'file: traffic' for later errors.
 
-    ``routes`` and ``net`` are paths resolved against the world file's folder.
+    ``routes`` are paths resolved against the world file's folder.
     """
 
     routes: Tuple[str, ...] = ()
@@ -165,7 +163,6 @@ class SumoTrafficSpec:
     begin_s: float = 0.0
     transport: str = 'auto'
     options: Tuple[str, ...] = ()
-    net: Optional[str] = None
     source: str = 'traffic'
     objects_rate_hz: Optional[float] = None
     engine: str = ENGINE
@@ -269,12 +266,8 @@ def sumo_traffic_from_dict(data, source, check_model=None, base_dir=None) -> Sum
             raise InvalidParameterError(
                 f"{source}: field 'options': {option!r} is set by the engine (from the keys "
                 "routes, seed, step, begin and the world's network): give it there")
-    net = values['net']
-    if net is not None:
-        net = _file(net, 'net', source, base_dir)
     return SumoTrafficSpec(routes, demand, values['step_s'], values['seed'], values['begin_s'],
-                           values['transport'], options, net, source,
-                           values['objects_rate_hz'])
+                           values['transport'], options, source, values['objects_rate_hz'])
 
 
 def sumo_traffic_markdown():
