@@ -199,3 +199,33 @@ def test_two_worlds_in_one_process_the_second_over_traci(net):
     finally:
         first.world.close()
     assert a.session.closed and sumo_session._libsumo_user[0] is None
+
+
+def test_our_car_is_in_sumo_at_its_pose_and_speed_while_on_a_lane(net, tmp_path):
+    routes = write_routes(tmp_path, [('a', 0, 'B0B1')])
+    scene = _world(net, {'routes': routes}, ego=(LANE_X, 12.0, math.pi / 2), folder=tmp_path)
+    try:
+        bodies = scene.parts['traffic']
+        api = bodies.session.api
+        logic = scene.vehicles['ego'].car.logic
+        logic.set_gear(1)
+        logic.set_throttle(0.5)
+        body = scene.vehicles['ego'].body
+        _run(scene, 0.11)              # SUMO's first step at 0.1 s
+        for _ in range(40):
+            assert 'vehicle_sim.ego' in api.vehicle.getIDList()
+            _run(scene, 0.1)
+        speed = body.forward_speed_mps()
+        assert speed > 3.0
+        # SUMO's speed of the car: its move over SUMO's last step (the physics' speed then)
+        assert api.vehicle.getSpeed('vehicle_sim.ego') == pytest.approx(speed, rel=0.1)
+        assert api.vehicle.getRoadID('vehicle_sim.ego') == 'A0A1'
+        fx, fy = api.vehicle.getPosition('vehicle_sim.ego')
+        _, y, *_ = body.pose()          # the rear axle; SUMO has the front bumper
+        assert fx == pytest.approx(LANE_X, abs=0.2) and y < fy < y + 5.0
+        # 30 m off every road it is out of SUMO
+        scene.vehicles['ego'].body.rebuild((-30.0, -30.0, 0.0))
+        _run(scene, 0.2)
+        assert 'vehicle_sim.ego' not in api.vehicle.getIDList()
+    finally:
+        scene.world.close()

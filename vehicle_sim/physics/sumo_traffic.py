@@ -69,6 +69,9 @@ from vehicle_sim.physics.traffic_boxes import (
 
 OURS_PREFIX = 'vehicle_sim.'     # our vehicles' SUMO ids: this + their names
 NAME_PREFIX = 'sumo_'            # the bodies' names: this + the pool index
+# our vehicle is in SUMO while its front is within this of the centreline of a lane SUMO's cars
+# may use [m] (a lane and a half of 3.2 m)
+OFF_ROAD_M = 5.0
 PERSON_COLOUR = (0.95, 0.55, 0.15, 1.0)
 # SUMO's state character of each of our signal states (what a forced state is pushed as)
 SUMO_CHARACTER = {'green': 'G', 'yellow': 'y', 'red': 'r', 'off': 'O'}
@@ -222,7 +225,7 @@ class SumoBodies:
                 api.vehicletype.setWidth(type_id, outline.width_m)
             c = self._constants
             api.simulation.subscribe((c.VAR_DEPARTED_VEHICLES_IDS,
-                                      c.VAR_DEPARTED_PERSONS_IDS))
+                                      c.VAR_DEPARTED_PERSONS_IDS, c.VAR_ARRIVED_VEHICLES_IDS))
             if self._tls_links:
                 for tls in {tls for tls, _ in self._tls_links.values()}:
                     api.trafficlight.subscribe(tls, (c.TL_RED_YELLOW_GREEN_STATE,))
@@ -257,9 +260,15 @@ class SumoBodies:
 
     # ------------------------------------------------------------------ our vehicles in SUMO
     def _push_ours(self):
-        """Put each of our vehicles into SUMO where the physics has it (its front bumper)."""
+        """
+        Put each of our vehicles into SUMO where the physics has it (its front bumper).
+
+        A vehicle whose front is farther than OFF_ROAD_M from every lane of SUMO's passenger
+        cars (a car park, a field) is out of SUMO until it is back; one SUMO removed (it
+        teleports a vehicle stuck for its --time-to-teleport) comes back at the next step.
+        """
         api = self.session.api
-        sumo_errors = self.session.refusal      # a call refused; SUMO's end goes on up
+        refused = self.session.refusal          # a call refused; SUMO's end goes on up
         ours = []
         for body, outline in zip(self._ours, self._outlines):
             o = our_vehicle(body, outline)
@@ -268,11 +277,21 @@ class SumoBodies:
             half = 0.5 * o.length_m
             x, y = o.x_m + half * math.cos(o.yaw_rad), o.y_m + half * math.sin(o.yaw_rad)
             angle = 90.0 - math.degrees(o.yaw_rad)
+            try:                                  # the nearest lane of SUMO's cars
+                edge, s, lane = api.simulation.convertRoad(x, y, False, 'passenger')
+                lx, ly = api.simulation.convert2D(edge, s, lane)
+                near = math.hypot(lx - x, ly - y) <= OFF_ROAD_M
+            except refused:
+                near = False
+            if not near:                          # off the lanes: out of SUMO until back
+                if o.name in self._in_sumo:
+                    self._in_sumo.discard(o.name)
+                    try:
+                        api.vehicle.remove(vid)
+                    except refused:
+                        pass
+                continue
             if o.name not in self._in_sumo:
-                try:
-                    edge, _, _ = api.simulation.convertRoad(x, y)
-                except sumo_errors:
-                    continue                      # off every road: not in SUMO until back
                 if edge.startswith(':'):
                     continue                      # added on a normal edge
                 route = f'{vid}.route{self._routes}'
@@ -280,16 +299,16 @@ class SumoBodies:
                 try:
                     api.route.add(route, [edge])
                     api.vehicle.add(vid, route, typeID=vid, departSpeed='0')
-                except sumo_errors:
+                except refused:
                     continue
                 self._in_sumo.add(o.name)
             try:
                 api.vehicle.moveToXY(vid, '', -1, x, y, angle, keepRoute=2)
-            except sumo_errors:                   # off every road: out of SUMO until back
+            except refused:                       # SUMO lost it (a teleport): added again
                 self._in_sumo.discard(o.name)
                 try:
                     api.vehicle.remove(vid)
-                except sumo_errors:
+                except refused:
                     pass
         return ours
 
@@ -313,6 +332,9 @@ class SumoBodies:
         api.simulationStep()
         c = self._constants
         departed = api.simulation.getSubscriptionResults()
+        for vid in departed.get(c.VAR_ARRIVED_VEHICLES_IDS, ()):
+            if vid.startswith(OURS_PREFIX):          # SUMO removed one of ours: back next step
+                self._in_sumo.discard(vid[len(OURS_PREFIX):])
         fields = (c.VAR_POSITION, c.VAR_ANGLE, c.VAR_SPEED)
         for person, key in ((False, c.VAR_DEPARTED_VEHICLES_IDS),
                             (True, c.VAR_DEPARTED_PERSONS_IDS)):
