@@ -29,13 +29,17 @@ import sys
 
 import pytest
 
-pytest.importorskip('libsumo', reason="needs the 'sumo' extra")
+pytest.importorskip('traci', reason="needs the 'sumo' extra")
+
+from vehicle_sim.physics import sumo_session  # noqa: E402
+
+if sumo_session.load_libsumo() is None:      # (imported quietly: its pyarrow notice)
+    pytest.skip("needs the 'sumo' extra (libsumo)", allow_module_level=True)
 
 from sumo_helpers import one_lane_grid_net, write_routes  # noqa: E402
 
 from vehicle_sim.config import world_from_data  # noqa: E402
 from vehicle_sim.core.specs.errors import InvalidParameterError  # noqa: E402
-from vehicle_sim.physics import sumo_session  # noqa: E402
 from vehicle_sim.physics.scene import build_scene  # noqa: E402
 from vehicle_sim.physics.sensors import CollisionMonitor  # noqa: E402
 from vehicle_sim.physics.sumo_session import SumoError, SumoUnavailable  # noqa: E402

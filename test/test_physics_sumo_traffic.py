@@ -29,12 +29,16 @@ import math
 import pybullet
 import pytest
 
-pytest.importorskip('libsumo', reason="needs the 'sumo' extra")
+pytest.importorskip('traci', reason="needs the 'sumo' extra")
+
+from vehicle_sim.physics import sumo_session  # noqa: E402
+
+if sumo_session.load_libsumo() is None:      # (imported quietly: its pyarrow notice)
+    pytest.skip("needs the 'sumo' extra (libsumo)", allow_module_level=True)
 
 from sumo_helpers import one_lane_grid_net, write_routes  # noqa: E402
 
 from vehicle_sim.config import world_from_data  # noqa: E402
-from vehicle_sim.physics import sumo_session  # noqa: E402
 from vehicle_sim.physics.scene import build_scene  # noqa: E402
 
 LANE_X = 1.6          # edge A0A1's lane (northbound) runs along x = 1.6, y from 5.2 to 92.8
@@ -229,3 +233,32 @@ def test_our_car_is_in_sumo_at_its_pose_and_speed_while_on_a_lane(net, tmp_path)
         assert 'vehicle_sim.ego' not in api.vehicle.getIDList()
     finally:
         scene.world.close()
+
+
+def _crossing(net, folder, ego, seconds):
+    # a person walking north on A0A1's sidewalk, across the crossing :A1_c2 (over A0A1 and
+    # A1A0, y 92.8 to 96.8) and south on A1A0's: where is it after ``seconds``?
+    routes = folder / 'walk.rou.xml'
+    routes.write_text('<routes>\n  <person id="p" depart="0" departPos="80">'
+                      '<walk edges="A0A1 A1A0"/></person>\n</routes>\n')
+    scene = _world(net, {'routes': str(routes)}, ego=ego, folder=folder)
+    try:
+        bodies = scene.parts['traffic']
+        _run(scene, seconds)
+        api = bodies.session.api
+        (obj,) = bodies.objects()
+        assert (obj.object_class, obj.length_m, obj.width_m, obj.height_m) == (
+            'pedestrian', 0.215, 0.478, 1.719)           # SUMO's DEFAULT_PEDTYPE
+        assert bodies.sumo_id(obj.name) == 'p'
+        return api.person.getRoadID('p'), obj.x_m
+    finally:
+        scene.world.close()
+
+
+def test_a_pedestrian_waits_for_our_car_standing_on_the_crossing(net, tmp_path):
+    # our car's front on the crossing (it stopped there, 1.8 m wide): the person walking west
+    # over the crossing stops east of it and stays there
+    edge, x = _crossing(net, tmp_path, (LANE_X, 93.0, math.pi / 2), 90.0)
+    assert edge in (':A1_w2', ':A1_c2') and x > LANE_X + 0.9
+    # without it, the person crosses at its green (about 45 s) and walks on
+    assert _crossing(net, tmp_path, (-30.0, -30.0, 0.0), 60.0)[0] == 'A1A0'
