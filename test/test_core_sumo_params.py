@@ -55,9 +55,9 @@ def test_the_engine_is_registered_with_its_tables():
 def test_routes_are_resolved_in_the_world_files_folder_and_the_defaults(routes):
     spec = _parse({'routes': 'city.rou.xml'}, routes)
     assert spec.engine == 'sumo' and spec.routes == (str(routes / 'city.rou.xml'),)
-    assert (spec.step_s, spec.seed, spec.begin_s, spec.transport, spec.options, spec.demand,
-            spec.objects_rate_hz, spec.source) == (0.1, 0, 0.0, 'auto', (), None, None,
-                                                   'w.yaml: traffic')
+    assert (spec.step_s, spec.seed, spec.begin_s, spec.warmup_s, spec.transport, spec.options,
+            spec.demand, spec.objects_rate_hz, spec.source) == (
+        0.1, 0, 0.0, 0.0, 'auto', (), None, None, 'w.yaml: traffic')
     assert spec.update_period_s == 0.1
     listed = _parse({'routes': ['city.rou.xml', 'city.rou.xml'], 'step': 0.2, 'seed': 9,
                      'transport': 'traci', 'options': ['--time-to-teleport', '-1']}, routes)
@@ -105,6 +105,8 @@ def test_a_demand_with_weights_or_a_list_of_classes():
                                                  r'engine'),
     ({'demand': {}, 'options': ['--step-length=0.5']}, r"'--step-length=0.5' is set by"),
     ({'demand': {}, 'vehicles': 5}, r"unknown field 'vehicles'"),
+    ({'demand': {}, 'warmup': 0.15}, r"field 'warmup' = 0\.15: must be a multiple of step "
+                                     r'\(0\.1 s\)$'),
 ])
 def test_bad_values_are_refused_naming_the_field(routes, data, words):
     with pytest.raises(InvalidParameterError, match=r'^w\.yaml: traffic: .*' + words):

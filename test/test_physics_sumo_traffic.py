@@ -262,3 +262,30 @@ def test_a_pedestrian_waits_for_our_car_standing_on_the_crossing(net, tmp_path):
     assert edge in (':A1_w2', ':A1_c2') and x > LANE_X + 0.9
     # without it, the person crosses at its green (about 45 s) and walks on
     assert _crossing(net, tmp_path, (-30.0, -30.0, 0.0), 60.0)[0] == 'A1A0'
+
+
+def test_a_warmup_starts_the_world_with_traffic_and_each_reset_runs_it_again(net):
+    scene = _world(net, {'demand': DEMAND, 'seed': 4, 'warmup': 30.0}, ego=(-30.0, -30.0, 0.0))
+    try:
+        bodies = scene.parts['traffic']
+        api = bodies.session.api
+        assert api.simulation.getTime() == pytest.approx(30.0) and scene.world.time_s == 0.0
+        warm = sorted(bodies.agents())
+        assert len(warm) > 5 and bodies.since_update_s == 0.0
+        for name, x, y, *_ in warm:     # its bodies already where SUMO has them
+            position, _ = pybullet.getBasePositionAndOrientation(
+                bodies.body_of(name), physicsClientId=scene.world.client_id)
+            assert position[:2] == pytest.approx((x, y), abs=1e-6)
+        _run(scene, 5.0)
+        bodies.reset(4)
+        assert api.simulation.getTime() == pytest.approx(30.0) and sorted(bodies.agents()) == warm
+    finally:
+        scene.world.close()
+    # SUMO's state 30 s in: that of a world without a warmup 30 s later (its SUMO step at
+    # 30 s comes before the world's step from 30 s)
+    cold = _world(net, {'demand': DEMAND, 'seed': 4}, ego=(-30.0, -30.0, 0.0))
+    try:
+        _run(cold, 30.01)
+        assert sorted(cold.parts['traffic'].agents()) == warm
+    finally:
+        cold.world.close()

@@ -190,7 +190,7 @@ class SumoBodies:
 
     # ------------------------------------------------------------------ starting, closing
     def _start(self, seed):
-        """Start SUMO with ``seed``; every body parked, SUMO's time at the spec's begin."""
+        """Start SUMO with ``seed``, run its warmup; SUMO's time: the spec's begin + warmup."""
         spec = self.spec
         routes = list(spec.routes)
         if spec.demand is not None:
@@ -239,6 +239,12 @@ class SumoBodies:
         self._drawn_at = -math.inf
         self._near = [[] for _ in self._ours]
         self._near_all = []
+        warmup = int(round(spec.warmup_s / spec.step_s))
+        if warmup:
+            with self.session.errors('warming up'):
+                for _ in range(warmup):
+                    ours = self._advance()
+            self._near, self._near_all = self._nearby(ours)
 
     def on_close(self):
         """World hook (``World.close``): close SUMO."""
@@ -247,7 +253,7 @@ class SumoBodies:
 
     def reset(self, seed=None):
         """
-        Start SUMO again (its vehicles and persons gone, its time back at begin); say so.
+        Start SUMO again (its time back at begin, then its warmup run); say so in words.
 
         :param seed: SUMO's seed (and the demand's when it has none of its own); None = the
             spec's seed.

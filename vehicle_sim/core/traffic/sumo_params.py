@@ -29,7 +29,8 @@ The form::
         seed: 3                     # null: the engine's seed
       step: 0.1                     # SUMO's step length [s], a multiple of the world step
       seed: 7                       # SUMO's --seed
-      begin: 0.0                    # SUMO's simulation time at the world's start [s]
+      begin: 0.0                    # SUMO's simulation time when it starts [s]
+      warmup: 60.0                  # SUMO runs this long first: the world starts with traffic
       transport: auto               # libsumo in process, or TraCI (a SUMO process)
       options: [--time-to-teleport, '-1']   # further sumo options
       objects_rate: 10.0
@@ -94,8 +95,12 @@ SUMO_TRAFFIC_SPECS = (
               'step of simulated time (a multiple of the world step)', gt=0.0, le=1.0),
     ParamSpec('seed', 'seed', 'int', 0, '', "SUMO's --seed (its drivers' randomness); the "
               "demand's seed by default", ge=0, le=999999),
-    ParamSpec('begin', 'begin_s', 'float', 0.0, 's', "SUMO's time when the world starts "
-              "(SUMO's --begin)", ge=0.0, le=86400.0 * 7),
+    ParamSpec('begin', 'begin_s', 'float', 0.0, 's', "SUMO's time when it starts (SUMO's "
+              '--begin)', ge=0.0, le=86400.0 * 7),
+    ParamSpec('warmup', 'warmup_s', 'float', 0.0, 's', 'SUMO runs this long (a multiple of '
+              'step) when it starts and at each reset, before the world goes on, so that the '
+              "world starts with traffic (SUMO's time at the world's start: begin + warmup)",
+              ge=0.0, le=3600.0),
     ParamSpec('transport', 'transport', 'enum', 'auto', '', 'how SUMO runs: libsumo (in this '
               'process; one SUMO per process), traci (a sumo process, over a socket; slower), '
               'auto (libsumo when this process has no SUMO running yet, else traci)',
@@ -161,6 +166,7 @@ class SumoTrafficSpec:
     step_s: float = 0.1
     seed: int = 0
     begin_s: float = 0.0
+    warmup_s: float = 0.0
     transport: str = 'auto'
     options: Tuple[str, ...] = ()
     source: str = 'traffic'
@@ -266,8 +272,13 @@ def sumo_traffic_from_dict(data, source, check_model=None, base_dir=None) -> Sum
             raise InvalidParameterError(
                 f"{source}: field 'options': {option!r} is set by the engine (from the keys "
                 "routes, seed, step, begin and the world's network): give it there")
+    steps = values['warmup_s'] / values['step_s']
+    if abs(steps - round(steps)) > 1e-6:
+        raise InvalidParameterError(f"{source}: field 'warmup' = {values['warmup_s']:g}: must be "
+                                    f"a multiple of step ({values['step_s']:g} s)")
     return SumoTrafficSpec(routes, demand, values['step_s'], values['seed'], values['begin_s'],
-                           values['transport'], options, source, values['objects_rate_hz'])
+                           values['warmup_s'], values['transport'], options, source,
+                           values['objects_rate_hz'])
 
 
 def sumo_traffic_markdown():
