@@ -72,6 +72,7 @@ NAME_PREFIX = 'sumo_'            # the bodies' names: this + the pool index
 # our vehicle is in SUMO while its front is within this of the centreline of a lane SUMO's cars
 # may use [m] (a lane and a half of 3.2 m)
 OFF_ROAD_M = 5.0
+RETRY_STEPS = 10                 # SUMO steps between two looks for a lane of one out of SUMO
 PERSON_COLOUR = (0.95, 0.55, 0.15, 1.0)
 # SUMO's state character of each of our signal states (what a forced state is pushed as)
 SUMO_CHARACTER = {'green': 'G', 'yellow': 'y', 'red': 'r', 'off': 'O'}
@@ -209,13 +210,19 @@ class SumoBodies:
         for slot in reversed(self._slots):
             self._free.setdefault(slot.key, []).append(slot)
         self._in_sumo = set()              # the names of our vehicles in SUMO now
+        self._retry = {}                   # {name: out of SUMO, looked for since}
+        self._shapes = {}                  # {SUMO lane id: its shape}
+        self._steps = 0                    # SUMO steps since the start
+        self._strings = {}                 # {tls id: its state string at the last drive}
         self._routes = 0
         self._pushed = {}                  # {group id: state} forced states pushed to SUMO
         self._tls_links = {}               # {group id: (tls id, link index)}
+        self._groups_of = {}               # {tls id: ((link index, group id), ...)}
         for program in self.programs:
-            for link, group in enumerate(program.links):
-                if group is not None:
-                    self._tls_links[group] = (program.tls_id, link)
+            self._groups_of[program.tls_id] = tuple(
+                (link, group) for link, group in enumerate(program.links) if group is not None)
+            for link, group in self._groups_of[program.tls_id]:
+                self._tls_links[group] = (program.tls_id, link)
         with self.session.errors('at the start'):
             for index, body in enumerate(self._ours):
                 outline = self._outlines[index]
@@ -242,8 +249,8 @@ class SumoBodies:
         warmup = int(round(spec.warmup_s / spec.step_s))
         if warmup:
             with self.session.errors('warming up'):
-                for _ in range(warmup):
-                    ours = self._advance()
+                for left in range(warmup - 1, -1, -1):
+                    ours = self._advance(place=not left)     # the bodies placed at its end
             self._near, self._near_all = self._nearby(ours)
 
     def on_close(self):
@@ -269,8 +276,10 @@ class SumoBodies:
         """
         Put each of our vehicles into SUMO where the physics has it (its front bumper).
 
-        A vehicle whose front is farther than OFF_ROAD_M from every lane of SUMO's passenger
-        cars (a car park, a field) is out of SUMO until it is back; one SUMO removed (it
+        A vehicle whose front is farther than OFF_ROAD_M from the lane SUMO has it on (a car
+        park, a field: ``moveToXY`` puts it anywhere) is taken out of SUMO; one out of SUMO is
+        put in again when its front is that near a lane of SUMO's passenger cars (looked for
+        every RETRY_STEPS SUMO steps: the search costs some 0.5 ms); one SUMO removed (it
         teleports a vehicle stuck for its --time-to-teleport) comes back at the next step.
         """
         api = self.session.api
@@ -283,23 +292,22 @@ class SumoBodies:
             half = 0.5 * o.length_m
             x, y = o.x_m + half * math.cos(o.yaw_rad), o.y_m + half * math.sin(o.yaw_rad)
             angle = 90.0 - math.degrees(o.yaw_rad)
-            try:                                  # the nearest lane of SUMO's cars
-                edge, s, lane = api.simulation.convertRoad(x, y, False, 'passenger')
-                lx, ly = api.simulation.convert2D(edge, s, lane)
-                near = math.hypot(lx - x, ly - y) <= OFF_ROAD_M
-            except refused:
-                near = False
-            if not near:                          # off the lanes: out of SUMO until back
-                if o.name in self._in_sumo:
-                    self._in_sumo.discard(o.name)
-                    try:
-                        api.vehicle.remove(vid)
-                    except refused:
-                        pass
-                continue
-            if o.name not in self._in_sumo:
-                if edge.startswith(':'):
-                    continue                      # added on a normal edge
+            if o.name in self._in_sumo:
+                lane = api.vehicle.getLaneID(vid)
+                if not lane or self._off_lane(api, lane, x, y):
+                    self._take_out(api, vid, o.name)
+                    continue
+            else:
+                if self._steps % RETRY_STEPS and self._retry.get(o.name):
+                    continue
+                self._retry[o.name] = True
+                try:                              # the nearest lane of SUMO's cars
+                    edge, s, lane = api.simulation.convertRoad(x, y, False, 'passenger')
+                    lx, ly = api.simulation.convert2D(edge, s, lane)
+                except refused:
+                    continue
+                if edge.startswith(':') or math.hypot(lx - x, ly - y) > OFF_ROAD_M:
+                    continue                      # added on a normal edge, near its lane
                 route = f'{vid}.route{self._routes}'
                 self._routes += 1
                 try:
@@ -308,15 +316,36 @@ class SumoBodies:
                 except refused:
                     continue
                 self._in_sumo.add(o.name)
+                self._retry[o.name] = False
             try:
                 api.vehicle.moveToXY(vid, '', -1, x, y, angle, keepRoute=2)
             except refused:                       # SUMO lost it (a teleport): added again
-                self._in_sumo.discard(o.name)
-                try:
-                    api.vehicle.remove(vid)
-                except refused:
-                    pass
+                self._take_out(api, vid, o.name)
         return ours
+
+    def _take_out(self, api, vid, name):
+        """Take one of our vehicles out of SUMO (off the road, or lost by SUMO)."""
+        self._in_sumo.discard(name)
+        self._retry[name] = False             # looked for again at once
+        try:
+            api.vehicle.remove(vid)
+        except self.session.refusal:
+            pass
+
+    def _off_lane(self, api, lane, x, y):
+        """Return whether (x, y) is farther than OFF_ROAD_M from SUMO's lane ``lane``."""
+        shape = self._shapes.get(lane)
+        if shape is None:
+            shape = self._shapes[lane] = tuple(api.lane.getShape(lane))
+        limit = OFF_ROAD_M * OFF_ROAD_M
+        points = shape if len(shape) > 1 else shape * 2
+        for (ax, ay), (bx, by) in zip(points, points[1:]):
+            dx, dy = bx - ax, by - ay
+            span = dx * dx + dy * dy
+            t = 0.0 if span == 0.0 else min(1.0, max(0.0, ((x - ax) * dx + (y - ay) * dy) / span))
+            if (ax + t * dx - x) ** 2 + (ay + t * dy - y) ** 2 <= limit:
+                return False
+        return True
 
     # ------------------------------------------------------------------ the step
     def pre_step(self):
@@ -331,11 +360,12 @@ class SumoBodies:
         elif self._synced_step != count:
             self._move(self._near_all)
 
-    def _advance(self):
+    def _advance(self, place=True):
         api = self.session.api
         self._push_signals()
         ours = self._push_ours()
         api.simulationStep()
+        self._steps += 1
         c = self._constants
         departed = api.simulation.getSubscriptionResults()
         for vid in departed.get(c.VAR_ARRIVED_VEHICLES_IDS, ()):
@@ -371,7 +401,8 @@ class SumoBodies:
             self._park(slot)
             self._free.setdefault(slot.key, []).append(slot)
         self._drive_signals(api)
-        self._place()
+        if place:
+            self._place()
         return ours
 
     def _take(self, api, person, sumo_id):
@@ -503,12 +534,16 @@ class SumoBodies:
             c = self._constants
             strings = {tls: values[c.TL_RED_YELLOW_GREEN_STATE]
                        for tls, values in api.trafficlight.getAllSubscriptionResults().items()}
-        states = {}
-        for group, (tls, link) in self._tls_links.items():
-            text = strings.get(tls)
-            if text is not None and link < len(text):
-                states[group] = SUMO_STATES[text[link]]
-        controller.drive(states)
+        states, last = {}, self._strings
+        for tls, text in strings.items():
+            if last.get(tls) == text:
+                continue                          # no change at this light
+            last[tls] = text
+            for link, group in self._groups_of[tls]:
+                if link < len(text):
+                    states[group] = SUMO_STATES[text[link]]
+        if states or not controller.driven:     # the changes (checking a group costs)
+            controller.drive(states)
 
     def _push_signals(self):
         """Push the states a scenario forces on the world's controller to SUMO (and releases)."""
