@@ -52,6 +52,12 @@ def test_the_engine_is_registered_with_its_tables():
     assert '| `vehicles_per_hour` | float | `0.0` | 1/h | >= 0 and <= 20000 |' in text
 
 
+def test_the_docs_hold_the_generated_key_tables():
+    from pathlib import Path
+    docs = Path(__file__).resolve().parent.parent / 'docs'
+    assert any(sumo_traffic_markdown() in path.read_text('utf-8') for path in docs.glob('*.md'))
+
+
 def test_routes_are_resolved_in_the_world_files_folder_and_the_defaults(routes):
     spec = _parse({'routes': 'city.rou.xml'}, routes)
     assert spec.engine == 'sumo' and spec.routes == (str(routes / 'city.rou.xml'),)

@@ -126,7 +126,7 @@ DEMAND_SPECS = (
     ParamSpec('duration', 'duration_s', 'float', 3600.0, 's', 'departures from begin to begin '
               '+ duration', gt=0.0, le=86400.0),
     ParamSpec('seed', 'seed', 'int', None, '', "randomTrips' --seed (null: the engine's seed, "
-              'and the seed of each reset)',
+              "and each reset's)",
               ge=0, le=999999, optional=True),
     ParamSpec('min_distance', 'min_distance_m', 'float', 0.0, 'm', 'the least straight '
               "distance between a trip's start and end (randomTrips --min-distance)", ge=0.0,
