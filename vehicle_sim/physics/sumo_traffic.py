@@ -177,7 +177,6 @@ class SumoBodies:
         self.every = every
         self.signals = signals
         self.programs = programs
-        self.colours = COLOURS
         self.heights = {}                 # {SUMO type id: box height [m]}
         self.follow_params = IdmParams.from_dict({}, f'{spec.source}: idm')
         self._constants = load_traci().constants
@@ -507,12 +506,15 @@ class SumoBodies:
         # Stopped where its body was during the step, in SUMO at once (no deceleration bound).
         api = self.session.api
         with self.session.errors(f'stopping {slot.sumo_id!r}'):
-            if slot.person:
-                api.person.setSpeed(slot.sumo_id, 0.0)
-            else:
-                api.vehicle.setSpeedMode(slot.sumo_id, 0)
-                api.vehicle.setSpeed(slot.sumo_id, 0.0)
-                api.vehicle.setLaneChangeMode(slot.sumo_id, 0)
+            try:
+                if slot.person:
+                    api.person.setSpeed(slot.sumo_id, 0.0)
+                else:
+                    api.vehicle.setSpeedMode(slot.sumo_id, 0)
+                    api.vehicle.setSpeed(slot.sumo_id, 0.0)
+                    api.vehicle.setLaneChangeMode(slot.sumo_id, 0)
+            except self.session.refusal:    # SUMO took it off the road this step: its body
+                pass                        # stays where it was until SUMO's next step
         slot.stopped = True
         elapsed = max(0.0, self.world.time_s - self.world.time_step_s - self._placed_at)
         x, y, z, qz, qw, vx, vy = slot.motion
@@ -568,6 +570,11 @@ class SumoBodies:
                                                       SUMO_CHARACTER[state])
 
     # ------------------------------------------------------------------ the contract
+    @property
+    def colours(self):
+        """Each body's colour by its index (a person's orange; the markers colour by index)."""
+        return tuple(slot.colour for slot in self._slots) or COLOURS
+
     @property
     def since_update_s(self):
         """Time since SUMO's last step [s] (its vehicles went on straight since)."""
