@@ -136,7 +136,7 @@ class SumoSession:
 
     def message(self, error):
         """Return SUMO's words for ``error``: its text, else the error log's last lines."""
-        text = str(error).strip()
+        text = ' '.join(str(error).split())       # one line: SUMO breaks its own
         try:
             with open(self.log_path, encoding='utf-8', errors='replace') as log:
                 lines = [line.rstrip() for line in log if line.strip()]
@@ -148,7 +148,8 @@ class SumoSession:
         if status is not None:
             text += f' (the sumo process ended with status {status})'
         if lines and (not text or text.startswith('Connection closed')):
-            return '; '.join(lines[-LOG_LINES:]) + (f' ({text})' if text else '')
+            return '; '.join(' '.join(line.split()) for line in lines[-LOG_LINES:]) + (
+                f' ({text})' if text else '')
         return text or type(error).__name__
 
     @contextlib.contextmanager
