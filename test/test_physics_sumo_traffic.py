@@ -293,3 +293,21 @@ def test_a_warmup_starts_the_world_with_traffic_and_each_reset_runs_it_again(net
         assert sorted(cold.parts['traffic'].agents()) == warm
     finally:
         cold.world.close()
+
+
+def test_a_person_riding_a_vehicle_has_no_body_of_its_own(net, tmp_path):
+    routes = tmp_path / 'ride.rou.xml'
+    routes.write_text('<routes>\n  <vehicle id="car" depart="0" departSpeed="0">'
+                      '<route edges="A0A1 A1A2"/></vehicle>\n'
+                      '  <person id="rider" depart="triggered">'
+                      '<ride from="A0A1" to="A1A2" lines="car"/></person>\n</routes>\n')
+    scene = _world(net, {'routes': str(routes)}, ego=(-30.0, -30.0, 0.0), folder=tmp_path)
+    try:
+        bodies = scene.parts['traffic']
+        api = bodies.session.api
+        _run(scene, 5.0)
+        assert api.person.getVehicle('rider') == 'car'
+        assert [bodies.sumo_id(name) for name, *_ in bodies.agents()] == ['car']
+        assert [o.object_class for o in bodies.objects()] == ['car']
+    finally:
+        scene.world.close()

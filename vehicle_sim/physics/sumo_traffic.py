@@ -376,14 +376,16 @@ class SumoBodies:
             domain = api.person if person else api.vehicle
             for sumo_id in departed.get(key, ()):       # bodies in the order of departure
                 if person or not sumo_id.startswith(OURS_PREFIX):
-                    domain.subscribe(sumo_id, fields)
+                    # a person's vehicle too: one riding a bus has no body of its own
+                    domain.subscribe(sumo_id, fields + ((c.VAR_VEHICLE,) if person else ()))
                     self._take(api, person, sumo_id)
         seen = set()
         for person, results in ((False, api.vehicle.getAllSubscriptionResults()),
                                 (True, api.person.getAllSubscriptionResults())):
             for sumo_id, values in results.items():
-                if not person and sumo_id.startswith(OURS_PREFIX):
-                    continue
+                if (sumo_id.startswith(OURS_PREFIX) if not person
+                        else values.get(c.VAR_VEHICLE)):
+                    continue                        # ours, or a person riding a vehicle
                 key = (person, sumo_id)
                 slot = self._by_id.get(key)
                 if slot is None:            # back from a teleport (SUMO's jam resolution)
