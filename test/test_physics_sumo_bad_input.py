@@ -213,3 +213,15 @@ def test_our_car_touching_a_sumo_vehicle_is_a_collision_and_stops_it(net, tmp_pa
         assert after[:2] == pytest.approx(where[:2], abs=0.05)      # it stays, an obstacle
     finally:
         scene.world.close()
+
+
+def test_sumo_failing_in_its_warmup_stops_the_build_and_leaves_no_sumo_running(net, tmp_path):
+    routes = write_routes(tmp_path, [('a', 0, 'A0A1'), ('b', 3, 'A0A1'),
+                                     ('late', 6, 'A0A1 NOPE')])
+    with pytest.raises(SumoError, match=r"^w\.yaml: traffic: SUMO warming up: The edge 'NOPE' "
+                                        r"within the route for vehicle 'late' is not known\. "
+                                        r'The route can not be build\.$'):
+        build_scene(_spec(net, {'routes': routes, 'warmup': 10.0,
+                                'options': ['--route-steps', '1']}, tmp_path))
+    assert sumo_session._libsumo_user[0] is None
+    _still_runs(net, tmp_path)

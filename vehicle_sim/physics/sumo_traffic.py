@@ -200,6 +200,15 @@ class SumoBodies:
         self.session = SumoSession(sumo_arguments(spec, self.net, seed, routes),
                                    spec.transport, spec.source)
         self.seed = seed
+        try:
+            self._begin()
+        except BaseException:
+            self.session.close()          # no SUMO left behind (libsumo free again)
+            raise
+
+    def _begin(self):
+        """Set up the started SUMO: our vehicles' types, the subscriptions, the warmup."""
+        spec = self.spec
         api = self.session.api
         self._types = {}                   # {SUMO type id: (length, width, height, vClass)}
         self._by_id = {}                   # {(person?, SUMO id): slot}
@@ -349,6 +358,9 @@ class SumoBodies:
     # ------------------------------------------------------------------ the step
     def pre_step(self):
         """World hook: every ``step``, advance SUMO and place the bodies."""
+        if self.session.closed:
+            raise SumoError(f'{self.spec.source}: SUMO is not running (closed, or its restart '
+                            'failed)')
         world = self.world
         count = world.step_count
         since = count - self._start_step
