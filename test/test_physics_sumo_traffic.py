@@ -311,3 +311,34 @@ def test_a_person_riding_a_vehicle_has_no_body_of_its_own(net, tmp_path):
         assert [o.object_class for o in bodies.objects()] == ['car']
     finally:
         scene.world.close()
+
+
+def test_a_sumo_vehicles_predicted_path_follows_its_route_through_the_junction(net, tmp_path):
+    # two cars 60 m up their edges, northbound: one turns right at A1 onto A1B1 (east), the
+    # other goes straight on at B1 onto B1B2
+    routes = tmp_path / 'turns.rou.xml'
+    routes.write_text('<routes>\n'
+                      '  <vehicle id="turn" depart="0" departPos="60" departSpeed="max">'
+                      '<route edges="A0A1 A1B1"/></vehicle>\n'
+                      '  <vehicle id="straight" depart="0" departPos="60" departSpeed="max">'
+                      '<route edges="B0B1 B1B2"/></vehicle>\n</routes>\n')
+    scene = _world(net, {'routes': str(routes)}, ego=(-30.0, -30.0, 0.0), folder=tmp_path)
+    try:
+        bodies = scene.parts['traffic']
+        _run(scene, 1.0)
+        objects = {bodies.sumo_id(o.name): o for o in bodies.objects()}
+        turn, straight = objects['turn'], objects['straight']
+        assert turn.speed_mps > 5.0 and straight.speed_mps > 5.0
+        assert len(turn.path) == len(straight.path) == 10
+        # straight on: along x = 101.6, north
+        assert all(x == pytest.approx(101.6, abs=0.3) and yaw == pytest.approx(math.pi / 2,
+                                                                                abs=0.05)
+                   for x, _, yaw in straight.path)
+        # the turn: north along x = 1.6, then east along A1B1 (y = 98.4)
+        x0, _, yaw0 = turn.path[0]
+        x9, y9, yaw9 = turn.path[-1]
+        assert x0 == pytest.approx(1.6, abs=0.3) and yaw0 == pytest.approx(math.pi / 2, abs=0.05)
+        assert x9 > 10.0 and y9 == pytest.approx(98.4, abs=0.3) and yaw9 == pytest.approx(
+            0.0, abs=0.05)
+    finally:
+        scene.world.close()

@@ -53,6 +53,7 @@ from vehicle_sim.core.map.signal_programs import SUMO_STATES
 from vehicle_sim.core.map.sumo_net_params import SumoNetMapSpec
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.idm import IdmParams
+from vehicle_sim.core.traffic.lane_paths import route_path
 from vehicle_sim.core.traffic.objects import PREDICTION_HORIZON_S, PREDICTION_STEP_S, TrafficObject
 from vehicle_sim.core.traffic.sumo_params import object_class
 from vehicle_sim.core.world.params import ObstacleSpec
@@ -123,14 +124,14 @@ def build_sumo(part, world, spec, parts):
     signals = getattr(parts.get('signals'), 'controller', None)
     graph = getattr(spec, 'lanes', None)
     programs = tuple(getattr(getattr(graph, 'rules', None), 'programs', None) or ())
-    return SumoBodies(world, traffic, net, every, signals, programs)
+    return SumoBodies(world, traffic, net, every, signals, programs, graph)
 
 
 class _Slot:
     """One body of the pool: its name, body id, box size, colour and whom it serves now."""
 
     __slots__ = ('index', 'name', 'body_id', 'size', 'clearance', 'colour', 'key', 'sumo_id',
-                 'person', 'vclass', 'state', 'motion', 'stopped')
+                 'person', 'vclass', 'state', 'motion', 'stopped', 'lane', 'route')
 
     def __init__(self, index, body_id, size, clearance, colour, key):
         self.index = index
@@ -146,6 +147,8 @@ class _Slot:
         self.state = None                  # (x, y, yaw, speed) of the footprint centre
         self.motion = None                 # (x, y, z, qz, qw, vx, vy) at the last update
         self.stopped = False               # touched one of ours: stopped for good
+        self.lane = None                   # (SUMO lane id, lane position [m], route index)
+        self.route = ()                    # its route's SUMO edges (at its departure)
 
     @property
     def z(self):
@@ -168,15 +171,19 @@ class SumoBodies:
     :param every: world steps per SUMO step.
     :param signals: the world's SignalController, or None.
     :param programs: the lane map's SignalPrograms (core/map/signal_programs.py).
+    :param graph: the world's lane graph (the network's: the objects' predicted paths follow
+        its lanes), or None.
     """
 
-    def __init__(self, world, spec, net, every, signals=None, programs=()):
+    def __init__(self, world, spec, net, every, signals=None, programs=(), graph=None):
         self.world = world
         self.spec = spec
         self.net = net
         self.every = every
         self.signals = signals
         self.programs = programs
+        self.graph = graph
+        self._lengths = {}                # {SUMO lane id: its length in SUMO [m]}
         self.heights = {}                 # {SUMO type id: box height [m]}
         self.follow_params = IdmParams.from_dict({}, f'{spec.source}: idm')
         self._constants = load_traci().constants
@@ -388,9 +395,13 @@ class SumoBodies:
             domain = api.person if person else api.vehicle
             for sumo_id in departed.get(key, ()):       # bodies in the order of departure
                 if person or not sumo_id.startswith(OURS_PREFIX):
-                    # a person's vehicle too: one riding a bus has no body of its own
-                    domain.subscribe(sumo_id, fields + ((c.VAR_VEHICLE,) if person else ()))
-                    self._take(api, person, sumo_id)
+                    # a person's vehicle too: one riding a bus has no body of its own; a
+                    # vehicle's lane, place on it and route index: its predicted path
+                    domain.subscribe(sumo_id, fields + ((c.VAR_VEHICLE,) if person else (
+                        c.VAR_LANE_ID, c.VAR_LANEPOSITION, c.VAR_ROUTE_INDEX)))
+                    slot = self._take(api, person, sumo_id)
+                    if not person:
+                        slot.route = tuple(api.vehicle.getRoute(sumo_id))
         seen = set()
         for person, results in ((False, api.vehicle.getAllSubscriptionResults()),
                                 (True, api.person.getAllSubscriptionResults())):
@@ -409,6 +420,9 @@ class SumoBodies:
                 half = 0.5 * slot.size[0]
                 cos, sin = math.cos(yaw), math.sin(yaw)
                 slot.state = (fx - half * cos, fy - half * sin, yaw, speed)
+                if not person:
+                    slot.lane = (values[c.VAR_LANE_ID], values[c.VAR_LANEPOSITION],
+                                 values[c.VAR_ROUTE_INDEX])
         for key in [key for key in self._by_id if key not in seen]:   # arrived
             slot = self._by_id.pop(key)
             self._park(slot)
@@ -452,6 +466,7 @@ class SumoBodies:
 
     def _park(self, slot):
         slot.sumo_id, slot.state, slot.motion, slot.stopped = None, None, None, False
+        slot.lane, slot.route = None, ()
         pybullet.resetBasePositionAndOrientation(
             slot.body_id, (0.0, 0.0, PARK_DEPTH_M - 10.0 * slot.index), (0.0, 0.0, 0.0, 1.0),
             physicsClientId=self._cid)
@@ -622,8 +637,10 @@ class SumoBodies:
         Return SUMO's vehicles and persons as core TrafficObjects now.
 
         Each is where its body is (gone on straight since SUMO's step), its class from its
-        SUMO vehicle class (core/traffic/sumo_params.py object_class); its predicted path
-        goes on straight at its speed.
+        SUMO vehicle class (core/traffic/sumo_params.py object_class); a vehicle's predicted
+        path follows its lane and the lanes of its route after it at its speed
+        (core/traffic/lane_paths.py), a person's (or one on a lane the lane graph lacks) goes
+        on straight.
         """
         since = self.since_update_s
         count = int(round(horizon_s / step_s))
@@ -633,12 +650,33 @@ class SumoBodies:
             c, s = math.cos(yaw), math.sin(yaw)
             gone = speed * since
             x, y = x + gone * c, y + gone * s
-            path = tuple((x + speed * step_s * k * c, y + speed * step_s * k * s, yaw)
-                         for k in range(1, count + 1))
+            path = self._lane_path(slot, since, count, step_s)
+            if path is None:
+                path = tuple((x + speed * step_s * k * c, y + speed * step_s * k * s, yaw)
+                             for k in range(1, count + 1))
             found.append(TrafficObject(slot.index, slot.name, x, y, yaw, speed, slot.size[0],
                                        slot.size[1], slot.size[2], path, step_s,
                                        object_class(slot.vclass)))
         return tuple(found)
+
+    def _lane_path(self, slot, since, count, step_s):
+        """Return a vehicle's path along the lane graph, or None (no graph, lane not in it)."""
+        if self.graph is None or slot.lane is None:
+            return None
+        lane_id, position, route_index = slot.lane
+        try:
+            lane = self.graph.lane_named(lane_id)
+        except InvalidParameterError:
+            return None
+        length = self._lengths.get(lane_id)
+        if length is None:
+            with self.session.errors(f'reading lane {lane_id!r}'):
+                length = self._lengths[lane_id] = self.session.api.lane.getLength(lane_id)
+        scale = lane.length_m / length if length > 0.0 else 1.0
+        speed = slot.state[3]
+        centre = position * scale - 0.5 * slot.size[0] + speed * since
+        return route_path(self.graph, lane.id, centre, speed, count, step_s,
+                          slot.route[route_index + 1:])
 
     def body_of(self, name):
         """Return the body id of the body called ``name`` (``sumo_<k>``)."""
