@@ -61,8 +61,8 @@ def opendrive_of(net, folder, name='grid.xodr'):
 
 # netgenerate's options of the test grid
 ONE_LANE_GRID_OPTIONS = ('--grid', '--grid.number', '3', '--grid.length', '100',
-                '--default.lanenumber', '1', '--default-junction-type', 'traffic_light',
-                '--sidewalks.guess', '--crossings.guess', '--seed', '1')
+                         '--default.lanenumber', '1', '--default-junction-type', 'traffic_light',
+                         '--sidewalks.guess', '--crossings.guess', '--seed', '1')
 
 
 def one_lane_grid_net(folder):

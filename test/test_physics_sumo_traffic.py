@@ -29,12 +29,16 @@ import math
 import pybullet
 import pytest
 
-pytest.importorskip('libsumo', reason="needs the 'sumo' extra")
+pytest.importorskip('traci', reason="needs the 'sumo' extra")
+
+from vehicle_sim.physics import sumo_session  # noqa: E402
+
+if sumo_session.load_libsumo() is None:      # (imported quietly: its pyarrow notice)
+    pytest.skip("needs the 'sumo' extra (libsumo)", allow_module_level=True)
 
 from sumo_helpers import one_lane_grid_net, write_routes  # noqa: E402
 
 from vehicle_sim.config import world_from_data  # noqa: E402
-from vehicle_sim.physics import sumo_session  # noqa: E402
 from vehicle_sim.physics.scene import build_scene  # noqa: E402
 
 LANE_X = 1.6          # edge A0A1's lane (northbound) runs along x = 1.6, y from 5.2 to 92.8
@@ -49,14 +53,14 @@ def net(tmp_path_factory):
 @pytest.fixture(autouse=True)
 def _cache(tmp_path_factory, monkeypatch):
     # the demand's trips are made once for the module, not in the user's cache
-    monkeypatch.setenv('VEHICLE_SIM_CACHE', str(tmp_path_factory.getbasetemp() / 'cache'))
+    monkeypatch.setenv('XDG_CACHE_HOME', str(tmp_path_factory.getbasetemp() / 'cache'))
 
 
 def _world(net, traffic, ego=(LANE_X, 40.0, math.pi / 2), folder=None):
     x, y, yaw = ego
     data = {'vehicles': [{'name': 'ego', 'model': 'Car',
                           'pose': {'x': x, 'y': y, 'yaw': yaw}}],
-            'traffic': {'engine': 'sumo', 'net': net, **traffic}}
+            'map': {'type': 'sumo', 'net': net}, 'traffic': {'engine': 'sumo', **traffic}}
     return build_scene(world_from_data(data, 'w.yaml', base_dir=str(folder or '.')))
 
 
@@ -106,6 +110,10 @@ def test_the_bodies_are_where_sumo_has_its_vehicles_and_persons(net):
                                                       y + speed * since * math.sin(yaw)),
                                                      abs=1e-6)
         assert {name for name, *_ in agents} <= bodies.moving_names()
+        # the markers' colour of each object (bodies.colours by its index) is its body's
+        colours = {name: colour for name, _, _, colour in bodies.boxes()}
+        assert all(bodies.colours[o.index % len(bodies.colours)] == colours[o.name]
+                   for o in bodies.objects())
     finally:
         scene.world.close()
 
@@ -199,3 +207,138 @@ def test_two_worlds_in_one_process_the_second_over_traci(net):
     finally:
         first.world.close()
     assert a.session.closed and sumo_session._libsumo_user[0] is None
+
+
+def test_our_car_is_in_sumo_at_its_pose_and_speed_while_on_a_lane(net, tmp_path):
+    routes = write_routes(tmp_path, [('a', 0, 'B0B1')])
+    scene = _world(net, {'routes': routes}, ego=(LANE_X, 12.0, math.pi / 2), folder=tmp_path)
+    try:
+        bodies = scene.parts['traffic']
+        api = bodies.session.api
+        logic = scene.vehicles['ego'].car.logic
+        logic.set_gear(1)
+        logic.set_throttle(0.5)
+        body = scene.vehicles['ego'].body
+        _run(scene, 0.11)              # SUMO's first step at 0.1 s
+        for _ in range(40):
+            assert 'vehicle_sim.ego' in api.vehicle.getIDList()
+            _run(scene, 0.1)
+        speed = body.forward_speed_mps()
+        assert speed > 3.0
+        # SUMO's speed of the car: its move over SUMO's last step (the physics' speed then)
+        assert api.vehicle.getSpeed('vehicle_sim.ego') == pytest.approx(speed, rel=0.1)
+        assert api.vehicle.getRoadID('vehicle_sim.ego') == 'A0A1'
+        fx, fy = api.vehicle.getPosition('vehicle_sim.ego')
+        _, y, *_ = body.pose()          # the rear axle; SUMO has the front bumper
+        assert fx == pytest.approx(LANE_X, abs=0.2) and y < fy < y + 5.0
+        # 30 m off every road it is out of SUMO
+        scene.vehicles['ego'].body.rebuild((-30.0, -30.0, 0.0))
+        _run(scene, 0.2)
+        assert 'vehicle_sim.ego' not in api.vehicle.getIDList()
+    finally:
+        scene.world.close()
+
+
+def _crossing(net, folder, ego, seconds):
+    # a person walking north on A0A1's sidewalk, across the crossing :A1_c2 (over A0A1 and
+    # A1A0, y 92.8 to 96.8) and south on A1A0's: where is it after ``seconds``?
+    routes = folder / 'walk.rou.xml'
+    routes.write_text('<routes>\n  <person id="p" depart="0" departPos="80">'
+                      '<walk edges="A0A1 A1A0"/></person>\n</routes>\n')
+    scene = _world(net, {'routes': str(routes)}, ego=ego, folder=folder)
+    try:
+        bodies = scene.parts['traffic']
+        _run(scene, seconds)
+        api = bodies.session.api
+        (obj,) = bodies.objects()
+        assert (obj.object_class, obj.length_m, obj.width_m, obj.height_m) == (
+            'pedestrian', 0.215, 0.478, 1.719)           # SUMO's DEFAULT_PEDTYPE
+        assert bodies.sumo_id(obj.name) == 'p'
+        return api.person.getRoadID('p'), obj.x_m
+    finally:
+        scene.world.close()
+
+
+def test_a_pedestrian_waits_for_our_car_standing_on_the_crossing(net, tmp_path):
+    # our car's front on the crossing (it stopped there, 1.8 m wide): the person walking west
+    # over the crossing stops east of it and stays there
+    edge, x = _crossing(net, tmp_path, (LANE_X, 93.0, math.pi / 2), 90.0)
+    assert edge in (':A1_w2', ':A1_c2') and x > LANE_X + 0.9
+    # without it, the person crosses at its green (about 45 s) and walks on
+    assert _crossing(net, tmp_path, (-30.0, -30.0, 0.0), 60.0)[0] == 'A1A0'
+
+
+def test_a_warmup_starts_the_world_with_traffic_and_each_reset_runs_it_again(net):
+    scene = _world(net, {'demand': DEMAND, 'seed': 4, 'warmup': 30.0}, ego=(-30.0, -30.0, 0.0))
+    try:
+        bodies = scene.parts['traffic']
+        api = bodies.session.api
+        assert api.simulation.getTime() == pytest.approx(30.0) and scene.world.time_s == 0.0
+        warm = sorted(bodies.agents())
+        assert len(warm) > 5 and bodies.since_update_s == 0.0
+        for name, x, y, *_ in warm:     # its bodies already where SUMO has them
+            position, _ = pybullet.getBasePositionAndOrientation(
+                bodies.body_of(name), physicsClientId=scene.world.client_id)
+            assert position[:2] == pytest.approx((x, y), abs=1e-6)
+        _run(scene, 5.0)
+        bodies.reset(4)
+        assert api.simulation.getTime() == pytest.approx(30.0) and sorted(bodies.agents()) == warm
+    finally:
+        scene.world.close()
+    # SUMO's state 30 s in: that of a world without a warmup 30 s later (its SUMO step at
+    # 30 s comes before the world's step from 30 s)
+    cold = _world(net, {'demand': DEMAND, 'seed': 4}, ego=(-30.0, -30.0, 0.0))
+    try:
+        _run(cold, 30.01)
+        assert sorted(cold.parts['traffic'].agents()) == warm
+    finally:
+        cold.world.close()
+
+
+def test_a_person_riding_a_vehicle_has_no_body_of_its_own(net, tmp_path):
+    routes = tmp_path / 'ride.rou.xml'
+    routes.write_text('<routes>\n  <vehicle id="car" depart="0" departSpeed="0">'
+                      '<route edges="A0A1 A1A2"/></vehicle>\n'
+                      '  <person id="rider" depart="triggered">'
+                      '<ride from="A0A1" to="A1A2" lines="car"/></person>\n</routes>\n')
+    scene = _world(net, {'routes': str(routes)}, ego=(-30.0, -30.0, 0.0), folder=tmp_path)
+    try:
+        bodies = scene.parts['traffic']
+        api = bodies.session.api
+        _run(scene, 5.0)
+        assert api.person.getVehicle('rider') == 'car'
+        assert [bodies.sumo_id(name) for name, *_ in bodies.agents()] == ['car']
+        assert [o.object_class for o in bodies.objects()] == ['car']
+    finally:
+        scene.world.close()
+
+
+def test_a_sumo_vehicles_predicted_path_follows_its_route_through_the_junction(net, tmp_path):
+    # two cars 60 m up their edges, northbound: one turns right at A1 onto A1B1 (east), the
+    # other goes straight on at B1 onto B1B2
+    routes = tmp_path / 'turns.rou.xml'
+    routes.write_text('<routes>\n'
+                      '  <vehicle id="turn" depart="0" departPos="60" departSpeed="max">'
+                      '<route edges="A0A1 A1B1"/></vehicle>\n'
+                      '  <vehicle id="straight" depart="0" departPos="60" departSpeed="max">'
+                      '<route edges="B0B1 B1B2"/></vehicle>\n</routes>\n')
+    scene = _world(net, {'routes': str(routes)}, ego=(-30.0, -30.0, 0.0), folder=tmp_path)
+    try:
+        bodies = scene.parts['traffic']
+        _run(scene, 1.0)
+        objects = {bodies.sumo_id(o.name): o for o in bodies.objects()}
+        turn, straight = objects['turn'], objects['straight']
+        assert turn.speed_mps > 5.0 and straight.speed_mps > 5.0
+        assert len(turn.path) == len(straight.path) == 10
+        # straight on: along x = 101.6, north
+        assert all(x == pytest.approx(101.6, abs=0.3) and yaw == pytest.approx(math.pi / 2,
+                                                                                abs=0.05)
+                   for x, _, yaw in straight.path)
+        # the turn: north along x = 1.6, then east along A1B1 (y = 98.4)
+        x0, _, yaw0 = turn.path[0]
+        x9, y9, yaw9 = turn.path[-1]
+        assert x0 == pytest.approx(1.6, abs=0.3) and yaw0 == pytest.approx(math.pi / 2, abs=0.05)
+        assert x9 > 10.0 and y9 == pytest.approx(98.4, abs=0.3) and yaw9 == pytest.approx(
+            0.0, abs=0.05)
+    finally:
+        scene.world.close()

@@ -56,13 +56,16 @@ ERROR_LINES = 6             # netconvert's error lines quoted at most
 OUTPUT_OPTIONS = ('-o', '--output-file', '--sumo-output', '--output')
 
 
-def sumo_home():
-    """Return the eclipse-sumo package's SUMO_HOME; SumoUnavailable names the extra if none."""
+def sumo_home(needs='converting a map with netconvert'):
+    """
+    Return the eclipse-sumo package's SUMO_HOME; SumoUnavailable names the extra if none.
+
+    :param needs: what needs it, for the error ('the sumo traffic engine').
+    """
     try:
         import sumo
     except ImportError:
-        raise SumoUnavailable('converting a map with netconvert needs the eclipse-sumo package: '
-                              + EXTRA_HINT) from None
+        raise SumoUnavailable(f'{needs} needs the eclipse-sumo package: ' + EXTRA_HINT) from None
     return sumo.SUMO_HOME
 
 
@@ -86,10 +89,15 @@ def netconvert_version():
     return done.stdout.splitlines()[0].strip() if done.stdout else 'unknown'
 
 
+def cache_root():
+    """Return the folder of vehicle_sim's made files: $XDG_CACHE_HOME (or ~/.cache)/vehicle_sim."""
+    base = os.environ.get('XDG_CACHE_HOME') or os.path.join(os.path.expanduser('~'), '.cache')
+    return os.path.join(base, 'vehicle_sim')
+
+
 def default_cache():
     """Return the default cache folder: $XDG_CACHE_HOME (or ~/.cache)/vehicle_sim/netconvert."""
-    base = os.environ.get('XDG_CACHE_HOME') or os.path.join(os.path.expanduser('~'), '.cache')
-    return os.path.join(base, 'vehicle_sim', 'netconvert')
+    return os.path.join(cache_root(), 'netconvert')
 
 
 def netconvert_options(spec):

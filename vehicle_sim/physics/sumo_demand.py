@@ -34,21 +34,15 @@ import sys
 import tempfile
 
 from vehicle_sim.core.specs.errors import InvalidParameterError
-from vehicle_sim.physics.sumo_session import sumo_home
+from vehicle_sim.maps.netconvert import cache_root, sumo_home
 
-CACHE_ENV = 'VEHICLE_SIM_CACHE'      # the cache folder; default $XDG_CACHE_HOME/vehicle_sim
 RANDOM_TRIPS_TIMEOUT_S = 600.0
 PEDESTRIAN_SEED_OFFSET = 1000
 
 
 def cache_dir():
-    """Return the folder of vehicle_sim's made files (``$VEHICLE_SIM_CACHE``, else XDG's)."""
-    folder = os.environ.get(CACHE_ENV)
-    if not folder:
-        base = os.environ.get('XDG_CACHE_HOME') or os.path.join(os.path.expanduser('~'),
-                                                                 '.cache')
-        folder = os.path.join(base, 'vehicle_sim')
-    return folder
+    """Return the demands' trips' folder: $XDG_CACHE_HOME (~/.cache)/vehicle_sim/sumo_demand."""
+    return os.path.join(cache_root(), 'sumo_demand')
 
 
 def _runs(net, demand, seed, begin_s):
@@ -81,7 +75,7 @@ def demand_routes(net, demand, seed, begin_s, source):
     :param source: quoted in errors ('world.yaml: traffic').
     :raises InvalidParameterError: randomTrips failed (its message's last lines).
     """
-    home = sumo_home()
+    home = sumo_home('the sumo traffic engine')
     script = os.path.join(home, 'tools', 'randomTrips.py')
     runs = _runs('net.xml', demand, seed, begin_s)
     key = hashlib.sha256()
@@ -89,7 +83,7 @@ def demand_routes(net, demand, seed, begin_s, source):
         for chunk in iter(lambda: handle.read(1 << 20), b''):
             key.update(chunk)
     key.update(repr((runs, _sumo_version(home))).encode())
-    folder = os.path.join(cache_dir(), 'sumo_demand', key.hexdigest()[:32])
+    folder = os.path.join(cache_dir(), key.hexdigest()[:32])
     names = [name for name, _ in runs]
     if os.path.isdir(folder) and all(os.path.isfile(os.path.join(folder, n)) for n in names):
         return [os.path.join(folder, name) for name in names]

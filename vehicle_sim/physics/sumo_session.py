@@ -37,34 +37,21 @@ import subprocess
 import tempfile
 
 from vehicle_sim.core.specs.errors import InvalidParameterError, VehicleSimError
+from vehicle_sim.maps.netconvert import sumo_home
+from vehicle_sim.maps.sumo_net import EXTRA_HINT, SumoUnavailable
 
-EXTRA_HINT = "install the sumo extra: pip install 'vehicle_sim[sumo]'"
 LOG_LINES = 6          # the last lines of SUMO's error log an error quotes
 _labels = itertools.count()
 _libsumo_user = [None]  # the session that holds libsumo in this process
-
-
-class SumoUnavailable(InvalidParameterError):
-    """SUMO (the eclipse-sumo package, libsumo or traci) is not installed."""
 
 
 class SumoError(VehicleSimError):
     """SUMO stopped or refused a call while a world ran: SUMO's message."""
 
 
-def sumo_home():
-    """Return SUMO_HOME of the ``eclipse-sumo`` package (its bin/ and tools/)."""
-    try:
-        import sumo
-    except ImportError:
-        raise SumoUnavailable('the sumo traffic engine needs Eclipse SUMO (the eclipse-sumo '
-                              'package): ' + EXTRA_HINT) from None
-    return sumo.SUMO_HOME
-
-
 def sumo_binary():
     """Return the path of the ``sumo`` program of the ``eclipse-sumo`` package."""
-    return os.path.join(sumo_home(), 'bin', 'sumo')
+    return os.path.join(sumo_home('the sumo traffic engine'), 'bin', 'sumo')
 
 
 def load_libsumo():
@@ -87,14 +74,9 @@ def load_traci():
     return traci
 
 
-def _errors(*modules):
-    found = []
-    for module in modules:
-        if module is None:
-            continue
-        exceptions = getattr(module, 'exceptions', module)
-        found += [exceptions.TraCIException, exceptions.FatalTraCIError]
-    return tuple(found)
+def _errors(module):
+    # libsumo's own exception classes (its ``exceptions`` attribute is traci's), or traci's
+    return (module.TraCIException, module.FatalTraCIError)
 
 
 class SumoSession:
@@ -105,7 +87,8 @@ class SumoSession:
     :param transport: 'auto', 'libsumo' or 'traci' (core/traffic/sumo_params.py TRANSPORTS).
     :param source: quoted in errors ('world.yaml: traffic').
     :raises InvalidParameterError: SUMO refused to start (its message); libsumo asked for and
-        taken or not loadable; SumoUnavailable: SUMO not installed.
+        taken; SumoUnavailable (maps/sumo_net.py): SUMO, libsumo (asked for) or traci not
+        installed, naming the extra.
     """
 
     def __init__(self, args, transport='auto', source='traffic'):
@@ -130,7 +113,8 @@ class SumoSession:
         self._folder = tempfile.mkdtemp(prefix='vehicle_sim_sumo_')
         self.log_path = os.path.join(self._folder, 'sumo.log')
         command = [binary, *args, '--error-log', self.log_path, '--no-step-log', 'true']
-        self._catch = _errors(libsumo if transport == 'libsumo' else load_traci())
+        self._catch = _errors(libsumo if transport == 'libsumo' else load_traci().exceptions)
+        self.refusal = self._catch[0]       # SUMO refused a call (TraCIException); it runs on
         self._libsumo = libsumo if transport == 'libsumo' else None
         self.api = None
         try:
@@ -152,15 +136,20 @@ class SumoSession:
 
     def message(self, error):
         """Return SUMO's words for ``error``: its text, else the error log's last lines."""
-        text = str(error).strip()
+        text = ' '.join(str(error).split())       # one line: SUMO breaks its own
         try:
             with open(self.log_path, encoding='utf-8', errors='replace') as log:
                 lines = [line.rstrip() for line in log if line.strip()]
         except OSError:
             lines = []
         lines = [line for line in lines if not line.startswith('Quitting')]
+        process = getattr(self.api, '_process', None)
+        status = None if process is None else process.poll()
+        if status is not None:
+            text += f' (the sumo process ended with status {status})'
         if lines and (not text or text.startswith('Connection closed')):
-            return '; '.join(lines[-LOG_LINES:]) + (f' ({text})' if text else '')
+            return '; '.join(' '.join(line.split()) for line in lines[-LOG_LINES:]) + (
+                f' ({text})' if text else '')
         return text or type(error).__name__
 
     @contextlib.contextmanager

@@ -49,8 +49,11 @@ import math
 
 import pybullet
 
+from vehicle_sim.core.map.signal_programs import SUMO_STATES
+from vehicle_sim.core.map.sumo_net_params import SumoNetMapSpec
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.idm import IdmParams
+from vehicle_sim.core.traffic.lane_paths import route_path
 from vehicle_sim.core.traffic.objects import PREDICTION_HORIZON_S, PREDICTION_STEP_S, TrafficObject
 from vehicle_sim.core.traffic.sumo_params import object_class
 from vehicle_sim.core.world.params import ObstacleSpec
@@ -67,10 +70,11 @@ from vehicle_sim.physics.traffic_boxes import (
 
 OURS_PREFIX = 'vehicle_sim.'     # our vehicles' SUMO ids: this + their names
 NAME_PREFIX = 'sumo_'            # the bodies' names: this + the pool index
+# our vehicle is in SUMO while its front is within this of the centreline of a lane SUMO's cars
+# may use [m] (a lane and a half of 3.2 m)
+OFF_ROAD_M = 5.0
+RETRY_STEPS = 10                 # SUMO steps between two looks for a lane of one out of SUMO
 PERSON_COLOUR = (0.95, 0.55, 0.15, 1.0)
-# our signal state of each of SUMO's state characters (until the map's signal programs land)
-SUMO_STATES = {'G': 'green', 'g': 'green', 's': 'green', 'y': 'yellow', 'Y': 'yellow',
-               'r': 'red', 'u': 'red', 'o': 'off', 'O': 'off'}
 # SUMO's state character of each of our signal states (what a forced state is pushed as)
 SUMO_CHARACTER = {'green': 'G', 'yellow': 'y', 'red': 'r', 'off': 'O'}
 
@@ -79,21 +83,24 @@ __all__ = ['build_sumo', 'SumoBodies', 'SumoError', 'sumo_network']
 
 def sumo_network(spec):
     """
-    Return the .net.xml path of a world (its map of a SUMO kind, else ``traffic: net:``).
+    Return the .net.xml path of a world's map of a SUMO kind (sumo, opendrive, osm).
 
-    :raises InvalidParameterError: the world has no SUMO network, naming its map.
+    The map's own network, or netconvert's of an OpenDRIVE or OSM file (maps/netconvert.py,
+    cached: the lane map was read from it).
+
+    :raises InvalidParameterError: the world has no SUMO network, naming its map's kind.
     """
-    traffic = spec.traffic
-    net = getattr(getattr(spec, 'map', None), 'net', None) or traffic.net
-    if net is None:
-        kind = getattr(getattr(spec, 'map', None), 'type', None)
-        have = 'no map' if kind is None and getattr(spec, 'map', None) is None else \
-            f'a map of kind {kind or type(spec.map).__name__}'
+    world_map = getattr(spec, 'map', None)
+    if not isinstance(world_map, SumoNetMapSpec):
+        kind = getattr(world_map, 'type', None) or getattr(world_map, 'kind', None)
+        have = ('roads: only' if getattr(spec, 'roads', None) else 'no map') \
+            if world_map is None else f'a map of kind {kind or type(world_map).__name__}'
         raise InvalidParameterError(
-            f'{traffic.source}: the sumo engine runs on a SUMO network: give the world a map of '
-            f'kind sumo (map: {{type: sumo, net: city.net.xml}}), opendrive or osm; it has '
-            f'{have}')
-    return net
+            f'{spec.traffic.source}: the sumo engine runs on a SUMO network: give the world a '
+            f'map of kind sumo (map: {{type: sumo, net: city.net.xml}}), opendrive or osm; it '
+            f'has {have}')
+    from vehicle_sim.maps.netconvert import net_file
+    return net_file(world_map)
 
 
 def sumo_arguments(spec, net, seed, routes):
@@ -117,14 +124,14 @@ def build_sumo(part, world, spec, parts):
     signals = getattr(parts.get('signals'), 'controller', None)
     graph = getattr(spec, 'lanes', None)
     programs = tuple(getattr(getattr(graph, 'rules', None), 'programs', None) or ())
-    return SumoBodies(world, traffic, net, every, signals, programs)
+    return SumoBodies(world, traffic, net, every, signals, programs, graph)
 
 
 class _Slot:
     """One body of the pool: its name, body id, box size, colour and whom it serves now."""
 
     __slots__ = ('index', 'name', 'body_id', 'size', 'clearance', 'colour', 'key', 'sumo_id',
-                 'person', 'vclass', 'state', 'motion', 'stopped')
+                 'person', 'vclass', 'state', 'motion', 'stopped', 'lane', 'route')
 
     def __init__(self, index, body_id, size, clearance, colour, key):
         self.index = index
@@ -140,6 +147,8 @@ class _Slot:
         self.state = None                  # (x, y, yaw, speed) of the footprint centre
         self.motion = None                 # (x, y, z, qz, qw, vx, vy) at the last update
         self.stopped = False               # touched one of ours: stopped for good
+        self.lane = None                   # (SUMO lane id, lane position [m], route index)
+        self.route = ()                    # its route's SUMO edges (at its departure)
 
     @property
     def z(self):
@@ -162,16 +171,19 @@ class SumoBodies:
     :param every: world steps per SUMO step.
     :param signals: the world's SignalController, or None.
     :param programs: the lane map's SignalPrograms (core/map/signal_programs.py).
+    :param graph: the world's lane graph (the network's: the objects' predicted paths follow
+        its lanes), or None.
     """
 
-    def __init__(self, world, spec, net, every, signals=None, programs=()):
+    def __init__(self, world, spec, net, every, signals=None, programs=(), graph=None):
         self.world = world
         self.spec = spec
         self.net = net
         self.every = every
         self.signals = signals
         self.programs = programs
-        self.colours = COLOURS
+        self.graph = graph
+        self._lengths = {}                # {SUMO lane id: its length in SUMO [m]}
         self.heights = {}                 # {SUMO type id: box height [m]}
         self.follow_params = IdmParams.from_dict({}, f'{spec.source}: idm')
         self._constants = load_traci().constants
@@ -185,7 +197,7 @@ class SumoBodies:
 
     # ------------------------------------------------------------------ starting, closing
     def _start(self, seed):
-        """Start SUMO with ``seed``; every body parked, SUMO's time at the spec's begin."""
+        """Start SUMO with ``seed``, run its warmup; SUMO's time: the spec's begin + warmup."""
         spec = self.spec
         routes = list(spec.routes)
         if spec.demand is not None:
@@ -195,6 +207,15 @@ class SumoBodies:
         self.session = SumoSession(sumo_arguments(spec, self.net, seed, routes),
                                    spec.transport, spec.source)
         self.seed = seed
+        try:
+            self._begin()
+        except BaseException:
+            self.session.close()          # no SUMO left behind (libsumo free again)
+            raise
+
+    def _begin(self):
+        """Set up the started SUMO: our vehicles' types, the subscriptions, the warmup."""
+        spec = self.spec
         api = self.session.api
         self._types = {}                   # {SUMO type id: (length, width, height, vClass)}
         self._by_id = {}                   # {(person?, SUMO id): slot}
@@ -204,13 +225,19 @@ class SumoBodies:
         for slot in reversed(self._slots):
             self._free.setdefault(slot.key, []).append(slot)
         self._in_sumo = set()              # the names of our vehicles in SUMO now
+        self._retry = {}                   # {name: out of SUMO, looked for since}
+        self._shapes = {}                  # {SUMO lane id: its shape}
+        self._steps = 0                    # SUMO steps since the start
+        self._strings = {}                 # {tls id: its state string at the last drive}
         self._routes = 0
         self._pushed = {}                  # {group id: state} forced states pushed to SUMO
         self._tls_links = {}               # {group id: (tls id, link index)}
+        self._groups_of = {}               # {tls id: ((link index, group id), ...)}
         for program in self.programs:
-            for link, group in enumerate(program.links):
-                if group is not None:
-                    self._tls_links[group] = (program.tls_id, link)
+            self._groups_of[program.tls_id] = tuple(
+                (link, group) for link, group in enumerate(program.links) if group is not None)
+            for link, group in self._groups_of[program.tls_id]:
+                self._tls_links[group] = (program.tls_id, link)
         with self.session.errors('at the start'):
             for index, body in enumerate(self._ours):
                 outline = self._outlines[index]
@@ -220,18 +247,26 @@ class SumoBodies:
                 api.vehicletype.setWidth(type_id, outline.width_m)
             c = self._constants
             api.simulation.subscribe((c.VAR_DEPARTED_VEHICLES_IDS,
-                                      c.VAR_DEPARTED_PERSONS_IDS))
+                                      c.VAR_DEPARTED_PERSONS_IDS, c.VAR_ARRIVED_VEHICLES_IDS))
             if self._tls_links:
                 for tls in {tls for tls, _ in self._tls_links.values()}:
                     api.trafficlight.subscribe(tls, (c.TL_RED_YELLOW_GREEN_STATE,))
-            self._programs_of = {tls: api.trafficlight.getProgram(tls)
-                                 for tls, _ in self._tls_links.values()}
+            self._programs_of = {program.tls_id: program.program_id for program in self.programs}
+            if self._tls_links:
+                self._drive_signals(api, {tls: api.trafficlight.getRedYellowGreenState(tls)
+                                          for tls in self._programs_of})
         self._start_step = self.world.step_count
         self._placed_at = self.world.time_s
         self._synced_step = self.world.step_count
         self._drawn_at = -math.inf
         self._near = [[] for _ in self._ours]
         self._near_all = []
+        warmup = int(round(spec.warmup_s / spec.step_s))
+        if warmup:
+            with self.session.errors('warming up'):
+                for left in range(warmup - 1, -1, -1):
+                    ours = self._advance(place=not left)     # the bodies placed at its end
+            self._near, self._near_all = self._nearby(ours)
 
     def on_close(self):
         """World hook (``World.close``): close SUMO."""
@@ -240,7 +275,7 @@ class SumoBodies:
 
     def reset(self, seed=None):
         """
-        Start SUMO again (its vehicles and persons gone, its time back at begin); say so.
+        Start SUMO again (its time back at begin, then its warmup run); say so in words.
 
         :param seed: SUMO's seed (and the demand's when it has none of its own); None = the
             spec's seed.
@@ -253,9 +288,17 @@ class SumoBodies:
 
     # ------------------------------------------------------------------ our vehicles in SUMO
     def _push_ours(self):
-        """Put each of our vehicles into SUMO where the physics has it (its front bumper)."""
+        """
+        Put each of our vehicles into SUMO where the physics has it (its front bumper).
+
+        A vehicle whose front is farther than OFF_ROAD_M from the lane SUMO has it on (a car
+        park, a field: ``moveToXY`` puts it anywhere) is taken out of SUMO; one out of SUMO is
+        put in again when its front is that near a lane of SUMO's passenger cars (looked for
+        every RETRY_STEPS SUMO steps: the search costs some 0.5 ms); one SUMO removed (it
+        teleports a vehicle stuck for its --time-to-teleport) comes back at the next step.
+        """
         api = self.session.api
-        sumo_errors = self.session._catch
+        refused = self.session.refusal          # a call refused; SUMO's end goes on up
         ours = []
         for body, outline in zip(self._ours, self._outlines):
             o = our_vehicle(body, outline)
@@ -264,34 +307,67 @@ class SumoBodies:
             half = 0.5 * o.length_m
             x, y = o.x_m + half * math.cos(o.yaw_rad), o.y_m + half * math.sin(o.yaw_rad)
             angle = 90.0 - math.degrees(o.yaw_rad)
-            if o.name not in self._in_sumo:
-                try:
-                    edge, _, _ = api.simulation.convertRoad(x, y)
-                except sumo_errors:
-                    continue                      # off every road: not in SUMO until back
-                if edge.startswith(':'):
-                    continue                      # added on a normal edge
+            if o.name in self._in_sumo:
+                lane = api.vehicle.getLaneID(vid)
+                if not lane or self._off_lane(api, lane, x, y):
+                    self._take_out(api, vid, o.name)
+                    continue
+            else:
+                if self._steps % RETRY_STEPS and self._retry.get(o.name):
+                    continue
+                self._retry[o.name] = True
+                try:                              # the nearest lane of SUMO's cars
+                    edge, s, lane = api.simulation.convertRoad(x, y, False, 'passenger')
+                    lx, ly = api.simulation.convert2D(edge, s, lane)
+                except refused:
+                    continue
+                if edge.startswith(':') or math.hypot(lx - x, ly - y) > OFF_ROAD_M:
+                    continue                      # added on a normal edge, near its lane
                 route = f'{vid}.route{self._routes}'
                 self._routes += 1
                 try:
                     api.route.add(route, [edge])
                     api.vehicle.add(vid, route, typeID=vid, departSpeed='0')
-                except sumo_errors:
+                except refused:
                     continue
                 self._in_sumo.add(o.name)
+                self._retry[o.name] = False
             try:
                 api.vehicle.moveToXY(vid, '', -1, x, y, angle, keepRoute=2)
-            except sumo_errors:                   # off every road: out of SUMO until back
-                self._in_sumo.discard(o.name)
-                try:
-                    api.vehicle.remove(vid)
-                except sumo_errors:
-                    pass
+            except refused:                       # SUMO lost it (a teleport): added again
+                self._take_out(api, vid, o.name)
         return ours
+
+    def _take_out(self, api, vid, name):
+        """Take one of our vehicles out of SUMO (off the road, or lost by SUMO)."""
+        self._in_sumo.discard(name)
+        self._retry[name] = False             # looked for again at once
+        try:
+            api.vehicle.remove(vid)
+        except self.session.refusal:
+            pass
+
+    def _off_lane(self, api, lane, x, y):
+        """Return whether (x, y) is farther than OFF_ROAD_M from SUMO's lane ``lane``."""
+        shape = self._shapes.get(lane)
+        if shape is None:
+            shape = self._shapes[lane] = tuple(api.lane.getShape(lane))
+        limit = OFF_ROAD_M * OFF_ROAD_M
+        points = shape if len(shape) > 1 else shape * 2
+        for (ax, ay), (bx, by) in zip(points, points[1:]):
+            dx, dy = bx - ax, by - ay
+            span = dx * dx + dy * dy
+            t = 0.0 if span == 0.0 else min(1.0, max(0.0, ((x - ax) * dx + (y - ay) * dy) / span))
+            if (ax + t * dx - x) ** 2 + (ay + t * dy - y) ** 2 <= limit:
+                return False
+        return True
 
     # ------------------------------------------------------------------ the step
     def pre_step(self):
         """World hook: every ``step``, advance SUMO and place the bodies."""
+        if self.session.closed:
+            raise SumoError(f'{self.spec.source}: SUMO is not running (closed, or its restart '
+                            'failed)')
         world = self.world
         count = world.step_count
         since = count - self._start_step
@@ -302,27 +378,37 @@ class SumoBodies:
         elif self._synced_step != count:
             self._move(self._near_all)
 
-    def _advance(self):
+    def _advance(self, place=True):
         api = self.session.api
         self._push_signals()
         ours = self._push_ours()
         api.simulationStep()
+        self._steps += 1
         c = self._constants
         departed = api.simulation.getSubscriptionResults()
+        for vid in departed.get(c.VAR_ARRIVED_VEHICLES_IDS, ()):
+            if vid.startswith(OURS_PREFIX):          # SUMO removed one of ours: back next step
+                self._in_sumo.discard(vid[len(OURS_PREFIX):])
         fields = (c.VAR_POSITION, c.VAR_ANGLE, c.VAR_SPEED)
         for person, key in ((False, c.VAR_DEPARTED_VEHICLES_IDS),
                             (True, c.VAR_DEPARTED_PERSONS_IDS)):
             domain = api.person if person else api.vehicle
             for sumo_id in departed.get(key, ()):       # bodies in the order of departure
                 if person or not sumo_id.startswith(OURS_PREFIX):
-                    domain.subscribe(sumo_id, fields)
-                    self._take(api, person, sumo_id)
+                    # a person's vehicle too: one riding a bus has no body of its own; a
+                    # vehicle's lane, place on it and route index: its predicted path
+                    domain.subscribe(sumo_id, fields + ((c.VAR_VEHICLE,) if person else (
+                        c.VAR_LANE_ID, c.VAR_LANEPOSITION, c.VAR_ROUTE_INDEX)))
+                    slot = self._take(api, person, sumo_id)
+                    if not person:
+                        slot.route = tuple(api.vehicle.getRoute(sumo_id))
         seen = set()
         for person, results in ((False, api.vehicle.getAllSubscriptionResults()),
                                 (True, api.person.getAllSubscriptionResults())):
             for sumo_id, values in results.items():
-                if not person and sumo_id.startswith(OURS_PREFIX):
-                    continue
+                if (sumo_id.startswith(OURS_PREFIX) if not person
+                        else values.get(c.VAR_VEHICLE)):
+                    continue                        # ours, or a person riding a vehicle
                 key = (person, sumo_id)
                 slot = self._by_id.get(key)
                 if slot is None:            # back from a teleport (SUMO's jam resolution)
@@ -334,12 +420,16 @@ class SumoBodies:
                 half = 0.5 * slot.size[0]
                 cos, sin = math.cos(yaw), math.sin(yaw)
                 slot.state = (fx - half * cos, fy - half * sin, yaw, speed)
+                if not person:
+                    slot.lane = (values[c.VAR_LANE_ID], values[c.VAR_LANEPOSITION],
+                                 values[c.VAR_ROUTE_INDEX])
         for key in [key for key in self._by_id if key not in seen]:   # arrived
             slot = self._by_id.pop(key)
             self._park(slot)
             self._free.setdefault(slot.key, []).append(slot)
         self._drive_signals(api)
-        self._place()
+        if place:
+            self._place()
         return ours
 
     def _take(self, api, person, sumo_id):
@@ -376,6 +466,7 @@ class SumoBodies:
 
     def _park(self, slot):
         slot.sumo_id, slot.state, slot.motion, slot.stopped = None, None, None, False
+        slot.lane, slot.route = None, ()
         pybullet.resetBasePositionAndOrientation(
             slot.body_id, (0.0, 0.0, PARK_DEPTH_M - 10.0 * slot.index), (0.0, 0.0, 0.0, 1.0),
             physicsClientId=self._cid)
@@ -444,12 +535,15 @@ class SumoBodies:
         # Stopped where its body was during the step, in SUMO at once (no deceleration bound).
         api = self.session.api
         with self.session.errors(f'stopping {slot.sumo_id!r}'):
-            if slot.person:
-                api.person.setSpeed(slot.sumo_id, 0.0)
-            else:
-                api.vehicle.setSpeedMode(slot.sumo_id, 0)
-                api.vehicle.setSpeed(slot.sumo_id, 0.0)
-                api.vehicle.setLaneChangeMode(slot.sumo_id, 0)
+            try:
+                if slot.person:
+                    api.person.setSpeed(slot.sumo_id, 0.0)
+                else:
+                    api.vehicle.setSpeedMode(slot.sumo_id, 0)
+                    api.vehicle.setSpeed(slot.sumo_id, 0.0)
+                    api.vehicle.setLaneChangeMode(slot.sumo_id, 0)
+            except self.session.refusal:    # SUMO took it off the road this step: its body
+                pass                        # stays where it was until SUMO's next step
         slot.stopped = True
         elapsed = max(0.0, self.world.time_s - self.world.time_step_s - self._placed_at)
         x, y, z, qz, qw, vx, vy = slot.motion
@@ -462,20 +556,25 @@ class SumoBodies:
         self.world.mark_moved()
 
     # ------------------------------------------------------------------ signals
-    def _drive_signals(self, api):
-        """Give the world's signal controller SUMO's states, group by group."""
+    def _drive_signals(self, api, strings=None):
+        """Give the world's signal controller SUMO's states ({tls: state string}: now)."""
         controller = self.signals
         if controller is None or not self._tls_links:
             return
-        c = self._constants
-        strings = {tls: values[c.TL_RED_YELLOW_GREEN_STATE]
-                   for tls, values in api.trafficlight.getAllSubscriptionResults().items()}
-        states = {}
-        for group, (tls, link) in self._tls_links.items():
-            text = strings.get(tls)
-            if text is not None and link < len(text):
-                states[group] = SUMO_STATES[text[link]]
-        controller.drive(states)
+        if strings is None:
+            c = self._constants
+            strings = {tls: values[c.TL_RED_YELLOW_GREEN_STATE]
+                       for tls, values in api.trafficlight.getAllSubscriptionResults().items()}
+        states, last = {}, self._strings
+        for tls, text in strings.items():
+            if last.get(tls) == text:
+                continue                          # no change at this light
+            last[tls] = text
+            for link, group in self._groups_of[tls]:
+                if link < len(text):
+                    states[group] = SUMO_STATES[text[link]]
+        if states or not controller.driven:     # the changes (checking a group costs)
+            controller.drive(states)
 
     def _push_signals(self):
         """Push the states a scenario forces on the world's controller to SUMO (and releases)."""
@@ -483,7 +582,7 @@ class SumoBodies:
         if controller is None or not self._tls_links:
             return
         api = self.session.api
-        forced = dict(getattr(controller, 'forced', lambda: {})())
+        forced = controller.forced()
         for group, state in forced.items():
             where = self._tls_links.get(group)
             if where is not None and self._pushed.get(group) != state:
@@ -500,6 +599,11 @@ class SumoBodies:
                                                       SUMO_CHARACTER[state])
 
     # ------------------------------------------------------------------ the contract
+    @property
+    def colours(self):
+        """Each body's colour by its index (a person's orange; the markers colour by index)."""
+        return tuple(slot.colour for slot in self._slots) or COLOURS
+
     @property
     def since_update_s(self):
         """Time since SUMO's last step [s] (its vehicles went on straight since)."""
@@ -533,8 +637,10 @@ class SumoBodies:
         Return SUMO's vehicles and persons as core TrafficObjects now.
 
         Each is where its body is (gone on straight since SUMO's step), its class from its
-        SUMO vehicle class (core/traffic/sumo_params.py object_class); its predicted path
-        goes on straight at its speed.
+        SUMO vehicle class (core/traffic/sumo_params.py object_class); a vehicle's predicted
+        path follows its lane and the lanes of its route after it at its speed
+        (core/traffic/lane_paths.py), a person's (or one on a lane the lane graph lacks) goes
+        on straight.
         """
         since = self.since_update_s
         count = int(round(horizon_s / step_s))
@@ -544,12 +650,33 @@ class SumoBodies:
             c, s = math.cos(yaw), math.sin(yaw)
             gone = speed * since
             x, y = x + gone * c, y + gone * s
-            path = tuple((x + speed * step_s * k * c, y + speed * step_s * k * s, yaw)
-                         for k in range(1, count + 1))
+            path = self._lane_path(slot, since, count, step_s)
+            if path is None:
+                path = tuple((x + speed * step_s * k * c, y + speed * step_s * k * s, yaw)
+                             for k in range(1, count + 1))
             found.append(TrafficObject(slot.index, slot.name, x, y, yaw, speed, slot.size[0],
                                        slot.size[1], slot.size[2], path, step_s,
                                        object_class(slot.vclass)))
         return tuple(found)
+
+    def _lane_path(self, slot, since, count, step_s):
+        """Return a vehicle's path along the lane graph, or None (no graph, lane not in it)."""
+        if self.graph is None or slot.lane is None:
+            return None
+        lane_id, position, route_index = slot.lane
+        try:
+            lane = self.graph.lane_named(lane_id)
+        except InvalidParameterError:
+            return None
+        length = self._lengths.get(lane_id)
+        if length is None:
+            with self.session.errors(f'reading lane {lane_id!r}'):
+                length = self._lengths[lane_id] = self.session.api.lane.getLength(lane_id)
+        scale = lane.length_m / length if length > 0.0 else 1.0
+        speed = slot.state[3]
+        centre = position * scale - 0.5 * slot.size[0] + speed * since
+        return route_path(self.graph, lane.id, centre, speed, count, step_s,
+                          slot.route[route_index + 1:])
 
     def body_of(self, name):
         """Return the body id of the body called ``name`` (``sumo_<k>``)."""

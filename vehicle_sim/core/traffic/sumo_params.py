@@ -29,7 +29,8 @@ The form::
         seed: 3                     # null: the engine's seed
       step: 0.1                     # SUMO's step length [s], a multiple of the world step
       seed: 7                       # SUMO's --seed
-      begin: 0.0                    # SUMO's simulation time at the world's start [s]
+      begin: 0.0                    # SUMO's simulation time when it starts [s]
+      warmup: 60.0                  # SUMO runs this long first: the world starts with traffic
       transport: auto               # libsumo in process, or TraCI (a SUMO process)
       options: [--time-to-teleport, '-1']   # further sumo options
       objects_rate: 10.0
@@ -94,8 +95,12 @@ SUMO_TRAFFIC_SPECS = (
               'step of simulated time (a multiple of the world step)', gt=0.0, le=1.0),
     ParamSpec('seed', 'seed', 'int', 0, '', "SUMO's --seed (its drivers' randomness); the "
               "demand's seed by default", ge=0, le=999999),
-    ParamSpec('begin', 'begin_s', 'float', 0.0, 's', "SUMO's time when the world starts "
-              "(SUMO's --begin)", ge=0.0, le=86400.0 * 7),
+    ParamSpec('begin', 'begin_s', 'float', 0.0, 's', "SUMO's time when it starts (SUMO's "
+              '--begin)', ge=0.0, le=86400.0 * 7),
+    ParamSpec('warmup', 'warmup_s', 'float', 0.0, 's', 'SUMO runs this long (a multiple of '
+              'step) when it starts and at each reset, before the world goes on, so that the '
+              "world starts with traffic (SUMO's time at the world's start: begin + warmup)",
+              ge=0.0, le=3600.0),
     ParamSpec('transport', 'transport', 'enum', 'auto', '', 'how SUMO runs: libsumo (in this '
               'process; one SUMO per process), traci (a sumo process, over a socket; slower), '
               'auto (libsumo when this process has no SUMO running yet, else traci)',
@@ -103,8 +108,6 @@ SUMO_TRAFFIC_SPECS = (
     ParamSpec('options', 'options', 'str_list', None, '', 'further sumo command-line options, '
               "e.g. ['--time-to-teleport', '-1'] (not those the engine sets: "
               + ', '.join(OWN_OPTIONS) + '); null = none', optional=True, empty=True),
-    ParamSpec('net', 'net', 'str', None, '', 'the SUMO network, relative to the world file '
-              "(null: the world's map, of kind sumo)", optional=True),
     replace(OBJECTS_RATE, default=None, optional=True,
             doc='rate of the objects, markers and signals over ROS on simulated time (null: the '
                 "node's objects_rate parameter, 10 Hz by default); wins over the parameter"),
@@ -123,7 +126,7 @@ DEMAND_SPECS = (
     ParamSpec('duration', 'duration_s', 'float', 3600.0, 's', 'departures from begin to begin '
               '+ duration', gt=0.0, le=86400.0),
     ParamSpec('seed', 'seed', 'int', None, '', "randomTrips' --seed (null: the engine's seed, "
-              "and each reset's seed)",
+              "and each reset's)",
               ge=0, le=999999, optional=True),
     ParamSpec('min_distance', 'min_distance_m', 'float', 0.0, 'm', 'the least straight '
               "distance between a trip's start and end (randomTrips --min-distance)", ge=0.0,
@@ -155,7 +158,7 @@ class SumoTrafficSpec:
     """
     A validated ``traffic:`` of the SUMO engine; ``source`` = 'file: traffic' for later errors.
 
-    ``routes`` and ``net`` are paths resolved against the world file's folder.
+    ``routes`` are paths resolved against the world file's folder.
     """
 
     routes: Tuple[str, ...] = ()
@@ -163,9 +166,9 @@ class SumoTrafficSpec:
     step_s: float = 0.1
     seed: int = 0
     begin_s: float = 0.0
+    warmup_s: float = 0.0
     transport: str = 'auto'
     options: Tuple[str, ...] = ()
-    net: Optional[str] = None
     source: str = 'traffic'
     objects_rate_hz: Optional[float] = None
     engine: str = ENGINE
@@ -269,11 +272,12 @@ def sumo_traffic_from_dict(data, source, check_model=None, base_dir=None) -> Sum
             raise InvalidParameterError(
                 f"{source}: field 'options': {option!r} is set by the engine (from the keys "
                 "routes, seed, step, begin and the world's network): give it there")
-    net = values['net']
-    if net is not None:
-        net = _file(net, 'net', source, base_dir)
+    steps = values['warmup_s'] / values['step_s']
+    if abs(steps - round(steps)) > 1e-6:
+        raise InvalidParameterError(f"{source}: field 'warmup' = {values['warmup_s']:g}: must be "
+                                    f"a multiple of step ({values['step_s']:g} s)")
     return SumoTrafficSpec(routes, demand, values['step_s'], values['seed'], values['begin_s'],
-                           values['transport'], options, net, source,
+                           values['warmup_s'], values['transport'], options, source,
                            values['objects_rate_hz'])
 
 
