@@ -45,8 +45,6 @@ Run: ``.venv/bin/python benchmarks/bench_sumo.py [--quick]``.
 """
 
 import argparse
-import contextlib
-import io
 import json
 import os
 from pathlib import Path
@@ -79,8 +77,8 @@ LIDAR = {'name': 'lidar', 'type': 'lidar', 'fov': 4.71238898, 'horizontal_resolu
 
 def sumo_home():
     """Return the eclipse-sumo package's SUMO_HOME (bin/netconvert, tools/randomTrips.py)."""
-    import sumo
-    return sumo.SUMO_HOME
+    from vehicle_sim.maps.netconvert import sumo_home as package_home
+    return package_home('the SUMO benchmark')
 
 
 def _run(command, cwd=None):
@@ -108,13 +106,6 @@ def city_routes(folder, end_s, seed=1):
     return vehicles, persons
 
 
-def import_libsumo():
-    """Import libsumo without the note it prints about pyarrow's version."""
-    with contextlib.redirect_stdout(io.StringIO()):
-        import libsumo
-    return libsumo
-
-
 def _rss_mb(key='VmRSS'):
     with open('/proc/self/status', encoding='ascii') as stream:
         for line in stream:
@@ -125,7 +116,8 @@ def _rss_mb(key='VmRSS'):
 
 def sumo_alone(measure_s, seed=1):
     """Return the SUMO-alone figures (this process runs libsumo: call it in a fresh one)."""
-    libsumo = import_libsumo()
+    from vehicle_sim.physics.sumo_session import load_libsumo
+    libsumo = load_libsumo()           # without the note it prints about pyarrow's version
     with tempfile.TemporaryDirectory(prefix='bench_sumo_') as folder:
         vehicles, persons = city_routes(folder, FILL_S + measure_s + 60.0, seed)
         rss_before = _rss_mb()
