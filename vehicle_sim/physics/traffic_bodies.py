@@ -46,7 +46,7 @@ from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.geometry.footprint import car_outline
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.manager import OurVehicle, TrafficManager
-from vehicle_sim.core.traffic.objects import traffic_objects
+from vehicle_sim.core.traffic.objects import CLASS_SHAPES, traffic_objects
 from vehicle_sim.core.world.params import ObstacleSpec
 from vehicle_sim.physics.gui import FRAME_PERIOD_S
 
@@ -59,6 +59,8 @@ COLOURS = ((0.80, 0.10, 0.10, 1.0), (0.10, 0.30, 0.80, 1.0), (0.90, 0.90, 0.90, 
 # the contacts of our vehicles are read with the traffic vehicles within this distance of them
 # at the last update (both move less than 10 m in 100 ms; the longest box is about 6 m)
 NEAR_M = 40.0
+# the object class of the builtin engine's vehicles (core/traffic/objects.py OBJECT_CLASSES)
+OBJECT_CLASS = 'car'
 
 
 def model_dimensions(model):
@@ -319,15 +321,19 @@ class TrafficBodies:
 
     def boxes(self):
         """
-        Return the traffic vehicles on the map as drawn (the Foxglove scene's ``traffic/``).
+        Return the traffic bodies on the map as drawn (the Foxglove scene's ``traffic/``).
 
-        :return: [(name, body id, (length, width, height) of its box [m], colour)]; a vehicle
-            parked under the ground (waiting to re-enter) is left out.
+        :return: [(name, body id, size [m], colour, shape)]: the shape of the body's object
+            class (core CLASS_SHAPES: 'box' or an upright 'cylinder'), its size the extents of
+            that shape as an obstacle's (x, y, z; a cylinder's x and y its diameter), centred
+            on the body's pose. The builtin engine's: boxes of its cars. A vehicle parked under
+            the ground (waiting to re-enter) is left out.
         """
         dimensions, colours = self.manager.dimensions, self.colours
+        shape = CLASS_SHAPES[OBJECT_CLASS]
         return [(v.name, body_id, dimensions[v.model][:2] + (
                      self.heights[v.model] - GROUND_CLEARANCE_M,),
-                 colours[v.index % len(colours)])
+                 colours[v.index % len(colours)], shape)
                 for v, body_id in zip(self.manager.vehicles, self.body_ids) if v.active]
 
     def agents(self):
