@@ -77,7 +77,7 @@ def _yaw(body):
 
 def test_the_three_map_registries_name_the_same_kinds():
     assert sorted(MAP_KINDS) == sorted(MAP_BUILDERS) == sorted(MAP_TOPICS) == [
-        'lanelet2', 'occupancy_grid']
+        'lanelet2', 'occupancy_grid', 'opendrive', 'osm', 'sumo']
 
 
 def test_lanelet2_and_roads_worlds_give_scene_lanes_and_a_world_without_gives_nothing(tmp_path):

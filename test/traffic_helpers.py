@@ -33,7 +33,7 @@ ENGINE = 'classes'
 WALKER_M = (0.5, 1.7)        # a pedestrian's diameter and height [m]
 
 
-def _parse(data, source, check_model):
+def _parse(data, source, check_model, base_dir=None):
     rest = {k: v for k, v in data.items() if k not in ('engine', 'classes')}
     spec = replace(traffic_from_dict(rest, source, check_model), engine=ENGINE)
     object.__setattr__(spec, 'classes', tuple(data.get('classes', ('car',))))

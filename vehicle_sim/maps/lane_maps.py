@@ -17,7 +17,9 @@ A world's lane map, loaded before its bodies are built: :func:`with_lanes`.
 
 A world has at most one lane map: a ``map:`` of a lane map kind (``MapKind.lane_map``, read by
 its row of :data:`LANE_LOADERS`: ``lanelet2`` with the lanelet2 package,
-``maps/lanelet2_map.py``) or its ``roads:`` (core/map/road_segments.py). The scene
+``maps/lanelet2_map.py``; ``sumo``, ``opendrive`` and ``osm`` with sumolib,
+``maps/sumo_net.py``, the latter two converted by netconvert first, ``maps/netconvert.py``) or
+its ``roads:`` (core/map/road_segments.py). The scene
 builder calls :func:`with_lanes` before it builds anything, so that a file that cannot be read
 or a vehicle placed off every lane is refused with nothing started, and the vehicles placed by
 lane (``pose: {lanelet, s, offset}``) have their x, y, yaw when their bodies are made.
@@ -39,9 +41,22 @@ def load_lanelet2_graph(spec):
     return graph
 
 
+def load_sumo_net_graph(spec):
+    """Return the LaneGraph of a WorldSpec's SUMO network map (converted first if need be)."""
+    from vehicle_sim.maps.netconvert import net_file  # the sumo extra
+    from vehicle_sim.maps.sumo_net import load_sumo_net
+    world_map = spec.map
+    graph, _ = load_sumo_net(net_file(world_map), world_map.vclass,
+                             f'{world_map.source}.{world_map.field}')
+    return graph
+
+
 # lane map kind (core/map/kinds.py MAP_KINDS, lane_map=True) -> load(WorldSpec) -> LaneGraph.
 LANE_LOADERS = {
     'lanelet2': load_lanelet2_graph,
+    'sumo': load_sumo_net_graph,
+    'opendrive': load_sumo_net_graph,
+    'osm': load_sumo_net_graph,
 }
 
 

@@ -28,10 +28,10 @@ by vehicle_sim/maps/lane_maps.py before the bodies) becomes, through core/map/la
   occupancy grid's walls are, named ``lanes`` through ``World.add_static`` (collisions report
   ``other: lanes``, rays and teleport checks see them).
 
-A lanelet2 map is built by :func:`build_lanelet2` (``MAP_BUILDERS['lanelet2']`` of
-physics/map_layer.py, ``scene.parts['map']``), a world's ``roads:`` by the :class:`RoadLayer`
-scene part (``scene.parts['roads']``); both return a :class:`LaneMap`. A world without a lane
-map gets neither and pays nothing.
+A lane map of a ``map:`` key (lanelet2, a SUMO network) is built by :func:`build_lane_map`
+(its kind's row of ``MAP_BUILDERS`` in physics/map_layer.py, ``scene.parts['map']``), a
+world's ``roads:`` by the :class:`RoadLayer` scene part (``scene.parts['roads']``); both
+return a :class:`LaneMap`. A world without a lane map gets neither and pays nothing.
 """
 
 from dataclasses import dataclass
@@ -210,8 +210,8 @@ def build_lane_bodies(world, graph: LaneGraph, spec=None) -> LaneMap:
     return LaneMap(spec, graph, visual_ids, barrier_ids, len(corners))
 
 
-def build_lanelet2(world, spec) -> LaneMap:
-    """Build a lanelet2 map's lanes into ``world`` (``MAP_BUILDERS['lanelet2']``)."""
+def build_lane_map(world, spec) -> LaneMap:
+    """Build a lane map's lanes into ``world`` (the lane map kinds' ``MAP_BUILDERS`` row)."""
     return build_lane_bodies(world, spec.lanes, spec.map)
 
 

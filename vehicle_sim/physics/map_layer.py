@@ -38,9 +38,9 @@ that made a lidar cost 8 times as much as in an empty world). A vehicle whose
 start position lies on a wall cell is refused before anything is built, naming the world file's
 field; one whose outline touches a wall is refused by the World.
 
-A lanelet2 map (:func:`~vehicle_sim.physics.lane_layer.build_lanelet2`) becomes its road
-surface, markings and barriers (physics/lane_layer.py); its lanes were loaded before the bodies
-(``spec.lanes``).
+A lane map (lanelet2, and the SUMO networks sumo, opendrive and osm:
+:func:`~vehicle_sim.physics.lane_layer.build_lane_map`) becomes its road surface, markings and
+barriers (physics/lane_layer.py); its lanes were loaded before the bodies (``spec.lanes``).
 """
 
 from dataclasses import dataclass
@@ -59,7 +59,7 @@ from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.value_text import count
 from vehicle_sim.core.world.params import WorldSpec
 from vehicle_sim.maps.occupancy_files import load_occupancy_grid
-from vehicle_sim.physics.lane_layer import build_lanelet2
+from vehicle_sim.physics.lane_layer import build_lane_map
 
 MAP_BODY_NAME = 'map'
 # Boxes of one static mesh body, and the side of the square of cells they are ordered by.
@@ -218,7 +218,10 @@ def _grid_corner(grid: OccupancyGrid, spec: OccupancyMapSpec):
 # footprints and the live view read without naming the kind.
 MAP_BUILDERS: Dict[str, Callable] = {
     'occupancy_grid': build_occupancy_grid,
-    'lanelet2': build_lanelet2,      # physics/lane_layer.py: a LaneMap
+    'lanelet2': build_lane_map,      # physics/lane_layer.py: a LaneMap
+    'sumo': build_lane_map,
+    'opendrive': build_lane_map,
+    'osm': build_lane_map,
 }
 
 

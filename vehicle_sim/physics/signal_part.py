@@ -25,6 +25,12 @@ lights), or that has a ``signals:`` key, gets it. It builds the core SignalContr
 the ROS topic, the lamps, the Gym environment, the Webots facade), so that they all see the same
 states.
 
+A lane map with signal programs of its own (a SUMO network's: ``LaneRules.programs``) gets the
+core ProgramController (core/map/signal_programs.py) instead, which runs those programs (and
+which a traffic engine that runs the signals itself drives, ``drive(states)``); such a world's
+``signals:`` key is refused, naming it: the map's programs are the plan (edit them in the
+network, or force states from a scenario).
+
 The plan runs on the world's clock from the moment the part is built: a world step hook
 (``post_step``, the time advanced) sets every group's state for that time before anything reads
 the world after the step. :meth:`WorldSignals.reset` (with the world's reset) starts the plan
@@ -33,6 +39,7 @@ again from the time of the reset and releases every forced state.
 
 from vehicle_sim.core.map.signal_params import SignalSpec
 from vehicle_sim.core.map.signal_plan import SignalController
+from vehicle_sim.core.map.signal_programs import ProgramController
 from vehicle_sim.core.specs.errors import InvalidParameterError
 
 
@@ -50,8 +57,15 @@ class SignalPart:
 
     def build(self, world, spec) -> 'WorldSignals':
         """Return the WorldSignals of ``spec``'s lane map and plan, advanced by ``world``."""
-        settings = spec.signals or SignalSpec(source=f"{spec.source or 'world'}: signals")
         graph = spec.lanes
+        if graph is not None and graph.rules.programs:
+            if spec.signals is not None:
+                raise InvalidParameterError(
+                    f'{spec.signals.source}: the lane map {graph.source} has signal programs '
+                    'of its own, which its traffic lights run: remove the signals: key (edit '
+                    "the programs in the map, or force a group's state from a scenario)")
+            return WorldSignals(world, ProgramController(graph))
+        settings = spec.signals or SignalSpec(source=f"{spec.source or 'world'}: signals")
         if graph is None or not graph.rules.groups:
             raise InvalidParameterError(
                 f'{settings.source}: the lane map has no traffic light groups to plan (roads: '
@@ -83,10 +97,10 @@ class WorldSignals:
     The SignalController of a world, advanced to the world's time every step.
 
     :param world: the World (its step hook).
-    :param controller: the core SignalController.
+    :param controller: the core SignalController, or ProgramController of a map's programs.
     """
 
-    def __init__(self, world, controller: SignalController):
+    def __init__(self, world, controller):
         self.world = world
         self.controller = controller
         self._start_step = world.step_count

@@ -42,23 +42,20 @@ import math
 import pybullet
 
 from vehicle_sim.config import load_car
-from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.geometry.footprint import car_outline
 from vehicle_sim.core.specs.errors import InvalidParameterError
-from vehicle_sim.core.traffic.manager import OurVehicle, TrafficManager
-from vehicle_sim.core.traffic.objects import CLASS_SHAPES, traffic_objects
+from vehicle_sim.core.traffic.manager import TrafficManager
+from vehicle_sim.core.traffic.objects import CLASS_SHAPES, shape_extents, traffic_objects
 from vehicle_sim.core.world.params import ObstacleSpec
 from vehicle_sim.physics.gui import FRAME_PERIOD_S
+from vehicle_sim.physics.traffic_boxes import (
+    COLOURS,
+    GROUND_CLEARANCE_M,
+    NEAR_M,
+    our_vehicle,
+    PARK_DEPTH_M,
+)
 
-GROUND_CLEARANCE_M = 0.15        # the box's underside above the ground
-PARK_DEPTH_M = -50.0             # where a vehicle off the map waits (under the ground)
-# body colours, picked by vehicle index (deterministic)
-COLOURS = ((0.80, 0.10, 0.10, 1.0), (0.10, 0.30, 0.80, 1.0), (0.90, 0.90, 0.90, 1.0),
-           (0.15, 0.15, 0.15, 1.0), (0.20, 0.60, 0.25, 1.0), (0.95, 0.75, 0.10, 1.0),
-           (0.55, 0.55, 0.60, 1.0))
-# the contacts of our vehicles are read with the traffic vehicles within this distance of them
-# at the last update (both move less than 10 m in 100 ms; the longest box is about 6 m)
-NEAR_M = 40.0
 # the object class of the builtin engine's vehicles (core/traffic/objects.py OBJECT_CLASSES)
 OBJECT_CLASS = 'car'
 
@@ -69,18 +66,6 @@ def model_dimensions(model):
     outline = car_outline(params)
     top = max(box.position_m[2] + 0.5 * box.size_m[2] for box in params.collision_boxes)
     return outline.length_m, outline.width_m, top + params.rear_tire_radius_m
-
-
-def our_vehicle(body, outline=None):
-    """Return a VehicleBody as the traffic manager sees it (OurVehicle); ``outline``: cached."""
-    x, y, _, qx, qy, qz, qw = body.pose()
-    yaw = yaw_from_quaternion(qx, qy, qz, qw)
-    outline = body.outline if outline is None else outline
-    cx = 0.5 * (outline.x_min_m + outline.x_max_m)
-    cy = 0.5 * (outline.y_min_m + outline.y_max_m)
-    c, s = math.cos(yaw), math.sin(yaw)
-    return OurVehicle(body.name, x + c * cx - s * cy, y + s * cx + c * cy, yaw,
-                      body.forward_speed_mps(), outline.length_m, outline.width_m)
 
 
 class TrafficPart:
@@ -331,8 +316,8 @@ class TrafficBodies:
         """
         dimensions, colours = self.manager.dimensions, self.colours
         shape = CLASS_SHAPES[OBJECT_CLASS]
-        return [(v.name, body_id, dimensions[v.model][:2] + (
-                     self.heights[v.model] - GROUND_CLEARANCE_M,),
+        return [(v.name, body_id, shape_extents(OBJECT_CLASS, *dimensions[v.model][:2],
+                                                self.heights[v.model] - GROUND_CLEARANCE_M),
                  colours[v.index % len(colours)], shape)
                 for v, body_id in zip(self.manager.vehicles, self.body_ids) if v.active]
 
@@ -368,8 +353,15 @@ class TrafficBodies:
         raise KeyError(name)
 
 
+def build_sumo(part, world, spec, parts):
+    """Return SUMO's bodies (physics/sumo_traffic.py, imported when a world asks for it)."""
+    from vehicle_sim.physics.sumo_traffic import build_sumo as build
+    return build(part, world, spec, parts)
+
+
 # traffic engine (core/traffic/engines.py TRAFFIC_ENGINES) -> build(part, world, spec, parts)
 # -> its bodies (the traffic-body contract of TrafficBodies).
 TRAFFIC_BUILDERS = {
     'builtin': TrafficPart.build_builtin,
+    'sumo': build_sumo,
 }

@@ -272,7 +272,8 @@ class World:
         ``post_step()`` (called once per basic step after the physics, time already advanced)
         and ``before_query()`` (called by :meth:`sync_bodies` before anything reads the world
         between steps: rays, cameras, overlap checks, body states; bodies that are only placed
-        now and then, as traffic, are put where they are now).
+        now and then, as traffic, are put where they are now), and ``on_close()`` (called by
+        :meth:`close`: what the body runs beside the world, e.g. SUMO, ends).
         """
         if body in self._bodies:
             return body
@@ -701,6 +702,7 @@ class World:
         """Disconnect the physics client (idempotent)."""
         if not self._closed:
             self._closed = True
+            closing = [b.on_close for b in self._bodies if hasattr(b, 'on_close')]
             self._bodies.clear()
             self._rebuild_hooks()
             try:
@@ -708,6 +710,8 @@ class World:
                     pybullet.disconnect(physicsClientId=self.client_id)
             except pybullet.error:
                 pass
+            for hook in closing:
+                hook()
 
     @property
     def closed(self):

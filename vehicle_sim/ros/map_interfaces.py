@@ -63,6 +63,9 @@ MAP_LANES = Topic('/map/lanes', MARKER_ARRAY, QOS_LATCHED, ONCE_LATCHED,
 MAP_TOPICS: Dict[str, Tuple[Topic, ...]] = {
     'occupancy_grid': (MAP, MAP_METADATA),
     'lanelet2': (MAP_LANES,),
+    'sumo': (MAP_LANES,),
+    'opendrive': (MAP_LANES,),
+    'osm': (MAP_LANES,),
 }
 # The rows of a world's roads: (a lane map without a map: key).
 ROADS_TOPICS: Tuple[Topic, ...] = (MAP_LANES,)

@@ -22,8 +22,9 @@ that turns the validated values into its spec. :func:`map_from_dict` validates a
 (``physics/map_layer.py``) has a builder registered under the same name, the ROS layer
 (``ros/map_interfaces.py``) its topic rows, and a lane map its loader
 (``maps/lane_maps.py``); test/test_repo_kind_registries.py checks that they agree. Kinds:
-``occupancy_grid`` and ``lanelet2`` (core/map/lanelet2_params.py's keys); the ``roads:`` key
-of a world is a lane map without a ``map:`` (core/map/road_segments.py).
+``occupancy_grid``, ``lanelet2`` (core/map/lanelet2_params.py's keys), and the SUMO road networks
+``sumo``, ``opendrive`` and ``osm`` (core/map/sumo_net_params.py's keys); the ``roads:`` key of a
+world is a lane map without a ``map:`` (core/map/road_segments.py).
 
 Every map spec carries ``type``, ``world_in_map`` (:class:`MapPlacement`: the map -> world
 transform, identity unless the world file says otherwise) and ``source`` (where it was
@@ -38,6 +39,13 @@ from typing import Callable, Dict, Tuple
 
 from vehicle_sim.core.geometry.frames import Pose
 from vehicle_sim.core.map.lanelet2_params import LANELET2_SPECS, Lanelet2MapSpec
+from vehicle_sim.core.map.sumo_net_params import (
+    NETCONVERT_SPECS,
+    OPENDRIVE_INPUT,
+    OSM_INPUT,
+    SUMO_NET_SPECS,
+    SumoNetMapSpec,
+)
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec, REQUIRED, validate_table
 from vehicle_sim.core.specs.registry import register
@@ -75,7 +83,8 @@ class MapPlacement:
 
 COMMON_MAP_SPECS = (
     ParamSpec('type', 'type', 'str', REQUIRED, '',
-              'the map kind, a name of MAP_KINDS: occupancy_grid, lanelet2'),
+              'the map kind, a name of MAP_KINDS: occupancy_grid, lanelet2, sumo, opendrive, '
+              'osm'),
     ParamSpec('world_in_map', 'world_in_map', 'pose', Pose(), 'm, rad',
               'pose {x, y, yaw} of the world frame in the map frame (the map -> world '
               'transform on /tf_static); default identity', choices=('x', 'y', 'yaw')),
@@ -142,6 +151,40 @@ def _lanelet2(values, source, base_dir) -> Lanelet2MapSpec:
                            source)
 
 
+SUMO_MAP_SPECS = COMMON_MAP_SPECS + SUMO_NET_SPECS
+NETCONVERT_MAP_SPECS = COMMON_MAP_SPECS + NETCONVERT_SPECS
+
+
+def _network_placement(values, source):
+    placement = _placement(values['world_in_map'])
+    if not placement.identity:
+        # A network's x, y are metres of its own plane: the world frame (docs/maps.md).
+        raise InvalidParameterError(
+            f"{source}: field 'world_in_map' must be the identity for a {values['type']} map "
+            "(the network's coordinates are the world frame, which is the map frame)")
+    return placement
+
+
+def _sumo(values, source, base_dir) -> SumoNetMapSpec:
+    return SumoNetMapSpec(values['type'], _network_placement(values, source),
+                          net=_resolved(base_dir, values['net']), vclass=values['vclass'],
+                          source=source)
+
+
+def _netconvert(netconvert_input):
+    option, defaults = netconvert_input
+
+    def make(values, source, base_dir) -> SumoNetMapSpec:
+        cache = values['cache']
+        return SumoNetMapSpec(values['type'], _network_placement(values, source),
+                              file=_resolved(base_dir, values['file']),
+                              vclass=values['vclass'], options=tuple(values['options']),
+                              cache=_resolved(base_dir, cache) if cache else '',
+                              netconvert_input=option, netconvert_options=defaults,
+                              source=source)
+    return make
+
+
 @dataclass(frozen=True)
 class MapKind:
     """
@@ -178,6 +221,15 @@ register_map_kind(MapKind('occupancy_grid', OCCUPANCY_GRID_SPECS, _occupancy_gri
 register_map_kind(MapKind('lanelet2', LANELET2_MAP_SPECS, _lanelet2,
                           'a Lanelet2 .osm lane map: road surface and markings, curbstones and '
                           'walls, lane state, /map/lanes', lane_map=True))
+register_map_kind(MapKind('sumo', SUMO_MAP_SPECS, _sumo,
+                          'a SUMO network (.net.xml): lanes through junctions, signal programs, '
+                          'sidewalks and crossings; lane state, /map/lanes', lane_map=True))
+register_map_kind(MapKind('opendrive', NETCONVERT_MAP_SPECS, _netconvert(OPENDRIVE_INPUT),
+                          'an OpenDRIVE file (.xodr), converted by netconvert into a SUMO '
+                          'network', lane_map=True))
+register_map_kind(MapKind('osm', NETCONVERT_MAP_SPECS, _netconvert(OSM_INPUT),
+                          'an OpenStreetMap extract (.osm), converted by netconvert into a SUMO '
+                          'network (sidewalks and crossings guessed)', lane_map=True))
 
 
 def is_lane_map(map_spec) -> bool:

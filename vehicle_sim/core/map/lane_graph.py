@@ -308,6 +308,7 @@ class LaneGraph:
             for successor in lane.successors:
                 self.predecessors[successor] += (lane.id,)
         self._index_segments()
+        self._names = None
         self.rules = LaneRules()
 
     def set_rules(self, rules: LaneRules):
@@ -341,6 +342,25 @@ class LaneGraph:
         if lane is None:
             raise InvalidParameterError(f'{self.source}: lane {lane_id!r} is not in the map')
         return lane
+
+    def lane_named(self, name) -> Lane:
+        """
+        Return the lane of a name (``Lane.name``: a SUMO lane id, a lanelet's id as text).
+
+        :raises InvalidParameterError: no lane or more than one has that name (a two-way
+            lanelet's two lanes share theirs: give the id).
+        """
+        if self._names is None:
+            names: Dict[str, list] = {}
+            for lane in self.lanes.values():
+                names.setdefault(lane.name, []).append(lane.id)
+            self._names = names
+        found = self._names.get(name, []) if isinstance(name, str) else []
+        if len(found) != 1:
+            what = 'is not in the map' if not found else \
+                f'names {len(found)} lanes ({", ".join(map(str, found))}): give the id'
+            raise InvalidParameterError(f'{self.source}: lane named {name!r} {what}')
+        return self.lanes[found[0]]
 
     def boundaries(self):
         """Return every boundary once (shared ones by id), in lane order."""

@@ -31,8 +31,10 @@ never asks which kind of map they came from:
 - a :class:`Conflict` is a pair of lanes whose areas overlap where neither follows the other
   (they cross or merge at an intersection), with the arc-length range of the overlap on each;
 - a :class:`MapArea` is a polygon with a kind: a crosswalk or walkway (walking areas), a
-  parking lot, keep-out zone or building, or a regulatory element's area the simulator only
-  draws (a detection area, a bus stop, ...).
+  parking lot, keep-out zone or building, a junction's surface, or a regulatory element's area
+  the simulator only draws (a detection area, a bus stop, ...);
+- ``programs``: the map's own signal programs (a SUMO network's, core/map/signal_programs.py
+  SignalProgram), which the world's signal controller runs instead of a fixed-time plan.
 
 Coordinates are world metres (x east, y north), as the lanes'.
 """
@@ -217,6 +219,8 @@ class LaneRules:
     :param right_of_way: the RightOfWay rules.
     :param conflicts: the Conflicts, each pair once (:meth:`conflicts_of` gives both ways).
     :param areas: the MapAreas.
+    :param programs: the map's signal programs (core/map/signal_programs.py SignalProgram);
+        () = none: the groups run a fixed-time plan (core/map/signal_plan.py).
     """
 
     stop_lines: Tuple[StopLine, ...] = ()
@@ -224,6 +228,7 @@ class LaneRules:
     right_of_way: Tuple[RightOfWay, ...] = ()
     conflicts: Tuple[Conflict, ...] = ()
     areas: Tuple[MapArea, ...] = ()
+    programs: Tuple = ()
     _on_lane: Dict[int, Tuple[StopLine, ...]] = field(default_factory=dict, repr=False)
     _conflicts_of: Dict[int, Tuple[Conflict, ...]] = field(default_factory=dict, repr=False)
 
@@ -233,6 +238,7 @@ class LaneRules:
         self.right_of_way = tuple(self.right_of_way)
         self.conflicts = tuple(self.conflicts)
         self.areas = tuple(self.areas)
+        self.programs = tuple(self.programs)
         on_lane: Dict[int, list] = {}
         for line in self.stop_lines:
             on_lane.setdefault(line.lane_id, []).append(line)
@@ -344,4 +350,10 @@ class LaneRules:
         for area in self.areas:
             for lane_id in area.lanes:
                 known(lane_id, f'{area.kind} {area.id}')
+        for program in self.programs:
+            for group_id in program.links:
+                if group_id is not None and group_id not in groups:
+                    raise InvalidParameterError(
+                        f'{source}: signal program {program.tls_id!r}: traffic light group '
+                        f'{group_id} is not in the map')
 

@@ -31,6 +31,7 @@ from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.registry import register
 from vehicle_sim.core.specs.value_text import brief
 from vehicle_sim.core.traffic import params as builtin
+from vehicle_sim.core.traffic import sumo_params as sumo
 
 DEFAULT_ENGINE = 'builtin'
 
@@ -41,9 +42,10 @@ class TrafficEngine:
     One traffic engine: its name, its parser and its docs tables.
 
     :param name: the value of ``traffic: engine:``.
-    :param parse: ``parse(data, source, check_model)`` -> its spec (``data`` the whole
-        ``traffic:`` mapping, ``engine`` included; ``check_model(name)`` raises for an unknown
-        car preset, or is None).
+    :param parse: ``parse(data, source, check_model, base_dir)`` -> its spec (``data`` the
+        whole ``traffic:`` mapping, ``engine`` included; ``check_model(name)`` raises for an
+        unknown car preset, or is None; ``base_dir`` the folder the files it names are resolved
+        in, the world file's, or None).
     :param markdown: ``markdown()`` -> its key tables (docs/traffic.md, docs/sumo.md).
     :param doc: one line for the docs.
     """
@@ -65,6 +67,10 @@ def register_traffic_engine(engine: TrafficEngine) -> TrafficEngine:
 register_traffic_engine(TrafficEngine(
     DEFAULT_ENGINE, builtin.traffic_from_dict, builtin.traffic_markdown,
     'IDM car following and MOBIL lane changes on the lane graph, in process (the default)'))
+register_traffic_engine(TrafficEngine(
+    sumo.ENGINE, sumo.sumo_traffic_from_dict, sumo.sumo_traffic_markdown,
+    "Eclipse SUMO on the world's SUMO network (vehicles, persons, its signal programs), "
+    'through libsumo or TraCI (docs/sumo.md)'))
 
 
 def engine_name(data, source) -> str:
@@ -76,10 +82,11 @@ def engine_name(data, source) -> str:
     return name
 
 
-def traffic_spec_from_dict(data, source, check_model=None):
+def traffic_spec_from_dict(data, source, check_model=None, base_dir=None):
     """
     Validate a ``traffic:`` mapping with its engine's parser; return that engine's spec.
 
+    :param base_dir: the folder files named in it are resolved in (the world file's).
     :raises InvalidParameterError: naming the file and field.
     """
-    return TRAFFIC_ENGINES[engine_name(data, source)].parse(data, source, check_model)
+    return TRAFFIC_ENGINES[engine_name(data, source)].parse(data, source, check_model, base_dir)

@@ -60,7 +60,8 @@ class TrafficObject:
         ObjectClassification labels, lower case): the builtin engine's are all cars; SUMO's
         come from their vehicle classes (docs/sumo.md). Its shape is its class's
         (:data:`CLASS_SHAPES`): a box of length, width and height, or an upright cylinder
-        whose diameter is the larger of length and width (:attr:`size_m`).
+        whose diameter is the larger of length and width (:attr:`size_m`,
+        :func:`shape_extents`).
     :raises ValueError: for a class not in :data:`OBJECT_CLASSES`, naming it.
     """
 
@@ -89,11 +90,21 @@ class TrafficObject:
 
     @property
     def size_m(self) -> Tuple[float, float, float]:
-        """Its shape's extents (x, y, z) [m]: a cylinder's x and y its diameter."""
-        if CLASS_SHAPES[self.object_class] == 'cylinder':
-            diameter = max(self.length_m, self.width_m)
-            return diameter, diameter, self.height_m
-        return self.length_m, self.width_m, self.height_m
+        """Its shape's extents (x, y, z) [m] (:func:`shape_extents`)."""
+        return shape_extents(self.object_class, self.length_m, self.width_m, self.height_m)
+
+
+def shape_extents(object_class, length_m, width_m, height_m) -> Tuple[float, float, float]:
+    """
+    Return the extents (x, y, z) [m] of the shape of a class's body of a given size.
+
+    As an obstacle's (core ObstacleSpec ``size_m``): a box's length, width and height; an
+    upright cylinder's diameter (the larger of length and width) twice and its height.
+    """
+    if CLASS_SHAPES[object_class] == 'cylinder':
+        diameter = max(length_m, width_m)
+        return diameter, diameter, height_m
+    return length_m, width_m, height_m
 
 
 def _path(manager, v, horizon_s, step_s, since_s):

@@ -223,7 +223,7 @@ class TrafficSpec:
         return tuple(dict.fromkeys(self.models + tuple(p.model for p in self.placed)))
 
 
-def traffic_from_dict(data, source, check_model=None) -> TrafficSpec:
+def traffic_from_dict(data, source, check_model=None, base_dir=None) -> TrafficSpec:
     """
     Validate a ``traffic:`` mapping of the builtin engine (``engine: builtin`` or none).
 
@@ -234,6 +234,7 @@ def traffic_from_dict(data, source, check_model=None) -> TrafficSpec:
     :param source: quoted in errors ('world.yaml: traffic').
     :param check_model: ``check_model(name)`` raises InvalidParameterError for an unknown car
         preset (config.py reads presets; None = no check).
+    :param base_dir: unused (the builtin engine names no files).
     :raises InvalidParameterError: naming the file and field.
     """
     values = validate_table(traffic_specs(), data, source, what='traffic')

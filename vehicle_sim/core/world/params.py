@@ -37,12 +37,12 @@ the file and resolving car models are config.py's (this module touches no file).
 
 from dataclasses import dataclass, field, replace
 import os
-from typing import Callable, Dict, Optional, Sequence, Tuple
+from typing import Callable, Dict, Optional, Sequence, Tuple, Union
 
 from vehicle_sim.core.geometry.frames import Pose
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.core.map.kinds import is_lane_map, map_from_dict
-from vehicle_sim.core.map.lane_placement import is_lane_pose, LANE_POSE_SPECS
+from vehicle_sim.core.map.lane_placement import is_lane_pose, lane_pose_values
 from vehicle_sim.core.map.road_segments import roads_from_list, RoadSpec
 from vehicle_sim.core.map.signal_params import signals_from_dict, SignalSpec
 from vehicle_sim.core.sensors.params import SensorSpec
@@ -289,9 +289,10 @@ class VehicleSpec:
     y_m: float = 0.0
     yaw_rad: float = 0.0
     sensors: Tuple[SensorSpec, ...] = ()
-    # placed on a lane: (lanelet, s [m], offset [m]); x, y, yaw are set from the world's lane
-    # map when the scene is built (core/map/lane_placement.py); None = placed by x, y, yaw.
-    lane_pose: Optional[Tuple[int, float, float]] = None
+    # placed on a lane: (lane id, or its name: str, s [m], offset [m]); x, y, yaw are set from
+    # the world's lane map when the scene is built (core/map/lane_placement.py); None = placed
+    # by x, y, yaw.
+    lane_pose: Optional[Tuple[Union[int, str], float, float]] = None
 
 
 @dataclass(frozen=True)
@@ -389,7 +390,7 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
                                     'world has one lane map; keep one of them')
     traffic = data.get('traffic')
     if traffic is not None:
-        traffic = traffic_spec_from_dict(traffic, f'{source}: traffic', preset_sensors)
+        traffic = traffic_spec_from_dict(traffic, f'{source}: traffic', preset_sensors, base_dir)
     signals = data.get('signals')
     if signals is not None:
         signals = signals_from_dict(signals, f'{source}: signals')
@@ -402,9 +403,7 @@ def _vehicle(entry, where, index, default_model, preset_sensors):
         raise InvalidParameterError(f'{where} must be a mapping')
     lane_pose = None
     if is_lane_pose(entry.get('pose')):    # on a lane: placed once the lane map is loaded
-        lane = validate_table(LANE_POSE_SPECS, entry['pose'], f'{where}.pose',
-                              what='a pose on a lane')
-        lane_pose = (lane['lanelet'], lane['s_m'], lane['offset_m'])
+        lane_pose = lane_pose_values(entry['pose'], f'{where}.pose')
         entry = {key: value for key, value in entry.items() if key != 'pose'}
     values = validate_table(VEHICLE_SPECS, entry, where,
                             {s.key: s.default for s in VEHICLE_SPECS}, 'a vehicle')

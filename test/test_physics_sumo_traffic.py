@@ -1,0 +1,201 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+SUMO as the traffic engine (``traffic: {engine: sumo}``): its vehicles and persons as bodies.
+
+On a netgenerate grid (test/sumo_helpers.py): the bodies are where SUMO has its vehicles and
+persons (footprint centres behind SUMO's front bumpers; between SUMO's steps gone on straight),
+sized from their SUMO types and classed from their vehicle classes; our car stopped in a lane
+queues SUMO's vehicles behind it (and without it they drive on); a seed gives the same
+trajectories twice and another seed others; reset starts SUMO again; two worlds in one process
+run (the second over TraCI); closing the world closes SUMO.
+"""
+
+import math
+
+import pybullet
+import pytest
+
+pytest.importorskip('libsumo', reason="needs the 'sumo' extra")
+
+from sumo_helpers import one_lane_grid_net, write_routes  # noqa: E402
+
+from vehicle_sim.config import world_from_data  # noqa: E402
+from vehicle_sim.physics import sumo_session  # noqa: E402
+from vehicle_sim.physics.scene import build_scene  # noqa: E402
+
+LANE_X = 1.6          # edge A0A1's lane (northbound) runs along x = 1.6, y from 5.2 to 92.8
+STEPS_PER_S = 100     # world steps a second (the default step, 0.01 s)
+
+
+@pytest.fixture(scope='module')
+def net(tmp_path_factory):
+    return one_lane_grid_net(tmp_path_factory.mktemp('sumo_net'))
+
+
+@pytest.fixture(autouse=True)
+def _cache(tmp_path_factory, monkeypatch):
+    # the demand's trips are made once for the module, not in the user's cache
+    monkeypatch.setenv('VEHICLE_SIM_CACHE', str(tmp_path_factory.getbasetemp() / 'cache'))
+
+
+def _world(net, traffic, ego=(LANE_X, 40.0, math.pi / 2), folder=None):
+    x, y, yaw = ego
+    data = {'vehicles': [{'name': 'ego', 'model': 'Car',
+                          'pose': {'x': x, 'y': y, 'yaw': yaw}}],
+            'traffic': {'engine': 'sumo', 'net': net, **traffic}}
+    return build_scene(world_from_data(data, 'w.yaml', base_dir=str(folder or '.')))
+
+
+def _run(scene, seconds):
+    for _ in range(int(round(seconds * STEPS_PER_S))):
+        scene.world.step()
+
+
+DEMAND = {'vehicles_per_hour': 2400, 'pedestrians_per_hour': 1200, 'seed': 5,
+          'classes': {'passenger': 3, 'bus': 1, 'bicycle': 1, 'truck': 1}}
+
+
+def test_the_bodies_are_where_sumo_has_its_vehicles_and_persons(net):
+    scene = _world(net, {'demand': DEMAND, 'seed': 2}, ego=(-30.0, -30.0, 0.0))
+    try:
+        bodies = scene.parts['traffic']
+        api = bodies.session.api
+        _run(scene, 30.0)
+        agents = bodies.agents()
+        classes = {o.name: o.object_class for o in bodies.objects()}
+        assert {'car', 'bus', 'bicycle', 'truck', 'pedestrian'} <= set(classes.values())
+        assert len(agents) > 10
+        for name, x, y, yaw, length, width, speed in agents:
+            sumo_id = bodies.sumo_id(name)
+            person = classes[name] == 'pedestrian'
+            domain = api.person if person else api.vehicle
+            fx, fy = domain.getPosition(sumo_id)
+            type_id = domain.getTypeID(sumo_id)
+            assert (length, width) == (api.vehicletype.getLength(type_id),
+                                       api.vehicletype.getWidth(type_id))
+            # the footprint centre, half a length behind SUMO's front bumper
+            assert x + 0.5 * length * math.cos(yaw) == pytest.approx(fx, abs=1e-6)
+            assert y + 0.5 * length * math.sin(yaw) == pytest.approx(fy, abs=1e-6)
+            assert math.degrees(yaw) == pytest.approx(90.0 - domain.getAngle(sumo_id), abs=1e-6)
+            assert speed == pytest.approx(domain.getSpeed(sumo_id), abs=1e-9)
+        # SUMO stepped at 29.9 s (every 0.1 s, before the world's step): since then each body
+        # went on straight at its speed
+        for steps, since in ((0, 0.1), (4, 0.04)):
+            for _ in range(steps):
+                scene.world.step()
+            scene.world.sync_bodies()
+            assert bodies.since_update_s == pytest.approx(since)
+            for name, x, y, yaw, _, _, speed in bodies.agents():
+                position, _ = pybullet.getBasePositionAndOrientation(
+                    bodies.body_of(name), physicsClientId=scene.world.client_id)
+                assert position[:2] == pytest.approx((x + speed * since * math.cos(yaw),
+                                                      y + speed * since * math.sin(yaw)),
+                                                     abs=1e-6)
+        assert {name for name, *_ in agents} <= bodies.moving_names()
+    finally:
+        scene.world.close()
+
+
+def _queue(net, folder, ego):
+    routes = write_routes(folder, [(f'q{i}', 2.0 * i, 'A0A1 A1A2') for i in range(3)])
+    scene = _world(net, {'routes': routes}, ego=ego, folder=folder)
+    try:
+        bodies = scene.parts['traffic']
+        _run(scene, 40.0)
+        api = bodies.session.api
+        present = api.vehicle.getIDList()
+        return ({vid: (api.vehicle.getRoadID(vid), api.vehicle.getLanePosition(vid),
+                       api.vehicle.getSpeed(vid)) if vid in present else None
+                 for vid in ('q0', 'q1', 'q2')},
+                {bodies.sumo_id(name): (x, y, speed) for name, x, y, _, _, _, speed
+                 in bodies.agents()},
+                api.vehicle.getLanePosition('vehicle_sim.ego')
+                if 'vehicle_sim.ego' in present else None)
+    finally:
+        scene.world.close()
+
+
+def test_our_car_stopped_in_a_lane_queues_sumo_traffic_behind_it(net, tmp_path):
+    # the car is held (no command): it stands at y = 50 in SUMO's lane, facing north
+    sumo, bodies, ego_front = _queue(net, tmp_path, (LANE_X, 50.0, math.pi / 2))
+    ego_s = ego_front - 5.2        # its front at lane position ego_front (from y 5.2)
+    for vid in ('q0', 'q1', 'q2'):
+        edge, s, speed = sumo[vid]
+        assert edge == 'A0A1' and s < ego_front - 3.0 and speed < 0.1, (vid, sumo[vid])
+        assert bodies[vid][1] < 50.0 - 2.0 and bodies[vid][2] < 0.1
+    assert sumo['q0'][1] > sumo['q1'][1] > sumo['q2'][1] > 0.0
+    assert ego_s > 30.0
+    # with the car off their road they drive on: in 40 s past where it stood (or arrived)
+    free, _, absent = _queue(net, tmp_path, (-30.0, -30.0, 0.0))
+    assert absent is None           # 30 m off every road: not in SUMO
+    assert all(free[vid] is None or free[vid][0] != 'A0A1' for vid in free), free
+
+
+def _trajectory(net, seed, seconds=20.0):
+    scene = _world(net, {'demand': DEMAND, 'seed': seed}, ego=(-30.0, -30.0, 0.0))
+    try:
+        found = []
+        for _ in range(int(seconds)):
+            _run(scene, 1.0)
+            found.append(sorted(scene.parts['traffic'].agents()))
+        return found
+    finally:
+        scene.world.close()
+
+
+def test_a_seed_gives_the_same_trajectories_twice_and_another_seed_others(net):
+    first = _trajectory(net, 4)
+    assert first[-1] and first == _trajectory(net, 4)
+    assert _trajectory(net, 9) != first
+
+
+def test_reset_starts_sumo_again_with_its_seed(net):
+    scene = _world(net, {'demand': DEMAND, 'seed': 4}, ego=(-30.0, -30.0, 0.0))
+    try:
+        bodies = scene.parts['traffic']
+        _run(scene, 5.0)
+        assert bodies.agents()
+        assert 'SUMO started again' in bodies.reset(4)
+        assert bodies.agents() == [] and bodies.session.api.simulation.getTime() == 0.0
+        found = []
+        for _ in range(20):
+            _run(scene, 1.0)
+            found.append(sorted(bodies.agents()))
+    finally:
+        scene.world.close()
+    assert found == _trajectory(net, 4)
+
+
+def test_two_worlds_in_one_process_the_second_over_traci(net):
+    first = _world(net, {'demand': DEMAND}, ego=(-30.0, -30.0, 0.0))
+    try:
+        second = _world(net, {'demand': DEMAND}, ego=(-30.0, -30.0, 0.0))
+        try:
+            a, b = first.parts['traffic'], second.parts['traffic']
+            assert (a.session.transport, b.session.transport) == ('libsumo', 'traci')
+            for _ in range(1000):
+                first.world.step()
+                second.world.step()
+            assert a.agents() and sorted(a.agents()) == sorted(b.agents())
+            process = b.session.api._process
+        finally:
+            second.world.close()
+        assert process.wait(timeout=60) is not None      # closing the world ended SUMO
+        assert b.session.closed
+    finally:
+        first.world.close()
+    assert a.session.closed and sumo_session._libsumo_user[0] is None
