@@ -63,10 +63,14 @@ class SumoStates:
             tls: self.api.trafficlight.getRedYellowGreenState(tls) for tls in self.tls_ids}
 
 
-@pytest.fixture(scope='module')
-def run(tmp_path_factory):
+def run_city_node(folder):
+    """
+    Run the city's node SECONDS with a client node listening; return what the run saw.
+
+    :return: (bodies, programs, SumoStates, {topic: messages}, the end time [ms]); the node
+        closed (its SUMO with it): the bodies' last state is the end's.
+    """
     from vehicle_sim.ros.automobile_node import AutomobileNode
-    folder = tmp_path_factory.mktemp('sumo_ros')
     world = folder / 'city.yaml'
     world.write_text(yaml.safe_dump({
         'vehicles': [{'name': 'ego', 'model': 'Car', 'pose': {'lane': EGO_LANE, 's': EGO_S}}],
@@ -91,55 +95,68 @@ def run(tmp_path_factory):
                                         for m in received[PREDICTED_OBJECTS_TOPIC.name]),
                             spin=client)
             client.spin_once(0.2)
-        yield node, bodies, programs, states, received, end_ms
+        return bodies, programs, states, received, end_ms, _truth(bodies)
     finally:
         node.close()
+
+
+def _truth(bodies):
+    """Return each SUMO body now: {uuid: (object, SUMO id, person?, (length, width, height))}."""
+    api = bodies.session.api
+    persons = set(api.person.getIDList())
+    found = {}
+    for o in bodies.objects():
+        sumo_id = bodies.sumo_id(o.name)
+        person = sumo_id in persons
+        kind = (api.person if person else api.vehicle).getTypeID(sumo_id)
+        vclass = None if person else api.vehicle.getVehicleClass(sumo_id)
+        found[object_uuid(o.name)] = (o, person, vclass, (
+            api.vehicletype.getLength(kind), api.vehicletype.getWidth(kind),
+            api.vehicletype.getHeight(kind)))
+    return found
 
 
 def seconds(stamp):
     return stamp.sec + stamp.nanosec * 1e-9
 
 
-def test_sumos_cars_and_pedestrians_are_car_and_pedestrian_objects(run):
-    node, bodies, _, _, received, end_ms = run
+def test_sumos_objects_and_signals_over_the_wire(tmp_path):
+    _, programs, states, received, end_ms, truth = run_city_node(tmp_path)
+    check_objects(received, end_ms, truth)
+    check_signals(programs, states, received)
+
+
+def check_objects(received, end_ms, truth):
+    """SUMO's passenger cars are CAR boxes of their type, its persons PEDESTRIAN cylinders."""
     last, = [m for m in received[PREDICTED_OBJECTS_TOPIC.name]
              if round(seconds(m.header.stamp) * 1000) == end_ms]
-    now = {object_uuid(o.name): o for o in bodies.objects()}
-    assert len(last.objects) == len(now) > 10
-    api = bodies.session.api
+    assert len(last.objects) == len(truth) > 10
     labels = []
     for item in last.objects:
-        o = now[bytes(item.object_id.uuid)]
+        o, person, vclass, (length, width, height) = truth[bytes(item.object_id.uuid)]
         label = item.classification[0].label
         labels.append(label)
-        sumo_id = bodies.sumo_id(o.name)
         dimensions = item.shape.dimensions
         if label == PEDESTRIAN:
-            assert sumo_id in api.person.getIDList()
-            kind = api.person.getTypeID(sumo_id)
-            width, height = api.vehicletype.getWidth(kind), api.vehicletype.getHeight(kind)
-            assert item.shape.type == CYLINDER
+            assert person and item.shape.type == CYLINDER
             assert (dimensions.x, dimensions.y, dimensions.z) == \
                 pytest.approx((width, width, height))
         else:
-            assert label == CAR and api.vehicle.getVehicleClass(sumo_id) == 'passenger'
-            kind = api.vehicle.getTypeID(sumo_id)
-            assert item.shape.type == BOUNDING_BOX
-            assert (dimensions.x, dimensions.y, dimensions.z) == pytest.approx(
-                (api.vehicletype.getLength(kind), api.vehicletype.getWidth(kind),
-                 api.vehicletype.getHeight(kind)))
+            assert label == CAR and vclass == 'passenger' and item.shape.type == BOUNDING_BOX
+            assert (dimensions.x, dimensions.y, dimensions.z) == \
+                pytest.approx((length, width, height))
         position = item.kinematics.initial_pose_with_covariance.pose.position
         assert (position.x, position.y) == pytest.approx((o.x_m, o.y_m), abs=1e-6)
     assert labels.count(PEDESTRIAN) >= 3 and labels.count(CAR) >= 3
 
 
-def test_the_signals_topic_shows_sumos_states_at_each_stamp(run):
-    _, _, programs, states, received, _ = run
+def check_signals(programs, states, received):
+    """Each group's colour is SUMO's state of its link at the message's stamp."""
     messages = received[TRAFFIC_SIGNALS.name]
     assert len(messages) >= SECONDS * 10
     link_of = {g: (p.tls_id, k) for p in programs for k, g in enumerate(p.links)
                if g is not None}
-    changes, compared = set(), 0
+    colours, compared = set(), 0
     for message in messages:
         shown = states.at[round(seconds(message.stamp) * 1000)]
         for group in message.traffic_light_groups:
@@ -147,7 +164,7 @@ def test_the_signals_topic_shows_sumos_states_at_each_stamp(run):
             element, = group.elements
             assert element.color == ELEMENT_COLOR[SUMO_STATES[shown[tls][link]]], \
                 (seconds(message.stamp), tls, link)
-            changes.add((group.traffic_light_group_id, element.color))
+            colours.add(element.color)
             compared += 1
     assert compared == len(messages) * len(link_of)
-    assert {color for _, color in changes} == {1, 2, 3}         # red, amber and green seen
+    assert colours == {1, 2, 3}                             # red, amber and green seen
