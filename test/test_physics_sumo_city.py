@@ -19,7 +19,7 @@ Urban traffic on a small signalised SUMO city for 10 simulated minutes (the issu
 The city: a netgenerate 3 x 3 grid (:data:`CITY_OPTIONS`: 120 m blocks, one lane each way, a
 sidewalk, crossings and a traffic light at every junction) as the world's map (``map: {type:
 sumo}``), SUMO's traffic on it (``demand:`` of 1500 vehicles and 900 pedestrians an hour) and our
-car standing in lane A1B1_1. One run of 10 simulated minutes (60 000 world steps, some 20 s here)
+car standing in lane A1B1_1. One run of 10 simulated minutes (60 000 world steps, some 30 s here)
 is recorded at every SUMO step (0.1 s), and the tests read the record:
 
 - the signals: SUMO's state of every link is our signal controller's state of its group at every
