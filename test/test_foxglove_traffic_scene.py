@@ -76,3 +76,26 @@ def test_traffic_cars_are_boxes_that_follow_the_physics(traffic_scene):
     last = stream.frame(scene, full=False)
     assert last.deleted_ids == (f'traffic/{gone.name}',)
     assert f'traffic/{gone.name}' not in [e.id for e in last.entities]
+
+
+def test_a_pedestrian_is_an_upright_cylinder_of_its_diameter(monkeypatch):
+    # An engine whose bodies are of classes (test/traffic_helpers.py): the contract's boxes()
+    # gives each body's shape, a pedestrian's a cylinder (diameter, diameter, height).
+    from traffic_helpers import register_classes_engine, WALKER_M
+    register_classes_engine(monkeypatch)
+    data = copy.deepcopy(read_yaml(world_path('highway')))
+    data['traffic'] = {'engine': 'classes', 'classes': ['bus', 'pedestrian'], 'placed': [
+        {'model': 'ToyotaPrius', 'lanelet': MIDDLE, 's': 60.0, 'speed': 10.0},
+        {'model': 'BmwX5', 'lanelet': MIDDLE, 's': 120.0, 'speed': 1.0}]}
+    scene = build_scene(world_from_data(data, 'classes.yaml'))
+    try:
+        entities = {e.id: e for e in SceneStream().frame(scene, full=False).entities}
+        traffic = scene.parts['traffic']
+        bus, walker = (entities[f'traffic/{v.name}'].primitives for v in traffic.manager.vehicles)
+        diameter, height = WALKER_M
+        assert [p.kind for p in bus + walker] == ['cube', 'cylinder']
+        assert walker[0].size_m == (diameter, diameter, height)
+        (position, _), *_ = scene.world.body_state(traffic.body_ids[1])
+        assert walker[0].position_m == pytest.approx(position)
+    finally:
+        scene.world.close()

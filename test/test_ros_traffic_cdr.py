@@ -20,6 +20,7 @@ constants and values, for every alignment the frame id and the paths' lengths gi
 obstacles, and markers added and deleted over successive calls.
 """
 
+from dataclasses import replace
 import math
 
 import pytest
@@ -51,6 +52,11 @@ def vehicle(index, poses, step_s=0.5):
 
 VEHICLES = [vehicle(i, poses) for i, poses in enumerate((10, 0, 3, 1, 10, 7))] + [
     vehicle(6, 2, step_s=1.25)]
+# one of each other class; a pedestrian a cylinder (its diameter the larger of its sides)
+CLASSED = [replace(vehicle(7 + i, i % 4), object_class=name, length_m=0.3, width_m=0.6)
+           if name == 'pedestrian' else replace(vehicle(7 + i, i % 4), object_class=name)
+           for i, name in enumerate(('pedestrian', 'truck', 'bus', 'trailer', 'motorcycle',
+                                     'bicycle', 'pedestrian'))]
 OBSTACLES = [ObstacleObject('cone', 50.0, -14.0, 0.35, 0.0, 'cylinder', (0.4, 0.4, 0.7)),
              ObstacleObject('wall', 20.0, 0.0, 1.0, math.pi / 3, 'box', (1.0, 6.0, 2.0)),
              ObstacleObject('ball', -1.0, 2.0, 0.5, -0.5, 'sphere', (1.0, 1.0, 1.0))]
@@ -66,6 +72,34 @@ def test_predicted_objects_bytes_equal_the_builders_message_for_every_alignment(
             message = build(t, VEHICLES[:count], obstacles)
             data = serialize(t, VEHICLES[:count], obstacles)
             assert data == message.serialize() == rosbags_bytes(message), (count, obstacles)
+
+
+@pytest.mark.parametrize('frame_id', FRAME_IDS[:3])
+def test_objects_of_every_class_serialize_to_their_labels_and_shapes(frame_id):
+    serialize = traffic_cdr.predicted_objects_serializer(frame_id)
+    build = tm.predicted_objects_builder(message_type, frame_id)
+    objects = VEHICLES[:2] + CLASSED
+    t = stamp(12, 345_678_901)
+    message = build(t, objects, OBSTACLES[:1])
+    data = serialize(t, objects, OBSTACLES[:1])
+    assert data == message.serialize() == rosbags_bytes(message)
+    decoded = typestore().deserialize_cdr(data, tm.PREDICTED_OBJECTS)
+    assert [o.classification[0].label for o in decoded.objects] == [1, 1, 7, 2, 3, 4, 5, 6, 7, 0]
+    assert [o.shape.type for o in decoded.objects] == [0, 0, 1, 0, 0, 0, 0, 0, 1, 1]
+    walker = decoded.objects[2].shape.dimensions
+    assert (walker.x, walker.y, walker.z) == (0.6, 0.6, CLASSED[0].height_m)
+
+
+@pytest.mark.parametrize('frame_id', FRAME_IDS[:3])
+def test_markers_of_pedestrians_are_cylinders_in_both_ways(frame_id):
+    serialize = traffic_cdr.traffic_markers_serializer(frame_id)
+    build = tm.traffic_markers_builder(message_type, frame_id)
+    t = stamp(0, 7)
+    objects = VEHICLES[:1] + CLASSED
+    message = build(t, objects)
+    assert serialize(t, objects) == message.serialize() == rosbags_bytes(message)
+    assert [m.type for m in message.markers] == [1, 3, 1, 1, 1, 1, 1, 3]    # CUBE, CYLINDER
+    assert (message.markers[1].scale.x, message.markers[1].scale.y) == (0.6, 0.6)
 
 
 @pytest.mark.parametrize('frame_id', FRAME_IDS)

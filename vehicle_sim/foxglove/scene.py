@@ -30,7 +30,7 @@ posed boxes).
 A source may also be *on change*: called at every update, its entities sent only when they
 differ from the ones sent last.
 Built in: ``'vehicles'`` (each vehicle's chassis boxes, posed at each update), ``'obstacles'``
-(the world's cubes, cylinders and spheres), ``'traffic'`` (the traffic vehicles' boxes), the
+(the world's cubes, cylinders and spheres), ``'traffic'`` (the traffic's boxes and cylinders), the
 static ``'map'`` (an occupancy map's walls) and ``'lanes'`` (road surface, markings, barriers,
 centrelines, the rules' areas, stop lines, crosswalks and traffic light poles), and the on-change
 ``'signals'`` (the traffic lights' heads in their colours) of :mod:`.map_scene`.
@@ -165,20 +165,22 @@ def obstacle_entities(scene) -> List[Entity]:
 
 def traffic_entities(scene) -> List[Entity]:
     """
-    Return the traffic vehicles on the map (the entity source ``'traffic'``), each its box.
+    Return the traffic bodies on the map (the entity source ``'traffic'``), each its shape.
 
-    The traffic scene part (``scene.parts['traffic']``, physics/traffic_bodies.py) gives each
-    vehicle's box size and colour; its pose is where the physics has the box now. A vehicle
-    that leaves the map is not returned (so it is deleted from the view).
+    The traffic scene part (``scene.parts['traffic']``, the traffic-body contract of
+    physics/traffic_bodies.py) gives each body's shape (a box, a pedestrian's upright
+    cylinder), size and colour; its pose is where the physics has the body now. A body that
+    leaves the map is not returned (so it is deleted from the view).
     """
     traffic = getattr(scene, 'parts', {}).get('traffic')
     if traffic is None:
         return []
     found = []
-    for name, body_id, size, colour in traffic.boxes():
+    for name, body_id, size, colour, shape in traffic.boxes():
         (position, orientation), *_ = scene.world.body_state(body_id)
         found.append(Entity(f'traffic/{name}', WORLD_FRAME, (Primitive(
-            'cube', tuple(position), tuple(orientation), tuple(size), tuple(colour)),)))
+            PRIMITIVE_OF_SHAPE[shape], tuple(position), tuple(orientation), tuple(size),
+            tuple(colour)),)))
     return found
 
 

@@ -27,7 +27,8 @@ with ``moveToXY`` to its front bumper, SUMO taking its speed from the move: SUMO
 behind it and its pedestrians wait for it), pushes the signal states a scenario forces, advances
 SUMO by one step, reads every SUMO vehicle's and person's position, heading and speed (one
 subscription each, read in one call) and puts a body at each: a placed box of its vehicle type's
-length, width and height (a person's too: about 0.2 x 0.5 x 1.7 m). The bodies come from a pool:
+length, width and height, a person an upright cylinder (its class's shape, core/traffic/objects.py
+CLASS_SHAPES: about 0.5 m across, 1.7 m high). The bodies come from a pool:
 a body, named ``sumo_<k>``, serves one SUMO vehicle or person (its SUMO id: :meth:`sumo_id`) from
 its departure to its arrival, is parked under the ground after, and serves the next one of the
 same size; the order of SUMO's departures decides, so a seed gives the same names. Between
@@ -54,7 +55,13 @@ from vehicle_sim.core.map.sumo_net_params import SumoNetMapSpec
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.idm import IdmParams
 from vehicle_sim.core.traffic.lane_paths import route_path
-from vehicle_sim.core.traffic.objects import PREDICTION_HORIZON_S, PREDICTION_STEP_S, TrafficObject
+from vehicle_sim.core.traffic.objects import (
+    CLASS_SHAPES,
+    PREDICTION_HORIZON_S,
+    PREDICTION_STEP_S,
+    shape_extents,
+    TrafficObject,
+)
 from vehicle_sim.core.traffic.sumo_params import object_class
 from vehicle_sim.core.world.params import ObstacleSpec
 from vehicle_sim.physics.gui import FRAME_PERIOD_S
@@ -445,7 +452,9 @@ class SumoBodies:
         length, width, height, vclass = kind
         if person:
             vclass = 'pedestrian'
-        key = (round(length, 3), round(width, 3), round(height, 3), person)
+        found_class = object_class(vclass)
+        key = (round(length, 3), round(width, 3), round(height, 3), person,
+               CLASS_SHAPES[found_class])
         free = self._free.get(key)
         if free:
             slot = free.pop()
@@ -454,9 +463,12 @@ class SumoBodies:
             clearance = 0.0 if person else min(GROUND_CLEARANCE_M, 0.25 * height)
             colour = PERSON_COLOUR if person else COLOURS[index % len(COLOURS)]
             size = (length, width, height)
-            spec = ObstacleSpec(f'{NAME_PREFIX}{index}', 'box',
+            # the body of its class's shape (a pedestrian an upright cylinder)
+            extents = shape_extents(found_class, length, width, height - clearance)
+            spec = ObstacleSpec(f'{NAME_PREFIX}{index}', CLASS_SHAPES[found_class],
                                 (0.0, 0.0, PARK_DEPTH_M - 10.0 * index), 0.0, 0.0, 0.0, 0.0,
-                                colour, (length, width, height - clearance))
+                                colour, extents, radius_m=0.5 * extents[0],
+                                height_m=extents[2])
             body_id = self.world.add_obstacle(spec, placed=True)
             slot = _Slot(index, body_id, size, clearance, colour, key)
             self._slots.append(slot)
@@ -627,10 +639,20 @@ class SumoBodies:
         return {slot.name for slot in self._slots}
 
     def boxes(self):
-        """Return [(name, body id, (length, width, height) of its box [m], colour)] serving."""
-        return [(slot.name, slot.body_id,
-                 (slot.size[0], slot.size[1], slot.size[2] - slot.clearance), slot.colour)
-                for slot in self._serving()]
+        """
+        Return [(name, body id, size [m], colour, shape)] of the serving bodies.
+
+        Each body's shape is its class's (a pedestrian an upright cylinder), its size that
+        shape's extents (core/traffic/objects.py shape_extents).
+        """
+        found = []
+        for slot in self._serving():
+            name = object_class(slot.vclass)
+            found.append((slot.name, slot.body_id,
+                          shape_extents(name, slot.size[0], slot.size[1],
+                                        slot.size[2] - slot.clearance),
+                          slot.colour, CLASS_SHAPES[name]))
+        return found
 
     def objects(self, horizon_s=PREDICTION_HORIZON_S, step_s=PREDICTION_STEP_S):
         """

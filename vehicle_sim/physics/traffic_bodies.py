@@ -45,7 +45,7 @@ from vehicle_sim.config import load_car
 from vehicle_sim.core.geometry.footprint import car_outline
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.manager import TrafficManager
-from vehicle_sim.core.traffic.objects import traffic_objects
+from vehicle_sim.core.traffic.objects import CLASS_SHAPES, shape_extents, traffic_objects
 from vehicle_sim.core.world.params import ObstacleSpec
 from vehicle_sim.physics.gui import FRAME_PERIOD_S
 from vehicle_sim.physics.traffic_boxes import (
@@ -55,6 +55,9 @@ from vehicle_sim.physics.traffic_boxes import (
     our_vehicle,
     PARK_DEPTH_M,
 )
+
+# the object class of the builtin engine's vehicles (core/traffic/objects.py OBJECT_CLASSES)
+OBJECT_CLASS = 'car'
 
 
 def model_dimensions(model):
@@ -303,15 +306,19 @@ class TrafficBodies:
 
     def boxes(self):
         """
-        Return the traffic vehicles on the map as drawn (the Foxglove scene's ``traffic/``).
+        Return the traffic bodies on the map as drawn (the Foxglove scene's ``traffic/``).
 
-        :return: [(name, body id, (length, width, height) of its box [m], colour)]; a vehicle
-            parked under the ground (waiting to re-enter) is left out.
+        :return: [(name, body id, size [m], colour, shape)]: the shape of the body's object
+            class (core CLASS_SHAPES: 'box' or an upright 'cylinder'), its size the extents of
+            that shape as an obstacle's (x, y, z; a cylinder's x and y its diameter), centred
+            on the body's pose. The builtin engine's: boxes of its cars. A vehicle parked under
+            the ground (waiting to re-enter) is left out.
         """
         dimensions, colours = self.manager.dimensions, self.colours
-        return [(v.name, body_id, dimensions[v.model][:2] + (
-                     self.heights[v.model] - GROUND_CLEARANCE_M,),
-                 colours[v.index % len(colours)])
+        shape = CLASS_SHAPES[OBJECT_CLASS]
+        return [(v.name, body_id, shape_extents(OBJECT_CLASS, *dimensions[v.model][:2],
+                                                self.heights[v.model] - GROUND_CLEARANCE_M),
+                 colours[v.index % len(colours)], shape)
                 for v, body_id in zip(self.manager.vehicles, self.body_ids) if v.active]
 
     def agents(self):

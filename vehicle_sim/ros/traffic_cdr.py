@@ -61,6 +61,7 @@ def predicted_objects_serializer(frame_id: str):
     frame = cdr_string(frame_id)
     uuids = {}
     poses = {}
+    labels, shapes = tm.LABEL_OF_CLASS, tm.OBJECT_SHAPE_OF_OBSTACLE
 
     def uuid_of(name):
         found = uuids.get(name)
@@ -82,7 +83,7 @@ def predicted_objects_serializer(frame_id: str):
         pack(4, _U32, len(objects) + len(obstacles))
         for o in objects:
             raw(1, uuid_of(o.name))
-            pack(4, _EXISTENCE_CLASS, 1.0, 1, tm.CAR, 1.0)
+            pack(4, _EXISTENCE_CLASS, 1.0, 1, labels[o.object_class], 1.0)
             z = 0.5 * o.height_m
             qx, qy, qz, qw = quaternion_from_yaw(o.yaw_rad)
             pack(8, _POSE_COVARIANCE, o.x_m, o.y_m, z, qx, qy, qz, qw)
@@ -96,8 +97,8 @@ def predicted_objects_serializer(frame_id: str):
             if o.path:
                 pack(8, path_layout(len(o.path)), *values)
             pack(4, _PATH_END, *_time_step(o.step_s), 1.0)
-            pack(4, _SHAPE_HEAD, tm.BOUNDING_BOX, 0)
-            pack(8, _VECTOR3, o.length_m, o.width_m, o.height_m)
+            pack(4, _SHAPE_HEAD, shapes[o.shape], 0)
+            pack(8, _VECTOR3, *o.size_m)
         for o in obstacles:
             raw(1, uuid_of(o.name))
             pack(4, _EXISTENCE_CLASS, 1.0, 1, tm.UNKNOWN, 1.0)
@@ -129,6 +130,7 @@ def traffic_markers_serializer(frame_id: str, colours=()):
     """Return ``serialize(stamp, objects)``: the traffic MarkerArray's bytes (see its builder)."""
     frame, ns, tail = cdr_string(frame_id), cdr_string('traffic'), _marker_tail()
     shown = set()
+    markers = tm.MARKER_OF_SHAPE
 
     def serialize(stamp, objects):
         out = CdrWriter()
@@ -142,10 +144,9 @@ def traffic_markers_serializer(frame_id: str, colours=()):
             pack(4, _STAMP, sec, nanosec)
             raw(4, frame)
             raw(4, ns)
-            pack(4, _IDS, o.index, tm.CUBE, tm.ADD)
+            pack(4, _IDS, o.index, markers[o.shape], tm.ADD)
             pack(8, _MARKER_BODY, o.x_m, o.y_m, 0.5 * o.height_m,
-                 *quaternion_from_yaw(o.yaw_rad), o.length_m, o.width_m, o.height_m,
-                 r, g, b, a, 0, 0, False)
+                 *quaternion_from_yaw(o.yaw_rad), *o.size_m, r, g, b, a, 0, 0, False)
             raw(4, tail)
         for index in deleted:
             pack(4, _STAMP, sec, nanosec)

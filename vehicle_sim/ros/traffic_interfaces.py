@@ -81,15 +81,16 @@ PREDICTED_OBJECTS_TOPIC = Topic(
     converter(predicted_objects_builder, _objects_and_obstacles, lambda w: (w.frame,),
               predicted_objects_serializer),
     unit='m, rad, m/s',
-    doc='ground truth of every traffic vehicle (class CAR, box, pose, twist, a path along its '
+    doc='ground truth of every traffic body (its class: CAR, TRUCK, BUS, TRAILER, MOTORCYCLE, '
+        'BICYCLE or PEDESTRIAN; a box, a pedestrian a CYLINDER; pose, twist, a path along its '
         'lane at constant speed) and obstacle (class UNKNOWN, at rest); frame map (a lanelet2 '
         'map) or world')
 TRAFFIC_MARKERS = Topic(
     '/sim/traffic/markers', MARKER_ARRAY, QOS_OBJECTS, AT_OBJECTS_RATE,
     converter(traffic_markers_builder, _objects, lambda w: (w.frame, w.colours),
               traffic_markers_serializer),
-    unit='m, rad', doc='one CUBE per traffic vehicle (namespace traffic, id its index); frame '
-                       'map (a lanelet2 map) or world')
+    unit='m, rad', doc='one CUBE per traffic body, a CYLINDER per pedestrian (namespace '
+                       'traffic, id its index); frame map (a lanelet2 map) or world')
 
 TRAFFIC_TOPICS = (PREDICTED_OBJECTS_TOPIC, TRAFFIC_MARKERS)
 

@@ -22,13 +22,15 @@ TrafficObjects (core/traffic/objects.py).
 
 - ``autoware_perception_msgs/PredictedObjects``, as Autoware's planning simulator's dummy
   perception gives them: per object a UUID derived from its name, existence probability 1,
-  classification CAR (probability 1), the pose of its box's centre, its twist in its own frame
-  (x forward), a BOUNDING_BOX shape of its dimensions, and one predicted path (confidence 1):
+  the classification of its class (:data:`LABEL_OF_CLASS`: CAR, TRUCK, BUS, TRAILER,
+  MOTORCYCLE, BICYCLE, PEDESTRIAN; probability 1), the pose of its body's centre, its twist in
+  its own frame (x forward), its class's shape (a BOUNDING_BOX of its dimensions; a
+  pedestrian's CYLINDER: diameter, diameter, height), and one predicted path (confidence 1):
   constant speed along its lane. After them the world's obstacles: classification UNKNOWN, at
   rest, no predicted path, a BOUNDING_BOX (a box) or CYLINDER (a cylinder, a sphere) shape.
-- ``visualization_msgs/MarkerArray``: one CUBE per object (namespace ``traffic``, id = the
-  vehicle's index), coloured like its body; objects that left the map since the last message
-  are deleted (action DELETE).
+- ``visualization_msgs/MarkerArray``: one CUBE per object (a CYLINDER for a pedestrian;
+  namespace ``traffic``, id = the vehicle's index), coloured like its body; objects that left
+  the map since the last message are deleted (action DELETE).
 - ``autoware_perception_msgs/TrafficLightGroupArray``: the state of every traffic light group
   of the map (its id the map's: a lanelet2 traffic light regulatory element's id), as
   Autoware's planning simulator and scenario_simulator_v2 give them to the planners: per
@@ -61,11 +63,19 @@ TRAFFIC_LIGHT_GROUP = 'autoware_perception_msgs/msg/TrafficLightGroup'
 TRAFFIC_LIGHT_ELEMENT = 'autoware_perception_msgs/msg/TrafficLightElement'
 TIME = 'builtin_interfaces/msg/Time'
 
-UNKNOWN, CAR = 0, 1      # ObjectClassification
+UNKNOWN = 0             # ObjectClassification
+# a traffic object's class (core/traffic/objects.py OBJECT_CLASSES) -> its ObjectClassification
+# label (autoware_perception_msgs' CAR, TRUCK, ... of the same name).
+LABEL_OF_CLASS = {'car': 1, 'truck': 2, 'bus': 3, 'trailer': 4, 'motorcycle': 5, 'bicycle': 6,
+                  'pedestrian': 7}
 BOUNDING_BOX, CYLINDER = 0, 1    # Shape
-# obstacle shape (core/world/params.py OBSTACLE_SHAPES) -> its Shape type as an object.
+# obstacle shape (core/world/params.py OBSTACLE_SHAPES; a traffic object's shape, core
+# CLASS_SHAPES, is one of them) -> its Shape type as an object: a CYLINDER's dimensions x and y
+# are its diameter, as Autoware's.
 OBJECT_SHAPE_OF_OBSTACLE = {'box': BOUNDING_BOX, 'cylinder': CYLINDER, 'sphere': CYLINDER}
-CUBE, ADD, DELETE = 1, 0, 2     # visualization_msgs/Marker
+CUBE, CYLINDER_MARKER, ADD, DELETE = 1, 3, 0, 2     # visualization_msgs/Marker
+# a traffic object's shape -> the marker type drawing it
+MARKER_OF_SHAPE = {'box': CUBE, 'cylinder': CYLINDER_MARKER}
 # TrafficLightElement: colour, shape and status values (UNKNOWN = 0 for each).
 ELEMENT_UNKNOWN = 0
 ELEMENT_COLOR = {'red': 1, 'yellow': 2, 'green': 3}      # RED, AMBER, GREEN
@@ -99,7 +109,8 @@ def predicted_objects_builder(msg, frame_id: str):
     def one(o):
         item = object_type(object_id=uuid_type(uuid=object_uuid(o.name)),
                            existence_probability=1.0,
-                           classification=[classification_type(label=CAR, probability=1.0)])
+                           classification=[classification_type(
+                               label=LABEL_OF_CLASS[o.object_class], probability=1.0)])
         z = 0.5 * o.height_m
         kinematics = item.kinematics
         kinematics.initial_pose_with_covariance.pose = pose(o.x_m, o.y_m, z, o.yaw_rad)
@@ -110,10 +121,9 @@ def predicted_objects_builder(msg, frame_id: str):
             time_step=duration_type(sec=int(seconds),
                                     nanosec=int(round((o.step_s - seconds) * 1e9))),
             confidence=1.0)]
-        item.shape = shape_type(type=BOUNDING_BOX)
-        item.shape.dimensions.x = float(o.length_m)
-        item.shape.dimensions.y = float(o.width_m)
-        item.shape.dimensions.z = float(o.height_m)
+        item.shape = shape_type(type=OBJECT_SHAPE_OF_OBSTACLE[o.shape])
+        item.shape.dimensions.x, item.shape.dimensions.y, item.shape.dimensions.z = \
+            (float(v) for v in o.size_m)
         return item
 
     def obstacle(o):
@@ -148,15 +158,15 @@ def traffic_markers_builder(msg, frame_id: str, colours=()):
         present = set()
         for o in objects:
             r, g, b, a = colours[o.index % len(colours)] if colours else (0.6, 0.6, 0.6, 1.0)
-            item = marker_type(header=header, ns='traffic', id=o.index, type=CUBE, action=ADD,
+            item = marker_type(header=header, ns='traffic', id=o.index,
+                               type=MARKER_OF_SHAPE[o.shape], action=ADD,
                                color=color_type(r=r, g=g, b=b, a=a))
             item.pose.position.x, item.pose.position.y = float(o.x_m), float(o.y_m)
             item.pose.position.z = 0.5 * o.height_m
             qx, qy, qz, qw = quaternion_from_yaw(o.yaw_rad)
             item.pose.orientation.x, item.pose.orientation.y = qx, qy
             item.pose.orientation.z, item.pose.orientation.w = qz, qw
-            item.scale.x, item.scale.y = float(o.length_m), float(o.width_m)
-            item.scale.z = float(o.height_m)
+            item.scale.x, item.scale.y, item.scale.z = (float(v) for v in o.size_m)
             markers.append(item)
             present.add(o.index)
         for index in sorted(shown - present):

@@ -31,8 +31,12 @@ from typing import Mapping, Tuple
 
 PREDICTION_HORIZON_S = 5.0
 # The classes of traffic objects (autoware_perception_msgs/ObjectClassification's labels but
-# UNKNOWN, lower case; the ROS layer maps each to its label).
-OBJECT_CLASSES = ('car', 'truck', 'bus', 'trailer', 'motorcycle', 'bicycle', 'pedestrian')
+# UNKNOWN, lower case; the ROS layer maps each to its label) -> the shape of its body (an
+# obstacle shape, core/world/params.py OBSTACLE_SHAPES): a pedestrian an upright cylinder, the
+# rest boxes. The ROS objects and markers and the live view draw each object so.
+CLASS_SHAPES = {'car': 'box', 'truck': 'box', 'bus': 'box', 'trailer': 'box',
+                'motorcycle': 'box', 'bicycle': 'box', 'pedestrian': 'cylinder'}
+OBJECT_CLASSES = tuple(CLASS_SHAPES)
 PREDICTION_STEP_S = 0.5
 
 
@@ -54,7 +58,11 @@ class TrafficObject:
     :param step_s: time between the path's poses [s].
     :param object_class: what it is, one of :data:`OBJECT_CLASSES` (Autoware's
         ObjectClassification labels, lower case): the builtin engine's are all cars; SUMO's
-        come from their vehicle classes (docs/sumo.md).
+        come from their vehicle classes (docs/sumo.md). Its shape is its class's
+        (:data:`CLASS_SHAPES`): a box of length, width and height, or an upright cylinder
+        whose diameter is the larger of length and width (:attr:`size_m`,
+        :func:`shape_extents`).
+    :raises ValueError: for a class not in :data:`OBJECT_CLASSES`, naming it.
     """
 
     index: int
@@ -69,6 +77,34 @@ class TrafficObject:
     path: Tuple[Tuple[float, float, float], ...]
     step_s: float
     object_class: str = 'car'
+
+    def __post_init__(self):
+        if self.object_class not in CLASS_SHAPES:
+            raise ValueError(f'object_class {self.object_class!r} of {self.name!r}: unknown; '
+                             f'valid: {", ".join(OBJECT_CLASSES)}')
+
+    @property
+    def shape(self) -> str:
+        """Its body's shape: 'box' or 'cylinder' (upright), its class's."""
+        return CLASS_SHAPES[self.object_class]
+
+    @property
+    def size_m(self) -> Tuple[float, float, float]:
+        """Its shape's extents (x, y, z) [m] (:func:`shape_extents`)."""
+        return shape_extents(self.object_class, self.length_m, self.width_m, self.height_m)
+
+
+def shape_extents(object_class, length_m, width_m, height_m) -> Tuple[float, float, float]:
+    """
+    Return the extents (x, y, z) [m] of the shape of a class's body of a given size.
+
+    As an obstacle's (core ObstacleSpec ``size_m``): a box's length, width and height; an
+    upright cylinder's diameter (the larger of length and width) twice and its height.
+    """
+    if CLASS_SHAPES[object_class] == 'cylinder':
+        diameter = max(length_m, width_m)
+        return diameter, diameter, height_m
+    return length_m, width_m, height_m
 
 
 def _path(manager, v, horizon_s, step_s, since_s):
