@@ -17,7 +17,7 @@
 import pytest
 
 from vehicle_sim.core.specs.errors import InvalidParameterError
-from vehicle_sim.core.traffic.sumo_folder import read_sumo_folder
+from vehicle_sim.core.traffic.sumo_folder import read_sumo_folder, with_sumo_folder
 
 CONFIG = ('<?xml version="1.0" encoding="UTF-8"?>\n<configuration>\n  <input>\n'
           '    <net-file value="{net}"/>\n    <route-files value="{routes}"/>\n  </input>\n'
@@ -76,3 +76,21 @@ def test_missing_route_files_a_missing_folder_and_a_broken_config_are_refused(tm
     (folder / 'sumo.sumocfg').write_text('<configuration><input>', encoding='utf-8')
     with pytest.raises(InvalidParameterError, match=r'cannot read .*sumo\.sumocfg'):
         read_sumo_folder(str(folder))
+
+
+def test_the_world_key_becomes_the_map_and_the_routes_and_refuses_a_non_folder(tmp_path):
+    folder = _folder(tmp_path, ['sumo.net.xml', 'sumo.rou.xml'],
+                     {'net': 'sumo.net.xml', 'routes': 'sumo.rou.xml'})
+    data = {'vehicles': [{'name': 'Car'}], 'sumo_folder': folder.name,
+            'traffic': {'seed': 4, 'demand': {'vehicles_per_hour': 60}}}
+    expanded = with_sumo_folder(data, 'w.yaml: sumo_folder', str(tmp_path))
+    assert expanded == {'vehicles': [{'name': 'Car'}],
+                        'map': {'type': 'sumo', 'net': str(folder / 'sumo.net.xml')},
+                        'traffic': {'engine': 'sumo', 'seed': 4,
+                                    'demand': {'vehicles_per_hour': 60},
+                                    'routes': [str(folder / 'sumo.rou.xml')]}}
+    assert 'map' not in data                       # the world's mapping is left as it was
+    for value in (3, '', ['my_world_net']):
+        with pytest.raises(InvalidParameterError,
+                           match=r'w\.yaml: sumo_folder: must be a folder name .* not '):
+            with_sumo_folder({'sumo_folder': value}, 'w.yaml: sumo_folder', str(tmp_path))
