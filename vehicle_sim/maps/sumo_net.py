@@ -66,6 +66,7 @@ connections and its traffic light programs. What becomes of it:
 
 import math
 import os
+from types import SimpleNamespace
 import warnings
 
 import numpy as np
@@ -463,8 +464,20 @@ def _right_of_way(graph, reader, first_line_id):
     return stop_lines, rules
 
 
+def _junction_lanes(graph, reader):
+    """Return {junction id: a namespace of its internal lanes that are lanes}."""
+    found = {}
+    for node in reader.net.getNodes():
+        ids = (reader.ids.get(name) for name in node.getInternal())
+        found[node.getID()] = SimpleNamespace(lanes={i: graph.lanes[i] for i in ids
+                                                     if i in graph.lanes})
+    return found
+
+
 def _walking_areas(graph, reader):
     """Add the walking areas, crossings and junction polygons as areas."""
+    junctions = _junction_lanes(graph, reader)
+    empty = SimpleNamespace(lanes={})
     for edge in reader.net.getEdges(withInternal=True):
         function = edge.getFunction()
         for lane in edge.getLanes():
@@ -476,21 +489,23 @@ def _walking_areas(graph, reader):
                     polygon = _strip(shape, lane.getWidth())
                     crossed = {reader.ids[one.getID()] for crossed_edge in
                                edge.getCrossingEdges() for one in crossed_edge.getLanes()}
+                    node = edge.getID()[1:edge.getID().rfind('_c')]  # ':<node>_c<k>'
                     reader.area('crosswalk', polygon, sorted(
-                        set(lanes_through(graph, polygon))
+                        set(lanes_through(junctions.get(node, empty), polygon))
                         | {i for i in crossed if i in graph.lanes}))
     for node in reader.net.getNodes():
         if node.getType() != 'internal':
             reader.area('junction', node.getShape())
 
 
-def load_sumo_net(path, vclass='passenger', source=None):
+def load_sumo_net(path, vclass='passenger', source=None, shown=None):
     """
     Read a SUMO network into a LaneGraph with its rules (``graph.rules``).
 
     :param path: the ``.net.xml`` file.
     :param vclass: the SUMO vehicle class of the traffic's lanes.
     :param source: what errors name first (the world file's key); None = 'map'.
+    :param shown: how errors and the graph's source name the file; None = ``path``.
     :return: (LaneGraph, the sumolib network).
     :raises InvalidParameterError: naming the file: missing, not a SUMO network, no lane the
         map's vehicles or other road vehicles may use, a lane whose geometry is wrong.
@@ -498,7 +513,7 @@ def load_sumo_net(path, vclass='passenger', source=None):
     """
     source = source or 'map'
     net = read_net(path, source)
-    reader = _Reader(net, vclass, path, source)
+    reader = _Reader(net, vclass, shown or path, source)
     reader.sort_lanes()
     lanes = reader.lanes()
     if not lanes:
