@@ -38,8 +38,11 @@ connections and its traffic light programs. What becomes of it:
   centreline shifted by half the width. Speed limits are the lanes' ``speed``.
 - **successors**: through the connections: a lane's successors are its connections' first
   internal lanes (``via``), an internal lane's the next internal lane or the lane it leads to
-  (connections without internal lanes: the lane itself). An internal lane too short to have a
-  direction (its shape a single point) is skipped and its predecessors lead on to its successors.
+  (connections without internal lanes: the lane itself), straight on first (then slight
+  turns, turns, turnarounds: :data:`SUCCESSOR_ORDER`), so that the first successor is the
+  way of a vehicle with no route (the lane state's next stop line). An internal lane too
+  short to have a direction (its shape a single point) is skipped and its predecessors lead
+  on to its successors.
 - **neighbours and lines**: lanes of one edge are neighbours (index + 1 on the left); the line
   between two lanes of one subtype is dashed (a lane change is allowed), between lanes of two
   subtypes solid, beside a sidewalk a curbstone, and at the edge's outer sides solid. Internal
@@ -111,6 +114,10 @@ HEAD_SPACING_M = 0.8
 ARROWS = {'t': 'left_arrow', 'l': 'left_arrow', 'L': 'left_arrow', 's': 'up_arrow',
           'R': 'right_arrow', 'r': 'right_arrow'}
 DIRECTION_ORDER = 'tlLsRr'
+# The order of a lane's successors by their connection's direction: straight on first, so
+# that the first successor is the way of a vehicle with no route (the next stop line of the
+# lane state, the built-in traffic's default).
+SUCCESSOR_ORDER = {'s': 0, 'L': 1, 'R': 1, 'l': 2, 'r': 2, 't': 3}
 
 
 class SumoNetWarning(UserWarning):
@@ -324,7 +331,8 @@ class _Reader:
     def successors(self, lane, seen=()):
         """Return the lane ids a lane leads to (past internal lanes that are not lanes)."""
         found = []
-        for connection in lane.getOutgoing():
+        for connection in sorted(lane.getOutgoing(),
+                                 key=lambda c: SUCCESSOR_ORDER.get(c.getDirection(), 9)):
             via = connection.getViaLaneID()
             target = self.net.getLane(via) if via else connection.getToLane()
             target_id = self.ids.get(target.getID())
