@@ -27,7 +27,7 @@ import yaml
 pytest.importorskip('sumolib', reason="sumolib is not installed (pip install "
                                       "'vehicle_sim[sumo]')")
 
-from sumo_helpers import grid_net  # noqa: E402
+from sumo_helpers import grid_net, run_tool  # noqa: E402
 import sumolib  # noqa: E402  (after the skip)
 
 from vehicle_sim.config import load_world  # noqa: E402
@@ -191,6 +191,41 @@ def test_the_controller_shows_the_programs_state_at_given_times(loaded):
     assert controller.states()[program.links[0]] == SUMO_STATES[program.phases[0][1][0]]
 
 
+def test_the_programs_states_are_sumos_own_for_an_offset_program(tmp_path, net_path):
+    # the net's first program shifted by 10 s; SUMO (its sumo binary, through TraCI) runs it
+    import os
+
+    import sumo
+    import traci
+    text = open(net_path, encoding='utf-8').read()
+    first = text.index('<tlLogic ')
+    shifted = text[:first] + text[first:].replace('offset="0"', 'offset="10"', 1)
+    net = tmp_path / 'offset.net.xml'
+    net.write_text(shifted, encoding='utf-8')
+    graph, _ = load_sumo_net(str(net))
+    program = graph.rules.programs[0]
+    assert program.offset_s == 10.0
+    controller = ProgramController(graph)
+    binary = os.path.join(sumo.SUMO_HOME, 'bin', 'sumo')
+    traci.start([binary, '-n', str(net), '--no-step-log', '--step-length', '1'],
+                label='programs', stdout=open(os.devnull, 'w'))
+    try:
+        connection = traci.getConnection('programs')
+        for second in range(0, 200):
+            # SUMO switches at the start of the step from a switch time t on, and TraCI at
+            # time t reads the state before that step: the state of the second before
+            theirs = connection.trafficlight.getRedYellowGreenState(program.tls_id)
+            assert program.state_at(second - 0.5) == theirs, second
+            controller.update(second - 0.5)
+            for index, group_id in enumerate(program.links):
+                if group_id is not None:
+                    assert controller.state(group_id) == SUMO_STATES[theirs[index]]
+            connection.simulationStep()
+    finally:
+        traci.switch('programs')
+        traci.close()
+
+
 def test_an_engine_drives_the_states_and_a_forced_state_still_wins(loaded):
     graph, _ = loaded
     controller = ProgramController(graph)
@@ -300,3 +335,41 @@ def test_lanes_no_road_vehicle_uses_are_skipped_with_one_warning(tmp_path, net_p
         graph, _ = load_sumo_net(str(net))
     assert 'A0A1_1' not in {lane.name for lane in graph.lanes.values()}
     assert math.isfinite(graph.lane_named('A0A1_2').length_m)
+
+
+def test_right_of_way_is_sumos_major_and_minor_links_at_unsignalled_junctions(loaded):
+    graph, net = loaded
+    ids = lane_ids(net)
+    rules = {}
+    for rule in graph.rules.right_of_way:
+        rules[graph.lanes[rule.priority_lanes[0]].name.split('_')[0][1:]] = rule
+    expected = {}
+    for lane in _vehicle_lanes(net):
+        for connection in lane.getOutgoing():
+            if not lane.getID().startswith(':') and not connection.getTLSID():
+                node = lane.getEdge().getToNode().getID()
+                state = connection.getState()
+                side = 'priority' if state == 'M' else 'yield' if state in 'ms' else None
+                if side:
+                    expected.setdefault(node, {'priority': set(), 'yield': set()})[side].add(
+                        ids[connection.getViaLaneID()])
+    expected = {node: sides for node, sides in expected.items() if all(sides.values())}
+    assert expected and set(rules) == set(expected)
+    for node, rule in rules.items():
+        assert set(rule.priority_lanes) == expected[node]['priority']
+        assert set(rule.yield_lanes) == expected[node]['yield']
+
+
+def test_an_all_way_stop_has_a_stop_line_on_every_link_and_no_priority(tmp_path):
+    net = str(tmp_path / 'stop.net.xml')
+    run_tool('netgenerate', '--grid', '--grid.number', '3', '--default-junction-type',
+             'allway_stop', '-o', net)
+    graph, sumo = load_sumo_net(net)
+    assert not graph.rules.groups and not graph.rules.programs
+    assert not graph.rules.right_of_way
+    ids = lane_ids(sumo)
+    links = {ids[c.getViaLaneID()] for lane in _vehicle_lanes(sumo)
+             if not lane.getID().startswith(':') for c in lane.getOutgoing()}
+    lines = graph.rules.stop_lines
+    assert {line.lane_id for line in lines} == links
+    assert {line.kind for line in lines} == {'stop_sign'} and {line.s_m for line in lines} == {0.0}

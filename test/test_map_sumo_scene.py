@@ -204,3 +204,54 @@ def test_the_gym_lane_observation_reads_the_sumo_lane(make, net_path):
     s, offset, heading, width, limit, on_lane = obs['lane'].tolist()
     assert s == pytest.approx(15.0, abs=0.02) and offset == pytest.approx(0.4, abs=0.02)
     assert width == pytest.approx(3.2) and limit == pytest.approx(13.89, abs=1e-3)
+
+
+def test_the_builtin_traffic_stops_at_the_programs_red_and_goes_at_green(tmp_path, net_path):
+    # a car comes to a junction on a straight link that is red for the first 30 s or more of
+    # its program, green after
+    from sumolib.net import readNet
+    net = readNet(net_path, withInternal=True, withPrograms=True)
+
+    def red_for(connection):
+        phases = list(net.getTLS(connection.getTLSID()).getPrograms().values())[-1].getPhases()
+        red = 0.0
+        for phase in phases:
+            if phase.state[connection.getTLLinkIndex()] != 'r':
+                return red if phase.state[connection.getTLLinkIndex()] in 'Gg' else 0.0
+            red += phase.duration
+        return 0.0
+    link = next(c for edge in net.getEdges(withInternal=False) for lane in edge.getLanes()
+                for c in lane.getOutgoing()
+                if c.getTLSID() and c.getDirection() == 's' and red_for(c) >= 30.0)
+    red_s = red_for(link)
+    approach = link.getFromLane()
+    data = world_data(net_path)
+    data['vehicles'][0]['pose'] = {'lane': 'B2C2_1', 's': 10.0}        # ours: out of the way
+    data['traffic'] = {'vehicles': 0, 'placed': [{
+        'lanelet': _id(net, approach.getID()), 's': approach.getLength() - 40.0, 'speed': 8.0,
+        'route': [_id(net, link.getViaLaneID()), _id(net, link.getToLane().getID())]}]}
+    world = tmp_path / 'traffic_world.yaml'
+    world.write_text(yaml.safe_dump(data), encoding='utf-8')
+    scene = build_scene(load_world(str(world), 'ToyotaPrius'))
+    try:
+        graph, traffic = scene.lanes, scene.parts['traffic']
+        (line,) = graph.rules.stop_lines_on(_id(net, link.getViaLaneID()))
+        stop_x, stop_y = line.points.mean(axis=0)
+        steps = int(round(1.0 / scene.world.time_step_s))
+        for second in range(int(red_s) + 15):
+            for _ in range(steps):
+                scene.world.step()
+            (_, x, y, yaw, length, _, speed), = traffic.agents()
+            ahead = (stop_x - x) * np.cos(yaw) + (stop_y - y) * np.sin(yaw)   # centre -> line
+            if second + 1 < red_s:
+                assert ahead > 0.5 * length, second          # its front before the line
+            if 20 <= second + 1 < red_s:
+                assert speed < 0.1, second                   # standing at red
+        assert ahead < -10.0                                 # through on green
+    finally:
+        scene.world.close()
+
+
+def _id(net, name):
+    from vehicle_sim.maps.sumo_net import lane_ids
+    return lane_ids(net)[name]
