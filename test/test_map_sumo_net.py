@@ -373,3 +373,28 @@ def test_an_all_way_stop_has_a_stop_line_on_every_link_and_no_priority(tmp_path)
     lines = graph.rules.stop_lines
     assert {line.lane_id for line in lines} == links
     assert {line.kind for line in lines} == {'stop_sign'} and {line.s_m for line in lines} == {0.0}
+
+
+# -------------------------------------------------------------------------------------- docs
+
+def test_docs_maps_embeds_the_key_tables_and_the_netconvert_options():
+    from pathlib import Path
+
+    from vehicle_sim.core.map.kinds import NETCONVERT_MAP_SPECS, SUMO_MAP_SPECS
+    from vehicle_sim.core.map.sumo_net_params import NETCONVERT_ALWAYS, OPENDRIVE_INPUT, OSM_INPUT
+    from vehicle_sim.core.specs.param_spec import parameter_table_markdown
+    text = (Path(__file__).resolve().parents[1] / 'docs' / 'maps.md').read_text('utf-8')
+    assert parameter_table_markdown(SUMO_MAP_SPECS, 'key') in text
+    assert parameter_table_markdown(NETCONVERT_MAP_SPECS, 'key') in text
+    for option, defaults in (OPENDRIVE_INPUT, OSM_INPUT):
+        assert f"| `{option}` | `{' '.join(defaults)}`" in text
+    assert ' '.join(NETCONVERT_ALWAYS) in text
+
+
+def test_docs_signals_lists_every_sumo_state():
+    from pathlib import Path
+    text = (Path(__file__).resolve().parents[1] / 'docs' / 'signals.md').read_text('utf-8')
+    rows = [line for line in text.splitlines() if line.startswith('| `')]
+    for character, state in SUMO_STATES.items():
+        assert any(f'`{character}`' in row.split('|')[1] and row.rstrip(' |').endswith(state)
+                   for row in rows), character
