@@ -255,3 +255,36 @@ def test_the_builtin_traffic_stops_at_the_programs_red_and_goes_at_green(tmp_pat
 def _id(net, name):
     from vehicle_sim.maps.sumo_net import lane_ids
     return lane_ids(net)[name]
+
+
+def test_the_node_publishes_map_lanes_lane_state_and_the_programs_signals(tmp_path, net_path):
+    from automobile_helpers import wait_for
+    from vehicle_sim.ros import automobile_interfaces as itf
+    from vehicle_sim.ros.automobile_node import AutomobileNode
+    from vehicle_sim.ros.map_interfaces import MAP_LANES
+    data = world_data(net_path, s_m=20.0)
+    data['vehicles'][0]['namespace'] = 'ego'
+    world = tmp_path / 'node_world.yaml'
+    world.write_text(yaml.safe_dump(data), encoding='utf-8')
+    app = AutomobileNode(transport='dds', parameter_overrides={'world': str(world),
+                                                               'synchronous': True})
+    try:
+        lanes, states = [], []
+        app.node.create_subscription(MAP_LANES.ros_type, '/map/lanes', lanes.append,
+                                     MAP_LANES.qos)
+        app.node.create_subscription(itf.LANE_STATE.ros_type, '/ego/lane_state', states.append,
+                                     itf.LANE_STATE.qos)
+        app.step(10)
+        assert wait_for(lambda: lanes and states, spin=app.node)
+        (array,) = lanes
+        assert {marker.header.frame_id for marker in array.markers} == {'map'}
+        assert {'road_surface', 'crosswalks', 'areas', 'stop_lines'} <= {
+            marker.ns for marker in array.markers}
+        graph = app.scene.lanes
+        state = states[-1]
+        assert state.header.frame_id == 'map' and state.lane_id == graph.lane_named(EAST).id
+        controller = app.scene.parts['signals'].controller
+        assert state.traffic_light_group_id and state.signal_state == controller.state(
+            state.traffic_light_group_id)
+    finally:
+        app.close()
