@@ -259,6 +259,7 @@ def _id(net, name):
 
 def test_the_node_publishes_map_lanes_lane_state_and_the_programs_signals(tmp_path, net_path):
     from automobile_helpers import wait_for
+
     from vehicle_sim.ros import automobile_interfaces as itf
     from vehicle_sim.ros.automobile_node import AutomobileNode
     from vehicle_sim.ros.map_interfaces import MAP_LANES
