@@ -398,3 +398,36 @@ def test_docs_signals_lists_every_sumo_state():
     for character, state in SUMO_STATES.items():
         assert any(f'`{character}`' in row.split('|')[1] and row.rstrip(' |').endswith(state)
                    for row in rows), character
+
+
+@pytest.mark.parametrize('vclass, subtypes', [
+    ('passenger', {'A0A1_1': 'bicycle_lane', 'A0A1_2': 'road', 'A0A1_3': 'road'}),
+    ('bicycle', {'A0A1_1': 'road', 'A0A1_2': 'restricted_lane', 'A0A1_3': 'restricted_lane'}),
+])
+def test_a_bicycle_lane_is_a_lane_of_its_subtype_unless_it_is_the_vclasss(tmp_path, vclass,
+                                                                         subtypes):
+    net = grid_net(tmp_path, 'bike.net.xml', '--bikelanes.guess')
+    graph, _ = load_sumo_net(net, vclass)
+    lanes = {name: graph.lane_named(name) for name in subtypes}
+    assert {name: lane.subtype for name, lane in lanes.items()} == subtypes
+    bike, right, left = lanes['A0A1_1'], lanes['A0A1_2'], lanes['A0A1_3']
+    assert bike.right.line_type == 'curbstone'            # the sidewalk beyond
+    assert bike.left is right.right and bike.left.line_type == 'solid'
+    assert (right.right_lane, right.right_change) == (bike.id, False)
+    assert right.left.line_type == 'dashed' and right.left_change
+
+
+def test_the_vclass_key_is_checked_and_passed_to_the_reader(tmp_path):
+    net = grid_net(tmp_path, 'bike.net.xml', '--bikelanes.guess')
+    world = tmp_path / 'bike_world.yaml'
+    data = {'vehicles': [{'name': 'Car', 'model': 'ToyotaPrius',
+                          'pose': {'lane': 'A0A1_1', 's': 5.0}}],
+            'map': {'type': 'sumo', 'net': net, 'vclass': 'bicycle'}}
+    world.write_text(yaml.safe_dump(data), encoding='utf-8')
+    graph = with_lanes(load_world(str(world), 'ToyotaPrius')).lanes
+    assert graph.lane_named('A0A1_1').subtype == 'road'
+    data['map']['vclass'] = 'hovercraft'
+    world.write_text(yaml.safe_dump(data), encoding='utf-8')
+    with pytest.raises(InvalidParameterError, match=r"bike_world.yaml: map: field 'vclass' = "
+                                                    r"'hovercraft': .*passenger"):
+        load_world(str(world), 'ToyotaPrius')

@@ -23,7 +23,8 @@ connections and its traffic light programs. What becomes of it:
 - **lanes**: every lane of a normal or internal edge that the map's ``vclass`` may use (SUMO's
   permissions; default ``passenger``) is a lane of subtype ``road`` (the lanes the traffic
   drives); a lane of another road vehicle class is a lane of its subtype (:data:`SUBTYPES`:
-  ``bus_lane``, ``bicycle_lane``, ``emergency_lane``, else ``restricted_lane``); a sidewalk
+  ``bus_lane``, ``bicycle_lane``, ``emergency_lane``; a lane of passenger cars, or of other
+  classes, that the ``vclass`` may not use: ``restricted_lane``); a sidewalk
   (pedestrians only) is a ``walkway`` area, not a lane; any other lane (rail, ship, a lane that
   allows nothing) is left out with one :class:`SumoNetWarning`. Internal lanes (the paths
   through junctions, ``:J1_0_0``) are lanes.
@@ -211,6 +212,8 @@ def _kind(lane, vclass):
         return 'walkway'
     if not allowed & ROAD_CLASSES:
         return None
+    if 'passenger' in allowed:           # a general lane, not the map's vclass's
+        return 'restricted_lane'
     return next((subtype for cls, subtype in SUBTYPES if cls in allowed), 'restricted_lane')
 
 
