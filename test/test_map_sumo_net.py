@@ -414,7 +414,8 @@ def test_a_bicycle_lane_is_a_lane_of_its_subtype_unless_it_is_the_vclasss(tmp_pa
     assert bike.right.line_type == 'curbstone'            # the sidewalk beyond
     assert bike.left is right.right and bike.left.line_type == 'solid'
     assert (right.right_lane, right.right_change) == (bike.id, False)
-    assert right.left.line_type == 'dashed' and right.left_change
+    assert right.left.line_type == 'dashed' and (right.left_lane, right.left_change) == (
+        left.id, True)
 
 
 def test_the_vclass_key_is_checked_and_passed_to_the_reader(tmp_path):
