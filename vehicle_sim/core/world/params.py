@@ -267,7 +267,8 @@ VEHICLE_SPECS = (
     ParamSpec('model', 'model', 'str', None, optional=True,
               doc='car preset; null = the car_model parameter'),
     ParamSpec('pose', 'pose', 'pose', Pose(), 'm, rad', 'spawn pose of base_link {x, y, yaw}, '
-              'or on a lane {lanelet, s, offset} (docs/maps.md)', choices=('x', 'y', 'yaw')),
+              'or on a lane {lanelet or lane, s, offset} (docs/maps.md)',
+              choices=('x', 'y', 'yaw')),
     ParamSpec('sensors', 'sensors', 'raw', None, '',
               "changes to the preset's sensors and new ones (docs/sensors.md)", optional=True),
 )
