@@ -230,3 +230,34 @@ def test_an_osm_world_runs_its_signal_and_a_car_drives_10_s_on_it(tmp_path):
     assert graph.lanes[lanes[0]].name == '101#0_1' and len(set(lanes)) >= 2
     for before, after in zip(lanes, lanes[1:]):
         assert after == before or after in graph.lanes[before].successors
+
+
+# ------------------------------------------------------------------------------ at the node
+
+@pytest.mark.transport
+@pytest.mark.parametrize('kind, name, text, says', [
+    ('opendrive', 'town.xodr', 'garbage', 'netconvert cannot convert it: Error: invalid '
+                                          'document structure'),
+    ('sumo', 'city.net.xml', '<net><edge', 'not a SUMO network that sumolib can read'),
+])
+def test_a_bad_network_stops_the_node_at_start_naming_the_file(tmp_path, kind, name, text,
+                                                               says):
+    from automobile_helpers import NodeProcess
+    bad = tmp_path / name
+    bad.write_text(text, encoding='utf-8')
+    world = tmp_path / 'bad_world.yaml'
+    key = 'net' if kind == 'sumo' else 'file'
+    world_map = {'type': kind, key: name}
+    if kind != 'sumo':
+        world_map['cache'] = str(tmp_path / 'cache')
+    world.write_text(yaml.safe_dump({'vehicles': [{'name': 'car'}], 'map': world_map}),
+                     encoding='utf-8')
+    process = NodeProcess('--ros-args', '-r', '__ns:=/bad_network', '-p', f'world:={world}')
+    try:
+        status = process.wait()
+    finally:
+        process.stop()
+    output = process.text()
+    assert status == 2, output
+    assert 'ready' not in output and 'Traceback' not in output, output
+    assert f'{world}: map.{key}: {bad}: {says}' in output, output
