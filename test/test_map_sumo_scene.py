@@ -289,3 +289,31 @@ def test_the_node_publishes_map_lanes_lane_state_and_the_programs_signals(tmp_pa
             state.traffic_light_group_id)
     finally:
         app.close()
+
+
+def test_the_lamps_clusters_are_the_first_near_cluster_of_each_lamp(scene):
+    # the grid's clustering against its definition, on the network's lamps and on a dense
+    # random scatter
+    import math
+    import random
+    from types import SimpleNamespace
+
+    from vehicle_sim.core.map.signal_lamps import CLUSTER_M, lamp_clusters, lamps
+
+    def reference(found):
+        clusters = []
+        for lamp in found:
+            for cluster in clusters:
+                if any(math.hypot(lamp.bulb.x_m - o.bulb.x_m, lamp.bulb.y_m - o.bulb.y_m)
+                       <= CLUSTER_M for o in cluster):
+                    cluster.append(lamp)
+                    break
+            else:
+                clusters.append([lamp])
+        return clusters
+    generator = random.Random(7)
+    scatter = [SimpleNamespace(bulb=SimpleNamespace(x_m=generator.uniform(-5.0, 5.0),
+                                                    y_m=generator.uniform(-5.0, 5.0)))
+               for _ in range(300)]
+    for found in (lamps(scene.lanes), scatter):
+        assert lamp_clusters(found) == reference(found)
