@@ -306,7 +306,7 @@ class WorldSpec:
     of its engine (core/traffic/engines.py; the builtin engine's TrafficSpec of
     core/traffic/params.py), or None; ``signals`` the plan of its traffic lights
     (core/map/signal_params.py), or None (the default plan where the lane map has any).
-    ``lanes`` is its lane map (a core LaneGraph from a lanelet2 map or the roads) once loaded
+    ``lanes`` is its lane map (a core LaneGraph from a lane map or the roads) once loaded
     (vehicle_sim/maps/lane_maps.py, by the scene builder), with the vehicles placed by lane;
     None before that or without one.
     """
