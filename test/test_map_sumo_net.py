@@ -19,8 +19,10 @@ The network is netgenerate's signalised grid (test/sumo_helpers.py); what the la
 is compared with what sumolib reads from the same file.
 """
 
+import gzip
 import math
 
+import numpy as np
 import pytest
 import yaml
 
@@ -31,6 +33,7 @@ from sumo_helpers import grid_net, run_tool  # noqa: E402
 import sumolib  # noqa: E402  (after the skip)
 
 from vehicle_sim.config import load_world  # noqa: E402
+from vehicle_sim.core.map.lane_graph import distances_to_polyline  # noqa: E402
 from vehicle_sim.core.map.signal_programs import ProgramController, SUMO_STATES  # noqa: E402
 from vehicle_sim.core.specs.errors import InvalidParameterError  # noqa: E402
 from vehicle_sim.maps.lane_maps import with_lanes  # noqa: E402
@@ -432,3 +435,20 @@ def test_the_vclass_key_is_checked_and_passed_to_the_reader(tmp_path):
     with pytest.raises(InvalidParameterError, match=r"bike_world.yaml: map: field 'vclass' = "
                                                     r"'hovercraft': .*passenger"):
         load_world(str(world), 'ToyotaPrius')
+
+
+def test_in_a_left_hand_network_the_next_lane_of_an_edge_is_on_the_right(tmp_path):
+    net = grid_net(tmp_path, 'left.net.xml', '--lefthand')
+    graph, _ = load_sumo_net(net)
+    outer, inner = graph.lane_named('A0A1_1'), graph.lane_named('A0A1_2')
+    assert (outer.right_lane, outer.right_change) == (inner.id, True)
+    assert (inner.left_lane, inner.left_change) == (outer.id, True)
+    assert outer.right is inner.left and outer.right.line_type == 'dashed'
+    assert outer.left.line_type == 'curbstone'           # the sidewalk on the left
+    x, y, yaw = graph.pose_at(outer.id, 10.0, 0.5 * outer.widths[0] - 0.01)   # its left edge
+    assert distances_to_polyline(np.array([[x, y]]), outer.left.points)[0] < 0.02
+    # and a gzipped network reads as it is
+    with open(net, 'rb') as plain, gzip.open(tmp_path / 'left.net.xml.gz', 'wb') as packed:
+        packed.write(plain.read())
+    again, _ = load_sumo_net(str(tmp_path / 'left.net.xml.gz'))
+    assert again.lane_named('A0A1_1').right_lane == inner.id

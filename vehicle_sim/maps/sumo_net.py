@@ -44,7 +44,8 @@ connections and its traffic light programs. What becomes of it:
   way of a vehicle with no route (the lane state's next stop line). An internal lane too
   short to have a direction (its shape a single point) is skipped and its predecessors lead
   on to its successors.
-- **neighbours and lines**: lanes of one edge are neighbours (index + 1 on the left); the line
+- **neighbours and lines**: lanes of one edge are neighbours (index + 1 on the left; on the
+  right in a left-hand traffic network, ``<net lefthand="true">``); the line
   between two lanes of one subtype is dashed (a lane change is allowed), between lanes of two
   subtypes solid, beside a sidewalk a curbstone, and at the edge's outer sides solid. Internal
   lanes have virtual (unpainted) boundaries and no neighbours.
@@ -68,8 +69,10 @@ connections and its traffic light programs. What becomes of it:
   junctions' polygons ``junction`` areas (drawn as road surface).
 """
 
+import gzip
 import math
 import os
+import re
 from types import SimpleNamespace
 import warnings
 
@@ -170,6 +173,16 @@ def read_net(path, source):
     return net
 
 
+def lefthand(path):
+    """Return whether a network drives on the left (its ``<net lefthand="true">``)."""
+    with open(path, 'rb') as handle:
+        opener = gzip.open if handle.read(2) == b'\x1f\x8b' else open
+    with opener(path, 'rb') as handle:
+        head = handle.read(1 << 16).decode('utf-8', 'replace')
+    found = re.search(r'<net\b[^>]*>', head)
+    return bool(found and re.search(r'\blefthand="(true|1)"', found.group(0)))
+
+
 def lane_ids(net):
     """Return {SUMO lane id: lane id} of every lane of a sumolib network (module text)."""
     ids, number = {}, 0
@@ -220,8 +233,9 @@ def _kind(lane, vclass):
 class _Reader:
     """Collects a network's lanes and rules."""
 
-    def __init__(self, net, vclass, path, source):
+    def __init__(self, net, vclass, path, source, lefthand=False):
         self.net, self.vclass, self.path, self.source = net, vclass, path, source
+        self.lefthand = lefthand
         self.where = f'{source}: {path}'
         self.ids = lane_ids(net)
         self.sumo = {}          # lane id -> sumolib lane, the lanes of the graph
@@ -310,17 +324,19 @@ class _Reader:
         width = lane.getWidth()
         shift = 0.5 * width * _normals(points)
         index = lane.getIndex()
-        right = self._bound(members, index, bounds, points - shift, internal)
-        left = self._bound(members, index + 1, bounds, points + shift, internal)
-        left_lane = right_lane = None
-        left_change = right_change = False
+        outer = -1.0 if not self.lefthand else 1.0        # index 0 is the outermost lane
+        below = self._bound(members, index, bounds, points + outer * shift, internal)
+        above = self._bound(members, index + 1, bounds, points - outer * shift, internal)
+        lower = upper = None                # the neighbours at index - 1 and index + 1
         if not internal:
             if index + 1 < len(members) and self.ids[members[index + 1].getID()] in self.sumo:
-                left_lane = self.ids[members[index + 1].getID()]
-                left_change = left.line_type == 'dashed'
+                upper = self.ids[members[index + 1].getID()]
             if index > 0 and self.ids[members[index - 1].getID()] in self.sumo:
-                right_lane = self.ids[members[index - 1].getID()]
-                right_change = right.line_type == 'dashed'
+                lower = self.ids[members[index - 1].getID()]
+        right, left = (below, above) if not self.lefthand else (above, below)
+        right_lane, left_lane = (lower, upper) if not self.lefthand else (upper, lower)
+        left_change = left_lane is not None and left.line_type == 'dashed'
+        right_change = right_lane is not None and right.line_type == 'dashed'
         try:
             return Lane(lane_id, points, left, right, lane.getSpeed(),
                         successors=self.successors(lane), left_lane=left_lane,
@@ -524,7 +540,7 @@ def load_sumo_net(path, vclass='passenger', source=None, shown=None):
     """
     source = source or 'map'
     net = read_net(path, source)
-    reader = _Reader(net, vclass, shown or path, source)
+    reader = _Reader(net, vclass, shown or path, source, lefthand(path))
     reader.sort_lanes()
     lanes = reader.lanes()
     if not lanes:
