@@ -261,3 +261,15 @@ def test_a_bad_network_stops_the_node_at_start_naming_the_file(tmp_path, kind, n
     assert status == 2, output
     assert 'ready' not in output and 'Traceback' not in output, output
     assert f'{world}: map.{key}: {bad}: {says}' in output, output
+
+
+def test_the_cache_key_changes_with_netconverts_version_and_the_options(tmp_path, xodr):
+    from vehicle_sim.core.map.kinds import map_from_dict
+    spec = map_from_dict({'type': 'opendrive', 'file': xodr}, 'w.yaml: map')
+    other = map_from_dict({'type': 'opendrive', 'file': xodr, 'options': ['--a', 'b']},
+                          'w.yaml: map')
+    version = netconvert.netconvert_version()
+    assert version.startswith('Eclipse SUMO netconvert ')
+    keys = {netconvert.cache_key(spec, version), netconvert.cache_key(spec, version + '.1'),
+            netconvert.cache_key(other, version)}
+    assert len(keys) == 3 and netconvert.cache_key(spec, version) in keys

@@ -43,6 +43,7 @@ A file netconvert refuses is an InvalidParameterError naming the world file's ke
 netconvert's first error lines.
 """
 
+import functools
 import hashlib
 import os
 import subprocess
@@ -89,7 +90,13 @@ def _environment():
 
 def netconvert_version():
     """Return netconvert's version line ('Eclipse SUMO netconvert 1.28.0')."""
-    done = subprocess.run([netconvert_path(), '--version'], capture_output=True, text=True,
+    return _version_of(netconvert_path())
+
+
+@functools.lru_cache(maxsize=None)
+def _version_of(path):
+    # once per executable and process: a world's load asks for it every time
+    done = subprocess.run([path, '--version'], capture_output=True, text=True,
                           env=_environment(), check=False)
     return done.stdout.splitlines()[0].strip() if done.stdout else 'unknown'
 
