@@ -22,6 +22,7 @@ lane 0 is centred at y = -1.75, forward lane 1 at y = -5.25, backward lane 0 at 
 
 import math
 
+import numpy as np
 import pytest
 
 from vehicle_sim.core.map.lane_graph import Boundary, Lane, LaneGraph
@@ -216,6 +217,31 @@ def test_tracker_follows_a_vehicle_through_successors_and_a_lane_change():
             seen.append(state.lane_id)
     assert seen == [100001, 100002, 100102]
     assert tracker.update(500.0, 500.0, 0.0) == OFF_LANE and tracker.state == OFF_LANE
+
+
+def test_tracker_keeps_a_vehicle_in_the_wedge_where_two_lanes_join_at_a_kink():
+    # lane 1 east to (10, 0), lane 2 on from there turning 10 degrees left (as a SUMO
+    # network's junction lane meets the lane it leads to): on the kink's outside (right), a
+    # point beyond lane 1's end lies before lane 2's start
+    turn = math.radians(10.0)
+    end = (10.0 + 20.0 * math.cos(turn), 20.0 * math.sin(turn))
+
+    def lane(lane_id, points, successors=()):
+        points = np.array(points)
+        d = (points[1] - points[0]) / np.hypot(*(points[1] - points[0]))
+        n = np.array((-d[1], d[0])) * 1.75
+        return Lane(lane_id, points, Boundary(10 * lane_id, points + n, 'virtual'),
+                    Boundary(10 * lane_id + 1, points - n, 'virtual'), 10.0, successors,
+                    widths=3.5)
+    graph = LaneGraph([lane(1, [(0.0, 0.0), (10.0, 0.0)], (2,)),
+                       lane(2, [(10.0, 0.0), end])])
+    tracker = LaneTracker(graph)
+    assert tracker.update(9.9, -1.5, 0.0).lane_id == 1
+    wedge = (10.1, -1.5)
+    assert graph.locate(*wedge, 0.05) is None                   # on neither lane's area
+    state = tracker.update(*wedge, 0.05)
+    assert (state.on_lane, state.lane_id, state.s_m) == (True, 2, 0.0)
+    assert tracker.update(10.3, -3.0, 0.05) == OFF_LANE         # beside the lanes: off
 
 
 def test_tracker_agrees_with_locate_everywhere_on_the_road():

@@ -19,18 +19,21 @@ The network is netgenerate's signalised grid (test/sumo_helpers.py); what the la
 is compared with what sumolib reads from the same file.
 """
 
+import gzip
 import math
 
+import numpy as np
 import pytest
 import yaml
 
 pytest.importorskip('sumolib', reason="sumolib is not installed (pip install "
                                       "'vehicle_sim[sumo]')")
 
-from sumo_helpers import grid_net  # noqa: E402
+from sumo_helpers import grid_net, run_tool  # noqa: E402
 import sumolib  # noqa: E402  (after the skip)
 
 from vehicle_sim.config import load_world  # noqa: E402
+from vehicle_sim.core.map.lane_graph import distances_to_polyline  # noqa: E402
 from vehicle_sim.core.map.signal_programs import ProgramController, SUMO_STATES  # noqa: E402
 from vehicle_sim.core.specs.errors import InvalidParameterError  # noqa: E402
 from vehicle_sim.maps.lane_maps import with_lanes  # noqa: E402
@@ -90,12 +93,15 @@ def test_successors_go_through_the_internal_lanes_as_sumolibs_connections(loaded
     ids = lane_ids(net)
     through = 0
     for lane in _vehicle_lanes(net):
-        want = []
+        want, straight = [], []
         for connection in lane.getOutgoing():
             via = connection.getViaLaneID()
             want.append(via or connection.getToLane().getID())
-        ours = graph.lanes[ids[lane.getID()]]
-        assert [graph.lanes[i].name for i in ours.successors] == list(dict.fromkeys(want))
+            if connection.getDirection() == 's':
+                straight.append(want[-1])
+        ours = [graph.lanes[i].name for i in graph.lanes[ids[lane.getID()]].successors]
+        assert sorted(ours) == sorted(set(want))
+        assert ours[:len(straight)] == straight        # straight on first
         through += sum(name.startswith(':') for name in want)
     assert through > 50                 # the approach lanes lead into their junction's lanes
     # an approach lane of the signalised junction B1 leads to the lanes beyond it through one
@@ -186,6 +192,41 @@ def test_the_controller_shows_the_programs_state_at_given_times(loaded):
         start += duration
     controller.update(start + 0.01)                                 # the next cycle
     assert controller.states()[program.links[0]] == SUMO_STATES[program.phases[0][1][0]]
+
+
+def test_the_programs_states_are_sumos_own_for_an_offset_program(tmp_path, net_path):
+    # the net's first program shifted by 10 s; SUMO (its sumo binary, through TraCI) runs it
+    import os
+
+    import sumo
+    import traci
+    text = open(net_path, encoding='utf-8').read()
+    first = text.index('<tlLogic ')
+    shifted = text[:first] + text[first:].replace('offset="0"', 'offset="10"', 1)
+    net = tmp_path / 'offset.net.xml'
+    net.write_text(shifted, encoding='utf-8')
+    graph, _ = load_sumo_net(str(net))
+    program = graph.rules.programs[0]
+    assert program.offset_s == 10.0
+    controller = ProgramController(graph)
+    binary = os.path.join(sumo.SUMO_HOME, 'bin', 'sumo')
+    traci.start([binary, '-n', str(net), '--no-step-log', '--step-length', '1'],
+                label='programs', stdout=open(os.devnull, 'w'))
+    try:
+        connection = traci.getConnection('programs')
+        for second in range(0, 200):
+            # SUMO switches at the start of the step from a switch time t on, and TraCI at
+            # time t reads the state before that step: the state of the second before
+            theirs = connection.trafficlight.getRedYellowGreenState(program.tls_id)
+            assert program.state_at(second - 0.5) == theirs, second
+            controller.update(second - 0.5)
+            for index, group_id in enumerate(program.links):
+                if group_id is not None:
+                    assert controller.state(group_id) == SUMO_STATES[theirs[index]]
+            connection.simulationStep()
+    finally:
+        traci.switch('programs')
+        traci.close()
 
 
 def test_an_engine_drives_the_states_and_a_forced_state_still_wins(loaded):
@@ -297,3 +338,117 @@ def test_lanes_no_road_vehicle_uses_are_skipped_with_one_warning(tmp_path, net_p
         graph, _ = load_sumo_net(str(net))
     assert 'A0A1_1' not in {lane.name for lane in graph.lanes.values()}
     assert math.isfinite(graph.lane_named('A0A1_2').length_m)
+
+
+def test_right_of_way_is_sumos_major_and_minor_links_at_unsignalled_junctions(loaded):
+    graph, net = loaded
+    ids = lane_ids(net)
+    rules = {}
+    for rule in graph.rules.right_of_way:
+        rules[graph.lanes[rule.priority_lanes[0]].name.split('_')[0][1:]] = rule
+    expected = {}
+    for lane in _vehicle_lanes(net):
+        for connection in lane.getOutgoing():
+            if not lane.getID().startswith(':') and not connection.getTLSID():
+                node = lane.getEdge().getToNode().getID()
+                state = connection.getState()
+                side = 'priority' if state == 'M' else 'yield' if state in 'ms' else None
+                if side:
+                    expected.setdefault(node, {'priority': set(), 'yield': set()})[side].add(
+                        ids[connection.getViaLaneID()])
+    expected = {node: sides for node, sides in expected.items() if all(sides.values())}
+    assert expected and set(rules) == set(expected)
+    for node, rule in rules.items():
+        assert set(rule.priority_lanes) == expected[node]['priority']
+        assert set(rule.yield_lanes) == expected[node]['yield']
+
+
+def test_an_all_way_stop_has_a_stop_line_on_every_link_and_no_priority(tmp_path):
+    net = str(tmp_path / 'stop.net.xml')
+    run_tool('netgenerate', '--grid', '--grid.number', '3', '--default-junction-type',
+             'allway_stop', '-o', net)
+    graph, sumo = load_sumo_net(net)
+    assert not graph.rules.groups and not graph.rules.programs
+    assert not graph.rules.right_of_way
+    ids = lane_ids(sumo)
+    links = {ids[c.getViaLaneID()] for lane in _vehicle_lanes(sumo)
+             if not lane.getID().startswith(':') for c in lane.getOutgoing()}
+    lines = graph.rules.stop_lines
+    assert {line.lane_id for line in lines} == links
+    assert {line.kind for line in lines} == {'stop_sign'} and {line.s_m for line in lines} == {0.0}
+
+
+# -------------------------------------------------------------------------------------- docs
+
+def test_docs_maps_embeds_the_key_tables_and_the_netconvert_options():
+    from pathlib import Path
+
+    from vehicle_sim.core.map.kinds import NETCONVERT_MAP_SPECS, SUMO_MAP_SPECS
+    from vehicle_sim.core.map.sumo_net_params import NETCONVERT_ALWAYS, OPENDRIVE_INPUT, OSM_INPUT
+    from vehicle_sim.core.specs.param_spec import parameter_table_markdown
+    text = (Path(__file__).resolve().parents[1] / 'docs' / 'maps.md').read_text('utf-8')
+    assert parameter_table_markdown(SUMO_MAP_SPECS, 'key') in text
+    assert parameter_table_markdown(NETCONVERT_MAP_SPECS, 'key') in text
+    for option, defaults in (OPENDRIVE_INPUT, OSM_INPUT):
+        assert f"| `{option}` | `{' '.join(defaults)}`" in text
+    assert ' '.join(NETCONVERT_ALWAYS) in text
+
+
+def test_docs_signals_lists_every_sumo_state():
+    from pathlib import Path
+    text = (Path(__file__).resolve().parents[1] / 'docs' / 'signals.md').read_text('utf-8')
+    rows = [line for line in text.splitlines() if line.startswith('| `')]
+    for character, state in SUMO_STATES.items():
+        assert any(f'`{character}`' in row.split('|')[1] and row.rstrip(' |').endswith(state)
+                   for row in rows), character
+
+
+@pytest.mark.parametrize('vclass, subtypes', [
+    ('passenger', {'A0A1_1': 'bicycle_lane', 'A0A1_2': 'road', 'A0A1_3': 'road'}),
+    ('bicycle', {'A0A1_1': 'road', 'A0A1_2': 'restricted_lane', 'A0A1_3': 'restricted_lane'}),
+])
+def test_a_bicycle_lane_is_a_lane_of_its_subtype_unless_it_is_the_vclasss(tmp_path, vclass,
+                                                                         subtypes):
+    net = grid_net(tmp_path, 'bike.net.xml', '--bikelanes.guess')
+    graph, _ = load_sumo_net(net, vclass)
+    lanes = {name: graph.lane_named(name) for name in subtypes}
+    assert {name: lane.subtype for name, lane in lanes.items()} == subtypes
+    bike, right, left = lanes['A0A1_1'], lanes['A0A1_2'], lanes['A0A1_3']
+    assert bike.right.line_type == 'curbstone'            # the sidewalk beyond
+    assert bike.left is right.right and bike.left.line_type == 'solid'
+    assert (right.right_lane, right.right_change) == (bike.id, False)
+    assert right.left.line_type == 'dashed' and (right.left_lane, right.left_change) == (
+        left.id, True)
+
+
+def test_the_vclass_key_is_checked_and_passed_to_the_reader(tmp_path):
+    net = grid_net(tmp_path, 'bike.net.xml', '--bikelanes.guess')
+    world = tmp_path / 'bike_world.yaml'
+    data = {'vehicles': [{'name': 'Car', 'model': 'ToyotaPrius',
+                          'pose': {'lane': 'A0A1_1', 's': 5.0}}],
+            'map': {'type': 'sumo', 'net': net, 'vclass': 'bicycle'}}
+    world.write_text(yaml.safe_dump(data), encoding='utf-8')
+    graph = with_lanes(load_world(str(world), 'ToyotaPrius')).lanes
+    assert graph.lane_named('A0A1_1').subtype == 'road'
+    data['map']['vclass'] = 'hovercraft'
+    world.write_text(yaml.safe_dump(data), encoding='utf-8')
+    with pytest.raises(InvalidParameterError, match=r"bike_world.yaml: map: field 'vclass' = "
+                                                    r"'hovercraft': .*passenger"):
+        load_world(str(world), 'ToyotaPrius')
+
+
+def test_in_a_left_hand_network_the_next_lane_of_an_edge_is_on_the_right(tmp_path):
+    net = grid_net(tmp_path, 'left.net.xml', '--lefthand')
+    graph, _ = load_sumo_net(net)
+    outer, inner = graph.lane_named('A0A1_1'), graph.lane_named('A0A1_2')
+    assert (outer.right_lane, outer.right_change) == (inner.id, True)
+    assert (inner.left_lane, inner.left_change) == (outer.id, True)
+    assert outer.right is inner.left and outer.right.line_type == 'dashed'
+    assert outer.left.line_type == 'curbstone'           # the sidewalk on the left
+    x, y, yaw = graph.pose_at(outer.id, 10.0, 0.5 * outer.widths[0] - 0.01)   # its left edge
+    assert distances_to_polyline(np.array([[x, y]]), outer.left.points)[0] < 0.02
+    # and a gzipped network reads as it is
+    with open(net, 'rb') as plain, gzip.open(tmp_path / 'left.net.xml.gz', 'wb') as packed:
+        packed.write(plain.read())
+    again, _ = load_sumo_net(str(tmp_path / 'left.net.xml.gz'))
+    assert again.lane_named('A0A1_1').right_lane == inner.id

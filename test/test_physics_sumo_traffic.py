@@ -111,7 +111,7 @@ def test_the_bodies_are_where_sumo_has_its_vehicles_and_persons(net):
                                                      abs=1e-6)
         assert {name for name, *_ in agents} <= bodies.moving_names()
         # the markers' colour of each object (bodies.colours by its index) is its body's
-        colours = {name: colour for name, _, _, colour in bodies.boxes()}
+        colours = {name: colour for name, _, _, colour, _ in bodies.boxes()}
         assert all(bodies.colours[o.index % len(bodies.colours)] == colours[o.name]
                    for o in bodies.objects())
     finally:

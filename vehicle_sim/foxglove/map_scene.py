@@ -23,7 +23,7 @@ the scene builder already made, in the ``world`` frame, with the very geometry t
   one entity ``map/walls`` with
   one cube per merged wall rectangle (core/map/rectangles.py, placed by core/map/wall_boxes.py),
   ``wall_height`` high: the walls the lidar sees, at the cost of one cube per rectangle.
-- ``'lanes'``: a lane map (``scene.lanes``, from a lanelet2 map or ``roads:``) as
+- ``'lanes'``: a lane map (``scene.lanes``, from a lanelet2 map, a SUMO network or ``roads:``) as
   ``lanes/surface`` (the road surface, one triangle list), ``lanes/markings`` (each painted
   stripe a line ``LINE_WIDTH_M`` wide: a line strip for a solid one, a line list of its dashes
   for a dashed one, coloured by stripe type), ``lanes/barriers`` (a cube per curbstone, road

@@ -46,8 +46,11 @@ def load_sumo_net_graph(spec):
     from vehicle_sim.maps.netconvert import net_file  # the sumo extra
     from vehicle_sim.maps.sumo_net import load_sumo_net
     world_map = spec.map
-    graph, _ = load_sumo_net(net_file(world_map), world_map.vclass,
-                             f'{world_map.source}.{world_map.field}')
+    path = net_file(world_map)
+    shown = path if world_map.net else \
+        f'{world_map.file} (converted by netconvert into {path})'   # the user's file first
+    graph, _ = load_sumo_net(path, world_map.vclass, f'{world_map.source}.{world_map.field}',
+                             shown)
     return graph
 
 

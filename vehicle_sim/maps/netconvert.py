@@ -24,7 +24,8 @@ ships (``sumo.SUMO_HOME/bin/netconvert``; the ``sumo`` extra), run as::
     netconvert <input option> <file> <the kind's options> --no-internal-links false
                --no-warnings true <the map's options:> -o <cache>/<key>.net.xml
 
-with ``SUMO_HOME`` set to the package's (its type maps and schemas). The kinds' options are
+with ``SUMO_HOME`` set to the package's (its type maps and schemas) and PROJ's data to the
+package's ``data/proj`` (the projection of OSM's latitudes and longitudes). The kinds' options are
 core/map/sumo_net_params.py's ``OPENDRIVE_INPUT`` and ``OSM_INPUT`` (OSM: sidewalks and
 crossings guessed, traffic lights guessed and joined, ramps guessed, junctions joined); a map's
 ``options:`` come after them, so that they add to or override them (netconvert takes the last
@@ -42,6 +43,7 @@ A file netconvert refuses is an InvalidParameterError naming the world file's ke
 netconvert's first error lines.
 """
 
+import functools
 import hashlib
 import os
 import subprocess
@@ -79,12 +81,25 @@ def netconvert_path():
 
 
 def _environment():
-    return dict(os.environ, SUMO_HOME=sumo_home())
+    """Return netconvert's environment: SUMO_HOME and PROJ's data (the package's)."""
+    home = sumo_home()
+    environment = dict(os.environ, SUMO_HOME=home)
+    proj = os.path.join(home, 'data', 'proj')
+    if os.path.isdir(proj):             # the projections of OSM's lat/lon (its proj.db)
+        environment.setdefault('PROJ_DATA', proj)
+        environment.setdefault('PROJ_LIB', proj)
+    return environment
 
 
 def netconvert_version():
     """Return netconvert's version line ('Eclipse SUMO netconvert 1.28.0')."""
-    done = subprocess.run([netconvert_path(), '--version'], capture_output=True, text=True,
+    return _version_of(netconvert_path())
+
+
+@functools.lru_cache(maxsize=None)
+def _version_of(path):
+    # once per executable and process: a world's load asks for it every time
+    done = subprocess.run([path, '--version'], capture_output=True, text=True,
                           env=_environment(), check=False)
     return done.stdout.splitlines()[0].strip() if done.stdout else 'unknown'
 

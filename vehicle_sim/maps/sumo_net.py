@@ -23,7 +23,8 @@ connections and its traffic light programs. What becomes of it:
 - **lanes**: every lane of a normal or internal edge that the map's ``vclass`` may use (SUMO's
   permissions; default ``passenger``) is a lane of subtype ``road`` (the lanes the traffic
   drives); a lane of another road vehicle class is a lane of its subtype (:data:`SUBTYPES`:
-  ``bus_lane``, ``bicycle_lane``, ``emergency_lane``, else ``restricted_lane``); a sidewalk
+  ``bus_lane``, ``bicycle_lane``, ``emergency_lane``; a lane of passenger cars, or of other
+  classes, that the ``vclass`` may not use: ``restricted_lane``); a sidewalk
   (pedestrians only) is a ``walkway`` area, not a lane; any other lane (rail, ship, a lane that
   allows nothing) is left out with one :class:`SumoNetWarning`. Internal lanes (the paths
   through junctions, ``:J1_0_0``) are lanes.
@@ -38,9 +39,13 @@ connections and its traffic light programs. What becomes of it:
   centreline shifted by half the width. Speed limits are the lanes' ``speed``.
 - **successors**: through the connections: a lane's successors are its connections' first
   internal lanes (``via``), an internal lane's the next internal lane or the lane it leads to
-  (connections without internal lanes: the lane itself). An internal lane too short to have a
-  direction (its shape a single point) is skipped and its predecessors lead on to its successors.
-- **neighbours and lines**: lanes of one edge are neighbours (index + 1 on the left); the line
+  (connections without internal lanes: the lane itself), straight on first (then slight
+  turns, turns, turnarounds: :data:`SUCCESSOR_ORDER`), so that the first successor is the
+  way of a vehicle with no route (the lane state's next stop line). An internal lane too
+  short to have a direction (its shape a single point) is skipped and its predecessors lead
+  on to its successors.
+- **neighbours and lines**: lanes of one edge are neighbours (index + 1 on the left; on the
+  right in a left-hand traffic network, ``<net lefthand="true">``); the line
   between two lanes of one subtype is dashed (a lane change is allowed), between lanes of two
   subtypes solid, beside a sidewalk a curbstone, and at the edge's outer sides solid. Internal
   lanes have virtual (unpainted) boundaries and no neighbours.
@@ -64,8 +69,11 @@ connections and its traffic light programs. What becomes of it:
   junctions' polygons ``junction`` areas (drawn as road surface).
 """
 
+import gzip
 import math
 import os
+import re
+from types import SimpleNamespace
 import warnings
 
 import numpy as np
@@ -110,6 +118,10 @@ HEAD_SPACING_M = 0.8
 ARROWS = {'t': 'left_arrow', 'l': 'left_arrow', 'L': 'left_arrow', 's': 'up_arrow',
           'R': 'right_arrow', 'r': 'right_arrow'}
 DIRECTION_ORDER = 'tlLsRr'
+# The order of a lane's successors by their connection's direction: straight on first, so
+# that the first successor is the way of a vehicle with no route (the next stop line of the
+# lane state, the built-in traffic's default).
+SUCCESSOR_ORDER = {'s': 0, 'L': 1, 'R': 1, 'l': 2, 'r': 2, 't': 3}
 
 
 class SumoNetWarning(UserWarning):
@@ -161,6 +173,16 @@ def read_net(path, source):
     return net
 
 
+def lefthand(path):
+    """Return whether a network drives on the left (its ``<net lefthand="true">``)."""
+    with open(path, 'rb') as handle:
+        opener = gzip.open if handle.read(2) == b'\x1f\x8b' else open
+    with opener(path, 'rb') as handle:
+        head = handle.read(1 << 16).decode('utf-8', 'replace')
+    found = re.search(r'<net\b[^>]*>', head)
+    return bool(found and re.search(r'\blefthand="(true|1)"', found.group(0)))
+
+
 def lane_ids(net):
     """Return {SUMO lane id: lane id} of every lane of a sumolib network (module text)."""
     ids, number = {}, 0
@@ -203,14 +225,17 @@ def _kind(lane, vclass):
         return 'walkway'
     if not allowed & ROAD_CLASSES:
         return None
+    if 'passenger' in allowed:           # a general lane, not the map's vclass's
+        return 'restricted_lane'
     return next((subtype for cls, subtype in SUBTYPES if cls in allowed), 'restricted_lane')
 
 
-class _Reader:
+class _NetReader:
     """Collects a network's lanes and rules."""
 
-    def __init__(self, net, vclass, path, source):
+    def __init__(self, net, vclass, path, source, lefthand=False):
         self.net, self.vclass, self.path, self.source = net, vclass, path, source
+        self.lefthand = lefthand
         self.where = f'{source}: {path}'
         self.ids = lane_ids(net)
         self.sumo = {}          # lane id -> sumolib lane, the lanes of the graph
@@ -299,17 +324,19 @@ class _Reader:
         width = lane.getWidth()
         shift = 0.5 * width * _normals(points)
         index = lane.getIndex()
-        right = self._bound(members, index, bounds, points - shift, internal)
-        left = self._bound(members, index + 1, bounds, points + shift, internal)
-        left_lane = right_lane = None
-        left_change = right_change = False
+        outer = -1.0 if not self.lefthand else 1.0        # index 0 is the outermost lane
+        below = self._bound(members, index, bounds, points + outer * shift, internal)
+        above = self._bound(members, index + 1, bounds, points - outer * shift, internal)
+        lower = upper = None                # the neighbours at index - 1 and index + 1
         if not internal:
             if index + 1 < len(members) and self.ids[members[index + 1].getID()] in self.sumo:
-                left_lane = self.ids[members[index + 1].getID()]
-                left_change = left.line_type == 'dashed'
+                upper = self.ids[members[index + 1].getID()]
             if index > 0 and self.ids[members[index - 1].getID()] in self.sumo:
-                right_lane = self.ids[members[index - 1].getID()]
-                right_change = right.line_type == 'dashed'
+                lower = self.ids[members[index - 1].getID()]
+        right, left = (below, above) if not self.lefthand else (above, below)
+        right_lane, left_lane = (lower, upper) if not self.lefthand else (upper, lower)
+        left_change = left_lane is not None and left.line_type == 'dashed'
+        right_change = right_lane is not None and right.line_type == 'dashed'
         try:
             return Lane(lane_id, points, left, right, lane.getSpeed(),
                         successors=self.successors(lane), left_lane=left_lane,
@@ -323,7 +350,8 @@ class _Reader:
     def successors(self, lane, seen=()):
         """Return the lane ids a lane leads to (past internal lanes that are not lanes)."""
         found = []
-        for connection in lane.getOutgoing():
+        for connection in sorted(lane.getOutgoing(),
+                                 key=lambda c: SUCCESSOR_ORDER.get(c.getDirection(), 9)):
             via = connection.getViaLaneID()
             target = self.net.getLane(via) if via else connection.getToLane()
             target_id = self.ids.get(target.getID())
@@ -463,8 +491,20 @@ def _right_of_way(graph, reader, first_line_id):
     return stop_lines, rules
 
 
+def _junction_lanes(graph, reader):
+    """Return {junction id: a namespace of its internal lanes that are lanes}."""
+    found = {}
+    for node in reader.net.getNodes():
+        ids = (reader.ids.get(name) for name in node.getInternal())
+        found[node.getID()] = SimpleNamespace(lanes={i: graph.lanes[i] for i in ids
+                                                     if i in graph.lanes})
+    return found
+
+
 def _walking_areas(graph, reader):
     """Add the walking areas, crossings and junction polygons as areas."""
+    junctions = _junction_lanes(graph, reader)
+    empty = SimpleNamespace(lanes={})
     for edge in reader.net.getEdges(withInternal=True):
         function = edge.getFunction()
         for lane in edge.getLanes():
@@ -476,21 +516,23 @@ def _walking_areas(graph, reader):
                     polygon = _strip(shape, lane.getWidth())
                     crossed = {reader.ids[one.getID()] for crossed_edge in
                                edge.getCrossingEdges() for one in crossed_edge.getLanes()}
+                    node = edge.getID()[1:edge.getID().rfind('_c')]  # ':<node>_c<k>'
                     reader.area('crosswalk', polygon, sorted(
-                        set(lanes_through(graph, polygon))
+                        set(lanes_through(junctions.get(node, empty), polygon))
                         | {i for i in crossed if i in graph.lanes}))
     for node in reader.net.getNodes():
         if node.getType() != 'internal':
             reader.area('junction', node.getShape())
 
 
-def load_sumo_net(path, vclass='passenger', source=None):
+def load_sumo_net(path, vclass='passenger', source=None, shown=None):
     """
     Read a SUMO network into a LaneGraph with its rules (``graph.rules``).
 
     :param path: the ``.net.xml`` file.
     :param vclass: the SUMO vehicle class of the traffic's lanes.
     :param source: what errors name first (the world file's key); None = 'map'.
+    :param shown: how errors and the graph's source name the file; None = ``path``.
     :return: (LaneGraph, the sumolib network).
     :raises InvalidParameterError: naming the file: missing, not a SUMO network, no lane the
         map's vehicles or other road vehicles may use, a lane whose geometry is wrong.
@@ -498,7 +540,7 @@ def load_sumo_net(path, vclass='passenger', source=None):
     """
     source = source or 'map'
     net = read_net(path, source)
-    reader = _Reader(net, vclass, path, source)
+    reader = _NetReader(net, vclass, shown or path, source, lefthand(path))
     reader.sort_lanes()
     lanes = reader.lanes()
     if not lanes:

@@ -15,8 +15,9 @@
 """
 Lanes in the physics world: the road surface and its markings, drawn, and the barriers, solid.
 
-A world's lane map (``spec.lanes``: a LaneGraph from a lanelet2 map or from ``roads:``, loaded
-by vehicle_sim/maps/lane_maps.py before the bodies) becomes, through core/map/lane_geometry.py:
+A world's lane map (``spec.lanes``: a LaneGraph from a lanelet2 map, a SUMO network or
+``roads:``, loaded by vehicle_sim/maps/lane_maps.py before the bodies) becomes, through
+core/map/lane_geometry.py:
 
 - the road surface and the painted lines, and the rules' paint and areas (``graph.rules``:
   stop lines as white bars, crosswalks as zebra stripes, the other areas flat in their kind's
@@ -73,7 +74,7 @@ class LaneMap:
     """
     A built lane map: what the ROS layer publishes, the Webots facade and scenarios read.
 
-    :param spec: the world's ``map:`` spec (a lanelet2 map), or None for ``roads:``.
+    :param spec: the world's ``map:`` spec (a lane map kind's), or None for ``roads:``.
     :param lanes: the LaneGraph.
     :param visual_ids: the bodies of the road surface and the markings (visual only).
     :param barrier_ids: the static collision bodies of the barriers.

@@ -46,10 +46,11 @@ controller they show; these before the caller's ``parts``; ``traffic:`` the traf
 (physics/traffic_bodies.py), on its lane map, after them. A part of the caller's with a row's
 name takes that row's place; a world that asks for none gets no part and pays nothing.
 
-Lanes: before anything is built, the world's lane map (a lanelet2 map or its roads) is loaded
-and the vehicles placed by lane get their pose (vehicle_sim/maps/lane_maps.py), so a bad file
-or a vehicle off every lane is refused with nothing built; :attr:`Scene.lanes` is that
-LaneGraph (None without a lane map), ``scene.spec`` the WorldSpec with it.
+Lanes: before anything is built, the world's lane map (a lanelet2 map, a SUMO network or its
+roads) is loaded and the vehicles placed by lane get their pose (vehicle_sim/maps/
+lane_maps.py), so a bad file or a vehicle off every lane is refused with nothing built;
+:attr:`Scene.lanes` is that LaneGraph (None without a lane map), ``scene.spec`` the WorldSpec
+with it.
 
 It returns a :class:`Scene`: the World, the vehicles by name (:class:`SceneVehicle`: body, car,
 sensors), the obstacles by name and the geodetic origin, which callers read instead of building

@@ -158,9 +158,10 @@ TOPICS = AUTOMOBILE_TOPICS + STANDARD_TOPICS
 VEHICLE_TOPICS = tuple(row for row in TOPICS if not row.is_global)
 WORLD_TOPICS = tuple(row for row in TOPICS if row.is_global)
 
-# Lanes (docs/maps.md): wired per vehicle only in a world with a lane map (a lanelet2 map or
-# roads:), in their own Outputs. Call context: ``lane_state`` (core LaneState of this sample),
-# ``lane_event`` and ``lane_event_stamp`` (one core LaneInvasion); wiring: ``lanes_frame``.
+# Lanes (docs/maps.md): wired per vehicle only in a world with a lane map (a lanelet2 map, a
+# SUMO network or roads:), in their own Outputs. Call context: ``lane_state`` (core LaneState
+# of this sample), ``lane_event`` and ``lane_event_stamp`` (one core LaneInvasion); wiring:
+# ``lanes_frame``.
 LANE_STATE = Topic('lane_state', lm.LANE_STATE, QOS_DEFAULT, EACH_PUBLISH,
                    converter(lm.lane_state_builder, lambda v: (v.stamp, v.lane_state),
                              lambda w: (w.lanes_frame,)),

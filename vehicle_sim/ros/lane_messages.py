@@ -32,6 +32,7 @@ from vehicle_sim.core.map.lane_geometry import (
     GAP_M,
     PAINT_COLOR,
     polygon_mesh,
+    ROAD_AREA_KINDS,
     STOP_LINE_WIDTH_M,
     surface_mesh,
     zebra_stripes,
@@ -165,6 +166,8 @@ def lane_markers_builder(msg, frame_id: str):
                 markers.append(marker(stamp, 'traffic_lights', index, TRIANGLE_LIST,
                                       triangles(box_mesh(corners)), rgba, 1.0))
         for area in rules.areas:
+            if area.kind in ROAD_AREA_KINDS:        # in the road surface
+                continue
             if area.kind == 'crosswalk':
                 stripes = [polygon_mesh(stripe) for stripe in zebra_stripes(area.polygon)]
                 pts = [p for stripe in stripes for p in triangles(stripe, 0.012)]

@@ -19,8 +19,8 @@ A node whose scene has a map (``scene.parts['map']``, physics/map_layer.py) wire
 :func:`map_rows` gives for its kind with :class:`MapOutputs` and publishes them once, latched,
 with its other latched rows. An occupancy grid publishes ``/map`` and ``/map_metadata`` as nav2
 map_server does (transient-local, reliable, depth 1; frame ``map``); a lane map (a lanelet2
-map, or a world's ``roads:``) publishes ``/map/lanes`` (visualization_msgs/MarkerArray, the
-same QoS; frame :func:`fixed_frame`). Every map adds the
+map, a SUMO network, or a world's ``roads:``) publishes ``/map/lanes``
+(visualization_msgs/MarkerArray, the same QoS; frame :func:`fixed_frame`). Every map adds the
 ``map -> world`` transform to ``/tf_static`` (:func:`map_static_transform`): identity unless the
 world file's ``world_in_map`` says otherwise.
 
@@ -57,7 +57,7 @@ MAP_LANES = Topic('/map/lanes', MARKER_ARRAY, QOS_LATCHED, ONCE_LATCHED,
                   unit='m', doc='the lane map for RViz: road surface (triangle list), lane '
                                 'boundaries by line type, centrelines, and the stop lines, '
                                 'crosswalks, areas and traffic light heads and poles of its '
-                                'rules; frame map (a lanelet2 map) or world (roads:)')
+                                'rules; frame map (a map: lane map) or world (roads:)')
 
 # map kind (core/map/kinds.py MAP_KINDS) -> its rows.
 MAP_TOPICS: Dict[str, Tuple[Topic, ...]] = {

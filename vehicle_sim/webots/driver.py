@@ -33,7 +33,7 @@ looked up by its device name. Sensors are mounted by a world file (``world_file=
 ``VEHICLE_SIM_WORLD``; the Driver drives its first vehicle) or by ``sensors=`` (names of the
 car preset's sensors, which carry the Webots car PROTOs' device names).
 
-Lanes: in a world with a lane map (a lanelet2 map or ``roads:``; docs/maps.md),
+Lanes: in a world with a lane map (a lanelet2 map, a SUMO network or ``roads:``; docs/maps.md),
 ``driver.getLaneState()`` returns the car's lane state now (a core LaneState: lane id, s,
 offset, heading error, width, speed limit, the next stop line ahead and its signal's state), an
 addition of ours (Webots has no lane map, and no device for a traffic light's state: its

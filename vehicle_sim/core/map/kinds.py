@@ -178,7 +178,7 @@ def _netconvert(netconvert_input):
         cache = values['cache']
         return SumoNetMapSpec(values['type'], _network_placement(values, source),
                               file=_resolved(base_dir, values['file']),
-                              vclass=values['vclass'], options=tuple(values['options']),
+                              vclass=values['vclass'], options=tuple(values['options'] or ()),
                               cache=_resolved(base_dir, cache) if cache else '',
                               netconvert_input=option, netconvert_options=defaults,
                               source=source)

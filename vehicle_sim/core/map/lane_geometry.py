@@ -21,7 +21,9 @@ renderer or a physics engine turns into shapes, and the barrier segments (curbst
 borders, walls) that become low collision geometry. The same for every kind of lane map.
 
 - Surface: each lane is a strip between its centreline shifted by half its width to either
-  side, at z = 0 (the ground plane) plus ``SURFACE_Z_M``.
+  side, at z = 0 (the ground plane) plus ``SURFACE_Z_M``; the rules' areas of a road kind
+  (:data:`ROAD_AREA_KINDS`: a junction's polygon, as a SUMO network has them) are road surface
+  too, flat at the same height.
 - Markings: ``solid`` a stripe ``LINE_WIDTH_M`` wide along the line; ``dashed`` dashes of
   ``DASH_M`` with gaps of ``GAP_M`` (measured along each line from its start); the two-part
   types two stripes ``DOUBLE_GAP_M`` apart (left part on the line's left). Curbstones, road
@@ -65,6 +67,8 @@ AREA_COLORS = {
     'building': (0.55, 0.45, 0.38, 1.0),     # brick
 }
 OTHER_AREA_COLOR = (0.55, 0.35, 0.65, 1.0)   # violet
+# Area kinds drawn as road surface (part of the surface mesh), not as areas.
+ROAD_AREA_KINDS = ('junction',)
 PAINT_COLOR = (0.95, 0.95, 0.95, 1.0)        # white road paint
 # the parts of each painted type across the line: (kind, lateral shift [m], + = left)
 _HALF = 0.5 * (LINE_WIDTH_M + DOUBLE_GAP_M)
@@ -149,13 +153,20 @@ def join_meshes(*meshes: Mesh) -> Mesh:
 
 
 def surface_mesh(graph: LaneGraph) -> Mesh:
-    """Return the road surface: one strip per lane, its width wide, around its centreline."""
+    """
+    Return the road surface: one strip per lane, its width wide, around its centreline.
+
+    The rules' areas of :data:`ROAD_AREA_KINDS` (junctions) are part of it, flat.
+    """
     builder = _MeshBuilder()
     for lane in graph.lanes.values():
         points = lane.centerline
         half = 0.5 * np.asarray(lane.widths)[:, None]
         normals = _normals(points)
         builder.strip(points + half * normals, points - half * normals, SURFACE_Z_M)
+    for area in graph.rules.areas:
+        if area.kind in ROAD_AREA_KINDS:
+            builder.polygon(area.polygon, SURFACE_Z_M)
     return builder.mesh()
 
 
@@ -360,11 +371,16 @@ def area_color(kind: str):
     return AREA_COLORS.get(kind, OTHER_AREA_COLOR)
 
 
+def drawn_as_area(kind: str) -> bool:
+    """Return whether an area of ``kind`` is drawn flat in its colour (crosswalks: stripes)."""
+    return kind != 'crosswalk' and kind not in ROAD_AREA_KINDS
+
+
 def area_meshes(graph: LaneGraph) -> Dict[str, Mesh]:
-    """Return {kind: the flat polygons of its areas} of every area but the crosswalks."""
+    """Return {kind: the flat polygons of its areas} of the areas :func:`drawn_as_area`."""
     builders: Dict[str, _MeshBuilder] = {}
     for area in graph.rules.areas:
-        if area.kind != 'crosswalk':
+        if drawn_as_area(area.kind):
             builders.setdefault(area.kind, _MeshBuilder()).polygon(area.polygon, AREA_Z_M)
     meshes = {kind: builder.mesh() for kind, builder in builders.items()}
     return {kind: mesh for kind, mesh in meshes.items() if len(mesh.triangles)}

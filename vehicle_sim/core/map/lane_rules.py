@@ -39,6 +39,7 @@ never asks which kind of map they came from:
 Coordinates are world metres (x east, y north), as the lanes'.
 """
 
+from collections import Counter
 from dataclasses import dataclass, field
 import math
 from typing import Dict, Optional, Sequence, Tuple
@@ -315,8 +316,8 @@ class LaneRules:
 
         for kind, items in (('stop line', self.stop_lines), ('traffic light group', self.groups),
                             ('right of way', self.right_of_way), ('area', self.areas)):
-            ids = [item.id for item in items]
-            twice = sorted({i for i in ids if ids.count(i) > 1})
+            counts = Counter(item.id for item in items)
+            twice = sorted(i for i, n in counts.items() if n > 1)
             if twice:
                 raise InvalidParameterError(f'{source}: {kind} id(s) used twice: {twice}')
         groups = {group.id: group for group in self.groups}

@@ -39,6 +39,11 @@ from vehicle_sim.core.map.lane_graph import LaneGraph
 _HALF_TURN = 0.5 * math.pi
 # How far ahead along the lanes the next stop line is looked for [m].
 STOP_LINE_HORIZON_M = 200.0
+# A vehicle leaving a lane's end onto a successor that starts at an angle to it (a kink where
+# two lanes join, as a SUMO network's junction lanes meet the lanes they lead to) crosses a
+# wedge beyond the one lane's end and before the other's start, on the outside of the kink:
+# up to this far before the successor's start it is on the successor, at s = 0 [m].
+JOIN_M = 0.5
 _UNKNOWN = object()
 
 
@@ -120,6 +125,9 @@ class LaneTracker:
             best = None             # where lanes fork, the one the vehicle fits best
             for other, near_s in self._nearby(lane, k, t, offset):
                 k, t, offset = other.walk(x_m, y_m, other.segment_at(near_s))
+                if near_s == 0.0 and k == 0 and -JOIN_M <= t < 0.0 and \
+                        other.id in lane.successors:        # in the wedge of a kink
+                    t = 0.0
                 fit = self._fit(other, k, t, offset, yaw_rad, turn_limit=_HALF_TURN)
                 if fit is not None and (best is None or fit[0] < best[0][0]):
                     best = (fit, other, k)

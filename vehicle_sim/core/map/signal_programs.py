@@ -20,7 +20,9 @@ A :class:`SignalProgram` is one traffic light system of the map: its id (SUMO's 
 id), the traffic light group of each of its link indices (``links[i]``: the group id of link
 ``i``, None for a link with no group, e.g. a pedestrian crossing's), its phases (duration [s],
 SUMO state string: one character per link index) and its offset: the cycle position at time
-``t`` is ``(t - offset) mod cycle``, as SUMO runs it. :data:`SUMO_STATES` maps SUMO's state
+``t`` is ``(t - offset) mod cycle``, as SUMO runs it (a phase that starts at ``t`` is in effect
+from ``t`` on: SUMO switches at the start of its step at ``t``, and TraCI, asked at ``t``,
+still reads the state before that step). :data:`SUMO_STATES` maps SUMO's state
 characters onto the groups' states (core/map/lane_rules.py SIGNAL_STATES): ``G`` (priority
 green), ``g`` (permissive green: the vehicle yields to the conflicting priority flows; here, as
 everywhere in the simulator, the conflict zones are served first come first served) and ``s``

@@ -57,9 +57,9 @@ SUMO_NET_SPECS = (
 NETCONVERT_SPECS = (
     ParamSpec('file', 'file', 'str', REQUIRED,
               doc='the file netconvert converts, relative to the world file'),
-    ParamSpec('options', 'options', 'str_list', (),
-              doc="more netconvert options, after the map's own (e.g. ['--junctions.join', "
-                  "'--no-turnarounds']); a value is its own entry"),
+    ParamSpec('options', 'options', 'str_list', None, optional=True,
+              doc="more netconvert options, after the map's own (e.g. ['--no-turnarounds', "
+                  "'true']); a value is its own entry"),
     ParamSpec('cache', 'cache', 'str', '', empty=True,
               doc="the folder of converted networks, relative to the world file; '' = "
                   '$XDG_CACHE_HOME/vehicle_sim/netconvert (~/.cache/...)'),

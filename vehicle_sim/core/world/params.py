@@ -268,7 +268,8 @@ VEHICLE_SPECS = (
     ParamSpec('model', 'model', 'str', None, optional=True,
               doc='car preset; null = the car_model parameter'),
     ParamSpec('pose', 'pose', 'pose', Pose(), 'm, rad', 'spawn pose of base_link {x, y, yaw}, '
-              'or on a lane {lanelet, s, offset} (docs/maps.md)', choices=('x', 'y', 'yaw')),
+              'or on a lane {lanelet or lane, s, offset} (docs/maps.md)',
+              choices=('x', 'y', 'yaw')),
     ParamSpec('sensors', 'sensors', 'raw', None, '',
               "changes to the preset's sensors and new ones (docs/sensors.md)", optional=True),
 )
@@ -306,7 +307,7 @@ class WorldSpec:
     of its engine (core/traffic/engines.py; the builtin engine's TrafficSpec of
     core/traffic/params.py), or None; ``signals`` the plan of its traffic lights
     (core/map/signal_params.py), or None (the default plan where the lane map has any).
-    ``lanes`` is its lane map (a core LaneGraph from a lanelet2 map or the roads) once loaded
+    ``lanes`` is its lane map (a core LaneGraph from a lane map or the roads) once loaded
     (vehicle_sim/maps/lane_maps.py, by the scene builder), with the vehicles placed by lane;
     None before that or without one.
     """
