@@ -65,8 +65,6 @@ FILL_S = 300.0               # simulated seconds before timing: the city fills u
 XODR_GRID = 6                # netgenerate grid of 6 x 6 junctions: about 1 MB of OpenDRIVE
 TARGET_RTF = 20.0            # co-simulated real-time factor (docs/sumo.md)
 PARTS = ('alone', 'cosim', 'netconvert')
-# netconvert's default, given (no change): main's opendrive map kind refuses an empty options:
-NO_OPTIONS = {'options': ['--no-turnarounds', 'false']}
 TARGET_COST = 2.0            # co-simulated / (SUMO alone + the empty world), per simulated s
 # The ego car: at rest on the right lane of A1B1 (eastbound, row 1), 20 m in; its lidar as the
 # other benchmarks' (1080 rays over 270 degrees, 30 m) at 10 Hz.
@@ -236,7 +234,7 @@ def netconvert_xodr(repeats=3):
         best, net = float('inf'), None
         for index in range(repeats):
             spec = map_from_dict({'type': 'opendrive', 'file': str(xodr),
-                                  'cache': f'cache{index}', **NO_OPTIONS},
+                                  'cache': f'cache{index}'},
                                  'bench_sumo.yaml: map', folder)
             start = time.perf_counter()
             net = convert(spec)
