@@ -109,9 +109,10 @@ def test_the_car_stops_behind_the_queue_at_the_red_light():
     assert result.passed and result.error is None
     light = result.criterion('traffic_light')
     assert light.value == 0
-    # B1's program holds the west arm red: the car came closest to that red line
+    # B1's program holds the west arm red: the car came closest to that red line, its
+    # straight-on group's (B1's link 13)
     assert 'closest to a red line: ' in light.detail
-    assert 'before line 20000093 (group 30000093)' in light.detail
+    assert 'before line 20000094 (group 30000094)' in light.detail
     gap = result.criterion('min_gap')
     # behind SUMO's third queued car (sumo_2), 3.5 m from its rear
     assert 2.0 < gap.value < 5.0 and 'to sumo_2' in gap.detail
