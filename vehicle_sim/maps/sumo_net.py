@@ -206,7 +206,7 @@ def _kind(lane, vclass):
     return next((subtype for cls, subtype in SUBTYPES if cls in allowed), 'restricted_lane')
 
 
-class _Reader:
+class _NetReader:
     """Collects a network's lanes and rules."""
 
     def __init__(self, net, vclass, path, source):
@@ -498,7 +498,7 @@ def load_sumo_net(path, vclass='passenger', source=None):
     """
     source = source or 'map'
     net = read_net(path, source)
-    reader = _Reader(net, vclass, path, source)
+    reader = _NetReader(net, vclass, path, source)
     reader.sort_lanes()
     lanes = reader.lanes()
     if not lanes:

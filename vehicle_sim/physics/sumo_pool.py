@@ -1,0 +1,173 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The SUMO engine's pool of bodies (physics/sumo_traffic.py): one body per SUMO vehicle or person.
+
+A body, named ``sumo_<k>``, serves one SUMO vehicle or person from its departure to its arrival,
+is parked under the ground after, and serves the next one of the same size and shape (its
+class's, core/traffic/objects.py CLASS_SHAPES: a person an upright cylinder); the order of SUMO's
+departures decides, so a seed gives the same names. :class:`SumoPool` takes, parks, places,
+moves (straight on between SUMO's steps) and stops them; SumoBodies is one.
+"""
+
+import math
+
+import pybullet
+
+from vehicle_sim.core.traffic.objects import CLASS_SHAPES, shape_extents
+from vehicle_sim.core.traffic.sumo_params import object_class
+from vehicle_sim.core.world.params import ObstacleSpec
+from vehicle_sim.physics.traffic_boxes import COLOURS, GROUND_CLEARANCE_M, PARK_DEPTH_M
+
+NAME_PREFIX = 'sumo_'            # the bodies' names: this + the pool index
+PERSON_COLOUR = (0.95, 0.55, 0.15, 1.0)
+
+__all__ = ['NAME_PREFIX', 'SumoPool', 'SumoSlot']
+
+
+class SumoSlot:
+    """One body of the pool: its name, body id, box size, colour and whom it serves now."""
+
+    __slots__ = ('index', 'name', 'body_id', 'size', 'clearance', 'colour', 'key', 'sumo_id',
+                 'person', 'vclass', 'state', 'motion', 'stopped', 'lane', 'route')
+
+    def __init__(self, index, body_id, size, clearance, colour, key):
+        self.index = index
+        self.name = f'{NAME_PREFIX}{index}'
+        self.body_id = body_id
+        self.size = size                   # (length, width, height) [m] of the SUMO type
+        self.clearance = clearance         # the box's underside above the ground [m]
+        self.colour = colour
+        self.key = key                     # the pool it returns to
+        self.sumo_id = None                # whom it serves (None: parked)
+        self.person = False
+        self.vclass = 'passenger'
+        self.state = None                  # (x, y, yaw, speed) of the footprint centre
+        self.motion = None                 # (x, y, z, qz, qw, vx, vy) at the last update
+        self.stopped = False               # touched one of ours: stopped for good
+        self.lane = None                   # (SUMO lane id, lane position [m], route index)
+        self.route = ()                    # its route's SUMO edges (at its departure)
+
+    @property
+    def z(self):
+        return 0.5 * (self.size[2] + self.clearance)
+
+
+
+class SumoPool:
+    """
+    The pool's part of SumoBodies: its bodies taken, parked, placed, moved and stopped.
+
+    Uses SumoBodies' ``world``, ``session``, ``_cid``, ``_slots``, ``_by_id``, ``_free``,
+    ``_types``, ``heights`` and ``_placed_at``.
+    """
+
+    def _take(self, api, person, sumo_id):
+        """Return the slot for a new SUMO vehicle or person (a free one of its size, or new)."""
+        domain = api.person if person else api.vehicle
+        type_id = domain.getTypeID(sumo_id)
+        kind = self._types.get(type_id)
+        if kind is None:
+            t = api.vehicletype
+            kind = self._types[type_id] = (t.getLength(type_id), t.getWidth(type_id),
+                                           t.getHeight(type_id), t.getVehicleClass(type_id))
+            self.heights[type_id] = kind[2]
+        length, width, height, vclass = kind
+        if person:
+            vclass = 'pedestrian'
+        found_class = object_class(vclass)
+        key = (round(length, 3), round(width, 3), round(height, 3), person,
+               CLASS_SHAPES[found_class])
+        free = self._free.get(key)
+        if free:
+            slot = free.pop()
+        else:
+            index = len(self._slots)
+            clearance = 0.0 if person else min(GROUND_CLEARANCE_M, 0.25 * height)
+            colour = PERSON_COLOUR if person else COLOURS[index % len(COLOURS)]
+            size = (length, width, height)
+            # the body of its class's shape (a pedestrian an upright cylinder)
+            extents = shape_extents(found_class, length, width, height - clearance)
+            spec = ObstacleSpec(f'{NAME_PREFIX}{index}', CLASS_SHAPES[found_class],
+                                (0.0, 0.0, PARK_DEPTH_M - 10.0 * index), 0.0, 0.0, 0.0, 0.0,
+                                colour, extents, radius_m=0.5 * extents[0],
+                                height_m=extents[2])
+            body_id = self.world.add_obstacle(spec, placed=True)
+            slot = SumoSlot(index, body_id, size, clearance, colour, key)
+            self._slots.append(slot)
+        slot.sumo_id, slot.person, slot.vclass, slot.stopped = sumo_id, person, vclass, False
+        self._by_id[(person, sumo_id)] = slot
+        return slot
+
+    def _park(self, slot):
+        slot.sumo_id, slot.state, slot.motion, slot.stopped = None, None, None, False
+        slot.lane, slot.route = None, ()
+        pybullet.resetBasePositionAndOrientation(
+            slot.body_id, (0.0, 0.0, PARK_DEPTH_M - 10.0 * slot.index), (0.0, 0.0, 0.0, 1.0),
+            physicsClientId=self._cid)
+
+    def _place(self):
+        """Put every serving body where SUMO has its vehicle or person now (an update)."""
+        cid = self._cid
+        reset_pose = pybullet.resetBasePositionAndOrientation
+        cos, sin = math.cos, math.sin
+        for slot in self._by_id.values():
+            x, y, yaw, speed = slot.state
+            half = 0.5 * yaw
+            z, qz, qw = slot.z, sin(half), cos(half)
+            reset_pose(slot.body_id, (x, y, z), (0.0, 0.0, qz, qw), physicsClientId=cid)
+            slot.motion = (x, y, z, qz, qw, speed * cos(yaw), speed * sin(yaw))
+        self._placed_at = self.world.time_s
+        self._synced_step = self.world.step_count
+        self.world.mark_moved()
+
+    def _move(self, slots):
+        """Put the bodies of ``slots`` where their vehicles are now (straight on)."""
+        cid = self._cid
+        reset_pose = pybullet.resetBasePositionAndOrientation
+        elapsed = self.world.time_s - self._placed_at
+        for slot in slots:
+            state = slot.motion
+            if state is None:
+                continue
+            x, y, z, qz, qw, vx, vy = state
+            if vx or vy:
+                reset_pose(slot.body_id, (x + vx * elapsed, y + vy * elapsed, z),
+                           (0.0, 0.0, qz, qw), physicsClientId=cid)
+
+
+    def _stop(self, slot):
+        # Stopped where its body was during the step, in SUMO at once (no deceleration bound).
+        api = self.session.api
+        with self.session.errors(f'stopping {slot.sumo_id!r}'):
+            try:
+                if slot.person:
+                    api.person.setSpeed(slot.sumo_id, 0.0)
+                else:
+                    api.vehicle.setSpeedMode(slot.sumo_id, 0)
+                    api.vehicle.setSpeed(slot.sumo_id, 0.0)
+                    api.vehicle.setLaneChangeMode(slot.sumo_id, 0)
+            except self.session.refusal:    # SUMO took it off the road this step: its body
+                pass                        # stays where it was until SUMO's next step
+        slot.stopped = True
+        elapsed = max(0.0, self.world.time_s - self.world.time_step_s - self._placed_at)
+        x, y, z, qz, qw, vx, vy = slot.motion
+        x, y = x + vx * elapsed, y + vy * elapsed
+        pybullet.resetBasePositionAndOrientation(slot.body_id, (x, y, z), (0.0, 0.0, qz, qw),
+                                                 physicsClientId=self._cid)
+        slot.motion = (x, y, z, qz, qw, 0.0, 0.0)
+        _, _, yaw, _ = slot.state
+        slot.state = (x, y, yaw, 0.0)
+        self.world.mark_moved()
