@@ -33,15 +33,59 @@ from vehicle_sim.physics.traffic_boxes import COLOURS, GROUND_CLEARANCE_M, PARK_
 
 NAME_PREFIX = 'sumo_'            # the bodies' names: this + the pool index
 PERSON_COLOUR = (0.95, 0.55, 0.15, 1.0)
+# a vehicle's front further than its speed times the step plus this from its last point has
+# jumped (SUMO's teleport): its trail starts again there
+JUMP_M = 3.0
+TRAIL_STEP_M = 0.01              # the front's points along its trail are this far apart at least
 
-__all__ = ['NAME_PREFIX', 'SumoPool', 'SumoSlot']
+__all__ = ['follow_trail', 'JUMP_M', 'NAME_PREFIX', 'SumoPool', 'SumoSlot']
+
+
+def _back_along(trail, x, y, yaw, distance):
+    """Return (point, index) ``distance`` back along the trail from (x, y), and its segment."""
+    need, px, py = distance, x, y
+    for i in range(len(trail) - 1, -1, -1):
+        qx, qy = trail[i]
+        d = math.hypot(px - qx, py - qy)
+        if d >= need > 0.0:
+            f = need / d
+            return (px + (qx - px) * f, py + (qy - py) * f), i
+        need, px, py = need - d, qx, qy
+    return (px - need * math.cos(yaw), py - need * math.sin(yaw)), 0
+
+
+def follow_trail(trail, x, y, yaw, length, jump_m):
+    """
+    Return (centre x, y, yaw) of a vehicle's rigid box whose front is at (x, y) [m].
+
+    SUMO bends a vehicle along the path its front took; the box is centred on that path half
+    its length behind the front, along the chord from its rear (a length behind) to its
+    front. A box behind the front along its heading would swing its rear out of the lane on a
+    turn (by about length^2 / 2R), over the walking area's corner on a right turn. Where the
+    path is shorter than the vehicle (it has just departed) the rest goes straight back along
+    ``yaw`` from the path's oldest point.
+
+    :param trail: the front's earlier points [(x, y)], oldest first: (x, y) is added, and the
+        points behind the rear's are dropped.
+    :param jump_m: a front further than this from the trail's last point jumped (a teleport):
+        the trail starts again.
+    """
+    if trail and math.hypot(x - trail[-1][0], y - trail[-1][1]) > jump_m:
+        trail.clear()
+    if not trail or math.hypot(x - trail[-1][0], y - trail[-1][1]) >= TRAIL_STEP_M:
+        trail.append((x, y))
+    (mx, my), _ = _back_along(trail, x, y, yaw, 0.5 * length)
+    (bx, by), index = _back_along(trail, x, y, yaw, length)
+    del trail[:index]
+    return mx, my, math.atan2(y - by, x - bx)
 
 
 class SumoSlot:
     """One body of the pool: its name, body id, box size, colour and whom it serves now."""
 
     __slots__ = ('index', 'name', 'body_id', 'size', 'clearance', 'colour', 'key', 'sumo_id',
-                 'person', 'vclass', 'state', 'motion', 'stopped', 'lane', 'route')
+                 'person', 'vclass', 'state', 'motion', 'stopped', 'lane', 'route',
+                 'trail')
 
     def __init__(self, index, body_id, size, clearance, colour, key):
         self.index = index
@@ -59,6 +103,7 @@ class SumoSlot:
         self.stopped = False               # touched one of ours: stopped for good
         self.lane = None                   # (SUMO lane id, lane position [m], route index)
         self.route = ()                    # its route's SUMO edges (at its departure)
+        self.trail = []                    # its front's earlier points (follow_trail)
 
     @property
     def z(self):
@@ -108,6 +153,7 @@ class SumoPool:
             slot = SumoSlot(index, body_id, size, clearance, colour, key)
             self._slots.append(slot)
         slot.sumo_id, slot.person, slot.vclass, slot.stopped = sumo_id, person, vclass, False
+        slot.trail = []
         self._by_id[(person, sumo_id)] = slot
         return slot
 

@@ -61,7 +61,7 @@ from vehicle_sim.core.traffic.idm import IdmParams
 from vehicle_sim.physics.gui import FRAME_PERIOD_S
 from vehicle_sim.physics.sumo_demand import demand_routes
 from vehicle_sim.physics.sumo_ours import OURS_PREFIX, SumoOurs
-from vehicle_sim.physics.sumo_pool import SumoPool
+from vehicle_sim.physics.sumo_pool import follow_trail, JUMP_M, SumoPool
 from vehicle_sim.physics.sumo_session import load_traci, SumoError, SumoSession
 from vehicle_sim.physics.sumo_signals import SumoSignals
 from vehicle_sim.physics.sumo_views import SumoViews
@@ -281,9 +281,13 @@ class SumoBodies(SumoPool, SumoViews):
                 (fx, fy), angle, speed = (values[c.VAR_POSITION], values[c.VAR_ANGLE],
                                           values[c.VAR_SPEED])
                 yaw = math.radians(90.0 - angle)
-                half = 0.5 * slot.size[0]
-                cos, sin = math.cos(yaw), math.sin(yaw)
-                slot.state = (fx - half * cos, fy - half * sin, yaw, speed)
+                if person:
+                    half = 0.5 * slot.size[0]
+                    cos, sin = math.cos(yaw), math.sin(yaw)
+                    slot.state = (fx - half * cos, fy - half * sin, yaw, speed)
+                else:               # centred on the path its front took (SUMO bends it so)
+                    slot.state = (*follow_trail(slot.trail, fx, fy, yaw, slot.size[0],
+                                                speed * self.spec.step_s + JUMP_M), speed)
                 if not person:
                     slot.lane = (values[c.VAR_LANE_ID], values[c.VAR_LANEPOSITION],
                                  values[c.VAR_ROUTE_INDEX])
