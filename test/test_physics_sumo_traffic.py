@@ -40,6 +40,7 @@ from sumo_helpers import one_lane_grid_net, write_routes  # noqa: E402
 
 from vehicle_sim.config import world_from_data  # noqa: E402
 from vehicle_sim.physics.scene import build_scene  # noqa: E402
+from vehicle_sim.physics.sumo_pool import follow_trail, JUMP_M  # noqa: E402
 
 LANE_X = 1.6          # edge A0A1's lane (northbound) runs along x = 1.6, y from 5.2 to 92.8
 STEPS_PER_S = 100     # world steps a second (the default step, 0.01 s)
@@ -73,6 +74,31 @@ DEMAND = {'vehicles_per_hour': 2400, 'pedestrians_per_hour': 1200, 'seed': 5,
           'classes': {'passenger': 3, 'bus': 1, 'bicycle': 1, 'truck': 1}}
 
 
+def test_a_turning_vehicles_box_is_centred_on_the_path_its_front_took():
+    # a 5 m vehicle's front on a right turn of radius 6 m (a quarter circle round (0, 0), from
+    # heading +y to heading +x), 0.1 m a step: at the turn's end its centre is on the circle,
+    # half its length of arc behind the front, its heading along the chord from its rear to
+    # its front; behind the front along SUMO's heading its rear would swing out by about
+    # length^2 / 8R off the path
+    radius, length, trail = 6.0, 5.0, []
+    path = [(-radius, -10.0 + 0.1 * k, math.pi / 2) for k in range(101)]  # up to (-R, 0)
+    path += [(-radius * math.cos(a), radius * math.sin(a), math.pi / 2 - a)
+             for a in (0.5 * math.pi * k / 94 for k in range(1, 95))]
+    for x, y, heading in path:
+        cx, cy, yaw = follow_trail(trail, x, y, heading, length, 0.1 + JUMP_M)
+    fx, fy, _ = path[-1]
+    arc = 0.5 * length / radius                     # the centre's angle back along the arc
+    assert (cx, cy) == pytest.approx((-radius * math.sin(arc), radius * math.cos(arc)),
+                                     abs=0.01)
+    rear = (-radius * math.sin(2 * arc), radius * math.cos(2 * arc))
+    assert yaw == pytest.approx(math.atan2(fy - rear[1], fx - rear[0]), abs=0.01)
+    assert len(trail) < 60                          # the points behind its rear dropped
+    # a jump (a teleport) starts the trail again: the box straight behind the new front
+    cx, cy, yaw = follow_trail(trail, 50.0, 50.0, 0.0, length, 0.1 + JUMP_M)
+    assert (cx, cy, yaw) == pytest.approx((47.5, 50.0, 0.0))
+    assert trail == [(50.0, 50.0)]
+
+
 def test_the_bodies_are_where_sumo_has_its_vehicles_and_persons(net):
     scene = _world(net, {'demand': DEMAND, 'seed': 2}, ego=(-30.0, -30.0, 0.0))
     try:
@@ -83,6 +109,7 @@ def test_the_bodies_are_where_sumo_has_its_vehicles_and_persons(net):
         classes = {o.name: o.object_class for o in bodies.objects()}
         assert {'car', 'bus', 'bicycle', 'truck', 'pedestrian'} <= set(classes.values())
         assert len(agents) > 10
+        checked = 0
         for name, x, y, yaw, length, width, speed in agents:
             sumo_id = bodies.sumo_id(name)
             person = classes[name] == 'pedestrian'
@@ -91,11 +118,21 @@ def test_the_bodies_are_where_sumo_has_its_vehicles_and_persons(net):
             type_id = domain.getTypeID(sumo_id)
             assert (length, width) == (api.vehicletype.getLength(type_id),
                                        api.vehicletype.getWidth(type_id))
-            # the footprint centre, half a length behind SUMO's front bumper
-            assert x + 0.5 * length * math.cos(yaw) == pytest.approx(fx, abs=1e-6)
-            assert y + 0.5 * length * math.sin(yaw) == pytest.approx(fy, abs=1e-6)
-            assert math.degrees(yaw) == pytest.approx(90.0 - domain.getAngle(sumo_id), abs=1e-6)
+            # the footprint centre half a length behind SUMO's front bumper: a person's along
+            # its heading; a vehicle's on the path its front took (follow_trail), which on a
+            # straight lane is the same
+            straight = person or (not domain.getLaneID(sumo_id).startswith(':')
+                                  and domain.getLanePosition(sumo_id) > 2.0 * length)
+            if straight:
+                assert x + 0.5 * length * math.cos(yaw) == pytest.approx(fx, abs=1e-6)
+                assert y + 0.5 * length * math.sin(yaw) == pytest.approx(fy, abs=1e-6)
+                turn = (math.degrees(yaw) - (90.0 - domain.getAngle(sumo_id))) % 360.0
+                assert min(turn, 360.0 - turn) == pytest.approx(0.0, abs=1e-6)
+                checked += not person
+            else:                         # on a curve the chord to the front is shorter
+                assert 0.4 * length <= math.hypot(fx - x, fy - y) <= 0.5 * length + 1e-6
             assert speed == pytest.approx(domain.getSpeed(sumo_id), abs=1e-9)
+        assert checked > 3
         # SUMO stepped at 29.9 s (every 0.1 s, before the world's step): since then each body
         # went on straight at its speed
         for steps, since in ((0, 0.1), (4, 0.04)):

@@ -74,4 +74,4 @@ def test_a_recorded_sumo_world_reads_back_with_its_objects_and_signals(tmp_path)
     assert counts[OBJECTS] >= DURATION_S * 10 and counts[SIGNALS] >= DURATION_S * 10
     assert labels[1] > 100 and labels[7] > 100                     # CAR, PEDESTRIAN
     assert shapes == {(1, 0), (7, 1)}            # a car a BOUNDING_BOX, a pedestrian a CYLINDER
-    assert len(groups) == 60                     # every group of the city (9 junctions)
+    assert len(groups) == 156                    # every group of the city (9 four-armed junctions)

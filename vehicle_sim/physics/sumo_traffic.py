@@ -44,46 +44,28 @@ program when released.
 
 A SUMO error while the world runs stops the world's step with :class:`SumoError` and SUMO's
 message; closing the world closes SUMO.
+
+What it is made of: physics/sumo_pool.py (the pool of bodies: taken, parked, placed, moved,
+stopped), physics/sumo_ours.py (our vehicles in SUMO), physics/sumo_signals.py (the signal
+bridge), physics/sumo_views.py (the contract's views: agents, objects with their lane paths,
+boxes).
 """
 
 import math
 
 import pybullet
 
-from vehicle_sim.core.map.signal_programs import SUMO_STATES
 from vehicle_sim.core.map.sumo_net_params import SumoNetMapSpec
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.idm import IdmParams
-from vehicle_sim.core.traffic.lane_paths import route_path
-from vehicle_sim.core.traffic.objects import (
-    CLASS_SHAPES,
-    PREDICTION_HORIZON_S,
-    PREDICTION_STEP_S,
-    shape_extents,
-    TrafficObject,
-)
-from vehicle_sim.core.traffic.sumo_params import object_class
-from vehicle_sim.core.world.params import ObstacleSpec
 from vehicle_sim.physics.gui import FRAME_PERIOD_S
 from vehicle_sim.physics.sumo_demand import demand_routes
+from vehicle_sim.physics.sumo_ours import OURS_PREFIX, SumoOurs
+from vehicle_sim.physics.sumo_pool import follow_trail, JUMP_M, SumoPool
 from vehicle_sim.physics.sumo_session import load_traci, SumoError, SumoSession
-from vehicle_sim.physics.traffic_boxes import (
-    COLOURS,
-    GROUND_CLEARANCE_M,
-    NEAR_M,
-    our_vehicle,
-    PARK_DEPTH_M,
-)
-
-OURS_PREFIX = 'vehicle_sim.'     # our vehicles' SUMO ids: this + their names
-NAME_PREFIX = 'sumo_'            # the bodies' names: this + the pool index
-# our vehicle is in SUMO while its front is within this of the centreline of a lane SUMO's cars
-# may use [m] (a lane and a half of 3.2 m)
-OFF_ROAD_M = 5.0
-RETRY_STEPS = 10                 # SUMO steps between two looks for a lane of one out of SUMO
-PERSON_COLOUR = (0.95, 0.55, 0.15, 1.0)
-# SUMO's state character of each of our signal states (what a forced state is pushed as)
-SUMO_CHARACTER = {'green': 'G', 'yellow': 'y', 'red': 'r', 'off': 'O'}
+from vehicle_sim.physics.sumo_signals import SumoSignals
+from vehicle_sim.physics.sumo_views import SumoViews
+from vehicle_sim.physics.traffic_boxes import NEAR_M
 
 __all__ = ['build_sumo', 'SumoBodies', 'SumoError', 'sumo_network']
 
@@ -134,35 +116,8 @@ def build_sumo(part, world, spec, parts):
     return SumoBodies(world, traffic, net, every, signals, programs, graph)
 
 
-class _Slot:
-    """One body of the pool: its name, body id, box size, colour and whom it serves now."""
 
-    __slots__ = ('index', 'name', 'body_id', 'size', 'clearance', 'colour', 'key', 'sumo_id',
-                 'person', 'vclass', 'state', 'motion', 'stopped', 'lane', 'route')
-
-    def __init__(self, index, body_id, size, clearance, colour, key):
-        self.index = index
-        self.name = f'{NAME_PREFIX}{index}'
-        self.body_id = body_id
-        self.size = size                   # (length, width, height) [m] of the SUMO type
-        self.clearance = clearance         # the box's underside above the ground [m]
-        self.colour = colour
-        self.key = key                     # the pool it returns to
-        self.sumo_id = None                # whom it serves (None: parked)
-        self.person = False
-        self.vclass = 'passenger'
-        self.state = None                  # (x, y, yaw, speed) of the footprint centre
-        self.motion = None                 # (x, y, z, qz, qw, vx, vy) at the last update
-        self.stopped = False               # touched one of ours: stopped for good
-        self.lane = None                   # (SUMO lane id, lane position [m], route index)
-        self.route = ()                    # its route's SUMO edges (at its departure)
-
-    @property
-    def z(self):
-        return 0.5 * (self.size[2] + self.clearance)
-
-
-class SumoBodies:
+class SumoBodies(SumoPool, SumoViews):
     """
     SUMO's vehicles and persons as bodies in a World (a world step hook).
 
@@ -231,37 +186,15 @@ class SumoBodies:
             self._park(slot)
         for slot in reversed(self._slots):
             self._free.setdefault(slot.key, []).append(slot)
-        self._in_sumo = set()              # the names of our vehicles in SUMO now
-        self._retry = {}                   # {name: out of SUMO, looked for since}
-        self._shapes = {}                  # {SUMO lane id: its shape}
         self._steps = 0                    # SUMO steps since the start
-        self._strings = {}                 # {tls id: its state string at the last drive}
-        self._routes = 0
-        self._pushed = {}                  # {group id: state} forced states pushed to SUMO
-        self._tls_links = {}               # {group id: (tls id, link index)}
-        self._groups_of = {}               # {tls id: ((link index, group id), ...)}
-        for program in self.programs:
-            self._groups_of[program.tls_id] = tuple(
-                (link, group) for link, group in enumerate(program.links) if group is not None)
-            for link, group in self._groups_of[program.tls_id]:
-                self._tls_links[group] = (program.tls_id, link)
+        self._our = SumoOurs(self.session, self._ours, self._outlines)
+        self._signals = SumoSignals(self.session, self.signals, self.programs, self._constants)
         with self.session.errors('at the start'):
-            for index, body in enumerate(self._ours):
-                outline = self._outlines[index]
-                type_id = f'{OURS_PREFIX}{body.name}'
-                api.vehicletype.copy('DEFAULT_VEHTYPE', type_id)
-                api.vehicletype.setLength(type_id, outline.length_m)
-                api.vehicletype.setWidth(type_id, outline.width_m)
+            self._our.add_types(api)
             c = self._constants
             api.simulation.subscribe((c.VAR_DEPARTED_VEHICLES_IDS,
                                       c.VAR_DEPARTED_PERSONS_IDS, c.VAR_ARRIVED_VEHICLES_IDS))
-            if self._tls_links:
-                for tls in {tls for tls, _ in self._tls_links.values()}:
-                    api.trafficlight.subscribe(tls, (c.TL_RED_YELLOW_GREEN_STATE,))
-            self._programs_of = {program.tls_id: program.program_id for program in self.programs}
-            if self._tls_links:
-                self._drive_signals(api, {tls: api.trafficlight.getRedYellowGreenState(tls)
-                                          for tls in self._programs_of})
+            self._signals.begin(api)
         self._start_step = self.world.step_count
         self._placed_at = self.world.time_s
         self._synced_step = self.world.step_count
@@ -293,82 +226,6 @@ class SumoBodies:
         self.world.mark_moved()
         return f'traffic: SUMO started again (seed {seed})'
 
-    # ------------------------------------------------------------------ our vehicles in SUMO
-    def _push_ours(self):
-        """
-        Put each of our vehicles into SUMO where the physics has it (its front bumper).
-
-        A vehicle whose front is farther than OFF_ROAD_M from the lane SUMO has it on (a car
-        park, a field: ``moveToXY`` puts it anywhere) is taken out of SUMO; one out of SUMO is
-        put in again when its front is that near a lane of SUMO's passenger cars (looked for
-        every RETRY_STEPS SUMO steps: the search costs some 0.5 ms); one SUMO removed (it
-        teleports a vehicle stuck for its --time-to-teleport) comes back at the next step.
-        """
-        api = self.session.api
-        refused = self.session.refusal          # a call refused; SUMO's end goes on up
-        ours = []
-        for body, outline in zip(self._ours, self._outlines):
-            o = our_vehicle(body, outline)
-            ours.append(o)
-            vid = f'{OURS_PREFIX}{o.name}'
-            half = 0.5 * o.length_m
-            x, y = o.x_m + half * math.cos(o.yaw_rad), o.y_m + half * math.sin(o.yaw_rad)
-            angle = 90.0 - math.degrees(o.yaw_rad)
-            if o.name in self._in_sumo:
-                lane = api.vehicle.getLaneID(vid)
-                if not lane or self._off_lane(api, lane, x, y):
-                    self._take_out(api, vid, o.name)
-                    continue
-            else:
-                if self._steps % RETRY_STEPS and self._retry.get(o.name):
-                    continue
-                self._retry[o.name] = True
-                try:                              # the nearest lane of SUMO's cars
-                    edge, s, lane = api.simulation.convertRoad(x, y, False, 'passenger')
-                    lx, ly = api.simulation.convert2D(edge, s, lane)
-                except refused:
-                    continue
-                if edge.startswith(':') or math.hypot(lx - x, ly - y) > OFF_ROAD_M:
-                    continue                      # added on a normal edge, near its lane
-                route = f'{vid}.route{self._routes}'
-                self._routes += 1
-                try:
-                    api.route.add(route, [edge])
-                    api.vehicle.add(vid, route, typeID=vid, departSpeed='0')
-                except refused:
-                    continue
-                self._in_sumo.add(o.name)
-                self._retry[o.name] = False
-            try:
-                api.vehicle.moveToXY(vid, '', -1, x, y, angle, keepRoute=2)
-            except refused:                       # SUMO lost it (a teleport): added again
-                self._take_out(api, vid, o.name)
-        return ours
-
-    def _take_out(self, api, vid, name):
-        """Take one of our vehicles out of SUMO (off the road, or lost by SUMO)."""
-        self._in_sumo.discard(name)
-        self._retry[name] = False             # looked for again at once
-        try:
-            api.vehicle.remove(vid)
-        except self.session.refusal:
-            pass
-
-    def _off_lane(self, api, lane, x, y):
-        """Return whether (x, y) is farther than OFF_ROAD_M from SUMO's lane ``lane``."""
-        shape = self._shapes.get(lane)
-        if shape is None:
-            shape = self._shapes[lane] = tuple(api.lane.getShape(lane))
-        limit = OFF_ROAD_M * OFF_ROAD_M
-        points = shape if len(shape) > 1 else shape * 2
-        for (ax, ay), (bx, by) in zip(points, points[1:]):
-            dx, dy = bx - ax, by - ay
-            span = dx * dx + dy * dy
-            t = 0.0 if span == 0.0 else min(1.0, max(0.0, ((x - ax) * dx + (y - ay) * dy) / span))
-            if (ax + t * dx - x) ** 2 + (ay + t * dy - y) ** 2 <= limit:
-                return False
-        return True
-
     # ------------------------------------------------------------------ the step
     def pre_step(self):
         """World hook: every ``step``, advance SUMO and place the bodies."""
@@ -387,15 +244,15 @@ class SumoBodies:
 
     def _advance(self, place=True):
         api = self.session.api
-        self._push_signals()
-        ours = self._push_ours()
+        self._signals.push()
+        ours = self._our.push(self._steps)
         api.simulationStep()
         self._steps += 1
         c = self._constants
         departed = api.simulation.getSubscriptionResults()
         for vid in departed.get(c.VAR_ARRIVED_VEHICLES_IDS, ()):
             if vid.startswith(OURS_PREFIX):          # SUMO removed one of ours: back next step
-                self._in_sumo.discard(vid[len(OURS_PREFIX):])
+                self._our.arrived(vid)
         fields = (c.VAR_POSITION, c.VAR_ANGLE, c.VAR_SPEED)
         for person, key in ((False, c.VAR_DEPARTED_VEHICLES_IDS),
                             (True, c.VAR_DEPARTED_PERSONS_IDS)):
@@ -424,9 +281,13 @@ class SumoBodies:
                 (fx, fy), angle, speed = (values[c.VAR_POSITION], values[c.VAR_ANGLE],
                                           values[c.VAR_SPEED])
                 yaw = math.radians(90.0 - angle)
-                half = 0.5 * slot.size[0]
-                cos, sin = math.cos(yaw), math.sin(yaw)
-                slot.state = (fx - half * cos, fy - half * sin, yaw, speed)
+                if person:
+                    half = 0.5 * slot.size[0]
+                    cos, sin = math.cos(yaw), math.sin(yaw)
+                    slot.state = (fx - half * cos, fy - half * sin, yaw, speed)
+                else:               # centred on the path its front took (SUMO bends it so)
+                    slot.state = (*follow_trail(slot.trail, fx, fy, yaw, slot.size[0],
+                                                speed * self.spec.step_s + JUMP_M), speed)
                 if not person:
                     slot.lane = (values[c.VAR_LANE_ID], values[c.VAR_LANEPOSITION],
                                  values[c.VAR_ROUTE_INDEX])
@@ -434,83 +295,10 @@ class SumoBodies:
             slot = self._by_id.pop(key)
             self._park(slot)
             self._free.setdefault(slot.key, []).append(slot)
-        self._drive_signals(api)
+        self._signals.drive(api)
         if place:
             self._place()
         return ours
-
-    def _take(self, api, person, sumo_id):
-        """Return the slot for a new SUMO vehicle or person (a free one of its size, or new)."""
-        domain = api.person if person else api.vehicle
-        type_id = domain.getTypeID(sumo_id)
-        kind = self._types.get(type_id)
-        if kind is None:
-            t = api.vehicletype
-            kind = self._types[type_id] = (t.getLength(type_id), t.getWidth(type_id),
-                                           t.getHeight(type_id), t.getVehicleClass(type_id))
-            self.heights[type_id] = kind[2]
-        length, width, height, vclass = kind
-        if person:
-            vclass = 'pedestrian'
-        found_class = object_class(vclass)
-        key = (round(length, 3), round(width, 3), round(height, 3), person,
-               CLASS_SHAPES[found_class])
-        free = self._free.get(key)
-        if free:
-            slot = free.pop()
-        else:
-            index = len(self._slots)
-            clearance = 0.0 if person else min(GROUND_CLEARANCE_M, 0.25 * height)
-            colour = PERSON_COLOUR if person else COLOURS[index % len(COLOURS)]
-            size = (length, width, height)
-            # the body of its class's shape (a pedestrian an upright cylinder)
-            extents = shape_extents(found_class, length, width, height - clearance)
-            spec = ObstacleSpec(f'{NAME_PREFIX}{index}', CLASS_SHAPES[found_class],
-                                (0.0, 0.0, PARK_DEPTH_M - 10.0 * index), 0.0, 0.0, 0.0, 0.0,
-                                colour, extents, radius_m=0.5 * extents[0],
-                                height_m=extents[2])
-            body_id = self.world.add_obstacle(spec, placed=True)
-            slot = _Slot(index, body_id, size, clearance, colour, key)
-            self._slots.append(slot)
-        slot.sumo_id, slot.person, slot.vclass, slot.stopped = sumo_id, person, vclass, False
-        self._by_id[(person, sumo_id)] = slot
-        return slot
-
-    def _park(self, slot):
-        slot.sumo_id, slot.state, slot.motion, slot.stopped = None, None, None, False
-        slot.lane, slot.route = None, ()
-        pybullet.resetBasePositionAndOrientation(
-            slot.body_id, (0.0, 0.0, PARK_DEPTH_M - 10.0 * slot.index), (0.0, 0.0, 0.0, 1.0),
-            physicsClientId=self._cid)
-
-    def _place(self):
-        """Put every serving body where SUMO has its vehicle or person now (an update)."""
-        cid = self._cid
-        reset_pose = pybullet.resetBasePositionAndOrientation
-        cos, sin = math.cos, math.sin
-        for slot in self._by_id.values():
-            x, y, yaw, speed = slot.state
-            half = 0.5 * yaw
-            z, qz, qw = slot.z, sin(half), cos(half)
-            reset_pose(slot.body_id, (x, y, z), (0.0, 0.0, qz, qw), physicsClientId=cid)
-            slot.motion = (x, y, z, qz, qw, speed * cos(yaw), speed * sin(yaw))
-        self._placed_at = self.world.time_s
-        self._synced_step = self.world.step_count
-        self.world.mark_moved()
-
-    def _move(self, slots):
-        """Put the bodies of ``slots`` where their vehicles are now (straight on)."""
-        cid = self._cid
-        reset_pose = pybullet.resetBasePositionAndOrientation
-        elapsed = self.world.time_s - self._placed_at
-        for slot in slots:
-            state = slot.motion
-            if state is None:
-                continue
-            x, y, z, qz, qw, vx, vy = state
-            if vx or vy:
-                reset_pose(slot.body_id, (x + vx * elapsed, y + vy * elapsed, z),
-                           (0.0, 0.0, qz, qw), physicsClientId=cid)
 
     def before_query(self):
         """World hook (``World.sync_bodies``): every body where its vehicle is now."""
@@ -542,178 +330,3 @@ class SumoBodies:
         if world.gui and world.time_s - self._drawn_at >= FRAME_PERIOD_S - 1e-9:
             self._drawn_at = world.time_s
             self.before_query()
-
-    def _stop(self, slot):
-        # Stopped where its body was during the step, in SUMO at once (no deceleration bound).
-        api = self.session.api
-        with self.session.errors(f'stopping {slot.sumo_id!r}'):
-            try:
-                if slot.person:
-                    api.person.setSpeed(slot.sumo_id, 0.0)
-                else:
-                    api.vehicle.setSpeedMode(slot.sumo_id, 0)
-                    api.vehicle.setSpeed(slot.sumo_id, 0.0)
-                    api.vehicle.setLaneChangeMode(slot.sumo_id, 0)
-            except self.session.refusal:    # SUMO took it off the road this step: its body
-                pass                        # stays where it was until SUMO's next step
-        slot.stopped = True
-        elapsed = max(0.0, self.world.time_s - self.world.time_step_s - self._placed_at)
-        x, y, z, qz, qw, vx, vy = slot.motion
-        x, y = x + vx * elapsed, y + vy * elapsed
-        pybullet.resetBasePositionAndOrientation(slot.body_id, (x, y, z), (0.0, 0.0, qz, qw),
-                                                 physicsClientId=self._cid)
-        slot.motion = (x, y, z, qz, qw, 0.0, 0.0)
-        _, _, yaw, _ = slot.state
-        slot.state = (x, y, yaw, 0.0)
-        self.world.mark_moved()
-
-    # ------------------------------------------------------------------ signals
-    def _drive_signals(self, api, strings=None):
-        """Give the world's signal controller SUMO's states ({tls: state string}: now)."""
-        controller = self.signals
-        if controller is None or not self._tls_links:
-            return
-        if strings is None:
-            c = self._constants
-            strings = {tls: values[c.TL_RED_YELLOW_GREEN_STATE]
-                       for tls, values in api.trafficlight.getAllSubscriptionResults().items()}
-        states, last = {}, self._strings
-        for tls, text in strings.items():
-            if last.get(tls) == text:
-                continue                          # no change at this light
-            last[tls] = text
-            for link, group in self._groups_of[tls]:
-                if link < len(text):
-                    states[group] = SUMO_STATES[text[link]]
-        if states or not controller.driven:     # the changes (checking a group costs)
-            controller.drive(states)
-
-    def _push_signals(self):
-        """Push the states a scenario forces on the world's controller to SUMO (and releases)."""
-        controller = self.signals
-        if controller is None or not self._tls_links:
-            return
-        api = self.session.api
-        forced = controller.forced()
-        for group, state in forced.items():
-            where = self._tls_links.get(group)
-            if where is not None and self._pushed.get(group) != state:
-                api.trafficlight.setLinkState(where[0], where[1], SUMO_CHARACTER[state])
-                self._pushed[group] = state
-        released = {self._tls_links[g][0] for g in self._pushed if g not in forced}
-        if released:
-            self._pushed = {g: s for g, s in self._pushed.items() if g in forced}
-            for tls in released:
-                api.trafficlight.setProgram(tls, self._programs_of[tls])
-                for group, state in self._pushed.items():    # still forced at that light
-                    if self._tls_links[group][0] == tls:
-                        api.trafficlight.setLinkState(tls, self._tls_links[group][1],
-                                                      SUMO_CHARACTER[state])
-
-    # ------------------------------------------------------------------ the contract
-    @property
-    def colours(self):
-        """Each body's colour by its index (a person's orange; the markers colour by index)."""
-        return tuple(slot.colour for slot in self._slots) or COLOURS
-
-    @property
-    def since_update_s(self):
-        """Time since SUMO's last step [s] (its vehicles went on straight since)."""
-        return self.world.time_s - self._placed_at
-
-    def _serving(self):
-        return sorted(self._by_id.values(), key=lambda slot: slot.index)
-
-    def agents(self):
-        """
-        Return every SUMO vehicle and person in the world now, as the scenarios see them.
-
-        :return: [(name, x, y, yaw, length, width, speed)] at SUMO's last step: footprint
-            centre and heading [m, rad], footprint size [m], speed along the heading [m/s].
-        """
-        return [(slot.name, *slot.state[:3], slot.size[0], slot.size[1], slot.state[3])
-                for slot in self._serving()]
-
-    def moving_names(self):
-        """Return the names of every body SUMO moves (serving or parked)."""
-        return {slot.name for slot in self._slots}
-
-    def boxes(self):
-        """
-        Return [(name, body id, size [m], colour, shape)] of the serving bodies.
-
-        Each body's shape is its class's (a pedestrian an upright cylinder), its size that
-        shape's extents (core/traffic/objects.py shape_extents).
-        """
-        found = []
-        for slot in self._serving():
-            name = object_class(slot.vclass)
-            found.append((slot.name, slot.body_id,
-                          shape_extents(name, slot.size[0], slot.size[1],
-                                        slot.size[2] - slot.clearance),
-                          slot.colour, CLASS_SHAPES[name]))
-        return found
-
-    def objects(self, horizon_s=PREDICTION_HORIZON_S, step_s=PREDICTION_STEP_S):
-        """
-        Return SUMO's vehicles and persons as core TrafficObjects now.
-
-        Each is where its body is (gone on straight since SUMO's step), its class from its
-        SUMO vehicle class (core/traffic/sumo_params.py object_class); a vehicle's predicted
-        path follows its lane and the lanes of its route after it at its speed
-        (core/traffic/lane_paths.py), a person's (or one on a lane the lane graph lacks) goes
-        on straight.
-        """
-        since = self.since_update_s
-        count = int(round(horizon_s / step_s))
-        found = []
-        for slot in self._serving():
-            x, y, yaw, speed = slot.state
-            c, s = math.cos(yaw), math.sin(yaw)
-            gone = speed * since
-            x, y = x + gone * c, y + gone * s
-            path = self._lane_path(slot, since, count, step_s)
-            if path is None:
-                path = tuple((x + speed * step_s * k * c, y + speed * step_s * k * s, yaw)
-                             for k in range(1, count + 1))
-            found.append(TrafficObject(slot.index, slot.name, x, y, yaw, speed, slot.size[0],
-                                       slot.size[1], slot.size[2], path, step_s,
-                                       object_class(slot.vclass)))
-        return tuple(found)
-
-    def _lane_path(self, slot, since, count, step_s):
-        """Return a vehicle's path along the lane graph, or None (no graph, lane not in it)."""
-        if self.graph is None or slot.lane is None:
-            return None
-        lane_id, position, route_index = slot.lane
-        try:
-            lane = self.graph.lane_named(lane_id)
-        except InvalidParameterError:
-            return None
-        length = self._lengths.get(lane_id)
-        if length is None:
-            with self.session.errors(f'reading lane {lane_id!r}'):
-                length = self._lengths[lane_id] = self.session.api.lane.getLength(lane_id)
-        scale = lane.length_m / length if length > 0.0 else 1.0
-        speed = slot.state[3]
-        centre = position * scale - 0.5 * slot.size[0] + speed * since
-        return route_path(self.graph, lane.id, centre, speed, count, step_s,
-                          slot.route[route_index + 1:])
-
-    def body_of(self, name):
-        """Return the body id of the body called ``name`` (``sumo_<k>``)."""
-        for slot in self._slots:
-            if slot.name == name:
-                return slot.body_id
-        raise KeyError(name)
-
-    def sumo_id(self, name):
-        """Return the SUMO id of whom body ``name`` serves now (None: parked)."""
-        for slot in self._slots:
-            if slot.name == name:
-                return slot.sumo_id
-        raise KeyError(name)
-
-    def name_of(self, sumo_id, person=False):
-        """Return the name of the body of SUMO vehicle (or person) ``sumo_id`` now."""
-        return self._by_id[(person, sumo_id)].name

@@ -1,0 +1,219 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The SUMO engine's pool of bodies (physics/sumo_traffic.py): one body per SUMO vehicle or person.
+
+A body, named ``sumo_<k>``, serves one SUMO vehicle or person from its departure to its arrival,
+is parked under the ground after, and serves the next one of the same size and shape (its
+class's, core/traffic/objects.py CLASS_SHAPES: a person an upright cylinder); the order of SUMO's
+departures decides, so a seed gives the same names. :class:`SumoPool` takes, parks, places,
+moves (straight on between SUMO's steps) and stops them; SumoBodies is one.
+"""
+
+import math
+
+import pybullet
+
+from vehicle_sim.core.traffic.objects import CLASS_SHAPES, shape_extents
+from vehicle_sim.core.traffic.sumo_params import object_class
+from vehicle_sim.core.world.params import ObstacleSpec
+from vehicle_sim.physics.traffic_boxes import COLOURS, GROUND_CLEARANCE_M, PARK_DEPTH_M
+
+NAME_PREFIX = 'sumo_'            # the bodies' names: this + the pool index
+PERSON_COLOUR = (0.95, 0.55, 0.15, 1.0)
+# a vehicle's front further than its speed times the step plus this from its last point has
+# jumped (SUMO's teleport): its trail starts again there
+JUMP_M = 3.0
+TRAIL_STEP_M = 0.01              # the front's points along its trail are this far apart at least
+
+__all__ = ['follow_trail', 'JUMP_M', 'NAME_PREFIX', 'SumoPool', 'SumoSlot']
+
+
+def _back_along(trail, x, y, yaw, distance):
+    """Return (point, index) ``distance`` back along the trail from (x, y), and its segment."""
+    need, px, py = distance, x, y
+    for i in range(len(trail) - 1, -1, -1):
+        qx, qy = trail[i]
+        d = math.hypot(px - qx, py - qy)
+        if d >= need > 0.0:
+            f = need / d
+            return (px + (qx - px) * f, py + (qy - py) * f), i
+        need, px, py = need - d, qx, qy
+    return (px - need * math.cos(yaw), py - need * math.sin(yaw)), 0
+
+
+def follow_trail(trail, x, y, yaw, length, jump_m):
+    """
+    Return (centre x, y, yaw) of a vehicle's rigid box whose front is at (x, y) [m].
+
+    SUMO bends a vehicle along the path its front took; the box is centred on that path half
+    its length behind the front, along the chord from its rear (a length behind) to its
+    front. A box behind the front along its heading would swing its rear out of the lane on a
+    turn (by about length^2 / 2R), over the walking area's corner on a right turn. Where the
+    path is shorter than the vehicle (it has just departed) the rest goes straight back along
+    ``yaw`` from the path's oldest point.
+
+    :param trail: the front's earlier points [(x, y)], oldest first: (x, y) is added, and the
+        points behind the rear's are dropped.
+    :param jump_m: a front further than this from the trail's last point jumped (a teleport):
+        the trail starts again.
+    """
+    if trail and math.hypot(x - trail[-1][0], y - trail[-1][1]) > jump_m:
+        trail.clear()
+    if not trail or math.hypot(x - trail[-1][0], y - trail[-1][1]) >= TRAIL_STEP_M:
+        trail.append((x, y))
+    (mx, my), _ = _back_along(trail, x, y, yaw, 0.5 * length)
+    (bx, by), index = _back_along(trail, x, y, yaw, length)
+    del trail[:index]
+    return mx, my, math.atan2(y - by, x - bx)
+
+
+class SumoSlot:
+    """One body of the pool: its name, body id, box size, colour and whom it serves now."""
+
+    __slots__ = ('index', 'name', 'body_id', 'size', 'clearance', 'colour', 'key', 'sumo_id',
+                 'person', 'vclass', 'state', 'motion', 'stopped', 'lane', 'route',
+                 'trail')
+
+    def __init__(self, index, body_id, size, clearance, colour, key):
+        self.index = index
+        self.name = f'{NAME_PREFIX}{index}'
+        self.body_id = body_id
+        self.size = size                   # (length, width, height) [m] of the SUMO type
+        self.clearance = clearance         # the box's underside above the ground [m]
+        self.colour = colour
+        self.key = key                     # the pool it returns to
+        self.sumo_id = None                # whom it serves (None: parked)
+        self.person = False
+        self.vclass = 'passenger'
+        self.state = None                  # (x, y, yaw, speed) of the footprint centre
+        self.motion = None                 # (x, y, z, qz, qw, vx, vy) at the last update
+        self.stopped = False               # touched one of ours: stopped for good
+        self.lane = None                   # (SUMO lane id, lane position [m], route index)
+        self.route = ()                    # its route's SUMO edges (at its departure)
+        self.trail = []                    # its front's earlier points (follow_trail)
+
+    @property
+    def z(self):
+        return 0.5 * (self.size[2] + self.clearance)
+
+
+
+class SumoPool:
+    """
+    The pool's part of SumoBodies: its bodies taken, parked, placed, moved and stopped.
+
+    Uses SumoBodies' ``world``, ``session``, ``_cid``, ``_slots``, ``_by_id``, ``_free``,
+    ``_types``, ``heights`` and ``_placed_at``.
+    """
+
+    def _take(self, api, person, sumo_id):
+        """Return the slot for a new SUMO vehicle or person (a free one of its size, or new)."""
+        domain = api.person if person else api.vehicle
+        type_id = domain.getTypeID(sumo_id)
+        kind = self._types.get(type_id)
+        if kind is None:
+            t = api.vehicletype
+            kind = self._types[type_id] = (t.getLength(type_id), t.getWidth(type_id),
+                                           t.getHeight(type_id), t.getVehicleClass(type_id))
+            self.heights[type_id] = kind[2]
+        length, width, height, vclass = kind
+        if person:
+            vclass = 'pedestrian'
+        found_class = object_class(vclass)
+        key = (round(length, 3), round(width, 3), round(height, 3), person,
+               CLASS_SHAPES[found_class])
+        free = self._free.get(key)
+        if free:
+            slot = free.pop()
+        else:
+            index = len(self._slots)
+            clearance = 0.0 if person else min(GROUND_CLEARANCE_M, 0.25 * height)
+            colour = PERSON_COLOUR if person else COLOURS[index % len(COLOURS)]
+            size = (length, width, height)
+            # the body of its class's shape (a pedestrian an upright cylinder)
+            extents = shape_extents(found_class, length, width, height - clearance)
+            spec = ObstacleSpec(f'{NAME_PREFIX}{index}', CLASS_SHAPES[found_class],
+                                (0.0, 0.0, PARK_DEPTH_M - 10.0 * index), 0.0, 0.0, 0.0, 0.0,
+                                colour, extents, radius_m=0.5 * extents[0],
+                                height_m=extents[2])
+            body_id = self.world.add_obstacle(spec, placed=True)
+            slot = SumoSlot(index, body_id, size, clearance, colour, key)
+            self._slots.append(slot)
+        slot.sumo_id, slot.person, slot.vclass, slot.stopped = sumo_id, person, vclass, False
+        slot.trail = []
+        self._by_id[(person, sumo_id)] = slot
+        return slot
+
+    def _park(self, slot):
+        slot.sumo_id, slot.state, slot.motion, slot.stopped = None, None, None, False
+        slot.lane, slot.route = None, ()
+        pybullet.resetBasePositionAndOrientation(
+            slot.body_id, (0.0, 0.0, PARK_DEPTH_M - 10.0 * slot.index), (0.0, 0.0, 0.0, 1.0),
+            physicsClientId=self._cid)
+
+    def _place(self):
+        """Put every serving body where SUMO has its vehicle or person now (an update)."""
+        cid = self._cid
+        reset_pose = pybullet.resetBasePositionAndOrientation
+        cos, sin = math.cos, math.sin
+        for slot in self._by_id.values():
+            x, y, yaw, speed = slot.state
+            half = 0.5 * yaw
+            z, qz, qw = slot.z, sin(half), cos(half)
+            reset_pose(slot.body_id, (x, y, z), (0.0, 0.0, qz, qw), physicsClientId=cid)
+            slot.motion = (x, y, z, qz, qw, speed * cos(yaw), speed * sin(yaw))
+        self._placed_at = self.world.time_s
+        self._synced_step = self.world.step_count
+        self.world.mark_moved()
+
+    def _move(self, slots):
+        """Put the bodies of ``slots`` where their vehicles are now (straight on)."""
+        cid = self._cid
+        reset_pose = pybullet.resetBasePositionAndOrientation
+        elapsed = self.world.time_s - self._placed_at
+        for slot in slots:
+            state = slot.motion
+            if state is None:
+                continue
+            x, y, z, qz, qw, vx, vy = state
+            if vx or vy:
+                reset_pose(slot.body_id, (x + vx * elapsed, y + vy * elapsed, z),
+                           (0.0, 0.0, qz, qw), physicsClientId=cid)
+
+
+    def _stop(self, slot):
+        # Stopped where its body was during the step, in SUMO at once (no deceleration bound).
+        api = self.session.api
+        with self.session.errors(f'stopping {slot.sumo_id!r}'):
+            try:
+                if slot.person:
+                    api.person.setSpeed(slot.sumo_id, 0.0)
+                else:
+                    api.vehicle.setSpeedMode(slot.sumo_id, 0)
+                    api.vehicle.setSpeed(slot.sumo_id, 0.0)
+                    api.vehicle.setLaneChangeMode(slot.sumo_id, 0)
+            except self.session.refusal:    # SUMO took it off the road this step: its body
+                pass                        # stays where it was until SUMO's next step
+        slot.stopped = True
+        elapsed = max(0.0, self.world.time_s - self.world.time_step_s - self._placed_at)
+        x, y, z, qz, qw, vx, vy = slot.motion
+        x, y = x + vx * elapsed, y + vy * elapsed
+        pybullet.resetBasePositionAndOrientation(slot.body_id, (x, y, z), (0.0, 0.0, qz, qw),
+                                                 physicsClientId=self._cid)
+        slot.motion = (x, y, z, qz, qw, 0.0, 0.0)
+        _, _, yaw, _ = slot.state
+        slot.state = (x, y, yaw, 0.0)
+        self.world.mark_moved()
