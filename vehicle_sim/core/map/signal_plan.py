@@ -139,7 +139,47 @@ def check_phases(rules: LaneRules, graph, phases) -> None:
                         'lanes conflict')
 
 
-class SignalController:
+def check_signal_state(rules: LaneRules, group_id, state) -> None:
+    """
+    Refuse a group not in the map or a state not in SIGNAL_STATES.
+
+    :raises InvalidParameterError: naming the group or the state.
+    """
+    rules.group(group_id)                   # names a group not in the map
+    if state not in SIGNAL_STATES:
+        raise InvalidParameterError(f'signal state {state!r} is not one of '
+                                    + ', '.join(SIGNAL_STATES))
+
+
+class GroupStates:
+    """
+    What every signal controller answers (this one and core/map/signal_programs.py's).
+
+    A subclass keeps ``rules`` (the map's LaneRules), ``_states`` ({group id: state now}) and
+    ``_forced`` ({group id: state a scenario holds}).
+    """
+
+    rules: LaneRules
+    _states: Dict[int, str]
+    _forced: Dict[int, str]
+
+    def state(self, group_id) -> str:
+        """Return a group's state now: one of SIGNAL_STATES."""
+        state = self._states.get(group_id)
+        if state is None:
+            self.rules.group(group_id)      # raises naming the id
+        return state
+
+    def states(self) -> Dict[int, str]:
+        """Return {group id: state} of every group now."""
+        return dict(self._states)
+
+    def forced(self) -> Dict[int, str]:
+        """Return {group id: state} of the groups a scenario forces now."""
+        return dict(self._forced)
+
+
+class SignalController(GroupStates):
     """
     The state of every traffic light group of a map, at the world's time.
 
@@ -230,23 +270,9 @@ class SignalController:
             return 'yellow'
         return 'red'
 
-    def state(self, group_id) -> str:
-        """Return a group's state now: one of SIGNAL_STATES."""
-        state = self._states.get(group_id)
-        if state is None:
-            self.rules.group(group_id)      # raises naming the id
-        return state
-
-    def states(self) -> Dict[int, str]:
-        """Return {group id: state} of every group now."""
-        return dict(self._states)
-
     def force(self, group_id, state: str) -> None:
         """Hold a group in ``state`` (one of SIGNAL_STATES) until :meth:`release`."""
-        self.rules.group(group_id)
-        if state not in SIGNAL_STATES:
-            raise InvalidParameterError(f'signal state {state!r} is not one of '
-                                        + ', '.join(SIGNAL_STATES))
+        check_signal_state(self.rules, group_id, state)
         self._forced[group_id] = state
         self._states[group_id] = state
         self._unchanged = (math.inf, -math.inf)

@@ -46,7 +46,7 @@ from dataclasses import dataclass
 import math
 from typing import Dict, Optional, Sequence, Tuple
 
-from vehicle_sim.core.map.lane_rules import SIGNAL_STATES
+from vehicle_sim.core.map.signal_plan import check_signal_state, GroupStates
 from vehicle_sim.core.specs.errors import InvalidParameterError
 
 # SUMO's link state characters (its tlLogic phase states) -> the groups' states.
@@ -119,14 +119,7 @@ class SignalProgram:
                 if group is not None}
 
 
-def _checked_state(rules, group_id, state):
-    rules.group(group_id)                   # names a group not in the map
-    if state not in SIGNAL_STATES:
-        raise InvalidParameterError(f'signal state {state!r} is not one of '
-                                    + ', '.join(SIGNAL_STATES))
-
-
-class ProgramController:
+class ProgramController(GroupStates):
     """
     The state of every traffic light group of a map with signal programs, at the world's time.
 
@@ -184,7 +177,7 @@ class ProgramController:
             SIGNAL_STATES (nothing is changed).
         """
         for group_id, state in states.items():
-            _checked_state(self.rules, group_id, state)
+            check_signal_state(self.rules, group_id, state)
         if self._driven is None:
             self._driven = dict(self._planned)
         self._driven.update(states)
@@ -197,24 +190,9 @@ class ProgramController:
         self._next_change_s = -math.inf
         self.update(self.time_s)
 
-    def state(self, group_id) -> str:
-        """Return a group's state now: one of SIGNAL_STATES."""
-        state = self._states.get(group_id)
-        if state is None:
-            self.rules.group(group_id)      # raises naming the id
-        return state
-
-    def states(self) -> Dict[int, str]:
-        """Return {group id: state} of every group now."""
-        return dict(self._states)
-
-    def forced(self) -> Dict[int, str]:
-        """Return {group id: state} of the groups a scenario forces now."""
-        return dict(self._forced)
-
     def force(self, group_id, state: str) -> None:
         """Hold a group in ``state`` (one of SIGNAL_STATES) until :meth:`release`."""
-        _checked_state(self.rules, group_id, state)
+        check_signal_state(self.rules, group_id, state)
         self._forced[group_id] = state
         self._states[group_id] = state
 
