@@ -37,6 +37,7 @@ import pybullet
 
 from vehicle_sim.core.specs.errors import InvalidPoseError
 from vehicle_sim.core.specs.simulation import FRICTION, TIME_STEP_MS
+from vehicle_sim.physics.body_labels import BodyLabels
 from vehicle_sim.physics.pybullet_stdout import quiet_stdout
 from vehicle_sim.physics.vehicle_body import VehicleBody
 
@@ -165,6 +166,7 @@ class World:
         self.ray_grids = []
         self._ray_grid_bodies = []
         self._ray_masks = {}          # body id -> ray mask excluding that body
+        self.labels = BodyLabels()    # what each body is, for perception (body_labels.py)
         self._ground_visual = False
         self._broadphase_stale = True   # bodies added since the last step: rays miss them
         self._step_count = 0
@@ -183,6 +185,7 @@ class World:
         plane = pybullet.createCollisionShape(pybullet.GEOM_PLANE, physicsClientId=cid)
         visual = self._ground_visual_shape() if gui else -1
         self.ground_id = pybullet.createMultiBody(0.0, plane, visual, physicsClientId=cid)
+        self.labels.set(self.ground_id, 'ground')
         pybullet.changeDynamics(self.ground_id, -1, lateralFriction=self.friction,
                                 restitution=0.0, physicsClientId=cid)
         self._step_simulation = pybullet.stepSimulation
