@@ -27,7 +27,7 @@ import numpy as np
 import pybullet
 
 from vehicle_sim.core.geometry.chase_camera import chase_view, ChaseSettings, eye_position
-from vehicle_sim.physics.sensors.camera import LIGHT_DIRECTION
+from vehicle_sim.physics.sensors.render import LIGHT_DIRECTION
 
 VERTICAL_FOV_DEG = 60.0
 NEAR_M = 0.1

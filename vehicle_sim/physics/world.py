@@ -166,6 +166,7 @@ class World:
         self.ray_grids = []
         self._ray_grid_bodies = []
         self._ray_masks = {}          # body id -> ray mask excluding that body
+        self._renderer = None
         self.labels = BodyLabels()    # what each body is, for perception (body_labels.py)
         self._ground_visual = False
         self._broadphase_stale = True   # bodies added since the last step: rays miss them
@@ -629,6 +630,14 @@ class World:
             if body is not None and body.body_id == body_id:
                 return body.name
         return 'ground' if body_id == self.ground_id else f'body{body_id}'
+
+    @property
+    def renderer(self):
+        """The world's one Renderer (physics/sensors/render.py): cameras' renders per step."""
+        if self._renderer is None:
+            from vehicle_sim.physics.sensors.render import Renderer
+            self._renderer = Renderer(self)
+        return self._renderer
 
     def show_ground(self):
         """

@@ -14,28 +14,20 @@
 
 
 """
-The camera: PyBullet's CPU renderer (ER_TINY_RENDERER) from the mount pose.
+The camera: a colour frame of the world's renderer (physics/sensors/render.py) from the mount.
 
 The mount's x axis is the viewing direction and its z axis is up in the picture. PyBullet's
-projection takes the VERTICAL field of view in degrees; the spec gives the horizontal one in
-radians, so fov_v = 2 atan(tan(fov_h / 2) * height / width) (square pixels). The image rows run
-top to bottom, the columns left to right; its frame is the optical one (z forward, x right, y
-down) and the intrinsics are those of CameraSpec.intrinsics. The ground gets a visual as soon as
-a camera exists (World.show_ground). A 320 x 240 frame costs several milliseconds, so cameras
-are off unless mounted.
+projection takes the VERTICAL field of view; the spec gives the horizontal one in radians, so
+fov_v = 2 atan(tan(fov_h / 2) * height / width) (square pixels). The image rows run top to
+bottom, the columns left to right; its frame is the optical one (z forward, x right, y down) and
+the intrinsics are those of CameraSpec.intrinsics. The ground gets a visual as soon as a camera
+exists (World.show_ground). A 320 x 240 frame costs several milliseconds, so cameras are off
+unless mounted.
 """
 
-import math
-
-import numpy as np
-import pybullet
-
 from vehicle_sim.core.sensors.readings import camera_matrices, CameraReading
+from vehicle_sim.physics.sensors.render import View
 from vehicle_sim.physics.sensors.sensor import Sensor
-
-# A fixed sun: from above, slightly from the front-left of the world x axis, so that vertical
-# faces that look at -x (towards a car driving along +x) are lit.
-LIGHT_DIRECTION = (-0.4, 0.3, 1.0)
 
 
 class CameraSensor(Sensor):
@@ -51,24 +43,13 @@ class CameraSensor(Sensor):
     def __init__(self, world, body, spec, plane=None):
         super().__init__(world, body, spec, plane)
         world.show_ground()
-        self._projection = pybullet.computeProjectionMatrixFOV(
-            math.degrees(spec.vertical_fov_rad), spec.width / spec.height, spec.near_m,
-            spec.far_m, physicsClientId=world.client_id)
+        self.view = View(spec.width, spec.height, spec.vertical_fov_rad, spec.near_m, spec.far_m)
         self._k, self._p = camera_matrices(*spec.intrinsics)
 
     def sample(self, time_s):
         """Render a frame now; return a CameraReading stamped ``time_s``."""
         spec = self.spec
-        cid = self.world.client_id
-        self.world.sync_bodies()          # placed bodies (traffic) where they are now
         position, rotation, _ = self.mount.world_frame()
-        target = position + rotation[:, 0]
-        view = pybullet.computeViewMatrix(position.tolist(), target.tolist(),
-                                          rotation[:, 2].tolist(), physicsClientId=cid)
-        _, _, rgba, _, _ = pybullet.getCameraImage(
-            spec.width, spec.height, view, self._projection, lightDirection=LIGHT_DIRECTION,
-            renderer=pybullet.ER_TINY_RENDERER,
-            flags=pybullet.ER_NO_SEGMENTATION_MASK, physicsClientId=cid)
-        rgb = np.asarray(rgba, dtype=np.uint8).reshape(spec.height, spec.width, 4)[:, :, :3]
-        return CameraReading(spec.name, time_s, spec.width, spec.height,
-                             np.ascontiguousarray(rgb), self._k, self._p)
+        frame = self.world.renderer.render(self.view, position, rotation)
+        return CameraReading(spec.name, time_s, spec.width, spec.height, frame.rgb, self._k,
+                             self._p)

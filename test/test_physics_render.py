@@ -1,0 +1,70 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""The shared renderer (physics/sensors/render.py): metric depth, body mask, one render a step."""
+
+import math
+
+import numpy as np
+import pytest
+
+from vehicle_sim.core.world.params import ObstacleSpec
+from vehicle_sim.physics.sensors.render import metric_depth, View
+from vehicle_sim.physics.world import World
+
+VIEW = View(64, 48, math.radians(45.0), 0.1, 50.0)
+LOOK_ALONG_X = np.eye(3)      # columns: x forward, y left, z up
+
+
+def _wall(world, x_m):
+    spec = ObstacleSpec('wall', 'box', (x_m + 0.5, 0.0, 2.0), 0.0, 0.0, 0.0, 0.0,
+                        (1.0, 1.0, 1.0, 1.0), (1.0, 40.0, 4.0))
+    return world.add_obstacle(spec)
+
+
+def test_metric_depth_inverts_the_perspective_depth_buffer():
+    near, far = 0.1, 50.0
+    z = np.array([0.1, 1.0, 7.5, 49.0])
+    buffer = (far + near) / (far - near) * 0.5 + 0.5 - far * near / ((far - near) * z)
+    assert metric_depth(buffer, near, far) == pytest.approx(z, rel=1e-5)
+    assert metric_depth([1.0], near, far)[0] == np.inf
+
+
+def test_a_wall_7_m_ahead_reads_7_m_and_its_body_in_the_mask():
+    world = World()
+    try:
+        body = _wall(world, 7.0)
+        frame = world.renderer.render(VIEW, (0.0, 0.0, 1.0), LOOK_ALONG_X, mask=True)
+        centre = frame.depth_m[VIEW.height // 2, VIEW.width // 2]
+        assert centre == pytest.approx(7.0, abs=0.01)
+        assert frame.bodies[VIEW.height // 2, VIEW.width // 2] == body
+        assert frame.links[VIEW.height // 2, VIEW.width // 2] == -1
+        again = world.renderer.render(VIEW, (0.0, 0.0, 1.0), LOOK_ALONG_X)
+        assert again is frame                   # one render per step and pose
+        world.step()
+        assert world.renderer.render(VIEW, (0.0, 0.0, 1.0), LOOK_ALONG_X) is not frame
+    finally:
+        world.close()
+
+
+def test_nothing_drawn_reads_inf_and_no_body():
+    world = World()
+    try:
+        up = np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]]).T   # look at +z
+        frame = world.renderer.render(VIEW, (0.0, 0.0, 1.0), up, mask=True)
+        assert np.isinf(frame.depth_m).all()
+        assert (frame.bodies == -1).all()
+    finally:
+        world.close()

@@ -1,0 +1,150 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+One render of a pinhole view: colour, metric depth and the body mask, shared by the sensors.
+
+PyBullet's CPU renderer (ER_TINY_RENDERER) gives the colour image, the depth buffer and the
+segmentation mask in one ``getCameraImage`` call. Cameras and range finders ask for a
+:class:`View` (size, vertical field of view, near and far planes) from a world pose; two sensors
+asking for the same view from the same pose at the same world step get the same :class:`Frame`
+(one render), so a camera and a range finder mounted together cost one frame.
+
+Depth: Bullet's buffer holds the normalised device depth d in [0, 1]; the distance along the
+optical axis is z = far near / (far - (far - near) d) (the OpenGL perspective projection
+inverted). Nothing drawn leaves the cleared buffer (the far plane less float32 rounding: z =
+far within 1e-4 relative), which reads +inf, as does whatever lies that close to far. The mask
+holds, per pixel, the body id and link index (-1 the base) of what is drawn there, -1 / -1
+where nothing is (``ER_SEGMENTATION_MASK_OBJECT_AND_LINKINDEX``: value = body + ((link + 1)
+<< 24)).
+"""
+
+from dataclasses import dataclass
+import math
+from typing import Optional
+
+import numpy as np
+import pybullet
+
+# A fixed sun: from above, slightly from the front-left of the world x axis, so that vertical
+# faces that look at -x (towards a car driving along +x) are lit.
+LIGHT_DIRECTION = (-0.4, 0.3, 1.0)
+FAR_TOLERANCE = 1e-4    # relative: a depth this close to the far plane is nothing drawn
+
+
+@dataclass(frozen=True)
+class View:
+    """The intrinsic part of a render: pixels, vertical field of view [rad], clip planes [m]."""
+
+    width: int
+    height: int
+    vertical_fov_rad: float
+    near_m: float
+    far_m: float
+
+
+@dataclass(frozen=True, eq=False)
+class Frame:
+    """
+    One rendered view.
+
+    ``rgb``: (height, width, 3) uint8; ``depth_m``: (height, width) float32 distance along the
+    optical axis, +inf where nothing is drawn; ``bodies`` and ``links``: (height, width) int32
+    body ids and link indices (None when the render was made without the mask). Row 0 is the
+    top of the picture.
+    """
+
+    rgb: np.ndarray
+    depth_m: np.ndarray
+    bodies: Optional[np.ndarray]
+    links: Optional[np.ndarray]
+
+
+def metric_depth(buffer, near_m, far_m) -> np.ndarray:
+    """Return the distance along the optical axis [m] of Bullet depth-buffer values; far -> inf."""
+    buffer = np.asarray(buffer, dtype=np.float64)
+    depth = far_m * near_m / (far_m - (far_m - near_m) * np.minimum(buffer, 1.0))
+    return np.where(depth >= far_m * (1.0 - FAR_TOLERANCE), np.inf, depth).astype(np.float32)
+
+
+class Renderer:
+    """
+    The renders of one world, cached for the step they were made in.
+
+    :param world: the World (``World.renderer`` holds the one instance).
+    """
+
+    def __init__(self, world):
+        self.world = world
+        self._projections = {}
+        self._step = None
+        self._frames = {}
+
+    def render(self, view: View, position, rotation, mask=False) -> Frame:
+        """
+        Render ``view`` from a world pose, or return this step's render of it.
+
+        :param view: the View.
+        :param position: (3,) the optical centre in the world [m].
+        :param rotation: (3, 3) the sensor frame (columns: x the viewing direction, z up in
+            the picture).
+        :param mask: also the body mask (a frame rendered without it is rendered again).
+        """
+        world = self.world
+        world.sync_bodies()          # placed bodies (traffic) where they are now
+        step = (world.step_count, world.time_s)
+        if step != self._step:
+            self._step, self._frames = step, {}
+        key = (view, np.asarray(position, dtype=float).tobytes(),
+               np.asarray(rotation, dtype=float).tobytes())
+        found = self._frames.get(key)
+        if found is not None and (found.bodies is not None or not mask):
+            return found
+        frame = self._render(view, np.asarray(position, dtype=float),
+                             np.asarray(rotation, dtype=float), mask)
+        self._frames[key] = frame
+        return frame
+
+    def _projection(self, view):
+        found = self._projections.get(view)
+        if found is None:
+            found = self._projections[view] = pybullet.computeProjectionMatrixFOV(
+                math.degrees(view.vertical_fov_rad), view.width / view.height, view.near_m,
+                view.far_m, physicsClientId=self.world.client_id)
+        return found
+
+    def _render(self, view, position, rotation, mask):
+        cid = self.world.client_id
+        target = position + rotation[:, 0]
+        matrix = pybullet.computeViewMatrix(position.tolist(), target.tolist(),
+                                            rotation[:, 2].tolist(), physicsClientId=cid)
+        flags = (pybullet.ER_SEGMENTATION_MASK_OBJECT_AND_LINKINDEX if mask
+                 else pybullet.ER_NO_SEGMENTATION_MASK)
+        _, _, rgba, depth, seg = pybullet.getCameraImage(
+            view.width, view.height, matrix, self._projection(view),
+            lightDirection=LIGHT_DIRECTION, renderer=pybullet.ER_TINY_RENDERER, flags=flags,
+            physicsClientId=cid)
+        shape = (view.height, view.width)
+        rgb = np.ascontiguousarray(
+            np.asarray(rgba, dtype=np.uint8).reshape(shape + (4,))[:, :, :3])
+        depth_m = metric_depth(np.asarray(depth, dtype=np.float32).reshape(shape),
+                               view.near_m, view.far_m)
+        bodies = links = None
+        if mask:
+            raw = np.asarray(seg, dtype=np.int64).reshape(shape)
+            drawn = raw >= 0
+            bodies = np.where(drawn, raw & ((1 << 24) - 1), -1).astype(np.int32)
+            links = np.where(drawn, (raw >> 24) - 1, -1).astype(np.int32)
+        return Frame(rgb, depth_m, bodies, links)
