@@ -36,6 +36,7 @@ import numbers
 
 from vehicle_sim.core.sensors.params import check_layer
 from vehicle_sim.webots.api_table import DEVICE_API
+from vehicle_sim.webots.camera_recognition import CameraRecognition, CameraRecognitionObject
 from vehicle_sim.webots.webots_warning import warn
 
 NAN3 = [math.nan] * 3
@@ -212,8 +213,8 @@ class LidarPoint:
         return f'LidarPoint(x={self.x}, y={self.y}, z={self.z}, layer_id={self.layer_id})'
 
 
-class Camera(Device):
-    """Webots Camera: BGRA image bytes, rows top to bottom."""
+class Camera(CameraRecognition, Device):
+    """Webots Camera: BGRA image bytes, rows top to bottom (recognition: its base class)."""
 
     def getImage(self):
         """Return the last image as BGRA bytes (width * height * 4), None before the first."""
@@ -397,5 +398,5 @@ def devices_of(suite):
     return devices
 
 
-__all__ = ['Accelerometer', 'Camera', 'DEVICE_CLASSES', 'Device', 'DistanceSensor', 'GPS',
-           'Gyro', 'InertialUnit', 'Lidar', 'LidarPoint', 'devices_of']
+__all__ = ['Accelerometer', 'Camera', 'CameraRecognitionObject', 'DEVICE_CLASSES', 'Device',
+           'DistanceSensor', 'GPS', 'Gyro', 'InertialUnit', 'Lidar', 'LidarPoint', 'devices_of']
