@@ -24,6 +24,8 @@ The observation parts of the Gym environment: each one fills some keys of the Di
   at -fov/2 (right), counter-clockwise; no return reads max_range, closer than min_range 0.
 - ``camera``: (height, width, 3) uint8 in [0, 255]: an RGB picture of a camera on the ego,
   rows top to bottom.
+- ``semantic`` (a camera with ``segmentation: true``): (height, width) uint8: the label id of
+  each pixel of that picture (core/sensors/labels.py).
 
 - ``lane``, ``lane_id`` (a world with lanes): the ego's lane state (lanes.py).
 
@@ -39,6 +41,7 @@ import math
 import numpy as np
 
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
+from vehicle_sim.core.sensors.labels import LABELS
 from vehicle_sim.core.sensors.params import sensor_from_dict
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.gym.lanes import lane_part
@@ -51,6 +54,7 @@ INF = np.inf
 CAR_SENSOR_HEIGHT_M = 1.5
 ROBOT_SENSOR_HEIGHT_M = 0.3
 DEFAULT_CAMERA = {'width': 84, 'height': 84, 'fov': 1.2}
+SEMANTIC = 'semantic'
 
 
 class OdometryPart:
@@ -124,13 +128,20 @@ class CameraPart:
         self.sensor = CameraSensor(world, body, spec)
 
     def spaces(self):
-        return {CAMERA: (0, 255, (self.spec.height, self.spec.width, 3), np.uint8)}
+        size = (self.spec.height, self.spec.width)
+        found = {CAMERA: (0, 255, size + (3,), np.uint8)}
+        if self.spec.segmentation:
+            found[SEMANTIC] = (0, len(LABELS) - 1, size, np.uint8)
+        return found
 
     def reset(self):
         pass
 
     def read(self, out):
-        out[CAMERA] = self.sensor.sample(self.world.time_s).rgb
+        reading = self.sensor.sample(self.world.time_s)
+        out[CAMERA] = reading.rgb
+        if self.spec.segmentation:
+            out[SEMANTIC] = reading.semantic
 
 
 def sensor_spec(option, kind, vehicle, source):
