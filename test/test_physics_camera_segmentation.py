@@ -22,12 +22,13 @@ it, so the label of the pixel at its projected centre is known.
 """
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from vehicle_sim.config import load_car, world_from_data
-from vehicle_sim.core.sensors.labels import LABEL_IDS
+from vehicle_sim.core.sensors.labels import LABEL_IDS, labels_markdown
 from vehicle_sim.core.sensors.params import sensor_from_dict
 from vehicle_sim.core.sensors.sets import merge_sensors
 from vehicle_sim.core.specs.errors import InvalidParameterError
@@ -246,3 +247,9 @@ def test_the_recognition_topics_follow_the_camera_topic():
                            'front_cam/semantic/image_raw', 'front_cam/instance/image_raw',
                            'front_cam/detections', 'front_cam/labels')
     assert math.isclose(spec.recognition_max_range_m, 100.0)
+
+
+def test_the_sensors_doc_shows_the_label_table():
+    text = (Path(__file__).resolve().parent.parent / 'docs' / 'sensors.md').read_text(
+        encoding='utf-8')
+    assert labels_markdown() in text
