@@ -21,8 +21,10 @@ The Webots RangeFinder device and a Webots-style controller; the Gym ``depth`` k
 Golden geometry: a range finder 1.5 m above the ground at the origin looks along +x at a box
 whose near face is at x = 8 m (y 0..2, z 0..2) in front of a wall whose face is at x = 20 m
 (y -10..10, z 0..4). Depth is planar (along the optical axis), so every pixel of a face
-reads the face's x; the sky above the wall reads +inf. The tolerance is two steps of the
-float32 depth buffer d (2^-24 each) at that depth: dz = z^2 (far - near) / (far near) dd.
+reads the face's x, the ground 1.5 m fy / (v - cy) (a ray through the pixel's centre); the
+sky above the wall reads +inf. The tolerance is two steps of the float32 depth buffer d
+(2^-24 each) at that depth, dz = z^2 (far - near) / (far near) dd, on the faces, and four on
+the ground, whose depth the renderer interpolates across triangles tens of metres long.
 """
 
 import math
@@ -101,7 +103,7 @@ def _first_hit(a, b):
 
 
 def _expected(spec):
-    """Per pixel: the face seen by the whole pixel (corners and centre), or None on an edge."""
+    """Per pixel: the face the whole pixel sees (corners, centre) or None; the centre's depth."""
     fx, _, cx, cy = spec.intrinsics
     faces = np.empty((spec.height, spec.width), dtype=object)
     depths = np.full((spec.height, spec.width), np.nan)
@@ -112,7 +114,7 @@ def _expected(spec):
             names = {name for _, name in seen}
             if len(names) == 1:
                 faces[v, u] = names.pop()
-                depths[v, u] = min(depth for depth, _ in seen)
+                depths[v, u] = _first_hit(-(u - cx) / fx, -(v - cy) / fx)[0]
     return faces, depths
 
 
@@ -121,19 +123,15 @@ def test_golden_depth_reads_each_face_per_pixel_within_the_depth_buffer_resoluti
     depth = RangeFinderSensor(world, Tripod(), spec).sample(0.0).depth_m
     assert depth.shape == (120, 160) and depth.dtype == np.float32
     faces, expected = _expected(spec)
-    for face, x in (('box', BOX_X), ('wall', WALL_X)):
+    # the ground: interpolated in float32 across its large triangles, a few steps more
+    for face, steps in (('box', 2.0), ('wall', 2.0), ('ground', 4.0)):
         on = faces == face
         assert on.sum() > 300, face
-        error = np.abs(depth[on] - x)
-        assert error.max() <= 2.0 * depth_step_m(x), (face, error.max(), depth_step_m(x))
+        error = np.abs(depth[on] - expected[on]) / depth_step_m(expected[on])
+        assert error.max() <= steps, (face, error.max())
     sky = faces == 'sky'
     assert sky.sum() > 1000 and np.isposinf(depth[sky]).all()        # +inf over the horizon
     assert np.isposinf(depth[0]).all()                                # the top row: sky only
-    ground = faces == 'ground'                 # finite, nearer further down the picture
-    assert ground.sum() > 1000 and np.isfinite(depth[ground]).all()
-    column = depth[:, 20]
-    below = column[np.isfinite(column) & (np.arange(120) > 90)]
-    assert (np.diff(below) < 0).all()
 
 
 def test_nothing_drawn_reads_plus_inf_whatever_the_clip_planes(world):
