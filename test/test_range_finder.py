@@ -285,3 +285,26 @@ def test_gym_depth_key_is_the_depth_with_no_return_at_max_range(make):
     assert env.observation_space['depth'].contains(depth)
     assert depth[12, 16] == pytest.approx(18.0, abs=0.02)         # the wall's face
     assert (depth[0] == 50.0).all()                                # the sky: max_range
+
+
+def test_gym_camera_and_range_finder_defaults_pass_check_env_and_share_a_render(make,
+                                                                              monkeypatch):
+    gymnasium = pytest.importorskip('gymnasium', reason="needs the 'gym' extra (gymnasium)")
+    from gymnasium.utils.env_checker import check_env
+
+    import vehicle_sim.gym  # noqa: F401  (registers the ids)
+    env = make(world='obstacle_course', camera=True, range_finder=True)
+    with warnings.catch_warnings():
+        warnings.filterwarnings('ignore', message='.*(infinity|symmetric and normalized).*')
+        check_env(env.unwrapped, skip_render_check=True)
+    assert isinstance(env.observation_space['depth'], gymnasium.spaces.Box)
+    renders = []
+    real = render.Renderer._render
+    monkeypatch.setattr(render.Renderer, '_render',
+                        lambda self, *args: renders.append(args[0]) or real(self, *args))
+    env.reset(seed=0)
+    renders.clear()
+    for _ in range(2):
+        obs, *_ = env.step(env.action_space.sample())
+    assert obs['depth'].shape == (84, 84) and obs['camera'].shape == (84, 84, 3)
+    assert len(renders) == 2                     # one per step's observation, for the two
