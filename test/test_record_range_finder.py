@@ -31,13 +31,9 @@ import pytest
 
 pytest.importorskip('mcap', reason="recording needs the mcap package (the 'record' extra)")
 
-from record_helpers import typestore  # noqa: E402
+from record_helpers import record_automobile, typestore  # noqa: E402
 from rosbags.rosbag2 import Reader  # noqa: E402
 import test_record_node_reader as node_reader  # noqa: E402
-
-from vehicle_sim.recording.recorder import record_node  # noqa: E402
-from vehicle_sim.ros.automobile_node import AutomobileNode, NODE_NAME  # noqa: E402
-from vehicle_sim.transport import create_node  # noqa: E402
 
 WORLD = str(Path(__file__).resolve().parent / 'data' / 'depth_course.yaml')
 node_modules = node_reader.node_modules        # the fixture: the npm packages, or a skip
@@ -48,16 +44,8 @@ IMAGE, CLOUD = '/rec_depth/depth_cam/depth/image_raw', '/rec_depth/depth_cam/dep
 def depth_recording(tmp_path_factory):
     """Record 0.4 s of the depth course (two samples at 5 Hz); return the .mcap path."""
     path = str(tmp_path_factory.mktemp('depth') / 'depth.mcap')
-    node = create_node(NODE_NAME, args=['rt', '--ros-args', '-r', '__ns:=/rec_depth', '-p',
-                                        'synchronous:=true', '-p', f'world:={WORLD}'],
-                       transport='dds')
-    recorder = record_node(node, path)
-    app = AutomobileNode(node=node)
-    try:
-        app.step(40)                          # 0.4 s: two samples at 5 Hz
-    finally:
-        error = recorder.close()
-        app.close()
+    error = record_automobile(path, '/rec_depth', lambda app: app.step(40),
+                              parameters=(f'world:={WORLD}',))[2]
     assert error is None
     return path
 

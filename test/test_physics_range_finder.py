@@ -12,11 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-
 """
-The range finder: golden depths, a render shared with a camera, bad input, Webots, Gym.
-
-The Webots RangeFinder device and a Webots-style controller; the Gym ``depth`` key.
+The range finder's physics: golden depths, a render shared with a camera, noise, bad input.
 
 Golden geometry: a range finder 1.5 m above the ground at the origin looks along +x at a box
 whose near face is at x = 8 m (y 0..2, z 0..2) in front of a wall whose face is at x = 20 m
@@ -28,10 +25,6 @@ the ground, whose depth the renderer interpolates across triangles tens of metre
 """
 
 import math
-from pathlib import Path
-import subprocess
-import sys
-import warnings
 
 import numpy as np
 import pytest
@@ -43,10 +36,7 @@ from vehicle_sim.physics import World
 from vehicle_sim.physics.sensors import render
 from vehicle_sim.physics.sensors.camera import CameraSensor
 from vehicle_sim.physics.sensors.range_finder import RangeFinderSensor
-from vehicle_sim.webots import Driver, WebotsWarning
 
-REPO = Path(__file__).resolve().parent.parent
-DEPTH_COURSE = str(REPO / 'test' / 'data' / 'depth_course.yaml')
 NEAR_M, FAR_M = 0.05, 50.0
 HEIGHT_M = 1.5
 BOX_X, BOX_Y, BOX_Z = 8.0, (0.0, 2.0), (0.0, 2.0)
@@ -203,108 +193,3 @@ def test_points_are_depth_image_proc_s_cloud_in_the_optical_frame(world):
 def test_bad_range_finder_keys_are_refused_naming_the_field(keys, field):
     with pytest.raises(InvalidParameterError, match=f'w.yaml: sensors.0.: field {field}'):
         sensor_from_dict(dict({'type': 'range_finder', 'name': 'd'}, **keys), 'w.yaml: sensors[0]')
-
-
-# ------------------------------------------------------------------------ Webots RangeFinder
-
-
-@pytest.fixture
-def driver():
-    with Driver(world_file=DEPTH_COURSE) as instance:
-        yield instance
-
-
-def test_range_image_is_webots_row_major_layout_of_the_depth(driver):
-    device = driver.getDevice('depth_cam')
-    assert type(device).__name__ == 'RangeFinder'
-    assert (device.getWidth(), device.getHeight(), device.getFov(), device.getMinRange(),
-            device.getMaxRange()) == (64, 48, 1.0, 0.05, 50.0)
-    device.enable(20)
-    assert device.getSamplingPeriod() == 20
-    driver.step()
-    assert device.getRangeImage() is None                # the first image after one period
-    driver.step()
-    image = device.getRangeImage()
-    assert isinstance(image, list) and len(image) == 64 * 48
-    rows = device.getRangeImageArray()
-    assert len(rows) == 48 and all(len(row) == 64 for row in rows)
-    for x, y in ((0, 0), (31, 24), (63, 47), (10, 30)):
-        assert image[y * 64 + x] == rows[y][x] == device.rangeImageGetDepth(image, 64, x, y) \
-            == device.imageGetDepth(image, 64, x, y)
-    assert math.isinf(image[0]) and image[0] > 0                  # the sky, top left
-    assert rows[24][32] == pytest.approx(18.0, abs=0.02)          # the wall face, 18 m ahead
-    assert rows[47][32] < rows[24][32]                      # below: the ground or the car, nearer
-    buffer = device.getRangeImage(data_type='buffer')
-    assert np.frombuffer(buffer, np.float32).tolist() == image
-
-
-def test_save_image_writes_webots_grey_levels(driver, tmp_path):
-    image_module = pytest.importorskip('PIL.Image', reason="saveImage needs Pillow ('maps')")
-    device = driver.getDevice('depth_cam')
-    device.enable(10)
-    driver.step()
-    path = tmp_path / 'depth.png'
-    assert device.saveImage(str(path), 100) == 0
-    grey = np.asarray(image_module.open(path))
-    assert grey.shape == (48, 64, 3) and (grey[..., 0] == grey[..., 2]).all()
-    rows = np.array(device.getRangeImageArray())
-    expected = (np.clip((rows - 0.05) / 50.0, 0.0, 1.0) * 255.0).astype(np.uint8)
-    assert (grey[..., 0] == expected).all()
-    assert grey[0, 0, 0] == 255 and grey[24, 32, 0] == int((18.0 - 0.05) / 50.0 * 255.0)
-    with warnings.catch_warnings():
-        warnings.simplefilter('ignore', WebotsWarning)
-        assert device.saveImage(str(tmp_path / 'depth.tiff'), 100) == -1
-        assert device.saveImage(str(path), 0) == -1
-
-
-def test_webots_style_range_finder_controller_stops_before_the_wall():
-    env = dict(__import__('os').environ, VEHICLE_SIM_WORLD=DEPTH_COURSE)
-    result = subprocess.run(
-        [sys.executable, str(REPO / 'examples' / 'range_finder_stop_controller.py')],
-        capture_output=True, text=True, env=env, timeout=300)
-    assert result.returncode == 0, result.stderr
-    lines = result.stdout.strip().splitlines()
-    assert lines[0] == 'range finder 64 x 48, fov 1.00 rad, 0.05 .. 50.0 m'
-    assert 'stopped' in lines[-1], result.stdout
-    gap_m = float(lines[-1].split('m ahead of the range finder, ')[1].split(' m')[0])
-    assert 0.5 < gap_m < 5.0          # stopped before the wall, without touching it
-
-
-# ------------------------------------------------------------------------------------ Gym
-
-
-def test_gym_depth_key_is_the_depth_with_no_return_at_max_range(make):
-    pytest.importorskip('gymnasium', reason="needs the 'gym' extra (gymnasium)")
-    import vehicle_sim.gym  # noqa: F401  (registers the ids)
-    env = make(world='obstacle_course', range_finder={'width': 32, 'height': 24,
-                                                      'max_range': 50.0,
-                                                      'pose': {'x': 1.5, 'z': 1.3}})
-    obs, _ = env.reset(seed=0)
-    depth = obs['depth']
-    assert depth.shape == (24, 32) and depth.dtype == np.float32
-    assert env.observation_space['depth'].contains(depth)
-    assert depth[12, 16] == pytest.approx(18.0, abs=0.02)         # the wall's face
-    assert (depth[0] == 50.0).all()                                # the sky: max_range
-
-
-def test_gym_camera_and_range_finder_defaults_pass_check_env_and_share_a_render(make,
-                                                                              monkeypatch):
-    gymnasium = pytest.importorskip('gymnasium', reason="needs the 'gym' extra (gymnasium)")
-    from gymnasium.utils.env_checker import check_env
-
-    import vehicle_sim.gym  # noqa: F401  (registers the ids)
-    env = make(world='obstacle_course', camera=True, range_finder=True)
-    with warnings.catch_warnings():
-        warnings.filterwarnings('ignore', message='.*(infinity|symmetric and normalized).*')
-        check_env(env.unwrapped, skip_render_check=True)
-    assert isinstance(env.observation_space['depth'], gymnasium.spaces.Box)
-    renders = []
-    real = render.Renderer._render
-    monkeypatch.setattr(render.Renderer, '_render',
-                        lambda self, *args: renders.append(args[0]) or real(self, *args))
-    env.reset(seed=0)
-    renders.clear()
-    for _ in range(2):
-        obs, *_ = env.step(env.action_space.sample())
-    assert obs['depth'].shape == (84, 84) and obs['camera'].shape == (84, 84, 3)
-    assert len(renders) == 2                     # one per step's observation, for the two
