@@ -18,7 +18,7 @@ Every performance figure of issues 10, 20 and 21 in one table: measured, target,
 Issue 20's are the Gymnasium environment's (bench_gym.py); issue 21's the recorder's
 (bench_record.py); issue 28's highway_traffic over ROS in real time (bench_traffic_ros.py);
 issue 30's the lidar on a SLAM-like occupancy map (bench_occupancy_lidar.py); issue 31's the city
-on SUMO (bench_sumo.py).
+on SUMO (bench_sumo.py); issue 32's perception ground truth (bench_perception.py).
 
 ``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
 also run alone and say more); each ratio is measured in this run, its two sides interleaved or
@@ -123,6 +123,15 @@ def _sumo_figures(quick):
     return bench_sumo.figures(quick)
 
 
+def _perception_figures(quick):
+    # Issue 32: the depth of a camera's view (and what else it renders) against colour only.
+    import bench_perception
+    found = bench_perception.figures(quick)
+    return [('640 x 480 camera + range finder at the same mount / the camera alone, per step',
+             found['ratio'], '<=', bench_perception.TARGET_RATIO, 'x'),
+            ('  same, camera alone', found['camera_ms'], None, None, 'ms/step')]
+
+
 def collect(quick):
     """Run every benchmark; return (rows, floors)."""
     import bench_lane_world
@@ -172,6 +181,7 @@ def collect(quick):
     lane_world = bench_lane_world.figures(quick)
     traffic_ros = bench_traffic_ros.figures(quick)
     sumo_rows, sumo_context = _sumo_figures(quick)
+    perception_rows = _perception_figures(quick)
     found['write_us'] = bare_write_us()
     found['matched_write_us'] = matched_write_us()
     bare_p50, bare_p99 = service['bare']
@@ -232,7 +242,7 @@ def collect(quick):
          bench_traffic.TARGETS[50], 'x'),
         ('highway with 200 traffic cars, in-process real-time factor', traffic[200][0], '>=',
          bench_traffic.TARGETS[200], 'x'),
-    ] + gym_rows + sumo_rows
+    ] + gym_rows + sumo_rows + perception_rows
     if highway_env is not None:
         rows.append(('steps/s with 50 traffic cars / highway-env highway-fast-v0 with 50',
                      traffic[50][1] / highway_env[0], '>=',

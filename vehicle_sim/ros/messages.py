@@ -291,10 +291,11 @@ def laser_scan_builder(msg, frame_id: str):
 
 def point_cloud2_builder(msg, frame_id: str):
     """
-    Return ``build(stamp, reading)``: sensor_msgs/PointCloud2 of a LidarReading.
+    Return ``build(stamp, reading)``: sensor_msgs/PointCloud2 of a LidarReading or DepthReading.
 
-    Organized (height = layers, width = rays), fields x, y, z FLOAT32 at offsets 0, 4, 8,
-    little-endian, NaN points for rays without a return (is_dense false).
+    Organized (height = layers, width = rays; a depth image's rows and columns), fields x, y,
+    z FLOAT32 at offsets 0, 4, 8, little-endian, NaN points for rays without a return
+    (is_dense false).
     """
     header_type, cloud_type, field_type = msg(HEADER), msg(POINT_CLOUD2), msg(POINT_FIELD)
     fields = [field_type(name=axis, offset=4 * index, datatype=field_type.FLOAT32, count=1)
