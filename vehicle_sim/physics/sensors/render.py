@@ -92,7 +92,7 @@ def metric_depth(buffer, near_m, far_m) -> np.ndarray:
 
 class Renderer:
     """
-    The renders of one world, cached for the step they were made in.
+    The renders of one world, cached until the world steps or bodies move (World.revision).
 
     :param world: the World (``World.renderer`` holds the one instance).
     """
@@ -115,7 +115,7 @@ class Renderer:
         """
         world = self.world
         world.sync_bodies()          # placed bodies (traffic) where they are now
-        step = (world.step_count, world.time_s)
+        step = world.revision          # a step, or bodies moved between steps
         if step != self._step:
             self._step, self._frames = step, {}
         key = (view, np.asarray(position, dtype=float).tobytes(),
