@@ -374,12 +374,14 @@ class World:
         return point_velocity(com_pos, linear, angular, link_position)
 
     # ---------------------------------------------------------------- obstacles and names
-    def add_obstacle(self, spec, placed=False):
+    def add_obstacle(self, spec, placed=False, label=None):
         """
         Place an obstacle (core ObstacleSpec): static when its mass is 0.
 
         :param placed: a static obstacle that its owner moves by placing it (traffic): a cheap
             Bullet rigid body (physics/obstacles.py).
+        :param label: (label name, instance id) of its body (:attr:`labels`); None: an
+            ``obstacle`` with the instance id of its name.
         :return: its body id.
         :raises ValueError: when an obstacle of that name exists already.
         :raises InvalidPoseError: when it would be inside a vehicle (nothing added).
@@ -398,6 +400,7 @@ class World:
                 'requires)')
         self.obstacles[spec.name] = body_id
         self._obstacle_specs[spec.name] = spec
+        self.labels.set(body_id, *(label or ('obstacle', self.labels.instance(spec.name))))
         self._names[body_id] = spec.name
         self._broadphase_stale = True
         return body_id
