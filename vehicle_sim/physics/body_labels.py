@@ -93,6 +93,11 @@ class BodyLabels:
             del self._links[key]
         self._table = None
 
+    @property
+    def has_links(self) -> bool:
+        """Whether any link has a label of its own (else a body's links read as the body)."""
+        return bool(self._links)
+
     def of(self, body_id: int, link: int = -1) -> Tuple[int, int]:
         """Return (label id, instance id) of a body's link; unlabelled: (obstacle, 0)."""
         found = self._links.get((int(body_id), int(link)))

@@ -164,6 +164,7 @@ class World:
         # core/map/grid_rays.py's GridRays), each with a cast(origin, ends) -> fractions, and
         # the bodies it stands for (add_ray_grid).
         self.ray_grids = []
+        self.ray_grid_bodies = []     # per ray grid: the body its hits read as (labels)
         self._ray_grid_bodies = []
         self._ray_masks = {}          # body id -> ray mask excluding that body
         self._renderer = None
@@ -455,6 +456,7 @@ class World:
             vertices in the world frame), already named with add_static.
         """
         self.ray_grids.append(grid_rays)
+        self.ray_grid_bodies.append(body_ids[0] if len(body_ids) else -1)
         self._ray_grid_bodies.extend(body_ids)
 
     @contextmanager
