@@ -40,13 +40,17 @@ from vehicle_sim.core.map.lane_graph import Boundary, Lane, LaneGraph
 from vehicle_sim.core.map.lane_rules import MapArea
 from vehicle_sim.core.sensors.labels import LABEL_IDS, LABELS
 from vehicle_sim.physics.lane_layer import build_lane_bodies
-from vehicle_sim.physics.scene import build_scene
+from vehicle_sim.physics.scene import build_scene, mount_suite
 from vehicle_sim.physics.sensors.render import View
 from vehicle_sim.physics.signal_lamps import SignalLampsPart
 
 WALKWAY = ((-20.0, 3.0), (0.0, 3.0), (0.0, 6.0), (-20.0, 6.0))
 CONE_XY = (-15.0, -12.0)
 CAR_XY = (-14.0, 0.0)
+# a labelled lidar looking down around the car: its rays meet the ground within 3 .. 12 m
+LIDAR = {'type': 'lidar', 'name': 'lidar', 'fov': 6.28, 'horizontal_resolution': 360,
+         'layers': 8, 'vertical_fov': 0.4, 'pose': {'x': 1.0, 'z': 1.8, 'pitch': 0.45},
+         'max_range': 40.0, 'labels': True}
 DOWN = np.array([[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]]).T   # columns x, y, z
 
 
@@ -75,13 +79,13 @@ class LaneBodies:
 @pytest.fixture(scope='module')
 def scene():
     spec = world_from_data({
-        'vehicles': [{'name': 'ego', 'model': 'Car',
+        'vehicles': [{'name': 'ego', 'model': 'Car', 'sensors': [LIDAR],
                       'pose': {'x': CAR_XY[0], 'y': CAR_XY[1], 'yaw': 0.0}}],
         'obstacles': [{'name': 'cone', 'shape': 'cylinder', 'radius': 0.3, 'height': 0.8,
                        'position': [CONE_XY[0], CONE_XY[1], 0.4]}],
         'traffic': {'vehicles': 2, 'seed': 3, 'spawn': {'lanes': [3, 4], 'spacing': 8.0}}},
         'labels.yaml')
-    built = build_scene(replace(spec, lanes=crossing()),
+    built = build_scene(replace(spec, lanes=crossing()), mount=mount_suite,
                         parts=(LaneBodies(), StandInSignals(), SignalLampsPart()))
     yield built
     built.world.close()
@@ -146,3 +150,33 @@ def test_rays_hit_bodies_whose_labels_are_what_they_are(scene):
                             ('obstacle', 'car', 'wall', 'traffic_light')]
     assert instances.tolist() == [world.labels.instance('cone'), world.labels.instance('ego'),
                                   0, 0]
+
+
+def test_lidar_points_on_the_ground_read_what_is_drawn_there(scene):
+    """The rays pass the drawn meshes; where they meet the ground the raster of them answers."""
+    reading = scene.vehicles['ego'].sensors.sample('lidar')
+    mount = scene.vehicles['ego'].sensors.sensors['lidar'].mount
+    origin, rotation, _ = mount.world_frame()
+    finite = np.isfinite(reading.ranges_m)
+    points = reading.points()[finite].astype(float) @ rotation.T + origin
+    labels = reading.labels[finite]
+    x, y = points[:, 0], points[:, 1]
+    on_ground = np.abs(points[:, 2]) < 0.05
+    names = np.array([LABELS[label].name for label in labels])
+
+    def read(where):
+        return set(names[where & on_ground].tolist())
+    lane = (np.abs(y) < 1.5) & (x > -19.8) & (x < -2.4)          # lane 1 before its stop line
+    assert lane.sum() > 20 and read(lane) == {'road'}
+    line = (np.abs(y - 1.75) < 0.03) & (x > -19.5) & (x < -2.5)    # lane 1's left line
+    assert read(line) == {'lane_marking'}
+    walk = (y > 3.2) & (y < 5.8) & (x > -19.8) & (x < -0.2)
+    assert walk.sum() > 5 and read(walk) == {'sidewalk'}
+    off = (x < -21.0) | (y > 6.5) | (y < -14.0)
+    assert off.sum() > 20 and read(off) == {'ground'}
+    # intensities: each label's reflectivity times the cosine on the flat ground
+    ground = on_ground & (names == 'road')
+    directions = (points[ground] - origin)
+    cosine = np.abs(directions[:, 2]) / np.linalg.norm(directions, axis=1)
+    assert reading.intensities[finite][ground] == pytest.approx(
+        LABELS[LABEL_IDS['road']].reflectivity * cosine, rel=1e-3)

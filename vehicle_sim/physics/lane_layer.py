@@ -24,7 +24,9 @@ core/map/lane_geometry.py:
   colour, core/map/lane_geometry.py): a few visual-only meshes just above the ground (no
   collision shape: cars drive on the ground plane as before, rays pass through, cameras see
   them), one body per colour and label (the lines' paint in one, the crosswalks' in another;
-  :data:`AREA_LABELS`) and per VERTICES_PER_BODY vertices;
+  :data:`AREA_LABELS`) and per VERTICES_PER_BODY vertices; the same meshes as a raster of
+  labels (core/map/surface_raster.py, ``World.labels.add_surface``) for the rays, which pass
+  them and meet the ground plane;
 - curbstones, road borders and walls/fences/guard rails: one box per line piece
   (``BARRIER_WIDTH_M`` wide, the height of its type), merged into static triangle meshes as the
   occupancy grid's walls are, named ``lanes`` through ``World.add_static`` (collisions report
@@ -56,6 +58,8 @@ from vehicle_sim.core.map.lane_geometry import (
     surface_mesh,
 )
 from vehicle_sim.core.map.lane_graph import LaneGraph
+from vehicle_sim.core.map.surface_raster import SurfaceRaster
+from vehicle_sim.core.sensors.labels import LABEL_IDS
 from vehicle_sim.core.specs.value_text import count
 
 LANES_BODY_NAME = 'lanes'
@@ -217,15 +221,18 @@ def build_lane_bodies(world, graph: LaneGraph, spec=None) -> LaneMap:
     if barrier_ids:
         world.add_static(LANES_BODY_NAME, barrier_ids, inside_boxes(corners))
     label_bodies(world, barrier_ids, 'wall')
-    visual_ids = label_bodies(world, visual_bodies(world, surface_mesh(graph), SURFACE_COLOR),
-                              'road')
-    for kind, mesh in area_meshes(graph).items():
-        visual_ids += label_bodies(world, visual_bodies(world, mesh, area_color(kind)),
-                                   AREA_LABELS.get(kind, 'road'))
-    paint = join_meshes(marking_mesh(graph), stop_line_mesh(graph))
-    visual_ids += label_bodies(world, visual_bodies(world, paint, MARKING_COLOR), 'lane_marking')
-    visual_ids += label_bodies(world, visual_bodies(world, crosswalk_mesh(graph), MARKING_COLOR),
-                               'crosswalk')
+    # (label, mesh, colour) from the bottom layer up, as drawn
+    layers = [('road', surface_mesh(graph), SURFACE_COLOR)]
+    layers += [(AREA_LABELS.get(kind, 'road'), mesh, area_color(kind))
+               for kind, mesh in area_meshes(graph).items()]
+    layers += [('lane_marking', join_meshes(marking_mesh(graph), stop_line_mesh(graph)),
+                MARKING_COLOR), ('crosswalk', crosswalk_mesh(graph), MARKING_COLOR)]
+    visual_ids = ()
+    for label, mesh, colour in layers:
+        visual_ids += label_bodies(world, visual_bodies(world, mesh, colour), label)
+    # rays pass the drawn meshes: a ray that meets the ground under them reads them from here
+    world.labels.add_surface(SurfaceRaster([(LABEL_IDS[label], mesh.vertices, mesh.triangles)
+                                            for label, mesh, _ in layers]))
     return LaneMap(spec, graph, visual_ids, barrier_ids, len(corners))
 
 

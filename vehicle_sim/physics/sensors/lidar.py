@@ -26,7 +26,9 @@ A labelled lidar (``labels: true``) also reads what each ray hit (``World.labels
 and instance id) and an intensity: the label's reflectivity (core/sensors/labels.py) times
 |cos| of the angle between the ray and the surface normal at the hit (rayTestBatch's; the
 occupancy grid's cell face, core/map/grid_rays.py); rays without a finite range get label 0,
-instance 0, intensity 0.
+instance 0, intensity 0. A ray that meets the ground plane reads what the lane layer draws
+there (``World.labels.ground_labels``: road, lane_marking, crosswalk, sidewalk), else
+``ground``.
 """
 
 from dataclasses import replace
@@ -100,7 +102,13 @@ class LidarSensor(Sensor):
         if not spec.labels:
             return reading
         bodies[~np.isfinite(ranges)] = -1
-        labels, instances = self.world.labels.lookup(bodies, links)
+        world = self.world
+        labels, instances = world.labels.lookup(bodies, links)
+        if world.labels.has_surfaces:      # on the ground: what is drawn there (a road)
+            ground = np.flatnonzero(bodies == world.ground_id)
+            if len(ground):
+                points = origin + (ends[ground] - origin) * fractions[ground, None]
+                labels[ground] = world.labels.ground_labels(points[:, 0], points[:, 1])
         cosine = np.abs(np.einsum('ij,ij->i', normals, ends - origin)) / spec.max_range_m
         intensities = REFLECTIVITY[labels] * cosine.astype(np.float32)
         shape = self._shape
