@@ -18,7 +18,8 @@ Every performance figure of issues 10, 20 and 21 in one table: measured, target,
 Issue 20's are the Gymnasium environment's (bench_gym.py); issue 21's the recorder's
 (bench_record.py); issue 28's highway_traffic over ROS in real time (bench_traffic_ros.py);
 issue 30's the lidar on a SLAM-like occupancy map (bench_occupancy_lidar.py); issue 31's the city
-on SUMO (bench_sumo.py); issue 32's perception ground truth (bench_perception.py).
+on SUMO (bench_sumo.py); issue 32's perception ground truth (bench_perception.py, the labelled
+lidar: bench_lidar_labels.py).
 
 ``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
 also run alone and say more); each ratio is measured in this run, its two sides interleaved or
@@ -135,6 +136,7 @@ def _perception_figures(quick):
 def collect(quick):
     """Run every benchmark; return (rows, floors)."""
     import bench_lane_world
+    import bench_lidar_labels
     import bench_maps
     import bench_occupancy_lidar
     import bench_plugin
@@ -170,6 +172,7 @@ def collect(quick):
     plugin_subset = bench_plugin.figures(1000 if quick else 6000, bench_plugin.SUBSET)
     maps = bench_maps.figures(quick)
     slam = bench_occupancy_lidar.figures(quick)
+    lidar_labels = bench_lidar_labels.figures(quick)
     import tempfile
     with tempfile.TemporaryDirectory(prefix='bench_record_') as folder:
         rec_plain, rec_published, rec_us = bench_record.measure_in_process(
@@ -217,6 +220,8 @@ def collect(quick):
          1.3, 'x'),
         ('  same map: load time', slam['load_s'], '<=', 2.0, 's'),
         ('  same map: RSS added by loading it (stated)', slam['rss_mb'], None, None, 'MB'),
+        ('labelled lidar 32 x 1024 rays (label, instance, intensity) / the same lidar plain',
+         lidar_labels['ratio'], '<=', bench_lidar_labels.TARGET_RATIO, 'x'),
         ('in-process step, every topic recorded (--record) / not recorded', rec_plain, '<=',
          bench_record.TARGET_RATIO, 'x'),
         ('  same, recorded / every topic published without recording', rec_published, None,

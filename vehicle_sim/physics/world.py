@@ -164,6 +164,7 @@ class World:
         # core/map/grid_rays.py's GridRays), each with a cast(origin, ends) -> fractions, and
         # the bodies it stands for (add_ray_grid).
         self.ray_grids = []
+        self.ray_grid_bodies = []     # per ray grid: the body its hits read as (labels)
         self._ray_grid_bodies = []
         self._ray_masks = {}          # body id -> ray mask excluding that body
         self._renderer = None
@@ -375,12 +376,14 @@ class World:
         return point_velocity(com_pos, linear, angular, link_position)
 
     # ---------------------------------------------------------------- obstacles and names
-    def add_obstacle(self, spec, placed=False):
+    def add_obstacle(self, spec, placed=False, label=None):
         """
         Place an obstacle (core ObstacleSpec): static when its mass is 0.
 
         :param placed: a static obstacle that its owner moves by placing it (traffic): a cheap
             Bullet rigid body (physics/obstacles.py).
+        :param label: (label name, instance id) of its body (:attr:`labels`); None: an
+            ``obstacle`` with the instance id of its name.
         :return: its body id.
         :raises ValueError: when an obstacle of that name exists already.
         :raises InvalidPoseError: when it would be inside a vehicle (nothing added).
@@ -399,6 +402,7 @@ class World:
                 'requires)')
         self.obstacles[spec.name] = body_id
         self._obstacle_specs[spec.name] = spec
+        self.labels.set(body_id, *(label or ('obstacle', self.labels.instance(spec.name))))
         self._names[body_id] = spec.name
         self.mark_moved()
         return body_id
@@ -453,6 +457,7 @@ class World:
             vertices in the world frame), already named with add_static.
         """
         self.ray_grids.append(grid_rays)
+        self.ray_grid_bodies.append(body_ids[0] if len(body_ids) else -1)
         self._ray_grid_bodies.extend(body_ids)
 
     @contextmanager

@@ -73,10 +73,12 @@ def _lidar_rows(spec):
     if spec.layers == 1:
         return (_row(topic, m.LASER_SCAN, m.laser_scan_builder, spec,
                      'lidar, one layer: ranges counter-clockwise from angle_min, REP 117 '
-                     '(+inf no return, -inf too close); frame <p><name>', unit='m, rad'),)
+                     '(+inf no return, -inf too close); intensities with labels: true, else '
+                     'empty; frame <p><name>', unit='m, rad'),)
     return (_row(topic, m.POINT_CLOUD2, m.point_cloud2_builder, spec,
                  'lidar, several layers: organized (height = layers, width = rays), x, y, z '
-                 'float32, NaN for no return; frame <p><name>', unit='m'),)
+                 'float32, NaN for no return; with labels: true also intensity float32, label '
+                 'and instance uint16; frame <p><name>', unit='m'),)
 
 
 def _imu_rows(spec):

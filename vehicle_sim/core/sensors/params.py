@@ -152,6 +152,9 @@ LIDAR_SPECS = _common('lidar', 10.0) + (
               'no return within this reads +inf (REP 117)', gt=0.0),
     ParamSpec('noise', 'noise_m', 'float', 0.0, 'm',
               'standard deviation of the Gaussian range noise', ge=0.0),
+    ParamSpec('labels', 'labels', 'bool', False, '',
+              'each point also gets the label, instance id and intensity of what it hit '
+              '(PointCloud2 fields intensity, label, instance; LaserScan intensities)'),
 )
 
 
@@ -166,6 +169,7 @@ class LidarSpec(SensorSpec):
     min_range_m: float
     max_range_m: float
     noise_m: float
+    labels: bool = False
 
     def _default_topic(self):
         return 'scan' if self.layers == 1 else 'points'

@@ -22,7 +22,7 @@ REP 117: +inf = no return within max_range, -inf = a return closer than min_rang
 """
 
 from dataclasses import dataclass, field
-from typing import Tuple
+from typing import Optional, Tuple
 
 import numpy as np
 
@@ -47,7 +47,11 @@ class LidarReading:
 
     ``ranges_m`` has shape (layers, rays), float32, layer 0 the top one, rays counter-clockwise
     from ``angle_min_rad`` (REP 117 values). ``directions`` (layers, rays, 3) are the unit ray
-    vectors in the sensor frame.
+    vectors in the sensor frame. A labelled lidar's (``labels: true``) also gives, of the same
+    shape, what each ray hit: ``labels`` (uint8, core/sensors/labels.py ids), ``instances``
+    (uint16 instance ids, 0 = none) and ``intensities`` (float32: the label's reflectivity
+    times |cos| of the angle between the ray and the surface's normal); 0 where the range is
+    not finite. None without the key.
     """
 
     name: str
@@ -62,6 +66,9 @@ class LidarReading:
     ranges_m: np.ndarray
     directions: np.ndarray = field(repr=False)
     time_increment_s: float = 0.0      # every ray of a scan is cast at the same instant
+    labels: Optional[np.ndarray] = field(default=None, repr=False)
+    instances: Optional[np.ndarray] = field(default=None, repr=False)
+    intensities: Optional[np.ndarray] = field(default=None, repr=False)
 
     @property
     def scan(self) -> np.ndarray:
