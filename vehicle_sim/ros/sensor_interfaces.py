@@ -75,10 +75,12 @@ def _lidar_rows(spec):
     if spec.layers == 1:
         return (_row(topic, m.LASER_SCAN, m.laser_scan_builder, spec,
                      'lidar, one layer: ranges counter-clockwise from angle_min, REP 117 '
-                     '(+inf no return, -inf too close); frame <p><name>', unit='m, rad'),)
+                     '(+inf no return, -inf too close); intensities with labels: true, else '
+                     'empty; frame <p><name>', unit='m, rad'),)
     return (_row(topic, m.POINT_CLOUD2, m.point_cloud2_builder, spec,
                  'lidar, several layers: organized (height = layers, width = rays), x, y, z '
-                 'float32, NaN for no return; frame <p><name>', unit='m'),)
+                 'float32, NaN for no return; with labels: true also intensity float32, label '
+                 'and instance uint16; frame <p><name>', unit='m'),)
 
 
 def _imu_rows(spec):
@@ -118,8 +120,8 @@ def _perception_rows(spec, topics):
     if spec.segmentation:
         semantic, instance, topics = topics[0], topics[1], topics[2:]
         rows += (_row(semantic, m.IMAGE, pm.semantic_image_builder, spec,
-                      'segmentation: mono16 label id per pixel (docs/sensors.md, "Labels"); '
-                      'frame <p><name>_optical', optical=True),
+                      'segmentation: mono16 label id per pixel (the label table of '
+                      'docs/sensors.md); frame <p><name>_optical', optical=True),
                  _row(instance, m.IMAGE, pm.instance_image_builder, spec,
                       'segmentation: mono16 object id per pixel (PredictedObjects ids), 0 = '
                       'none; frame <p><name>_optical', optical=True))
@@ -134,6 +136,23 @@ def _perception_rows(spec, topics):
                                  lambda w: (spec.optical_frame_id(w.frame_prefix),)),
                        doc='recognition: the label table (class_id = label id, class_name), '
                            'latched'))
+    return rows
+
+
+def _range_finder_rows(spec):
+    image, info = spec.topics[:2]
+    rows = (_row(image, m.IMAGE, m.image_builder, spec,
+                 'range finder: 32FC1 depth along the optical axis, rows top to bottom, '
+                 'REP 118 (+inf nothing within max_range, -inf under min_range); frame '
+                 '<p><name>_optical', optical=True, unit='m'),
+            _row(info, m.CAMERA_INFO, m.camera_info_builder, spec,
+                 'ideal pinhole (plumb_bob, no distortion) of the depth image; frame '
+                 '<p><name>_optical', optical=True))
+    if spec.point_cloud:
+        rows += (_row(spec.topics[2], m.POINT_CLOUD2, m.point_cloud2_builder, spec,
+                      'range finder with point_cloud: organized as the image (height x '
+                      'width), x, y, z float32, NaN where the depth is not finite; frame '
+                      '<p><name>_optical', optical=True, unit='m'),)
     return rows
 
 
@@ -157,6 +176,7 @@ SENSOR_ROWS = {
     'gnss': SensorRows(_gnss_rows),
     'distance': SensorRows(_distance_rows),
     'camera': SensorRows(_camera_rows, ({'segmentation': True, 'recognition': True},)),
+    'range_finder': SensorRows(_range_finder_rows, ({'point_cloud': True},)),
 }
 check_layer('ROS SENSOR_ROWS (ros/sensor_interfaces.py)', SENSOR_ROWS)
 

@@ -26,9 +26,9 @@ id, the id of PredictedObjects and the instance image), ``position`` and ``orien
 angle) in the camera frame (x forward, y left, z up), ``size`` (the object's extent across the
 view and upwards [m]), ``position_on_image`` and ``size_on_image`` (the visible part's box [px]),
 ``colors`` (its label colour) and ``model`` (its label name). The segmentation image is BGRA
-bytes like ``getImage()``, each pixel its label's colour (docs/sensors.md, "Labels"): unlike
-Webots, where only Solids with recognition colours are coloured, the road, walls and the rest
-are coloured too, and nothing (the sky) is black.
+bytes like ``getImage()``, each pixel its label's colour (the label table of docs/sensors.md):
+unlike Webots, where only Solids with recognition colours are coloured, the road, walls and the
+rest are coloured too, and nothing (the sky) is black.
 """
 
 import math
