@@ -21,20 +21,25 @@ pole and, at the end, a wall. Each body is where the projection of the camera's 
 it, so the label of the pixel at its projected centre is known.
 """
 
+import copy
 import math
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from vehicle_sim.config import load_car, world_from_data
+import vehicle_msgs_py
+from vehicle_sim.config import load_car, read_yaml, world_from_data, world_path
 from vehicle_sim.core.sensors.labels import LABEL_IDS, labels_markdown
 from vehicle_sim.core.sensors.params import sensor_from_dict
 from vehicle_sim.core.sensors.sets import merge_sensors
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.physics import World
+from vehicle_sim.physics.body_labels import instance_uuid
+from vehicle_sim.physics.scene import build_scene, mount_suite
 from vehicle_sim.physics.sensors import SensorSuite
 from vehicle_sim.physics.simulated_car import SimulatedCar
+from vehicle_sim.ros.traffic_messages import predicted_objects_builder
 
 CAMERA = {'name': 'camera', 'pose': {'x': 1.5, 'z': 1.3}, 'width': 320, 'height': 240,
           'fov': 1.2, 'far': 200.0, 'segmentation': True, 'recognition': True}
@@ -253,3 +258,62 @@ def test_the_sensors_doc_shows_the_label_table():
     text = (Path(__file__).resolve().parent.parent / 'docs' / 'sensors.md').read_text(
         encoding='utf-8')
     assert labels_markdown() in text
+
+
+# ------------------------------------------------------------------- a world's own labelling
+
+HIGHWAY = read_yaml(world_path('highway'))
+MIDDLE = 100002             # the ego's lane: y = -5.625 m, along +x; lanes 3.75 m wide
+LANE_WIDTH_M = 3.75
+
+
+def _highway_scene(x=20.0):
+    data = copy.deepcopy(HIGHWAY)
+    camera = dict(CAMERA, type='camera', width=160, height=120)
+    data['vehicles'][0].update(model='Car', sensors=[camera],
+                               pose={'x': x, 'y': -5.625, 'yaw': 0.0})
+    data['traffic'] = {'update_period': 0.01, 'placed': [
+        {'model': 'ToyotaPrius', 'lanelet': MIDDLE, 's': 40.0, 'speed': 0.0,
+         'route': [100102]}]}
+    return build_scene(world_from_data(data, 'highway_test.yaml'), mount=mount_suite)
+
+
+def _ground_point(sensor, spec, u, v):
+    # where the ray through pixel (u, v) meets the plane z = 0
+    position, rotation, _ = sensor.mount.world_frame()
+    fx, fy, cx, cy = spec.intrinsics
+    ray = rotation @ np.array([1.0, -(u - cx) / fx, -(v - cy) / fy])
+    return position - ray * position[2] / ray[2]
+
+
+def test_a_highway_reads_road_markings_and_a_traffic_car_with_its_predicted_objects_id():
+    scene = _highway_scene()
+    try:
+        traffic = scene.parts['traffic']
+        traffic.manager.stop(0)
+        for _ in range(20):
+            scene.world.step()
+        suite = scene.vehicles['Car'].sensors
+        sensor, spec = suite.sensors['camera'], suite.specs['camera']
+        reading = suite.sample('camera')
+        semantic = reading.semantic
+        # the traffic car, recognised under the id its PredictedObjects entry carries
+        (car,) = reading.objects
+        (traffic_car,) = traffic.objects()
+        assert car.model == 'car' and car.id == traffic_car.instance_id > 0
+        message = predicted_objects_builder(vehicle_msgs_py.message_type, 'map')(
+            None, traffic.objects())
+        (predicted,) = message.objects
+        assert bytes(predicted.object_id.uuid) == instance_uuid(car.id)
+        u, v = car.position_on_image
+        assert reading.instance[v, u] == car.id and semantic[v, u] == LABEL_IDS['car']
+        # below the car, the ego's lane is road; every marking pixel lies on a lane boundary
+        # (y a multiple of the lane width), on the ground
+        assert semantic[v + 8, u] == LABEL_IDS['road']
+        rows, cols = np.nonzero(semantic == LABEL_IDS['lane_marking'])
+        assert rows.size > 20
+        for row, col in zip(rows, cols):
+            _, y, _ = _ground_point(sensor, spec, col, row)
+            assert abs(y / LANE_WIDTH_M - round(y / LANE_WIDTH_M)) * LANE_WIDTH_M < 0.35, y
+    finally:
+        scene.world.close()

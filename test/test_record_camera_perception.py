@@ -90,10 +90,13 @@ def test_the_detections_and_the_label_table_decode_from_the_files_own_schemas(re
     ros_type, detections = recording['detections'][-1]
     assert ros_type == 'vision_msgs/msg/Detection2DArray'
     assert detections.header.frame_id == 'camera_optical'
-    for detection in detections.detections:
-        (result,) = detection.results
-        assert result.hypothesis.class_id in LABEL_IDS and result.hypothesis.score == 1.0
-        assert int(detection.id) > 0 and detection.bbox.size_x >= 1
+    (detection,) = detections.detections          # the crate
+    (result,) = detection.results
+    assert (result.hypothesis.class_id, result.hypothesis.score) == ('obstacle', 1.0)
+    _, instance = recording['instance/image_raw'][-1]
+    pixels = np.frombuffer(bytes(instance.data), dtype='<u2').reshape(HEIGHT, WIDTH)
+    assert detection.id == str(pixels[HEIGHT // 2, WIDTH // 2]) != '0'
+    assert detection.bbox.size_x == np.count_nonzero(pixels[HEIGHT // 2] == int(detection.id))
     ((ros_type, table),) = recording['labels']
     assert ros_type == 'vision_msgs/msg/LabelInfo'
     assert [(c.class_id, c.class_name) for c in table.class_map] == [

@@ -47,9 +47,6 @@ def driver(tmp_path):
     path = tmp_path / 'recognition.yaml'
     path.write_text(WORLD)
     with Driver(world_file=str(path)) as instance:
-        world = instance.world
-        for name in ('wall', 'crate'):      # obstacles: label obstacle, an id per name
-            world.labels.set(world.obstacles[name], 'obstacle', world.labels.instance(name))
         yield instance
 
 

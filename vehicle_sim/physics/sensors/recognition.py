@@ -26,10 +26,10 @@ Recognition (Webots' Recognition node): each instance id of the image whose labe
 camera's classes and which shows at least ``recognition_min_pixels`` pixels is an object; its
 image box is that of its visible pixels (so a box half hidden behind another gets the box of
 its visible half: Webots' occlusion from the rendered image). Its 3D box is that of its body:
-a box, cylinder or sphere of a one-link body exactly (obstacles, traffic, persons), otherwise
-(a vehicle of several links) the world-aligned box around its links. An object whose centre is
-farther than ``recognition_max_range`` is dropped; of the rest, ``recognition_max_objects`` (-1:
-all) with the most pixels are kept, in id order.
+the box, cylinder or sphere visual of a one-link body exactly (obstacles, traffic, persons),
+otherwise (a vehicle of several links) the world-aligned box around its links. An object whose
+centre is farther than ``recognition_max_range`` is dropped; of the rest,
+``recognition_max_objects`` (-1: all) with the most pixels are kept, in id order.
 """
 
 import math
@@ -86,13 +86,14 @@ def body_box(client_id, body_id):
     """
     Return the 3D box of a body in the world: (centre (3,), rotation (3, 3), dimensions (3,)).
 
-    One link with a box, cylinder or sphere collision shape: that shape's box in its pose;
-    otherwise the world-aligned box around every link's bounding box.
+    One link with one box, cylinder or sphere visual (what the camera sees): that shape's box in
+    its pose; otherwise the world-aligned box around every link's bounding box. (The visual,
+    not the collision shape: Bullet does not report a placed body's collision shape.)
     """
     if pybullet.getNumJoints(body_id, physicsClientId=client_id) == 0:
-        shapes = pybullet.getCollisionShapeData(body_id, -1, physicsClientId=client_id)
+        shapes = pybullet.getVisualShapeData(body_id, physicsClientId=client_id)
         if len(shapes) == 1:
-            _, _, geometry, size, _, local_xyz, local_xyzw = shapes[0]
+            _, _, geometry, size, _, local_xyz, local_xyzw = shapes[0][:7]
             dimensions = _shape_dimensions(geometry, size)
             if dimensions is not None:
                 xyz, xyzw = pybullet.getBasePositionAndOrientation(body_id,
@@ -109,8 +110,8 @@ def body_box(client_id, body_id):
 
 
 def _shape_dimensions(geometry, size):
-    # getCollisionShapeData's dimensions: a box's full sizes, a cylinder's (height, radius),
-    # a sphere's (radius, ...).
+    # getVisualShapeData's dimensions: a box's full sizes, a cylinder's (length, radius), a
+    # sphere's (radius, ...).
     if geometry == pybullet.GEOM_BOX:
         return size[:3]
     if geometry in (pybullet.GEOM_CYLINDER, pybullet.GEOM_CAPSULE):
