@@ -256,6 +256,8 @@ def collect(quick):
     camera = bench_camera_perception.figures(quick)
     rows.append(('640 x 480 camera with segmentation and recognition / colour only',
                  camera['ratio'], '<=', bench_camera_perception.TARGET_RATIO, 'x'))
+    rows.append(('  same, and a range finder of its view / colour only', camera['depth_ratio'],
+                 '<=', bench_camera_perception.TARGET_RATIO, 'x'))
     floors = [
         'traffic on the highway (ego car cruising, 10 ms steps): ' + ', '.join(
             f'{n} cars {traffic[n][0]:.0f}x' for n in bench_traffic.COUNTS) + ' real time; the '
@@ -301,7 +303,7 @@ def collect(quick):
     ] + gym_context + sumo_context
     floors.append(f'640 x 480 camera: {camera["colour_ms"]:.0f} ms per colour frame, '
                   f'{camera["seen_ms"]:.0f} ms with segmentation and recognition '
-                  f'({camera["objects"]} objects)')
+                  f'({camera["objects"]} objects), {camera["depth_ms"]:.0f} ms with depth too')
     floors.append('highway_traffic over ROS at real time (vehicle-sim run): ' + '; '.join(
         bench_traffic_ros.describe(name, run) for name, run in traffic_ros.items()))
     floors.append(
