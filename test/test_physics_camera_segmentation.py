@@ -23,8 +23,12 @@ it, so the label of the pixel at its projected centre is known.
 
 import copy
 import math
+import os
 from pathlib import Path
+import subprocess
+import sys
 
+from conftest import peer_env
 import numpy as np
 import pytest
 
@@ -239,6 +243,20 @@ def test_a_colour_only_camera_has_no_segmentation_and_segmentation_alone_no_obje
 def test_bad_recognition_keys_are_refused_naming_the_field(key, value, fragment):
     with pytest.raises(InvalidParameterError, match='w.yaml: cam: ' + _escaped(fragment)):
         sensor_from_dict({'type': 'camera', 'name': 'c', key: value}, 'w.yaml: cam')
+
+
+def test_the_installed_command_refuses_an_unknown_class_at_start_naming_file_and_field(
+        tmp_path):
+    path = tmp_path / 'bad_classes.yaml'
+    path.write_text('vehicles: [{name: Car, sensors: [{type: camera, name: cam, recognition: '
+                    'true, recognition_classes: [car, tree]}]}]\n')
+    command = os.path.join(os.path.dirname(sys.executable), 'vehicle-sim')
+    done = subprocess.run([command, 'run', '--no-status', '--duration', '0', '--', '--ros-args',
+                           '-r', '__ns:=/bad_classes', '-p', f'world:={path}'], env=peer_env(),
+                          capture_output=True, text=True, timeout=120.0)
+    assert done.returncode != 0
+    assert (f"{path}: vehicles[0].sensors[0]: field 'recognition_classes' = ['car', 'tree']: "
+            "a class: 'tree' is not a label") in done.stderr
 
 
 def _escaped(text):
