@@ -27,13 +27,10 @@ import yaml
 
 pytest.importorskip('mcap', reason="recording needs the mcap package (the 'record' extra)")
 
-from record_helpers import typestore  # noqa: E402
+from record_helpers import record_automobile, typestore  # noqa: E402
 from rosbags.rosbag2 import Reader  # noqa: E402
 
 from vehicle_sim.core.sensors.labels import LABEL_IDS, LABELS  # noqa: E402
-from vehicle_sim.recording.recorder import record_node  # noqa: E402
-from vehicle_sim.ros.automobile_node import AutomobileNode, NODE_NAME  # noqa: E402
-from vehicle_sim.transport import create_node  # noqa: E402
 
 WIDTH, HEIGHT = 48, 36
 WORLD = {
@@ -51,17 +48,11 @@ def recording(tmp_path_factory):
     world = folder / 'world.yaml'
     world.write_text(yaml.safe_dump(WORLD), encoding='utf-8')
     path = str(folder / 'run.mcap')
-    node = create_node(NODE_NAME, args=['rt', '--ros-args', '-r', '__ns:=/rec_seen', '-p',
-                                        f'world:={world}', '-p', 'synchronous:=true'],
-                       transport='dds')
-    recorder = record_node(node, path)
-    app = AutomobileNode(node=node)
-    try:
+
+    def drive(app):
         for _ in range(50):
             app.step_once()
-    finally:
-        error = recorder.close()
-        app.close()
+    _, _, error = record_automobile(path, '/rec_seen', drive, parameters=(f'world:={world}',))
     assert error is None
     found = {}
     with Reader(path) as reader:
