@@ -180,3 +180,15 @@ def test_lidar_points_on_the_ground_read_what_is_drawn_there(scene):
     cosine = np.abs(directions[:, 2]) / np.linalg.norm(directions, axis=1)
     assert reading.intensities[finite][ground] == pytest.approx(
         LABELS[LABEL_IDS['road']].reflectivity * cosine, rel=1e-3)
+
+
+def test_a_signal_groups_lamps_are_one_traffic_light_object(scene):
+    world = scene.world
+    lamps = scene.parts['signal_lamps']
+    by_group = {}
+    for lamp, body_id in zip(lamps.lamps, lamps.lamp_ids):
+        label, instance = world.labels.of(body_id)
+        assert LABELS[label].name == 'traffic_light' and instance > 0
+        by_group.setdefault(lamp.group_id, set()).add(instance)
+    assert all(len(ids) == 1 for ids in by_group.values())
+    assert len({ids.pop() for ids in by_group.values()}) == len(by_group)
