@@ -23,6 +23,8 @@ package.
   ``autoware_perception_msgs`` (traffic's PredictedObjects, the signals' TrafficLightGroupArray),
   ``ackermann_msgs``: copies of the real packages' definitions (autoware_msgs 1.9.0,
   ackermann_msgs 2.0), so the embedded transport can speak them without ROS installed.
+* ``radar_msgs`` (the radar's RadarTracks and RadarScan): copies of ros-perception/radar_msgs
+  0.2.2.
 * ``rcl_interfaces`` / ``std_srvs`` services, which rosbags' Jazzy type store lacks.
 
 This module only finds and splits the files; ``vehicle_msgs_py.types`` turns them into types.

@@ -205,6 +205,11 @@ DEVICE_API = (
     DeviceRow('Accelerometer', 'imu', 'accelerometer_device', 'getAccelerometer'),
     DeviceRow('DistanceSensor', 'distance', 'device', 'getDistanceSensor', (
         ('getAperture', 'aperture_rad', float),)),
+    DeviceRow('Radar', 'radar', 'device', 'getRadar', (
+        ('getMinRange', 'min_range_m', float),
+        ('getMaxRange', 'max_range_m', float),
+        ('getHorizontalFov', 'horizontal_fov_rad', float),
+        ('getVerticalFov', 'vertical_fov_rad', float))),
 )
 
 # Robot / Supervisor functions that exist in Webots but not here (no other devices are

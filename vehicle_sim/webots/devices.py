@@ -372,6 +372,9 @@ def _make_spec_getter(name, attr, kind):
     return getter
 
 
+# Device classes in modules of their own (they subclass Device above).
+from vehicle_sim.webots.radar_device import Radar, RadarTarget  # noqa: E402, I100
+
 # The Webots registration is DEVICE_API (webots/api_table.py): each row names a device class of
 # this module and the core sensor type it serves; checked against the core types when imported.
 check_layer('Webots DEVICE_API (webots/api_table.py)', {row.sensor_type for row in DEVICE_API})
@@ -398,4 +401,4 @@ def devices_of(suite):
 
 
 __all__ = ['Accelerometer', 'Camera', 'DEVICE_CLASSES', 'Device', 'DistanceSensor', 'GPS',
-           'Gyro', 'InertialUnit', 'Lidar', 'LidarPoint', 'devices_of']
+           'Gyro', 'InertialUnit', 'Lidar', 'LidarPoint', 'Radar', 'RadarTarget', 'devices_of']

@@ -38,6 +38,7 @@ from vehicle_sim.physics.sensors.camera import CameraSensor
 from vehicle_sim.physics.sensors.distance import RayDistanceSensor
 from vehicle_sim.physics.sensors.inertial import GnssSensor, ImuSensor
 from vehicle_sim.physics.sensors.lidar import LidarSensor
+from vehicle_sim.physics.sensors.radar import RadarSensor
 
 # The physics registration: core sensor type -> its Sensor class (physics/sensors/sensor.py),
 # built as cls(world, body, spec, plane); checked against the core types when imported.
@@ -47,6 +48,7 @@ SENSOR_CLASSES = {
     'gnss': GnssSensor,
     'distance': RayDistanceSensor,
     'camera': CameraSensor,
+    'radar': RadarSensor,
 }
 check_layer('physics SENSOR_CLASSES (physics/sensors/suite.py)', SENSOR_CLASSES)
 
