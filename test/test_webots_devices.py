@@ -51,6 +51,7 @@ vehicles:
       - {name: imu, pose: {z: 0.5}}
       - {type: distance, name: front, device: distance sensor front, pose: {x: 4.6, z: 0.9},
          lookup_table: [[0.0, 0.0, 0.0], [20.0, 20.0, 0.0]]}
+      - {type: radar, name: radar, pose: {x: 4.6, z: 1.0}, horizontal_fov: 2.0}
   - name: parked
     namespace: parked
     pose: {x: 10.0, y: -6.0, yaw: 1.0}
@@ -97,9 +98,9 @@ def test_get_device_returns_the_webots_class_and_its_configuration(driver, row):
 def test_devices_are_listed_by_index_in_sensor_order(driver):
     names = [driver.getDeviceByIndex(i).getName() for i in range(driver.getNumberOfDevices())]
     assert names == ['Sick LMS 291', 'camera', 'gps', 'inertial unit', 'gyro', 'accelerometer',
-                     'distance sensor front']
+                     'distance sensor front', 'radar']
     with pytest.warns(WebotsWarning, match='outside'):
-        assert driver.getDeviceByIndex(7) is None
+        assert driver.getDeviceByIndex(8) is None
 
 
 def test_unknown_device_keeps_a_clear_error_listing_the_mounted_ones(driver):
@@ -241,6 +242,31 @@ def test_distance_sensor_value_and_range_come_from_its_lookup_table(driver):
     assert front.getType() == front.SONAR
 
 
+def test_radar_targets_as_webots_reads_them(driver):
+    # Webots' Radar (radar.md): RadarTarget distance, received_power, speed, azimuth; the
+    # azimuth > 0 to the right (WbRadar); none before the first sample
+    radar = driver.getDevice('radar')
+    radar.enable(10)
+    assert radar.getTargets() == [] and radar.getNumberOfTargets() == 0
+    for _ in range(5):
+        driver.step()
+    reading = driver.sensors.latest('radar')
+    targets = radar.getTargets()
+    assert radar.getNumberOfTargets() == len(targets) == len(reading.targets) >= 2
+    for target, truth in zip(targets, reading.targets):
+        assert target.distance == truth.distance_m
+        assert target.received_power == target.receiver_power == truth.received_power_dbm
+        assert target.speed == truth.speed_mps
+        assert target.azimuth == -truth.azimuth_rad
+    # the pole (y = +5) to the left: azimuth < 0; the parked car (y = -6) to the right: > 0;
+    # the wall straight ahead: 0
+    assert sorted(round(t.azimuth, 6) for t in targets) == [
+        pytest.approx(-math.atan2(5.0, 5.4), abs=1e-3), 0.0,
+        pytest.approx(math.atan2(4.317, 6.4806), abs=1e-3)]
+    assert radar.getHorizontalFov() == 2.0 and radar.getMinRange() == 1.0
+    assert radar.getMaxRange() == 50.0 and radar.getVerticalFov() == 0.1
+
+
 def test_camera_image_is_bgra_and_the_array_is_x_y_rgb(driver):
     camera = driver.getDevice('camera')
     _settle(driver, [camera], steps=1)
@@ -264,7 +290,7 @@ def test_world_file_from_the_environment_drives_its_first_vehicle(world_file, mo
         assert set(driver.world.obstacles) == {'wall', 'pole'}
         names = [b.body.name for b in driver.world.bodies if hasattr(b, 'body')]
         assert names == ['parked', 'ego']
-        assert driver.getNumberOfDevices() == 7
+        assert driver.getNumberOfDevices() == 8
 
 
 def test_shipped_obstacle_course_mounts_the_webots_car_devices(monkeypatch):

@@ -44,6 +44,7 @@ without a first sample of zero speeds.
 import math
 
 import numpy as np
+import pybullet
 
 from vehicle_sim.core.sensors.labels import LABELS
 from vehicle_sim.core.sensors.noise import GaussianNoise
@@ -75,6 +76,7 @@ class RadarSensor(Sensor):
     def __init__(self, world, body, spec, plane=None):
         super().__init__(world, body, spec, plane)
         self.candidates = RadarCandidates(world, body.body_id)
+        self._body_id = body.body_id
         self._factor = power_factor_w(spec)
         self._threshold = dbm_to_w(spec.min_detectable_signal_dbm)
         self._half_h = spec.horizontal_fov_rad / 2.0
@@ -110,12 +112,9 @@ class RadarSensor(Sensor):
         index = np.flatnonzero(seen)
         if len(index) == 0:
             return []
-        velocity, _ = self.mount.point_velocity(origin)
-        labels_of = self.world.labels.of
-        found = []
-        for i in index.tolist():
-            found.extend(self._target(i, ids, local, distance, radius, azimuth, elevation,
-                                      velocities, extents, yaw, velocity, rotation, labels_of))
+        velocity = self._own_velocity(origin)
+        found = self._checked(index, ids, local, distance, radius, azimuth, elevation,
+                              velocities, extents, yaw, velocity, rotation)
         if spec.occlusion and found:
             found = self._visible(found, origin, rotation)
         if spec.cell_distance_m > 0.0:
@@ -125,38 +124,53 @@ class RadarSensor(Sensor):
                             t['elevation'], t['position'], t['velocity'], t['size'], t['label'],
                             t['instance']) for t in found]
 
-    def _target(self, i, ids, local, distance, radius, azimuth, elevation, velocities, extents,
-                yaw, radar_velocity, rotation, labels_of):
-        # Webots' checks on one body in the cone; [] when it is not seen, else [its target].
+    def _own_velocity(self, origin):
+        # The mount point's world velocity: v_com + w x (p - p_com), two Bullet calls.
+        cid, body = self.world.client_id, self._body_id
+        com = pybullet.getBasePositionAndOrientation(body, physicsClientId=cid)[0]
+        (vx, vy, vz), (wx, wy, wz) = pybullet.getBaseVelocity(body, physicsClientId=cid)
+        rx, ry, rz = (float(origin[0]) - com[0], float(origin[1]) - com[1],
+                      float(origin[2]) - com[2])
+        return np.array((vx + wy * rz - wz * ry, vy + wz * rx - wx * rz,
+                         vz + wx * ry - wy * rx))
+
+    def _checked(self, index, ids, local, distance, radius, azimuth, elevation, velocities,
+                 extents, yaw, radar_velocity, rotation):
+        # Webots' checks on the bodies in the cone, all at once; the targets seen, as dicts.
         spec = self.spec
-        d = float(self._range_noise.add(distance[i]))
-        r = float(radius[i])
-        if d < spec.min_range_m - r:
-            return []
-        d = min(max(d, spec.min_range_m), spec.max_range_m)
-        label, instance = labels_of(int(ids[i]))
-        length, width, height = extents[i].tolist()
-        power = self._factor * REFLECTIVITY[label] * width * height / d ** 4
-        if power < self._threshold:
-            return []
-        relative = (velocities[i] - radar_velocity) @ rotation
-        line = local[i] / max(float(distance[i]), 1e-9)
-        speed = float(self._speed_noise.add(float(line @ relative)))
+        true_distance = distance[index]
+        d = np.asarray(self._range_noise.add(true_distance), dtype=float)
+        r = radius[index]
+        keep = d >= spec.min_range_m - r
+        d = np.clip(d, spec.min_range_m, spec.max_range_m)
+        labels_of = self.world.labels.of
+        label, instance = np.array([labels_of(body) for body in ids[index].tolist()],
+                                   dtype=np.int64).reshape(-1, 2).T
+        size = extents[index]
+        power = self._factor * REFLECTIVITY[label] * size[:, 1] * size[:, 2] / d ** 4
+        keep &= power >= self._threshold
+        relative = (velocities[index] - radar_velocity) @ rotation
+        line = local[index] / np.maximum(true_distance, 1e-9)[:, None]
+        speed = np.asarray(self._speed_noise.add((line * relative).sum(axis=1)), dtype=float)
         low, high = spec.min_radial_speed_mps, spec.max_radial_speed_mps
-        if (low or high) and not low <= speed <= high:
-            return []
-        if abs(speed) < spec.min_absolute_radial_speed_mps:
-            return []
+        if low or high:
+            keep &= (speed >= low) & (speed <= high)
+        keep &= np.abs(speed) >= spec.min_absolute_radial_speed_mps
         half = self._half_h
-        angle = float(self._angle_noise.add(min(max(float(azimuth[i]), -half), half)))
-        # the body's heading relative to the radar's x axis, for its size in the radar frame
-        heading = float(yaw[i]) - math.atan2(rotation[1, 0], rotation[0, 0])
-        c, s = abs(math.cos(heading)), abs(math.sin(heading))
-        size = (length * c + width * s, length * s + width * c, height)
-        return [{'range': d, 'power': power, 'speed': speed, 'azimuth': angle,
-                 'elevation': float(elevation[i]), 'position': tuple(local[i].tolist()),
-                 'velocity': tuple(relative.tolist()), 'size': size, 'label': int(label),
-                 'instance': int(instance), 'radius': r}]
+        angle = np.asarray(self._angle_noise.add(np.clip(azimuth[index], -half, half)),
+                           dtype=float)
+        # each body's extents along the radar's axes (its heading relative to the x axis)
+        heading = yaw[index] - math.atan2(rotation[1, 0], rotation[0, 0])
+        c, s = np.abs(np.cos(heading)), np.abs(np.sin(heading))
+        along = np.stack([size[:, 0] * c + size[:, 1] * s, size[:, 0] * s + size[:, 1] * c,
+                          size[:, 2]], axis=1)
+        at = index
+        return [{'range': float(d[k]), 'power': float(power[k]), 'speed': float(speed[k]),
+                 'azimuth': float(angle[k]), 'elevation': float(elevation[at[k]]),
+                 'position': tuple(local[at[k]].tolist()),
+                 'velocity': tuple(relative[k].tolist()), 'size': tuple(along[k].tolist()),
+                 'label': int(label[k]), 'instance': int(instance[k]), 'radius': float(r[k])}
+                for k in np.flatnonzero(keep).tolist()]
 
     def _visible(self, found, origin, rotation):
         # One ray to each target's centre: hidden when something is hit before its sphere.
