@@ -74,10 +74,9 @@ class SumoViews:
 
     def kinematics(self):
         """
-        Return the serving bodies now as arrays (physics/traffic_kinematics.py MotionTable).
+        Return the serving bodies now as a body table (physics/traffic_kinematics.py).
 
-        :return: (body ids, positions, velocities, extents, yaw): each body where it is now,
-            its velocity SUMO's speed along its heading.
+        Each body where it is now, its velocity SUMO's speed along its heading.
         """
         def rows():
             return [(slot.body_id, slot.motion, (slot.size[0], slot.size[1],

@@ -342,10 +342,9 @@ class TrafficBodies:
 
     def kinematics(self):
         """
-        Return the bodies on the map now as arrays (physics/traffic_kinematics.py MotionTable).
+        Return the bodies on the map now as a body table (physics/traffic_kinematics.py).
 
-        :return: (body ids, positions, velocities, extents, yaw): each box where it is now,
-            its velocity the vehicle's speed along its heading.
+        Each box where it is now, its velocity the vehicle's speed along its heading.
         """
         def rows():
             dimensions, motion = self.manager.dimensions, self._motion

@@ -26,35 +26,56 @@ the bodies have between updates.
 
 import numpy as np
 
+# The columns of a body table (one row per body): centre, velocity, extents (length, width,
+# height along its own axes), heading, bounding-sphere radius (half the extents' diagonal) and
+# body id (exact as a float).
+X, Y, Z, VX, VY, VZ, LENGTH, WIDTH, HEIGHT, YAW, RADIUS, BODY = range(12)
+COLUMNS = 12
+
+
+def body_table(ids, positions, velocities, extents, yaw):
+    """Return the (n, COLUMNS) body table of per-body sequences."""
+    count = len(ids)
+    table = np.empty((count, COLUMNS))
+    if count:
+        table[:, X:Z + 1] = positions
+        table[:, VX:VZ + 1] = velocities
+        table[:, LENGTH:HEIGHT + 1] = extents
+        table[:, YAW] = yaw
+        table[:, RADIUS] = 0.5 * np.sqrt((table[:, LENGTH:HEIGHT + 1] ** 2).sum(axis=1))
+        table[:, BODY] = ids
+    return table
+
 
 class MotionTable:
-    """The arrays of the traffic bodies' motion at the last update (the traffic-body contract)."""
+    """The traffic bodies' body table at the last update (the traffic-body contract)."""
 
     def __init__(self):
         self._table = None
+        self._rate = None
 
     def invalidate(self):
-        """Forget the arrays: an update placed the bodies again (or one stopped)."""
+        """Forget the table: an update placed the bodies again (or one stopped)."""
         self._table = None
 
     def now(self, since_s, rows):
         """
-        Return the bodies on the map now.
+        Return the bodies on the map now as a body table (columns: X .. BODY above).
 
         :param since_s: time since the last update [s].
         :param rows: ``rows()`` -> [(body id, (x, y, z, qz, qw, vx, vy), (length, width,
             height))] of the bodies on the map, called once per update.
-        :return: (body ids (n,) int64, positions (n, 3) [m], velocities (n, 3) [m/s], extents
-            (n, 3) [m]: length, width, height, yaw (n,) [rad]).
         """
         if self._table is None:
             found = rows()
-            ids = np.array([row[0] for row in found], dtype=np.int64)
             motion = np.array([row[1] for row in found], dtype=float).reshape(-1, 7)
-            extents = np.array([row[2] for row in found], dtype=float).reshape(-1, 3)
             velocity = np.zeros((len(found), 3))
             velocity[:, :2] = motion[:, 5:7]
-            yaw = 2.0 * np.arctan2(motion[:, 3], motion[:, 4])
-            self._table = (ids, motion[:, :3].copy(), velocity, extents, yaw)
-        ids, positions, velocity, extents, yaw = self._table
-        return ids, positions + velocity * since_s, velocity, extents, yaw
+            self._table = body_table([row[0] for row in found], motion[:, :3], velocity,
+                                     [row[2] for row in found] or np.zeros((0, 3)),
+                                     2.0 * np.arctan2(motion[:, 3], motion[:, 4]))
+            self._rate = np.zeros_like(self._table)      # d(table)/dt: the positions move
+            self._rate[:, X:Z + 1] = velocity
+        if not since_s:
+            return self._table
+        return self._table + self._rate * since_s

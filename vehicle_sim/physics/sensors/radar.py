@@ -58,8 +58,9 @@ from vehicle_sim.core.sensors.readings import RadarReading, RadarTarget
 from vehicle_sim.physics.sensors.radar_candidates import RadarCandidates
 from vehicle_sim.physics.sensors.rays import cast_rays
 from vehicle_sim.physics.sensors.sensor import Sensor
+from vehicle_sim.physics.traffic_kinematics import BODY, HEIGHT, LENGTH, RADIUS, VX, VZ, YAW
 
-REFLECTIVITY = np.array([label.reflectivity for label in LABELS])
+REFLECTIVITY = tuple(label.reflectivity for label in LABELS)
 OCCLUSION_MARGIN_M = 0.05     # a hit this much nearer than the target's sphere hides it
 
 
@@ -81,6 +82,10 @@ class RadarSensor(Sensor):
         self._threshold = dbm_to_w(spec.min_detectable_signal_dbm)
         self._half_h = spec.horizontal_fov_rad / 2.0
         self._half_v = spec.vertical_fov_rad / 2.0
+        # the sensor axes and the outward normals of the horizontal cone's two sides, as columns
+        cos_h, sin_h = math.cos(self._half_h), math.sin(self._half_h)
+        self._sides = np.array([[1.0, 0.0, 0.0, -sin_h, -sin_h], [0.0, 1.0, 0.0, cos_h, -cos_h],
+                                [0.0, 0.0, 1.0, 0.0, 0.0]])
         self._mask = world.ray_mask_excluding(body.body_id) if spec.occlusion else None
         self._range_noise = GaussianNoise(spec.range_noise_m, spec.seed, spec.name + '/range')
         self._speed_noise = GaussianNoise(spec.speed_noise_mps, spec.seed, spec.name + '/speed')
@@ -94,27 +99,24 @@ class RadarSensor(Sensor):
     def targets(self):
         """Return the RadarTargets now, nearest first."""
         spec = self.spec
-        ids, positions, velocities, extents, yaw = self.candidates.now()
-        if len(ids) == 0:
+        table = self.candidates.now()
+        if len(table) == 0:
             return []
         origin, rotation, _ = self.mount.world_frame()
-        local = (positions - origin) @ rotation
-        x, y, z = local[:, 0], local[:, 1], local[:, 2]
-        flat = np.hypot(x, y)
-        distance = np.hypot(flat, z)
-        radius = 0.5 * np.sqrt((extents * extents).sum(axis=1))
-        spread = np.arcsin(np.minimum(1.0, radius / np.maximum(distance, 1e-9)))
-        azimuth = np.arctan2(y, x)
-        elevation = np.arctan2(z, flat)
-        seen = ((distance - radius <= spec.max_range_m)
-                & (np.abs(azimuth) - spread <= self._half_h)
-                & (np.abs(elevation) - spread <= self._half_v))
-        index = np.flatnonzero(seen)
+        # one product gives each centre in the radar frame (x, y, z) and its distances past
+        # the two sides of the horizontal cone; a body is culled when its bounding sphere is
+        # beyond the range or wholly past a side (the exact test follows per body)
+        projected = (table[:, :3] - origin) @ (rotation @ self._sides)
+        local = projected[:, :3]
+        radius = table[:, RADIUS]
+        keep = np.einsum('ij,ij->i', local, local) <= (radius + spec.max_range_m) ** 2
+        if self._half_h < math.pi / 2.0:
+            keep &= projected[:, 3:].max(axis=1) <= radius
+        index = np.flatnonzero(keep)
         if len(index) == 0:
             return []
-        velocity = self._own_velocity(origin)
-        found = self._checked(index, ids, local, distance, radius, azimuth, elevation,
-                              velocities, extents, yaw, velocity, rotation)
+        found = self._checked(table[index].tolist(), local[index].tolist(), origin,
+                              rotation.tolist())
         if spec.occlusion and found:
             found = self._visible(found, origin, rotation)
         if spec.cell_distance_m > 0.0:
@@ -131,46 +133,62 @@ class RadarSensor(Sensor):
         (vx, vy, vz), (wx, wy, wz) = pybullet.getBaseVelocity(body, physicsClientId=cid)
         rx, ry, rz = (float(origin[0]) - com[0], float(origin[1]) - com[1],
                       float(origin[2]) - com[2])
-        return np.array((vx + wy * rz - wz * ry, vy + wz * rx - wx * rz,
-                         vz + wx * ry - wy * rx))
+        return (vx + wy * rz - wz * ry, vy + wz * rx - wx * rz, vz + wx * ry - wy * rx)
 
-    def _checked(self, index, ids, local, distance, radius, azimuth, elevation, velocities,
-                 extents, yaw, radar_velocity, rotation):
-        # Webots' checks on the bodies in the cone, all at once; the targets seen, as dicts.
+    def _checked(self, rows, local, origin, rotation):
+        # Webots' checks on each body left by the cull (few): the targets seen, as dicts.
         spec = self.spec
-        true_distance = distance[index]
-        d = np.asarray(self._range_noise.add(true_distance), dtype=float)
-        r = radius[index]
-        keep = d >= spec.min_range_m - r
-        d = np.clip(d, spec.min_range_m, spec.max_range_m)
-        labels_of = self.world.labels.of
-        label, instance = np.array([labels_of(body) for body in ids[index].tolist()],
-                                   dtype=np.int64).reshape(-1, 2).T
-        size = extents[index]
-        power = self._factor * REFLECTIVITY[label] * size[:, 1] * size[:, 2] / d ** 4
-        keep &= power >= self._threshold
-        relative = (velocities[index] - radar_velocity) @ rotation
-        line = local[index] / np.maximum(true_distance, 1e-9)[:, None]
-        speed = np.asarray(self._speed_noise.add((line * relative).sum(axis=1)), dtype=float)
+        sqrt, atan2, asin = math.sqrt, math.atan2, math.asin
+        half_h, half_v = self._half_h, self._half_v
+        min_range, max_range = spec.min_range_m, spec.max_range_m
         low, high = spec.min_radial_speed_mps, spec.max_radial_speed_mps
-        if low or high:
-            keep &= (speed >= low) & (speed <= high)
-        keep &= np.abs(speed) >= spec.min_absolute_radial_speed_mps
-        half = self._half_h
-        angle = np.asarray(self._angle_noise.add(np.clip(azimuth[index], -half, half)),
-                           dtype=float)
-        # each body's extents along the radar's axes (its heading relative to the x axis)
-        heading = yaw[index] - math.atan2(rotation[1, 0], rotation[0, 0])
-        c, s = np.abs(np.cos(heading)), np.abs(np.sin(heading))
-        along = np.stack([size[:, 0] * c + size[:, 1] * s, size[:, 0] * s + size[:, 1] * c,
-                          size[:, 2]], axis=1)
-        at = index
-        return [{'range': float(d[k]), 'power': float(power[k]), 'speed': float(speed[k]),
-                 'azimuth': float(angle[k]), 'elevation': float(elevation[at[k]]),
-                 'position': tuple(local[at[k]].tolist()),
-                 'velocity': tuple(relative[k].tolist()), 'size': tuple(along[k].tolist()),
-                 'label': int(label[k]), 'instance': int(instance[k]), 'radius': float(r[k])}
-                for k in np.flatnonzero(keep).tolist()]
+        limits = bool(low or high)
+        min_abs = spec.min_absolute_radial_speed_mps
+        labels_of = self.world.labels.of
+        (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = rotation
+        heading0 = atan2(r10, r00)        # the radar's x axis in the world, for the sizes
+        radar_velocity = None
+        found = []
+        for row, (x, y, z) in zip(rows, local):
+            flat = sqrt(x * x + y * y)
+            true_distance = sqrt(flat * flat + z * z)
+            r = row[RADIUS]
+            spread = asin(min(1.0, r / max(true_distance, 1e-9)))
+            azimuth, elevation = atan2(y, x), atan2(z, flat)
+            if (true_distance - r > max_range or abs(azimuth) - spread > half_h
+                    or abs(elevation) - spread > half_v):
+                continue
+            d = float(self._range_noise.add(true_distance)) if self._range_noise \
+                else true_distance
+            if d < min_range - r:
+                continue
+            d = min(max(d, min_range), max_range)
+            label, instance = labels_of(int(row[BODY]))
+            length, width, height = row[LENGTH:HEIGHT + 1]
+            power = self._factor * REFLECTIVITY[label] * width * height / d ** 4
+            if power < self._threshold:
+                continue
+            if radar_velocity is None:
+                radar_velocity = self._own_velocity(origin)
+            wx, wy, wz = (v - w for v, w in zip(row[VX:VZ + 1], radar_velocity))
+            relative = (wx * r00 + wy * r10 + wz * r20, wx * r01 + wy * r11 + wz * r21,
+                        wx * r02 + wy * r12 + wz * r22)
+            speed = (x * relative[0] + y * relative[1] + z * relative[2]) / max(
+                true_distance, 1e-9)
+            if self._speed_noise:
+                speed = float(self._speed_noise.add(speed))
+            if (limits and not low <= speed <= high) or abs(speed) < min_abs:
+                continue
+            angle = min(max(azimuth, -half_h), half_h)
+            if self._angle_noise:
+                angle = float(self._angle_noise.add(angle))
+            turn = row[YAW] - heading0
+            c, s = abs(math.cos(turn)), abs(math.sin(turn))
+            found.append({'range': d, 'power': power, 'speed': speed, 'azimuth': angle,
+                          'elevation': elevation, 'position': (x, y, z), 'velocity': relative,
+                          'size': (length * c + width * s, length * s + width * c, height),
+                          'label': label, 'instance': instance, 'radius': r})
+        return found
 
     def _visible(self, found, origin, rotation):
         # One ray to each target's centre: hidden when something is hit before its sphere.

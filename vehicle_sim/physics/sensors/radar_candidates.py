@@ -35,10 +35,12 @@ sphere's: their diameter).
 import numpy as np
 import pybullet
 
+from vehicle_sim.physics.traffic_kinematics import body_table
+
 
 class RadarCandidates:
     """
-    The object bodies of a world but one vehicle's, as arrays.
+    The object bodies of a world but one vehicle's, as one body table.
 
     :param world: the World.
     :param own_body_id: the radar's vehicle body (never a target of its own radar).
@@ -48,7 +50,7 @@ class RadarCandidates:
         self.world = world
         self.own = own_body_id
         self._key = None
-        self._static = None          # (ids, positions, velocities, extents, yaw) of fixed ones
+        self._static = None          # body table of the fixed obstacles
         self._free = ()              # [(body id, extents)] of obstacles Bullet moves
         self._traffic = ()           # the traffic parts (their kinematics())
         self._vehicles = {}          # body id -> extents of the other vehicles
@@ -70,10 +72,7 @@ class RadarCandidates:
                 yaw.append(spec.yaw_rad)
             else:
                 free.append((body_id, tuple(spec.size_m)))
-        count = len(ids)
-        self._static = (np.array(ids, dtype=np.int64), np.array(positions, float).reshape(-1, 3),
-                        np.zeros((count, 3)), np.array(extents, float).reshape(-1, 3),
-                        np.array(yaw, float))
+        self._static = body_table(ids, positions, np.zeros((len(ids), 3)), extents, yaw)
         self._free = tuple(free)
 
     def _vehicle_rows(self):
@@ -94,35 +93,35 @@ class RadarCandidates:
 
     def now(self):
         """
-        Return every object body now.
+        Return every object body now, in the world frame.
 
-        :return: (body ids (n,) int64, positions (n, 3) [m] of their centres, velocities (n, 3)
-            [m/s], extents (n, 3) [m], yaw (n,) [rad]), in the world frame.
+        :return: the (n, 12) body table (physics/traffic_kinematics.py columns: centre,
+            velocity, extents, heading, bounding radius, body id).
         """
         world = self.world
         key = (len(world.obstacles), len(world.bodies))
         if key != self._key:
             self._refresh()
             self._key = key
-        blocks = [self._static] + [part.kinematics() for part in self._traffic]
+        blocks = [part.kinematics() for part in self._traffic]
+        if len(self._static):
+            blocks.append(self._static)
         moving = list(self._free) + self._vehicle_rows()
         if moving:
             blocks.append(self._bullet_block(moving))
-        if len(blocks) == 1:
-            return blocks[0]
-        return tuple(np.concatenate(column) for column in zip(*blocks))
+        if not blocks:
+            return self._static
+        return blocks[0] if len(blocks) == 1 else np.concatenate(blocks)
 
     def _bullet_block(self, rows):
         # Bullet's pose and velocity of bodies it moves: centre of mass, its linear velocity.
         cid = self.world.client_id
         pose, velocity = pybullet.getBasePositionAndOrientation, pybullet.getBaseVelocity
-        ids, positions, velocities, extents, yaw = [], [], [], [], []
-        for body_id, size in rows:
+        positions, velocities, yaw = [], [], []
+        for body_id, _ in rows:
             position, (qx, qy, qz, qw) = pose(body_id, physicsClientId=cid)
-            ids.append(body_id)
             positions.append(position)
             velocities.append(velocity(body_id, physicsClientId=cid)[0])
-            extents.append(size)
             yaw.append(np.arctan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz)))
-        return (np.array(ids, dtype=np.int64), np.array(positions, float),
-                np.array(velocities, float), np.array(extents, float), np.array(yaw, float))
+        return body_table([row[0] for row in rows], positions, velocities,
+                          [row[1] for row in rows], yaw)
