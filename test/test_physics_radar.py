@@ -25,12 +25,13 @@ import math
 import pybullet
 import pytest
 
-from vehicle_sim.config import load_car
+from vehicle_sim.config import load_car, read_yaml, world_from_data, world_path
 from vehicle_sim.core.sensors.labels import LABEL_IDS
 from vehicle_sim.core.sensors.params import sensor_from_dict
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.world.params import obstacle_from_dict
 from vehicle_sim.physics import World
+from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.physics.sensors import SensorSuite
 from vehicle_sim.physics.simulated_car import SimulatedCar
 
@@ -189,3 +190,45 @@ def test_bad_radar_fields_are_refused_naming_the_field(field, value, message):
     with pytest.raises(InvalidParameterError, match=message.replace('(', r'\(').replace(
             ')', r'\)')):
         sensor_from_dict({'type': 'radar', 'name': 'r', field: value}, 'w.yaml: radar')
+
+
+def test_traffic_targets_are_where_bullet_has_the_boxes_with_their_speed():
+    # Built-in traffic on the highway: each target is at a traffic box's centre as Bullet has it
+    # (between traffic updates), its radial speed the vehicle's speed along its heading.
+    data = read_yaml(world_path('highway'))
+    data['traffic'] = {'vehicles': 30, 'seed': 3}
+    scene = build_scene(world_from_data(data, 'highway.yaml'))
+    try:
+        world = scene.world
+        car = scene.vehicles['Car'].car
+        spec = sensor_from_dict({'type': 'radar', 'name': 'radar', 'pose': {'x': 2.0, 'z': 0.6},
+                                 'horizontal_fov': 6.283, 'vertical_fov': 0.6,
+                                 'max_range': 150.0}, 'test')
+        radar = SensorSuite(world, car.body, [spec]).sensors['radar']
+        for _ in range(23):                 # between two traffic updates (every 10 steps)
+            world.step()
+        targets = radar.targets()
+        assert len(targets) >= 3
+        origin, rotation, _ = radar.mount.world_frame()
+        world.sync_bodies()
+        traffic = scene.parts['traffic']
+        boxes = {body: pybullet.getBasePositionAndOrientation(
+            body, physicsClientId=world.client_id)[0] for body in traffic.body_ids}
+        speeds = {body: v.speed_mps
+                  for v, body in zip(traffic.manager.vehicles, traffic.body_ids)}
+        own = pybullet.getBaseVelocity(car.body.body_id, physicsClientId=world.client_id)[0]
+        for target in targets:
+            centre = origin + rotation @ target.position_m
+            body = min(boxes, key=lambda b: sum((p - c) ** 2 for p, c in zip(boxes[b], centre)))
+            assert boxes[body] == pytest.approx(tuple(centre), abs=1e-6)
+            _, orientation = pybullet.getBasePositionAndOrientation(
+                body, physicsClientId=world.client_id)
+            heading = 2.0 * math.atan2(orientation[2], orientation[3])
+            speed = speeds[body]
+            line = (centre - origin) / target.distance_m
+            relative = (speed * math.cos(heading) - own[0], speed * math.sin(heading) - own[1])
+            # the radar's own velocity at its mount differs from the body's by w x r (< 1 mm/s)
+            assert target.speed_mps == pytest.approx(
+                line[0] * relative[0] + line[1] * relative[1], abs=1e-3)
+    finally:
+        scene.world.close()
