@@ -13,8 +13,9 @@
 # limitations under the License.
 
 """
-A radar's topics recorded in process and read back with rosbags (an independent reader and CDR
-decoder, its types built from the file's own schemas): radar_msgs RadarTracks and RadarScan.
+A radar's topics (radar_msgs RadarTracks and RadarScan) recorded in process, read by rosbags.
+
+rosbags is an independent reader and CDR decoder, its types built from the file's own schemas.
 
 The world is test_ros_radar.py's: a car with a radar and a crate 20 m ahead of it.
 """
