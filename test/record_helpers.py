@@ -26,7 +26,7 @@ from vehicle_sim.ros.automobile_node import AutomobileNode, NODE_NAME
 from vehicle_sim.transport import create_node
 
 
-def record_automobile(path, namespace, drive, tap=None, **recorder_options):
+def record_automobile(path, namespace, drive, tap=None, parameters=(), **recorder_options):
     """
     Record the automobile node (synchronous, under ``namespace``) in process while it is driven.
 
@@ -34,11 +34,13 @@ def record_automobile(path, namespace, drive, tap=None, **recorder_options):
     :param drive: ``drive(app)``: sets the car going and steps the AutomobileNode ``app``;
         what it returns is handed back.
     :param tap: ``tap(topic, ros_type, qos)`` for each publisher the node creates.
+    :param parameters: more of the node's ``-p name:=value`` arguments (``world:=...``).
     :param recorder_options: passed on to ``record_node`` (``opener``, ``chunk_size``).
     :return: (what ``drive`` returned, the recorder, its ``close()``: None when all was written).
     """
     node = create_node(NODE_NAME, args=['rt', '--ros-args', '-r', f'__ns:={namespace}',
-                                        '-p', 'synchronous:=true'], transport='dds')
+                                        '-p', 'synchronous:=true', *parameters],
+                       transport='dds')
     recorder = record_node(node, path, **recorder_options)
     if tap is not None:
         node.tap_publishers(tap)

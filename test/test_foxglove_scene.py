@@ -117,7 +117,7 @@ def test_a_registered_source_adds_its_entities_after_the_built_in_ones(monkeypat
     scene = SimpleNamespace(vehicles={}, spec=SimpleNamespace(obstacles=()), obstacles={})
     assert fs.scene_entities(scene) == [sign]
     assert list(fs.ENTITY_SOURCES) == ['vehicles', 'obstacles', 'traffic', 'map', 'lanes',
-                                       'signals', 'radar', 'signs']
+                                       'signals', 'radar_targets', 'signs']
     assert fs.STATIC_SOURCES == {'map', 'lanes'}
 
 
@@ -147,9 +147,9 @@ def test_radar_targets_are_spheres_at_their_centres_with_a_line_from_the_radar()
                                  'pose': {'x': 2.0, 'z': 0.75}}, 'w.yaml')
         suite = SensorSuite(world, car.body, [spec])
         scene = SimpleNamespace(vehicles={'ego': SimpleNamespace(sensors=suite)})
-        assert fs.scene_entities(scene, ['radar']) == []          # no reading yet
+        assert fs.scene_entities(scene, ['radar_targets']) == []          # no reading yet
         reading = suite.sample('front')
-        entity, = fs.scene_entities(scene, ['radar'])
+        entity, = fs.scene_entities(scene, ['radar_targets'])
         origin = suite.sensors['front'].mount.world_frame()[0]
     assert entity.id == 'radar/ego/front' and entity.frame_id == fs.WORLD_FRAME
     sphere, = entity.primitives

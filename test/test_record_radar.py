@@ -24,13 +24,9 @@ import pytest
 
 pytest.importorskip('mcap', reason="recording needs the mcap package (the 'record' extra)")
 
-from record_helpers import typestore  # noqa: E402
+from record_helpers import record_automobile, typestore  # noqa: E402
 from rosbags.rosbag2 import Reader  # noqa: E402
 from test_ros_radar import WORLD  # noqa: E402
-
-from vehicle_sim.recording.recorder import record_node  # noqa: E402
-from vehicle_sim.ros.automobile_node import AutomobileNode, NODE_NAME  # noqa: E402
-from vehicle_sim.transport import create_node  # noqa: E402
 
 STEPS = 50                  # 0.5 s at 10 ms: five radar readings at 10 Hz
 
@@ -39,26 +35,22 @@ def test_radar_topics_record_and_read_back_with_rosbags(tmp_path):
     world = tmp_path / 'radar_world.yaml'
     world.write_text(WORLD)
     path = str(tmp_path / 'radar.mcap')
-    node = create_node(NODE_NAME, args=['rt', '--ros-args', '-p', f'world:={world}',
-                                        '-p', 'synchronous:=true'], transport='dds')
-    recorder = record_node(node, path)
-    app = AutomobileNode(node=node)
-    try:
+
+    def drive(app):
         for _ in range(STEPS):
             app.step_once()
-    finally:
-        error = recorder.close()
-        app.close()
+    _, _, error = record_automobile(path, '/rec_radar', drive,
+                                    parameters=('-p', f'world:={world}'))
     assert error is None
     found = {}
     with Reader(path) as reader:
         store = typestore(reader.connections)
         for connection, timestamp, raw in reader.messages():
-            if connection.topic.startswith('/radar_ns/front_radar/'):
+            if connection.topic.startswith('/rec_radar/radar_ns/front_radar/'):
                 msg = store.deserialize_cdr(raw, connection.msgtype)
                 found.setdefault(connection.topic, []).append((connection.msgtype, msg))
-    tracks = found['/radar_ns/front_radar/tracks']
-    scans = found['/radar_ns/front_radar/scan']
+    tracks = found['/rec_radar/radar_ns/front_radar/tracks']
+    scans = found['/rec_radar/radar_ns/front_radar/scan']
     assert len(tracks) == len(scans) == 5
     assert {t for t, _ in tracks} == {'radar_msgs/msg/RadarTracks'}
     assert {t for t, _ in scans} == {'radar_msgs/msg/RadarScan'}

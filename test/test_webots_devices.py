@@ -311,6 +311,26 @@ def test_lidar_example_controller_stops_before_the_wall():
     assert 0.5 < gap_m < 5.0          # stopped before the wall, without touching it
 
 
+def test_radar_example_controller_stops_behind_the_parked_car():
+    # examples/radar_controller.py, Webots' style, on config/worlds/radar_stop.yaml: the box's
+    # centre 60 m ahead, the radar at the front bumper (4.5 m): it stops short of the box's rear
+    env = dict(os.environ, VEHICLE_SIM_WORLD='radar_stop')
+    result = subprocess.run([sys.executable, str(REPO / 'examples' / 'radar_controller.py')],
+                            capture_output=True, text=True, env=env, timeout=300)
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.strip().splitlines()
+    assert 'stopped' in lines[-1], result.stdout
+    distance_m = float(lines[-1].split('target ')[1].split(' m')[0])
+    assert 2.25 + 0.5 < distance_m < 2.25 + 10.0     # the box's rear 0.5 .. 10 m ahead
+    # while cruising, the radial speed is the car's speed, closing (< 0)
+    cruising = [line for line in lines if 'speed=' in line and 'radial speed' in line]
+    for line in cruising:
+        speed_kmh = float(line.split('speed=')[1].split(' km/h')[0])
+        radial = float(line.split('radial speed')[1].split(' m/s')[0])
+        assert radial == pytest.approx(-speed_kmh / 3.6, abs=0.1)
+    assert len(cruising) >= 5
+
+
 def test_a_world_whose_vehicle_starts_inside_an_obstacle_is_refused_naming_both(tmp_path):
     # As the node and the scenario runner refuse it: the check is where vehicles join a World.
     path = tmp_path / 'crate.yaml'

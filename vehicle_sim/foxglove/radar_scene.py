@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Radar targets in the live view: the entity source ``'radar'`` (foxglove/scene.py).
+Radar targets in the live view: the entity source ``'radar_targets'`` (foxglove/scene.py).
 
 Each mounted radar of each vehicle is one entity, ``radar/<vehicle>/<sensor>``, redrawn at each
 update from its last reading: a sphere at each target's centre, in its label's colour (the label
@@ -60,7 +60,7 @@ def radar_entity(entity_id, origin, rotation, reading) -> Entity:
 
 
 def radar_entities(scene) -> List[Entity]:
-    """Return every mounted radar's last targets (the entity source ``'radar'``)."""
+    """Return every mounted radar's last targets (the entity source ``'radar_targets'``)."""
     found = []
     for name, vehicle in scene.vehicles.items():
         sensors = getattr(vehicle, 'sensors', None)

@@ -119,6 +119,7 @@ class TrafficBodies:
     What every engine's traffic part offers (the traffic-body contract, read by the node, the
     scenarios, the Gym environment and the live view; docs/traffic.md): :meth:`reset`,
     :meth:`agents`, :meth:`moving_names`, :meth:`objects`, :meth:`boxes`, :meth:`body_of`,
+    :meth:`kinematics`,
     :attr:`follow_params`, ``colours`` and :attr:`since_update_s`. Each body is a named
     obstacle of the World, placed (never moved by Bullet).
 

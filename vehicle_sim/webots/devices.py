@@ -36,6 +36,7 @@ import numbers
 
 from vehicle_sim.core.sensors.params import check_layer
 from vehicle_sim.webots.api_table import DEVICE_API
+from vehicle_sim.webots.radar_device import RadarMethods, RadarTarget
 from vehicle_sim.webots.webots_warning import warn
 
 NAN3 = [math.nan] * 3
@@ -372,8 +373,9 @@ def _make_spec_getter(name, attr, kind):
     return getter
 
 
-# Device classes in modules of their own (they subclass Device above).
-from vehicle_sim.webots.radar_device import Radar, RadarTarget  # noqa: E402, I100
+class Radar(RadarMethods, Device):
+    """Webots Radar: the targets of the last sample, none before the first (radar_device.py)."""
+
 
 # The Webots registration is DEVICE_API (webots/api_table.py): each row names a device class of
 # this module and the core sensor type it serves; checked against the core types when imported.

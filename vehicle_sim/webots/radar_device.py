@@ -15,11 +15,11 @@
 """
 Webots Radar (radar.md): ``getTargets`` and ``getNumberOfTargets`` of the last sample.
 
-The field getters (getMinRange, getMaxRange, getHorizontalFov, getVerticalFov) come from the
-DEVICE_API row (webots/api_table.py); enable, disable and getSamplingPeriod from Device.
+:class:`RadarMethods` are the Radar's own methods; webots/devices.py makes the ``Radar`` device
+of them and its ``Device`` base (enable, disable, getSamplingPeriod, the last reading), and the
+field getters (getMinRange, getMaxRange, getHorizontalFov, getVerticalFov) come from its
+DEVICE_API row (webots/api_table.py).
 """
-
-from vehicle_sim.webots.devices import Device
 
 
 class RadarTarget:
@@ -46,8 +46,8 @@ class RadarTarget:
                 f'speed={self.speed}, azimuth={self.azimuth})')
 
 
-class Radar(Device):
-    """Webots Radar: the targets of the last sample (none before the first)."""
+class RadarMethods:
+    """Webots Radar's methods over a Device's last reading (``_reading``)."""
 
     def getTargets(self):
         """Return the targets of the last sample, nearest first ([] before the first)."""

@@ -207,7 +207,7 @@ def camera_matrices(fx, fy, cx, cy):
 
 
 @dataclass(frozen=True)
-class RadarTarget:
+class RadarDetection:
     """
     One radar target (Webots WbRadarTarget, plus the ground truth of what it is).
 
@@ -238,4 +238,4 @@ class RadarReading:
 
     name: str
     time_s: float
-    targets: Tuple[RadarTarget, ...]
+    targets: Tuple[RadarDetection, ...]

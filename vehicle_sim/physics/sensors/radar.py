@@ -54,7 +54,7 @@ from vehicle_sim.core.sensors.radar_equation import (
     power_factor_w,
     w_to_dbm,
 )
-from vehicle_sim.core.sensors.readings import RadarReading, RadarTarget
+from vehicle_sim.core.sensors.readings import RadarDetection, RadarReading
 from vehicle_sim.physics.sensors.radar_candidates import RadarCandidates
 from vehicle_sim.physics.sensors.rays import cast_rays
 from vehicle_sim.physics.sensors.sensor import Sensor
@@ -97,7 +97,7 @@ class RadarSensor(Sensor):
         return RadarReading(self.spec.name, time_s, tuple(self.targets()))
 
     def targets(self):
-        """Return the RadarTargets now, nearest first."""
+        """Return the RadarDetections now, nearest first."""
         spec = self.spec
         table = self.candidates.now()
         if len(table) == 0:
@@ -122,9 +122,9 @@ class RadarSensor(Sensor):
         if spec.cell_distance_m > 0.0:
             found = merge_targets(found, spec.cell_distance_m, spec.cell_speed_mps)
         found.sort(key=lambda t: t['range'])
-        return [RadarTarget(t['range'], w_to_dbm(t['power']), t['speed'], t['azimuth'],
-                            t['elevation'], t['position'], t['velocity'], t['size'], t['label'],
-                            t['instance']) for t in found]
+        return [RadarDetection(t['range'], w_to_dbm(t['power']), t['speed'], t['azimuth'],
+                               t['elevation'], t['position'], t['velocity'], t['size'],
+                               t['label'], t['instance']) for t in found]
 
     def _own_velocity(self, origin):
         # The mount point's world velocity: v_com + w x (p - p_com), two Bullet calls.
