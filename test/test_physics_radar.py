@@ -34,6 +34,7 @@ from vehicle_sim.physics import World
 from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.physics.sensors import SensorSuite
 from vehicle_sim.physics.simulated_car import SimulatedCar
+from vehicle_sim.physics.traffic_kinematics import BODY, HEIGHT, LENGTH, X, Z
 
 CAR_SIZE = (4.5, 1.8, 1.5)
 CAR_REFLECTIVITY = 0.5          # core/sensors/labels.py: car
@@ -230,5 +231,36 @@ def test_traffic_targets_are_where_bullet_has_the_boxes_with_their_speed():
             # the radar's own velocity at its mount differs from the body's by w x r (< 1 mm/s)
             assert target.speed_mps == pytest.approx(
                 line[0] * relative[0] + line[1] * relative[1], abs=1e-3)
+    finally:
+        scene.world.close()
+
+
+def test_sumo_bodies_kinematics_are_where_bullet_has_them(tmp_path):
+    # The traffic-body contract's kinematics() of SUMO's bodies (vehicles and persons): each
+    # serving body once, at Bullet's pose between SUMO's steps, with its type's size.
+    pytest.importorskip('libsumo', reason="needs the 'sumo' extra")
+    from test_physics_sumo_city import city_net, DEMAND, EGO_LANE, EGO_S
+    data = {'vehicles': [{'name': 'ego', 'model': 'Car', 'pose': {'lane': EGO_LANE, 's': EGO_S}}],
+            'map': {'type': 'sumo', 'net': city_net(tmp_path)},
+            'traffic': {'engine': 'sumo', 'demand': DEMAND, 'seed': 1}}
+    scene = build_scene(world_from_data(data, 'city.yaml', base_dir=str(tmp_path)))
+    try:
+        bodies, world = scene.parts['traffic'], scene.world
+        for _ in range(1503):              # between two SUMO steps (every 10 world steps)
+            world.step()
+        table = bodies.kinematics()
+        world.sync_bodies()
+        boxes = {body_id: size for _, body_id, size, _, _ in bodies.boxes()}
+        assert sorted(table[:, BODY].astype(int).tolist()) == sorted(boxes)
+        assert len(boxes) >= 6
+        for row in table:
+            body_id = int(row[BODY])
+            position, _ = pybullet.getBasePositionAndOrientation(
+                body_id, physicsClientId=world.client_id)
+            assert tuple(row[X:Z + 1]) == pytest.approx(position, abs=1e-6)
+            length, width, height = row[LENGTH:HEIGHT + 1]
+            size = boxes[body_id]
+            assert height == pytest.approx(size[2])
+            assert (length, width) == pytest.approx(size[:2]) or width == pytest.approx(size[0])
     finally:
         scene.world.close()
