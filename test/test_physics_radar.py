@@ -34,7 +34,7 @@ from vehicle_sim.physics import World
 from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.physics.sensors import SensorSuite
 from vehicle_sim.physics.simulated_car import SimulatedCar
-from vehicle_sim.physics.traffic_kinematics import BODY, HEIGHT, LENGTH, X, Z
+from vehicle_sim.physics.traffic_kinematics import BODY, HEIGHT, LENGTH, VX, VZ, X, Z
 
 CAR_SIZE = (4.5, 1.8, 1.5)
 CAR_REFLECTIVITY = 0.5          # core/sensors/labels.py: car
@@ -248,7 +248,7 @@ def test_sumo_bodies_kinematics_are_where_bullet_has_them(tmp_path):
         bodies, world = scene.parts['traffic'], scene.world
         for _ in range(1503):              # between two SUMO steps (every 10 world steps)
             world.step()
-        table = bodies.kinematics()
+        table, since = bodies.kinematics()
         world.sync_bodies()
         boxes = {body_id: size for _, body_id, size, _, _ in bodies.boxes()}
         assert sorted(table[:, BODY].astype(int).tolist()) == sorted(boxes)
@@ -257,7 +257,8 @@ def test_sumo_bodies_kinematics_are_where_bullet_has_them(tmp_path):
             body_id = int(row[BODY])
             position, _ = pybullet.getBasePositionAndOrientation(
                 body_id, physicsClientId=world.client_id)
-            assert tuple(row[X:Z + 1]) == pytest.approx(position, abs=1e-6)
+            assert tuple(row[X:Z + 1] + row[VX:VZ + 1] * since) == pytest.approx(position,
+                                                                     abs=1e-6)
             length, width, height = row[LENGTH:HEIGHT + 1]
             size = boxes[body_id]
             assert height == pytest.approx(size[2])

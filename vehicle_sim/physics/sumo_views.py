@@ -74,9 +74,10 @@ class SumoViews:
 
     def kinematics(self):
         """
-        Return the serving bodies now as a body table (physics/traffic_kinematics.py).
+        Return the serving bodies: a body table and the time since (traffic_kinematics.py).
 
-        Each body where it is now, its velocity SUMO's speed along its heading.
+        Each body as placed at SUMO's last step, its velocity SUMO's speed along its heading:
+        where it is now is that plus the velocity times the time since.
         """
         def rows():
             return [(slot.body_id, slot.motion, (slot.size[0], slot.size[1],

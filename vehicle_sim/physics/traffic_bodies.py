@@ -343,9 +343,10 @@ class TrafficBodies:
 
     def kinematics(self):
         """
-        Return the bodies on the map now as a body table (physics/traffic_kinematics.py).
+        Return the bodies on the map: a body table and the time since (traffic_kinematics.py).
 
-        Each box where it is now, its velocity the vehicle's speed along its heading.
+        Each box as placed at the last update, its velocity the vehicle's speed along its
+        heading: where it is now is that plus the velocity times the time since.
         """
         def rows():
             dimensions, motion = self.manager.dimensions, self._motion

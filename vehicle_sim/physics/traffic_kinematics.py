@@ -18,10 +18,11 @@ The traffic bodies' motion as arrays: where each body on the map is now and how 
 Both traffic engines place their bodies (never moved by Bullet) at each update and let them go
 on straight at their speed until the next: each keeps, per body on the map, its pose and
 velocity at the last update (``(x, y, z, qz, qw, vx, vy)``). :class:`MotionTable` turns those
-into arrays once per update and gives the bodies' positions now from them, so a reader of many
-bodies (the radar, physics/sensors/radar.py) pays a few array operations, not a PyBullet call
-per body. The velocities are the engines' own (speed along the heading), exact for the motion
-the bodies have between updates.
+into one array once per update, a *body table*, the same object until the next update, so a
+reader of many bodies (the radar, physics/sensors/radar.py) may keep what it derived from it,
+and takes the positions now as ``X..Z + VX..VZ * since``: no PyBullet call per body. The
+velocities are the engines' own (speed along the heading), exact for the motion the bodies have
+between updates.
 """
 
 import numpy as np
@@ -52,7 +53,6 @@ class MotionTable:
 
     def __init__(self):
         self._table = None
-        self._rate = None
 
     def invalidate(self):
         """Forget the table: an update placed the bodies again (or one stopped)."""
@@ -60,11 +60,13 @@ class MotionTable:
 
     def now(self, since_s, rows):
         """
-        Return the bodies on the map now as a body table (columns: X .. BODY above).
+        Return the bodies on the map at the last update and the time since.
 
         :param since_s: time since the last update [s].
         :param rows: ``rows()`` -> [(body id, (x, y, z, qz, qw, vx, vy), (length, width,
             height))] of the bodies on the map, called once per update.
+        :return: (body table at the last update (columns X .. BODY above; the same array until
+            the next update), ``since_s``): a body is at ``X..Z + VX..VZ * since_s`` now.
         """
         if self._table is None:
             found = rows()
@@ -74,8 +76,4 @@ class MotionTable:
             self._table = body_table([row[0] for row in found], motion[:, :3], velocity,
                                      [row[2] for row in found] or np.zeros((0, 3)),
                                      2.0 * np.arctan2(motion[:, 3], motion[:, 4]))
-            self._rate = np.zeros_like(self._table)      # d(table)/dt: the positions move
-            self._rate[:, X:Z + 1] = velocity
-        if not since_s:
-            return self._table
-        return self._table + self._rate * since_s
+        return self._table, since_s

@@ -40,7 +40,7 @@ from vehicle_sim.physics.traffic_kinematics import body_table
 
 class RadarCandidates:
     """
-    The object bodies of a world but one vehicle's, as one body table.
+    The object bodies of a world but one vehicle's, as body tables.
 
     :param world: the World.
     :param own_body_id: the radar's vehicle body (never a target of its own radar).
@@ -93,25 +93,27 @@ class RadarCandidates:
 
     def now(self):
         """
-        Return every object body now, in the world frame.
+        Return every object body now, in the world frame, as blocks.
 
-        :return: the (n, 12) body table (physics/traffic_kinematics.py columns: centre,
-            velocity, extents, heading, bounding radius, body id).
+        :return: [(body table (physics/traffic_kinematics.py columns: centre, velocity,
+            extents, heading, bounding radius, body id), since [s], kept)]: a body is at
+            ``X..Z + VX..VZ * since`` now; ``kept``: the table is the same object while its
+            bodies' motion is (a traffic part's until its next update, the fixed obstacles'
+            for good), so what a reader derives from it holds as long; the bodies Bullet
+            moves (free obstacles, other vehicles) come in a table of their own made now.
         """
         world = self.world
         key = (len(world.obstacles), len(world.bodies))
         if key != self._key:
             self._refresh()
             self._key = key
-        blocks = [part.kinematics() for part in self._traffic]
+        blocks = [part.kinematics() + (True,) for part in self._traffic]
         if len(self._static):
-            blocks.append(self._static)
+            blocks.append((self._static, 0.0, True))
         moving = list(self._free) + self._vehicle_rows()
         if moving:
-            blocks.append(self._bullet_block(moving))
-        if not blocks:
-            return self._static
-        return blocks[0] if len(blocks) == 1 else np.concatenate(blocks)
+            blocks.append((self._bullet_block(moving), 0.0, False))
+        return blocks
 
     def _bullet_block(self, rows):
         # Bullet's pose and velocity of bodies it moves: centre of mass, its linear velocity.
