@@ -267,6 +267,37 @@ def test_radar_targets_as_webots_reads_them(driver):
     assert radar.getMaxRange() == 50.0 and radar.getVerticalFov() == 0.1
 
 
+# Webots' radar.md (Python tabs) and its Python controller's radar.py: every method and property
+RADAR_METHODS = ('enable', 'disable', 'getSamplingPeriod', 'getMinRange', 'getMaxRange',
+                 'getHorizontalFov', 'getVerticalFov', 'getNumberOfTargets', 'getTargets')
+RADAR_PROPERTIES = ('min_range', 'max_range', 'horizontal_fov', 'vertical_fov',
+                    'number_of_targets', 'targets', 'sampling_period')
+
+
+def test_radar_has_every_method_and_property_of_webots_radar(driver):
+    radar = driver.getDevice('radar')
+    spec = driver.sensors.specs['radar']
+    for name in RADAR_METHODS:
+        assert callable(getattr(radar, name)), name
+    assert (radar.min_range, radar.max_range) == (spec.min_range_m, spec.max_range_m)
+    assert radar.horizontal_fov == radar.getHorizontalFov() == spec.horizontal_fov_rad
+    assert radar.vertical_fov == radar.getVerticalFov() == spec.vertical_fov_rad
+    assert radar.sampling_period == radar.getSamplingPeriod() == 0
+    radar.enable(20)
+    assert radar.getSamplingPeriod() == 20
+    for _ in range(4):
+        driver.step()
+    assert radar.number_of_targets == radar.getNumberOfTargets() == len(radar.targets) == 3
+    assert all(hasattr(radar, name) for name in RADAR_PROPERTIES)
+    target = radar.getTargets()[0]
+    assert [type(getattr(target, name)) for name in (
+        'distance', 'received_power', 'receiver_power', 'speed', 'azimuth')] == [float] * 5
+    radar.disable()
+    assert radar.getSamplingPeriod() == 0
+    with pytest.warns(WebotsWarning, match='disabled device'):
+        assert radar.getTargets() == []
+
+
 def test_camera_image_is_bgra_and_the_array_is_x_y_rgb(driver):
     camera = driver.getDevice('camera')
     _settle(driver, [camera], steps=1)

@@ -47,7 +47,12 @@ class RadarTarget:
 
 
 class RadarMethods:
-    """Webots Radar's methods over a Device's last reading (``_reading``)."""
+    """
+    Webots Radar's methods over a Device's last reading (``_reading``).
+
+    With the snake_case properties of Webots' Python Radar (radar.py): targets,
+    number_of_targets, min_range, max_range, horizontal_fov, vertical_fov.
+    """
 
     def getTargets(self):
         """Return the targets of the last sample, nearest first ([] before the first)."""
@@ -65,6 +70,22 @@ class RadarMethods:
     @property
     def targets(self):
         return self.getTargets()
+
+    @property
+    def min_range(self):
+        return self.getMinRange()
+
+    @property
+    def max_range(self):
+        return self.getMaxRange()
+
+    @property
+    def horizontal_fov(self):
+        return self.getHorizontalFov()
+
+    @property
+    def vertical_fov(self):
+        return self.getVerticalFov()
 
     @property
     def number_of_targets(self):
