@@ -18,7 +18,8 @@ Every performance figure of issues 10, 20 and 21 in one table: measured, target,
 Issue 20's are the Gymnasium environment's (bench_gym.py); issue 21's the recorder's
 (bench_record.py); issue 28's highway_traffic over ROS in real time (bench_traffic_ros.py);
 issue 30's the lidar on a SLAM-like occupancy map (bench_occupancy_lidar.py); issue 31's the city
-on SUMO (bench_sumo.py); issue 32's the radar (bench_radar.py).
+on SUMO (bench_sumo.py); issue 32's perception ground truth (bench_perception.py, the labelled
+lidar: bench_lidar_labels.py, the radar: bench_radar.py).
 
 ``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
 also run alone and say more); each ratio is measured in this run, its two sides interleaved or
@@ -123,9 +124,19 @@ def _sumo_figures(quick):
     return bench_sumo.figures(quick)
 
 
+def _perception_figures(quick):
+    # Issue 32: the depth of a camera's view (and what else it renders) against colour only.
+    import bench_perception
+    found = bench_perception.figures(quick)
+    return [('640 x 480 camera + range finder at the same mount / the camera alone, per step',
+             found['ratio'], '<=', bench_perception.TARGET_RATIO, 'x'),
+            ('  same, camera alone', found['camera_ms'], None, None, 'ms/step')]
+
+
 def collect(quick):
     """Run every benchmark; return (rows, floors)."""
     import bench_lane_world
+    import bench_lidar_labels
     import bench_maps
     import bench_occupancy_lidar
     import bench_plugin
@@ -162,6 +173,7 @@ def collect(quick):
     plugin_subset = bench_plugin.figures(1000 if quick else 6000, bench_plugin.SUBSET)
     maps = bench_maps.figures(quick)
     slam = bench_occupancy_lidar.figures(quick)
+    lidar_labels = bench_lidar_labels.figures(quick)
     radar, numpy_op_us = bench_radar.figures(quick)
     import tempfile
     with tempfile.TemporaryDirectory(prefix='bench_record_') as folder:
@@ -174,6 +186,7 @@ def collect(quick):
     lane_world = bench_lane_world.figures(quick)
     traffic_ros = bench_traffic_ros.figures(quick)
     sumo_rows, sumo_context = _sumo_figures(quick)
+    perception_rows = _perception_figures(quick)
     found['write_us'] = bare_write_us()
     found['matched_write_us'] = matched_write_us()
     bare_p50, bare_p99 = service['bare']
@@ -209,6 +222,8 @@ def collect(quick):
          1.3, 'x'),
         ('  same map: load time', slam['load_s'], '<=', 2.0, 's'),
         ('  same map: RSS added by loading it (stated)', slam['rss_mb'], None, None, 'MB'),
+        ('labelled lidar 32 x 1024 rays (label, instance, intensity) / the same lidar plain',
+         lidar_labels['ratio'], '<=', bench_lidar_labels.TARGET_RATIO, 'x'),
         ('in-process step, every topic recorded (--record) / not recorded', rec_plain, '<=',
          bench_record.TARGET_RATIO, 'x'),
         ('  same, recorded / every topic published without recording', rec_published, None,
@@ -234,7 +249,7 @@ def collect(quick):
          bench_traffic.TARGETS[50], 'x'),
         ('highway with 200 traffic cars, in-process real-time factor', traffic[200][0], '>=',
          bench_traffic.TARGETS[200], 'x'),
-    ] + gym_rows + sumo_rows + [
+    ] + gym_rows + sumo_rows + perception_rows + [
         (f'radar ({name}) with {bench_radar.CARS} traffic cars, median reading, CPU time '
          f'(numpy op here: {numpy_op_us:.2f} us)', us, '<=', bench_radar.TARGET_US, 'us')
         for name, (us, _, _) in radar.items()]

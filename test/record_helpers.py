@@ -34,13 +34,13 @@ def record_automobile(path, namespace, drive, tap=None, parameters=(), **recorde
     :param drive: ``drive(app)``: sets the car going and steps the AutomobileNode ``app``;
         what it returns is handed back.
     :param tap: ``tap(topic, ros_type, qos)`` for each publisher the node creates.
-    :param parameters: more of the node's ``-p name:=value`` arguments (``world:=...``).
+    :param parameters: more node parameters, ``'name:=value'`` each (``'world:=<file>'``).
     :param recorder_options: passed on to ``record_node`` (``opener``, ``chunk_size``).
     :return: (what ``drive`` returned, the recorder, its ``close()``: None when all was written).
     """
+    extra = [arg for parameter in parameters for arg in ('-p', parameter)]
     node = create_node(NODE_NAME, args=['rt', '--ros-args', '-r', f'__ns:={namespace}',
-                                        '-p', 'synchronous:=true', *parameters],
-                       transport='dds')
+                                        '-p', 'synchronous:=true', *extra], transport='dds')
     recorder = record_node(node, path, **recorder_options)
     if tap is not None:
         node.tap_publishers(tap)

@@ -148,8 +148,9 @@ def test_the_camera_sees_the_stop_line_the_zebra_and_the_parking_area_on_the_roa
     with World() as world:
         world.show_ground()
         built = build_lane_bodies(world, signal_crossing())
-        # the rules add one body: the parking area (all white paint is one mesh with the lines)
-        assert len(built.visual_ids) == 3
+        # the rules add two bodies: the parking area and the crosswalk's stripes (the lines'
+        # white paint is one mesh, the crosswalks' another: their labels differ)
+        assert len(built.visual_ids) == 4
         pixel = _top_view(world)
         white, asphalt = pixel(-2.0, 0.0), pixel(-3.0, 0.0)          # on / before the line
         # (the renderer shades both alike: paint 0.95 and asphalt 0.3 keep their ratio)

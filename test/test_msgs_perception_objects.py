@@ -26,9 +26,9 @@ import pytest
 
 from vehicle_msgs_py import message_type, to_rosbags, type_hash, typestore
 from vehicle_sim.core.traffic.objects import TrafficObject
+from vehicle_sim.physics.body_labels import instance_uuid
 from vehicle_sim.ros.traffic_messages import (
     DELETE,
-    object_uuid,
     predicted_objects_builder,
     traffic_markers_builder,
 )
@@ -76,8 +76,9 @@ def test_type_hash_is_the_pinned_value(name, digest):
 
 def objects():
     return (TrafficObject(0, 'traffic_0', 10.0, -5.625, 0.0, 20.0, 4.3, 1.8, 1.5,
-                          ((20.0, -5.625, 0.0), (30.0, -5.625, 0.0)), 0.5),
-            TrafficObject(3, 'traffic_3', 50.0, -1.875, 0.1, 0.0, 4.6, 1.9, 1.7, (), 0.5))
+                          ((20.0, -5.625, 0.0), (30.0, -5.625, 0.0)), 0.5, instance_id=1),
+            TrafficObject(3, 'traffic_3', 50.0, -1.875, 0.1, 0.0, 4.6, 1.9, 1.7, (), 0.5,
+                          instance_id=4))
 
 
 def stamp():
@@ -91,8 +92,9 @@ def test_predicted_objects_serialize_as_rosbags_does():
         == data
     assert type(message).deserialize(data) == message
     first, second = message.objects
-    assert bytes(first.object_id.uuid) == object_uuid('traffic_0') != \
-        bytes(second.object_id.uuid)
+    # the UUID of the instance id: the object's id in every perception output
+    assert bytes(first.object_id.uuid) == instance_uuid(1) == bytes(15) + b'\x01'
+    assert bytes(second.object_id.uuid) == instance_uuid(4)
     assert first.kinematics.initial_pose_with_covariance.pose.position.z == 0.75   # h / 2
     assert [p.position.x for p in first.kinematics.predicted_paths[0].path] == [20.0, 30.0]
     assert second.kinematics.initial_pose_with_covariance.pose.orientation.z == \
@@ -120,7 +122,8 @@ def test_obstacles_follow_the_vehicles_as_unknown_objects_at_rest():
     pole = obstacle_from_dict({'name': 'pole', 'shape': 'cylinder', 'radius': 0.2,
                                'height': 2.0, 'position': [10.0, 5.0, 1.0], 'mass': 3.0},
                               'w.yaml')
-    found = obstacle_objects((wall, pole), pose_of=lambda name: (11.0, 5.5, 1.0, 0.0))
+    found = obstacle_objects((wall, pole), pose_of=lambda name: (11.0, 5.5, 1.0, 0.0),
+                             instance_of={'wall': 7, 'pole': 8}.get)
     assert [(o.name, o.x_m, o.y_m, o.yaw_rad) for o in found] == [
         ('wall', 20.0, 0.0, 0.3), ('pole', 11.0, 5.5, 0.0)]       # the pole is movable
     message = predicted_objects_builder(message_type, 'map')(stamp(), objects()[:1], found)
@@ -132,7 +135,8 @@ def test_obstacles_follow_the_vehicles_as_unknown_objects_at_rest():
     assert wall_object.kinematics.initial_twist_with_covariance.twist.linear.x == 0.0
     assert (wall_object.shape.type, wall_object.shape.dimensions.y) == (0, 6.0)  # BOUNDING_BOX
     assert (pole_object.shape.type, pole_object.shape.dimensions.x) == (1, 0.4)  # CYLINDER
-    assert bytes(wall_object.object_id.uuid) == object_uuid('wall')
+    assert bytes(wall_object.object_id.uuid) == instance_uuid(7)
+    assert bytes(pole_object.object_id.uuid) == instance_uuid(8)
     data = message.serialize()
     assert bytes(typestore().serialize_cdr(to_rosbags(message), PKG + 'PredictedObjects')) \
         == data

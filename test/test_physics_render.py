@@ -68,3 +68,18 @@ def test_nothing_drawn_reads_inf_and_no_body():
         assert (frame.bodies == -1).all()
     finally:
         world.close()
+
+
+def test_a_body_moved_between_steps_is_rendered_where_it_is_now():
+    world = World()
+    try:
+        body = _wall(world, 7.0)
+        centre = (VIEW.height // 2, VIEW.width // 2)
+        assert world.renderer.render(VIEW, (0.0, 0.0, 1.0), LOOK_ALONG_X).depth_m[centre] == \
+            pytest.approx(7.0, abs=0.01)
+        (_, orientation), velocity, joints = world.body_state(body)
+        world.restore_body_state(body, (((12.5, 0.0, 2.0), orientation), velocity, joints))
+        assert world.renderer.render(VIEW, (0.0, 0.0, 1.0), LOOK_ALONG_X).depth_m[centre] == \
+            pytest.approx(12.0, abs=0.02)
+    finally:
+        world.close()

@@ -40,7 +40,7 @@ def test_radar_topics_record_and_read_back_with_rosbags(tmp_path):
         for _ in range(STEPS):
             app.step_once()
     _, _, error = record_automobile(path, '/rec_radar', drive,
-                                    parameters=('-p', f'world:={world}'))
+                                    parameters=(f'world:={world}',))
     assert error is None
     found = {}
     with Reader(path) as reader:

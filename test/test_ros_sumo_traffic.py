@@ -34,11 +34,14 @@ pytest.importorskip('libsumo', reason="needs the 'sumo' extra")
 from test_physics_sumo_city import city_net, DEMAND, EGO_LANE, EGO_S  # noqa: E402
 
 from vehicle_sim.core.map.signal_programs import SUMO_STATES  # noqa: E402
+from vehicle_sim.core.sensors.labels import label_of_class  # noqa: E402
+from vehicle_sim.physics.body_labels import instance_uuid  # noqa: E402
+from vehicle_sim.physics.sumo_pool import instance_name  # noqa: E402
 from vehicle_sim.ros.traffic_interfaces import (  # noqa: E402
     PREDICTED_OBJECTS_TOPIC,
     TRAFFIC_SIGNALS,
 )
-from vehicle_sim.ros.traffic_messages import ELEMENT_COLOR, object_uuid  # noqa: E402
+from vehicle_sim.ros.traffic_messages import ELEMENT_COLOR  # noqa: E402
 from vehicle_sim.transport.qos import QosProfile, TRANSIENT_LOCAL  # noqa: E402
 
 pytestmark = pytest.mark.transport
@@ -110,7 +113,11 @@ def _truth(bodies):
         person = sumo_id in persons
         kind = (api.person if person else api.vehicle).getTypeID(sumo_id)
         vclass = None if person else api.vehicle.getVehicleClass(sumo_id)
-        found[object_uuid(o.name)] = (o, person, vclass, (
+        # the UUID of the instance id of its body's SUMO vehicle or person
+        label, instance = bodies.world.labels.of(bodies.body_of(o.name))
+        assert instance == bodies.world.labels.instance(instance_name(person, sumo_id))
+        assert label == label_of_class(o.object_class)
+        found[instance_uuid(instance)] = (o, person, vclass, (
             api.vehicletype.getLength(kind), api.vehicletype.getWidth(kind),
             api.vehicletype.getHeight(kind)))
     return found

@@ -27,13 +27,13 @@ import math
 from automobile_helpers import client_node, wait_for
 import pytest
 
+from vehicle_sim.physics.body_labels import instance_uuid
 from vehicle_sim.ros.traffic_interfaces import (
     PREDICTED_OBJECTS_TOPIC,
     QOS_OBJECTS,
     TRAFFIC_MARKERS,
     TRAFFIC_TOPICS,
 )
-from vehicle_sim.ros.traffic_messages import object_uuid
 from vehicle_sim.transport.qos import QosProfile
 
 pytestmark = pytest.mark.transport
@@ -82,7 +82,8 @@ def test_objects_and_markers_over_the_wire_match_the_world(app):
     assert objects.header.stamp.nanosec == 100_000_000     # 10 steps of 10 ms
     first = objects.objects[0]
     v = on_map[0]
-    assert bytes(first.object_id.uuid) == object_uuid(v.name)
+    assert bytes(first.object_id.uuid) == instance_uuid(
+        app.world.labels.of(app.scene.parts['traffic'].body_of(v.name))[1])
     assert [(c.label, c.probability) for c in first.classification] == [(1, 1.0)]   # CAR
     pose = first.kinematics.initial_pose_with_covariance.pose
     # where it is at the stamp: the manager's last update (at 0 s) gone on straight 0.1 s
@@ -113,7 +114,7 @@ def run_highway(tmp_path, name, steps, parameters=None, **keys):
     Run the highway with ``keys`` added to its world file ``steps`` steps.
 
     :return: (the node's object rows (its publishers), {row name: the messages a client node
-        received}).
+        received}, its World, closed).
     """
     import copy
 
@@ -138,15 +139,15 @@ def run_highway(tmp_path, name, steps, parameters=None, **keys):
             node.step(steps)
             assert wait_for(lambda: all(received.values()), spin=client)
             client.spin_once(0.2)      # the last ones, if any
-        return rows, received
+        return rows, received, node.world
     finally:
         node.close()
 
 
 def objects_of_highway(tmp_path, name, **keys):
-    """Run the highway with ``keys`` added to its world file; return (rows, objects)."""
-    rows, received = run_highway(tmp_path, name, 10, **keys)
-    return rows, received[PREDICTED_OBJECTS_TOPIC.name][-1].objects
+    """Run the highway with ``keys`` added to its world file; return (rows, objects, world)."""
+    rows, received, world = run_highway(tmp_path, name, 10, **keys)
+    return rows, received[PREDICTED_OBJECTS_TOPIC.name][-1].objects, world
 
 
 def stamps(messages):
@@ -183,7 +184,7 @@ def test_objects_and_markers_come_every_0_1_s_of_simulated_time_by_default(app):
 def test_the_objects_rate_sets_the_period_of_objects_and_markers(tmp_path, parameters,
                                                                   traffic, period_s):
     name = f'rate_{int(1 / period_s)}'
-    _, received = run_highway(tmp_path, name, 100, parameters,
+    _, received, _ = run_highway(tmp_path, name, 100, parameters,
                               traffic={'vehicles': 3, 'seed': 2, **traffic})
     for topic, messages in received.items():
         times = stamps(messages)
@@ -193,9 +194,11 @@ def test_the_objects_rate_sets_the_period_of_objects_and_markers(tmp_path, param
 
 
 def test_a_world_with_obstacles_and_no_traffic_publishes_its_obstacles_as_objects(tmp_path):
-    rows, objects = objects_of_highway(tmp_path, 'cone_only', obstacles=[CONE])
+    rows, objects, world = objects_of_highway(tmp_path, 'cone_only', obstacles=[CONE])
     assert rows == (PREDICTED_OBJECTS_TOPIC,)          # the objects, not the traffic markers
-    assert [bytes(o.object_id.uuid) for o in objects] == [object_uuid('cone')]
+    cone = world.labels.of(world.obstacles['cone'])         # (label, instance) of its body
+    assert [bytes(o.object_id.uuid) for o in objects] == [instance_uuid(cone[1])]
+    assert cone[1] > 0
     assert [o.classification[0].label for o in objects] == [0]          # UNKNOWN
 
 
@@ -225,12 +228,15 @@ def test_sim_reset_starts_the_traffic_again(app):
 
 
 def test_obstacles_of_a_traffic_world_are_objects_too(tmp_path):
-    rows, objects = objects_of_highway(tmp_path, 'traffic_cone', obstacles=[CONE],
+    rows, objects, world = objects_of_highway(tmp_path, 'traffic_cone', obstacles=[CONE],
                                        traffic={'vehicles': 3, 'seed': 2})
     assert rows == TRAFFIC_TOPICS
     assert [o.classification[0].label for o in objects] == [1, 1, 1, 0]
     cone = objects[-1]
-    assert bytes(cone.object_id.uuid) == object_uuid('cone')
+    # the UUID of the cone's instance id, that of the cone's body (its lidar points, pixels)
+    assert bytes(cone.object_id.uuid) == instance_uuid(
+        world.labels.of(world.obstacles['cone'])[1])
+    assert len({bytes(o.object_id.uuid) for o in objects}) == 4
     position = cone.kinematics.initial_pose_with_covariance.pose.position
     assert (position.x, position.y, position.z) == (50.0, -14.0, 0.35)
     assert (cone.shape.type, cone.shape.dimensions.z) == (1, 0.7)

@@ -34,6 +34,7 @@ import yaml
 from vehicle_msgs_py import message_type
 from vehicle_sim.config import read_yaml, world_path
 from vehicle_sim.core.traffic.objects import CLASS_SHAPES, OBJECT_CLASSES, TrafficObject
+from vehicle_sim.physics.body_labels import instance_uuid
 from vehicle_sim.ros import traffic_messages as tm
 from vehicle_sim.ros.traffic_interfaces import PREDICTED_OBJECTS_TOPIC, TRAFFIC_MARKERS
 from vehicle_sim.transport.qos import QosProfile
@@ -98,7 +99,7 @@ def test_objects_and_markers_carry_each_vehicles_class_over_the_wire(tmp_path, m
     diameter, height = WALKER_M
     for v, item, marker in zip(vehicles, objects, markers):
         name = CLASSES[v.index % len(CLASSES)]
-        assert bytes(item.object_id.uuid) == tm.object_uuid(v.name)
+        assert bytes(item.object_id.uuid) == instance_uuid(node.world.labels.instance(v.name))
         assert [(c.label, c.probability) for c in item.classification] == \
             [(LABELS[name], 1.0)], name
         dimensions = item.shape.dimensions

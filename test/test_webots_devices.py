@@ -51,6 +51,8 @@ vehicles:
       - {name: imu, pose: {z: 0.5}}
       - {type: distance, name: front, device: distance sensor front, pose: {x: 4.6, z: 0.9},
          lookup_table: [[0.0, 0.0, 0.0], [20.0, 20.0, 0.0]]}
+      - {type: range_finder, name: depth_cam, pose: {x: 1.5, z: 1.3}, width: 64, height: 48,
+         max_range: 50.0}
       - {type: radar, name: radar, pose: {x: 4.6, z: 1.0}, horizontal_fov: 2.0}
   - name: parked
     namespace: parked
@@ -98,9 +100,9 @@ def test_get_device_returns_the_webots_class_and_its_configuration(driver, row):
 def test_devices_are_listed_by_index_in_sensor_order(driver):
     names = [driver.getDeviceByIndex(i).getName() for i in range(driver.getNumberOfDevices())]
     assert names == ['Sick LMS 291', 'camera', 'gps', 'inertial unit', 'gyro', 'accelerometer',
-                     'distance sensor front', 'radar']
+                     'distance sensor front', 'depth_cam', 'radar']
     with pytest.warns(WebotsWarning, match='outside'):
-        assert driver.getDeviceByIndex(8) is None
+        assert driver.getDeviceByIndex(9) is None
 
 
 def test_unknown_device_keeps_a_clear_error_listing_the_mounted_ones(driver):
@@ -321,7 +323,7 @@ def test_world_file_from_the_environment_drives_its_first_vehicle(world_file, mo
         assert set(driver.world.obstacles) == {'wall', 'pole'}
         names = [b.body.name for b in driver.world.bodies if hasattr(b, 'body')]
         assert names == ['parked', 'ego']
-        assert driver.getNumberOfDevices() == 8
+        assert driver.getNumberOfDevices() == 9
 
 
 def test_shipped_obstacle_course_mounts_the_webots_car_devices(monkeypatch):

@@ -59,7 +59,7 @@ from vehicle_sim.core.world.params import RobotSpec, WorldSpec
 from vehicle_sim.gym.controls import make_control
 from vehicle_sim.gym.episode import CriteriaWatch, judged_criteria
 from vehicle_sim.gym.observations import ego_parts, PART_FACTORIES, sensor_spec
-from vehicle_sim.gym.options import CAMERA, LIDAR, SOURCE, validate_options
+from vehicle_sim.gym.options import CAMERA, LIDAR, RANGE_FINDER, SOURCE, validate_options
 from vehicle_sim.physics.scene import build_scene
 from vehicle_sim.physics.sensors.collisions import CollisionMonitor
 from vehicle_sim.scenarios.actors import make_actor
@@ -197,7 +197,8 @@ class DriveSim:
         opts = self.options
         lidar = sensor_spec(opts[LIDAR], LIDAR, vehicle, SOURCE)
         camera = sensor_spec(opts[CAMERA], CAMERA, vehicle, SOURCE)
-        self._parts = ego_parts(scene.world, vehicle, lidar, camera)
+        depth = sensor_spec(opts[RANGE_FINDER], RANGE_FINDER, vehicle, SOURCE)
+        self._parts = ego_parts(scene.world, vehicle, lidar, camera, depth)
         return self._parts
 
     def _scenario_goal(self):

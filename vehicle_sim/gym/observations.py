@@ -24,6 +24,10 @@ The observation parts of the Gym environment: each one fills some keys of the Di
   at -fov/2 (right), counter-clockwise; no return reads max_range, closer than min_range 0.
 - ``camera``: (height, width, 3) uint8 in [0, 255]: an RGB picture of a camera on the ego,
   rows top to bottom.
+- ``depth`` (option ``range_finder``): (height, width) float32 [m] in [0, max_range]: the depth
+  along the optical axis of a range finder on the ego, rows top to bottom; nothing within
+  max_range (+inf on the ROS image) reads max_range, a noisy depth under min_range 0 (as the
+  lidar: a Box needs finite bounds).
 
 - ``lane``, ``lane_id`` (a world with lanes): the ego's lane state (lanes.py).
 
@@ -42,15 +46,19 @@ from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.sensors.params import sensor_from_dict
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.gym.lanes import lane_part
-from vehicle_sim.gym.options import CAMERA, LIDAR
+from vehicle_sim.gym.options import CAMERA, DEPTH, LIDAR, RANGE_FINDER
 from vehicle_sim.physics.sensors.camera import CameraSensor
 from vehicle_sim.physics.sensors.lidar import LidarSensor
+from vehicle_sim.physics.sensors.range_finder import RangeFinderSensor
 
 INF = np.inf
 # Default mounts of a lidar (true) above base_link [m]: a car's roof, a robot's top.
 CAR_SENSOR_HEIGHT_M = 1.5
 ROBOT_SENSOR_HEIGHT_M = 0.3
 DEFAULT_CAMERA = {'width': 84, 'height': 84, 'fov': 1.2}
+# The default range finder has the default camera's view (near, far: the camera's defaults), so
+# the two at the same mount share one render.
+DEFAULT_RANGE_FINDER = dict(DEFAULT_CAMERA, min_range=0.05, max_range=100.0)
 
 
 class OdometryPart:
@@ -133,13 +141,34 @@ class CameraPart:
         out[CAMERA] = self.sensor.sample(self.world.time_s).rgb
 
 
+class RangeFinderPart:
+    """``depth``: a range finder on the ego, rendered at each observation (CPU renderer)."""
+
+    def __init__(self, world, body, spec):
+        self.spec = spec
+        self.world = world
+        self.sensor = RangeFinderSensor(world, body, spec)
+
+    def spaces(self):
+        return {DEPTH: (0.0, self.spec.max_range_m, (self.spec.height, self.spec.width),
+                        np.float32)}
+
+    def reset(self):
+        pass
+
+    def read(self, out):
+        depth = self.sensor.sample(self.world.time_s).depth_m
+        depth = np.where(depth == INF, self.spec.max_range_m, depth)
+        out[DEPTH] = np.clip(depth, 0.0, self.spec.max_range_m).astype(np.float32)
+
+
 def sensor_spec(option, kind, vehicle, source):
     """
-    Return the SensorSpec an option asks for (the ``lidar`` or ``camera`` option), or None.
+    Return the SensorSpec an option asks for (``lidar``, ``camera``, ``range_finder``), or None.
 
     :param option: None/False (none), True (the default one), a sensor name of the ego's
         world entry, or a mapping of the type's keys (docs/sensors.md).
-    :param kind: LIDAR or CAMERA (the type names).
+    :param kind: LIDAR, CAMERA or RANGE_FINDER (the type names).
     :param vehicle: the ego's SceneVehicle.
     :raises InvalidParameterError: for an unknown name or a bad key, naming the option.
     """
@@ -158,18 +187,22 @@ def sensor_spec(option, kind, vehicle, source):
     data = {'type': kind, 'name': f'gym_{kind}', 'pose': {'z': height}}
     if kind == CAMERA:
         data.update(DEFAULT_CAMERA)
+    if kind == RANGE_FINDER:
+        data.update(DEFAULT_RANGE_FINDER)
     if isinstance(option, dict):
         data.update(option)
     return sensor_from_dict(data, where)
 
 
-def ego_parts(world, vehicle, lidar_spec, camera_spec):
-    """Return the built-in parts of the ego: odometry, then the lidar and the camera if asked."""
+def ego_parts(world, vehicle, lidar_spec, camera_spec, range_finder_spec=None):
+    """Return the built-in parts of the ego: odometry, then the lidar, camera, range finder."""
     parts = [OdometryPart(vehicle.body)]
     if lidar_spec is not None:
         parts.append(LidarPart(world, vehicle.body, lidar_spec))
     if camera_spec is not None:
         parts.append(CameraPart(world, vehicle.body, camera_spec))
+    if range_finder_spec is not None:
+        parts.append(RangeFinderPart(world, vehicle.body, range_finder_spec))
     return parts
 
 

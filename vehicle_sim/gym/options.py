@@ -24,7 +24,7 @@ naming the key and the rule, before anything is built. docs/gym.md shows the tab
 
 from dataclasses import replace
 
-from vehicle_sim.core.sensors.params import CameraSpec, LidarSpec, SENSOR_TYPES
+from vehicle_sim.core.sensors.params import CameraSpec, LidarSpec, RangeFinderSpec, SENSOR_TYPES
 from vehicle_sim.core.specs.param_spec import parameter_table_markdown, ParamSpec, validate_table
 from vehicle_sim.core.specs.simulation import TIME_STEP_MS
 
@@ -40,6 +40,8 @@ def registered_type(spec_class):
 # The sensor options and observation keys are named after their sensor types.
 LIDAR = registered_type(LidarSpec)
 CAMERA = registered_type(CameraSpec)
+RANGE_FINDER = registered_type(RangeFinderSpec)
+DEPTH = 'depth'                     # the range finder's observation key
 
 
 def _sensor_option(value):
@@ -82,6 +84,9 @@ OPTION_SPECS = (
                   '(docs/sensors.md)'),
     ParamSpec(CAMERA, kind='raw', default=None, optional=True, check=_sensor_option,
               doc='camera observation: as lidar (true = 84 x 84 px)'),
+    ParamSpec(RANGE_FINDER, kind='raw', default=None, optional=True, check=_sensor_option,
+              doc="range finder observation (key 'depth'): as lidar (true = 84 x 84 px, the "
+                  "default camera's view: 1.2 rad, 0.05 .. 100 m)"),
     ParamSpec('goal', kind='floats', default=None, unit='m', length=2, optional=True,
               doc="goal [x, y]: progress toward it, episode ends inside 'goal_radius'; null = "
                   "the scenario's reach_goal"),

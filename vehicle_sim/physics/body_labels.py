@@ -31,6 +31,9 @@ ids. After 65535 names they start again from 1 (documented wrap; a SUMO city of 
 
 A camera's segmentation mask and Bullet's ray tests give a body id (and a link index for a
 multi-link body); :meth:`BodyLabels.lookup` turns arrays of them into label and instance arrays.
+What is drawn flat on the ground (the lane layer's visual meshes, which rays pass) is looked up
+by position: :meth:`BodyLabels.ground_labels` (a ray that met the ground plane on a road reads
+``road``).
 """
 
 from typing import Dict, Optional, Tuple
@@ -58,6 +61,7 @@ class BodyLabels:
         self._instances: Dict[str, int] = {}
         self._next_instance = 1
         self._table: Optional[np.ndarray] = None               # body id -> (label, instance)
+        self._surfaces = []                                    # drawn on the ground (rasters)
 
     def instance(self, name: str) -> int:
         """Return the instance id of the object ``name``, handing out the next on first use."""
@@ -92,6 +96,38 @@ class BodyLabels:
         for key in [key for key in self._links if key[0] == int(body_id)]:
             del self._links[key]
         self._table = None
+
+    def add_surface(self, surface):
+        """
+        Add what is drawn on the ground plane (the lane layer's road, paint and areas).
+
+        :param surface: an object with ``labels_at(x, y)`` -> label ids (0: nothing drawn),
+            core/map/surface_raster.py's SurfaceRaster.
+        """
+        self._surfaces.append(surface)
+
+    @property
+    def has_surfaces(self) -> bool:
+        """Whether something is drawn on the ground (:meth:`ground_labels` differ)."""
+        return bool(self._surfaces)
+
+    def ground_labels(self, x_m, y_m) -> np.ndarray:
+        """
+        Return the label ids (uint8) of the ground plane at points: what is drawn there.
+
+        The last surface added that draws something at a point wins; ``ground`` where none does
+        (a ray passes the drawn meshes and meets the ground plane under them).
+        """
+        found = np.full(np.shape(x_m), LABEL_IDS['ground'], dtype=np.uint8)
+        for surface in self._surfaces:
+            drawn = surface.labels_at(x_m, y_m)
+            found = np.where(drawn > 0, drawn, found)
+        return found
+
+    @property
+    def has_links(self) -> bool:
+        """Whether any link has a label of its own (else a body's links read as the body)."""
+        return bool(self._links)
 
     def of(self, body_id: int, link: int = -1) -> Tuple[int, int]:
         """Return (label id, instance id) of a body's link; unlabelled: (obstacle, 0)."""

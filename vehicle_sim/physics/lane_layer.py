@@ -23,7 +23,10 @@ core/map/lane_geometry.py:
   stop lines as white bars, crosswalks as zebra stripes, the other areas flat in their kind's
   colour, core/map/lane_geometry.py): a few visual-only meshes just above the ground (no
   collision shape: cars drive on the ground plane as before, rays pass through, cameras see
-  them), one body per colour (all the white paint in one) and per VERTICES_PER_BODY vertices;
+  them), one body per colour and label (the lines' paint in one, the crosswalks' in another;
+  :data:`AREA_LABELS`) and per VERTICES_PER_BODY vertices; the same meshes as a raster of
+  labels (core/map/surface_raster.py, ``World.labels.add_surface``) for the rays, which pass
+  them and meet the ground plane;
 - curbstones, road borders and walls/fences/guard rails: one box per line piece
   (``BARRIER_WIDTH_M`` wide, the height of its type), merged into static triangle meshes as the
   occupancy grid's walls are, named ``lanes`` through ``World.add_static`` (collisions report
@@ -55,12 +58,19 @@ from vehicle_sim.core.map.lane_geometry import (
     surface_mesh,
 )
 from vehicle_sim.core.map.lane_graph import LaneGraph
+from vehicle_sim.core.map.surface_raster import SurfaceRaster
+from vehicle_sim.core.sensors.labels import LABEL_IDS
 from vehicle_sim.core.specs.value_text import count
 
 LANES_BODY_NAME = 'lanes'
 SURFACE_COLOR = (0.3, 0.3, 0.32, 1.0)     # asphalt
 MARKING_COLOR = PAINT_COLOR               # white paint
 BARRIER_COLOR = (0.7, 0.7, 0.68, 1.0)     # concrete
+# The label (core/sensors/labels.py) of the areas drawn flat, by MapArea kind; any other kind
+# (parking, keepout, a regulatory element's area) lies on the road: 'road'. The road surface
+# (junctions included) is 'road', the painted lines and stop lines 'lane_marking', crosswalks'
+# stripes 'crosswalk', the barriers 'wall'.
+AREA_LABELS = {'walkway': 'sidewalk', 'sidewalk': 'sidewalk', 'building': 'wall'}
 # Vertices of one mesh body (PyBullet takes at most 131072 per mesh).
 VERTICES_PER_BODY = 65536
 # The faces of a box from its 8 corners (0..3 at the ground, 4..7 on top, counter-clockwise
@@ -134,6 +144,13 @@ def visual_bodies(world, mesh: Mesh, rgba) -> Tuple[int, ...]:
     return tuple(ids)
 
 
+def label_bodies(world, body_ids, label) -> Tuple[int, ...]:
+    """Give ``body_ids`` the label ``label`` (``World.labels``, no instance); return them."""
+    for body_id in body_ids:
+        world.labels.set(body_id, label)
+    return tuple(body_ids)
+
+
 def barrier_boxes(graph: LaneGraph) -> np.ndarray:
     """Return float (n, 8, 3): the corners of every barrier piece's box, world frame [m]."""
     pieces = barriers(graph)
@@ -203,11 +220,19 @@ def build_lane_bodies(world, graph: LaneGraph, spec=None) -> LaneMap:
     barrier_ids = solid_box_bodies(world, corners)
     if barrier_ids:
         world.add_static(LANES_BODY_NAME, barrier_ids, inside_boxes(corners))
-    visual_ids = visual_bodies(world, surface_mesh(graph), SURFACE_COLOR)
-    for kind, mesh in area_meshes(graph).items():
-        visual_ids += visual_bodies(world, mesh, area_color(kind))
-    paint = join_meshes(marking_mesh(graph), stop_line_mesh(graph), crosswalk_mesh(graph))
-    visual_ids += visual_bodies(world, paint, MARKING_COLOR)
+    label_bodies(world, barrier_ids, 'wall')
+    # (label, mesh, colour) from the bottom layer up, as drawn
+    layers = [('road', surface_mesh(graph), SURFACE_COLOR)]
+    layers += [(AREA_LABELS.get(kind, 'road'), mesh, area_color(kind))
+               for kind, mesh in area_meshes(graph).items()]
+    layers += [('lane_marking', join_meshes(marking_mesh(graph), stop_line_mesh(graph)),
+                MARKING_COLOR), ('crosswalk', crosswalk_mesh(graph), MARKING_COLOR)]
+    visual_ids = ()
+    for label, mesh, colour in layers:
+        visual_ids += label_bodies(world, visual_bodies(world, mesh, colour), label)
+    # rays pass the drawn meshes: a ray that meets the ground under them reads them from here
+    world.labels.add_surface(SurfaceRaster([(LABEL_IDS[label], mesh.vertices, mesh.triangles)
+                                            for label, mesh, _ in layers]))
     return LaneMap(spec, graph, visual_ids, barrier_ids, len(corners))
 
 

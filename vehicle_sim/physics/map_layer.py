@@ -196,6 +196,8 @@ def build_occupancy_grid(world, spec: WorldSpec) -> OccupancyMap:
     _check_spawns(spec, built)
     built.body_ids = _create_walls(world, grid, rectangles, map_spec)
     world.add_static(MAP_BODY_NAME, built.body_ids, built.wall_at)
+    for body_id in built.body_ids:
+        world.labels.set(body_id, 'wall')
     if built.body_ids:
         built.rays = GridRays(walls, grid.resolution_m, _grid_corner(grid, map_spec),
                               map_spec.wall_height_m)

@@ -94,6 +94,8 @@ class SignalLamps:
             rgbaColor=list(lamp_color('red', 'off')), physicsClientId=cid)
         self.lamp_ids = tuple(visual_body(world, sphere, (lamp.bulb.x_m, lamp.bulb.y_m,
                                                           lamp.bulb.z_m)) for lamp in self.lamps)
+        for body_id in self.housing_ids + self.pole_ids + self.lamp_ids:
+            world.labels.set(body_id, 'traffic_light')
         self._by_group: Dict[int, Tuple[int, ...]] = {}
         for index, lamp in enumerate(self.lamps):
             self._by_group[lamp.group_id] = self._by_group.get(lamp.group_id, ()) + (index,)

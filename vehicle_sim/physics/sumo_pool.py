@@ -19,13 +19,16 @@ A body, named ``sumo_<k>``, serves one SUMO vehicle or person from its departure
 is parked under the ground after, and serves the next one of the same size and shape (its
 class's, core/traffic/objects.py CLASS_SHAPES: a person an upright cylinder); the order of SUMO's
 departures decides, so a seed gives the same names. :class:`SumoPool` takes, parks, places,
-moves (straight on between SUMO's steps) and stops them; SumoBodies is one.
+moves (straight on between SUMO's steps) and stops them; SumoBodies is one. A serving body's
+label (``World.labels``) is its class's, its instance id that of the SUMO vehicle or person it
+serves (:func:`instance_name`: one id per SUMO id for the world's life); a parked one has none.
 """
 
 import math
 
 import pybullet
 
+from vehicle_sim.core.sensors.labels import label_of_class, LABELS
 from vehicle_sim.core.traffic.objects import CLASS_SHAPES, shape_extents
 from vehicle_sim.core.traffic.sumo_params import object_class
 from vehicle_sim.core.world.params import ObstacleSpec
@@ -38,7 +41,12 @@ PERSON_COLOUR = (0.95, 0.55, 0.15, 1.0)
 JUMP_M = 3.0
 TRAIL_STEP_M = 0.01              # the front's points along its trail are this far apart at least
 
-__all__ = ['follow_trail', 'JUMP_M', 'NAME_PREFIX', 'SumoPool', 'SumoSlot']
+__all__ = ['follow_trail', 'instance_name', 'JUMP_M', 'NAME_PREFIX', 'SumoPool', 'SumoSlot']
+
+
+def instance_name(person, sumo_id) -> str:
+    """Return the name a SUMO vehicle's or person's instance id is handed out for."""
+    return f"sumo {'person' if person else 'vehicle'} {sumo_id}"
 
 
 def _back_along(trail, x, y, yaw, distance):
@@ -85,7 +93,7 @@ class SumoSlot:
 
     __slots__ = ('index', 'name', 'body_id', 'size', 'clearance', 'colour', 'key', 'sumo_id',
                  'person', 'vclass', 'state', 'motion', 'stopped', 'lane', 'route',
-                 'trail')
+                 'trail', 'instance')
 
     def __init__(self, index, body_id, size, clearance, colour, key):
         self.index = index
@@ -104,6 +112,7 @@ class SumoSlot:
         self.lane = None                   # (SUMO lane id, lane position [m], route index)
         self.route = ()                    # its route's SUMO edges (at its departure)
         self.trail = []                    # its front's earlier points (follow_trail)
+        self.instance = 0                  # the instance id of whom it serves (0: parked)
 
     @property
     def z(self):
@@ -149,16 +158,21 @@ class SumoPool:
                                 (0.0, 0.0, PARK_DEPTH_M - 10.0 * index), 0.0, 0.0, 0.0, 0.0,
                                 colour, extents, radius_m=0.5 * extents[0],
                                 height_m=extents[2])
-            body_id = self.world.add_obstacle(spec, placed=True)
+            body_id = self.world.add_obstacle(spec, placed=True, label=('obstacle', 0))
             slot = SumoSlot(index, body_id, size, clearance, colour, key)
             self._slots.append(slot)
         slot.sumo_id, slot.person, slot.vclass, slot.stopped = sumo_id, person, vclass, False
         slot.trail = []
+        labels = self.world.labels
+        slot.instance = labels.instance(instance_name(person, sumo_id))
+        labels.set(slot.body_id, LABELS[label_of_class(found_class)].name, slot.instance)
         self._by_id[(person, sumo_id)] = slot
         return slot
 
     def _park(self, slot):
         slot.sumo_id, slot.state, slot.motion, slot.stopped = None, None, None, False
+        slot.lane, slot.route, slot.instance = None, (), 0
+        self.world.labels.forget(slot.body_id)
         slot.lane, slot.route = None, ()
         self._table.invalidate()
         pybullet.resetBasePositionAndOrientation(

@@ -125,7 +125,7 @@ class SumoViews:
                              for k in range(1, count + 1))
             found.append(TrafficObject(slot.index, slot.name, x, y, yaw, speed, slot.size[0],
                                        slot.size[1], slot.size[2], path, step_s,
-                                       object_class(slot.vclass)))
+                                       object_class(slot.vclass), slot.instance))
         return tuple(found)
 
     def _lane_path(self, slot, since, count, step_s):

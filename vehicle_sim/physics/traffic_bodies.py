@@ -21,7 +21,8 @@ takes the world's lane map (its ``roads:``, or a LaneGraph given to it, e.g. a L
 reads each model's dimensions from its car preset (the footprint of its collision boxes and
 tyres, the top of its highest box), builds the core TrafficManager and adds one static box per
 traffic vehicle as a named obstacle (``traffic_<i>``), so that lidars, distance sensors,
-cameras, collision monitors and teleport checks see it like any obstacle.
+cameras, collision monitors and teleport checks see it like any obstacle; its label
+(``World.labels``) is its object class's and its instance id its name's.
 
 Every ``update_period`` (a whole number of world steps) the step hook gives the manager our
 vehicles (footprint centre, heading, speed, size), advances it and puts each box at its vehicle's
@@ -43,6 +44,7 @@ import pybullet
 
 from vehicle_sim.config import load_car
 from vehicle_sim.core.geometry.footprint import car_outline
+from vehicle_sim.core.sensors.labels import label_of_class, LABELS
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.manager import TrafficManager
 from vehicle_sim.core.traffic.objects import CLASS_SHAPES, shape_extents, traffic_objects
@@ -156,7 +158,8 @@ class TrafficBodies:
             spec = ObstacleSpec(v.name, 'box', (x, y, self._z(v.index)), 0.0, 0.0, yaw, 0.0,
                                 COLOURS[v.index % len(COLOURS)],
                                 (length, width, height - GROUND_CLEARANCE_M))
-            body_id = world.add_obstacle(spec, placed=True)
+            body_id = world.add_obstacle(spec, placed=True, label=(
+                LABELS[label_of_class(OBJECT_CLASS)].name, world.labels.instance(v.name)))
             self.body_ids.append(body_id)
         self._cid = world.client_id
         self._ours = world.vehicle_bodies()
@@ -358,7 +361,8 @@ class TrafficBodies:
 
     def objects(self):
         """Return the traffic on the map as core TrafficObjects now (core/traffic/objects.py)."""
-        return traffic_objects(self.manager, self.heights, since_s=self.since_update_s)
+        return traffic_objects(self.manager, self.heights, since_s=self.since_update_s,
+                               instance_of=self.world.labels.instance)
 
     @property
     def follow_params(self):

@@ -55,11 +55,16 @@ class VehicleBody:
         self.spawn = position
         cid = self._cid = world.client_id
         self.body_id, self._joint = world.load_urdf(urdf, position, self.SPAWN_CLEARANCE_M)
+        self._label()
         info = pybullet.getDynamicsInfo(self.body_id, -1, physicsClientId=cid)
         # pybullet reports the base at its (principal-axes) inertial frame; keep its inverse.
         self._link_to_com = (info[3], info[4])
         self._com_to_link = pybullet.invertTransform(info[3], info[4])
         return self._joint
+
+    def _label(self):
+        # a vehicle of the world: a car with its name's instance id (World.labels)
+        self.world.labels.set(self.body_id, 'car', self.world.labels.instance(self.name))
 
     def _configure(self):
         """Set the dynamics and clear the commands of a freshly loaded body."""
@@ -80,8 +85,10 @@ class VehicleBody:
 
         :param position: base_link pose, as the constructor takes it.
         """
+        self.world.labels.forget(self.body_id)
         self.body_id, _ = self.world.reload_urdf(self.body_id, self.urdf, position,
                                                  self.SPAWN_CLEARANCE_M)
+        self._label()
         self._configure()
 
     def reset(self):
@@ -175,4 +182,5 @@ class VehicleBody:
         """Remove the body from the physics (World.remove calls this)."""
         if self.body_id is not None and not self.world.closed:
             pybullet.removeBody(self.body_id, physicsClientId=self._cid)
+            self.world.labels.forget(self.body_id)
         self.body_id = None

@@ -164,12 +164,14 @@ class World:
         # core/map/grid_rays.py's GridRays), each with a cast(origin, ends) -> fractions, and
         # the bodies it stands for (add_ray_grid).
         self.ray_grids = []
+        self.ray_grid_bodies = []     # per ray grid: the body its hits read as (labels)
         self._ray_grid_bodies = []
         self._ray_masks = {}          # body id -> ray mask excluding that body
         self._renderer = None
         self.labels = BodyLabels()    # what each body is, for perception (body_labels.py)
         self._ground_visual = False
         self._broadphase_stale = True   # bodies added since the last step: rays miss them
+        self.revision = 0             # bumped by every step and every body moved between steps
         self._step_count = 0
         self._rendering_pauses = 0    # rendering_paused blocks open (GUI)
         cid = self.client_id
@@ -332,7 +334,7 @@ class World:
         for index in range(pybullet.getNumJoints(body_id, physicsClientId=self.client_id)):
             info = pybullet.getJointInfo(body_id, index, physicsClientId=self.client_id)
             joints[info[1].decode()] = index
-        self._broadphase_stale = True
+        self.mark_moved()
         return body_id, joints
 
     def reload_urdf(self, body_id, urdf, position, clearance_m=0.0):
@@ -374,12 +376,14 @@ class World:
         return point_velocity(com_pos, linear, angular, link_position)
 
     # ---------------------------------------------------------------- obstacles and names
-    def add_obstacle(self, spec, placed=False):
+    def add_obstacle(self, spec, placed=False, label=None):
         """
         Place an obstacle (core ObstacleSpec): static when its mass is 0.
 
         :param placed: a static obstacle that its owner moves by placing it (traffic): a cheap
             Bullet rigid body (physics/obstacles.py).
+        :param label: (label name, instance id) of its body (:attr:`labels`); None: an
+            ``obstacle`` with the instance id of its name.
         :return: its body id.
         :raises ValueError: when an obstacle of that name exists already.
         :raises InvalidPoseError: when it would be inside a vehicle (nothing added).
@@ -398,8 +402,9 @@ class World:
                 'requires)')
         self.obstacles[spec.name] = body_id
         self._obstacle_specs[spec.name] = spec
+        self.labels.set(body_id, *(label or ('obstacle', self.labels.instance(spec.name))))
         self._names[body_id] = spec.name
-        self._broadphase_stale = True
+        self.mark_moved()
         return body_id
 
     def add_static(self, name, body_ids, blocked=None):
@@ -435,7 +440,7 @@ class World:
         self._static_names.add(name)
         if blocked is not None:
             self._blocked.append((name, blocked))
-        self._broadphase_stale = True
+        self.mark_moved()
 
     def add_ray_grid(self, grid_rays, body_ids):
         """
@@ -452,6 +457,7 @@ class World:
             vertices in the world frame), already named with add_static.
         """
         self.ray_grids.append(grid_rays)
+        self.ray_grid_bodies.append(body_ids[0] if len(body_ids) else -1)
         self._ray_grid_bodies.extend(body_ids)
 
     @contextmanager
@@ -507,7 +513,7 @@ class World:
                                                  physicsClientId=cid)
         pybullet.resetBaseVelocity(body_id, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0],
                                    physicsClientId=cid)
-        self._broadphase_stale = True
+        self.mark_moved()
 
     def place_at_rest(self, body_id, link_to_com, position, clearance_m=0.0, zero_joints=(),
                       stop_joints=()):
@@ -552,7 +558,7 @@ class World:
         pybullet.resetBaseVelocity(body_id, linear, angular, physicsClientId=cid)
         for joint, (angle, velocity) in joints:
             pybullet.resetJointState(body_id, joint, angle, velocity, physicsClientId=cid)
-        self._broadphase_stale = True
+        self.mark_moved()
 
     def overlaps(self, body_id, tolerance_m=OVERLAP_TOLERANCE_M):
         """
@@ -618,8 +624,14 @@ class World:
             hook()
 
     def mark_moved(self):
-        """Say that bodies were moved between steps: rays refresh Bullet's bounding boxes."""
+        """
+        Say that bodies were put somewhere between steps (a teleport, a reset, a new body).
+
+        Rays then refresh Bullet's bounding boxes first, and this step's renders are made
+        again (``revision``; physics/sensors/render.py).
+        """
         self._broadphase_stale = True
+        self.revision += 1
 
     def body_name(self, body_id):
         """
@@ -703,6 +715,7 @@ class World:
                     hook()
                 self._step_simulation(physicsClientId=cid)
             self._step_count += 1
+            self.revision += 1
             self._broadphase_stale = False
             for hook in self._post_step:
                 hook()

@@ -540,7 +540,7 @@ class AutomobileNode:
             bodies = traffic.bodies
             traffic.objects = () if bodies is None else bodies.objects()
             traffic.obstacles = obstacle_objects(self.scene.spec.obstacles,
-                                                 self._obstacle_pose)
+                                                 self._obstacle_pose, self.world.labels.instance)
             self._traffic_outputs.publish(AT_OBJECTS_RATE, traffic)
         signals = self._signals
         if signals is not None and (signals.outputs.wanted(AT_SIGNALS)

@@ -273,6 +273,11 @@ def _set_vector(vector, values):
     vector.x, vector.y, vector.z = float(values[0]), float(values[1]), float(values[2])
 
 
+# One point of a labelled lidar's PointCloud2 (little-endian, packed).
+LABELLED_POINT = np.dtype([('x', '<f4'), ('y', '<f4'), ('z', '<f4'), ('intensity', '<f4'),
+                           ('label', '<u2'), ('instance', '<u2')])
+
+
 def laser_scan_builder(msg, frame_id: str):
     """Return ``build(stamp, reading)``: sensor_msgs/LaserScan of a one-layer LidarReading."""
     header_type, scan_type = msg(HEADER), msg(LASER_SCAN)
@@ -285,31 +290,48 @@ def laser_scan_builder(msg, frame_id: str):
             time_increment=float(reading.time_increment_s),
             scan_time=float(reading.scan_time_s), range_min=float(reading.range_min_m),
             range_max=float(reading.range_max_m), ranges=_float32s(reading.scan),
-            intensities=array('f'))
+            intensities=(array('f') if reading.intensities is None else
+                         _float32s(reading.intensities[len(reading.layer_elevations_rad) // 2])))
     return build
 
 
 def point_cloud2_builder(msg, frame_id: str):
     """
-    Return ``build(stamp, reading)``: sensor_msgs/PointCloud2 of a LidarReading.
+    Return ``build(stamp, reading)``: sensor_msgs/PointCloud2 of a LidarReading or DepthReading.
 
-    Organized (height = layers, width = rays), fields x, y, z FLOAT32 at offsets 0, 4, 8,
-    little-endian, NaN points for rays without a return (is_dense false).
+    Organized (height = layers, width = rays; a depth image's rows and columns), fields x, y,
+    z FLOAT32 at offsets 0, 4, 8, little-endian, NaN points for rays without a return
+    (is_dense false). A labelled lidar's (its reading has ``intensities``) adds intensity
+    FLOAT32 at 12, label UINT16 at 16 and instance UINT16 at 18 (:data:`LABELLED_POINT`,
+    point_step 20).
     """
     header_type, cloud_type, field_type = msg(HEADER), msg(POINT_CLOUD2), msg(POINT_FIELD)
+    datatypes = {'<f4': field_type.FLOAT32, '<u2': field_type.UINT16}
     fields = [field_type(name=axis, offset=4 * index, datatype=field_type.FLOAT32, count=1)
               for index, axis in enumerate('xyz')]
-    point_step = 12
+    labelled_fields = [field_type(name=name, offset=LABELLED_POINT.fields[name][1],
+                                  datatype=datatypes[LABELLED_POINT.fields[name][0].str],
+                                  count=1)
+                       for name in LABELLED_POINT.names]
 
     def build(stamp, reading):
         points = reading.points()
         layers, rays = points.shape[0], points.shape[1]
+        if getattr(reading, 'intensities', None) is None:    # a depth image has none
+            found, point_step = fields, 12
+            data = np.ascontiguousarray(points, dtype='<f4').tobytes()
+        else:
+            found, point_step = labelled_fields, LABELLED_POINT.itemsize
+            cloud = np.empty((layers, rays), dtype=LABELLED_POINT)
+            cloud['x'], cloud['y'], cloud['z'] = points[..., 0], points[..., 1], points[..., 2]
+            cloud['intensity'] = reading.intensities
+            cloud['label'] = reading.labels
+            cloud['instance'] = reading.instances
+            data = cloud.tobytes()
         return cloud_type(
             header=header_type(stamp=stamp, frame_id=frame_id), height=layers, width=rays,
-            fields=fields, is_bigendian=False, point_step=point_step,
-            row_step=point_step * rays,
-            data=array('B', np.ascontiguousarray(points, dtype='<f4').tobytes()),
-            is_dense=False)
+            fields=found, is_bigendian=False, point_step=point_step,
+            row_step=point_step * rays, data=array('B', data), is_dense=False)
     return build
 
 

@@ -79,10 +79,12 @@ def _lidar_rows(spec):
     if spec.layers == 1:
         return (_row(topic, m.LASER_SCAN, m.laser_scan_builder, spec,
                      'lidar, one layer: ranges counter-clockwise from angle_min, REP 117 '
-                     '(+inf no return, -inf too close); frame <p><name>', unit='m, rad'),)
+                     '(+inf no return, -inf too close); intensities with labels: true, else '
+                     'empty; frame <p><name>', unit='m, rad'),)
     return (_row(topic, m.POINT_CLOUD2, m.point_cloud2_builder, spec,
                  'lidar, several layers: organized (height = layers, width = rays), x, y, z '
-                 'float32, NaN for no return; frame <p><name>', unit='m'),)
+                 'float32, NaN for no return; with labels: true also intensity float32, label '
+                 'and instance uint16; frame <p><name>', unit='m'),)
 
 
 def _imu_rows(spec):
@@ -113,6 +115,23 @@ def _camera_rows(spec):
             _row(info, m.CAMERA_INFO, m.camera_info_builder, spec,
                  'ideal pinhole (plumb_bob, no distortion) of the image; frame '
                  '<p><name>_optical', optical=True))
+
+
+def _range_finder_rows(spec):
+    image, info = spec.topics[:2]
+    rows = (_row(image, m.IMAGE, m.image_builder, spec,
+                 'range finder: 32FC1 depth along the optical axis, rows top to bottom, '
+                 'REP 118 (+inf nothing within max_range, -inf under min_range); frame '
+                 '<p><name>_optical', optical=True, unit='m'),
+            _row(info, m.CAMERA_INFO, m.camera_info_builder, spec,
+                 'ideal pinhole (plumb_bob, no distortion) of the depth image; frame '
+                 '<p><name>_optical', optical=True))
+    if spec.point_cloud:
+        rows += (_row(spec.topics[2], m.POINT_CLOUD2, m.point_cloud2_builder, spec,
+                      'range finder with point_cloud: organized as the image (height x '
+                      'width), x, y, z float32, NaN where the depth is not finite; frame '
+                      '<p><name>_optical', optical=True, unit='m'),)
+    return rows
 
 
 def _radar_rows(spec):
@@ -147,6 +166,7 @@ SENSOR_ROWS = {
     'gnss': SensorRows(_gnss_rows),
     'distance': SensorRows(_distance_rows),
     'camera': SensorRows(_camera_rows),
+    'range_finder': SensorRows(_range_finder_rows, ({'point_cloud': True},)),
     'radar': SensorRows(_radar_rows),
 }
 check_layer('ROS SENSOR_ROWS (ros/sensor_interfaces.py)', SENSOR_ROWS)

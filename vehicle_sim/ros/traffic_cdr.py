@@ -30,6 +30,7 @@ import math
 import struct
 
 from vehicle_sim.core.geometry.frames import quaternion_from_yaw
+from vehicle_sim.physics.body_labels import instance_uuid
 from vehicle_sim.ros import traffic_messages as tm
 from vehicle_sim.transport.fast_cdr import cdr_string, CdrWriter
 
@@ -63,10 +64,10 @@ def predicted_objects_serializer(frame_id: str):
     poses = {}
     labels, shapes = tm.LABEL_OF_CLASS, tm.OBJECT_SHAPE_OF_OBSTACLE
 
-    def uuid_of(name):
-        found = uuids.get(name)
+    def uuid_of(instance_id):
+        found = uuids.get(instance_id)
         if found is None:
-            found = uuids[name] = struct.pack('16s', tm.object_uuid(name))
+            found = uuids[instance_id] = instance_uuid(instance_id)
         return found
 
     def path_layout(count):
@@ -82,7 +83,7 @@ def predicted_objects_serializer(frame_id: str):
         raw(4, frame)
         pack(4, _U32, len(objects) + len(obstacles))
         for o in objects:
-            raw(1, uuid_of(o.name))
+            raw(1, uuid_of(o.instance_id))
             pack(4, _EXISTENCE_CLASS, 1.0, 1, labels[o.object_class], 1.0)
             z = 0.5 * o.height_m
             qx, qy, qz, qw = quaternion_from_yaw(o.yaw_rad)
@@ -100,7 +101,7 @@ def predicted_objects_serializer(frame_id: str):
             pack(4, _SHAPE_HEAD, shapes[o.shape], 0)
             pack(8, _VECTOR3, *o.size_m)
         for o in obstacles:
-            raw(1, uuid_of(o.name))
+            raw(1, uuid_of(o.instance_id))
             pack(4, _EXISTENCE_CLASS, 1.0, 1, tm.UNKNOWN, 1.0)
             pack(8, _POSE_COVARIANCE, o.x_m, o.y_m, o.z_m, *quaternion_from_yaw(o.yaw_rad))
             pack(8, _TWIST_COVARIANCE, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)

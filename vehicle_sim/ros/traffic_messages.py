@@ -21,7 +21,9 @@ once; the ``build(stamp, objects)`` it returns makes one message from a stamp an
 TrafficObjects (core/traffic/objects.py).
 
 - ``autoware_perception_msgs/PredictedObjects``, as Autoware's planning simulator's dummy
-  perception gives them: per object a UUID derived from its name, existence probability 1,
+  perception gives them: per object the UUID of its instance id (physics/body_labels.py
+  ``instance_uuid``: the id of its instance image pixels, labelled lidar points, recognition
+  object and radar target), existence probability 1,
   the classification of its class (:data:`LABEL_OF_CLASS`: CAR, TRUCK, BUS, TRAILER,
   MOTORCYCLE, BICYCLE, PEDESTRIAN; probability 1), the pose of its body's centre, its twist in
   its own frame (x forward), its class's shape (a BOUNDING_BOX of its dimensions; a
@@ -39,10 +41,10 @@ TrafficObjects (core/traffic/objects.py).
 
 import math
 from typing import Dict, Tuple
-import uuid
 
 from vehicle_sim.core.geometry.frames import quaternion_from_yaw
 from vehicle_sim.core.map.lane_rules import BULB_SHAPES, SIGNAL_STATES
+from vehicle_sim.physics.body_labels import instance_uuid
 
 HEADER = 'std_msgs/msg/Header'
 PREDICTED_OBJECTS = 'autoware_perception_msgs/msg/PredictedObjects'
@@ -84,13 +86,11 @@ ELEMENT_SHAPE = {'circle': 1, 'left_arrow': 2, 'right_arrow': 3, 'up_arrow': 4,
 SOLID_OFF, SOLID_ON = 1, 2
 # What a dark group ('off') shows: one element, colour and shape UNKNOWN, SOLID_OFF.
 DARK = ((ELEMENT_UNKNOWN, ELEMENT_UNKNOWN, SOLID_OFF),)
-# the namespace of the objects' UUIDs (uuid5 of the vehicle's name): stable across runs
-UUID_NAMESPACE = uuid.uuid5(uuid.NAMESPACE_URL, 'vehicle_sim/traffic')
 
 
-def object_uuid(name) -> bytes:
-    """Return the 16 bytes of a traffic vehicle's object id (uuid5 of its name)."""
-    return uuid.uuid5(UUID_NAMESPACE, name).bytes
+def object_uuid(o) -> bytes:
+    """Return the 16 bytes of an object's id (a TrafficObject's or an ObstacleObject's)."""
+    return instance_uuid(o.instance_id)
 
 
 def predicted_objects_builder(msg, frame_id: str):
@@ -107,7 +107,7 @@ def predicted_objects_builder(msg, frame_id: str):
                          orientation=quaternion_type(x=qx, y=qy, z=qz, w=qw))
 
     def one(o):
-        item = object_type(object_id=uuid_type(uuid=object_uuid(o.name)),
+        item = object_type(object_id=uuid_type(uuid=object_uuid(o)),
                            existence_probability=1.0,
                            classification=[classification_type(
                                label=LABEL_OF_CLASS[o.object_class], probability=1.0)])
@@ -127,7 +127,7 @@ def predicted_objects_builder(msg, frame_id: str):
         return item
 
     def obstacle(o):
-        item = object_type(object_id=uuid_type(uuid=object_uuid(o.name)),
+        item = object_type(object_id=uuid_type(uuid=object_uuid(o)),
                            existence_probability=1.0,
                            classification=[classification_type(label=UNKNOWN, probability=1.0)])
         item.kinematics.initial_pose_with_covariance.pose = pose(o.x_m, o.y_m, o.z_m, o.yaw_rad)

@@ -205,6 +205,12 @@ DEVICE_API = (
     DeviceRow('Accelerometer', 'imu', 'accelerometer_device', 'getAccelerometer'),
     DeviceRow('DistanceSensor', 'distance', 'device', 'getDistanceSensor', (
         ('getAperture', 'aperture_rad', float),)),
+    DeviceRow('RangeFinder', 'range_finder', 'device', 'getRangeFinder', (
+        ('getWidth', 'width', int),
+        ('getHeight', 'height', int),
+        ('getFov', 'fov_rad', float),
+        ('getMinRange', 'min_range_m', float),
+        ('getMaxRange', 'max_range_m', float))),
     DeviceRow('Radar', 'radar', 'device', 'getRadar', (
         ('getMinRange', 'min_range_m', float),
         ('getMaxRange', 'max_range_m', float),

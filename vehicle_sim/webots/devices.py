@@ -17,7 +17,8 @@
 Webots sensor devices on the simulated sensors: ``Driver.getDevice(name)`` returns these.
 
 Each class has the Webots Python method names and semantics (Webots reference manual: lidar.md,
-camera.md, gps.md, inertial_unit.md, gyro.md, accelerometer.md, distancesensor.md):
+camera.md, gps.md, inertial_unit.md, gyro.md, accelerometer.md, distancesensor.md,
+rangefinder.md):
 
 - ``enable(samplingPeriod)`` [ms] starts sampling; the first value is there one period later;
   before it a value reads NaN (an image or a range image: None). ``enable(0)`` and
@@ -33,6 +34,9 @@ SensorSpec's ``rate_hz`` is for the ROS topics only.
 
 import math
 import numbers
+import os
+
+import numpy as np
 
 from vehicle_sim.core.sensors.params import check_layer
 from vehicle_sim.webots.api_table import DEVICE_API
@@ -365,6 +369,84 @@ class DistanceSensor(Device):
         return [value for row in self._table.rows for value in row]
 
 
+class RangeFinder(Device):
+    """
+    Webots RangeFinder: depth [m] along the optical axis, rows top to bottom, left to right.
+
+    A pixel with nothing within ``maxRange`` (or, with noise, a depth outside ``[minRange,
+    maxRange]``) reads inf, as in Webots (the ROS image keeps REP 118's -inf for the latter).
+    """
+
+    def _depth(self, function):
+        reading = self._reading(function)
+        if reading is None:
+            return None
+        depth = reading.depth_m.astype(np.float32)
+        depth[np.isneginf(depth)] = np.inf
+        return depth
+
+    def getRangeImage(self, data_type='list'):
+        """
+        Return the last range image: width * height floats, row by row (None before one).
+
+        ``data_type='buffer'``: the same values as native float32 bytes (Webots' buffer).
+        """
+        if data_type not in ('list', 'buffer'):
+            raise ValueError(f"getRangeImage(data_type={data_type!r}): 'list' or 'buffer'")
+        depth = self._depth('getRangeImage')
+        if depth is None:
+            return None
+        return depth.tobytes() if data_type == 'buffer' else depth.ravel().tolist()
+
+    def getRangeImageArray(self):
+        """Return the last range image as a list of rows (image[y][x], Webots' Python)."""
+        depth = self._depth('getRangeImageArray')
+        return None if depth is None else depth.tolist()
+
+    @staticmethod
+    def rangeImageGetDepth(image, width, x, y):
+        """Return the depth of pixel (x, y) of a getRangeImage() list."""
+        return image[y * width + x]
+
+    imageGetDepth = rangeImageGetDepth      # Webots' C name: wb_range_finder_image_get_depth
+
+    def saveImage(self, filename, quality):
+        """
+        Save the last range image as a grey PNG or JPEG, as Webots does; return 0, or -1.
+
+        Grey = 255 (depth - minRange) / maxRange, bounded to 0..255 (inf: 255). ``quality``
+        (1..100) is the JPEG quality. Needs Pillow (the 'maps' extra). -1 (with a warning) for
+        another extension, a bad quality, no image yet or a file that cannot be written.
+        """
+        extension = os.path.splitext(str(filename))[1].lower()
+        if extension not in ('.png', '.jpg', '.jpeg'):
+            _warn(f'saveImage({filename!r}): only .png, .jpg and .jpeg are provided')
+            return -1
+        if isinstance(quality, bool) or not isinstance(quality, numbers.Integral) \
+                or not 1 <= quality <= 100:
+            _warn(f'saveImage(): quality = {quality!r}: must be an integer in 1..100')
+            return -1
+        depth = self._depth('saveImage')
+        if depth is None:
+            return -1
+        try:
+            from PIL import Image
+        except ImportError as error:
+            raise ImportError("RangeFinder.saveImage needs Pillow: pip install "
+                              "'vehicle_sim[maps]'") from error
+        spec = self._spec
+        scaled = np.clip((depth.astype(np.float64) - spec.min_range_m) / spec.max_range_m,
+                         0.0, 1.0)
+        grey = (scaled * 255.0).astype(np.uint8)
+        try:
+            Image.fromarray(np.repeat(grey[:, :, None], 3, axis=2), 'RGB').save(
+                filename, quality=int(quality))
+        except OSError as error:
+            _warn(f'saveImage({filename!r}): {error}')
+            return -1
+        return 0
+
+
 def _make_spec_getter(name, attr, kind):
     def getter(self):
         return kind(getattr(self._spec, attr))
@@ -403,4 +485,5 @@ def devices_of(suite):
 
 
 __all__ = ['Accelerometer', 'Camera', 'DEVICE_CLASSES', 'Device', 'DistanceSensor', 'GPS',
-           'Gyro', 'InertialUnit', 'Lidar', 'LidarPoint', 'Radar', 'RadarTarget', 'devices_of']
+           'Gyro', 'InertialUnit', 'Lidar', 'LidarPoint', 'Radar', 'RadarTarget', 'RangeFinder',
+           'devices_of']

@@ -181,6 +181,43 @@ class GridRays:
             rays[_ID] = np.flatnonzero(live)
             return self._march(result, rays)
 
+    def normals(self, origin, ends, fractions) -> np.ndarray:
+        """
+        Return the unit normal of the wall face each ray met, in the rays' frame: (n, 3).
+
+        :param origin: (3,) start of every ray [m].
+        :param ends: (n, 3) ends of the rays [m].
+        :param fractions: (n,) what :meth:`cast` gave them; a ray that met nothing (1.0) gets
+            a normal against it, as one that starts inside a wall (0.0).
+
+        A hit on the walls' top (its point at their height, going down) faces up; else the
+        hit lies on a cell border along x or along y (the one nearer a whole number of cells)
+        and faces against the ray along that axis of the grid.
+        """
+        origin = np.asarray(origin, dtype=float)
+        vectors = np.asarray(ends, dtype=float) - origin
+        fractions = np.asarray(fractions, dtype=float)
+        cells = (self._axes @ (origin[:2] - self._corner))[:, None] \
+            + (self._axes @ vectors[:, :2].T) * fractions
+        speed = self._axes @ vectors[:, :2].T
+        off = np.abs(cells - np.round(cells))            # from the nearest border, per axis
+        along_x = off[0] <= off[1]
+        # the face's normal along the grid's x or y axis, against the ray, in the rays' frame
+        unit = self._axes / np.linalg.norm(self._axes[0])      # rows: the grid's axes
+        sign = -np.sign(np.where(along_x, speed[0], speed[1]))
+        flat = np.where(along_x[:, None], unit[0][None, :], unit[1][None, :]) * sign[:, None]
+        normals = np.zeros((len(vectors), 3))
+        normals[:, :2] = flat
+        z = origin[2] + vectors[:, 2] * fractions
+        top = (np.abs(z - self.height_m) <= 1e-9 * max(1.0, self.height_m)) \
+            & (vectors[:, 2] < 0.0)
+        normals[top] = (0.0, 0.0, 1.0)
+        against = (fractions <= 0.0) | (fractions >= 1.0) | ~np.any(normals, axis=1)
+        if np.any(against):
+            length = np.linalg.norm(vectors[against], axis=1)[:, None]
+            normals[against] = -vectors[against] / np.where(length > 0.0, length, 1.0)
+        return normals
+
     def _march(self, result, rays):
         # The jumps from square to square (see the module text), in padded cells, the
         # quadrants' squares stacked above each other (a ray's rows are shifted up by its

@@ -152,6 +152,9 @@ LIDAR_SPECS = _common('lidar', 10.0) + (
               'no return within this reads +inf (REP 117)', gt=0.0),
     ParamSpec('noise', 'noise_m', 'float', 0.0, 'm',
               'standard deviation of the Gaussian range noise', ge=0.0),
+    ParamSpec('labels', 'labels', 'bool', False, '',
+              'each point also gets the label, instance id and intensity of what it hit '
+              '(PointCloud2 fields intensity, label, instance; LaserScan intensities)'),
 )
 
 
@@ -166,6 +169,7 @@ class LidarSpec(SensorSpec):
     min_range_m: float
     max_range_m: float
     noise_m: float
+    labels: bool = False
 
     def _default_topic(self):
         return 'scan' if self.layers == 1 else 'points'
@@ -366,14 +370,73 @@ class CameraSpec(SensorSpec):
         return focal, focal, (self.width - 1) / 2.0, (self.height - 1) / 2.0
 
 
-def _check_camera(source, values):
+def _check_camera(source, values, clip_keys=('near', 'far')):
     pixels = values['width'] * values['height']
     if pixels > MAX_CAMERA_PIXELS:
         fail(source, 'height', values['height'],
               f'{values["width"]} x {values["height"]} = {pixels} pixels per frame; at most '
               f'{MAX_CAMERA_PIXELS} (1920 x 1080)')
+    near, far = clip_keys
     if values['near_m'] >= values['far_m']:
-        fail(source, 'near', values['near_m'], f'must be < far ({values["far_m"]:g} m)')
+        fail(source, near, values['near_m'], f'must be < {far} ({values["far_m"]:g} m)')
+
+
+RANGE_FINDER_SPECS = _common('range_finder', 10.0) + (
+    ParamSpec('width', 'width', 'int', 320, 'px',
+              f'image width; width x height <= {MAX_CAMERA_PIXELS} px', ge=1,
+              le=MAX_CAMERA_SIDE_PX),
+    ParamSpec('height', 'height', 'int', 240, 'px', 'image height', ge=1,
+              le=MAX_CAMERA_SIDE_PX),
+    ParamSpec('fov', 'fov_rad', 'float', 1.0, 'rad', 'horizontal field of view', gt=0.0,
+              lt=math.pi),
+    ParamSpec('min_range', 'min_range_m', 'float', 0.05, 'm',
+              'near clipping plane: nothing closer is drawn', gt=0.0),
+    ParamSpec('max_range', 'max_range_m', 'float', 100.0, 'm',
+              'far clipping plane: nothing drawn within it reads +inf', gt=0.0),
+    ParamSpec('noise', 'noise_m', 'float', 0.0, 'm',
+              'standard deviation of the Gaussian depth noise (each pixel)', ge=0.0),
+    ParamSpec('point_cloud', 'point_cloud', 'bool', False,
+              doc='also publish the organized PointCloud2 <topic>/points'),
+)
+
+
+@dataclass(frozen=True)
+class RangeFinderSpec(SensorSpec):
+    """
+    A depth camera (Webots RangeFinder): metric depth along the optical axis per pixel.
+
+    Its view is a camera's (square pixels, horizontal ``fov``) with the clip planes at
+    ``min_range`` and ``max_range``, so that a camera with the same size, fov, near and far at
+    the same mount shares its render (physics/sensors/render.py).
+    """
+
+    width: int
+    height: int
+    fov_rad: float
+    min_range_m: float
+    max_range_m: float
+    noise_m: float
+    point_cloud: bool
+
+    def _default_topic(self):
+        return f'{self.name}/depth'
+
+    @property
+    def topics(self):
+        """``<topic>/image_raw``, ``<topic>/camera_info`` (and ``<topic>/points``)."""
+        base = self.topic or self._default_topic()
+        cloud = (f'{base}/points',) if self.point_cloud else ()
+        return (f'{base}/image_raw', f'{base}/camera_info') + cloud
+
+    # the pinhole geometry of a camera's image (CameraSpec: fields of the same names)
+    optical_frame_id = CameraSpec.optical_frame_id
+    vertical_fov_rad = CameraSpec.vertical_fov_rad
+    intrinsics = CameraSpec.intrinsics
+
+
+def _check_range_finder(source, values):
+    _check_camera(source, dict(values, near_m=values['min_range_m'],
+                               far_m=values['max_range_m']), ('min_range', 'max_range'))
 
 
 RADAR_SPECS = _common('radar', 20.0) + (
@@ -475,6 +538,7 @@ SENSOR_TYPES: Dict[str, SensorType] = {
     'gnss': SensorType(GnssSpec, GNSS_SPECS, None),
     'distance': SensorType(DistanceSpec, DISTANCE_SPECS, _check_distance),
     'camera': SensorType(CameraSpec, CAMERA_SPECS, _check_camera),
+    'range_finder': SensorType(RangeFinderSpec, RANGE_FINDER_SPECS, _check_range_finder),
     'radar': SensorType(RadarSpec, RADAR_SPECS, _check_radar),
 }
 

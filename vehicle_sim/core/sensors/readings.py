@@ -22,7 +22,7 @@ REP 117: +inf = no return within max_range, -inf = a return closer than min_rang
 """
 
 from dataclasses import dataclass, field
-from typing import Tuple
+from typing import Optional, Tuple
 
 import numpy as np
 
@@ -47,7 +47,11 @@ class LidarReading:
 
     ``ranges_m`` has shape (layers, rays), float32, layer 0 the top one, rays counter-clockwise
     from ``angle_min_rad`` (REP 117 values). ``directions`` (layers, rays, 3) are the unit ray
-    vectors in the sensor frame.
+    vectors in the sensor frame. A labelled lidar's (``labels: true``) also gives, of the same
+    shape, what each ray hit: ``labels`` (uint8, core/sensors/labels.py ids), ``instances``
+    (uint16 instance ids, 0 = none) and ``intensities`` (float32: the label's reflectivity
+    times |cos| of the angle between the ray and the surface's normal); 0 where the range is
+    not finite. None without the key.
     """
 
     name: str
@@ -62,6 +66,9 @@ class LidarReading:
     ranges_m: np.ndarray
     directions: np.ndarray = field(repr=False)
     time_increment_s: float = 0.0      # every ray of a scan is cast at the same instant
+    labels: Optional[np.ndarray] = field(default=None, repr=False)
+    instances: Optional[np.ndarray] = field(default=None, repr=False)
+    intensities: Optional[np.ndarray] = field(default=None, repr=False)
 
     @property
     def scan(self) -> np.ndarray:
@@ -204,6 +211,57 @@ def camera_matrices(fx, fy, cx, cy):
     k = (fx, 0.0, cx, 0.0, fy, cy, 0.0, 0.0, 1.0)
     p = (fx, 0.0, cx, 0.0, 0.0, fy, cy, 0.0, 0.0, 0.0, 1.0, 0.0)
     return k, p
+
+
+@dataclass(frozen=True, eq=False)
+class DepthReading:
+    """
+    One range-finder frame (sensor_msgs/Image 32FC1 + CameraInfo, PointCloud2), optical frame.
+
+    ``depth_m``: (height, width) float32, row 0 at the top: the distance of each pixel's
+    surface from the image plane, along the optical axis (z), in metres. REP 118 values: +inf
+    where nothing is within ``max_range_m`` (nothing drawn, the sky), -inf where noise puts a
+    depth under ``min_range_m``. ``k``, ``p``, ``r``, ``d`` as in CameraReading; it has the
+    fields a CameraReading's image and camera_info builders read (ros/messages.py).
+    """
+
+    name: str
+    time_s: float
+    width: int
+    height: int
+    depth_m: np.ndarray = field(repr=False)
+    k: Tuple[float, ...]
+    p: Tuple[float, ...]
+    min_range_m: float
+    max_range_m: float
+    r: Tuple[float, ...] = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
+    d: Tuple[float, ...] = (0.0,) * 5
+    distortion_model: str = 'plumb_bob'
+    encoding: str = '32FC1'
+
+    @property
+    def step(self):
+        """Bytes per image row (sensor_msgs/Image step): 4 * width."""
+        return 4 * self.width
+
+    @property
+    def data(self) -> bytes:
+        """The image bytes (sensor_msgs/Image data): little-endian float32, rows top to bottom."""
+        return np.ascontiguousarray(self.depth_m, dtype='<f4').tobytes()
+
+    def points(self) -> np.ndarray:
+        """
+        Return the organized point cloud in the optical frame: (height, width, 3) float32 [m].
+
+        As depth_image_proc's point_cloud_xyz: x = (u - cx) z / fx, y = (v - cy) z / fy, z the
+        depth; NaN points where the depth is not finite (PointCloud2 is_dense false).
+        """
+        fx, cx, fy, cy = self.k[0], self.k[2], self.k[4], self.k[5]
+        z = self.depth_m.astype(np.float64)
+        z = np.where(np.isfinite(z), z, np.nan)
+        u = (np.arange(self.width) - cx) / fx
+        v = (np.arange(self.height) - cy) / fy
+        return np.stack((z * u[None, :], z * v[:, None], z), axis=-1).astype(np.float32)
 
 
 @dataclass(frozen=True)

@@ -62,6 +62,9 @@ class TrafficObject:
         (:data:`CLASS_SHAPES`): a box of length, width and height, or an upright cylinder
         whose diameter is the larger of length and width (:attr:`size_m`,
         :func:`shape_extents`).
+    :param instance_id: its object id (physics/body_labels.py ``World.labels.instance`` of the
+        agent it stands for): the PredictedObjects UUID, the instance image's and labelled
+        lidar's id; 0 = none given.
     :raises ValueError: for a class not in :data:`OBJECT_CLASSES`, naming it.
     """
 
@@ -77,6 +80,7 @@ class TrafficObject:
     path: Tuple[Tuple[float, float, float], ...]
     step_s: float
     object_class: str = 'car'
+    instance_id: int = 0
 
     def __post_init__(self):
         if self.object_class not in CLASS_SHAPES:
@@ -129,7 +133,8 @@ def _path(manager, v, horizon_s, step_s, since_s):
 
 
 def traffic_objects(manager, heights: Mapping[str, float], horizon_s=PREDICTION_HORIZON_S,
-                    step_s=PREDICTION_STEP_S, since_s=0.0) -> Tuple[TrafficObject, ...]:
+                    step_s=PREDICTION_STEP_S, since_s=0.0,
+                    instance_of=None) -> Tuple[TrafficObject, ...]:
     """
     Return the vehicles on the map as TrafficObjects, in index order.
 
@@ -140,6 +145,7 @@ def traffic_objects(manager, heights: Mapping[str, float], horizon_s=PREDICTION_
     :param since_s: time since the manager's last step [s], >= 0: each vehicle is where it
         is now, gone on straight at its speed (as its body in the physics world), and its
         path starts from there.
+    :param instance_of: ``instance_of(name)`` -> a vehicle's instance id (None: 0).
     """
     if not (math.isfinite(horizon_s) and math.isfinite(step_s) and 0.0 < step_s <= horizon_s):
         raise ValueError(f'horizon_s = {horizon_s!r}, step_s = {step_s!r}: need '
@@ -155,7 +161,8 @@ def traffic_objects(manager, heights: Mapping[str, float], horizon_s=PREDICTION_
         found.append(TrafficObject(v.index, v.name, x + gone * math.cos(yaw),
                                    y + gone * math.sin(yaw), yaw, v.speed_mps, v.length_m,
                                    v.width_m, heights[v.model],
-                                   _path(manager, v, horizon_s, step_s, since_s), step_s))
+                                   _path(manager, v, horizon_s, step_s, since_s), step_s,
+                                   instance_id=0 if instance_of is None else instance_of(v.name)))
     return tuple(found)
 
 
@@ -166,6 +173,7 @@ class ObstacleObject:
 
     :param shape: the ObstacleSpec's shape ('box', 'cylinder', 'sphere').
     :param size_m: full extents along its own x, y, z [m].
+    :param instance_id: its object id (``World.labels.instance`` of its name); 0 = none given.
     """
 
     name: str
@@ -175,15 +183,17 @@ class ObstacleObject:
     yaw_rad: float
     shape: str
     size_m: Tuple[float, float, float]
+    instance_id: int = 0
 
 
-def obstacle_objects(specs, pose_of=None) -> Tuple[ObstacleObject, ...]:
+def obstacle_objects(specs, pose_of=None, instance_of=None) -> Tuple[ObstacleObject, ...]:
     """
     Return the obstacles (core ObstacleSpecs) as ObstacleObjects.
 
     :param specs: the world's ObstacleSpecs.
     :param pose_of: ``pose_of(name)`` -> (x, y, z, yaw) now of a movable obstacle (mass > 0);
         None = every obstacle where its spec puts it.
+    :param instance_of: ``instance_of(name)`` -> an obstacle's instance id (None: 0).
     """
     found = []
     for spec in specs:
@@ -191,5 +201,6 @@ def obstacle_objects(specs, pose_of=None) -> Tuple[ObstacleObject, ...]:
             x, y, z, yaw = pose_of(spec.name)
         else:
             (x, y, z), yaw = spec.position_m, spec.yaw_rad
-        found.append(ObstacleObject(spec.name, x, y, z, yaw, spec.shape, tuple(spec.size_m)))
+        found.append(ObstacleObject(spec.name, x, y, z, yaw, spec.shape, tuple(spec.size_m),
+                                    0 if instance_of is None else instance_of(spec.name)))
     return tuple(found)

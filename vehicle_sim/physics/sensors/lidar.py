@@ -21,14 +21,28 @@ counter-clockwise from x (angle_min = -fov / 2, angle_increment = fov / (rays - 
 e_j from +vertical_fov / 2 (layer 0, the top) down to -vertical_fov / 2; unit vector
 (cos e cos a, cos e sin a, sin e). A ray hitting nothing within max_range reads +inf, a hit
 closer than min_range reads -inf (REP 117); Gaussian noise, if any, is added to the other hits.
+
+A labelled lidar (``labels: true``) also reads what each ray hit (``World.labels``: its label
+and instance id) and an intensity: the label's reflectivity (core/sensors/labels.py) times
+|cos| of the angle between the ray and the surface normal at the hit (rayTestBatch's; the
+occupancy grid's cell face, core/map/grid_rays.py); rays without a finite range get label 0,
+instance 0, intensity 0. A ray that meets the ground plane reads what the lane layer draws
+there (``World.labels.ground_labels``: road, lane_marking, crosswalk, sidewalk), else
+``ground``.
 """
+
+from dataclasses import replace
 
 import numpy as np
 
+from vehicle_sim.core.sensors.labels import LABELS
 from vehicle_sim.core.sensors.noise import GaussianNoise
 from vehicle_sim.core.sensors.readings import LidarReading
-from vehicle_sim.physics.sensors.rays import cast_rays
+from vehicle_sim.physics.sensors.rays import cast_rays, cast_rays_hits
 from vehicle_sim.physics.sensors.sensor import Sensor
+
+# reflectivity by label id
+REFLECTIVITY = np.array([label.reflectivity for label in LABELS], dtype=np.float32)
 
 
 def ray_directions(azimuths_rad, elevations_rad):
@@ -70,14 +84,33 @@ class LidarSensor(Sensor):
         """Cast the rays now; return a LidarReading stamped ``time_s``."""
         spec = self.spec
         origin, rotation, _ = self.mount.world_frame()
-        fractions = cast_rays(self.world, origin, origin + self._ray_vectors @ rotation.T,
-                              self._mask)
+        ends = origin + self._ray_vectors @ rotation.T
+        if spec.labels:
+            fractions, bodies, links, normals = cast_rays_hits(self.world, origin, ends,
+                                                               self._mask)
+        else:
+            fractions = cast_rays(self.world, origin, ends, self._mask)
         hit = fractions < 1.0
         ranges = np.where(hit, fractions * spec.max_range_m, np.inf)
         if self._noise:
             ranges[hit] = self._noise.add(ranges[hit])
         ranges[hit & (ranges < spec.min_range_m)] = -np.inf
-        return LidarReading(
+        reading = LidarReading(
             spec.name, time_s, spec.angle_min_rad, spec.angle_max_rad, spec.angle_increment_rad,
             spec.min_range_m, spec.max_range_m, spec.period_s, spec.layer_elevations_rad,
             ranges.reshape(self._shape).astype(np.float32), self.directions)
+        if not spec.labels:
+            return reading
+        bodies[~np.isfinite(ranges)] = -1
+        world = self.world
+        labels, instances = world.labels.lookup(bodies, links)
+        if world.labels.has_surfaces:      # on the ground: what is drawn there (a road)
+            ground = np.flatnonzero(bodies == world.ground_id)
+            if len(ground):
+                points = origin + (ends[ground] - origin) * fractions[ground, None]
+                labels[ground] = world.labels.ground_labels(points[:, 0], points[:, 1])
+        cosine = np.abs(np.einsum('ij,ij->i', normals, ends - origin)) / spec.max_range_m
+        intensities = REFLECTIVITY[labels] * cosine.astype(np.float32)
+        shape = self._shape
+        return replace(reading, labels=labels.reshape(shape), instances=instances.reshape(shape),
+                       intensities=intensities.reshape(shape))

@@ -22,8 +22,12 @@ sensor mounted inside or behind the body sees past it. In a world with an occupa
 (core/map/grid_rays.py), and Bullet's rays, cast with the walls' meshes moved out of their way
 (World.rays_past_grids), stop where the walls are: Bullet walks a static mesh's tree along the
 whole ray, past its first hit, so a large map's meshes made each ray cost several times more
-(benchmarks/bench_occupancy_lidar.py).
+(benchmarks/bench_occupancy_lidar.py). :func:`cast_rays_hits` also gives what each ray hit (a
+labelled lidar's bodies and surface normals).
 """
+
+from itertools import chain
+from operator import itemgetter
 
 import numpy as np
 import pybullet
@@ -31,6 +35,8 @@ import pybullet
 # Rays per rayTestBatch call: PyBullet refuses more than 16384 and silently answers only 16383
 # of exactly 16384 (pybullet 3.2.7), so batches stay below that.
 MAX_BATCH = 16383
+# the fields of a rayTestBatch result: (body, link, fraction, position, normal)
+_BODY, _LINK, _FRACTION, _NORMAL = itemgetter(0), itemgetter(1), itemgetter(2), itemgetter(4)
 
 
 def cast_rays(world, origin, ends, mask):
@@ -56,6 +62,67 @@ def cast_rays(world, origin, ends, mask):
     with world.rays_past_grids():
         fractions = _fractions(world, starts, near, mask)
     return np.where(fractions < 1.0, fractions * walls, walls)
+
+
+def cast_rays_hits(world, origin, ends, mask):
+    """
+    Cast rays from one origin; return what each hit: fractions, bodies, links and normals.
+
+    As :func:`cast_rays`, and per ray the body id (-1: none) and link index of its hit and the
+    unit normal of the surface there, world frame (rayTestBatch's). A ray that meets a ray
+    grid's wall (an occupancy map's) hits the grid's first body (``World.ray_grid_bodies``,
+    labelled as all of them) with the normal of the cell face it met (GridRays.normals).
+
+    :return: (fractions (n,), bodies (n,) int, links (n,) int, normals (n, 3)).
+    """
+    world.update_collision_state()
+    origin = np.asarray(origin, dtype=float)
+    ends = np.asarray(ends, dtype=float)
+    starts = [origin.tolist()] * len(ends)
+    if not world.ray_grids or len(ends) == 0:
+        return _hits(world, starts, ends, mask, world.labels.has_links)
+    walls = np.stack([grid.cast(origin, ends) for grid in world.ray_grids])
+    which = walls.argmin(axis=0)
+    walls = walls[which, np.arange(len(ends))]
+    near = origin + (ends - origin) * walls[:, None]
+    with world.rays_past_grids():
+        fractions, bodies, links, normals = _hits(world, starts, near, mask,
+                                                  world.labels.has_links)
+    grid = (fractions >= 1.0) & (walls < 1.0)
+    if np.any(grid):
+        grid_bodies = np.asarray(world.ray_grid_bodies)
+        bodies[grid], links[grid] = grid_bodies[which[grid]], -1
+        for index, rays in enumerate(world.ray_grids):
+            mine = np.flatnonzero(grid & (which == index))
+            if len(mine):
+                normals[mine] = rays.normals(origin, ends[mine], walls[mine])
+    return np.where(fractions < 1.0, fractions * walls, walls), bodies, links, normals
+
+
+def _hits(world, starts, ends, mask, links=True):
+    # rayTestBatch in chunks: per ray its fraction (1.0 for a miss), body, link (-1 without
+    # ``links``) and normal, read out of PyBullet's result tuples by C iterators (a Python loop
+    # over 30000 rays costs more than the labels are worth).
+    count = len(ends)
+    fractions = np.ones(count)
+    bodies = np.full(count, -1, dtype=np.int64)
+    parts = np.full(count, -1, dtype=np.int64)
+    normals = np.zeros((count, 3))
+    cid = world.client_id
+    for first in range(0, count, MAX_BATCH):
+        chunk = ends[first:first + MAX_BATCH].tolist()
+        results = pybullet.rayTestBatch(starts[first:first + MAX_BATCH], chunk,
+                                        collisionFilterMask=mask, physicsClientId=cid)
+        size = len(results)
+        end = first + size
+        bodies[first:end] = np.fromiter(map(_BODY, results), np.int64, size)
+        if links:
+            parts[first:end] = np.fromiter(map(_LINK, results), np.int64, size)
+        fractions[first:end] = np.fromiter(map(_FRACTION, results), np.float64, size)
+        normals[first:end] = np.fromiter(chain.from_iterable(map(_NORMAL, results)),
+                                         np.float64, 3 * size).reshape(size, 3)
+    fractions[bodies < 0] = 1.0
+    return fractions, bodies, parts, normals
 
 
 def _fractions(world, starts, ends, mask):

@@ -22,10 +22,21 @@ segmentation mask in one ``getCameraImage`` call. Cameras and range finders ask 
 asking for the same view from the same pose at the same world step get the same :class:`Frame`
 (one render), so a camera and a range finder mounted together cost one frame.
 
+Pixel centres: Bullet's renderer samples pixel (u, v) at its corner, so the plain projection
+of ``computeProjectionMatrixFOV`` puts the optical axis at (width / 2, height / 2 - 1) in the
+pixel-centre coordinates of ROS and OpenCV, half a pixel off the intrinsics' principal point
+((width - 1) / 2, (height - 1) / 2; CameraSpec.intrinsics). The projection is shifted by half a
+pixel so that the rendering is that of the intrinsics: a ray through a pixel's centre is what
+the pixel shows (measured: the ground's depth fits the principal point to 2e-4 px).
+
 Depth: Bullet's buffer holds the normalised device depth d in [0, 1]; the distance along the
 optical axis is z = far near / (far - (far - near) d) (the OpenGL perspective projection
-inverted). Nothing drawn leaves the cleared buffer (the far plane less float32 rounding: z =
-far within 1e-4 relative), which reads +inf, as does whatever lies that close to far. The mask
+inverted). Nothing drawn leaves the cleared buffer: 1 less float32 rounding (measured: at
+most 2 units of 2^-24 from 1 over near 0.001..0.5 m and far 1..3000 m), so a buffer value
+within FAR_BUFFER_MARGIN (4 units of 2^-24) of 1 reads +inf, as does whatever lies that close
+to the far plane: the last (far / near) 2.4e-7 of the range (5 cm of 100 m with near 0.05 m).
+A margin in metres instead would fail where far / near is large: 2 units of 2^-24 are 1.2e-4
+of far with far / near = 1000. The mask
 holds, per pixel, the body id and link index (-1 the base) of what is drawn there, -1 / -1
 where nothing is (``ER_SEGMENTATION_MASK_OBJECT_AND_LINKINDEX``: value = body + ((link + 1)
 << 24)).
@@ -41,7 +52,7 @@ import pybullet
 # A fixed sun: from above, slightly from the front-left of the world x axis, so that vertical
 # faces that look at -x (towards a car driving along +x) are lit.
 LIGHT_DIRECTION = (-0.4, 0.3, 1.0)
-FAR_TOLERANCE = 1e-4    # relative: a depth this close to the far plane is nothing drawn
+FAR_BUFFER_MARGIN = 4.0 * 2.0 ** -24     # a depth buffer value this close to 1: nothing drawn
 
 
 @dataclass(frozen=True)
@@ -76,12 +87,12 @@ def metric_depth(buffer, near_m, far_m) -> np.ndarray:
     """Return the distance along the optical axis [m] of Bullet depth-buffer values; far -> inf."""
     buffer = np.asarray(buffer, dtype=np.float64)
     depth = far_m * near_m / (far_m - (far_m - near_m) * np.minimum(buffer, 1.0))
-    return np.where(depth >= far_m * (1.0 - FAR_TOLERANCE), np.inf, depth).astype(np.float32)
+    return np.where(buffer >= 1.0 - FAR_BUFFER_MARGIN, np.inf, depth).astype(np.float32)
 
 
 class Renderer:
     """
-    The renders of one world, cached for the step they were made in.
+    The renders of one world, cached until the world steps or bodies move (World.revision).
 
     :param world: the World (``World.renderer`` holds the one instance).
     """
@@ -104,7 +115,7 @@ class Renderer:
         """
         world = self.world
         world.sync_bodies()          # placed bodies (traffic) where they are now
-        step = (world.step_count, world.time_s)
+        step = world.revision          # a step, or bodies moved between steps
         if step != self._step:
             self._step, self._frames = step, {}
         key = (view, np.asarray(position, dtype=float).tobytes(),
@@ -120,9 +131,14 @@ class Renderer:
     def _projection(self, view):
         found = self._projections.get(view)
         if found is None:
-            found = self._projections[view] = pybullet.computeProjectionMatrixFOV(
+            matrix = list(pybullet.computeProjectionMatrixFOV(
                 math.degrees(view.vertical_fov_rad), view.width / view.height, view.near_m,
-                view.far_m, physicsClientId=self.world.client_id)
+                view.far_m, physicsClientId=self.world.client_id))
+            # half a pixel to the left and down (NDC: 2 / width per pixel; the entries are the
+            # third column of the column-major matrix, which w = -z divides out)
+            matrix[8] += 1.0 / view.width
+            matrix[9] += 1.0 / view.height
+            found = self._projections[view] = matrix
         return found
 
     def _render(self, view, position, rotation, mask):
