@@ -193,9 +193,10 @@ def test_bad_radar_fields_are_refused_naming_the_field(field, value, message):
         sensor_from_dict({'type': 'radar', 'name': 'r', field: value}, 'w.yaml: radar')
 
 
-def test_traffic_targets_are_where_bullet_has_the_boxes_with_their_speed():
+def test_traffic_targets_are_where_bullet_has_the_boxes_with_their_speed_and_ids():
     # Built-in traffic on the highway: each target is at a traffic box's centre as Bullet has it
-    # (between traffic updates), its radial speed the vehicle's speed along its heading.
+    # (between traffic updates), its radial speed the vehicle's speed along its heading, its
+    # label car and its instance id the traffic object's (PredictedObjects).
     data = read_yaml(world_path('highway'))
     data['traffic'] = {'vehicles': 30, 'seed': 3}
     scene = build_scene(world_from_data(data, 'highway.yaml'))
@@ -218,6 +219,7 @@ def test_traffic_targets_are_where_bullet_has_the_boxes_with_their_speed():
         speeds = {body: v.speed_mps
                   for v, body in zip(traffic.manager.vehicles, traffic.body_ids)}
         own = pybullet.getBaseVelocity(car.body.body_id, physicsClientId=world.client_id)[0]
+        instances = {traffic.body_of(o.name): o.instance_id for o in traffic.objects()}
         for target in targets:
             centre = origin + rotation @ target.position_m
             body = min(boxes, key=lambda b: sum((p - c) ** 2 for p, c in zip(boxes[b], centre)))
@@ -231,6 +233,9 @@ def test_traffic_targets_are_where_bullet_has_the_boxes_with_their_speed():
             # the radar's own velocity at its mount differs from the body's by w x r (< 1 mm/s)
             assert target.speed_mps == pytest.approx(
                 line[0] * relative[0] + line[1] * relative[1], abs=1e-3)
+            # what it is: a car, its id the PredictedObjects object's (the instance id)
+            assert target.label == LABEL_IDS['car']
+            assert target.instance_id == instances[body]
     finally:
         scene.world.close()
 
