@@ -19,7 +19,8 @@ Issue 20's are the Gymnasium environment's (bench_gym.py); issue 21's the record
 (bench_record.py); issue 28's highway_traffic over ROS in real time (bench_traffic_ros.py);
 issue 30's the lidar on a SLAM-like occupancy map (bench_occupancy_lidar.py); issue 31's the city
 on SUMO (bench_sumo.py); issue 32's perception ground truth (bench_perception.py, the labelled
-lidar: bench_lidar_labels.py, the radar: bench_radar.py).
+lidar: bench_lidar_labels.py, camera segmentation and recognition: bench_camera_perception.py,
+the radar: bench_radar.py).
 
 ``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
 also run alone and say more); each ratio is measured in this run, its two sides interleaved or
@@ -257,6 +258,12 @@ def collect(quick):
         rows.append(('steps/s with 50 traffic cars / highway-env highway-fast-v0 with 50',
                      traffic[50][1] / highway_env[0], '>=',
                      bench_traffic.TARGET_HIGHWAY_ENV_RATIO, 'x'))
+    import bench_camera_perception
+    camera = bench_camera_perception.figures(quick)
+    rows.append(('640 x 480 camera with segmentation and recognition / colour only',
+                 camera['ratio'], '<=', bench_camera_perception.TARGET_RATIO, 'x'))
+    rows.append(('  same, and a range finder of its view / colour only', camera['depth_ratio'],
+                 '<=', bench_camera_perception.TARGET_RATIO, 'x'))
     floors = [
         'traffic on the highway (ego car cruising, 10 ms steps): ' + ', '.join(
             f'{n} cars {traffic[n][0]:.0f}x' for n in bench_traffic.COUNTS) + ' real time; the '
@@ -300,6 +307,9 @@ def collect(quick):
         f'sample on it, {slam["empty_ms"]:.2f} ms in the empty world (CPU); RSS '
         f'{slam["rss_after_mb"]:.0f} MB after loading, {slam["rss_peak_mb"]:.0f} MB at the peak',
     ] + gym_context + sumo_context
+    floors.append(f'640 x 480 camera: {camera["colour_ms"]:.0f} ms per colour frame, '
+                  f'{camera["seen_ms"]:.0f} ms with segmentation and recognition '
+                  f'({camera["objects"]} objects), {camera["depth_ms"]:.0f} ms with depth too')
     floors.append('highway_traffic over ROS at real time (vehicle-sim run): ' + '; '.join(
         bench_traffic_ros.describe(name, run) for name, run in traffic_ros.items()))
     floors.append(

@@ -31,6 +31,7 @@ gymnasium = pytest.importorskip('gymnasium', reason="needs the 'gym' extra (gymn
 
 from gymnasium.utils.env_checker import check_env  # noqa: E402
 
+from vehicle_sim.core.sensors.labels import LABEL_IDS  # noqa: E402
 from vehicle_sim.core.specs.errors import InvalidParameterError  # noqa: E402
 import vehicle_sim.gym  # noqa: E402,F401  (registers the ids)
 from vehicle_sim.gym import DriveEnv  # noqa: E402
@@ -344,3 +345,18 @@ def test_a_scenario_actor_keeps_its_idm_gap_to_the_standing_ego_unless_told_othe
     assert info['collision'] is hits
     assert (info['collided_with'] == 'other') is hits
     assert truncated is not hits and info['time_s'] > (5.0 if hits else 11.9)
+
+
+def test_a_segmenting_camera_gives_the_semantic_observation(make):
+    env = make(camera={'width': 32, 'height': 24, 'pose': {'x': 1.5, 'z': 1.3},
+                       'segmentation': True})
+    obs, _ = env.reset(seed=0)
+    semantic = obs['semantic']
+    assert semantic.shape == (24, 32) and semantic.dtype == np.uint8
+    assert env.observation_space['semantic'].contains(semantic)
+    # obstacle_course: the wall ahead at the centre (an obstacle), the sky above, the ground
+    # below
+    assert semantic[0, 16] == LABEL_IDS['none']
+    assert semantic[-1, 16] == LABEL_IDS['ground']
+    assert semantic[12, 16] in (LABEL_IDS['obstacle'], LABEL_IDS['wall'])
+    assert 'semantic' not in make(camera=True).reset(seed=0)[0]

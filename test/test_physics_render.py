@@ -83,3 +83,24 @@ def test_a_body_moved_between_steps_is_rendered_where_it_is_now():
             pytest.approx(12.0, abs=0.02)
     finally:
         world.close()
+
+
+def test_a_view_once_asked_with_the_mask_renders_with_it_so_a_plain_sensor_first_costs_none():
+    # a range finder sampled before a segmenting camera of its view: one render per step
+    world = World()
+    renders = []
+    real = world.renderer._render
+    world.renderer._render = lambda *args: renders.append(args) or real(*args)
+    try:
+        _wall(world, 7.0)
+        world.renderer.render(VIEW, (0.0, 0.0, 1.0), LOOK_ALONG_X, mask=True)
+        for _ in range(3):
+            world.step()
+            plain = world.renderer.render(VIEW, (0.0, 0.0, 1.0), LOOK_ALONG_X)
+            masked = world.renderer.render(VIEW, (0.0, 0.0, 1.0), LOOK_ALONG_X, mask=True)
+            assert masked is plain and plain.bodies is not None
+        assert len(renders) == 4
+        other = View(32, 24, VIEW.vertical_fov_rad, 0.1, 50.0)   # another view: no mask
+        assert world.renderer.render(other, (0.0, 0.0, 1.0), LOOK_ALONG_X).bodies is None
+    finally:
+        world.close()

@@ -109,7 +109,7 @@ def test_the_road_its_paint_and_areas_are_labelled_where_they_are_drawn(scene):
     assert seen_below(world, -10.0, 1.75) == ('lane_marking', 0)         # a solid line
     assert seen_below(world, -2.0, 0.0) == ('lane_marking', 0)            # the stop line
     crosswalk_x = 0.5 * (CROSSWALK[0][0] + CROSSWALK[1][0])
-    assert seen_below(world, crosswalk_x, 1.25) == ('crosswalk', 0)      # a zebra stripe
+    assert seen_below(world, crosswalk_x, 1.5) == ('crosswalk', 0)       # a zebra stripe's middle
     assert seen_below(world, -10.0, 4.5) == ('sidewalk', 0)               # the walkway
     parking = np.mean(PARKING, axis=0)
     assert seen_below(world, *parking) == ('road', 0)

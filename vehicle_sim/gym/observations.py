@@ -24,6 +24,8 @@ The observation parts of the Gym environment: each one fills some keys of the Di
   at -fov/2 (right), counter-clockwise; no return reads max_range, closer than min_range 0.
 - ``camera``: (height, width, 3) uint8 in [0, 255]: an RGB picture of a camera on the ego,
   rows top to bottom.
+- ``semantic`` (a camera with ``segmentation: true``): (height, width) uint8: the label id of
+  each pixel of that picture (core/sensors/labels.py).
 - ``depth`` (option ``range_finder``): (height, width) float32 [m] in [0, max_range]: the depth
   along the optical axis of a range finder on the ego, rows top to bottom; nothing within
   max_range (+inf on the ROS image) reads max_range, a noisy depth under min_range 0 (as the
@@ -43,6 +45,7 @@ import math
 import numpy as np
 
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
+from vehicle_sim.core.sensors.labels import LABELS
 from vehicle_sim.core.sensors.params import sensor_from_dict
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.gym.lanes import lane_part
@@ -59,6 +62,7 @@ DEFAULT_CAMERA = {'width': 84, 'height': 84, 'fov': 1.2}
 # The default range finder has the default camera's view (near, far: the camera's defaults), so
 # the two at the same mount share one render.
 DEFAULT_RANGE_FINDER = dict(DEFAULT_CAMERA, min_range=0.05, max_range=100.0)
+SEMANTIC = 'semantic'
 
 
 class OdometryPart:
@@ -132,13 +136,20 @@ class CameraPart:
         self.sensor = CameraSensor(world, body, spec)
 
     def spaces(self):
-        return {CAMERA: (0, 255, (self.spec.height, self.spec.width, 3), np.uint8)}
+        size = (self.spec.height, self.spec.width)
+        found = {CAMERA: (0, 255, size + (3,), np.uint8)}
+        if self.spec.segmentation:
+            found[SEMANTIC] = (0, len(LABELS) - 1, size, np.uint8)
+        return found
 
     def reset(self):
         pass
 
     def read(self, out):
-        out[CAMERA] = self.sensor.sample(self.world.time_s).rgb
+        reading = self.sensor.sample(self.world.time_s)
+        out[CAMERA] = reading.rgb
+        if self.spec.segmentation:
+            out[SEMANTIC] = reading.semantic
 
 
 class RangeFinderPart:

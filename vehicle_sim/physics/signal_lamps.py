@@ -157,6 +157,8 @@ class SignalLamps:
                     physicsClientId=self._cid)
             changed += len(indices)
         self.changes += changed
+        if changed:
+            self.world.mark_redrawn()      # renders of this step show the new colours
         return changed
 
     def before_query(self):

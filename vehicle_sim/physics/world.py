@@ -631,6 +631,10 @@ class World:
         again (``revision``; physics/sensors/render.py).
         """
         self._broadphase_stale = True
+        self.mark_redrawn()
+
+    def mark_redrawn(self):
+        """Say that what bodies look like changed between steps: renders are made again."""
         self.revision += 1
 
     def body_name(self, body_id):
@@ -663,6 +667,7 @@ class World:
         the texture goes and the colour becomes GROUND_COLOR. Physics and rays are unchanged.
         """
         if not self._ground_visual:
+            self.mark_redrawn()
             pybullet.changeVisualShape(self.ground_id, -1, rgbaColor=list(GROUND_COLOR),
                                        textureUniqueId=-1, physicsClientId=self.client_id)
             self._ground_visual = True

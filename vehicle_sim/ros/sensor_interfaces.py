@@ -32,19 +32,21 @@ time) for :data:`COLLISION`, published once per event (cadence ON_EVENT).
 from dataclasses import dataclass, replace
 from typing import Callable, Dict, Iterable, Sequence, Tuple
 
+from vehicle_sim.core.sensors.labels import LABELS
 from vehicle_sim.core.sensors.params import check_layer, sensor_from_dict, SensorSpec
 from vehicle_sim.core.sensors.sets import mounted
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec
 from vehicle_sim.ros import messages as m
-from vehicle_sim.ros.endpoints import converter, EACH_SAMPLE, ON_EVENT, Topic
+from vehicle_sim.ros import perception_messages as pm
+from vehicle_sim.ros.endpoints import converter, EACH_SAMPLE, ON_EVENT, ONCE_LATCHED, Topic
 from vehicle_sim.ros.radar_messages import (
     RADAR_SCAN,
     radar_scan_builder,
     RADAR_TRACKS,
     radar_tracks_builder,
 )
-from vehicle_sim.transport.qos import QosProfile
+from vehicle_sim.transport.qos import QOS_LATCHED, QosProfile
 
 # Reliable, volatile, depth 5 (issue: sensor topics); a best-effort sensor_data reader matches.
 QOS_SENSOR = QosProfile(depth=5)
@@ -109,12 +111,38 @@ def _distance_rows(spec):
 
 
 def _camera_rows(spec):
-    image, info = spec.topics
-    return (_row(image, m.IMAGE, m.image_builder, spec,
+    image, info = spec.topics[:2]
+    rows = (_row(image, m.IMAGE, m.image_builder, spec,
                  'rgb8, rows top to bottom; frame <p><name>_optical', optical=True),
             _row(info, m.CAMERA_INFO, m.camera_info_builder, spec,
                  'ideal pinhole (plumb_bob, no distortion) of the image; frame '
                  '<p><name>_optical', optical=True))
+    return rows + _perception_rows(spec, spec.topics[2:])
+
+
+def _perception_rows(spec, topics):
+    # a camera's segmentation images and recognition rows (ros/perception_messages.py)
+    rows = ()
+    if spec.segmentation:
+        semantic, instance, topics = topics[0], topics[1], topics[2:]
+        rows += (_row(semantic, m.IMAGE, pm.semantic_image_builder, spec,
+                      'segmentation: mono16 label id per pixel (the label table of '
+                      'docs/sensors.md); frame <p><name>_optical', optical=True),
+                 _row(instance, m.IMAGE, pm.instance_image_builder, spec,
+                      'segmentation: mono16 object id per pixel (PredictedObjects ids), 0 = '
+                      'none; frame <p><name>_optical', optical=True))
+    if spec.recognition:
+        detections, labels = topics
+        rows += (_row(detections, pm.DETECTION_2D_ARRAY, pm.detection_2d_array_builder, spec,
+                      'recognition: the visible objects, id = object id, bbox = the visible '
+                      'part [px], class_id = label name, score 1; frame <p><name>_optical',
+                      optical=True, unit='px'),
+                 Topic(labels, pm.LABEL_INFO, QOS_LATCHED, ONCE_LATCHED,
+                       converter(pm.label_info_builder, lambda ctx: (ctx.stamp, LABELS),
+                                 lambda w: (spec.optical_frame_id(w.frame_prefix),)),
+                       doc='recognition: the label table (class_id = label id, class_name), '
+                           'latched'))
+    return rows
 
 
 def _range_finder_rows(spec):
@@ -165,7 +193,7 @@ SENSOR_ROWS = {
     'imu': SensorRows(_imu_rows),
     'gnss': SensorRows(_gnss_rows),
     'distance': SensorRows(_distance_rows),
-    'camera': SensorRows(_camera_rows),
+    'camera': SensorRows(_camera_rows, ({'segmentation': True, 'recognition': True},)),
     'range_finder': SensorRows(_range_finder_rows, ({'point_cloud': True},)),
     'radar': SensorRows(_radar_rows),
 }

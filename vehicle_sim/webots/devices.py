@@ -40,6 +40,7 @@ import numpy as np
 
 from vehicle_sim.core.sensors.params import check_layer
 from vehicle_sim.webots.api_table import DEVICE_API
+from vehicle_sim.webots.camera_recognition import CameraRecognition, CameraRecognitionObject
 from vehicle_sim.webots.radar_device import RadarMethods, RadarTarget
 from vehicle_sim.webots.webots_warning import warn
 
@@ -217,8 +218,8 @@ class LidarPoint:
         return f'LidarPoint(x={self.x}, y={self.y}, z={self.z}, layer_id={self.layer_id})'
 
 
-class Camera(Device):
-    """Webots Camera: BGRA image bytes, rows top to bottom."""
+class Camera(CameraRecognition, Device):
+    """Webots Camera: BGRA image bytes, rows top to bottom (recognition: its base class)."""
 
     def getImage(self):
         """Return the last image as BGRA bytes (width * height * 4), None before the first."""
@@ -484,6 +485,6 @@ def devices_of(suite):
     return devices
 
 
-__all__ = ['Accelerometer', 'Camera', 'DEVICE_CLASSES', 'Device', 'DistanceSensor', 'GPS',
-           'Gyro', 'InertialUnit', 'Lidar', 'LidarPoint', 'Radar', 'RadarTarget', 'RangeFinder',
-           'devices_of']
+__all__ = ['Accelerometer', 'Camera', 'CameraRecognitionObject', 'DEVICE_CLASSES', 'Device',
+           'DistanceSensor', 'GPS', 'Gyro', 'InertialUnit', 'Lidar', 'LidarPoint', 'Radar',
+           'RadarTarget', 'RangeFinder', 'devices_of']

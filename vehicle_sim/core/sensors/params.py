@@ -36,6 +36,7 @@ import math
 from typing import Dict, Optional, Tuple
 
 from vehicle_sim.core.geometry.frames import Pose
+from vehicle_sim.core.sensors.labels import check_label_names
 from vehicle_sim.core.sensors.lookup_table import LookupTable
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import (
@@ -60,6 +61,9 @@ MAX_LIDAR_RAYS = 65536              # per scan: horizontal_resolution x layers
 MAX_DISTANCE_RAYS = 1024
 MAX_CAMERA_SIDE_PX = 3840           # a 4K UHD row
 MAX_CAMERA_PIXELS = 1920 * 1080     # per frame: width x height (Full HD)
+# The label classes a camera's recognition reports by default: the objects (core/sensors/labels.py)
+RECOGNITION_CLASSES = ('car', 'truck', 'bus', 'motorcycle', 'bicycle', 'pedestrian', 'obstacle',
+                       'traffic_light')
 
 
 def _common(sensor_type, rate_hz, types=None):
@@ -326,6 +330,23 @@ CAMERA_SPECS = _common('camera', 10.0) + (
               lt=math.pi),
     ParamSpec('near', 'near_m', 'float', 0.05, 'm', 'near clipping distance', gt=0.0),
     ParamSpec('far', 'far_m', 'float', 100.0, 'm', 'far clipping distance', gt=0.0),
+    ParamSpec('segmentation', 'segmentation', 'bool', False,
+              doc='semantic (label id) and instance (object id) images beside the colour one '
+                  '(docs/sensors.md, "Segmentation and recognition")'),
+    ParamSpec('recognition', 'recognition', 'bool', False,
+              doc="Webots' Recognition node: the visible objects (Camera.getRecognitionObjects, "
+                  'ROS detections)'),
+    ParamSpec('recognition_max_range', 'recognition_max_range_m', 'float', 100.0, 'm',
+              "Webots Recognition maxRange: an object's centre farther than this is not "
+              'recognised', gt=0.0),
+    ParamSpec('recognition_max_objects', 'recognition_max_objects', 'int', -1, '',
+              'Webots Recognition maxObjects: the most objects, the biggest on the image first; '
+              '-1 = no limit', ge=-1),
+    ParamSpec('recognition_min_pixels', 'recognition_min_pixels', 'int', 10, 'px',
+              'the fewest visible pixels of a recognised object', ge=1),
+    ParamSpec('recognition_classes', 'recognition_classes', 'str_list', RECOGNITION_CLASSES,
+              doc='labels (the label table of docs/sensors.md) of the objects recognised',
+              check=lambda names: check_label_names(names, 'a class') and None),
 )
 
 
@@ -338,15 +359,36 @@ class CameraSpec(SensorSpec):
     fov_rad: float
     near_m: float
     far_m: float
+    segmentation: bool
+    recognition: bool
+    recognition_max_range_m: float
+    recognition_max_objects: int
+    recognition_min_pixels: int
+    recognition_classes: Tuple[str, ...]
 
     def _default_topic(self):
         return 'camera'
 
     @property
+    def masked(self):
+        """Whether a frame needs the body mask (segmentation or recognition)."""
+        return self.segmentation or self.recognition
+
+    @property
     def topics(self):
-        """``<topic>/image_raw`` and ``<topic>/camera_info`` (topic default 'camera')."""
+        """
+        ``<topic>/image_raw`` and ``<topic>/camera_info`` (topic default 'camera').
+
+        With segmentation also ``<topic>/semantic/image_raw`` and ``<topic>/instance/image_raw``;
+        with recognition ``<topic>/detections`` and ``<topic>/labels``.
+        """
         base = self.topic or self._default_topic()
-        return (f'{base}/image_raw', f'{base}/camera_info')
+        topics = (f'{base}/image_raw', f'{base}/camera_info')
+        if self.segmentation:
+            topics += (f'{base}/semantic/image_raw', f'{base}/instance/image_raw')
+        if self.recognition:
+            topics += (f'{base}/detections', f'{base}/labels')
+        return topics
 
     def optical_frame_id(self, prefix=''):
         """Return the image frame ``<prefix><name>_optical`` (z forward, x right, y down)."""

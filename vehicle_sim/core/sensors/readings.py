@@ -176,7 +176,10 @@ class CameraReading:
     One camera frame (sensor_msgs/Image rgb8 + CameraInfo), in the optical frame.
 
     ``rgb``: (height, width, 3) uint8, row 0 at the top. ``k`` (3 x 3), ``p`` (3 x 4), ``r``
-    (3 x 3) row-major as in CameraInfo; no distortion (plumb_bob, d = 5 zeros).
+    (3 x 3) row-major as in CameraInfo; no distortion (plumb_bob, d = 5 zeros). A camera with
+    segmentation adds ``semantic`` ((height, width) uint8 label ids, core/sensors/labels.py) and
+    ``instance`` ((height, width) uint16 object ids, 0 = none); one with recognition adds
+    ``objects`` (core/sensors/recognition.py RecognitionObject, in id order). None otherwise.
     """
 
     name: str
@@ -190,6 +193,9 @@ class CameraReading:
     d: Tuple[float, ...] = (0.0,) * 5
     distortion_model: str = 'plumb_bob'
     encoding: str = 'rgb8'
+    semantic: Optional[np.ndarray] = field(default=None, repr=False)
+    instance: Optional[np.ndarray] = field(default=None, repr=False)
+    objects: Optional[Tuple] = None
 
     @property
     def step(self):

@@ -22,10 +22,12 @@ fov_v = 2 atan(tan(fov_h / 2) * height / width) (square pixels). The image rows 
 bottom, the columns left to right; its frame is the optical one (z forward, x right, y down) and
 the intrinsics are those of CameraSpec.intrinsics. The ground gets a visual as soon as a camera
 exists (World.show_ground). A 320 x 240 frame costs several milliseconds, so cameras are off
-unless mounted.
+unless mounted. With segmentation or recognition the frame is rendered with its body mask, which
+physics/sensors/recognition.py turns into the label and object images and the objects.
 """
 
 from vehicle_sim.core.sensors.readings import camera_matrices, CameraReading
+from vehicle_sim.physics.sensors.recognition import recognise, segment
 from vehicle_sim.physics.sensors.render import View
 from vehicle_sim.physics.sensors.sensor import Sensor
 
@@ -50,6 +52,12 @@ class CameraSensor(Sensor):
         """Render a frame now; return a CameraReading stamped ``time_s``."""
         spec = self.spec
         position, rotation, _ = self.mount.world_frame()
-        frame = self.world.renderer.render(self.view, position, rotation)
+        frame = self.world.renderer.render(self.view, position, rotation, mask=spec.masked)
+        if not spec.masked:
+            return CameraReading(spec.name, time_s, spec.width, spec.height, frame.rgb, self._k,
+                                 self._p)
+        semantic, instance = segment(self.world, frame, self.mount.body.body_id)
+        objects = (recognise(self.world, spec, frame, semantic, instance, position, rotation)
+                   if spec.recognition else None)
         return CameraReading(spec.name, time_s, spec.width, spec.height, frame.rgb, self._k,
-                             self._p)
+                             self._p, semantic=semantic, instance=instance, objects=objects)

@@ -102,6 +102,7 @@ class Renderer:
         self._projections = {}
         self._step = None
         self._frames = {}
+        self._masked = set()           # views once asked for with the mask: always with it
 
     def render(self, view: View, position, rotation, mask=False) -> Frame:
         """
@@ -111,8 +112,14 @@ class Renderer:
         :param position: (3,) the optical centre in the world [m].
         :param rotation: (3, 3) the sensor frame (columns: x the viewing direction, z up in
             the picture).
-        :param mask: also the body mask (a frame rendered without it is rendered again).
+        :param mask: also the body mask (a frame rendered without it is rendered again). A
+            view once asked for with the mask is rendered with it from then on, so that a
+            sensor sampled before a segmenting camera of the same view (a range finder) does
+            not cost a second render (the mask costs Bullet nothing more).
         """
+        if mask:
+            self._masked.add(view)
+        mask = mask or view in self._masked
         world = self.world
         world.sync_bodies()          # placed bodies (traffic) where they are now
         step = world.revision          # a step, or bodies moved between steps
