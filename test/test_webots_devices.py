@@ -364,6 +364,33 @@ def test_radar_example_controller_stops_behind_the_parked_car():
     assert len(cruising) >= 5
 
 
+def test_radar_camera_example_controller_sees_the_parked_car_with_both_and_stops():
+    # examples/radar_camera_controller.py, Webots' style, on config/worlds/radar_camera.yaml:
+    # the camera recognises the parked car, the radar target at its bearing measures it
+    env = dict(os.environ, VEHICLE_SIM_WORLD='radar_camera')
+    result = subprocess.run(
+        [sys.executable, str(REPO / 'examples' / 'radar_camera_controller.py')],
+        capture_output=True, text=True, env=env, timeout=300)
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.strip().splitlines()
+    assert 'stopped' in lines[-1], result.stdout
+    seen = [line for line in lines if '(car): radar' in line]
+    assert len(seen) >= 5, result.stdout
+    ids = set()
+    for line in seen:
+        ids.add(int(line.split(' car ')[1].split(' ')[0]))
+        speed_kmh = float(line.split('speed=')[1].split(' km/h')[0])
+        radar_m = float(line.split('radar ')[1].split(' m')[0])
+        closing = float(line.split('closing at ')[1].split(' m/s')[0])
+        camera_m = float(line.split('camera ')[1].split(' m')[0])
+        assert closing == pytest.approx(speed_kmh / 3.6, abs=0.1)
+        if radar_m < 50.0:      # a car partly within maxRange reads maxRange (Webots clamps)
+            assert camera_m == pytest.approx(radar_m, abs=1.0)   # two mounts, the same car
+    assert len(ids) == 1 and ids.pop() > 0      # one object, its instance id
+    radar_m = float(lines[-1].split('radar ')[1].split(' m')[0])
+    assert 2.5 + 0.5 < radar_m < 2.5 + 10.0     # stopped short of the parked car
+
+
 def test_a_world_whose_vehicle_starts_inside_an_obstacle_is_refused_naming_both(tmp_path):
     # As the node and the scenario runner refuse it: the check is where vehicles join a World.
     path = tmp_path / 'crate.yaml'
