@@ -19,7 +19,8 @@ Issue 20's are the Gymnasium environment's (bench_gym.py); issue 21's the record
 (bench_record.py); issue 28's highway_traffic over ROS in real time (bench_traffic_ros.py);
 issue 30's the lidar on a SLAM-like occupancy map (bench_occupancy_lidar.py); issue 31's the city
 on SUMO (bench_sumo.py); issue 32's perception ground truth (bench_perception.py, the labelled
-lidar: bench_lidar_labels.py, camera segmentation and recognition: bench_camera_perception.py).
+lidar: bench_lidar_labels.py, camera segmentation and recognition: bench_camera_perception.py,
+the radar: bench_radar.py).
 
 ``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
 also run alone and say more); each ratio is measured in this run, its two sides interleaved or
@@ -140,6 +141,7 @@ def collect(quick):
     import bench_maps
     import bench_occupancy_lidar
     import bench_plugin
+    import bench_radar
     import bench_record
     import bench_ros_sync
     import bench_service_roundtrip
@@ -173,6 +175,7 @@ def collect(quick):
     maps = bench_maps.figures(quick)
     slam = bench_occupancy_lidar.figures(quick)
     lidar_labels = bench_lidar_labels.figures(quick)
+    radar, numpy_op_us = bench_radar.figures(quick)
     import tempfile
     with tempfile.TemporaryDirectory(prefix='bench_record_') as folder:
         rec_plain, rec_published, rec_us = bench_record.measure_in_process(
@@ -247,7 +250,10 @@ def collect(quick):
          bench_traffic.TARGETS[50], 'x'),
         ('highway with 200 traffic cars, in-process real-time factor', traffic[200][0], '>=',
          bench_traffic.TARGETS[200], 'x'),
-    ] + gym_rows + sumo_rows + perception_rows
+    ] + gym_rows + sumo_rows + perception_rows + [
+        (f'radar ({name}) with {bench_radar.CARS} traffic cars, median reading, CPU time '
+         f'(numpy op here: {numpy_op_us:.2f} us)', us, '<=', bench_radar.TARGET_US, 'us')
+        for name, (us, _, _) in radar.items()]
     if highway_env is not None:
         rows.append(('steps/s with 50 traffic cars / highway-env highway-fast-v0 with 50',
                      traffic[50][1] / highway_env[0], '>=',

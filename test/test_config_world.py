@@ -202,7 +202,7 @@ def _sensor(**changes):
     (_sensor(horizontal_resolution=10.5), "field 'horizontal_resolution' = 10.5: must be an "
                                           'integer'),
     (_sensor(layers=4), "field 'vertical_fov' = 0.0: must be > 0 with 4 layers"),
-    (_sensor(type='radar'), "field 'type' = 'radar': unknown sensor type; valid: lidar, imu"),
+    (_sensor(type='sonar'), "field 'type' = 'sonar': unknown sensor type; valid: lidar, imu"),
     (_sensor(fov=float('nan')), "field 'fov' = nan: must be finite"),
     (_sensor(fov=7.0), "field 'fov' = 7.0: must be > 0 and <= 6.28319"),
     (_sensor(rate_hz=0.0), "field 'rate_hz' = 0.0: must be > 0"),

@@ -117,7 +117,7 @@ def test_a_registered_source_adds_its_entities_after_the_built_in_ones(monkeypat
     scene = SimpleNamespace(vehicles={}, spec=SimpleNamespace(obstacles=()), obstacles={})
     assert fs.scene_entities(scene) == [sign]
     assert list(fs.ENTITY_SOURCES) == ['vehicles', 'obstacles', 'traffic', 'map', 'lanes',
-                                       'signals', 'signs']
+                                       'signals', 'radar_targets', 'signs']
     assert fs.STATIC_SOURCES == {'map', 'lanes'}
 
 
@@ -130,3 +130,34 @@ def test_unknown_source_and_duplicate_ids_are_refused(monkeypatch):
     fs.register_entity_source('twice', lambda scene: [twice, twice])
     with pytest.raises(ValueError, match="entity id 'x' given twice"):
         fs.scene_entities(scene)
+
+
+def test_radar_targets_are_spheres_at_their_centres_with_a_line_from_the_radar():
+    from vehicle_sim.core.sensors.labels import LABELS
+    from vehicle_sim.core.sensors.params import sensor_from_dict
+    from vehicle_sim.physics import World
+    from vehicle_sim.physics.sensors import SensorSuite
+    from vehicle_sim.physics.simulated_car import SimulatedCar
+    with World() as world:
+        car = SimulatedCar(world, load_car('Car'), (0.0, 0.0, 0.0), name='ego')
+        world.add_obstacle(obstacle_from_dict(
+            {'name': 'crate', 'shape': 'box', 'size': [1.0, 2.0, 1.5],
+             'position': [20.0, 3.0, 0.75]}, 'w.yaml'))
+        spec = sensor_from_dict({'type': 'radar', 'name': 'front', 'horizontal_fov': 1.0,
+                                 'pose': {'x': 2.0, 'z': 0.75}}, 'w.yaml')
+        suite = SensorSuite(world, car.body, [spec])
+        scene = SimpleNamespace(vehicles={'ego': SimpleNamespace(sensors=suite)})
+        assert fs.scene_entities(scene, ['radar_targets']) == []          # no reading yet
+        reading = suite.sample('front')
+        entity, = fs.scene_entities(scene, ['radar_targets'])
+        origin = suite.sensors['front'].mount.world_frame()[0]
+    assert entity.id == 'radar/ego/front' and entity.frame_id == fs.WORLD_FRAME
+    sphere, = entity.primitives
+    assert sphere.kind == 'sphere' and sphere.position_m == pytest.approx((20.0, 3.0, 0.75),
+                                                                          abs=1e-6)
+    label = LABELS[reading.targets[0].label]
+    assert sphere.color_rgba[:3] == pytest.approx(tuple(c / 255.0 for c in label.colour))
+    line, = entity.lines
+    assert line.kind == 'line_list'
+    assert line.points_m.ravel().tolist() == pytest.approx(
+        [*origin.tolist(), 20.0, 3.0, 0.75], abs=1e-6)

@@ -68,15 +68,15 @@ def test_every_layer_registers_exactly_the_core_sensor_types(layer):
 
 @pytest.mark.parametrize('layer', sorted(LAYERS))
 def test_a_core_type_missing_from_a_layer_is_refused_by_its_check(layer, monkeypatch):
-    radar = replace(SENSOR_TYPES['distance'])
-    monkeypatch.setitem(sensor_params.SENSOR_TYPES, 'radar', radar)
-    with pytest.raises(RuntimeError, match=r'sensor types missing: radar; unknown: none'):
+    sonar = replace(SENSOR_TYPES['distance'])     # a type the core would add next
+    monkeypatch.setitem(sensor_params.SENSOR_TYPES, 'sonar', sonar)
+    with pytest.raises(RuntimeError, match=r'sensor types missing: sonar; unknown: none'):
         check_layer(layer, LAYERS[layer]())
 
 
 def test_a_layer_type_unknown_to_the_core_is_refused():
-    with pytest.raises(RuntimeError, match=r'missing: none; unknown: radar'):
-        check_layer('physics', set(SENSOR_TYPES) | {'radar'})
+    with pytest.raises(RuntimeError, match=r'missing: none; unknown: sonar'):
+        check_layer('physics', set(SENSOR_TYPES) | {'sonar'})
 
 
 @pytest.mark.parametrize('sensor_type', sorted(SENSOR_TYPES))

@@ -224,8 +224,8 @@ BAD_WORLDS = [
                  "sensors[0]: field 'max_range' = -1.0", id='negative-range'),
     pytest.param(WORLD_HEAD + '      - {type: lidar, name: lidar, horizontal_resolution: 0}\n',
                  "field 'horizontal_resolution' = 0", id='zero-resolution'),
-    pytest.param(WORLD_HEAD + '      - {type: radar, name: radar}\n',
-                 "field 'type' = 'radar': unknown sensor type", id='unknown-type'),
+    pytest.param(WORLD_HEAD + '      - {type: sonar, name: sonar}\n',
+                 "field 'type' = 'sonar': unknown sensor type", id='unknown-type'),
     pytest.param('vehicles: [{name: Car}]\nobstacles:\n  - {name: cone1, shape: cone, '
                  'position: [5.0, 0.0, 0.5]}\n', "obstacles[0]: field 'shape' = 'cone'",
                  id='unknown-shape'),

@@ -53,6 +53,7 @@ vehicles:
          lookup_table: [[0.0, 0.0, 0.0], [20.0, 20.0, 0.0]]}
       - {type: range_finder, name: depth_cam, pose: {x: 1.5, z: 1.3}, width: 64, height: 48,
          max_range: 50.0}
+      - {type: radar, name: radar, pose: {x: 4.6, z: 1.0}, horizontal_fov: 2.0}
   - name: parked
     namespace: parked
     pose: {x: 10.0, y: -6.0, yaw: 1.0}
@@ -99,9 +100,9 @@ def test_get_device_returns_the_webots_class_and_its_configuration(driver, row):
 def test_devices_are_listed_by_index_in_sensor_order(driver):
     names = [driver.getDeviceByIndex(i).getName() for i in range(driver.getNumberOfDevices())]
     assert names == ['Sick LMS 291', 'camera', 'gps', 'inertial unit', 'gyro', 'accelerometer',
-                     'distance sensor front', 'depth_cam']
+                     'distance sensor front', 'depth_cam', 'radar']
     with pytest.warns(WebotsWarning, match='outside'):
-        assert driver.getDeviceByIndex(8) is None
+        assert driver.getDeviceByIndex(9) is None
 
 
 def test_unknown_device_keeps_a_clear_error_listing_the_mounted_ones(driver):
@@ -243,6 +244,62 @@ def test_distance_sensor_value_and_range_come_from_its_lookup_table(driver):
     assert front.getType() == front.SONAR
 
 
+def test_radar_targets_as_webots_reads_them(driver):
+    # Webots' Radar (radar.md): RadarTarget distance, received_power, speed, azimuth; the
+    # azimuth > 0 to the right (WbRadar); none before the first sample
+    radar = driver.getDevice('radar')
+    radar.enable(10)
+    assert radar.getTargets() == [] and radar.getNumberOfTargets() == 0
+    for _ in range(5):
+        driver.step()
+    reading = driver.sensors.latest('radar')
+    targets = radar.getTargets()
+    assert radar.getNumberOfTargets() == len(targets) == len(reading.targets) >= 2
+    for target, truth in zip(targets, reading.targets):
+        assert target.distance == truth.distance_m
+        assert target.received_power == target.receiver_power == truth.received_power_dbm
+        assert target.speed == truth.speed_mps
+        assert target.azimuth == -truth.azimuth_rad
+    # the pole (y = +5) to the left: azimuth < 0; the parked car (y = -6) to the right: > 0;
+    # the wall straight ahead: 0
+    assert sorted(round(t.azimuth, 6) for t in targets) == [
+        pytest.approx(-math.atan2(5.0, 5.4), abs=1e-3), 0.0,
+        pytest.approx(math.atan2(4.317, 6.4806), abs=1e-3)]
+    assert radar.getHorizontalFov() == 2.0 and radar.getMinRange() == 1.0
+    assert radar.getMaxRange() == 50.0 and radar.getVerticalFov() == 0.1
+
+
+# Webots' radar.md (Python tabs) and its Python controller's radar.py: every method and property
+RADAR_METHODS = ('enable', 'disable', 'getSamplingPeriod', 'getMinRange', 'getMaxRange',
+                 'getHorizontalFov', 'getVerticalFov', 'getNumberOfTargets', 'getTargets')
+RADAR_PROPERTIES = ('min_range', 'max_range', 'horizontal_fov', 'vertical_fov',
+                    'number_of_targets', 'targets', 'sampling_period')
+
+
+def test_radar_has_every_method_and_property_of_webots_radar(driver):
+    radar = driver.getDevice('radar')
+    spec = driver.sensors.specs['radar']
+    for name in RADAR_METHODS:
+        assert callable(getattr(radar, name)), name
+    assert (radar.min_range, radar.max_range) == (spec.min_range_m, spec.max_range_m)
+    assert radar.horizontal_fov == radar.getHorizontalFov() == spec.horizontal_fov_rad
+    assert radar.vertical_fov == radar.getVerticalFov() == spec.vertical_fov_rad
+    assert radar.sampling_period == radar.getSamplingPeriod() == 0
+    radar.enable(20)
+    assert radar.getSamplingPeriod() == 20
+    for _ in range(4):
+        driver.step()
+    assert radar.number_of_targets == radar.getNumberOfTargets() == len(radar.targets) == 3
+    assert all(hasattr(radar, name) for name in RADAR_PROPERTIES)
+    target = radar.getTargets()[0]
+    assert [type(getattr(target, name)) for name in (
+        'distance', 'received_power', 'receiver_power', 'speed', 'azimuth')] == [float] * 5
+    radar.disable()
+    assert radar.getSamplingPeriod() == 0
+    with pytest.warns(WebotsWarning, match='disabled device'):
+        assert radar.getTargets() == []
+
+
 def test_camera_image_is_bgra_and_the_array_is_x_y_rgb(driver):
     camera = driver.getDevice('camera')
     _settle(driver, [camera], steps=1)
@@ -266,7 +323,7 @@ def test_world_file_from_the_environment_drives_its_first_vehicle(world_file, mo
         assert set(driver.world.obstacles) == {'wall', 'pole'}
         names = [b.body.name for b in driver.world.bodies if hasattr(b, 'body')]
         assert names == ['parked', 'ego']
-        assert driver.getNumberOfDevices() == 8
+        assert driver.getNumberOfDevices() == 9
 
 
 def test_shipped_obstacle_course_mounts_the_webots_car_devices(monkeypatch):
@@ -285,6 +342,53 @@ def test_lidar_example_controller_stops_before_the_wall():
     assert 'stopped' in last, result.stdout
     gap_m = float(last.split('m ahead of the lidar, ')[1].split(' m')[0])
     assert 0.5 < gap_m < 5.0          # stopped before the wall, without touching it
+
+
+def test_radar_example_controller_stops_behind_the_parked_car():
+    # examples/radar_controller.py, Webots' style, on config/worlds/radar_stop.yaml: the box's
+    # centre 60 m ahead, the radar at the front bumper (4.5 m): it stops short of the box's rear
+    env = dict(os.environ, VEHICLE_SIM_WORLD='radar_stop')
+    result = subprocess.run([sys.executable, str(REPO / 'examples' / 'radar_controller.py')],
+                            capture_output=True, text=True, env=env, timeout=300)
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.strip().splitlines()
+    assert 'stopped' in lines[-1], result.stdout
+    distance_m = float(lines[-1].split('target ')[1].split(' m')[0])
+    assert 2.25 + 0.5 < distance_m < 2.25 + 10.0     # the box's rear 0.5 .. 10 m ahead
+    # while cruising, the radial speed is the car's speed, closing (< 0)
+    cruising = [line for line in lines if 'speed=' in line and 'radial speed' in line]
+    for line in cruising:
+        speed_kmh = float(line.split('speed=')[1].split(' km/h')[0])
+        radial = float(line.split('radial speed')[1].split(' m/s')[0])
+        assert radial == pytest.approx(-speed_kmh / 3.6, abs=0.1)
+    assert len(cruising) >= 5
+
+
+def test_radar_camera_example_controller_sees_the_parked_car_with_both_and_stops():
+    # examples/radar_camera_controller.py, Webots' style, on config/worlds/radar_camera.yaml:
+    # the camera recognises the parked car, the radar target at its bearing measures it
+    env = dict(os.environ, VEHICLE_SIM_WORLD='radar_camera')
+    result = subprocess.run(
+        [sys.executable, str(REPO / 'examples' / 'radar_camera_controller.py')],
+        capture_output=True, text=True, env=env, timeout=300)
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.strip().splitlines()
+    assert 'stopped' in lines[-1], result.stdout
+    seen = [line for line in lines if '(car): radar' in line]
+    assert len(seen) >= 5, result.stdout
+    ids = set()
+    for line in seen:
+        ids.add(int(line.split(' car ')[1].split(' ')[0]))
+        speed_kmh = float(line.split('speed=')[1].split(' km/h')[0])
+        radar_m = float(line.split('radar ')[1].split(' m')[0])
+        closing = float(line.split('closing at ')[1].split(' m/s')[0])
+        camera_m = float(line.split('camera ')[1].split(' m')[0])
+        assert closing == pytest.approx(speed_kmh / 3.6, abs=0.1)
+        if radar_m < 50.0:      # a car partly within maxRange reads maxRange (Webots clamps)
+            assert camera_m == pytest.approx(radar_m, abs=1.0)   # two mounts, the same car
+    assert len(ids) == 1 and ids.pop() > 0      # one object, its instance id
+    radar_m = float(lines[-1].split('radar ')[1].split(' m')[0])
+    assert 2.5 + 0.5 < radar_m < 2.5 + 10.0     # stopped short of the parked car
 
 
 def test_a_world_whose_vehicle_starts_inside_an_obstacle_is_refused_naming_both(tmp_path):

@@ -24,6 +24,8 @@ package.
   ``ackermann_msgs``, ``vision_msgs`` (a camera's detections and label table): copies of the
   real packages' definitions (autoware_msgs 1.9.0, ackermann_msgs 2.0, vision_msgs 4.1.1), so
   the embedded transport can speak them without ROS installed.
+* ``radar_msgs`` (the radar's RadarTracks and RadarScan): copies of ros-perception/radar_msgs
+  0.2.2.
 * ``rcl_interfaces`` / ``std_srvs`` services, which rosbags' Jazzy type store lacks.
 
 This module only finds and splits the files; ``vehicle_msgs_py.types`` turns them into types.

@@ -33,13 +33,14 @@ Built in: ``'vehicles'`` (each vehicle's chassis boxes, posed at each update), `
 (the world's cubes, cylinders and spheres), ``'traffic'`` (the traffic's boxes and cylinders), the
 static ``'map'`` (an occupancy map's walls) and ``'lanes'`` (road surface, markings, barriers,
 centrelines, the rules' areas, stop lines, crosswalks and traffic light poles), and the on-change
-``'signals'`` (the traffic lights' heads in their colours) of :mod:`.map_scene`.
+``'signals'`` (the traffic lights' heads in their colours) of :mod:`.map_scene`, and
+``'radar_targets'`` (each mounted radar's last targets, :mod:`.radar_scene`).
 """
 
 from typing import Callable, Dict, Iterable, List, Optional, Sequence, Tuple
 
 from vehicle_sim.core.geometry.frames import pose_from_frame, quaternion_from_rpy
-from vehicle_sim.foxglove import map_scene
+from vehicle_sim.foxglove import map_scene, radar_scene
 from vehicle_sim.foxglove.entities import (  # noqa: F401 - the values sources build, here too
     Color,
     Entity,
@@ -248,3 +249,4 @@ register_entity_source('traffic', traffic_entities)
 register_entity_source('map', map_scene.wall_entities, static=True)
 register_entity_source('lanes', map_scene.lane_entities, static=True)
 register_entity_source('signals', map_scene.lamp_entities, on_change=True)
+register_entity_source('radar_targets', radar_scene.radar_entities)

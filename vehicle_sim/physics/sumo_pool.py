@@ -125,7 +125,7 @@ class SumoPool:
     The pool's part of SumoBodies: its bodies taken, parked, placed, moved and stopped.
 
     Uses SumoBodies' ``world``, ``session``, ``_cid``, ``_slots``, ``_by_id``, ``_free``,
-    ``_types``, ``heights`` and ``_placed_at``.
+    ``_table``, ``_types``, ``heights`` and ``_placed_at``.
     """
 
     def _take(self, api, person, sumo_id):
@@ -173,6 +173,8 @@ class SumoPool:
         slot.sumo_id, slot.state, slot.motion, slot.stopped = None, None, None, False
         slot.lane, slot.route, slot.instance = None, (), 0
         self.world.labels.forget(slot.body_id)
+        slot.lane, slot.route = None, ()
+        self._table.invalidate()
         pybullet.resetBasePositionAndOrientation(
             slot.body_id, (0.0, 0.0, PARK_DEPTH_M - 10.0 * slot.index), (0.0, 0.0, 0.0, 1.0),
             physicsClientId=self._cid)
@@ -190,6 +192,7 @@ class SumoPool:
             slot.motion = (x, y, z, qz, qw, speed * cos(yaw), speed * sin(yaw))
         self._placed_at = self.world.time_s
         self._synced_step = self.world.step_count
+        self._table.invalidate()
         self.world.mark_moved()
 
     def _move(self, slots):

@@ -66,6 +66,7 @@ from vehicle_sim.physics.sumo_session import load_traci, SumoError, SumoSession
 from vehicle_sim.physics.sumo_signals import SumoSignals
 from vehicle_sim.physics.sumo_views import SumoViews
 from vehicle_sim.physics.traffic_boxes import NEAR_M
+from vehicle_sim.physics.traffic_kinematics import MotionTable
 
 __all__ = ['build_sumo', 'SumoBodies', 'SumoError', 'sumo_network']
 
@@ -151,6 +152,7 @@ class SumoBodies(SumoPool, SumoViews):
         self._constants = load_traci().constants
         self._cid = world.client_id
         self._slots = []
+        self._table = MotionTable()       # kinematics(), rebuilt after each update
         self._ours = world.vehicle_bodies()
         self._outlines = [body.outline for body in self._ours]
         self.session = None

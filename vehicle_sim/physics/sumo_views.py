@@ -72,6 +72,19 @@ class SumoViews:
         """Return the names of every body SUMO moves (serving or parked)."""
         return {slot.name for slot in self._slots}
 
+    def kinematics(self):
+        """
+        Return the serving bodies: a body table and the time since (traffic_kinematics.py).
+
+        Each body as placed at SUMO's last step, its velocity SUMO's speed along its heading:
+        where it is now is that plus the velocity times the time since.
+        """
+        def rows():
+            return [(slot.body_id, slot.motion, (slot.size[0], slot.size[1],
+                                                 slot.size[2] - slot.clearance))
+                    for slot in self._serving() if slot.motion is not None]
+        return self._table.now(self.since_update_s, rows)
+
     def boxes(self):
         """
         Return [(name, body id, size [m], colour, shape)] of the serving bodies.

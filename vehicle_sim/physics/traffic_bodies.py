@@ -57,6 +57,7 @@ from vehicle_sim.physics.traffic_boxes import (
     our_vehicle,
     PARK_DEPTH_M,
 )
+from vehicle_sim.physics.traffic_kinematics import MotionTable
 
 # the object class of the builtin engine's vehicles (core/traffic/objects.py OBJECT_CLASSES)
 OBJECT_CLASS = 'car'
@@ -120,6 +121,7 @@ class TrafficBodies:
     What every engine's traffic part offers (the traffic-body contract, read by the node, the
     scenarios, the Gym environment and the live view; docs/traffic.md): :meth:`reset`,
     :meth:`agents`, :meth:`moving_names`, :meth:`objects`, :meth:`boxes`, :meth:`body_of`,
+    :meth:`kinematics`,
     :attr:`follow_params`, ``colours`` and :attr:`since_update_s`. Each body is a named
     obstacle of the World, placed (never moved by Bullet).
 
@@ -169,6 +171,7 @@ class TrafficBodies:
         self._synced_step = -1         # the step count at which every box was last put
         self._start_step = world.step_count    # updates every ``every`` steps from here
         self._drawn_at = -math.inf     # when every box was last put for the GUI window [s]
+        self._table = MotionTable()    # kinematics(), rebuilt after each update
         self._place()
         self._near, self._near_all = self._nearby([
             our_vehicle(body, outline) for body, outline in zip(self._ours, self._outlines)])
@@ -223,6 +226,7 @@ class TrafficBodies:
             motion[index] = (x, y, z, qz, qw, speed * cos(yaw), speed * sin(yaw))
         self._placed_at = self.world.time_s
         self._synced_step = self.world.step_count
+        self._table.invalidate()
         self.world.mark_moved()
 
     def _move(self, indices):
@@ -300,6 +304,7 @@ class TrafficBodies:
         pybullet.resetBasePositionAndOrientation(self.body_ids[index], (x, y, z),
                                                  (0.0, 0.0, qz, qw), physicsClientId=self._cid)
         self._motion[index] = (x, y, z, qz, qw, 0.0, 0.0)
+        self._table.invalidate()
         self.world.mark_moved()
 
     @property
@@ -338,6 +343,21 @@ class TrafficBodies:
     def moving_names(self):
         """Return the names of every body the traffic moves (on the map or waiting)."""
         return {v.name for v in self.manager.vehicles}
+
+    def kinematics(self):
+        """
+        Return the bodies on the map: a body table and the time since (traffic_kinematics.py).
+
+        Each box as placed at the last update, its velocity the vehicle's speed along its
+        heading: where it is now is that plus the velocity times the time since.
+        """
+        def rows():
+            dimensions, motion = self.manager.dimensions, self._motion
+            return [(body_id, motion[v.index], (*dimensions[v.model][:2],
+                                                self.heights[v.model] - GROUND_CLEARANCE_M))
+                    for v, body_id in zip(self.manager.vehicles, self.body_ids)
+                    if v.active and motion[v.index] is not None]
+        return self._table.now(self.since_update_s, rows)
 
     def objects(self):
         """Return the traffic on the map as core TrafficObjects now (core/traffic/objects.py)."""

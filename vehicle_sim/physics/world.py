@@ -488,6 +488,10 @@ class World:
         return pybullet.getBasePositionAndOrientation(body_id,
                                                       physicsClientId=self.client_id)[0][:2]
 
+    def obstacle_spec(self, name):
+        """Return the ObstacleSpec the obstacle ``name`` was added with (KeyError: none)."""
+        return self._obstacle_specs[name]
+
     def reset_obstacles(self):
         """
         Put every movable obstacle (mass > 0) back at its initial pose, at rest.

@@ -40,6 +40,12 @@ from vehicle_sim.core.specs.param_spec import ParamSpec
 from vehicle_sim.ros import messages as m
 from vehicle_sim.ros import perception_messages as pm
 from vehicle_sim.ros.endpoints import converter, EACH_SAMPLE, ON_EVENT, ONCE_LATCHED, Topic
+from vehicle_sim.ros.radar_messages import (
+    RADAR_SCAN,
+    radar_scan_builder,
+    RADAR_TRACKS,
+    radar_tracks_builder,
+)
 from vehicle_sim.transport.qos import QOS_LATCHED, QosProfile
 
 # Reliable, volatile, depth 5 (issue: sensor topics); a best-effort sensor_data reader matches.
@@ -156,6 +162,18 @@ def _range_finder_rows(spec):
     return rows
 
 
+def _radar_rows(spec):
+    tracks, scan = spec.topics
+    return (_row(tracks, RADAR_TRACKS, radar_tracks_builder, spec,
+                 'radar targets as tracks (Autoware): uuid = the instance id, position, '
+                 'velocity relative to the radar, size, classification 32000-32007; frame '
+                 '<p><name>', unit='m, m/s'),
+            _row(scan, RADAR_SCAN, radar_scan_builder, spec,
+                 'radar targets as returns: range, azimuth (REP 103), elevation, doppler '
+                 'velocity (> 0 away), amplitude = received power [dBm]; frame <p><name>',
+                 unit='m, rad, m/s, dBm'))
+
+
 @dataclass(frozen=True)
 class SensorRows:
     """
@@ -177,6 +195,7 @@ SENSOR_ROWS = {
     'distance': SensorRows(_distance_rows),
     'camera': SensorRows(_camera_rows, ({'segmentation': True, 'recognition': True},)),
     'range_finder': SensorRows(_range_finder_rows, ({'point_cloud': True},)),
+    'radar': SensorRows(_radar_rows),
 }
 check_layer('ROS SENSOR_ROWS (ros/sensor_interfaces.py)', SENSOR_ROWS)
 

@@ -211,6 +211,11 @@ DEVICE_API = (
         ('getFov', 'fov_rad', float),
         ('getMinRange', 'min_range_m', float),
         ('getMaxRange', 'max_range_m', float))),
+    DeviceRow('Radar', 'radar', 'device', 'getRadar', (
+        ('getMinRange', 'min_range_m', float),
+        ('getMaxRange', 'max_range_m', float),
+        ('getHorizontalFov', 'horizontal_fov_rad', float),
+        ('getVerticalFov', 'vertical_fov_rad', float))),
 )
 
 # Robot / Supervisor functions that exist in Webots but not here (no other devices are

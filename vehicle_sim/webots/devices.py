@@ -41,6 +41,7 @@ import numpy as np
 from vehicle_sim.core.sensors.params import check_layer
 from vehicle_sim.webots.api_table import DEVICE_API
 from vehicle_sim.webots.camera_recognition import CameraRecognition, CameraRecognitionObject
+from vehicle_sim.webots.radar_device import RadarMethods, RadarTarget
 from vehicle_sim.webots.webots_warning import warn
 
 NAN3 = [math.nan] * 3
@@ -455,6 +456,10 @@ def _make_spec_getter(name, attr, kind):
     return getter
 
 
+class Radar(RadarMethods, Device):
+    """Webots Radar: the targets of the last sample, none before the first (radar_device.py)."""
+
+
 # The Webots registration is DEVICE_API (webots/api_table.py): each row names a device class of
 # this module and the core sensor type it serves; checked against the core types when imported.
 check_layer('Webots DEVICE_API (webots/api_table.py)', {row.sensor_type for row in DEVICE_API})
@@ -481,5 +486,5 @@ def devices_of(suite):
 
 
 __all__ = ['Accelerometer', 'Camera', 'CameraRecognitionObject', 'DEVICE_CLASSES', 'Device',
-           'DistanceSensor', 'GPS', 'Gyro', 'InertialUnit', 'Lidar', 'LidarPoint', 'RangeFinder',
-           'devices_of']
+           'DistanceSensor', 'GPS', 'Gyro', 'InertialUnit', 'Lidar', 'LidarPoint', 'Radar',
+           'RadarTarget', 'RangeFinder', 'devices_of']

@@ -268,3 +268,38 @@ class DepthReading:
         u = (np.arange(self.width) - cx) / fx
         v = (np.arange(self.height) - cy) / fy
         return np.stack((z * u[None, :], z * v[:, None], z), axis=-1).astype(np.float32)
+
+
+@dataclass(frozen=True)
+class RadarDetection:
+    """
+    One radar target (Webots WbRadarTarget, plus the ground truth of what it is).
+
+    ``distance_m`` to the body's centre; ``received_power_dbm`` by the radar equation;
+    ``speed_mps`` the radial speed relative to the radar (> 0 moving away, < 0 closing, as
+    Webots); ``azimuth_rad`` the horizontal angle from the x axis (> 0 to the left, REP 103;
+    Webots' sign is the opposite, its device converts). ``elevation_rad`` the vertical angle;
+    ``position_m``, ``velocity_mps`` (relative to the radar) and ``size_m`` the body's, in the
+    radar frame (RadarTracks); ``label`` and ``instance_id`` the body's (core/sensors/labels.py,
+    physics/body_labels.py; 0 for a merged target of several instances).
+    """
+
+    distance_m: float
+    received_power_dbm: float
+    speed_mps: float
+    azimuth_rad: float
+    elevation_rad: float
+    position_m: Vector
+    velocity_mps: Vector
+    size_m: Vector
+    label: int
+    instance_id: int
+
+
+@dataclass(frozen=True)
+class RadarReading:
+    """One radar sample: its targets, nearest first (radar_msgs RadarTracks and RadarScan)."""
+
+    name: str
+    time_s: float
+    targets: Tuple[RadarDetection, ...]

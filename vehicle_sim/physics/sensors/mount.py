@@ -50,6 +50,18 @@ class Mount:
         rotation = np.array(pybullet.getMatrixFromQuaternion(quaternion)).reshape(3, 3)
         return np.array(position), rotation, tuple(quaternion)
 
+    def world_pose(self):
+        """
+        Return the sensor frame in the world as plain tuples (no arrays: a reader of few values).
+
+        :return: (position (x, y, z) [m], quaternion (x, y, z, w), rotation: the 9 values of
+            the 3 x 3 matrix row by row, its columns the sensor axes).
+        """
+        base = self.body.pose()
+        position, quaternion = pybullet.multiplyTransforms(base[:3], base[3:], self._xyz,
+                                                           self._quaternion)
+        return position, quaternion, pybullet.getMatrixFromQuaternion(quaternion)
+
     def point_velocity(self, position):
         """
         Return the world velocity of the sensor point and the body's angular velocity.

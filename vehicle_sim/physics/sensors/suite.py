@@ -38,6 +38,7 @@ from vehicle_sim.physics.sensors.camera import CameraSensor
 from vehicle_sim.physics.sensors.distance import RayDistanceSensor
 from vehicle_sim.physics.sensors.inertial import GnssSensor, ImuSensor
 from vehicle_sim.physics.sensors.lidar import LidarSensor
+from vehicle_sim.physics.sensors.radar import RadarSensor
 from vehicle_sim.physics.sensors.range_finder import RangeFinderSensor
 
 # The physics registration: core sensor type -> its Sensor class (physics/sensors/sensor.py),
@@ -49,6 +50,7 @@ SENSOR_CLASSES = {
     'distance': RayDistanceSensor,
     'camera': CameraSensor,
     'range_finder': RangeFinderSensor,
+    'radar': RadarSensor,
 }
 check_layer('physics SENSOR_CLASSES (physics/sensors/suite.py)', SENSOR_CLASSES)
 
