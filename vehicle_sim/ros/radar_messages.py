@@ -57,7 +57,7 @@ def radar_tracks_builder(msg, frame_id: str):
         for t in reading.targets:
             (px, py, pz), (vx, vy, vz), (sx, sy, sz) = t.position_m, t.velocity_mps, t.size_m
             tracks.append(track_type(
-                uuid=uuid_type(uuid=instance_uuid(t.instance_id)),
+                uuid=uuid_type(uuid=list(instance_uuid(t.instance_id))),
                 position=point_type(x=px, y=py, z=pz),
                 velocity=vector_type(x=vx, y=vy, z=vz),
                 acceleration=vector_type(),
