@@ -19,6 +19,7 @@ The definitions' fields are upstream's; the builders (ros/radar_messages.py) tur
 reading into RadarTracks (uuid from the instance id, Autoware's classes) and RadarScan.
 """
 
+import numpy as np
 import pytest
 
 import vehicle_msgs_py
@@ -76,6 +77,23 @@ def test_tracks_carry_the_instance_uuid_autowares_class_and_the_radar_frame_valu
     assert (car.velocity.x, car.velocity.y, car.velocity.z) == (-4.5, 0.25, 0.0)
     assert (car.size.x, car.size.y, car.size.z) == (4.5, 1.8, 1.5)
     assert list(car.position_covariance) == [0.0] * 6
+
+
+def test_the_track_uuid_is_given_as_rclpy_takes_it():
+    # rclpy's generated UUID stores numpy.array(uuid, dtype=uint8), which refuses bytes
+    # (ValueError: invalid literal for int()); the embedded types take either.
+    def as_rclpy(ros_type):
+        if ros_type != rm.UUID:
+            return msg(ros_type)
+
+        class Uuid:
+            def __init__(self, uuid):
+                self.uuid = np.array(uuid, dtype=np.uint8)
+                assert self.uuid.shape == (16,)
+        return Uuid
+
+    tracks = rm.radar_tracks_builder(as_rclpy, 'car/front')(STAMP, READING)
+    assert bytes(tracks.tracks[0].uuid.uuid) == instance_uuid(17)
 
 
 def test_scan_returns_are_webots_targets_with_rep_103_azimuths():
