@@ -206,3 +206,22 @@ def test_the_shipped_crossing_example_runs_four_agents():
         assert why == 'time limit' if int(steps) == 30 else why.startswith('collision with')
         parts = [float(part.rsplit(' ', 1)[1]) for part in terms.split(', ')]
         assert sum(parts) == pytest.approx(float(total), abs=0.03)
+
+
+def test_the_docs_example_runs_as_written():
+    # docs/gym.md's multi-agent block, as written, then what it left behind: every agent gone,
+    # each with a final observation in its space
+    text = (Path(__file__).resolve().parents[1] / 'docs' / 'gym.md').read_text(encoding='utf-8')
+    block = [b for b in re.findall(r'```python\n(.*?)```', text, re.S)
+             if 'MultiDriveEnv(' in b][0]
+    scope = {}
+    exec(compile(block, 'docs/gym.md', 'exec'), scope)   # noqa: S102
+    env = scope['env']
+    try:
+        assert env.agents == []
+        assert set(scope['obs']) <= set(env.possible_agents) and scope['obs']
+        for agent, obs in scope['obs'].items():
+            assert env.observation_space(agent).contains(obs)
+            assert scope['terminations'][agent] or scope['truncations'][agent]
+    finally:
+        env.close()
