@@ -163,6 +163,15 @@ def test_more_agents_than_places_is_refused():
         MultiDriveEnv(world='two_cars', agents=3)
     with pytest.raises(InvalidParameterError, match='agents = 0: at least 1 agent'):
         MultiDriveEnv(agents=0)
+    with pytest.raises(InvalidParameterError, match=r"agents = 'car_east': give a number of "
+                                                    r"agents or a list of vehicle names of the "
+                                                    r"world 'crossing4'"):
+        MultiDriveEnv(agents='car_east')
+    world = {'vehicles': [{'name': 'solo', 'pose': {'x': 0.0, 'y': 0.0, 'yaw': 0.0}}]}
+    with pytest.raises(InvalidParameterError, match=r'agents = 2: more agents than the world '
+                                                    r'given has places for: its 1 vehicles '
+                                                    r'\(solo\)'):
+        MultiDriveEnv(world=world, agents=np.int64(2))
 
 
 def test_unknown_and_repeated_agent_names_are_refused():

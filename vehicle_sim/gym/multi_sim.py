@@ -30,6 +30,8 @@ With the same seed and the same actions two episodes give bit-identical observat
 (test/test_gym_multi.py).
 """
 
+from numbers import Integral
+
 from vehicle_sim.core.learning.reward import total
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.simulation import TIME_STEP_MS
@@ -48,21 +50,25 @@ def agent_names(world_spec, agents, world):
     """
     Return the agents' vehicle names: the first ``agents`` of the world, or those named.
 
+    :param world: the world as an error names it ("the world 'crossing4'").
+
     :raises InvalidParameterError: for more agents than the world has vehicles, fewer than
         one, an unknown or repeated name.
     """
     places = [v.name for v in world_spec.vehicles]
     listed = ', '.join(places) or 'none'
+    if isinstance(agents, Integral) and not isinstance(agents, bool):
+        agents = int(agents)
     where = f'{SOURCE}: agents = {agents!r}'
-    if isinstance(agents, bool) or not isinstance(agents, (int, list, tuple)):
+    if isinstance(agents, bool) or not isinstance(agents, (Integral, list, tuple)):
         raise InvalidParameterError(f'{where}: give a number of agents or a list of vehicle '
-                                    f'names of the world {world!r} ({listed})')
+                                    f'names of {world} ({listed})')
     if isinstance(agents, int):
         if agents < 1:
             raise InvalidParameterError(f'{where}: at least 1 agent')
         if agents > len(places):
             raise InvalidParameterError(
-                f'{where}: more agents than the world {world!r} has places for: its '
+                f'{where}: more agents than {world} has places for: its '
                 f'{len(places)} vehicles ({listed}) are the places; add vehicles to it')
         return tuple(places[:agents])
     if not agents:
@@ -70,8 +76,8 @@ def agent_names(world_spec, agents, world):
     unknown = [name for name in agents if name not in places]
     if unknown:
         raise InvalidParameterError(
-            f'{where}: {", ".join(repr(n) for n in unknown)}: no such vehicle in the world '
-            f'{world!r}; its vehicles: {listed}')
+            f'{where}: {", ".join(repr(n) for n in unknown)}: no such vehicle in {world}; '
+            f'its vehicles: {listed}')
     repeated = sorted({name for name in agents if list(agents).count(name) > 1})
     if repeated:
         raise InvalidParameterError(f'{where}: {", ".join(repr(n) for n in repeated)} '
@@ -103,8 +109,8 @@ class MultiDriveSim:
         opts = self.options = validate_options(options, SOURCE)
         world = DEFAULT_WORLD if world is None else world
         world_spec = _world_spec(world, True)
-        self.agents = agent_names(world_spec, agents, world if isinstance(world, str)
-                                  else 'given')
+        self.agents = agent_names(world_spec, agents, f'the world {world!r}'
+                                  if isinstance(world, str) else 'the world given')
         self.episode_s = opts['max_episode_s'] or DEFAULT_EPISODE_S
         step_ms = opts['time_step_ms'] or TIME_STEP_MS.default
         self._mounted = {}
