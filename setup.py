@@ -33,6 +33,7 @@ EXTRAS = {
     'ray': ['ray'],                                # sweeps on a Ray cluster (vehicle_sim/sweep)
     'foxglove': ['foxglove-sdk>=0.30,<0.31'],      # the live view (docs/foxglove.md)
     'gym': ['gymnasium>=1.0'],                     # vehicle_sim.gym (docs/gym.md)
+    'multi': ['gymnasium>=1.0', 'pettingzoo>=1.24'],  # vehicle_sim.gym.multi (docs/gym.md)
     'record': ['mcap', 'zstandard', 'lz4'],        # MCAP recordings and their compressors
     # SUMO networks, netconvert (OpenDRIVE, OSM) and the SUMO traffic engine (docs/sumo.md):
     # libsumo in process, traci where libsumo cannot load.

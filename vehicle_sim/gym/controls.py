@@ -87,6 +87,10 @@ class Control:
     def stop(self):
         """Command the vehicle to stand still (the state after a reset)."""
 
+    def halt(self):
+        """Brake the vehicle to a stand (an agent that left a multi-agent episode)."""
+        self.stop()
+
 
 class SpeedSteering(Control):
     """Car: [steering angle [rad] (+ left), cruising speed [m/s]]."""
@@ -110,6 +114,9 @@ class SpeedSteering(Control):
         self.logic.set_steering_angle(ros_steering_to_webots(float(action[0])))
         self.logic.set_cruising_speed_kmh(mps_to_kmh(float(action[1])))
 
+    def halt(self):
+        self.apply((0.0, 0.0))
+
 
 class ThrottleSteering(Control):
     """Car: [steering angle [rad] (+ left), throttle [0, 1], brake [0, 1]]."""
@@ -128,6 +135,9 @@ class ThrottleSteering(Control):
         logic.set_steering_angle(ros_steering_to_webots(float(action[0])))
         logic.set_throttle(float(action[1]))
         logic.set_brake_intensity(float(action[2]))
+
+    def halt(self):
+        self.apply((0.0, 0.0, 1.0))
 
 
 class Twist(Control):

@@ -31,37 +31,17 @@ episode's time is counted from its reset. With the same seed and the same action
 give bit-identical observations (test/test_gym_env.py).
 """
 
-import math
-
 import numpy as np
 
 from vehicle_sim.config import read_yaml, world_from_data, world_path
-from vehicle_sim.core.geometry.angles import yaw_from_quaternion
-from vehicle_sim.core.learning.progress import (
-    GoalProgress,
-    HeadingProgress,
-    LaneProgress,
-    PathProgress,
-)
-from vehicle_sim.core.learning.reward import (
-    lane_term,
-    LANE_TERMS,
-    reward_terms,
-    RewardWeights,
-    solid_crossings,
-    TERMS,
-    total,
-)
-from vehicle_sim.core.map.vehicle_lanes import VehicleLanes
+from vehicle_sim.core.learning.reward import total
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.simulation import TIME_STEP_MS
 from vehicle_sim.core.world.params import RobotSpec, WorldSpec
-from vehicle_sim.gym.controls import make_control
+from vehicle_sim.gym.ego import Ego, mounted_parts
 from vehicle_sim.gym.episode import CriteriaWatch, judged_criteria
-from vehicle_sim.gym.observations import ego_parts, PART_FACTORIES, sensor_spec
-from vehicle_sim.gym.options import CAMERA, LIDAR, RANGE_FINDER, SOURCE, validate_options
+from vehicle_sim.gym.options import SOURCE, validate_options
 from vehicle_sim.physics.scene import build_scene
-from vehicle_sim.physics.sensors.collisions import CollisionMonitor
 from vehicle_sim.scenarios.actors import make_actor
 from vehicle_sim.scenarios.schema import load_scenario, ScenarioSpec
 from vehicle_sim.scenarios.sim import VehicleHandle
@@ -106,6 +86,59 @@ def _load(world, scenario, robot):
     return _world_spec(DEFAULT_WORLD if world is None else world, not robot), (), None
 
 
+def reset_world(scene, rng, bodies, start_noise, what):
+    """
+    Put every vehicle and movable obstacle of a scene back as built, the traffic and signals too.
+
+    :param rng: the environment's seeded generator: the traffic's seed and the start offsets are
+        drawn from it.
+    :param bodies: the ego bodies that ``start_noise`` offsets, in order.
+    :param start_noise: half-widths [x, y, yaw] of a uniform offset of each ego's start pose.
+    :param what: the egos' names as an error names them.
+    :raises InvalidParameterError: when no start poses of ``start_noise`` fit.
+    """
+    for vehicle in scene.vehicles.values():
+        vehicle.vehicle.reset()
+    scene.world.reset_obstacles()
+    traffic = scene.parts.get('traffic')
+    traffic_seed = None if traffic is None else int(rng.integers(TRAFFIC_SEEDS))
+    if any(start_noise):
+        _offset_starts(scene, rng, bodies, start_noise, what, traffic, traffic_seed)
+    elif traffic is not None:
+        traffic.reset(traffic_seed)
+    signals = scene.parts.get('signals')
+    if signals is not None:         # the plan from its start, nothing forced
+        signals.reset()
+
+
+def _offset_starts(scene, rng, bodies, start_noise, what, traffic, traffic_seed):
+    # Each ego at its spawn pose plus a uniform offset, then the traffic started around them;
+    # offsets that put an ego inside another body (the traffic, started afresh after, aside) or
+    # where the traffic does not fit around them are drawn again (the same draws for the same
+    # seed).
+    half = np.asarray(start_noise)
+    world = scene.world
+    moving = set() if traffic is None else traffic.moving_names()
+    for _ in range(START_DRAWS):
+        for body in bodies:
+            x, y, yaw = body.spawn[:3]
+            dx, dy, dyaw = rng.uniform(-half, half)
+            body.rebuild((x + dx, y + dy, yaw + dyaw))
+        if any(name not in moving for body in bodies
+               for name in world.overlaps(body.body_id)):
+            continue
+        if traffic is not None:
+            try:
+                traffic.reset(traffic_seed)
+            except InvalidParameterError:    # a placed vehicle there, too few places
+                continue
+        return
+    raise InvalidParameterError(
+        f"{SOURCE}: option 'start_noise' = {list(half)}: {START_DRAWS} start poses drawn "
+        f'around the spawn pose of {what} were all inside another body'
+        + ('' if traffic is None else ' or where the traffic does not fit around it'))
+
+
 class DriveSim:
     """
     One world with an ego vehicle, stepped by actions (see the module text).
@@ -138,38 +171,26 @@ class DriveSim:
         self._criteria_specs = criteria
         self.episode_s = opts['max_episode_s'] or (self.scenario.duration_s if self.scenario
                                                    else DEFAULT_EPISODE_S)
-        self.weights = RewardWeights(opts['progress_weight'], opts['collision_penalty'],
-                                     opts['goal_reward'], opts['off_lane_penalty'],
-                                     opts['solid_line_penalty'])
         self._hook = _ActorHook()
-        self._parts = []
+        self._mounted = []
         self.scene = build_scene(world_spec, time_step_s=step_ms / 1000.0, gui=gui,
                                  robots=robots, hooks=(self._hook,), mount=self._mount)
         try:
             self.world = self.scene.world
-            self.ego = self.scene.vehicles[self.ego_name]
-            graph = self.scene.lanes
-            # the ego's lane state and the markings it crosses (None: a world without lanes)
-            signals = getattr(self.scene.parts.get('signals'), 'controller', None)
-            self.lanes = None if graph is None else VehicleLanes(graph, signals)
-            self.lane_ids = () if graph is None else tuple(sorted(graph.lanes))
-            self._terms = TERMS if graph is None else LANE_TERMS
-            self._crossed = ()
-            self.control = make_control(opts['control'], self.ego, opts['max_speed'],
-                                        opts['max_reverse_speed'])
-            self._parts.extend(p for p in (factory(self) for factory in PART_FACTORIES)
-                               if p is not None)
-            self._parts.extend(observation_parts)
-            self.spaces = {}
-            for part in self._parts:
-                self.spaces.update(part.spaces())
+            lanes = self.scene.lanes
+            self.agent = Ego(self.scene, self.ego_name, opts, self._mounted,
+                             observation_parts, self._scenario_goal(), self._scenario_path())
+            self.ego = self.agent.ego
+            self.lanes = self.agent.lanes
+            self.lane_ids = () if lanes is None else tuple(sorted(lanes.lanes))
+            self.control = self.agent.control
+            self.spaces = self.agent.spaces
+            self.weights = self.agent.weights
             self._handles = {name: VehicleHandle(name, v.body, v.car)
                              for name, v in self.scene.vehicles.items()}
-            self._progress, self._goal = self._measures()
-            self._monitor = None
             self._watch = None
+            self._started = False
             self._step0 = self.world.step_count
-            self._goal_reached = False
         except BaseException:
             self.close()
             raise
@@ -194,12 +215,8 @@ class DriveSim:
         # The scene builder's mount step: the ego's observation parts (sensors) only.
         if vehicle.name != self.ego_name:
             return None
-        opts = self.options
-        lidar = sensor_spec(opts[LIDAR], LIDAR, vehicle, SOURCE)
-        camera = sensor_spec(opts[CAMERA], CAMERA, vehicle, SOURCE)
-        depth = sensor_spec(opts[RANGE_FINDER], RANGE_FINDER, vehicle, SOURCE)
-        self._parts = ego_parts(scene.world, vehicle, lidar, camera, depth)
-        return self._parts
+        self._mounted = mounted_parts(vehicle, scene, self.options)
+        return self._mounted
 
     def _scenario_goal(self):
         for spec in self._criteria_specs:
@@ -213,33 +230,11 @@ class DriveSim:
                 return spec.values['path']
         return None
 
-    def _measures(self):
-        # -> (progress measure, GoalProgress or None)
-        opts = self.options
-        goal = None
-        if opts['goal'] is not None:
-            goal = GoalProgress(opts['goal'], opts['goal_radius'])
-        elif self._scenario_goal() is not None:
-            goal = GoalProgress(*self._scenario_goal())
-        path = opts['path'] if opts['path'] is not None else self._scenario_path()
-        if path is not None:
-            try:
-                return PathProgress(path), goal
-            except InvalidParameterError as error:
-                raise InvalidParameterError(f"{SOURCE}: option 'path': {error}") from None
-        if goal is None and self.lanes is not None:
-            return LaneProgress(self.lanes.graph), goal
-        return (goal if goal is not None else HeadingProgress()), goal
-
     # ---------------------------------------------------------------- episode
     @property
     def elapsed_s(self):
         """Simulated time since the last reset [s]."""
         return (self.world.step_count - self._step0) * self.world.time_step_s
-
-    def _ego_state(self):
-        x, y, _, qx, qy, qz, qw = self.ego.body.pose()
-        return x, y, yaw_from_quaternion(qx, qy, qz, qw)
 
     def reset(self, rng):
         """
@@ -251,74 +246,23 @@ class DriveSim:
         :raises InvalidParameterError: when no start pose of option start_noise fits; the
             environment is then not reset (``step`` refuses until a reset succeeds).
         """
-        if self._monitor is not None:   # no episode until this reset is through
-            self._monitor.close()
-            self._monitor = None
-        for vehicle in self.scene.vehicles.values():
-            vehicle.vehicle.reset()
-        self.world.reset_obstacles()
-        traffic = self.scene.parts.get('traffic')
-        traffic_seed = None if traffic is None else int(rng.integers(TRAFFIC_SEEDS))
-        if any(self.options['start_noise']):
-            self._offset_start(rng, traffic, traffic_seed)
-        elif traffic is not None:
-            traffic.reset(traffic_seed)
-        signals = self.scene.parts.get('signals')
-        if signals is not None:         # the plan from its start, nothing forced
-            signals.reset()
-        for part in self._parts:
-            reseed = getattr(part, 'reseed', None)
-            if reseed is not None:
-                reseed(rng.integers(2 ** 31))
-            part.reset()
+        agent = self.agent
+        self._started = False           # no episode until this reset is through
+        agent.stop()
+        reset_world(self.scene, rng, (agent.body,), self.options['start_noise'],
+                    repr(self.ego_name))
+        agent.reseed(rng)
         self._hook.actors = self._actors()
         self._step0 = self.world.step_count
         if self._criteria_specs:
+            signals = self.scene.parts.get('signals')
             self._watch = CriteriaWatch(self._criteria_specs, self.episode_s, self.world,
                                         self._handles, self.scene.spec.obstacles,
                                         self.scene.lanes, None if signals is None
                                         else signals.controller)
-        x, y, yaw = self._ego_state()
-        if self.lanes is not None:       # after the teleport: the jump is no crossing
-            self.lanes.reset()
-            self.lanes.update(x, y, yaw, self.world.time_s)
-            self._crossed = ()
-        self._start_progress(x, y, yaw)
-        self._goal_reached = False
-        obs = self.observe()
-        self._monitor = CollisionMonitor(self.world, self.ego.body)
-        return obs, self._info(0.0, dict.fromkeys(self._terms, 0.0), '', False)
-
-    def _start_progress(self, x, y, yaw):
-        if isinstance(self._progress, LaneProgress):
-            self._progress.start(self.lanes.state)
-        else:
-            self._progress.start(x, y, yaw)
-
-    def _offset_start(self, rng, traffic, traffic_seed):
-        # The ego at its spawn pose plus a uniform offset, then the traffic started around it;
-        # an offset that puts the ego inside another body (the traffic, started afresh after,
-        # aside) or where the traffic does not fit around it is drawn again (the same draws for
-        # the same seed).
-        half = np.asarray(self.options['start_noise'])
-        body = self.ego.body
-        x, y, yaw = body.spawn[:3]
-        moving = set() if traffic is None else traffic.moving_names()
-        for _ in range(START_DRAWS):
-            dx, dy, dyaw = rng.uniform(-half, half)
-            body.rebuild((x + dx, y + dy, yaw + dyaw))
-            if any(name not in moving for name in self.world.overlaps(body.body_id)):
-                continue
-            if traffic is not None:
-                try:
-                    traffic.reset(traffic_seed)
-                except InvalidParameterError:    # a placed vehicle there, too few places
-                    continue
-            return
-        raise InvalidParameterError(
-            f"{SOURCE}: option 'start_noise' = {list(half)}: {START_DRAWS} start poses drawn "
-            f'around the spawn pose of {self.ego_name!r} were all inside another body'
-            + ('' if traffic is None else ' or where the traffic does not fit around it'))
+        obs = agent.start()
+        self._started = True
+        return obs, self._info(0.0, dict.fromkeys(agent.terms, 0.0), '', False)
 
     def _actors(self):
         if self.scenario is None:
@@ -328,10 +272,7 @@ class DriveSim:
 
     def observe(self):
         """Return the observation dict now."""
-        out = {}
-        for part in self._parts:
-            part.read(out)
-        return out
+        return self.agent.observe()
 
     def step(self, action, action_repeat=None):
         """
@@ -352,7 +293,7 @@ class DriveSim:
     # physics data then stays in the processor's cache more often).
     def check(self, action):
         """Return ``action`` checked against the action space (ValueError naming the entry)."""
-        if self._monitor is None:
+        if not self._started:
             raise RuntimeError('step() before reset() (or after a reset that raised): call '
                                'reset() first')
         return self.control.check(action)
@@ -365,31 +306,20 @@ class DriveSim:
         """Run the ``action_repeat`` basic steps of a step (after :meth:`apply`)."""
         repeat = action_repeat or self.options['action_repeat']
         world = self.world
-        monitor = self._monitor
+        agent = self.agent
         watch = self._watch
-        # the goal circle checked each basic step: the option's, else the scenario's when
-        # it has no reach_goal criterion to judge it; none once reached
-        circle = None if self._goal_reached or (watch is not None and watch.goals) \
-            else self._goal
-        hits = []
-        reached_now = False
+        # the goal circle: the option's, else the scenario's when it has no reach_goal
+        # criterion to judge it
+        agent.begin(own_goal=not (watch is not None and watch.goals))
+        stop_on_hit = self.options['terminate_on_collision']
         repeat_done = 0
         for _ in range(repeat):
             world.step()
             repeat_done += 1
-            if monitor.fresh:
-                hits.extend(monitor.fresh)
-            if watch is not None or circle is not None:
-                x, y, yaw = self._ego_state()
-                if watch is not None:
-                    watch.observe(self.elapsed_s, x, y, yaw, self.ego.body.forward_speed_mps(),
-                                  monitor.fresh)
-                if circle is not None and math.hypot(x - circle.goal[0],
-                                                     y - circle.goal[1]) <= circle.radius_m:
-                    reached_now = True
-            if hits and self.options['terminate_on_collision']:
+            hit = agent.after_basic_step(watch, self.elapsed_s)
+            if hit and stop_on_hit:
                 break
-        self._advanced = (hits, reached_now, repeat_done)
+        self._repeat_done = repeat_done
 
     def finish(self):
         """Return (obs, reward terms, terminated, truncated, info) of the step just advanced."""
@@ -401,70 +331,21 @@ class DriveSim:
         Return :meth:`finish`'s step as DriveVectorEnv takes it, without an info dict.
 
         :return: (obs, terminated, truncated, default reward, row): the info as the flat list
-            of its values (``_info_row``).
+            of its values (``Ego.info_row``).
         """
         obs, terms, terminated, truncated, facts = self._outcome()
         reward = total(terms)
-        return obs, terminated, truncated, reward, self._info_row(*facts, reward)
+        return obs, terminated, truncated, reward, self.agent.info_row(
+            self.elapsed_s, *facts, reward, self._watch)
 
     def _outcome(self):
         # (obs, reward terms, terminated, truncated, the info's facts) of the step just advanced
-        hits, reached_now, repeat_done = self._advanced
-        world = self.world
-        watch = self._watch
-        x, y, yaw = self._ego_state()
-        terminated = bool(hits) and self.options['terminate_on_collision']
-        if self.lanes is not None:
-            state, self._crossed = self.lanes.update(x, y, yaw, world.time_s)
-            if self.options['terminate_off_road'] and not state.on_lane:
-                terminated = True
-        if isinstance(self._progress, LaneProgress):
-            progress_m = self._progress.advance(self.lanes.state)
-        else:
-            progress_m = self._progress.advance(x, y, yaw)
-        if watch is not None:
-            ended, reached_all = watch.decide(self.elapsed_s)
-            terminated = terminated or ended
-            if watch.goals:     # the scenario's reach_goal criteria say when (speed, deadline)
-                reached_now = reached_all and not self._goal_reached
-        terminated = terminated or reached_now
-        self._goal_reached = self._goal_reached or reached_now
-        terms = reward_terms(self.weights, progress_m, bool(hits), reached_now)
-        if self.lanes is not None:
-            terms['lane'] = lane_term(self.weights, self.lanes.state.on_lane,
-                                      solid_crossings(self._crossed),
-                                      repeat_done * world.time_step_s)
-        truncated = not terminated and self.elapsed_s >= self.episode_s - 1e-9
-        other = ','.join(sorted({event.other for event in hits}))
-        return self.observe(), terms, terminated, truncated, (progress_m, terms, other, bool(hits))
+        return self.agent.outcome(self.elapsed_s, self.episode_s, self._repeat_done,
+                                  self._watch)
 
     def _info(self, progress_m, terms, collided_with, collision):
-        info = {'time_s': self.elapsed_s, 'progress_m': float(progress_m),
-                'reward_terms': dict(terms), 'reward_default': total(terms),
-                'collision': collision, 'collided_with': collided_with,
-                'goal_reached': self._goal_reached}
-        if self.lanes is not None:
-            state = self.lanes.state
-            info['on_lane'] = state.on_lane
-            info['lane_id'] = state.lane_id
-            info['lane_crossings'] = len(self._crossed)
-            info['solid_crossings'] = solid_crossings(self._crossed)
-        if self._watch is not None:
-            info['criteria'] = dict(self._watch.verdicts)
-        return info
-
-    def _info_row(self, progress_m, terms, collided_with, collision, reward):
-        # _info's values in its order, a nested dict's values in its place, for DriveVectorEnv's
-        # info table (test_gym_vector compares the vector's infos with lone environments').
-        row = [self.elapsed_s, float(progress_m), *terms.values(), reward, collision,
-               collided_with, self._goal_reached]
-        if self.lanes is not None:
-            state = self.lanes.state
-            row += (state.on_lane, state.lane_id, len(self._crossed),
-                    solid_crossings(self._crossed))
-        if self._watch is not None:
-            row += self._watch.verdicts.values()
-        return row
+        return self.agent.info(self.elapsed_s, progress_m, terms, collided_with, collision,
+                               self._watch)
 
     def close(self):
         """Disconnect the physics client (idempotent)."""
