@@ -96,7 +96,7 @@ def test_a_turning_vehicles_box_is_centred_on_the_path_its_front_took():
     # a jump (a teleport) starts the trail again: the box straight behind the new front
     cx, cy, yaw = follow_trail(trail, 50.0, 50.0, 0.0, length, 0.1 + JUMP_M)
     assert (cx, cy, yaw) == pytest.approx((47.5, 50.0, 0.0))
-    assert trail == [(50.0, 50.0)]
+    assert trail == [(50.0, 50.0, 0.0)]               # (x, y, arc length)
 
 
 def test_the_bodies_are_where_sumo_has_its_vehicles_and_persons(net):

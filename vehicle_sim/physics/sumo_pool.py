@@ -22,6 +22,7 @@ departures decides, so a seed gives the same names. :class:`SumoPool` takes, par
 moves (straight on between SUMO's steps) and stops them; SumoBodies is one.
 """
 
+import bisect
 import math
 
 import pybullet
@@ -41,17 +42,32 @@ TRAIL_STEP_M = 0.01              # the front's points along its trail are this f
 __all__ = ['follow_trail', 'JUMP_M', 'NAME_PREFIX', 'SumoPool', 'SumoSlot']
 
 
-def _back_along(trail, x, y, yaw, distance):
-    """Return (point, index) ``distance`` back along the trail from (x, y), and its segment."""
-    need, px, py = distance, x, y
-    for i in range(len(trail) - 1, -1, -1):
-        qx, qy = trail[i]
-        d = math.hypot(px - qx, py - qy)
-        if d >= need > 0.0:
-            f = need / d
-            return (px + (qx - px) * f, py + (qy - py) * f), i
-        need, px, py = need - d, qx, qy
-    return (px - need * math.cos(yaw), py - need * math.sin(yaw)), 0
+def _back_along(trail, x, y, s, yaw, distance):
+    """
+    Return (point, index) ``distance`` back along the trail from its front (x, y) [m].
+
+    ``s`` is the front's arc length on the trail's scale (its points' third values); the
+    point lies on the segment from ``trail[index]`` forwards (found by bisection on the arc
+    lengths); past the oldest point it goes on straight back along ``yaw``.
+    """
+    target = s - distance
+    last = len(trail) - 1
+    if trail[last][2] <= target:
+        qx, qy, qs = trail[last]
+        f = (s - target) / (s - qs) if s > qs else 0.0
+        return (x + (qx - x) * f, y + (qy - y) * f), last
+    index = bisect.bisect_right(trail, target, key=_arc) - 1
+    if index < 0:
+        qx, qy, qs = trail[0]
+        need = qs - target
+        return (qx - need * math.cos(yaw), qy - need * math.sin(yaw)), 0
+    (qx, qy, qs), (px, py, ps) = trail[index], trail[index + 1]
+    f = (ps - target) / (ps - qs)
+    return (px + (qx - px) * f, py + (qy - py) * f), index
+
+
+def _arc(point):
+    return point[2]
 
 
 def follow_trail(trail, x, y, yaw, length, jump_m):
@@ -65,17 +81,28 @@ def follow_trail(trail, x, y, yaw, length, jump_m):
     path is shorter than the vehicle (it has just departed) the rest goes straight back along
     ``yaw`` from the path's oldest point.
 
-    :param trail: the front's earlier points [(x, y)], oldest first: (x, y) is added, and the
-        points behind the rear's are dropped.
+    :param trail: the front's earlier points [(x, y, arc length)], oldest first: (x, y) is
+        added, and the points behind the rear's are dropped; the arc lengths let the points
+        a half and a whole length back be found by bisection (a vehicle creeping in a queue
+        leaves many points).
     :param jump_m: a front further than this from the trail's last point jumped (a teleport):
         the trail starts again.
     """
-    if trail and math.hypot(x - trail[-1][0], y - trail[-1][1]) > jump_m:
-        trail.clear()
-    if not trail or math.hypot(x - trail[-1][0], y - trail[-1][1]) >= TRAIL_STEP_M:
-        trail.append((x, y))
-    (mx, my), _ = _back_along(trail, x, y, yaw, 0.5 * length)
-    (bx, by), index = _back_along(trail, x, y, yaw, length)
+    if trail:
+        lx, ly, ls = trail[-1]
+        d = math.hypot(x - lx, y - ly)
+        if d > jump_m:
+            trail.clear()
+            trail.append((x, y, 0.0))
+            d, ls = 0.0, 0.0
+        elif d >= TRAIL_STEP_M:
+            trail.append((x, y, ls + d))
+    else:
+        trail.append((x, y, 0.0))
+        d, ls = 0.0, 0.0
+    s = ls + d
+    (mx, my), _ = _back_along(trail, x, y, s, yaw, 0.5 * length)
+    (bx, by), index = _back_along(trail, x, y, s, yaw, length)
     del trail[:index]
     return mx, my, math.atan2(y - by, x - bx)
 
