@@ -40,6 +40,7 @@ from sumo_helpers import one_lane_grid_net, write_routes  # noqa: E402
 
 from vehicle_sim.config import world_from_data  # noqa: E402
 from vehicle_sim.physics.scene import build_scene  # noqa: E402
+from vehicle_sim.physics.sensors.rays import cast_rays  # noqa: E402
 from vehicle_sim.physics.sumo_pool import follow_trail, JUMP_M  # noqa: E402
 
 LANE_X = 1.6          # edge A0A1's lane (northbound) runs along x = 1.6, y from 5.2 to 92.8
@@ -151,6 +152,46 @@ def test_the_bodies_are_where_sumo_has_its_vehicles_and_persons(net):
         colours = {name: colour for name, _, _, colour, _ in bodies.boxes()}
         assert all(bodies.colours[o.index % len(bodies.colours)] == colours[o.name]
                    for o in bodies.objects())
+    finally:
+        scene.world.close()
+
+
+def test_rays_put_the_bodies_where_they_go_and_leave_the_others_standing(net, tmp_path):
+    # a ray batch puts where they are only the bodies within its reach (a lidar's rays in a
+    # city pass near a tenth of them), and those standing there since an earlier update; any
+    # other reading puts every one where it is. Three cars on three parallel streets 100 m apart
+    routes = write_routes(tmp_path, [(name, 0.0, f'{column}0{column}1 {column}1{column}2')
+                                     for name, column in (('a', 'A'), ('b', 'B'), ('c', 'C'))])
+    scene = _world(net, {'routes': routes}, ego=(-300.0, -300.0, 0.0), folder=tmp_path)
+    try:
+        bodies, world = scene.parts['traffic'], scene.world
+        cid = world.client_id
+
+        def standing(sumo_id):
+            return pybullet.getBasePositionAndOrientation(
+                bodies.body_of(bodies.name_of(sumo_id)), physicsClientId=cid)[0]
+
+        def now(sumo_id):                  # where SUMO has it, gone on straight since
+            name = bodies.name_of(sumo_id)
+            since = bodies.since_update_s
+            _, x, y, yaw, _, _, speed = next(a for a in bodies.agents() if a[0] == name)
+            return x + speed * since * math.cos(yaw), y + speed * since * math.sin(yaw)
+
+        def down(x, y):                    # the height a ray straight down hits
+            return 20.0 - 21.0 * cast_rays(world, (x, y, 20.0), [(x, y, -1.0)], -1)[0]
+        _run(scene, 4.0)
+        world.sync_bodies()
+        stood = {sumo_id: standing(sumo_id) for sumo_id in 'abc'}
+        _run(scene, 1.0)                   # nothing read the world: they stand where they were
+        assert {sumo_id: standing(sumo_id) for sumo_id in 'abc'} == stood
+        assert math.dist(now('a'), stood['a'][:2]) > 5.0
+        assert down(*stood['a'][:2]) < 0.5                 # where a stood: the road
+        assert standing('a')[:2] == pytest.approx(now('a'), abs=1e-6)
+        bx, by = now('b')
+        assert down(bx, by) > 1.0                           # where b is now: its roof
+        assert standing('c') == stood['c']                  # c, 100 m off: where it stood
+        world.sync_bodies()
+        assert standing('c')[:2] == pytest.approx(now('c'), abs=1e-6)
     finally:
         scene.world.close()
 
@@ -313,6 +354,7 @@ def test_a_warmup_starts_the_world_with_traffic_and_each_reset_runs_it_again(net
         assert api.simulation.getTime() == pytest.approx(30.0) and scene.world.time_s == 0.0
         warm = sorted(bodies.agents())
         assert len(warm) > 5 and bodies.since_update_s == 0.0
+        scene.world.sync_bodies()       # what any reader of the world does first
         for name, x, y, *_ in warm:     # its bodies already where SUMO has them
             position, _ = pybullet.getBasePositionAndOrientation(
                 bodies.body_of(name), physicsClientId=scene.world.client_id)

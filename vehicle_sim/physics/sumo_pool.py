@@ -112,7 +112,7 @@ class SumoSlot:
 
     __slots__ = ('index', 'name', 'body_id', 'size', 'clearance', 'colour', 'key', 'sumo_id',
                  'person', 'vclass', 'state', 'motion', 'stopped', 'lane', 'route',
-                 'trail')
+                 'trail', 'front', 'at', 'synced')
 
     def __init__(self, index, body_id, size, clearance, colour, key):
         self.index = index
@@ -131,6 +131,10 @@ class SumoSlot:
         self.lane = None                   # (SUMO lane id, lane position [m], route index)
         self.route = ()                    # its route's SUMO edges (at its departure)
         self.trail = []                    # its front's earlier points (follow_trail)
+        self.front = None                  # SUMO's (x, y, angle) of its front at the update
+        self.at = None                     # (x, y) where its body stands now (None: parked)
+        self.synced = -1                   # the world step it was put where it is (-1: not
+        #                                    since SUMO's last step)
 
     @property
     def z(self):
@@ -180,46 +184,75 @@ class SumoPool:
             slot = SumoSlot(index, body_id, size, clearance, colour, key)
             self._slots.append(slot)
         slot.sumo_id, slot.person, slot.vclass, slot.stopped = sumo_id, person, vclass, False
-        slot.trail = []
+        slot.trail, slot.front = [], None
         self._by_id[(person, sumo_id)] = slot
         return slot
 
     def _park(self, slot):
         slot.sumo_id, slot.state, slot.motion, slot.stopped = None, None, None, False
-        slot.lane, slot.route = None, ()
+        slot.lane, slot.route, slot.at, slot.synced = None, (), None, -1
         pybullet.resetBasePositionAndOrientation(
             slot.body_id, (0.0, 0.0, PARK_DEPTH_M - 10.0 * slot.index), (0.0, 0.0, 0.0, 1.0),
             physicsClientId=self._cid)
 
     def _place(self):
-        """Put every serving body where SUMO has its vehicle or person now (an update)."""
-        cid = self._cid
-        reset_pose = pybullet.resetBasePositionAndOrientation
+        """
+        Take SUMO's new positions (an update): each body is put there when something reads it.
+
+        Nothing is moved here: :meth:`_move` puts a body where its vehicle is now (straight on
+        since the update) when it is near one of ours (each step), when rays pass near it, or
+        before any other reading of the world.
+        """
         cos, sin = math.cos, math.sin
         for slot in self._by_id.values():
             x, y, yaw, speed = slot.state
             half = 0.5 * yaw
-            z, qz, qw = slot.z, sin(half), cos(half)
-            reset_pose(slot.body_id, (x, y, z), (0.0, 0.0, qz, qw), physicsClientId=cid)
-            slot.motion = (x, y, z, qz, qw, speed * cos(yaw), speed * sin(yaw))
+            slot.motion = (x, y, slot.z, sin(half), cos(half), speed * cos(yaw),
+                           speed * sin(yaw))
+            slot.synced = -1
         self._placed_at = self.world.time_s
-        self._synced_step = self.world.step_count
-        self.world.mark_moved()
+        self._synced_step = -1
 
     def _move(self, slots):
-        """Put the bodies of ``slots`` where their vehicles are now (straight on)."""
+        """Put the bodies of ``slots`` where their vehicles are now (straight on); say if any."""
         cid = self._cid
         reset_pose = pybullet.resetBasePositionAndOrientation
+        count = self.world.step_count
         elapsed = self.world.time_s - self._placed_at
+        moved = False
         for slot in slots:
             state = slot.motion
-            if state is None:
+            if state is None or slot.synced == count:
                 continue
             x, y, z, qz, qw, vx, vy = state
-            if vx or vy:
-                reset_pose(slot.body_id, (x + vx * elapsed, y + vy * elapsed, z),
-                           (0.0, 0.0, qz, qw), physicsClientId=cid)
+            if vx or vy or slot.synced < 0:       # moving, or not put there since the update
+                x, y = x + vx * elapsed, y + vy * elapsed
+                reset_pose(slot.body_id, (x, y, z), (0.0, 0.0, qz, qw), physicsClientId=cid)
+                slot.at = (x, y)
+                moved = True
+            slot.synced = count
+        return moved
 
+    def _reaching(self, region):
+        """Return the serving bodies that stand, or are now, within ``region`` (a margin on)."""
+        xmin, ymin, xmax, ymax = region
+        count = self.world.step_count
+        elapsed = self.world.time_s - self._placed_at
+        found = []
+        for slot in self._by_id.values():
+            state = slot.motion
+            if state is None or slot.synced == count:
+                continue
+            reach = slot.size[0] + slot.size[1]          # more than its half diagonal
+            x, y = state[0] + state[5] * elapsed, state[1] + state[6] * elapsed
+            if xmin - reach <= x <= xmax + reach and ymin - reach <= y <= ymax + reach:
+                found.append(slot)
+                continue
+            at = slot.at                                  # where it stands: moved off there
+            if at is not None and xmin - reach <= at[0] <= xmax + reach and \
+                    ymin - reach <= at[1] <= ymax + reach:
+                found.append(slot)
+        return found
 
     def _stop(self, slot):
         # Stopped where its body was during the step, in SUMO at once (no deceleration bound).
@@ -241,6 +274,7 @@ class SumoPool:
         pybullet.resetBasePositionAndOrientation(slot.body_id, (x, y, z), (0.0, 0.0, qz, qw),
                                                  physicsClientId=self._cid)
         slot.motion = (x, y, z, qz, qw, 0.0, 0.0)
+        slot.at, slot.synced = (x, y), self.world.step_count
         _, _, yaw, _ = slot.state
         slot.state = (x, y, yaw, 0.0)
         self.world.mark_moved()
