@@ -25,6 +25,7 @@ run (the second over TraCI); closing the world closes SUMO.
 """
 
 import math
+import re
 
 import pybullet
 import pytest
@@ -39,6 +40,7 @@ if sumo_session.load_libsumo() is None:      # (imported quietly: its pyarrow no
 from sumo_helpers import one_lane_grid_net, write_routes  # noqa: E402
 
 from vehicle_sim.config import world_from_data  # noqa: E402
+from vehicle_sim.core.specs.errors import InvalidParameterError  # noqa: E402
 from vehicle_sim.physics.scene import build_scene  # noqa: E402
 from vehicle_sim.physics.sensors.rays import cast_rays  # noqa: E402
 from vehicle_sim.physics.sumo_pool import follow_trail, JUMP_M  # noqa: E402
@@ -194,6 +196,45 @@ def test_rays_put_the_bodies_where_they_go_and_leave_the_others_standing(net, tm
         assert standing('c')[:2] == pytest.approx(now('c'), abs=1e-6)
     finally:
         scene.world.close()
+
+
+def _routed(net, route, folder):
+    data = {'vehicles': [{'name': 'ego', 'model': 'Car', 'route': route,
+                          'pose': {'x': LANE_X, 'y': 40.0, 'yaw': math.pi / 2}}],
+            'map': {'type': 'sumo', 'net': net},
+            'traffic': {'engine': 'sumo', 'routes': write_routes(folder, [])}}
+    return build_scene(world_from_data(data, 'w.yaml', base_dir=str(folder)))
+
+
+def test_our_vehicle_has_its_route_in_sumo(net, tmp_path):
+    # ours on A0A1 (northbound) with route [A1B1_1] (east at A1: a right turn): SUMO's route
+    # for it is A0A1 A1B1 and its next link turns right onto A1B1; without a route SUMO's
+    # route ends with the edge it is on (no link ahead: SUMO does not know where it turns)
+    for route, edges, links in ((['A1B1_1'], ('A0A1', 'A1B1'), [('A1B1_1', 'r')]),
+                                ([], ('A0A1',), [])):
+        scene = _routed(net, route, tmp_path)
+        try:
+            _run(scene, 0.2)
+            api = scene.parts['traffic'].session.api
+            assert api.vehicle.getRoute('vehicle_sim.ego') == edges
+            assert [(link[0], link[6]) for link in api.vehicle.getNextLinks(
+                'vehicle_sim.ego')] == links
+        finally:
+            scene.world.close()
+
+
+def test_a_route_sumo_cannot_take_is_refused_naming_the_lane(net, tmp_path):
+    for route, message in (
+            (['A1B1_1', 'NOPE_0'], "vehicles[0]: field 'route': lane 'NOPE_0' is not in the map"),
+            ([':A1_0_0'], "field 'route': lane ':A1_0_0' is inside a junction")):
+        with pytest.raises(InvalidParameterError, match=re.escape(message)):
+            _routed(net, route, tmp_path)
+    data = {'vehicles': [{'name': 'ego', 'route': ['A1B1_1']}],
+            'map': {'type': 'sumo', 'net': net}}
+    with pytest.raises(InvalidParameterError,
+                       match=re.escape("vehicles[0]: field 'route' = ['A1B1_1']: a route is "
+                                       'given to the sumo traffic engine')):
+        world_from_data(data, 'w.yaml', base_dir=str(tmp_path))
 
 
 def _queue(net, folder, ego):

@@ -113,7 +113,38 @@ def build_sumo(part, world, spec, parts):
     signals = getattr(parts.get('signals'), 'controller', None)
     graph = getattr(spec, 'lanes', None)
     programs = tuple(getattr(getattr(graph, 'rules', None), 'programs', None) or ())
-    return SumoBodies(world, traffic, net, every, signals, programs, graph)
+    return SumoBodies(world, traffic, net, every, signals, programs, graph,
+                      route_edges(spec, graph))
+
+
+def route_edges(spec, graph):
+    """
+    Return {vehicle name: its route's SUMO edges} of the world's vehicles with a ``route:``.
+
+    Each lane (an id or a name of the lane map, whose lane names are SUMO's lane ids) gives
+    its edge (the lane id without its ``_<index>``); a lane inside a junction is refused.
+
+    :raises InvalidParameterError: a lane not in the map, or inside a junction, naming it.
+    """
+    found = {}
+    for index, vehicle in enumerate(getattr(spec, 'vehicles', ())):
+        edges = []
+        for lane in vehicle.route:
+            where = f"{spec.source}: vehicles[{index}]: field 'route': lane {lane!r}"
+            try:
+                name = graph.lanes[lane].name if isinstance(lane, int) else \
+                    graph.lane_named(lane).name
+            except (KeyError, InvalidParameterError):
+                raise InvalidParameterError(f'{where} is not in the map') from None
+            if name.startswith(':'):
+                raise InvalidParameterError(f'{where} is inside a junction: give the lanes '
+                                            'of the roads it takes')
+            edge = name.rsplit('_', 1)[0]
+            if not edges or edges[-1] != edge:
+                edges.append(edge)
+        if edges:
+            found[vehicle.name] = tuple(edges)
+    return found
 
 
 
@@ -135,10 +166,13 @@ class SumoBodies(SumoPool, SumoViews):
     :param programs: the lane map's SignalPrograms (core/map/signal_programs.py).
     :param graph: the world's lane graph (the network's: the objects' predicted paths follow
         its lanes), or None.
+    :param routes: {our vehicle's name: the SUMO edges of its route} (:func:`route_edges`).
     """
 
-    def __init__(self, world, spec, net, every, signals=None, programs=(), graph=None):
+    def __init__(self, world, spec, net, every, signals=None, programs=(), graph=None,
+                 routes=None):
         self.world = world
+        self.routes = dict(routes or {})  # {our vehicle's name: its route's SUMO edges}
         self.spec = spec
         self.net = net
         self.every = every
@@ -187,8 +221,10 @@ class SumoBodies(SumoPool, SumoViews):
         for slot in reversed(self._slots):
             self._free.setdefault(slot.key, []).append(slot)
         self._steps = 0                    # SUMO steps since the start
-        self._our = SumoOurs(self.session, self._ours, self._outlines)
+        self._our = SumoOurs(self.session, self._ours, self._outlines, self.routes,
+                             self.spec.source)
         self._signals = SumoSignals(self.session, self.signals, self.programs, self._constants)
+        self._our.check_routes(api)
         with self.session.errors('at the start'):
             self._our.add_types(api)
             c = self._constants
