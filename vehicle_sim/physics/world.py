@@ -491,10 +491,14 @@ class World:
         velocities it had (its joints and contacts untouched): the physics goes on bit for bit
         as it would.
 
+        With the GUI nothing moves (its window draws while the rays are cast: the car would
+        flicker).
+
         :param mask: a mask from :meth:`ray_mask_excluding`, or another (nothing moves).
         """
         cid = self.client_id
-        own = [body_id for body_id, own_mask in self._ray_masks.items() if own_mask == mask]
+        own = [] if self.gui else [body_id for body_id, own_mask in self._ray_masks.items()
+                                   if own_mask == mask]
         # a reset of the base's pose zeroes its velocities: they go back with it
         states = [(pybullet.getBasePositionAndOrientation(body_id, physicsClientId=cid),
                    pybullet.getBaseVelocity(body_id, physicsClientId=cid)) for body_id in own]
