@@ -169,7 +169,7 @@ def cosim(measure_s, seed=1):
     First the empty world (the ego car and its lidar, nothing else), then the city with SUMO's
     traffic filled for :data:`FILL_S` simulated seconds (not timed, the lidar off), each
     stepped by ``World.step`` at 10 ms for ``measure_s`` simulated seconds with the lidar
-    sampled at its 40 Hz.
+    sampled at its 10 Hz.
     """
     from vehicle_sim.physics.scene import build_scene, mount_suite
     found = {}

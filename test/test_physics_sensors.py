@@ -140,6 +140,46 @@ def test_lidar_rays_ignore_the_vehicle_s_own_body(scene):
     assert course.suite.sample('lidar').scan[1] == pytest.approx(20.5, abs=1e-3)
 
 
+def test_lidar_rays_are_cast_with_the_own_vehicle_aside_and_see_the_others(scene):
+    # the own car stands 10 km below while its rays are cast (Bullet would test each ray
+    # against its shapes before the mask drops the hit), then back with its velocities; a
+    # second car ahead on the forward ray is seen
+    course = scene([{'name': 'lidar', 'type': 'lidar', 'pose': {'x': -1.0, 'z': 0.9},
+                     'fov': 0.2, 'horizontal_resolution': 3, 'max_range': 50.0}],
+                   obstacles=False)
+    other = SimulatedCar(course.world, course.params, (10.0, 0.0, 0.0), name='other')
+    course.car.logic.set_cruising_speed_kmh(20.0)
+    course.settle(100)
+    cid, body_id = course.world.client_id, course.car.body.body_id
+    seen = []
+    cast = pybullet.rayTestBatch
+
+    def spy(*args, **kwargs):
+        seen.append(pybullet.getBasePositionAndOrientation(body_id, physicsClientId=cid)[0])
+        return cast(*args, **kwargs)
+
+    def state(body):                  # pose and velocities, flat
+        return [v for part in (*pybullet.getBasePositionAndOrientation(body, physicsClientId=cid),
+                               *pybullet.getBaseVelocity(body, physicsClientId=cid))
+                for v in part]
+    before = [state(body_id), state(other.body.body_id)]
+    pybullet.rayTestBatch = spy
+    try:
+        scan = course.suite.sample('lidar')
+    finally:
+        pybullet.rayTestBatch = cast
+    assert [z for _, _, z in seen] == [-1.0e4]
+    # back where it was (the orientation read back to its last bit: Bullet keeps a matrix),
+    # its velocities too
+    assert state(body_id) == pytest.approx(before[0], rel=0.0, abs=1e-15)
+    assert state(other.body.body_id) == before[1]
+    assert before[0][7] > 2.0                       # it was moving: its velocity came back
+    # the forward ray, from 1 m behind the car's origin (its base 2 m ahead of it), reads the
+    # other car's rear (its base at 12 m, its body box 2.5 m back)
+    lidar_x = before[0][0] - 2.0 - 1.0
+    assert scan.scan[1] == pytest.approx(12.0 - 2.5 - lidar_x, abs=1e-3)
+
+
 def test_lidar_layers_give_an_organized_cloud_with_nan_for_misses(scene):
     course = scene([{'name': 'lidar', 'type': 'lidar', 'pose': {'x': 1.0, 'z': 1.5},
                      'fov': 1.0, 'horizontal_resolution': 101, 'layers': 3,

@@ -25,6 +25,7 @@ run (the second over TraCI); closing the world closes SUMO.
 """
 
 import math
+import re
 
 import pybullet
 import pytest
@@ -39,7 +40,9 @@ if sumo_session.load_libsumo() is None:      # (imported quietly: its pyarrow no
 from sumo_helpers import one_lane_grid_net, write_routes  # noqa: E402
 
 from vehicle_sim.config import world_from_data  # noqa: E402
+from vehicle_sim.core.specs.errors import InvalidParameterError  # noqa: E402
 from vehicle_sim.physics.scene import build_scene  # noqa: E402
+from vehicle_sim.physics.sensors.rays import cast_rays  # noqa: E402
 from vehicle_sim.physics.sumo_pool import follow_trail, JUMP_M  # noqa: E402
 
 LANE_X = 1.6          # edge A0A1's lane (northbound) runs along x = 1.6, y from 5.2 to 92.8
@@ -96,7 +99,7 @@ def test_a_turning_vehicles_box_is_centred_on_the_path_its_front_took():
     # a jump (a teleport) starts the trail again: the box straight behind the new front
     cx, cy, yaw = follow_trail(trail, 50.0, 50.0, 0.0, length, 0.1 + JUMP_M)
     assert (cx, cy, yaw) == pytest.approx((47.5, 50.0, 0.0))
-    assert trail == [(50.0, 50.0)]
+    assert trail == [(50.0, 50.0, 0.0)]               # (x, y, arc length)
 
 
 def test_the_bodies_are_where_sumo_has_its_vehicles_and_persons(net):
@@ -153,6 +156,85 @@ def test_the_bodies_are_where_sumo_has_its_vehicles_and_persons(net):
                    for o in bodies.objects())
     finally:
         scene.world.close()
+
+
+def test_rays_put_the_bodies_where_they_go_and_leave_the_others_standing(net, tmp_path):
+    # a ray batch puts where they are only the bodies within its reach (a lidar's rays in a
+    # city pass near a tenth of them), and those standing there since an earlier update; any
+    # other reading puts every one where it is. Three cars on three parallel streets 100 m apart
+    routes = write_routes(tmp_path, [(name, 0.0, f'{column}0{column}1 {column}1{column}2')
+                                     for name, column in (('a', 'A'), ('b', 'B'), ('c', 'C'))])
+    scene = _world(net, {'routes': routes}, ego=(-300.0, -300.0, 0.0), folder=tmp_path)
+    try:
+        bodies, world = scene.parts['traffic'], scene.world
+        cid = world.client_id
+
+        def standing(sumo_id):
+            return pybullet.getBasePositionAndOrientation(
+                bodies.body_of(bodies.name_of(sumo_id)), physicsClientId=cid)[0]
+
+        def now(sumo_id):                  # where SUMO has it, gone on straight since
+            name = bodies.name_of(sumo_id)
+            since = bodies.since_update_s
+            _, x, y, yaw, _, _, speed = next(a for a in bodies.agents() if a[0] == name)
+            return x + speed * since * math.cos(yaw), y + speed * since * math.sin(yaw)
+
+        def down(x, y):                    # the height a ray straight down hits
+            return 20.0 - 21.0 * cast_rays(world, (x, y, 20.0), [(x, y, -1.0)], -1)[0]
+        _run(scene, 4.0)
+        world.sync_bodies()
+        stood = {sumo_id: standing(sumo_id) for sumo_id in 'abc'}
+        _run(scene, 1.0)                   # nothing read the world: they stand where they were
+        assert {sumo_id: standing(sumo_id) for sumo_id in 'abc'} == stood
+        assert math.dist(now('a'), stood['a'][:2]) > 5.0
+        assert down(*stood['a'][:2]) < 0.5                 # where a stood: the road
+        assert standing('a')[:2] == pytest.approx(now('a'), abs=1e-6)
+        bx, by = now('b')
+        assert down(bx, by) > 1.0                           # where b is now: its roof
+        assert standing('c') == stood['c']                  # c, 100 m off: where it stood
+        world.sync_bodies()
+        assert standing('c')[:2] == pytest.approx(now('c'), abs=1e-6)
+    finally:
+        scene.world.close()
+
+
+def _routed(net, route, folder):
+    data = {'vehicles': [{'name': 'ego', 'model': 'Car', 'route': route,
+                          'pose': {'x': LANE_X, 'y': 40.0, 'yaw': math.pi / 2}}],
+            'map': {'type': 'sumo', 'net': net},
+            'traffic': {'engine': 'sumo', 'routes': write_routes(folder, [])}}
+    return build_scene(world_from_data(data, 'w.yaml', base_dir=str(folder)))
+
+
+def test_our_vehicle_has_its_route_in_sumo(net, tmp_path):
+    # ours on A0A1 (northbound) with route [A1B1_1] (east at A1: a right turn): SUMO's route
+    # for it is A0A1 A1B1 and its next link turns right onto A1B1; without a route SUMO's
+    # route ends with the edge it is on (no link ahead: SUMO does not know where it turns)
+    for route, edges, links in ((['A1B1_1'], ('A0A1', 'A1B1'), [('A1B1_1', 'r')]),
+                                ([], ('A0A1',), [])):
+        scene = _routed(net, route, tmp_path)
+        try:
+            _run(scene, 0.2)
+            api = scene.parts['traffic'].session.api
+            assert api.vehicle.getRoute('vehicle_sim.ego') == edges
+            assert [(link[0], link[6]) for link in api.vehicle.getNextLinks(
+                'vehicle_sim.ego')] == links
+        finally:
+            scene.world.close()
+
+
+def test_a_route_sumo_cannot_take_is_refused_naming_the_lane(net, tmp_path):
+    for route, message in (
+            (['A1B1_1', 'NOPE_0'], "vehicles[0]: field 'route': lane 'NOPE_0' is not in the map"),
+            ([':A1_0_0'], "field 'route': lane ':A1_0_0' is inside a junction")):
+        with pytest.raises(InvalidParameterError, match=re.escape(message)):
+            _routed(net, route, tmp_path)
+    data = {'vehicles': [{'name': 'ego', 'route': ['A1B1_1']}],
+            'map': {'type': 'sumo', 'net': net}}
+    with pytest.raises(InvalidParameterError,
+                       match=re.escape("vehicles[0]: field 'route' = ['A1B1_1']: a route is "
+                                       'given to the sumo traffic engine')):
+        world_from_data(data, 'w.yaml', base_dir=str(tmp_path))
 
 
 def _queue(net, folder, ego):
@@ -313,6 +395,7 @@ def test_a_warmup_starts_the_world_with_traffic_and_each_reset_runs_it_again(net
         assert api.simulation.getTime() == pytest.approx(30.0) and scene.world.time_s == 0.0
         warm = sorted(bodies.agents())
         assert len(warm) > 5 and bodies.since_update_s == 0.0
+        scene.world.sync_bodies()       # what any reader of the world does first
         for name, x, y, *_ in warm:     # its bodies already where SUMO has them
             position, _ = pybullet.getBasePositionAndOrientation(
                 bodies.body_of(name), physicsClientId=scene.world.client_id)

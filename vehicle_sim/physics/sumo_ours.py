@@ -19,11 +19,16 @@ Each of our vehicles is a SUMO vehicle of its own type (its footprint's length a
 added on the nearest lane of SUMO's cars and moved every SUMO step with ``moveToXY`` to its
 front bumper where the physics has it (SUMO taking its speed from the move): SUMO's drivers
 queue behind it and its pedestrians wait for it. One off the road is taken out of SUMO and put
-in again when it is back near a lane.
+in again when it is back near a lane. One with a route (a world vehicle's ``route:``) has it in
+SUMO: the edges from where it is to its route's first (SUMO's own router between them) and on
+along its route, so that SUMO's drivers and pedestrians know where it will turn (SUMO keeps a
+vehicle's route while ``moveToXY`` moves it along it, and replaces it by the edges it takes when
+it leaves it).
 """
 
 import math
 
+from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.physics.traffic_boxes import our_vehicle
 
 OURS_PREFIX = 'vehicle_sim.'     # our vehicles' SUMO ids: this + their names
@@ -42,12 +47,17 @@ class SumoOurs:
     :param session: the started SumoSession.
     :param ours: the world's vehicle bodies.
     :param outlines: their outlines (footprints), in that order.
+    :param routes: {name: the SUMO edges of its route} of those with a route.
+    :param source: quoted in errors ('world.yaml: traffic').
     """
 
-    def __init__(self, session, ours, outlines):
+    def __init__(self, session, ours, outlines, routes=None, source='traffic'):
         self.session = session
         self._ours = ours
         self._outlines = outlines
+        self._routes_given = dict(routes or {})
+        self.routes = {}                   # {name: its whole route's SUMO edges}
+        self._source = source
         self._in_sumo = set()              # the names of our vehicles in SUMO now
         self._retry = {}                   # {name: out of SUMO, looked for since}
         self._shapes = {}                  # {SUMO lane id: its shape}
@@ -61,6 +71,40 @@ class SumoOurs:
             api.vehicletype.copy('DEFAULT_VEHTYPE', type_id)
             api.vehicletype.setLength(type_id, outline.length_m)
             api.vehicletype.setWidth(type_id, outline.width_m)
+
+    def check_routes(self, api):
+        """
+        Join each route's edges by SUMO's router (the edges between two given ones).
+
+        :raises InvalidParameterError: SUMO finds no way from one edge of a route to the next,
+            naming both.
+        """
+        for name, edges in self._routes_given.items():
+            whole = [edges[0]]
+            for edge in edges[1:]:
+                try:
+                    way = tuple(api.simulation.findRoute(whole[-1], edge).edges)
+                except self.session.refusal:
+                    way = ()
+                if not way:
+                    raise InvalidParameterError(
+                        f"{self._source}: vehicle {name!r}: field 'route': SUMO finds no way "
+                        f'from edge {whole[-1]!r} to edge {edge!r}')
+                whole += way[1:]
+            self.routes[name] = tuple(whole)
+
+    def route_from(self, api, name, edge):
+        """Return the SUMO edges of our vehicle ``name`` on ``edge``: its route from there."""
+        whole = self.routes.get(name)
+        if not whole:
+            return [edge]
+        if edge in whole:
+            return list(whole[whole.index(edge):])
+        try:                              # not on it yet: SUMO's way to its first edge
+            way = tuple(api.simulation.findRoute(edge, whole[0]).edges)
+        except self.session.refusal:
+            way = ()
+        return list(way) + list(whole[1:]) if way else [edge]
 
     def arrived(self, vid):
         """SUMO removed our vehicle ``vid`` (its SUMO id): it is put in again at the next step."""
@@ -108,7 +152,7 @@ class SumoOurs:
                 route = f'{vid}.route{self._routes}'
                 self._routes += 1
                 try:
-                    api.route.add(route, [edge])
+                    api.route.add(route, self.route_from(api, o.name, edge))
                     api.vehicle.add(vid, route, typeID=vid, departSpeed='0')
                 except refused:
                     continue

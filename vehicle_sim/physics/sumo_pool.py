@@ -24,6 +24,7 @@ label (``World.labels``) is its class's, its instance id that of the SUMO vehicl
 serves (:func:`instance_name`: one id per SUMO id for the world's life); a parked one has none.
 """
 
+import bisect
 import math
 
 import pybullet
@@ -49,17 +50,32 @@ def instance_name(person, sumo_id) -> str:
     return f"sumo {'person' if person else 'vehicle'} {sumo_id}"
 
 
-def _back_along(trail, x, y, yaw, distance):
-    """Return (point, index) ``distance`` back along the trail from (x, y), and its segment."""
-    need, px, py = distance, x, y
-    for i in range(len(trail) - 1, -1, -1):
-        qx, qy = trail[i]
-        d = math.hypot(px - qx, py - qy)
-        if d >= need > 0.0:
-            f = need / d
-            return (px + (qx - px) * f, py + (qy - py) * f), i
-        need, px, py = need - d, qx, qy
-    return (px - need * math.cos(yaw), py - need * math.sin(yaw)), 0
+def _back_along(trail, x, y, s, yaw, distance):
+    """
+    Return (point, index) ``distance`` back along the trail from its front (x, y) [m].
+
+    ``s`` is the front's arc length on the trail's scale (its points' third values); the
+    point lies on the segment from ``trail[index]`` forwards (found by bisection on the arc
+    lengths); past the oldest point it goes on straight back along ``yaw``.
+    """
+    target = s - distance
+    last = len(trail) - 1
+    if trail[last][2] <= target:
+        qx, qy, qs = trail[last]
+        f = (s - target) / (s - qs) if s > qs else 0.0
+        return (x + (qx - x) * f, y + (qy - y) * f), last
+    index = bisect.bisect_right(trail, target, key=_arc) - 1
+    if index < 0:
+        qx, qy, qs = trail[0]
+        need = qs - target
+        return (qx - need * math.cos(yaw), qy - need * math.sin(yaw)), 0
+    (qx, qy, qs), (px, py, ps) = trail[index], trail[index + 1]
+    f = (ps - target) / (ps - qs)
+    return (px + (qx - px) * f, py + (qy - py) * f), index
+
+
+def _arc(point):
+    return point[2]
 
 
 def follow_trail(trail, x, y, yaw, length, jump_m):
@@ -73,17 +89,28 @@ def follow_trail(trail, x, y, yaw, length, jump_m):
     path is shorter than the vehicle (it has just departed) the rest goes straight back along
     ``yaw`` from the path's oldest point.
 
-    :param trail: the front's earlier points [(x, y)], oldest first: (x, y) is added, and the
-        points behind the rear's are dropped.
+    :param trail: the front's earlier points [(x, y, arc length)], oldest first: (x, y) is
+        added, and the points behind the rear's are dropped; the arc lengths let the points
+        a half and a whole length back be found by bisection (a vehicle creeping in a queue
+        leaves many points).
     :param jump_m: a front further than this from the trail's last point jumped (a teleport):
         the trail starts again.
     """
-    if trail and math.hypot(x - trail[-1][0], y - trail[-1][1]) > jump_m:
-        trail.clear()
-    if not trail or math.hypot(x - trail[-1][0], y - trail[-1][1]) >= TRAIL_STEP_M:
-        trail.append((x, y))
-    (mx, my), _ = _back_along(trail, x, y, yaw, 0.5 * length)
-    (bx, by), index = _back_along(trail, x, y, yaw, length)
+    if trail:
+        lx, ly, ls = trail[-1]
+        d = math.hypot(x - lx, y - ly)
+        if d > jump_m:
+            trail.clear()
+            trail.append((x, y, 0.0))
+            d, ls = 0.0, 0.0
+        elif d >= TRAIL_STEP_M:
+            trail.append((x, y, ls + d))
+    else:
+        trail.append((x, y, 0.0))
+        d, ls = 0.0, 0.0
+    s = ls + d
+    (mx, my), _ = _back_along(trail, x, y, s, yaw, 0.5 * length)
+    (bx, by), index = _back_along(trail, x, y, s, yaw, length)
     del trail[:index]
     return mx, my, math.atan2(y - by, x - bx)
 
@@ -93,7 +120,7 @@ class SumoSlot:
 
     __slots__ = ('index', 'name', 'body_id', 'size', 'clearance', 'colour', 'key', 'sumo_id',
                  'person', 'vclass', 'state', 'motion', 'stopped', 'lane', 'route',
-                 'trail', 'instance')
+                 'trail', 'instance', 'front', 'at', 'synced')
 
     def __init__(self, index, body_id, size, clearance, colour, key):
         self.index = index
@@ -113,6 +140,10 @@ class SumoSlot:
         self.route = ()                    # its route's SUMO edges (at its departure)
         self.trail = []                    # its front's earlier points (follow_trail)
         self.instance = 0                  # the instance id of whom it serves (0: parked)
+        self.front = None                  # SUMO's (x, y, angle) of its front at the update
+        self.at = None                     # (x, y) where its body stands now (None: parked)
+        self.synced = -1                   # the world step it was put where it is (-1: not
+        #                                    since SUMO's last step)
 
     @property
     def z(self):
@@ -162,7 +193,7 @@ class SumoPool:
             slot = SumoSlot(index, body_id, size, clearance, colour, key)
             self._slots.append(slot)
         slot.sumo_id, slot.person, slot.vclass, slot.stopped = sumo_id, person, vclass, False
-        slot.trail = []
+        slot.trail, slot.front = [], None
         labels = self.world.labels
         slot.instance = labels.instance(instance_name(person, sumo_id))
         labels.set(slot.body_id, LABELS[label_of_class(found_class)].name, slot.instance)
@@ -171,44 +202,72 @@ class SumoPool:
 
     def _park(self, slot):
         slot.sumo_id, slot.state, slot.motion, slot.stopped = None, None, None, False
-        slot.lane, slot.route, slot.instance = None, (), 0
+        slot.lane, slot.route, slot.instance, slot.at, slot.synced = None, (), 0, None, -1
         self.world.labels.forget(slot.body_id)
-        slot.lane, slot.route = None, ()
         self._table.invalidate()
         pybullet.resetBasePositionAndOrientation(
             slot.body_id, (0.0, 0.0, PARK_DEPTH_M - 10.0 * slot.index), (0.0, 0.0, 0.0, 1.0),
             physicsClientId=self._cid)
 
     def _place(self):
-        """Put every serving body where SUMO has its vehicle or person now (an update)."""
-        cid = self._cid
-        reset_pose = pybullet.resetBasePositionAndOrientation
+        """
+        Take SUMO's new positions (an update): each body is put there when something reads it.
+
+        Nothing is moved here: :meth:`_move` puts a body where its vehicle is now (straight on
+        since the update) when it is near one of ours (each step), when rays pass near it, or
+        before any other reading of the world.
+        """
         cos, sin = math.cos, math.sin
         for slot in self._by_id.values():
             x, y, yaw, speed = slot.state
             half = 0.5 * yaw
-            z, qz, qw = slot.z, sin(half), cos(half)
-            reset_pose(slot.body_id, (x, y, z), (0.0, 0.0, qz, qw), physicsClientId=cid)
-            slot.motion = (x, y, z, qz, qw, speed * cos(yaw), speed * sin(yaw))
+            slot.motion = (x, y, slot.z, sin(half), cos(half), speed * cos(yaw),
+                           speed * sin(yaw))
+            slot.synced = -1
         self._placed_at = self.world.time_s
-        self._synced_step = self.world.step_count
+        self._synced_step = -1
         self._table.invalidate()
-        self.world.mark_moved()
 
     def _move(self, slots):
-        """Put the bodies of ``slots`` where their vehicles are now (straight on)."""
+        """Put the bodies of ``slots`` where their vehicles are now (straight on); say if any."""
         cid = self._cid
         reset_pose = pybullet.resetBasePositionAndOrientation
+        count = self.world.step_count
         elapsed = self.world.time_s - self._placed_at
+        moved = False
         for slot in slots:
             state = slot.motion
-            if state is None:
+            if state is None or slot.synced == count:
                 continue
             x, y, z, qz, qw, vx, vy = state
-            if vx or vy:
-                reset_pose(slot.body_id, (x + vx * elapsed, y + vy * elapsed, z),
-                           (0.0, 0.0, qz, qw), physicsClientId=cid)
+            if vx or vy or slot.synced < 0:       # moving, or not put there since the update
+                x, y = x + vx * elapsed, y + vy * elapsed
+                reset_pose(slot.body_id, (x, y, z), (0.0, 0.0, qz, qw), physicsClientId=cid)
+                slot.at = (x, y)
+                moved = True
+            slot.synced = count
+        return moved
 
+    def _reaching(self, region):
+        """Return the serving bodies that stand, or are now, within ``region`` (a margin on)."""
+        xmin, ymin, xmax, ymax = region
+        count = self.world.step_count
+        elapsed = self.world.time_s - self._placed_at
+        found = []
+        for slot in self._by_id.values():
+            state = slot.motion
+            if state is None or slot.synced == count:
+                continue
+            reach = slot.size[0] + slot.size[1]          # more than its half diagonal
+            x, y = state[0] + state[5] * elapsed, state[1] + state[6] * elapsed
+            if xmin - reach <= x <= xmax + reach and ymin - reach <= y <= ymax + reach:
+                found.append(slot)
+                continue
+            at = slot.at                                  # where it stands: moved off there
+            if at is not None and xmin - reach <= at[0] <= xmax + reach and \
+                    ymin - reach <= at[1] <= ymax + reach:
+                found.append(slot)
+        return found
 
     def _stop(self, slot):
         # Stopped where its body was during the step, in SUMO at once (no deceleration bound).
@@ -230,6 +289,7 @@ class SumoPool:
         pybullet.resetBasePositionAndOrientation(slot.body_id, (x, y, z), (0.0, 0.0, qz, qw),
                                                  physicsClientId=self._cid)
         slot.motion = (x, y, z, qz, qw, 0.0, 0.0)
+        slot.at, slot.synced = (x, y), self.world.step_count
         _, _, yaw, _ = slot.state
         slot.state = (x, y, yaw, 0.0)
         self.world.mark_moved()

@@ -114,7 +114,38 @@ def build_sumo(part, world, spec, parts):
     signals = getattr(parts.get('signals'), 'controller', None)
     graph = getattr(spec, 'lanes', None)
     programs = tuple(getattr(getattr(graph, 'rules', None), 'programs', None) or ())
-    return SumoBodies(world, traffic, net, every, signals, programs, graph)
+    return SumoBodies(world, traffic, net, every, signals, programs, graph,
+                      route_edges(spec, graph))
+
+
+def route_edges(spec, graph):
+    """
+    Return {vehicle name: its route's SUMO edges} of the world's vehicles with a ``route:``.
+
+    Each lane (an id or a name of the lane map, whose lane names are SUMO's lane ids) gives
+    its edge (the lane id without its ``_<index>``); a lane inside a junction is refused.
+
+    :raises InvalidParameterError: a lane not in the map, or inside a junction, naming it.
+    """
+    found = {}
+    for index, vehicle in enumerate(getattr(spec, 'vehicles', ())):
+        edges = []
+        for lane in vehicle.route:
+            where = f"{spec.source}: vehicles[{index}]: field 'route': lane {lane!r}"
+            try:
+                name = graph.lanes[lane].name if isinstance(lane, int) else \
+                    graph.lane_named(lane).name
+            except (KeyError, InvalidParameterError):
+                raise InvalidParameterError(f'{where} is not in the map') from None
+            if name.startswith(':'):
+                raise InvalidParameterError(f'{where} is inside a junction: give the lanes '
+                                            'of the roads it takes')
+            edge = name.rsplit('_', 1)[0]
+            if not edges or edges[-1] != edge:
+                edges.append(edge)
+        if edges:
+            found[vehicle.name] = tuple(edges)
+    return found
 
 
 
@@ -136,10 +167,13 @@ class SumoBodies(SumoPool, SumoViews):
     :param programs: the lane map's SignalPrograms (core/map/signal_programs.py).
     :param graph: the world's lane graph (the network's: the objects' predicted paths follow
         its lanes), or None.
+    :param routes: {our vehicle's name: the SUMO edges of its route} (:func:`route_edges`).
     """
 
-    def __init__(self, world, spec, net, every, signals=None, programs=(), graph=None):
+    def __init__(self, world, spec, net, every, signals=None, programs=(), graph=None,
+                 routes=None):
         self.world = world
+        self.routes = dict(routes or {})  # {our vehicle's name: its route's SUMO edges}
         self.spec = spec
         self.net = net
         self.every = every
@@ -189,8 +223,10 @@ class SumoBodies(SumoPool, SumoViews):
         for slot in reversed(self._slots):
             self._free.setdefault(slot.key, []).append(slot)
         self._steps = 0                    # SUMO steps since the start
-        self._our = SumoOurs(self.session, self._ours, self._outlines)
+        self._our = SumoOurs(self.session, self._ours, self._outlines, self.routes,
+                             self.spec.source)
         self._signals = SumoSignals(self.session, self.signals, self.programs, self._constants)
+        self._our.check_routes(api)
         with self.session.errors('at the start'):
             self._our.add_types(api)
             c = self._constants
@@ -241,8 +277,8 @@ class SumoBodies(SumoPool, SumoViews):
             with self.session.errors(f'at t = {world.time_s:.3f} s'):
                 ours = self._advance()
             self._near, self._near_all = self._nearby(ours)
-        elif self._synced_step != count:
-            self._move(self._near_all)
+        if self._synced_step != count and self._move(self._near_all):
+            world.mark_moved()
 
     def _advance(self, place=True):
         api = self.session.api
@@ -287,9 +323,12 @@ class SumoBodies(SumoPool, SumoViews):
                     half = 0.5 * slot.size[0]
                     cos, sin = math.cos(yaw), math.sin(yaw)
                     slot.state = (fx - half * cos, fy - half * sin, yaw, speed)
-                else:               # centred on the path its front took (SUMO bends it so)
+                elif slot.front != (fx, fy, angle):   # centred on the path its front took
+                    slot.front = (fx, fy, angle)        # (SUMO bends it so)
                     slot.state = (*follow_trail(slot.trail, fx, fy, yaw, slot.size[0],
                                                 speed * self.spec.step_s + JUMP_M), speed)
+                else:                                   # standing: where it was
+                    slot.state = (*slot.state[:3], speed)
                 if not person:
                     slot.lane = (values[c.VAR_LANE_ID], values[c.VAR_LANEPOSITION],
                                  values[c.VAR_ROUTE_INDEX])
@@ -306,16 +345,34 @@ class SumoBodies(SumoPool, SumoViews):
         """World hook (``World.sync_bodies``): every body where its vehicle is now."""
         count = self.world.step_count
         if self._synced_step != count:
-            self._move(list(self._by_id.values()))
+            if self._move(list(self._by_id.values())):
+                self.world.mark_moved()
             self._synced_step = count
+
+    def before_query_in(self, region):
+        """
+        World hook (``World.sync_bodies`` with a region: rays): the bodies there where they are.
+
+        Those whose vehicle is in ``region`` (x min, y min, x max, y max [m], a body's size
+        around it) now, or whose body stands there since an earlier update, are put where their
+        vehicle is now; the others stay where they stand until something reads them: a lidar
+        in a city moves a tenth of the bodies, not every one at every SUMO step.
+        """
+        if self._synced_step != self.world.step_count and self._move(self._reaching(region)):
             self.world.mark_moved()
 
     def _nearby(self, ours):
+        # the bodies near each of ours, where SUMO has them or where they stand (not moved
+        # since an earlier update): put where they are at each step, their contacts checked
         limit = NEAR_M * NEAR_M
         serving = list(self._by_id.values())
-        near = [[slot for slot in serving
-                 if (slot.state[0] - o.x_m) ** 2 + (slot.state[1] - o.y_m) ** 2 < limit]
-                for o in ours]
+        near = []
+        for o in ours:
+            x, y = o.x_m, o.y_m
+            near.append([slot for slot in serving
+                         if (slot.state[0] - x) ** 2 + (slot.state[1] - y) ** 2 < limit
+                         or (slot.at is not None
+                             and (slot.at[0] - x) ** 2 + (slot.at[1] - y) ** 2 < limit)])
         found = {slot.index: slot for slots in near for slot in slots}
         return near, [found[index] for index in sorted(found)]
 

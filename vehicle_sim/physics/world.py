@@ -278,7 +278,9 @@ class World:
         ``post_step()`` (called once per basic step after the physics, time already advanced)
         and ``before_query()`` (called by :meth:`sync_bodies` before anything reads the world
         between steps: rays, cameras, overlap checks, body states; bodies that are only placed
-        now and then, as traffic, are put where they are now), and ``on_close()`` (called by
+        now and then, as traffic, are put where they are now), ``before_query_in(region)``
+        (with it, called instead when the reading is confined to a region, rays: only the
+        bodies there need to be where they are), and ``on_close()`` (called by
         :meth:`close`: what the body runs beside the world, e.g. SUMO, ends).
         """
         if body in self._bodies:
@@ -483,6 +485,40 @@ class World:
                                                          (0.0, 0.0, 0.0, 1.0),
                                                          physicsClientId=cid)
 
+    @contextmanager
+    def rays_past_own(self, mask):
+        """
+        Within the block, the body that ``mask`` leaves out stands 10 km below the world.
+
+        A sensor's rays start on or in its own vehicle (:meth:`ray_mask_excluding`), and Bullet
+        tests each ray against every shape of a body whose box it crosses before the mask drops
+        the hit: a car's compound of boxes and its wheels cost a 1080-ray batch some 2.5 ms of
+        its 3 (benchmarks/bench_sumo.py, the empty world). The body goes back to the pose and
+        velocities it had (its joints and contacts untouched): the physics goes on bit for bit
+        as it would.
+
+        With the GUI nothing moves (its window draws while the rays are cast: the car would
+        flicker).
+
+        :param mask: a mask from :meth:`ray_mask_excluding`, or another (nothing moves).
+        """
+        cid = self.client_id
+        own = [] if self.gui else [body_id for body_id, own_mask in self._ray_masks.items()
+                                   if own_mask == mask]
+        # a reset of the base's pose zeroes its velocities: they go back with it
+        states = [(pybullet.getBasePositionAndOrientation(body_id, physicsClientId=cid),
+                   pybullet.getBaseVelocity(body_id, physicsClientId=cid)) for body_id in own]
+        try:
+            for body_id, ((_, orientation), _) in zip(own, states):
+                pybullet.resetBasePositionAndOrientation(body_id, (0.0, 0.0, _AWAY_Z_M),
+                                                         orientation, physicsClientId=cid)
+            yield
+        finally:
+            for body_id, ((position, orientation), (linear, angular)) in zip(own, states):
+                pybullet.resetBasePositionAndOrientation(body_id, position, orientation,
+                                                         physicsClientId=cid)
+                pybullet.resetBaseVelocity(body_id, linear, angular, physicsClientId=cid)
+
     def _centre(self, body_id):
         # (x, y) of a body's centre of mass.
         return pybullet.getBasePositionAndOrientation(body_id,
@@ -599,29 +635,36 @@ class World:
             self.restore_body_state(body_id, saved)
             raise InvalidPoseError(f'that place is inside {", ".join(blocking)}')
 
-    def update_collision_state(self):
+    def update_collision_state(self, region=None):
         """
         Bring Bullet's collision structures up to date before a query between steps.
 
         Rays only see bodies whose bounding boxes the last step (or this call) computed; bodies
         added or moved since are refreshed here, once. Placed bodies are synced first
-        (:meth:`sync_bodies`).
+        (:meth:`sync_bodies`, within ``region`` when one is given).
         """
-        self.sync_bodies()
+        self.sync_bodies(region)
         if self._broadphase_stale:
             pybullet.performCollisionDetection(physicsClientId=self.client_id)
             self._broadphase_stale = False
 
-    def sync_bodies(self):
+    def sync_bodies(self, region=None):
         """
         Put the bodies that are only placed now and then (traffic) where they are now.
 
         Called before anything reads the world between steps (rays through
         :meth:`update_collision_state`, camera images, overlap checks, :meth:`body_state`): the
         registered bodies' ``before_query()`` hooks, each a no-op when nothing moved since.
+
+        :param region: (x min, y min, x max, y max) [m] the reading is confined to (rays), or
+            None (anywhere): a body with a ``before_query_in(region)`` hook then puts only its
+            bodies there (and those standing there) where they are.
         """
-        for hook in self._before_query:
-            hook()
+        for hook, hook_in in self._before_query:
+            if region is None or hook_in is None:
+                hook()
+            else:
+                hook_in(region)
 
     def mark_moved(self):
         """
@@ -703,8 +746,8 @@ class World:
         self._pre_step = [b.pre_step for b in self._bodies if hasattr(b, 'pre_step')]
         self._pre_substep = [b.pre_substep for b in self._bodies if hasattr(b, 'pre_substep')]
         self._post_step = [b.post_step for b in self._bodies if hasattr(b, 'post_step')]
-        self._before_query = [b.before_query for b in self._bodies
-                              if hasattr(b, 'before_query')]
+        self._before_query = [(b.before_query, getattr(b, 'before_query_in', None))
+                              for b in self._bodies if hasattr(b, 'before_query')]
 
     def step(self):
         """Advance the world by one basic time step; return the new time [s]."""

@@ -59,6 +59,7 @@ from vehicle_sim.core.specs.value_text import brief
 from vehicle_sim.core.traffic import sumo_folder
 from vehicle_sim.core.traffic.engines import traffic_spec_from_dict
 from vehicle_sim.core.traffic.params import TrafficSpec
+from vehicle_sim.core.traffic.sumo_params import SumoTrafficSpec
 from vehicle_sim.core.world.placement import check_in_world
 
 WORLD_KEYS = ('origin', 'vehicles', 'obstacles', 'roads', 'map', 'traffic', 'signals')
@@ -272,6 +273,12 @@ VEHICLE_SPECS = (
               choices=('x', 'y', 'yaw')),
     ParamSpec('sensors', 'sensors', 'raw', None, '',
               "changes to the preset's sensors and new ones (docs/sensors.md)", optional=True),
+    ParamSpec('route', 'route', 'raw', (), '', 'the lanes (ids or names) it will drive on after '
+              'the one it starts on, in order: the SUMO engine gives SUMO its route '
+              '(docs/sumo_engine.md); [] = none', check=lambda v: None if isinstance(
+                  v, (list, tuple)) and all(isinstance(lane, (int, str)) and not isinstance(
+                      lane, bool) and lane != '' for lane in v) else
+              'must be a list of lane ids or names'),
 )
 
 
@@ -295,6 +302,9 @@ class VehicleSpec:
     # the world's lane map when the scene is built (core/map/lane_placement.py); None = placed
     # by x, y, yaw.
     lane_pose: Optional[Tuple[Union[int, str], float, float]] = None
+    # the lanes (ids or names) it will drive on after its first, in order: its route (the SUMO
+    # engine's, physics/sumo_ours.py); () = none
+    route: Tuple[Union[int, str], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -395,6 +405,13 @@ def world_from_dict(data, source, default_model, preset_sensors: ModelResolver,
     traffic = data.get('traffic')
     if traffic is not None:
         traffic = traffic_spec_from_dict(traffic, f'{source}: traffic', preset_sensors, base_dir)
+    routed = [(index, v.route) for index, v in enumerate(vehicles) if v.route]
+    if routed and not isinstance(traffic, SumoTrafficSpec):
+        index, route = routed[0]
+        raise InvalidParameterError(
+            f"{source}: vehicles[{index}]: field 'route' = {brief(list(route))}: a route is "
+            'given to the sumo traffic engine (traffic: {engine: sumo}); this world has '
+            + ('no traffic' if traffic is None else 'another engine'))
     signals = data.get('signals')
     if signals is not None:
         signals = signals_from_dict(signals, f'{source}: signals')
@@ -417,10 +434,11 @@ def _vehicle(entry, where, index, default_model, preset_sensors):
     except InvalidParameterError as error:
         raise InvalidParameterError(f"{where}: field 'model': {error}") from None
     sensors = merge_sensors(base, values['sensors'], f'{where}.sensors')
+    route = tuple(values['route'])
     if lane_pose is not None:
         return VehicleSpec(values['name'] or f'vehicle{index}', values['namespace'], model,
-                           sensors=sensors, lane_pose=lane_pose)
+                           sensors=sensors, lane_pose=lane_pose, route=route)
     pose = values['pose']
     _check_in_world(where, 'pose', pose.x_m, pose.y_m)
     return VehicleSpec(values['name'] or f'vehicle{index}', values['namespace'], model,
-                       pose.x_m, pose.y_m, pose.yaw_rad, sensors)
+                       pose.x_m, pose.y_m, pose.yaw_rad, sensors, route=route)

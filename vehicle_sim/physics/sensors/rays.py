@@ -17,13 +17,15 @@
 Ray casting for the lidar and the distance sensor (PyBullet rayTestBatch).
 
 Rays use a collision mask that skips the sensor's own vehicle (World.ray_mask_excluding), so a
-sensor mounted inside or behind the body sees past it. In a world with an occupancy map
-(``World.ray_grids``, added by physics/map_layer.py) the walls are found over the map's grid
-(core/map/grid_rays.py), and Bullet's rays, cast with the walls' meshes moved out of their way
-(World.rays_past_grids), stop where the walls are: Bullet walks a static mesh's tree along the
-whole ray, past its first hit, so a large map's meshes made each ray cost several times more
-(benchmarks/bench_occupancy_lidar.py). :func:`cast_rays_hits` also gives what each ray hit (a
-labelled lidar's bodies and surface normals).
+sensor mounted inside or behind the body sees past it; the vehicle stands aside while they are
+cast (World.rays_past_own: Bullet tests a ray against its shapes before the mask drops the
+hit). In a world with an occupancy map (``World.ray_grids``, added by physics/map_layer.py) the
+walls are found over the map's grid (core/map/grid_rays.py), and Bullet's rays, cast with the
+walls' meshes moved out of their way (World.rays_past_grids), stop where the walls are: Bullet
+walks a static mesh's tree along the whole ray, past its first hit, so a large map's meshes
+made each ray cost several times more (benchmarks/bench_occupancy_lidar.py).
+:func:`cast_rays_hits` also gives what each ray hit (a labelled lidar's bodies and surface
+normals).
 """
 
 from itertools import chain
@@ -50,16 +52,21 @@ def cast_rays(world, origin, ends, mask):
     :return: (n,) fractions of the ray length at the first hit; 1.0 where nothing was hit
         (PyBullet reports misses with object id -1 and fraction 1).
     """
-    world.update_collision_state()
     origin = np.asarray(origin, dtype=float)
     ends = np.asarray(ends, dtype=float)
+    if len(ends) == 0:
+        return np.ones(0)
+    # the bodies placed now and then (traffic) put where they are where the rays go
+    low, high = np.minimum(ends.min(axis=0), origin), np.maximum(ends.max(axis=0), origin)
+    world.update_collision_state((low[0], low[1], high[0], high[1]))
     starts = [origin.tolist()] * len(ends)
-    if not world.ray_grids or len(ends) == 0:
-        return _fractions(world, starts, ends, mask)
+    if not world.ray_grids:
+        with world.rays_past_own(mask):
+            return _fractions(world, starts, ends, mask)
     # The walls over their grid, then Bullet's rays up to them, the walls' meshes away.
     walls = np.minimum.reduce([grid.cast(origin, ends) for grid in world.ray_grids])
     near = origin + (ends - origin) * walls[:, None]
-    with world.rays_past_grids():
+    with world.rays_past_grids(), world.rays_past_own(mask):
         fractions = _fractions(world, starts, near, mask)
     return np.where(fractions < 1.0, fractions * walls, walls)
 
@@ -75,17 +82,21 @@ def cast_rays_hits(world, origin, ends, mask):
 
     :return: (fractions (n,), bodies (n,) int, links (n,) int, normals (n, 3)).
     """
-    world.update_collision_state()
     origin = np.asarray(origin, dtype=float)
     ends = np.asarray(ends, dtype=float)
     starts = [origin.tolist()] * len(ends)
-    if not world.ray_grids or len(ends) == 0:
+    if len(ends) == 0:
         return _hits(world, starts, ends, mask, world.labels.has_links)
+    low, high = np.minimum(ends.min(axis=0), origin), np.maximum(ends.max(axis=0), origin)
+    world.update_collision_state((low[0], low[1], high[0], high[1]))
+    if not world.ray_grids:
+        with world.rays_past_own(mask):
+            return _hits(world, starts, ends, mask, world.labels.has_links)
     walls = np.stack([grid.cast(origin, ends) for grid in world.ray_grids])
     which = walls.argmin(axis=0)
     walls = walls[which, np.arange(len(ends))]
     near = origin + (ends - origin) * walls[:, None]
-    with world.rays_past_grids():
+    with world.rays_past_grids(), world.rays_past_own(mask):
         fractions, bodies, links, normals = _hits(world, starts, near, mask,
                                                   world.labels.has_links)
     grid = (fractions >= 1.0) & (walls < 1.0)
