@@ -39,6 +39,7 @@ from dataclasses import dataclass, field, replace
 import os
 from typing import Callable, Dict, Optional, Sequence, Tuple, Union
 
+from vehicle_sim.core.car.kinematic_models import vehicle_model_from, VehicleModelParams
 from vehicle_sim.core.geometry.frames import Pose
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.core.map.kinds import is_lane_map, map_from_dict
@@ -272,6 +273,10 @@ VEHICLE_SPECS = (
               choices=('x', 'y', 'yaw')),
     ParamSpec('sensors', 'sensors', 'raw', None, '',
               "changes to the preset's sensors and new ones (docs/sensors.md)", optional=True),
+    ParamSpec('vehicle_model', 'vehicle_model', 'raw', None, '',
+              "null = the full physics car; a simple_planning_simulator model (a name, or a "
+              "mapping with 'type' and its parameters) moving the car kinematically "
+              '(docs/physics.md)', optional=True),
 )
 
 
@@ -295,6 +300,8 @@ class VehicleSpec:
     # the world's lane map when the scene is built (core/map/lane_placement.py); None = placed
     # by x, y, yaw.
     lane_pose: Optional[Tuple[Union[int, str], float, float]] = None
+    # None = the full physics car; else VehicleModelParams (core/car/kinematic_models.py)
+    vehicle_model: Optional[VehicleModelParams] = None
 
 
 @dataclass(frozen=True)
@@ -417,10 +424,11 @@ def _vehicle(entry, where, index, default_model, preset_sensors):
     except InvalidParameterError as error:
         raise InvalidParameterError(f"{where}: field 'model': {error}") from None
     sensors = merge_sensors(base, values['sensors'], f'{where}.sensors')
+    vehicle_model = vehicle_model_from(values['vehicle_model'], f'{where}.vehicle_model')
     if lane_pose is not None:
         return VehicleSpec(values['name'] or f'vehicle{index}', values['namespace'], model,
-                           sensors=sensors, lane_pose=lane_pose)
+                           sensors=sensors, lane_pose=lane_pose, vehicle_model=vehicle_model)
     pose = values['pose']
     _check_in_world(where, 'pose', pose.x_m, pose.y_m)
     return VehicleSpec(values['name'] or f'vehicle{index}', values['namespace'], model,
-                       pose.x_m, pose.y_m, pose.yaw_rad, sensors)
+                       pose.x_m, pose.y_m, pose.yaw_rad, sensors, vehicle_model=vehicle_model)
