@@ -16,14 +16,16 @@
 A car moved by a simple_planning_simulator model: placed each step, like the traffic bodies.
 
 The body is the car's own URDF (every sensor sees it, its links keep their labels), loaded with
-a fixed base: the physics never moves it and it touches the ground with none of its links (its
-collisions with other bodies are still reported: the collision monitor reads them as for any
-car). Each step, before the physics, the CarLogic runs on the model's wheel and steering
-angles, its commands become the model's inputs (core/car/kinematic_drive.py), the model advances
-one step (core/car/kinematic_models.py), and the body is put at the model's pose at the end of
-the step with its steering and wheel joints at the model's angles; after the step the base gets
-the model's velocity (base_link: vx along the heading, yaw rate vx tan(steer) / L), so every
-reader of the body's twist sees it.
+a fixed base: the physics never moves it and it touches the ground with none of its links. Its
+collisions with other bodies are still reported (:meth:`KinematicCarBody.contact_points`, which
+the collision monitor reads instead of Bullet's contacts), with no response: it drives through.
+
+Each step, before the physics, the CarLogic runs on the model's wheel and steering angles, its
+commands become the model's inputs (core/car/kinematic_drive.py), the model advances one step
+(core/car/kinematic_models.py), and the body is put at the model's pose at the end of the step with
+its steering and wheel joints at the model's angles; after the step the base gets the model's
+velocity (base_link: vx along the heading, yaw rate vx tan(steer) / L), so every reader of the
+body's twist sees it.
 """
 
 import math
@@ -123,6 +125,30 @@ class KinematicCarBody(VehicleBody):
         linear = (vx - yaw_rate_radps * dy, vy + yaw_rate_radps * dx, 0.0)
         pybullet.resetBaseVelocity(self.body_id, linear, (0.0, 0.0, yaw_rate_radps),
                                    physicsClientId=cid)
+
+    def contact_points(self):
+        """
+        Return the points where the body touches others, in getContactPoints' form.
+
+        Bullet makes no contacts between two static bodies (this one and an obstacle or a
+        traffic box): the bodies whose bounding boxes overlap its links' are asked for their
+        closest points at distance <= 0 instead (the normal force is 0: nothing pushes).
+        """
+        cid, own, ground = self._cid, self.body_id, self.world.ground_id
+        others = set()
+        for link in range(-1, pybullet.getNumJoints(own, physicsClientId=cid)):
+            low, high = pybullet.getAABB(own, link, physicsClientId=cid)
+            for body, _ in pybullet.getOverlappingObjects(low, high, physicsClientId=cid) or ():
+                if body != own and body != ground:
+                    others.add(body)
+        points = []
+        for body in sorted(others):
+            points.extend(pybullet.getClosestPoints(own, body, 0.0, physicsClientId=cid))
+        return points
+
+    def pose_and_velocity(self):
+        """Return ``(pose(), velocity())``, as CarBody.pose_and_velocity."""
+        return self.pose(), self.velocity()
 
     def read(self, measurement):
         """Fill a Measurement: the wheels' and steering's angles as last put."""
