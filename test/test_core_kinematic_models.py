@@ -87,6 +87,11 @@ def test_delays_follow_the_parameters():
     assert rows[29][2] == 0.0 and rows[30][2] > 0.0           # 30 steps of dead time
     assert rows[4][1] == 0.0 and rows[5][1] > 0.0             # 5 steps
     assert _model(acc_time_delay=0.0)._acc_queue == type(_model()._acc_queue)()
+    # a delay of half a step is one step (std::round), not none (Python's round to even)
+    coarse = _model(dt=0.2)                     # acc 0.1 s, steer 0.24 s
+    rows = _run(coarse, 0.6, 1.0, 0.1)
+    assert rows[0][2] == 0.0 and rows[1][2] > 0.0
+    assert rows[0][1] == 0.0 and rows[1][1] > 0.0
 
 
 def test_steering_rate_and_angle_limits():

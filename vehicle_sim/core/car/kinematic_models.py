@@ -23,7 +23,7 @@ left), L the wheelbase:
 - ``IDEAL_STEER_VEL``: input (vx_des, steer_des); vx = vx_des, steer = steer_des at once.
 - ``IDEAL_STEER_ACC``: input (ax_des, steer_des); dvx = ax_des, steer = steer_des at once.
 - ``DELAY_STEER_ACC``: input (ax_des, steer_des), each held back by its dead time (a queue of
-  round(delay / dt) steps, as Autoware's), then first-order lags:
+  round(delay / dt) steps, halves up, as Autoware's), then first-order lags:
   d steer = clip(-(steer - clip(steer_des, +-steer_lim)) / steer_time_constant,
   +-steer_rate_lim); d acc = -(clip(acc, +-vel_rate_lim) - clip(ax_des, +-vel_rate_lim)) /
   acc_time_constant; dvx = clip(acc, +-vel_rate_lim); vx kept within +-vel_lim.
@@ -120,8 +120,10 @@ class KinematicModel:
         self.params = params
         self.wheelbase_m = float(wheelbase_m)
         self.dt_s = float(dt_s)
-        self._acc_steps = int(round(params.acc_time_delay_s / dt_s))
-        self._steer_steps = int(round(params.steer_time_delay_s / dt_s))
+        # std::round of Autoware's initializeInputQueue: halves away from zero (Python's round
+        # goes to even: 0.1 s / 0.2 s would give no delay at all)
+        self._acc_steps = math.floor(params.acc_time_delay_s / dt_s + 0.5)
+        self._steer_steps = math.floor(params.steer_time_delay_s / dt_s + 0.5)
         self.reset(pose)
 
     def reset(self, pose=(0.0, 0.0, 0.0)):
