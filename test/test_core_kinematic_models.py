@@ -178,3 +178,15 @@ def test_driver_commands_become_the_model_inputs():
     assert model_inputs(logic, model, a_ramp) == (pytest.approx(-3.5), -0.1, 1)
     model.vx_mps = 0.01                  # the brake stops the car, no further
     assert model_inputs(logic, model, a_ramp)[0] == pytest.approx(-1.0)
+
+
+def test_physics_doc_has_the_generated_parameter_table():
+    from pathlib import Path
+
+    from vehicle_sim.core.car.kinematic_models import VEHICLE_MODEL_SPECS
+    from vehicle_sim.core.specs.param_spec import parameter_table_markdown
+    text = (Path(__file__).resolve().parent.parent / 'docs' / 'physics.md').read_text(
+        encoding='utf-8')
+    assert parameter_table_markdown(VEHICLE_MODEL_SPECS, 'key') in text
+    for name in ('IDEAL_STEER_VEL', 'IDEAL_STEER_ACC', 'DELAY_STEER_ACC_GEARED'):
+        assert f'`{name}`' in text
