@@ -356,6 +356,7 @@ class _LaneKeeper:
                                   action_repeat=int(round(self.period_s * 1000.0 / step_ms)))
         self.gains = self.GAINS[policy_hz]
         self.rng = np.random.default_rng(0)
+        self.episodes = 0
         self.obs, _ = self.env.reset(seed=0)
 
     def block(self, seconds):
@@ -372,6 +373,7 @@ class _LaneKeeper:
                               dtype=np.float32)
             self.obs, _, terminated, truncated, _ = env.step(action)
             if terminated or truncated:
+                self.episodes += 1
                 self.obs, _ = env.reset()
         return decisions * period
 
@@ -389,6 +391,7 @@ class _HighwayEnvSide:
         self.period_s = 1.0 / config['policy_frequency']
         self.actions = _actions(self.env.action_space)
         self.index = 0
+        self.episodes = 0
         self.env.reset(seed=0)
 
     def block(self, seconds):
@@ -398,15 +401,17 @@ class _HighwayEnvSide:
             _, _, terminated, truncated, _ = env.step(actions[self.index % len(actions)])
             self.index += 1
             if terminated or truncated:
+                self.episodes += 1
                 env.reset()
         return decisions * self.period_s
 
 
 def equal_work(policy_hz, blocks, seconds):
     """
-    Return {side: (sim s per CPU s, sim s per wall s, (median, low, high) ratio to highway-env)}.
+    Return {side: (sim s per CPU s, sim s per wall s, ratios, mean episode [s])}.
 
-    Sides 'highway-env', 'physics' and 'kinematic', stepped ``seconds`` simulated seconds each
+    ratios: (median, lowest, highest) of the blocks' ratios to highway-env. Sides 'highway-env',
+    'physics' and 'kinematic', stepped ``seconds`` simulated seconds each
     in turn, ``blocks`` times; None without highway-env.
     """
     try:
@@ -418,6 +423,7 @@ def equal_work(policy_hz, blocks, seconds):
     try:
         for side in sides.values():         # warm up (first episode, caches)
             side.block(2.0)
+        start_episodes = {key: side.episodes for key, side in sides.items()}
         per_block = {key: [] for key in sides}
         totals = {key: [0.0, 0.0, 0.0] for key in sides}
         for _ in range(blocks):
@@ -433,8 +439,9 @@ def equal_work(policy_hz, blocks, seconds):
             ratios = [ours / theirs for ours, theirs in zip(per_block[key],
                                                               per_block['highway-env'])]
             done, cpu, wall = totals[key]
+            episodes = max(1, sides[key].episodes - start_episodes[key])
             result[key] = (done / cpu, done / wall,
-                           (statistics.median(ratios), min(ratios), max(ratios)))
+                           (statistics.median(ratios), min(ratios), max(ratios)), done / episodes)
         return result
     finally:
         for side in sides.values():
@@ -483,10 +490,11 @@ def _equal_rows(equal, rows, context):
                                                                'kinematic'))
         context.append(
             f'gym: equal work at {hz:.0f} Hz decisions, {EQUAL_VEHICLES} traffic vehicles, '
-            f'simulated s per CPU s (per wall s): highway-fast-v0 {theirs[0]:.1f} '
-            f'({theirs[1]:.1f}); ours with full physics {physics[0]:.1f} ({physics[1]:.1f}), '
-            f'blocks {physics[2][1]:.2f}-{physics[2][2]:.2f}x; ours with '
-            f'{EQUAL_KINEMATIC_MODEL} {kinematic[0]:.1f} ({kinematic[1]:.1f}), blocks '
+            f'simulated s per CPU s (per wall s) [mean episode s]: highway-fast-v0 '
+            f'{theirs[0]:.1f} ({theirs[1]:.1f}) [{theirs[3]:.0f}]; ours with full physics '
+            f'{physics[0]:.1f} ({physics[1]:.1f}) [{physics[3]:.0f}], blocks '
+            f'{physics[2][1]:.2f}-{physics[2][2]:.2f}x; ours with {EQUAL_KINEMATIC_MODEL} '
+            f'{kinematic[0]:.1f} ({kinematic[1]:.1f}) [{kinematic[3]:.0f}], blocks '
             f'{kinematic[2][1]:.2f}-{kinematic[2][2]:.2f}x')
 
 
