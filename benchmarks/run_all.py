@@ -19,7 +19,8 @@ Issue 20's are the Gymnasium environment's (bench_gym.py); issue 21's the record
 (bench_record.py); issue 28's highway_traffic over ROS in real time (bench_traffic_ros.py);
 issue 30's the lidar on a SLAM-like occupancy map (bench_occupancy_lidar.py); issue 31's the city
 on SUMO (bench_sumo.py); issue 32's perception ground truth (bench_perception.py, the labelled
-lidar: bench_lidar_labels.py).
+lidar: bench_lidar_labels.py); issue 33's equal-work race against highway-env (bench_gym.py,
+with full physics and with a kinematic vehicle_model).
 
 ``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
 also run alone and say more); each ratio is measured in this run, its two sides interleaved or
