@@ -33,11 +33,23 @@ Figures, each in env steps per second (one step = one action, action_repeat 1, 1
 4. creating an environment (16 in a row, each with its own physics client; target <= 0.2 s),
    and a reset;
 5. highway-env's ``highway-fast-v0`` and ``racetrack-v0`` (if the package is installed:
-   ``pip install 'vehicle_sim[bench]'``; skipped with a line otherwise).
+   ``pip install 'vehicle_sim[bench]'``; skipped with a line otherwise);
+6. equal work against highway-env (with the package): simulated seconds per CPU second of a
+   highway with 20 traffic vehicles, decisions at 1 Hz (highway-fast-v0: 20 vehicles, 5 Hz
+   simulation, 1 Hz policy) and at 5 Hz (the same with policy_frequency 5), against ours on
+   highway_traffic with 20 vehicles updated at 5 Hz (update_period 0.2 s, as highway-fast-v0's
+   simulation): with full physics (10 ms steps, action_repeat 100 or 20; target >= 3x) and
+   with a kinematic ``vehicle_model: DELAY_STEER_ACC`` (200 ms steps, highway-fast-v0's; target
+   >= 10x). Short blocks of the three interleaved; per block the ratio of simulated seconds
+   per CPU second of this process; the median printed, the blocks' range beside it. highway-env
+   takes random meta-actions; ours a lane keeper (steering from the lane observation) at a
+   random speed of 20 to 33 m/s, so that both drive on the road among the traffic; both reset
+   at episode ends.
 
 Every environment takes the same fixed sequence of random actions (seeded) and is reset when its
 episode ends, so resets count in the figures as in training. Run:
-``.venv/bin/python benchmarks/bench_gym.py [--quick] [--profile]`` (``--profile``: the top
+``.venv/bin/python benchmarks/bench_gym.py [--quick] [--equal] [--profile]`` (``--equal``: only
+the equal-work rows) (``--profile``: the top
 functions of a single environment's steps, to see where the time goes).
 """
 
@@ -60,6 +72,12 @@ TARGET_STATE = 3000.0
 TARGET_LIDAR = 500.0
 TARGET_VECTOR = 0.9
 TARGET_CREATE_S = 0.2
+TARGET_EQUAL_PHYSICS = 3.0      # x highway-fast-v0, simulated s per CPU s, full physics
+TARGET_EQUAL_KINEMATIC = 10.0   # the same with a kinematic vehicle_model
+EQUAL_VEHICLES = 20
+EQUAL_TRAFFIC_PERIOD_S = 0.2    # highway-fast-v0's simulation_frequency 5 Hz
+EQUAL_KINEMATIC_MODEL = 'DELAY_STEER_ACC'
+EQUAL_KINEMATIC_STEP_MS = 200   # highway-fast-v0's simulation step
 ENV_ID = 'vehicle_sim/Drive-v0'
 # The vector ratio's world: the default world (one car, nothing to hit), no time limit.
 RATIO_WORLD = {'world': 'default', 'max_episode_s': 1.0e6}
@@ -308,6 +326,128 @@ def highway_rates(seconds):
     return rates
 
 
+class _LaneKeeper:
+    """
+    Our side of the equal-work race: decisions at ``policy_hz`` on highway_traffic.
+
+    Steering from the lane observation (heading error and lateral offset, gains scaled to the
+    decision period, the same on every model), a seeded random speed of 20 to 33 m/s; reset at
+    episode ends.
+    """
+
+    # (heading gain, offset gain) per decision rate: they keep the car in its lane at 1 and 5 Hz
+    GAINS = {1.0: (1.5, 0.4), 5.0: (0.6, 0.15)}
+
+    def __init__(self, policy_hz, vehicle_model=None):
+        import yaml
+
+        from vehicle_sim.config import world_path
+        gymnasium = _gym()
+        with open(world_path('highway_traffic'), encoding='utf-8') as stream:
+            world = yaml.safe_load(stream)
+        world['traffic']['vehicles'] = EQUAL_VEHICLES
+        world['traffic']['update_period'] = EQUAL_TRAFFIC_PERIOD_S
+        step_ms = 10
+        if vehicle_model is not None:
+            world['vehicles'][0]['vehicle_model'] = vehicle_model
+            step_ms = EQUAL_KINEMATIC_STEP_MS
+        self.period_s = 1.0 / policy_hz
+        self.env = gymnasium.make(ENV_ID, world=world, time_step_ms=step_ms, max_speed=33.3,
+                                  action_repeat=int(round(self.period_s * 1000.0 / step_ms)))
+        self.gains = self.GAINS[policy_hz]
+        self.rng = np.random.default_rng(0)
+        self.episodes = 0
+        self.obs, _ = self.env.reset(seed=0)
+
+    def block(self, seconds):
+        """Drive ``seconds`` simulated seconds; return them."""
+        env, (k_heading, k_offset), period = self.env, self.gains, self.period_s
+        decisions = int(round(seconds / period))
+        for _ in range(decisions):
+            _, offset, heading, _, _, on_lane = self.obs['lane']
+            speed = max(5.0, float(self.obs['twist'][0]))
+            lever = 2.8 / (speed * period)       # wheelbase over the distance of one decision
+            steer = -(k_heading * heading * lever + k_offset * offset * lever / (speed * period)
+                      ) if on_lane else 0.0
+            action = np.array([min(0.2, max(-0.2, steer)), self.rng.uniform(20.0, 33.0)],
+                              dtype=np.float32)
+            self.obs, _, terminated, truncated, _ = env.step(action)
+            if terminated or truncated:
+                self.episodes += 1
+                self.obs, _ = env.reset()
+        return decisions * period
+
+
+class _HighwayEnvSide:
+    """highway-env's side: highway-fast-v0 (20 vehicles, 5 Hz simulation) at ``policy_hz``."""
+
+    def __init__(self, policy_hz):
+        gymnasium = _gym()
+        self.env = gymnasium.make('highway-fast-v0',
+                                  config={'vehicles_count': EQUAL_VEHICLES,
+                                          'policy_frequency': int(policy_hz)})
+        config = self.env.unwrapped.config
+        assert config['simulation_frequency'] == 1.0 / EQUAL_TRAFFIC_PERIOD_S
+        self.period_s = 1.0 / config['policy_frequency']
+        self.actions = _actions(self.env.action_space)
+        self.index = 0
+        self.episodes = 0
+        self.env.reset(seed=0)
+
+    def block(self, seconds):
+        env, actions = self.env, self.actions
+        decisions = int(round(seconds / self.period_s))
+        for _ in range(decisions):
+            _, _, terminated, truncated, _ = env.step(actions[self.index % len(actions)])
+            self.index += 1
+            if terminated or truncated:
+                self.episodes += 1
+                env.reset()
+        return decisions * self.period_s
+
+
+def equal_work(policy_hz, blocks, seconds):
+    """
+    Return {side: (sim s per CPU s, sim s per wall s, ratios, mean episode [s])}.
+
+    ratios: (median, lowest, highest) of the blocks' ratios to highway-env. Sides 'highway-env',
+    'physics' and 'kinematic', stepped ``seconds`` simulated seconds each
+    in turn, ``blocks`` times; None without highway-env.
+    """
+    try:
+        import highway_env  # noqa: F401
+    except ImportError:
+        return None
+    sides = {'highway-env': _HighwayEnvSide(policy_hz), 'physics': _LaneKeeper(policy_hz),
+             'kinematic': _LaneKeeper(policy_hz, EQUAL_KINEMATIC_MODEL)}
+    try:
+        for side in sides.values():         # warm up (first episode, caches)
+            side.block(2.0)
+        start_episodes = {key: side.episodes for key, side in sides.items()}
+        per_block = {key: [] for key in sides}
+        totals = {key: [0.0, 0.0, 0.0] for key in sides}
+        for _ in range(blocks):
+            for key, side in sides.items():
+                wall, cpu = time.perf_counter(), time.process_time()
+                done = side.block(seconds)
+                cpu, wall = time.process_time() - cpu, time.perf_counter() - wall
+                per_block[key].append(done / cpu)
+                for index, value in enumerate((done, cpu, wall)):
+                    totals[key][index] += value
+        result = {}
+        for key in sides:
+            ratios = [ours / theirs for ours, theirs in zip(per_block[key],
+                                                              per_block['highway-env'])]
+            done, cpu, wall = totals[key]
+            episodes = max(1, sides[key].episodes - start_episodes[key])
+            result[key] = (done / cpu, done / wall,
+                           (statistics.median(ratios), min(ratios), max(ratios)), done / episodes)
+        return result
+    finally:
+        for side in sides.values():
+            side.env.close()
+
+
 def profile_text(steps=2000, top=15, **options):
     """Return the top functions (internal time) of a single environment's steps."""
     gymnasium = _gym()
@@ -323,6 +463,39 @@ def profile_text(steps=2000, top=15, **options):
     out = io.StringIO()
     pstats.Stats(profiler, stream=out).sort_stats('tottime').print_stats(top)
     return out.getvalue()
+
+
+def equal_figures(quick=False):
+    """Only the equal-work rows (``--equal``); (rows, context lines) as :func:`figures`."""
+    rows, context = [], []
+    _equal_rows({hz: equal_work(hz, 3 if quick else 7, 20.0 if quick else 60.0)
+                 for hz in (1.0, 5.0)}, rows, context)
+    return rows, context
+
+
+def _equal_rows(equal, rows, context):
+    if all(result is None for result in equal.values()):
+        context.append("gym: highway-env not installed (pip install 'vehicle_sim[bench]'): "
+                       'the equal-work rows skipped')
+    for hz, result in equal.items():
+        if result is None:
+            continue
+        for key, target, what in (('physics', TARGET_EQUAL_PHYSICS, 'full physics'),
+                                  ('kinematic', TARGET_EQUAL_KINEMATIC,
+                                   f'{EQUAL_KINEMATIC_MODEL} model')):
+            rows.append((f'gym: equal work, {hz:.0f} Hz decisions, ours ({what}) / '
+                         'highway-fast-v0, sim s per CPU s', result[key][2][0], '>=', target,
+                         'x'))
+        theirs, physics, kinematic = (result[key] for key in ('highway-env', 'physics',
+                                                               'kinematic'))
+        context.append(
+            f'gym: equal work at {hz:.0f} Hz decisions, {EQUAL_VEHICLES} traffic vehicles, '
+            f'simulated s per CPU s (per wall s) [mean episode s]: highway-fast-v0 '
+            f'{theirs[0]:.1f} ({theirs[1]:.1f}) [{theirs[3]:.0f}]; ours with full physics '
+            f'{physics[0]:.1f} ({physics[1]:.1f}) [{physics[3]:.0f}], blocks '
+            f'{physics[2][1]:.2f}-{physics[2][2]:.2f}x; ours with {EQUAL_KINEMATIC_MODEL} '
+            f'{kinematic[0]:.1f} ({kinematic[1]:.1f}) [{kinematic[3]:.0f}], blocks '
+            f'{kinematic[2][1]:.2f}-{kinematic[2][2]:.2f}x')
 
 
 def figures(quick=False):
@@ -345,6 +518,7 @@ def figures(quick=False):
     reset = reset_ms(30 if quick else 100)
     traffic_reset = reset_ms(30 if quick else 100, world='highway_traffic')
     highway = highway_rates(2.0 if quick else 5.0)
+    equal = {hz: equal_work(hz, 3 if quick else 7, 20.0 if quick else 60.0) for hz in (1.0, 5.0)}
     rows = [
         ('gym: one Drive-v0, state observations (obstacle_course car)', state, '>=',
          TARGET_STATE, 'steps/s'),
@@ -377,17 +551,23 @@ def figures(quick=False):
     else:
         context.extend(f'gym: highway-env {env_id}: {rate:.0f} steps/s'
                        for env_id, rate in highway.items())
+        context.append('gym: those are steps, not equal work: one of ours is 10 ms of '
+                       "simulation, one of highway-fast-v0's 1 s (5 substeps); the equal-work "
+                       'rows compare simulated seconds')
+    _equal_rows(equal, rows, context)
     return rows, context
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     parser.add_argument('--quick', action='store_true', help='fewer samples')
+    parser.add_argument('--equal', action='store_true',
+                        help='only the equal-work rows against highway-env')
     parser.add_argument('--profile', action='store_true',
                         help='print where a single environment spends its time')
     options = parser.parse_args(argv)
     load = '/'.join(f'{x:.1f}' for x in os.getloadavg())
-    rows, context = figures(options.quick)
+    rows, context = (equal_figures if options.equal else figures)(options.quick)
     width = max(len(row[0]) for row in rows)
     for name, value, relation, target, unit in rows:
         met = value >= target if relation == '>=' else value <= target

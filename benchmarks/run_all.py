@@ -20,7 +20,9 @@ Issue 20's are the Gymnasium environment's (bench_gym.py); issue 21's the record
 issue 30's the lidar on a SLAM-like occupancy map (bench_occupancy_lidar.py); issue 31's the city
 on SUMO (bench_sumo.py); issue 32's perception ground truth (bench_perception.py, the labelled
 lidar: bench_lidar_labels.py, camera segmentation and recognition: bench_camera_perception.py,
-the radar: bench_radar.py); issue 33's multi-agent environment (bench_gym_multi.py).
+the radar: bench_radar.py); issue 33's multi-agent environment (bench_gym_multi.py) and its
+equal-work race against highway-env (bench_gym.py, with full physics and with a kinematic
+vehicle_model).
 
 ``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
 also run alone and say more); each ratio is measured in this run, its two sides interleaved or

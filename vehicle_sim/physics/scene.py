@@ -70,6 +70,7 @@ from vehicle_sim.core.world.params import RobotSpec, used_twice, WorldSpec
 from vehicle_sim.maps.lane_maps import with_lanes
 from vehicle_sim.physics.diff_robot import DiffRobotBody
 from vehicle_sim.physics.gui import GuiClosedError
+from vehicle_sim.physics.kinematic_car import KinematicCar
 from vehicle_sim.physics.lane_layer import RoadLayer
 from vehicle_sim.physics.map_layer import MapLayer
 from vehicle_sim.physics.sensors import SensorSuite
@@ -267,9 +268,13 @@ def _build_bodies(scene, spec, robots, params, hooks, parts):
     for obstacle in spec.obstacles:
         scene.obstacles[obstacle.name] = world.add_obstacle(obstacle)
     for car_spec in spec.vehicles:
-        car = SimulatedCar(world, params.get(car_spec.name) or load_car(car_spec.model),
-                           (car_spec.x_m, car_spec.y_m, car_spec.yaw_rad),
-                           name=car_spec.name)
+        car_params = params.get(car_spec.name) or load_car(car_spec.model)
+        pose = (car_spec.x_m, car_spec.y_m, car_spec.yaw_rad)
+        if car_spec.vehicle_model is None:
+            car = SimulatedCar(world, car_params, pose, name=car_spec.name)
+        else:       # moved by a simple_planning_simulator model (docs/physics.md)
+            car = KinematicCar(world, car_params, car_spec.vehicle_model, pose,
+                               name=car_spec.name)
         scene.vehicles[car_spec.name] = SceneVehicle(car_spec.name, car_spec, car.body, car)
     for robot in robots:
         body = DiffRobotBody(world, params.get(robot.name) or load_robot(robot.model),

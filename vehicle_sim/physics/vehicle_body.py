@@ -44,6 +44,7 @@ class VehicleBody:
 
     mount_frame = 'base_link'
     SPAWN_CLEARANCE_M = 0.0
+    FIXED_BASE = False      # True: placed each step by its owner, never moved by the physics
     OUTLINE = None      # params -> core Outline (set by each subclass)
 
     def _load(self, world, params, urdf, position, name):
@@ -54,7 +55,8 @@ class VehicleBody:
         self.urdf = urdf
         self.spawn = position
         cid = self._cid = world.client_id
-        self.body_id, self._joint = world.load_urdf(urdf, position, self.SPAWN_CLEARANCE_M)
+        self.body_id, self._joint = world.load_urdf(urdf, position, self.SPAWN_CLEARANCE_M,
+                                                    self.FIXED_BASE)
         self._label()
         info = pybullet.getDynamicsInfo(self.body_id, -1, physicsClientId=cid)
         # pybullet reports the base at its (principal-axes) inertial frame; keep its inverse.
@@ -87,7 +89,7 @@ class VehicleBody:
         """
         self.world.labels.forget(self.body_id)
         self.body_id, _ = self.world.reload_urdf(self.body_id, self.urdf, position,
-                                                 self.SPAWN_CLEARANCE_M)
+                                                 self.SPAWN_CLEARANCE_M, self.FIXED_BASE)
         self._label()
         self._configure()
 

@@ -310,7 +310,7 @@ class World:
         if destroy is not None:
             destroy()
 
-    def load_urdf(self, urdf, position, clearance_m=0.0):
+    def load_urdf(self, urdf, position, clearance_m=0.0, fixed_base=False):
         """
         Load a URDF string into this world (the only place bodies are loaded).
 
@@ -319,6 +319,7 @@ class World:
         :param urdf: the URDF text (loadURDF needs a file: a temporary one is used).
         :param position: base pose, see :func:`pose_from`.
         :param clearance_m: spawn height of base_link for an (x, y, yaw) position [m].
+        :param fixed_base: a base the physics does not move (a body placed each step).
         :return: (body id, {joint name: joint index}); joints are looked up by name only.
         """
         base_position, base_orientation = pose_from(position, clearance_m)
@@ -327,7 +328,7 @@ class World:
             with open(path, 'w', encoding='utf-8') as stream:
                 stream.write(urdf)
             body_id = pybullet.loadURDF(
-                path, base_position, base_orientation, useFixedBase=False,
+                path, base_position, base_orientation, useFixedBase=fixed_base,
                 flags=pybullet.URDF_USE_INERTIA_FROM_FILE, physicsClientId=self.client_id)
         # One limit for the whole body, whatever the link index given (see the constant).
         pybullet.changeDynamics(body_id, -1, maxJointVelocity=MAX_COORDINATE_VELOCITY,
@@ -339,7 +340,7 @@ class World:
         self.mark_moved()
         return body_id, joints
 
-    def reload_urdf(self, body_id, urdf, position, clearance_m=0.0):
+    def reload_urdf(self, body_id, urdf, position, clearance_m=0.0, fixed_base=False):
         """
         Replace a body by a fresh load of its URDF: the body as built, whatever state it was in.
 
@@ -353,7 +354,7 @@ class World:
         cid = self.client_id
         mask = self._ray_masks.pop(body_id, None)
         pybullet.removeBody(body_id, physicsClientId=cid)
-        new_id, joints = self.load_urdf(urdf, position, clearance_m)
+        new_id, joints = self.load_urdf(urdf, position, clearance_m, fixed_base)
         if mask is not None:
             for link in range(-1, pybullet.getNumJoints(new_id, physicsClientId=cid)):
                 pybullet.setCollisionFilterGroupMask(new_id, link, ALL_GROUPS & ~mask,

@@ -227,7 +227,8 @@ class Driver:
         # given here), added after the others, which stand held where the file puts them.
         name = name or (vehicle.name if vehicle is not None else params.model)
         x_m, y_m, yaw_rad = position
-        driven = VehicleSpec(name, '', params.model, x_m, y_m, yaw_rad, specs)
+        driven = VehicleSpec(name, '', params.model, x_m, y_m, yaw_rad, specs,
+                             vehicle_model=getattr(vehicle, 'vehicle_model', None))
         spec = (replace(spec, vehicles=spec.vehicles[1:] + (driven,)) if spec is not None
                 else WorldSpec(GeodeticOrigin(), (driven,), ()))
         scene = build_scene(

@@ -39,6 +39,7 @@ from dataclasses import dataclass, field, replace
 import os
 from typing import Callable, Dict, Optional, Sequence, Tuple, Union
 
+from vehicle_sim.core.car.kinematic_models import vehicle_model_from, VehicleModelParams
 from vehicle_sim.core.geometry.frames import Pose
 from vehicle_sim.core.geometry.geodesy import GeodeticOrigin
 from vehicle_sim.core.map.kinds import is_lane_map, map_from_dict
@@ -279,6 +280,10 @@ VEHICLE_SPECS = (
                   v, (list, tuple)) and all(isinstance(lane, (int, str)) and not isinstance(
                       lane, bool) and lane != '' for lane in v) else
               'must be a list of lane ids or names'),
+    ParamSpec('vehicle_model', 'vehicle_model', 'raw', None, '',
+              "null = the full physics car; a simple_planning_simulator model (a name, or a "
+              "mapping with 'type' and its parameters) moving the car kinematically "
+              '(docs/physics.md)', optional=True),
 )
 
 
@@ -305,6 +310,8 @@ class VehicleSpec:
     # the lanes (ids or names) it will drive on after its first, in order: its route (the SUMO
     # engine's, physics/sumo_ours.py); () = none
     route: Tuple[Union[int, str], ...] = ()
+    # None = the full physics car; else VehicleModelParams (core/car/kinematic_models.py)
+    vehicle_model: Optional[VehicleModelParams] = None
 
 
 @dataclass(frozen=True)
@@ -435,10 +442,13 @@ def _vehicle(entry, where, index, default_model, preset_sensors):
         raise InvalidParameterError(f"{where}: field 'model': {error}") from None
     sensors = merge_sensors(base, values['sensors'], f'{where}.sensors')
     route = tuple(values['route'])
+    vehicle_model = vehicle_model_from(values['vehicle_model'], f'{where}.vehicle_model')
     if lane_pose is not None:
         return VehicleSpec(values['name'] or f'vehicle{index}', values['namespace'], model,
-                           sensors=sensors, lane_pose=lane_pose, route=route)
+                           sensors=sensors, lane_pose=lane_pose, route=route,
+                           vehicle_model=vehicle_model)
     pose = values['pose']
     _check_in_world(where, 'pose', pose.x_m, pose.y_m)
     return VehicleSpec(values['name'] or f'vehicle{index}', values['namespace'], model,
-                       pose.x_m, pose.y_m, pose.yaw_rad, sensors, route=route)
+                       pose.x_m, pose.y_m, pose.yaw_rad, sensors, route=route,
+                       vehicle_model=vehicle_model)

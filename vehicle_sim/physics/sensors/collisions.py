@@ -58,7 +58,12 @@ class CollisionMonitor:
         world = self.world
         own, ground = self.body.body_id, world.ground_id
         found = {}
-        for point in pybullet.getContactPoints(bodyA=own, physicsClientId=world.client_id):
+        # a body the physics does not move (a kinematic car) finds its own contacts: Bullet
+        # makes none between two static bodies
+        read = getattr(self.body, 'contact_points', None)
+        points = read() if read is not None else pybullet.getContactPoints(
+            bodyA=own, physicsClientId=world.client_id)
+        for point in points:
             other = point[_BODY_B]
             if other in (own, ground) or (point[_DISTANCE] > 0.0 and point[_NORMAL_FORCE] <= 0.0):
                 continue
