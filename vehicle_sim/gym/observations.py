@@ -32,6 +32,8 @@ The observation parts of the Gym environment: each one fills some keys of the Di
   lidar: a Box needs finite bounds).
 
 - ``lane``, ``lane_id`` (a world with lanes): the ego's lane state (lanes.py).
+- ``objects`` (option ``objects``): the nearest traffic bodies and obstacles as a table
+  (objects.py).
 
 A part is an object with ``spaces()`` ({key: (low, high, shape, dtype)}), ``reset()`` (after the
 world was reset) and ``read(out)`` (writes its keys into the dict ``out``). More parts: pass
@@ -49,6 +51,7 @@ from vehicle_sim.core.sensors.labels import LABELS
 from vehicle_sim.core.sensors.params import sensor_from_dict
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.gym.lanes import lane_part
+from vehicle_sim.gym.objects import objects_part
 from vehicle_sim.gym.options import CAMERA, DEPTH, LIDAR, RANGE_FINDER
 from vehicle_sim.physics.sensors.camera import CameraSensor
 from vehicle_sim.physics.sensors.lidar import LidarSensor
@@ -219,4 +222,4 @@ def ego_parts(world, vehicle, lidar_spec, camera_spec, range_finder_spec=None):
 
 # Factories (sim) -> part or None, run for every environment after the built-in parts, in
 # order; None = nothing for this world (lane_part: a world without lanes).
-PART_FACTORIES = [lane_part]
+PART_FACTORIES = [lane_part, objects_part]

@@ -51,6 +51,13 @@ def _sensor_option(value):
     return 'give null, true, the name of a sensor of the ego vehicle, or a mapping of keys'
 
 
+def _objects_option(value):
+    # None/False: none; True: the default table; a mapping: its keys (checked when built).
+    if value is None or isinstance(value, (bool, dict)):
+        return None
+    return 'give null, true or a mapping of count, range and speed_scale'
+
+
 def _start_noise(value):
     if any(v < 0.0 for v in value):
         return 'every entry must be >= 0'
@@ -87,6 +94,10 @@ OPTION_SPECS = (
     ParamSpec(RANGE_FINDER, kind='raw', default=None, optional=True, check=_sensor_option,
               doc="range finder observation (key 'depth'): as lidar (true = 84 x 84 px, the "
                   "default camera's view: 1.2 rad, 0.05 .. 100 m)"),
+    ParamSpec('objects', kind='raw', default=None, optional=True, check=_objects_option,
+              doc="objects observation (the nearest traffic bodies and obstacles as a table, "
+                  "docs/gym.md): null = none, true = 5 rows within 80 m, a mapping = the "
+                  "table's keys (count, range, speed_scale)"),
     ParamSpec('goal', kind='floats', default=None, unit='m', length=2, optional=True,
               doc="goal [x, y]: progress toward it, episode ends inside 'goal_radius'; null = "
                   "the scenario's reach_goal"),
