@@ -210,3 +210,18 @@ def test_waypoint_follower_loops_back_to_the_first_point():
     follower.command(8.5, 0.0, 0.0)
     follower.command(19.0, 0.0, 0.0)
     assert follower.index == 0 and not follower.done
+
+
+def test_mean_speed_is_the_time_average_of_the_speed():
+    from vehicle_sim.scenarios.criteria import MeanSpeed, Sample
+    crit = MeanSpeed('mean_speed', '', {'min_mps': 7.0}, 10.0)
+    # 0 -> 10 m/s over 2 s (ramp, mean 5), then 10 m/s for 2 s: 30 m in 4 s = 7.5 m/s
+    for t, v in ((0.0, 0.0), (1.0, 5.0), (2.0, 10.0), (3.0, 10.0), (4.0, 10.0)):
+        crit.observe(Sample(t, 0.0, 0.0, 0.0, v))
+    result = crit.result()
+    assert result.passed and abs(result.value - 7.5) < 1e-12
+    slow = MeanSpeed('mean_speed', '', {'min_mps': 7.6}, 10.0)
+    for t, v in ((0.0, 0.0), (1.0, 5.0), (2.0, 10.0), (3.0, 10.0), (4.0, 10.0)):
+        slow.observe(Sample(t, 0.0, 0.0, 0.0, v))
+    assert not slow.result().passed
+    assert not MeanSpeed('mean_speed', '', {'min_mps': 0.0}, 10.0).result().passed

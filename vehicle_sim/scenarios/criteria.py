@@ -283,6 +283,40 @@ class MaxSpeed(Criterion):
                             f'top speed {self.top_mps:.3f} m/s{at} (limit {limit:g} m/s)')
 
 
+class MeanSpeed(Criterion):
+    """The vehicle's ground-truth speed, averaged over the run, reaches a bound."""
+
+    KIND = 'mean_speed'
+    UNIT = 'm/s'
+    SPECS = (
+        ParamSpec('min', 'min_mps', 'float', REQUIRED, 'm/s', 'smallest mean speed (ground '
+                  'truth, horizontal, averaged over time from the first sample to the last)',
+                  ge=0.0),
+    )
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        self.first = self.last = None
+        self.distance_m = 0.0
+
+    def observe(self, sample):
+        speed = abs(sample.speed_mps)
+        if self.last is not None:       # the trapezoid rule between two samples
+            self.distance_m += 0.5 * (speed + self.last[1]) * (sample.time_s - self.last[0])
+        else:
+            self.first = sample.time_s
+        self.last = (sample.time_s, speed)
+
+    def result(self):
+        bound = self.values['min_mps']
+        if self.last is None or self.last[0] <= self.first:
+            return self._result(False, None, 'no time driven')
+        mean = self.distance_m / (self.last[0] - self.first)
+        return self._result(mean >= bound, mean,
+                            f'mean speed {mean:.3f} m/s over {self.last[0] - self.first:.2f} s '
+                            f'(at least {bound:g} m/s)')
+
+
 class Clearance(Criterion):
     """The vehicle's footprint keeps a distance from every obstacle (and map wall)."""
 
@@ -533,8 +567,8 @@ class TopicPredicate(Criterion):
         return self._result(passed, value, detail)
 
 
-CRITERIA = {cls.KIND: cls for cls in (ReachGoal, NoCollision, StayOnPath, MaxSpeed, Clearance,
-                                      MinGap, TopicPredicate)}
+CRITERIA = {cls.KIND: cls for cls in (ReachGoal, NoCollision, StayOnPath, MaxSpeed, MeanSpeed,
+                                      Clearance, MinGap, TopicPredicate)}
 
 
 def criterion_specs(kind):
