@@ -237,4 +237,5 @@ def test_a_criterion_without_kind_says_kind_is_needed(tmp_path):
     with pytest.raises(ScenarioError) as error:
         load_scenario(str(path))
     assert error.value.line == 5
-    assert "a criterion needs 'kind': one of clearance, max_speed, mean_speed, min_gap" in str(error.value)
+    assert ("a criterion needs 'kind': one of clearance, max_speed, mean_speed, min_gap"
+            in str(error.value))
