@@ -34,7 +34,8 @@ done ray stands still). On a SLAM-like map a 1080-ray scan takes about 1 ms of n
 (benchmarks/bench_occupancy_lidar.py). A ray leaves the grid once (it is convex) and nothing
 outside it is a wall. Why not Bullet: a ray cast against a map's static meshes walks the
 meshes' trees along its whole length, past its first hit, and a SLAM map's ragged walls hold
-a hundred thousand faces: 8 times the cost of the same lidar in an empty world there.
+a hundred thousand faces: 8 times the cost of the same lidar in an empty world there (meshes of
+the walls' boundary alone, 7 times; benchmarks/bench_grid_ray_options.py).
 """
 
 import math
