@@ -204,3 +204,18 @@ def test_no_rays_and_zero_length_rays():
     assert rays.cast(np.zeros(3), np.zeros((0, 3))).shape == (0,)
     origin = np.array([0.5, 0.5, 0.5])
     assert rays.cast(origin, origin[None, :]).tolist() == [1.0]
+
+
+@pytest.mark.parametrize('angle', [math.pi / 2, math.pi / 2 + 0.01, math.pi / 2 - 0.01])
+def test_the_walk_on_a_map_only_a_few_cells_tall_looks_no_cell_past_the_grid(angle):
+    # A ray up a corridor beside a wall column (one cell a jump, then the walk over its next
+    # 64 cells) on a map 10 cells tall: the cells the walk would look up past the top lie
+    # beyond the table of squares; it leaves the grid without a hit as the march does.
+    walls = np.zeros((10, 6), dtype=bool)
+    walls[:, 3] = walls[:, 1] = True
+    grid = OccupancyGrid(np.where(walls, 100, 0).astype(np.int8), 1.0, (0.0, 0.0, 0.0))
+    rays = GridRays(walls, 1.0, (0.0, 0.0, 0.0), HEIGHT_M)
+    marched = _marched(grid, walls, 2.5, 0.5, [angle], 30.0)
+    got = _cast(rays, 2.5, 0.5, 0.5, np.array([angle]), 30.0)
+    assert np.array_equal(np.isinf(got), np.isinf(marched) | (marched > 30.0))
+    assert got[np.isfinite(got)] == pytest.approx(marched[np.isfinite(got)], abs=1e-9)

@@ -34,7 +34,8 @@ done ray stands still). On a SLAM-like map a 1080-ray scan takes about 1 ms of n
 (benchmarks/bench_occupancy_lidar.py). A ray leaves the grid once (it is convex) and nothing
 outside it is a wall. Why not Bullet: a ray cast against a map's static meshes walks the
 meshes' trees along its whole length, past its first hit, and a SLAM map's ragged walls hold
-a hundred thousand faces: 8 times the cost of the same lidar in an empty world there.
+a hundred thousand faces: 8 times the cost of the same lidar in an empty world there (meshes of
+the walls' boundary alone, 7 times; benchmarks/bench_grid_ray_options.py).
 """
 
 import math
@@ -315,12 +316,15 @@ class GridRays:
             beside = start[other][:, None] + speed[other][:, None] * inside
             below = np.floor(beside - _NUDGE_CELLS)
             above = np.floor(beside + _NUDGE_CELLS, out=beside)
-            # the cells a nudge to both sides differ only where a border is crossed on a corner
+            # the cells a nudge to both sides differ only where a border is crossed on a corner;
+            # the walk's last borders may lie past the grid (on a map a few cells tall, past the
+            # table's end): those cells are looked up clipped to the table, their answers past
+            # the ray's end unused
             wall = None
             for near in (below, above) if count_nonzero(above != below) else (below,):
                 near *= other_weight
                 near += along
-                meets = squares[near.astype(np.intp)] == 0
+                meets = squares.take(near.astype(np.intp), mode='clip') == 0
                 wall = meets if wall is None else wall | meets
             found.append(np.where(wall, fractions, np.inf).min(axis=1))
         limit = np.minimum(np.minimum(reach[0], reach[1]), end)
