@@ -27,6 +27,8 @@ import signal
 import socket
 import subprocess
 import sys
+import threading
+import time
 from xml.etree import ElementTree
 
 from conftest import scaled_s
@@ -45,6 +47,9 @@ RAY_TIMEOUT_S = scaled_s(60.0)
 # Generous bound for a sweep command that gives up on a Ray address after 5 s (interpreter and
 # Ray imports, twice).
 NO_RAY_COMMAND_BOUND_S = scaled_s(180.0)
+# Generous bound for an event of a sweep on 1 worker: its third case started, or its return after
+# a Ctrl-C.
+EVENT_BOUND_S = scaled_s(60.0)
 
 
 @pytest.fixture
@@ -166,6 +171,54 @@ def test_sweep_command_ctrl_c_keeps_the_finished_cases(controllers, tmp_path):
         rows = list(csv.DictReader(file))
     assert [r['status'] for r in rows] == ['fail', 'fail']
     assert len(os.listdir(out / 'cases')) == 2
+
+
+def _wait_for(predicate, timeout_s):
+    deadline = time.monotonic() + timeout_s
+    while not predicate() and time.monotonic() < deadline:
+        time.sleep(0.02)
+    return predicate()
+
+
+def _hanging_case_pid(logs):
+    for path in logs.glob('*.log'):
+        text = path.read_text(errors='replace')
+        if 'about to hang' in text:
+            return int(re.search(r'\(pid (\d+)\)', text).group(1))
+    return None
+
+
+def test_sweep_stops_at_a_ctrl_c_whose_handler_ran_outside_its_wait(controllers, tmp_path):
+    # A SIGINT's C handler runs in whichever thread the kernel gives it to (numpy's OpenBLAS
+    # threads among them), or in the main thread just before it blocks in poll(); Python raises
+    # the KeyboardInterrupt in the main thread only once it runs bytecode again. Sent to another
+    # thread while the sweep waits on the hanging third case, Ctrl-C must still end that wait
+    # (else it lasted until the case's 600 s timeout).
+    out = tmp_path / 'out'
+    names = ','.join([GOOD, '../examples/blind_controller.py', controllers['hang']])
+    returned = threading.Event()
+    outcome = {}
+
+    def interrupt_the_wait():
+        pid = _wait_for(lambda: _hanging_case_pid(out / 'logs'), EVENT_BOUND_S)
+        if pid is None:
+            return
+        signal.pthread_kill(threading.get_ident(), signal.SIGINT)  # its handler runs here
+        outcome['stopped'] = returned.wait(EVENT_BOUND_S)
+        if not outcome['stopped']:
+            os.kill(pid, signal.SIGKILL)    # the sweep did not stop: end its wait another way
+
+    helper = threading.Thread(target=interrupt_the_wait, daemon=True)
+    helper.start()
+    try:
+        result = run_sweep(SCENARIO, ['duration=2', f'driver.controller={names}'],
+                           out_dir=str(out), workers=1, timeout_s=3 * EVENT_BOUND_S)
+    finally:
+        returned.set()
+        helper.join()
+    assert outcome == {'stopped': True}
+    assert result.interrupted
+    assert [r['status'] for r in result.records] == ['fail', 'fail']
 
 
 def test_sweep_command_exits_2_naming_a_ray_address_where_nothing_answers(tmp_path):

@@ -24,13 +24,20 @@ process, its output in the case's log. The sweep waits on the workers' sockets: 
 back as the case's result; a worker whose socket closes (it died: a segfault, ``os._exit``) or
 that runs past the per-case timeout is killed and its case becomes an error record with the end
 of its log; a fresh worker takes its place for the cases left.
+
+A signal also ends that wait (:class:`SignalWakeup`): Python raises Ctrl-C's KeyboardInterrupt in
+the main thread only when it runs bytecode again, so a SIGINT whose handler ran in another thread
+of this process, or in the main thread just before it blocked in ``poll``, would otherwise wait
+for the next record or the case's timeout.
 """
 
 from multiprocessing.connection import Connection, wait
 import os
+import signal
 import socket
 import subprocess
 import sys
+import threading
 import time
 
 from vehicle_sim.sweep.worker import error_record
@@ -56,6 +63,62 @@ def _environment():
     env = dict(os.environ)
     env['PYTHONPATH'] = os.pathsep.join(p for p in (root, env.get('PYTHONPATH')) if p)
     return env
+
+
+class SignalWakeup:
+    """
+    A socket that becomes readable when a signal with a Python handler arrives.
+
+    While it is entered (in the main thread), Python's C-level signal handler writes the
+    signal's number to it (:func:`signal.set_wakeup_fd`), in whichever thread it runs, before
+    or during a wait: waiting on :attr:`waitables` too, the wait returns, and Python runs the
+    handler (Ctrl-C: KeyboardInterrupt) as soon as the main thread runs bytecode. Elsewhere
+    (not the main thread, which alone handles signals) it does nothing and
+    :attr:`waitables` is empty.
+    """
+
+    def __init__(self):
+        self.reader = None
+        self.writer = None
+        self.previous = -1
+
+    @property
+    def waitables(self):
+        """Return what to wait on besides the workers' sockets: [the socket] or []."""
+        return [self.reader] if self.reader is not None else []
+
+    def __enter__(self):
+        if threading.current_thread() is not threading.main_thread():
+            return self
+        reader, writer = socket.socketpair()
+        reader.setblocking(False)
+        writer.setblocking(False)
+        try:
+            self.previous = signal.set_wakeup_fd(writer.fileno(), warn_on_full_buffer=False)
+        except ValueError:      # not the main interpreter: its signals are not ours
+            reader.close()
+            writer.close()
+            return self
+        self.reader, self.writer = reader, writer
+        return self
+
+    def drain(self, ready):
+        """Empty the socket when it is among ``ready`` (what the wait returned)."""
+        if self.reader is None or self.reader not in ready:
+            return
+        try:
+            while self.reader.recv(4096):
+                pass
+        except (BlockingIOError, InterruptedError):
+            pass
+
+    def __exit__(self, *exc):
+        if self.reader is not None:
+            signal.set_wakeup_fd(self.previous)
+            self.reader.close()
+            self.writer.close()
+            self.reader = self.writer = None
+        return False
 
 
 class _Worker:
@@ -127,45 +190,47 @@ def run_local(works, workers, timeout_s, log_path, done):
     env = _environment()
     pending = list(reversed(works))
     pool = []
-    try:
-        while pending or pool:
-            while len(pool) < min(workers, len(pool) + len(pending)):
-                pool.append(_Worker(env))
-            for worker in pool:
-                if worker.work is None and pending:
-                    work = pending.pop()
-                    worker.send(work, log_path(work))
-            for worker in [w for w in pool if w.work is None]:    # nothing left for it
-                worker.stop()
-                pool.remove(worker)
-            if not pool:
-                break
-            wait_s = None
-            if timeout_s is not None:
-                wait_s = max(0.0, min(w.started + timeout_s for w in pool) - time.monotonic())
-            ready = wait([w.connection for w in pool], wait_s)
-            now = time.monotonic()
-            for worker in list(pool):
-                if worker.connection in ready:
-                    record = worker.receive()
-                    if record is None:
-                        record = error_record(worker.work, _died(worker), now - worker.started)
+    with SignalWakeup() as wakeup:
+        try:
+            while pending or pool:
+                while len(pool) < min(workers, len(pool) + len(pending)):
+                    pool.append(_Worker(env))
+                for worker in pool:
+                    if worker.work is None and pending:
+                        work = pending.pop()
+                        worker.send(work, log_path(work))
+                for worker in [w for w in pool if w.work is None]:    # nothing left for it
+                    worker.stop()
+                    pool.remove(worker)
+                if not pool:
+                    break
+                wait_s = None
+                if timeout_s is not None:
+                    wait_s = max(0.0, min(w.started + timeout_s for w in pool) - time.monotonic())
+                ready = wait([w.connection for w in pool] + wakeup.waitables, wait_s)
+                wakeup.drain(ready)
+                now = time.monotonic()
+                for worker in list(pool):
+                    if worker.connection in ready:
+                        record = worker.receive()
+                        if record is None:
+                            record = error_record(worker.work, _died(worker), now - worker.started)
+                            worker.kill()
+                            pool.remove(worker)
+                    elif timeout_s is not None and now - worker.started >= timeout_s:
                         worker.kill()
                         pool.remove(worker)
-                elif timeout_s is not None and now - worker.started >= timeout_s:
+                        record = error_record(
+                            worker.work, f'timed out: still running after {timeout_s:g} s (the '
+                            'worker process was killed); its log ends:\n'
+                            + log_tail(worker.log_path), now - worker.started)
+                    else:
+                        continue
+                    worker.work = None
+                    done(record)
+        finally:
+            for worker in pool:
+                if worker.work is not None:
                     worker.kill()
-                    pool.remove(worker)
-                    record = error_record(
-                        worker.work, f'timed out: still running after {timeout_s:g} s (the '
-                        f'worker process was killed); its log ends:\n{log_tail(worker.log_path)}',
-                        now - worker.started)
                 else:
-                    continue
-                worker.work = None
-                done(record)
-    finally:
-        for worker in pool:
-            if worker.work is not None:
-                worker.kill()
-            else:
-                worker.stop()
+                    worker.stop()
