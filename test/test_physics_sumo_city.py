@@ -31,9 +31,8 @@ and the tests read the record:
   a crosswalk area of our lane graph;
 - bodies in the physics (every pair, every 0.5 s, right after a SUMO step): no two vehicles
   overlap (SUMO's nor ours); two pedestrians overlap only where SUMO has them closer than their
-  width; the box of a vehicle turning round inside a junction (a U-turn) still overlaps a
-  pedestrian on a corner's walking area twice in the 10 minutes (an expected failure, see its
-  reason);
+  width; no vehicle overlaps a pedestrian (a vehicle's box on the line nearest the path its
+  front took, even on a U-turn inside a junction);
 - our car stopped in a lane queues SUMO's traffic behind it: a queue forms and no vehicle gets
   past it (but by SUMO's teleport of a vehicle stuck 300 s, which SUMO says).
 """
@@ -334,18 +333,11 @@ def test_no_two_vehicles_overlap_in_the_physics(city):
     assert [o for o in city.overlaps if _kinds(o) == ('vehicle', 'vehicle')] == []
 
 
-@pytest.mark.xfail(strict=True, reason='2 overlaps in the 10 minutes (32 before boxes followed '
-                   "their fronts' paths and the city had CITY_OPTIONS' last six), both of a "
-                   'vehicle turning round inside a junction (a U-turn: passenger_153 A1A2 to '
-                   'A2A1 at A2, 0.215 m deep; passenger_193 C2C1 to C1C2 at C1, 0.10 m) and a '
-                   'pedestrian standing still inside the walking area of the corner it leaves '
-                   "by: SUMO's turnaround lane (:A2_11_0, 1.44 m) turns a 5 m car on a 1.6 m "
-                   'radius; SUMO bends it round and keeps it in its lanes, a rigid box on its '
-                   "front's trail (heading rear to front, 217 degrees) reaches 0.2 m over the "
-                   "walking area's road-side edge. netgenerate --no-turnarounds (as the shipped "
-                   'city) takes U-turns away, but gridlocks this city at A1, by our stopped car: '
-                   '62 vehicle-pedestrian, 16 vehicle-vehicle overlaps')
 def test_no_vehicle_overlaps_a_pedestrian_in_the_physics(city):
+    # 32 before boxes followed their fronts' paths and the city had CITY_OPTIONS' last six; 2
+    # with the box centred on the path's midpoint: a car on a U-turn inside a junction (SUMO's
+    # turnaround of a 1.6 m radius), the box's end over the corner's walking area where a
+    # pedestrian stood (docs/sumo_engine.md, Limits)
     assert [o for o in city.overlaps if _kinds(o) == ('person', 'vehicle')] == []
 
 

@@ -346,7 +346,7 @@ class SumoBodies(SumoPool, SumoViews):
                     half = 0.5 * slot.size[0]
                     cos, sin = math.cos(yaw), math.sin(yaw)
                     slot.state = (fx - half * cos, fy - half * sin, yaw, speed)
-                elif slot.front != (fx, fy, angle):   # centred on the path its front took
+                elif slot.front != (fx, fy, angle):   # on the line nearest its front's path
                     slot.front = (fx, fy, angle)        # (SUMO bends it so)
                     slot.state = (*follow_trail(slot.trail, fx, fy, yaw, slot.size[0],
                                                 speed * self.spec.step_s + JUMP_M), speed)
