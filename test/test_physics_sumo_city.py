@@ -31,8 +31,8 @@ and the tests read the record:
   a crosswalk area of our lane graph;
 - bodies in the physics (every pair, every 0.5 s, right after a SUMO step): no two vehicles
   overlap (SUMO's nor ours); two pedestrians overlap only where SUMO has them closer than their
-  width; a turning vehicle's box still overlaps a pedestrian on a corner's walking area twice
-  in the 10 minutes (an expected failure, see its reason);
+  width; no vehicle overlaps a pedestrian (a vehicle's box on the line nearest the path its
+  front took, even on a U-turn inside a junction);
 - our car stopped in a lane queues SUMO's traffic behind it: a queue forms and no vehicle gets
   past it (but by SUMO's teleport of a vehicle stuck 300 s, which SUMO says).
 """
@@ -333,13 +333,11 @@ def test_no_two_vehicles_overlap_in_the_physics(city):
     assert [o for o in city.overlaps if _kinds(o) == ('vehicle', 'vehicle')] == []
 
 
-@pytest.mark.xfail(strict=True, reason='2 overlaps in the 10 minutes (32 before boxes followed '
-                   "their fronts' paths and the city had CITY_OPTIONS' last six): a vehicle "
-                   'leaving a junction and a pedestrian standing inside the walking area of '
-                   "its corner, both where SUMO has them; SUMO's striping model otherwise puts "
-                   'a pedestrian walking from a 4 m crossing to the next, or round a corner of '
-                   'two arms, outside the walking area, over the road where vehicles turn')
 def test_no_vehicle_overlaps_a_pedestrian_in_the_physics(city):
+    # 32 before boxes followed their fronts' paths and the city had CITY_OPTIONS' last six; 2
+    # with the box centred on the path's midpoint: a car on a U-turn inside a junction (SUMO's
+    # turnaround of a 1.6 m radius), the box's end over the corner's walking area where a
+    # pedestrian stood (docs/sumo_engine.md, Limits)
     assert [o for o in city.overlaps if _kinds(o) == ('person', 'vehicle')] == []
 
 

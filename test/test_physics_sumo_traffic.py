@@ -79,10 +79,11 @@ DEMAND = {'vehicles_per_hour': 2400, 'pedestrians_per_hour': 1200, 'seed': 5,
 
 def test_a_turning_vehicles_box_is_centred_on_the_path_its_front_took():
     # a 5 m vehicle's front on a right turn of radius 6 m (a quarter circle round (0, 0), from
-    # heading +y to heading +x), 0.1 m a step: at the turn's end its centre is on the circle,
-    # half its length of arc behind the front, its heading along the chord from its rear to
-    # its front; behind the front along SUMO's heading its rear would swing out by about
-    # length^2 / 8R off the path
+    # heading +y to heading +x), 0.1 m a step: at the turn's end its heading is along the chord
+    # from its rear (a length of arc behind) to its front, its centre halfway between the
+    # chord's middle and the circle half a length of arc behind the front (the axis nearest the
+    # arc: half the sagitta off it either way); behind the front along SUMO's heading its rear
+    # would swing out by about length^2 / 8R off the path
     radius, length, trail = 6.0, 5.0, []
     path = [(-radius, -10.0 + 0.1 * k, math.pi / 2) for k in range(101)]  # up to (-R, 0)
     path += [(-radius * math.cos(a), radius * math.sin(a), math.pi / 2 - a)
@@ -90,10 +91,13 @@ def test_a_turning_vehicles_box_is_centred_on_the_path_its_front_took():
     for x, y, heading in path:
         cx, cy, yaw = follow_trail(trail, x, y, heading, length, 0.1 + JUMP_M)
     fx, fy, _ = path[-1]
-    arc = 0.5 * length / radius                     # the centre's angle back along the arc
-    assert (cx, cy) == pytest.approx((-radius * math.sin(arc), radius * math.cos(arc)),
-                                     abs=0.01)
+    arc = 0.5 * length / radius                     # the middle's angle back along the arc
     rear = (-radius * math.sin(2 * arc), radius * math.cos(2 * arc))
+    middle = (-radius * math.sin(arc), radius * math.cos(arc))
+    assert (cx, cy) == pytest.approx((0.5 * middle[0] + 0.25 * (fx + rear[0]),
+                                      0.5 * middle[1] + 0.25 * (fy + rear[1])), abs=0.01)
+    sagitta = radius * (1.0 - math.cos(arc))
+    assert math.hypot(cx, cy) == pytest.approx(radius - 0.5 * sagitta, abs=0.01)
     assert yaw == pytest.approx(math.atan2(fy - rear[1], fx - rear[0]), abs=0.01)
     assert len(trail) < 60                          # the points behind its rear dropped
     # a jump (a teleport) starts the trail again: the box straight behind the new front

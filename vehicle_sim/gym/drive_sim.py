@@ -42,7 +42,7 @@ from vehicle_sim.gym.ego import Ego, mounted_parts
 from vehicle_sim.gym.episode import CriteriaWatch, judged_criteria
 from vehicle_sim.gym.options import SOURCE, validate_options
 from vehicle_sim.physics.scene import build_scene
-from vehicle_sim.scenarios.actors import make_actor
+from vehicle_sim.scenarios.actors import make_actors
 from vehicle_sim.scenarios.schema import load_scenario, ScenarioSpec
 from vehicle_sim.scenarios.sim import VehicleHandle
 
@@ -268,7 +268,7 @@ class DriveSim:
         if self.scenario is None:
             return []
         traffic = self.scene.parts.get('traffic')
-        return [make_actor(spec, self._handles, traffic) for spec in self.scenario.actors]
+        return make_actors(self.scenario.actors, self._handles, traffic)
 
     def observe(self):
         """Return the observation dict now."""

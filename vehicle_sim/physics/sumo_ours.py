@@ -19,11 +19,11 @@ Each of our vehicles is a SUMO vehicle of its own type (its footprint's length a
 added on the nearest lane of SUMO's cars and moved every SUMO step with ``moveToXY`` to its
 front bumper where the physics has it (SUMO taking its speed from the move): SUMO's drivers
 queue behind it and its pedestrians wait for it. One off the road is taken out of SUMO and put
-in again when it is back near a lane. One with a route (a world vehicle's ``route:``) has it in
-SUMO: the edges from where it is to its route's first (SUMO's own router between them) and on
-along its route, so that SUMO's drivers and pedestrians know where it will turn (SUMO keeps a
-vehicle's route while ``moveToXY`` moves it along it, and replaces it by the edges it takes when
-it leaves it).
+in again when it is back near a lane. One with a route (a world vehicle's ``route:``, or the
+edges a scenario actor's waypoints pass: :meth:`SumoOurs.give_route`) has it in SUMO: the edges
+from where it is to its route's first (SUMO's own router between them) and on along its route,
+so that SUMO's drivers and pedestrians know where it will turn (SUMO keeps a vehicle's route
+while ``moveToXY`` moves it along it, and replaces it by the edges it takes when it leaves it).
 """
 
 import math
@@ -80,18 +80,48 @@ class SumoOurs:
             naming both.
         """
         for name, edges in self._routes_given.items():
-            whole = [edges[0]]
-            for edge in edges[1:]:
-                try:
-                    way = tuple(api.simulation.findRoute(whole[-1], edge).edges)
-                except self.session.refusal:
-                    way = ()
-                if not way:
-                    raise InvalidParameterError(
-                        f"{self._source}: vehicle {name!r}: field 'route': SUMO finds no way "
-                        f'from edge {whole[-1]!r} to edge {edge!r}')
-                whole += way[1:]
-            self.routes[name] = tuple(whole)
+            whole, stuck = self._joined(api, edges)
+            if stuck is not None:
+                raise InvalidParameterError(
+                    f"{self._source}: vehicle {name!r}: field 'route': SUMO finds no way "
+                    f'from edge {whole[-1]!r} to edge {stuck!r}')
+            self.routes[name] = whole
+
+    def give_route(self, api, name, edges):
+        """
+        Give our vehicle ``name`` a route from now on (a scenario actor's: the edges it passes).
+
+        The edges are joined by SUMO's router, up to the first SUMO finds no way to; the
+        vehicle, when in SUMO, gets it at once (its route from the edge it is on).
+
+        :return: the route's SUMO edges as joined.
+        """
+        whole, _ = self._joined(api, edges)
+        self._routes_given[name] = self.routes[name] = whole
+        if name in self._in_sumo:
+            vid = f'{OURS_PREFIX}{name}'
+            refused = self.session.refusal
+            try:
+                edge = api.vehicle.getRoadID(vid)
+                if edge.startswith(':'):     # inside a junction: the edge it came from
+                    edge = api.vehicle.getRoute(vid)[api.vehicle.getRouteIndex(vid)]
+                api.vehicle.setRoute(vid, self.route_from(api, name, edge))
+            except refused:                  # SUMO lost it: it gets the route when put in again
+                self._take_out(api, vid, name)
+        return whole
+
+    def _joined(self, api, edges):
+        """Return (the edges joined by SUMO's router, the first edge it finds no way to)."""
+        whole = [edges[0]]
+        for edge in edges[1:]:
+            try:
+                way = tuple(api.simulation.findRoute(whole[-1], edge).edges)
+            except self.session.refusal:
+                way = ()
+            if not way:
+                return tuple(whole), edge
+            whole += way[1:]
+        return tuple(whole), None
 
     def route_from(self, api, name, edge):
         """Return the SUMO edges of our vehicle ``name`` on ``edge``: its route from there."""

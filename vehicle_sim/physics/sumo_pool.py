@@ -82,12 +82,16 @@ def follow_trail(trail, x, y, yaw, length, jump_m):
     """
     Return (centre x, y, yaw) of a vehicle's rigid box whose front is at (x, y) [m].
 
-    SUMO bends a vehicle along the path its front took; the box is centred on that path half
-    its length behind the front, along the chord from its rear (a length behind) to its
-    front. A box behind the front along its heading would swing its rear out of the lane on a
-    turn (by about length^2 / 2R), over the walking area's corner on a right turn. Where the
-    path is shorter than the vehicle (it has just departed) the rest goes straight back along
-    ``yaw`` from the path's oldest point.
+    SUMO bends a vehicle along the path its front took; the box's axis is the straight line
+    nearest that path between its rear (a length behind the front) and its front: along the
+    chord from the rear to the front, halfway between the chord and the path's midpoint (half
+    a length behind the front), so that on an arc the path strays at most half its sagitta
+    (length^2 / 8R) to either side of it. A box behind the front along its heading would swing
+    its rear out of the lane on a turn (by about length^2 / 2R), over the walking area's corner
+    on a right turn; one centred on the path's midpoint bulges out by the whole sagitta at its
+    ends, and on a U-turn inside a junction (SUMO turns a car round on a radius of 1.6 m) its
+    end reaches over the corner's walking area. Where the path is shorter than the vehicle (it
+    has just departed) the rest goes straight back along ``yaw`` from the path's oldest point.
 
     :param trail: the front's earlier points [(x, y, arc length)], oldest first: (x, y) is
         added, and the points behind the rear's are dropped; the arc lengths let the points
@@ -112,7 +116,8 @@ def follow_trail(trail, x, y, yaw, length, jump_m):
     (mx, my), _ = _back_along(trail, x, y, s, yaw, 0.5 * length)
     (bx, by), index = _back_along(trail, x, y, s, yaw, length)
     del trail[:index]
-    return mx, my, math.atan2(y - by, x - bx)
+    return (0.5 * mx + 0.25 * (x + bx), 0.5 * my + 0.25 * (y + by),
+            math.atan2(y - by, x - bx))
 
 
 class SumoSlot:

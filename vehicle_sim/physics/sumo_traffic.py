@@ -58,6 +58,7 @@ import pybullet
 from vehicle_sim.core.map.sumo_net_params import SumoNetMapSpec
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.idm import IdmParams
+from vehicle_sim.core.traffic.lane_paths import edges_along
 from vehicle_sim.physics.gui import FRAME_PERIOD_S
 from vehicle_sim.physics.sumo_demand import demand_routes
 from vehicle_sim.physics.sumo_ours import OURS_PREFIX, SumoOurs
@@ -155,7 +156,8 @@ class SumoBodies(SumoPool, SumoViews):
 
     The traffic-body contract of physics/traffic_bodies.py TrafficBodies: :meth:`reset`,
     :meth:`agents`, :meth:`moving_names`, :meth:`objects`, :meth:`boxes`, :meth:`body_of`,
-    :attr:`follow_params`, ``colours``, ``heights`` and :attr:`since_update_s`; and
+    :meth:`expect_path`, :attr:`follow_params`, ``colours``, ``heights`` and
+    :attr:`since_update_s`; and
     :meth:`sumo_id` / :meth:`name_of` between body names and SUMO ids, ``session`` (the running
     SumoSession: ``session.api`` is TraCI's API).
 
@@ -264,6 +266,27 @@ class SumoBodies(SumoPool, SumoViews):
         self.world.mark_moved()
         return f'traffic: SUMO started again (seed {seed})'
 
+    def expect_path(self, name, points):
+        """
+        Give our vehicle ``name`` in SUMO the route of the path it will drive (an actor's).
+
+        The SUMO edges the path passes (core/traffic/lane_paths.py ``edges_along``: its points
+        located on the network's lanes), joined by SUMO's router as a vehicle's ``route:`` is,
+        up to the first edge SUMO finds no way to; kept over resets. SUMO's drivers and
+        pedestrians then know where it will turn. A path on no lane of the network changes
+        nothing.
+
+        :param name: the name of one of our vehicles.
+        :param points: [(x, y)] [m] of the path, from where the vehicle is.
+        :return: the route's SUMO edges (() for none).
+        """
+        edges = () if self.graph is None else edges_along(self.graph, points)
+        if not edges:
+            return ()
+        with self.session.errors(f'giving {name!r} its route'):
+            self.routes[name] = self._our.give_route(self.session.api, name, edges)
+        return self.routes[name]
+
     # ------------------------------------------------------------------ the step
     def pre_step(self):
         """World hook: every ``step``, advance SUMO and place the bodies."""
@@ -323,7 +346,7 @@ class SumoBodies(SumoPool, SumoViews):
                     half = 0.5 * slot.size[0]
                     cos, sin = math.cos(yaw), math.sin(yaw)
                     slot.state = (fx - half * cos, fy - half * sin, yaw, speed)
-                elif slot.front != (fx, fy, angle):   # centred on the path its front took
+                elif slot.front != (fx, fy, angle):   # on the line nearest its front's path
                     slot.front = (fx, fy, angle)        # (SUMO bends it so)
                     slot.state = (*follow_trail(slot.trail, fx, fy, yaw, slot.size[0],
                                                 speed * self.spec.step_s + JUMP_M), speed)

@@ -121,7 +121,7 @@ class TrafficBodies:
     What every engine's traffic part offers (the traffic-body contract, read by the node, the
     scenarios, the Gym environment and the live view; docs/traffic.md): :meth:`reset`,
     :meth:`agents`, :meth:`moving_names`, :meth:`objects`, :meth:`boxes`, :meth:`body_of`,
-    :meth:`kinematics`,
+    :meth:`kinematics`, :meth:`expect_path`,
     :attr:`follow_params`, ``colours`` and :attr:`since_update_s`. Each body is a named
     obstacle of the World, placed (never moved by Bullet).
 
@@ -368,6 +368,17 @@ class TrafficBodies:
     def follow_params(self):
         """The IdmParams scenario actors follow their leaders with (the traffic's own)."""
         return self.manager.idm
+
+    def expect_path(self, name, points):
+        """
+        Hear of the path one of our vehicles will drive (a scenario actor's waypoints).
+
+        The builtin traffic reacts to where our vehicles are and how fast they go: it keeps
+        nothing (the SUMO engine gives SUMO the path's route, physics/sumo_traffic.py).
+
+        :return: () (no route).
+        """
+        return ()
 
     def body_of(self, name):
         """Return the body id of the traffic vehicle called ``name`` (``traffic_<i>``)."""

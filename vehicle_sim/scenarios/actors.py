@@ -29,6 +29,10 @@ ahead within the actor's width (traffic vehicles and the scenario's other vehicl
 slows down and stops behind it as traffic does; a car brakes (cruising speed 0 and the brakes)
 when it must slow down by more than BRAKE_ABOVE_MPS. ``speed_control: waypoints`` drives the
 waypoints' speeds whatever is ahead.
+
+:func:`make_actors` tells the world's traffic where each actor will drive (its path from where it
+stands through its waypoints): the SUMO engine gives the actor's vehicle in SUMO the route of the
+edges the path passes (docs/sumo_engine.md), so that SUMO's drivers know where it will turn.
 """
 
 import math
@@ -246,6 +250,37 @@ def vehicles_around(vehicles, name, traffic=None):
             found += traffic.agents()
         return found
     return others
+
+
+def make_actors(specs, vehicles, traffic=None):
+    """
+    Return the actors of ActorSpecs (:func:`make_actor`), the traffic told where each will drive.
+
+    The world's traffic hears of each actor's path (:func:`actor_path`,
+    ``traffic.expect_path``): the SUMO engine gives the actor's vehicle in SUMO the route of
+    the edges its waypoints pass, so that SUMO's drivers know where it will turn.
+    """
+    actors = [make_actor(spec, vehicles, traffic) for spec in specs]
+    if traffic is not None:
+        for spec in specs:
+            traffic.expect_path(spec.vehicle, actor_path(spec, vehicles))
+    return actors
+
+
+def actor_path(spec, vehicles):
+    """
+    Return the path an actor will drive: [(x, y)] from where its vehicle is, its waypoints on.
+
+    A looping actor's path goes round once, back to its first waypoint.
+
+    :param spec: the ActorSpec.
+    :param vehicles: {name: VehicleHandle} of the scenario.
+    """
+    x, y = vehicles[spec.vehicle].body.pose()[:2]
+    points = [(x, y)] + [(p.x_m, p.y_m) for p in spec.waypoints]
+    if spec.loop:
+        points.append(points[1])
+    return points
 
 
 def make_actor(spec, vehicles, traffic=None):

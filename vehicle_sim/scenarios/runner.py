@@ -44,7 +44,7 @@ from vehicle_sim.core.geometry.footprint import Footprint, Outline
 from vehicle_sim.core.specs.errors import InvalidCommandError
 from vehicle_sim.core.world.collision import CollisionEvent
 from vehicle_sim.physics.sensors.collisions import CollisionMonitor
-from vehicle_sim.scenarios.actors import make_actor
+from vehicle_sim.scenarios.actors import make_actors
 from vehicle_sim.scenarios.criteria import build_criteria, CriterionResult
 from vehicle_sim.scenarios.external import run_processes, TopicWatcher
 from vehicle_sim.scenarios.pacing import Pacer
@@ -168,7 +168,7 @@ class Director:
         signals = getattr(sim, 'signals', None)     # the world's one SignalController
         self.signals = None if signals is None else signals.controller
         traffic = getattr(sim, 'traffic', None)
-        self.actors = [make_actor(actor, self.vehicles, traffic) for actor in self.spec.actors]
+        self.actors = make_actors(self.spec.actors, self.vehicles, traffic)
         for name, handle in self.vehicles.items():   # every vehicle: the plot marks them
             monitor = CollisionMonitor(self.world, handle.body)
             self.world.remove(monitor)      # stepped from post_step, after the physics

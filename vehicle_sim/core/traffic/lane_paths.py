@@ -14,22 +14,73 @@
 
 
 """
-Predicted paths along a route of SUMO edges on a SUMO network's lane graph.
+Paths and routes of SUMO edges on a SUMO network's lane graph.
 
-A SUMO vehicle's predicted path (its TrafficObject's ``path``) follows its lane and the lanes
-after it at its current speed, as the builtin engine's (core/traffic/objects.py): at each lane's
-end the successor is the one that leads (through the junction's internal lanes) onto the next
-edge of the vehicle's route; without one, the first successor. Lane names are SUMO lane ids
+A SUMO vehicle's predicted path (its TrafficObject's ``path``, :func:`route_path`) follows its
+lane and the lanes after it at its current speed, as the builtin engine's
+(core/traffic/objects.py): at each lane's end the successor is the one that leads (through the
+junction's internal lanes) onto the next edge of the vehicle's route; without one, the first
+successor. The other way round, :func:`edges_along` gives the SUMO edges a path of points passes
+(a scenario actor's waypoints: its route in SUMO). Lane names are SUMO lane ids
 (``<edge>_<index>``, internal lanes ``:<junction>_<link>_<index>``), as the lane graph of a
 SUMO network has them (vehicle_sim/maps/sumo_net.py).
 """
 
+import math
 from typing import Optional, Sequence, Tuple
+
+# edges_along looks at a path's points this far apart [m] (less than a junction's width)
+ALONG_STEP_M = 1.0
+# ... and takes a lane for the path's only where the lane heads within this of the path [rad]
+ALONG_TURN_RAD = 0.25 * math.pi
 
 
 def edge_of(lane_name: str) -> str:
     """Return the SUMO edge of a SUMO lane id ('A0A1_1' -> 'A0A1')."""
     return lane_name.rsplit('_', 1)[0]
+
+
+def edges_along(graph, points: Sequence[Tuple[float, float]],
+                step_m: float = ALONG_STEP_M) -> Tuple[str, ...]:
+    """
+    Return the SUMO edges a path passes, in order (a scenario actor's route in SUMO).
+
+    The polyline through ``points`` is looked at every ``step_m``: each point is located on
+    the lanes with the polyline's heading there (``LaneGraph.locate``); a point on no lane, on
+    a lane inside a junction (SUMO's router joins the edges on either side) or on one heading
+    more than ALONG_TURN_RAD away from the path's heading (a road it crosses, or the other
+    way) adds nothing; an edge met again right after itself is kept once.
+
+    :param graph: the LaneGraph of a SUMO network (lane names are SUMO lane ids).
+    :param points: [(x, y)] [m], two or more (one gives its own edge, heading unknown).
+    :param step_m: the spacing of the points looked at [m] (> 0).
+    """
+    edges = []
+
+    def add(x, y, yaw):
+        position = graph.locate(x, y, yaw)
+        if position is None or (yaw is not None
+                                and abs(position.heading_error_rad) > ALONG_TURN_RAD):
+            return
+        name = graph.lanes[position.lane_id].name
+        if name and not name.startswith(':'):
+            edge = edge_of(name)
+            if not edges or edges[-1] != edge:
+                edges.append(edge)
+
+    points = [(float(x), float(y)) for x, y in points]
+    if len(points) == 1:
+        add(*points[0], None)
+    for (ax, ay), (bx, by) in zip(points, points[1:]):
+        length = math.hypot(bx - ax, by - ay)
+        if length == 0.0:
+            continue
+        yaw = math.atan2(by - ay, bx - ax)
+        count = max(1, int(math.ceil(length / step_m)))
+        for k in range(count + 1):
+            f = k / count
+            add(ax + (bx - ax) * f, ay + (by - ay) * f, yaw)
+    return tuple(edges)
 
 
 def _leads_to(graph, lane_id, edge, depth=4):
