@@ -45,8 +45,9 @@ def _same(row, doc, qos=None):
     return input_topic(row.name, row.ros_type, None, doc, qos=qos or row.qos, unit=row.unit)
 
 
-CLOCK_IN = _same(CLOCK, 'simulated time: the policy acts at its first /clock and at every '
-                        'multiple of its period (action_repeat x time_step)', QOS_CLOCK)
+CLOCK_IN = _same(CLOCK, 'simulated time: the policy acts at every multiple of its period '
+                        '(action_repeat x time_step), and first once its inputs are published',
+                 QOS_CLOCK)
 ODOM_IN = _same(itf.ODOM, "the ego's odometry: the 'twist' key, and its pose for 'objects'")
 LANE_STATE_IN = _same(itf.LANE_STATE, "the ego's lane: the 'lane' key")
 OBJECTS_IN = _same(PREDICTED_OBJECTS_TOPIC,
