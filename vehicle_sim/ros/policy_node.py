@@ -20,15 +20,18 @@ The node reads the ego's topics (:mod:`.policy_interfaces`), builds the policy's
 the Gym environment does (:mod:`.policy_observation`) and writes its action as the car's
 Webots-level setters (:mod:`.policy_actions`), at the policy's rate on simulated time:
 
-- a *tick* is every /clock at a multiple of the period (the card's action_repeat x time_step:
-  the environment's env step), and the first /clock at which every input has been published
-  (with ``objects``: the first step the objects are due, ``objects_rate``, as the automobile
-  node schedules them: core's SampleSchedule); at a tick the node waits until the odometry and
-  lane state stamped at that time, and the objects of the last step they were due, have
-  arrived, asks the policy (``predict(obs, deterministic=True)``) and calls the setters;
-- at every /clock, once that tick's setters answered, it publishes the action in force on
-  ``<ns>/policy/action``: the scenario runner's lockstep topic, so that a scenario waits for
-  the policy each step and runs as fast as the policy keeps up.
+- the node answers on a grid of simulated time, every :func:`answer_period_s`: the objects'
+  period (``objects_rate``, as the automobile node schedules them: core's SampleSchedule)
+  when the policy reads them, else the policy's period;
+- a *tick* is a grid /clock at a multiple of the policy's period (the card's action_repeat x
+  time_step: the environment's env step), and the first grid /clock (with ``objects``: the
+  first step the objects are published); at a tick the node waits until the odometry, lane
+  state and objects stamped at that time have arrived, asks the policy (``predict(obs,
+  deterministic=True)``) and calls the setters;
+- at every grid /clock, once a tick's setters answered, it publishes the action in force on
+  ``<ns>/policy/action``: the scenario runner's lockstep topic (``sync_period`` = the grid), so
+  that a scenario waits for the policy and runs as fast as the policy keeps up. Before the
+  first tick the car keeps its start state (at rest, as after the environment's reset).
 
 Errors end the node with a message (:attr:`PolicyNode.error`): a period that is not a whole
 number of the node's basic steps (a policy faster than the simulation), the automobile
@@ -127,7 +130,11 @@ class PolicyNode:
         step_ms = step_client.call(request, timeout_s=self.timeout_s).value
         self.step_s = step_ms / 1000.0
         self.repeat = check_period(self.period_s, step_ms)
-        if OBJECTS in self.builder.keys:
+        reads_objects = OBJECTS in self.builder.keys
+        self.answer_steps = check_period(
+            answer_period_s(self.period_s, self.objects_rate_hz, reads_objects), step_ms,
+            what='the objects period' if reads_objects else 'policy period')
+        if reads_objects:
             self._objects_due = SampleSchedule.from_rate(self.objects_rate_hz, self.step_s)
         self._action_pub = node.create_publisher(pi.ACTION.ros_type, self._name(pi.ACTION.name),
                                                  pi.ACTION.qos)
@@ -171,6 +178,8 @@ class PolicyNode:
         step = int(round(now_s / self.step_s))
         if self._objects_due is not None and self._objects_due.due(step):
             self._objects_step = step
+        if step % self.answer_steps:
+            return          # between the grid's times
         if self._pending is not None or self._calls is not None:
             return          # a tick still waits for its topics or setters (free-running sim)
         ready = self._objects_due is None or self._objects_step is not None
@@ -182,9 +191,7 @@ class PolicyNode:
             self._answer()
 
     def _wanted_s(self, row, tick_s):
-        # the stamp a tick reads of an input: the tick's, the objects' last due step's
-        if row is pi.OBJECTS_IN:
-            return self._objects_step * self.step_s
+        # the stamp a tick reads of an input: the tick's (the objects are due then too)
         return tick_s
 
     def _missing(self, tick_s):
@@ -269,9 +276,31 @@ class PolicyNode:
         self.node.shutdown()
 
 
-def check_period(period_s, step_ms):
+def answer_period_s(period_s, objects_rate_hz, reads_objects):
     """
-    Return the basic steps per policy period; refuse a period that is not a whole number of them.
+    Return the node's answer grid [s]: the objects' period, else the policy's.
+
+    With ``objects`` the policy's period must be a whole number of the objects' periods (the
+    objects at a tick are those of its time).
+
+    :raises InvalidParameterError: naming both periods when it is not.
+    """
+    if not reads_objects:
+        return period_s
+    objects_s = 1.0 / objects_rate_hz
+    ratio = period_s / objects_s
+    if ratio < 1.0 - 1e-9 or abs(ratio - round(ratio)) > 1e-6:
+        raise InvalidParameterError(
+            f"policy period {period_s * 1000.0:g} ms is not a whole number of the objects' "
+            f'period {objects_s * 1000.0:g} ms ({objects_rate_hz:g} Hz): the objects would be '
+            "older than the policy's observation (a world's traffic: objects_rate, the node's "
+            'objects_rate parameter or --objects-rate)')
+    return objects_s
+
+
+def check_period(period_s, step_ms, what='policy period'):
+    """
+    Return the basic steps per period; refuse a period that is not a whole number of them.
 
     :param period_s: the policy's period [s].
     :param step_ms: the simulation's basic time step [ms].
@@ -281,11 +310,11 @@ def check_period(period_s, step_ms):
     steps = period_s * 1000.0 / step_ms
     if steps < 1.0 - 1e-9:
         raise InvalidParameterError(
-            f'policy period {period_s * 1000.0:g} ms ({1.0 / period_s:g} Hz) is shorter than '
+            f'{what} {period_s * 1000.0:g} ms ({1.0 / period_s:g} Hz) is shorter than '
             f"the simulation's basic step {step_ms:g} ms ({1000.0 / step_ms:g} Hz): a policy "
             'cannot act faster than the simulation steps')
     if abs(steps - round(steps)) > 1e-6:
         raise InvalidParameterError(
-            f'policy period {period_s * 1000.0:g} ms is not a whole number of the '
+            f'{what} {period_s * 1000.0:g} ms is not a whole number of the '
             f"simulation's basic steps of {step_ms:g} ms ({steps:g} steps)")
     return int(round(steps))

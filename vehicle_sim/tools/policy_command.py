@@ -177,16 +177,19 @@ def _verdict(results):
     return bool(results) and not failed, detail
 
 
-def wire_spec(spec, model_path, seed, timeout_s=30.0):
+def wire_spec(spec, model_path, seed, setup, timeout_s=30.0):
     """
     Return the scenario ``spec`` driven over ROS by ``policy run`` with seed ``seed``'s traffic.
 
-    The driver becomes the policy process (lockstep on its ``policy/action``, each basic step);
+    The driver becomes the policy process (lockstep on its ``policy/action``, on the node's
+    answer grid: ros/policy_node.py ``answer_period_s``);
     the world's ``traffic: seed`` becomes the traffic seed of the Gym environment's
     ``reset(seed=seed)``, so both paths start the same traffic.
     """
     from vehicle_sim.config import read_yaml
     from vehicle_sim.gym.drive_sim import episode_traffic_seed
+    from vehicle_sim.ros.policy_node import answer_period_s
+    from vehicle_sim.ros.policy_observation import OBJECTS
     from vehicle_sim.scenarios.driver_schema import DriverSpec
     world = spec.world
     if world.traffic is None:
@@ -203,18 +206,20 @@ def wire_spec(spec, model_path, seed, timeout_s=30.0):
     rate = getattr(world.traffic, 'objects_rate_hz', None)
     if rate is not None:
         command += ('--objects-rate', f'{rate!r}')
+    grid_s = answer_period_s(setup.period_s, rate or OBJECTS_RATE.default,
+                             OBJECTS in setup.keys)
     driver = DriverSpec('processes', processes=(command,), real_time_factor=0.0,
                         clock_subscribers=1, startup_timeout_s=120.0,
-                        sync=(('/policy/action', ACTION_TOPIC_TYPE),), sync_period_s=0.0,
+                        sync=(('/policy/action', ACTION_TOPIC_TYPE),), sync_period_s=grid_s,
                         sync_timeout_s=timeout_s)
     return replace(spec, world=world, world_file=None if data is not None else spec.world_file,
                    world_data=data, driver=driver, seed=int(seed))
 
 
-def wire_episode(spec, model_path, seed):
+def wire_episode(spec, model_path, seed, setup):
     """Run one episode of ``spec`` over the wire; return (passed, detail)."""
     from vehicle_sim.scenarios.runner import run_scenario
-    result = run_scenario(wire_spec(spec, model_path, seed))
+    result = run_scenario(wire_spec(spec, model_path, seed, setup))
     if result.error:
         return False, f'run error: {result.error.splitlines()[0]}'
     return _verdict(result.criteria)
@@ -233,10 +238,10 @@ def cmd_policy_evaluate(args) -> int:
         spec = load_scenario(path)
     except ScenarioError as error:
         raise CliError(str(error), EXIT_USAGE) from None
-    card, model, _ = load_policy(args.model, args.algorithm)
+    card, model, setup = load_policy(args.model, args.algorithm)
     seeds = range(args.first_seed, args.first_seed + args.episodes)
     paths = [('in-process', lambda s: in_process_episode(card, model, spec, s)),
-             ('wire', lambda s: wire_episode(spec, args.model, s))]
+             ('wire', lambda s: wire_episode(spec, args.model, s, setup))]
     rates = {}
     for name, run in paths:
         if args.only and args.only != name:
