@@ -75,3 +75,36 @@ def test_a_world_names_every_traffic_seed_a_reset_can_draw():
     with pytest.raises(InvalidParameterError, match='2147483648'):
         world_from_data(dict(data, traffic={'vehicles': 1, 'seed': TRAFFIC_SEEDS}), 'w',
                         vehicles_required=False)
+
+
+class _Spaces:
+    """A model as the checks read it: its two spaces."""
+
+    def __init__(self, observation_space, action_space):
+        self.observation_space = observation_space
+        self.action_space = action_space
+
+
+def test_drive_setup_reads_the_cards_environment():
+    from vehicle_sim.gym.policy_card import make_env, PolicyCard
+    from vehicle_sim.tools.policy_loader import drive_setup
+    card = PolicyCard('vehicle_sim/Drive-v0', {'world': 'highway', 'action_repeat': 20,
+                                               'objects': {'count': 8}, 'max_speed': 30.0},
+                      ('lane', 'objects', 'twist'))
+    env = make_env(card)
+    model = _Spaces(env.observation_space, env.action_space)
+    low, high = env.unwrapped.action_space.low, env.unwrapped.action_space.high
+    env.close()
+    setup = drive_setup(card, model)
+    assert setup.control == 'speed_steering'           # 'auto' for a car
+    assert setup.period_s == pytest.approx(0.2) and setup.keys == card.observation_keys
+    assert setup.objects_spec.count == 8
+    assert setup.low == tuple(low) and setup.high == tuple(high) and setup.high[1] == 30.0
+    with pytest.raises(InvalidParameterError, match=r'--rate 0.0: must be a number > 0'):
+        drive_setup(card, model, rate_hz=0.0)
+    other = make_env(PolicyCard('vehicle_sim/Drive-v0', {'world': 'highway'}, ('lane', 'twist')))
+    with pytest.raises(InvalidParameterError, match=r"x.zip: observation space differs: "
+                                                    r"'objects': \(8, 7\) in the environment, "
+                                                    r'not in the model'):
+        drive_setup(card, _Spaces(other.observation_space, env.action_space), source='x.zip')
+    other.close()

@@ -217,3 +217,13 @@ def test_a_car_that_is_not_there_is_named(lockstep):
                                                     r'/nope/automobile/set_steering_angle, '
                                                     r'/nope/automobile/set_cruising_speed'):
         bed.start(Scripted((0.0, 0.0)), setup_of())
+
+
+def test_the_docs_show_the_drivers_topics():
+    from pathlib import Path
+
+    from vehicle_sim.ros.policy_interfaces import policy_table_markdown
+    docs = Path(__file__).resolve().parent.parent / 'docs'
+    assert policy_table_markdown() in (docs / 'ros_interface.md').read_text(encoding='utf-8')
+    learning = (docs / 'learning.md').read_text(encoding='utf-8')
+    assert '## The policy drives the ROS node' in learning

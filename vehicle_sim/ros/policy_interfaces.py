@@ -46,19 +46,20 @@ def _same(row, doc, qos=None):
 
 
 CLOCK_IN = _same(CLOCK, 'simulated time: the policy acts at every multiple of its period '
-                        '(action_repeat x time_step), and first once its inputs are published',
-                 QOS_CLOCK)
+                        '(action_repeat x time_step), the first time at the first answer time '
+                        '(the first objects)', QOS_CLOCK)
 ODOM_IN = _same(itf.ODOM, "the ego's odometry: the 'twist' key, and its pose for 'objects'")
 LANE_STATE_IN = _same(itf.LANE_STATE, "the ego's lane: the 'lane' key")
 OBJECTS_IN = _same(PREDICTED_OBJECTS_TOPIC,
-                   "the 'objects' key (objects published at the policy's ticks: the objects "
-                   "rate a multiple of the policy's)")
+                   "the 'objects' key (the policy's period a whole number of the objects' "
+                   "periods: objects_rate, --objects-rate)")
 TF_STATIC_IN = _same(TF_STATIC, "world -> <p>odom: the ego's pose in the objects' frame")
 ACTION = Topic('policy/action', m.FLOAT64_MULTI_ARRAY, QOS_DEFAULT, EACH_STEP,
                unit='rad, m/s (speed_steering)',
                doc="the action in force, in the environment's units (speed_steering: steering "
-                   "angle + left, speed), published at each /clock once that tick's commands "
-                   "are served: the scenario runner's lockstep (sync) topic")
+                   'angle + left, speed; empty before the first), at each answer time (every '
+                   "objects period, else every policy period) once that tick's setters "
+                   "answered: the scenario runner's lockstep (sync) topic")
 INPUTS = (CLOCK_IN, ODOM_IN, LANE_STATE_IN, OBJECTS_IN, TF_STATIC_IN)
 OUTPUTS = (ACTION,)
 

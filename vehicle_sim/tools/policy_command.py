@@ -242,19 +242,18 @@ def cmd_policy_evaluate(args) -> int:
     seeds = range(args.first_seed, args.first_seed + args.episodes)
     paths = [('in-process', lambda s: in_process_episode(card, model, spec, s)),
              ('wire', lambda s: wire_episode(spec, args.model, s, setup))]
-    rates = {}
-    for name, run in paths:
-        if args.only and args.only != name:
-            continue
-        passed = 0
-        start = time.monotonic()
-        for index, seed in enumerate(seeds):
+    paths = [(name, run) for name, run in paths if not args.only or args.only == name]
+    passed = {name: 0 for name, _ in paths}
+    start = time.monotonic()
+    # seed by seed, both paths: a run cut short still compares the same seeds
+    for index, seed in enumerate(seeds):
+        for name, run in paths:
             ok, detail = run(seed)
-            passed += ok
+            passed[name] += ok
             print(f'{name} seed {seed}: {"PASS" if ok else "FAIL"} ({detail})', flush=True)
-        rates[name] = passed / len(seeds)
-        print(f'{name}: {passed}/{len(seeds)} passed ({100.0 * rates[name]:.1f} %) in '
-              f'{time.monotonic() - start:.0f} s', flush=True)
+        print(f'after {index + 1} seeds ({time.monotonic() - start:.0f} s): ' + ', '.join(
+            f'{name} {passed[name]}/{index + 1}' for name, _ in paths), flush=True)
+    rates = {name: count / len(seeds) for name, count in passed.items()}
     print(f'model {args.model}, scenario {path}, seeds {seeds.start}..{seeds.stop - 1} '
           f'(N = {len(seeds)})')
     for name, rate in rates.items():

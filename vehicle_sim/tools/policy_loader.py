@@ -125,7 +125,8 @@ def drive_setup(card, model, rate_hz=None, source='the model'):
         options = sim.options
         control = options['control']
         if control == 'auto':
-            control = 'speed_steering' if sim.ego.vehicle.car is not None else 'twist'
+            control = ('speed_steering' if sim.scene.vehicles[sim.ego_name].car is not None
+                       else 'twist')
         space = env.unwrapped.action_space
         step_ms = sim.world.time_step_s * 1000.0
         period_s = options['action_repeat'] * step_ms / 1000.0
