@@ -117,7 +117,10 @@ class ActionWriter:
                                  f'{self.units[i]}: outside [{low:g}, {high:g}]')
         return values
 
+    def setters(self, values):
+        """Return [(service, value in its unit)] of a physical action, in call order."""
+        return [(name, float(value(values))) for name, value in self._commands]
+
     def commands(self, action):
         """Return [(service, value in its unit)] for a policy's action, in call order."""
-        values = self.physical(action)
-        return [(name, float(value(values))) for name, value in self._commands]
+        return self.setters(self.physical(action))

@@ -211,14 +211,15 @@ class PolicyNode:
             obs = self.builder.build(latest[pi.ODOM_IN], latest.get(pi.LANE_STATE_IN),
                                      latest.get(pi.OBJECTS_IN))
             action, _ = self.policy.predict(obs, deterministic=True)
-            commands = self.writer.commands(np.asarray(action))
+            values = self.writer.physical(np.asarray(action))
         except (InvalidParameterError, ValueError) as error:
             self._fail(f'at /clock {tick_s:.3f} s: {error}')
             return
+        commands = self.writer.setters(values)
         self.last_obs = obs
         self.ticks += 1
         self._tick_s = tick_s
-        self._next_action = self.writer.physical(np.asarray(action))
+        self._next_action = values
         self._calls = []
         for name, value in commands:
             request = self.node.srv(pi.service_type(name)).Request()
