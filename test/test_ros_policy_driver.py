@@ -227,3 +227,28 @@ def test_the_docs_show_the_drivers_topics():
     assert policy_table_markdown() in (docs / 'ros_interface.md').read_text(encoding='utf-8')
     learning = (docs / 'learning.md').read_text(encoding='utf-8')
     assert '## The policy drives the ROS node' in learning
+
+
+def test_the_action_writer_undoes_rescale_action_and_checks_the_box():
+    import gymnasium
+    from gymnasium.wrappers.utils import rescale_box
+
+    from vehicle_sim.ros.policy_actions import ActionWriter
+    low, high = np.array((-0.5, -5.0), np.float32), np.array((0.5, 35.0), np.float32)
+    _, _, physical = rescale_box(gymnasium.spaces.Box(low, high), np.float32(-1.0),
+                                 np.float32(1.0))
+    writer = ActionWriter('speed_steering', low, high)
+    for action in ((-1.0, -1.0), (1.0, 1.0), (0.3, -0.7), (-0.25, 0.5)):
+        action = np.array(action, np.float32)
+        assert np.array_equal(writer.physical(action), physical(action).astype(np.float64))
+    steer, speed = writer.physical(np.array((0.3, -0.7), np.float32))
+    assert writer.commands(np.array((0.3, -0.7), np.float32)) == [
+        ('automobile/set_steering_angle', pytest.approx(-steer)),
+        ('automobile/set_cruising_speed', pytest.approx(speed * 3.6))]
+    with pytest.raises(ValueError, match=r'action\[0\] \(steering_angle\) = 0.75 rad: outside '
+                                         r'\[-0.5, 0.5\]'):
+        writer.physical(np.array((1.5, 0.0), np.float32))
+    with pytest.raises(InvalidParameterError, match="control 'twist': the automobile node is "
+                                                    'driven by speed_steering, '
+                                                    'throttle_steering'):
+        ActionWriter('twist', low, high)
