@@ -345,10 +345,10 @@ def test_the_declared_composition_is_the_one_node_import(monkeypatch):
         'shared code to core or a shared module of vehicle_sim/ros']
 
 
-def test_the_four_nodes_are_found():
+def test_the_five_nodes_are_found():
     assert {name for name in MODULES if _under(name, ROS) and name.endswith('_node')} == {
         f'{ROS}.automobile_node', f'{ROS}.autoware_automobile_node', f'{ROS}.bridge_node',
-        f'{ROS}.diff_robot_node'}
+        f'{ROS}.diff_robot_node', f'{ROS}.policy_node'}
 
 
 def test_no_core_sub_package_imports_one_above_it():

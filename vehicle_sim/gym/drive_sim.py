@@ -55,6 +55,23 @@ START_DRAWS = 100
 TRAFFIC_SEEDS = 2 ** 31
 
 
+def draw_traffic_seed(rng):
+    """Return the traffic's seed of a reset: the first draw of the environment's generator."""
+    return int(rng.integers(TRAFFIC_SEEDS))
+
+
+def episode_traffic_seed(seed):
+    """
+    Return the traffic's seed of ``reset(seed=seed)`` (start_noise 0): what the world needs.
+
+    Gymnasium seeds the environment's generator from ``seed`` (``np_random``); the reset's
+    first draw is the traffic's seed. A scenario run whose world has ``traffic: seed`` set to
+    this value starts the same traffic as that reset (``vehicle-sim policy evaluate``).
+    """
+    from gymnasium.utils.seeding import np_random
+    return draw_traffic_seed(np_random(int(seed))[0])
+
+
 class _ActorHook:
     """World hook registered before the vehicles: the scenario's actors act each basic step."""
 
@@ -101,7 +118,7 @@ def reset_world(scene, rng, bodies, start_noise, what):
         vehicle.vehicle.reset()
     scene.world.reset_obstacles()
     traffic = scene.parts.get('traffic')
-    traffic_seed = None if traffic is None else int(rng.integers(TRAFFIC_SEEDS))
+    traffic_seed = None if traffic is None else draw_traffic_seed(rng)
     if any(start_noise):
         _offset_starts(scene, rng, bodies, start_noise, what, traffic, traffic_seed)
     elif traffic is not None:
@@ -346,6 +363,16 @@ class DriveSim:
     def _info(self, progress_m, terms, collided_with, collision):
         return self.agent.info(self.elapsed_s, progress_m, terms, collided_with, collision,
                                self._watch)
+
+    def criteria_results(self):
+        """
+        Return the scenario criteria's results of the episode so far (CriterionResult list).
+
+        As the scenario runner reports them: at the end of an episode (truncated at the
+        scenario's duration) the criteria decided only at the end (``mean_speed``) are decided;
+        [] without a scenario or before the first reset.
+        """
+        return [] if self._watch is None else [c.result() for c in self._watch.criteria]
 
     def close(self):
         """Disconnect the physics client (idempotent)."""

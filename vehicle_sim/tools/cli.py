@@ -32,6 +32,8 @@ Subcommands (``vehicle-sim <command> --help`` for details)::
     record TOPICS|-a    record topics into an MCAP file (like ``ros2 bag record -s mcap``)
     play FILE           republish a recording (like ``ros2 bag play``)
     bag info FILE       a recording's topics, types, counts, duration (like ``ros2 bag info``)
+    policy run|evaluate a trained policy drives the car over ROS; its evaluation in process
+                        and over ROS
 
 Everything talks over the embedded Cyclone DDS transport, with ``ROS_DOMAIN_ID`` and
 ``ROS_AUTOMATIC_DISCOVERY_RANGE`` honoured like a ROS 2 node does (docs/transport.md).
@@ -210,6 +212,12 @@ def build_parser() -> argparse.ArgumentParser:
     from vehicle_sim.tools.sweep_command import cmd_sweep
     add_sweep_arguments(sweep)
     sweep.set_defaults(func=cmd_sweep)
+    policy = sub.add_parser('policy', help='a trained policy drives the car over ROS; its '
+                                           'evaluation in process and over ROS '
+                                           '(docs/learning.md)')
+    from vehicle_sim.tools.policy_command import add_arguments as add_policy_arguments
+    add_policy_arguments(policy)
+
     from vehicle_sim.tools import record_commands
     record = sub.add_parser('record', help='record topics into an MCAP file '
                                            '(docs/record_replay.md)')

@@ -81,8 +81,9 @@ TRAFFIC_SPECS = (
               'are drawn from (their dimensions)'),
     ParamSpec('speed_factor', 'speed_factor', 'raw', None, '', 'desired speed / lane limit: '
               '{mean, std} of a normal distribution cut at 2 std', optional=True),
+    # 0 .. 2^31 - 1: every seed a Gym reset draws (gym/drive_sim.py TRAFFIC_SEEDS) can be named
     ParamSpec('seed', 'seed', 'int', 0, '', 'random seed (spawn places, models, factors, '
-              'route choices)', ge=0, le=999999),
+              'route choices)', ge=0, le=2 ** 31 - 1),
     ParamSpec('spawn', 'spawn', 'raw', None, '', 'where the random vehicles start: {lanes, '
               's_range, spacing}', optional=True),
     ParamSpec('model', 'model', 'raw', None, '', 'the traffic models: {car_following, '
