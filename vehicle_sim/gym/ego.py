@@ -119,7 +119,7 @@ class Ego:
         self.terms = TERMS if graph is None else LANE_TERMS
         self.crossed = ()
         self.control = make_control(options['control'], self.ego, options['max_speed'],
-                                    options['max_reverse_speed'])
+                                    options['max_reverse_speed'], options['max_steering'])
         self.parts = list(parts)
         self.parts.extend(p for p in (factory(self) for factory in PART_FACTORIES)
                           if p is not None)

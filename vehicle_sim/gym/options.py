@@ -83,6 +83,9 @@ OPTION_SPECS = (
     ParamSpec('max_speed', kind='float', default=None, unit='m/s', gt=0.0, optional=True,
               doc="speed_steering: largest speed action; null = min(the car's top speed, "
                   '20 m/s)'),
+    ParamSpec('max_steering', kind='float', default=None, unit='rad', gt=0.0, optional=True,
+              doc="car controls: largest steering angle action either way (at most the car's "
+                  "limit); null = the car's own limits"),
     ParamSpec('max_reverse_speed', kind='float', default=5.0, unit='m/s', ge=0.0,
               doc='speed_steering: largest reverse speed action'),
     ParamSpec(LIDAR, kind='raw', default=None, optional=True, check=_sensor_option,
