@@ -384,6 +384,8 @@ def test_a_criterion_judged_at_the_end_has_its_verdict_in_the_last_info(make, tm
             break
     assert truncated and not terminated and info['time_s'] == pytest.approx(2.0)
     assert info['criteria'] == {'mean_speed': verdict}
+    result = env.unwrapped.sim.criteria_results()['mean_speed']     # the measured value too
+    assert result.passed == (verdict == 'passed') and 0.5 < result.value < 5.0
 
 
 def test_max_steering_narrows_the_steering_actions_and_refuses_more_than_the_car_has(make):
