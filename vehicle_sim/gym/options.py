@@ -122,6 +122,9 @@ OPTION_SPECS = (
     ParamSpec('solid_line_penalty', kind='float', default=1.0, ge=0.0,
               doc='with lanes: subtracted per solid line (or curb, road border, wall) the '
                   'ego crosses'),
+    ParamSpec('lane_centre_penalty', kind='float', default=0.0, unit='1/s', ge=0.0,
+              doc='with lanes: subtracted per second on a lane, times the distance from its '
+                  'centreline over half its width (0 at the centre, 1 at its edge)'),
     ParamSpec('terminate_on_collision', kind='bool', default=True,
               doc='a collision of the ego ends the episode (terminated)'),
     ParamSpec('terminate_off_road', kind='bool', default=False,
