@@ -96,13 +96,16 @@ def card():
     return PolicyCard(ENV_ID, dict(ENV_OPTIONS), OBSERVATION_KEYS, (-1.0, 1.0))
 
 
-def make_task_env(policy_card):
+def make_task_env(policy_card, scenario=SCENARIO):
     """
     Return the card's environment judging the evaluation scenario (episodes end on it).
 
-    The scenario's world is the card's (highway_traffic): the scenario replaces it.
+    The scenario's world is the card's (highway_traffic): the scenario replaces it. None: the
+    card's environment as it is.
     """
-    return make_env(policy_card, world=None, scenario=str(SCENARIO))
+    if scenario is None:
+        return make_env(policy_card)
+    return make_env(policy_card, world=None, scenario=str(scenario))
 
 
 def episode_outcome(info, sim):
@@ -120,15 +123,23 @@ def episode_outcome(info, sim):
 class _EnvFactory:
     """A picklable env maker for SubprocVecEnv (the card travels, not a closure)."""
 
-    def __init__(self, policy_card):
+    def __init__(self, policy_card, scenario):
         self.card = policy_card
+        self.scenario = scenario
 
     def __call__(self):
-        return make_task_env(self.card)
+        return make_task_env(self.card, self.scenario)
 
 
-def train(args, policy_card, out):
-    """Train PPO within the wall-clock budget; return (model, curve rows, episodes, facts)."""
+def train(args, policy_card, out, scenario=SCENARIO, ppo_options=None, scales=None):
+    """
+    Train PPO within the wall-clock budget; return (model path, curve rows, episodes, facts).
+
+    :param args: the command line's (minutes, timesteps, seed, envs, threads).
+    :param scenario: the scenario judging the episodes (None: the card's environment alone).
+    :param ppo_options: PPO keywords replacing PPO_OPTIONS' (a smoke test's smaller batches).
+    :param scales: ScaledInputs' factors for the card's keys (None: SCALES).
+    """
     from stable_baselines3 import PPO
     from stable_baselines3.common.callbacks import BaseCallback
     from stable_baselines3.common.env_util import make_vec_env
@@ -139,13 +150,14 @@ def train(args, policy_card, out):
 
     torch.set_num_threads(args.threads)
     vec_cls = SubprocVecEnv if args.envs > 1 else DummyVecEnv
-    envs = make_vec_env(_EnvFactory(policy_card), n_envs=args.envs, seed=args.seed,
+    envs = make_vec_env(_EnvFactory(policy_card, scenario), n_envs=args.envs, seed=args.seed,
                         vec_env_cls=vec_cls)
     model = PPO('MultiInputPolicy', envs, seed=args.seed, device='cpu', verbose=0,
                 policy_kwargs={'net_arch': NET_ARCH, 'log_std_init': LOG_STD_INIT,
                                'features_extractor_class': ScaledInputs,
-                               'features_extractor_kwargs': {'scales': SCALES}},
-                **PPO_OPTIONS)
+                               'features_extractor_kwargs': {
+                                   'scales': SCALES if scales is None else scales}},
+                **dict(PPO_OPTIONS, **(ppo_options or {})))
     episodes, rows = [], []
     start = time.monotonic()
     budget_s = args.minutes * 60.0
@@ -154,15 +166,16 @@ def train(args, policy_card, out):
         def _on_step(self):
             for info, done in zip(self.locals['infos'], self.locals['dones']):
                 if done and 'episode' in info:
-                    verdicts = info['criteria']
+                    verdicts = info.get('criteria', {})
                     outcome = {'env_steps': self.num_timesteps,
                                'wall_s': time.monotonic() - start,
                                'return': float(info['episode']['r']),
                                'length': int(info['episode']['l']),
                                'time_s': float(info['time_s']),
-                               'success': all(v == 'passed' for v in verdicts.values()),
-                               'collision': verdicts['no_collision'] == 'failed',
-                               'lane_departure': verdicts['stay_in_lane'] == 'failed'}
+                               'success': bool(verdicts) and all(
+                                   v == 'passed' for v in verdicts.values()),
+                               'collision': bool(info['collision']),
+                               'lane_departure': verdicts.get('stay_in_lane') == 'failed'}
                     episodes.append(outcome)
             if args.timesteps and self.num_timesteps >= args.timesteps:
                 return False
