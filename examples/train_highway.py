@@ -27,7 +27,8 @@ table), scaled inside the policy (vehicle_sim/gym/scaled_inputs.py). Actions: st
 within +-0.02 rad and cruising speed 0 .. 33.3 m/s, rescaled to [-1, 1], at 5 Hz. Reward
 (Drive-v0's terms, weights in ENV_OPTIONS): progress along the lanes x 0.03 /m (one per
 second at the limit), -10 for a collision, -10 per second off the lanes, -5 per solid line
-crossed; a collision or a lane departure also ends the episode, losing the progress to come.
+crossed, -0.3 per second times the distance from the lane's centre over half its width; a
+collision or a lane departure also ends the episode, losing the progress to come.
 
 Run: ``python examples/train_highway.py [--minutes 30] [--seed 0] [--out DIR]``; it writes
 ``DIR/learning_curve.csv`` (a row per PPO update: env steps, wall time, mean return and success
@@ -69,6 +70,7 @@ ENV_OPTIONS = {
     'collision_penalty': 10.0,
     'off_lane_penalty': 10.0,
     'solid_line_penalty': 5.0,
+    'lane_centre_penalty': 0.3,         # per second at a lane's edge: keep to the centre
 }
 # Input factors (ScaledInputs): each entry to about [-1, 1] where it matters.
 SCALES = {
@@ -256,6 +258,27 @@ def figures(outcomes):
             'mean_speed_mps': round(mean, 3),
             'mean_speed_fraction_of_limit': round(mean / LIMIT_MPS, 4),
             'mean_episode_s': round(float(np.mean([o['time_s'] for o in outcomes])), 2)}
+
+
+def results_markdown(summary):
+    """Return the run's figures as docs/learning.md shows them (a table, from summary.json)."""
+    lines = [
+        f"Seed {summary['seed']}, {summary['envs']} environments, PyTorch on "
+        f"{summary['torch_threads']} thread(s): {summary['env_steps']} env steps "
+        f"({summary['episodes']} training episodes) in {summary['train_wall_s'] / 60.0:.1f} "
+        f"min of training; evaluation: {summary['evaluation']['trained']['episodes']} episodes "
+        f"of 60 s per policy, seeds {summary['eval_seeds'][0]} .. {summary['eval_seeds'][1]}.",
+        '',
+        '| policy | success | collision | lane departure | mean speed [m/s] | of the limit '
+        '| mean episode [s] |',
+        '|---|---|---|---|---|---|---|',
+    ]
+    for name, label in (('trained', 'PPO (deterministic)'), ('random', 'random')):
+        f = summary['evaluation'][name]
+        lines.append(f"| {label} | {f['success_rate']:.0%} | {f['collision_rate']:.0%} | "
+                     f"{f['lane_departure_rate']:.0%} | {f['mean_speed_mps']:.2f} | "
+                     f"{f['mean_speed_fraction_of_limit']:.1%} | {f['mean_episode_s']:.1f} |")
+    return '\n'.join(lines) + '\n'
 
 
 def write_curve(out, rows, episodes):
