@@ -328,7 +328,8 @@ def main(argv=None):
     parser.add_argument('--seed', type=int, default=0)
     parser.add_argument('--envs', type=int, default=8, help='environments (processes)')
     parser.add_argument('--threads', type=int, default=1, help="PyTorch's CPU threads")
-    parser.add_argument('--eval-episodes', type=int, default=100)
+    parser.add_argument('--eval-episodes', type=int, default=100,
+                        help='evaluation episodes per policy (0: none)')
     parser.add_argument('--eval-workers', type=int, default=2)
     parser.add_argument('--evaluate', metavar='MODEL',
                         help='evaluate this model.zip (with its card) instead of training')
@@ -354,6 +355,10 @@ def main(argv=None):
         summary['final_training_row'] = rows[-1] if rows else None
         print(f"trained {facts['env_steps']} env steps ({facts['episodes']} episodes) in "
               f"{facts['train_wall_s']:.0f} s; model {model_path}", flush=True)
+    if args.eval_episodes <= 0:         # training only (a reproducibility check)
+        (out / 'summary.json').write_text(json.dumps(summary, indent=2) + '\n',
+                                          encoding='utf-8')
+        return
     seeds = [EVAL_SEED_BASE + k for k in range(args.eval_episodes)]
     start = time.monotonic()
     results = {'trained': evaluate(str(model_path), seeds, args.eval_workers),

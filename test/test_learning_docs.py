@@ -51,7 +51,7 @@ def test_the_committed_curve_is_the_runs_and_the_model_has_the_scripts_card():
         rows = list(csv.DictReader(stream))
     assert rows and summary['final_training_row'] == {
         key: type(value)(rows[-1][key]) for key, value in summary['final_training_row'].items()}
-    assert (ROOT / 'docs' / 'images' / 'highway_ppo_learning_curve.png').is_file()
+    assert (ROOT / 'docs' / 'highway_ppo_learning_curve.png').is_file()
     script = _script()
     card = json.loads((ROOT / 'examples' / 'models' / 'highway_ppo.card.json')
                       .read_text(encoding='utf-8'))
