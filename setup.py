@@ -43,6 +43,9 @@ EXTRAS = {
 # decode a SceneUpdate with the schema its channel advertises.
 EXTRAS['test'] = (['pytest', 'pytest-timeout', 'ruff', 'pyarrow', 'protobuf']
                   + sorted({req for reqs in EXTRAS.values() for req in reqs}))
+# Learning (examples/train_highway.py, vehicle_sim/gym/scaled_inputs.py), not in `test`: PyTorch
+# is large; `make learn` installs it from PyTorch's CPU wheel index (docs/learning.md).
+EXTRAS['learn'] = ['gymnasium>=1.0', 'stable-baselines3>=2.3', 'torch>=2.3', 'matplotlib']
 # Benchmark only, not in `test`: bench_gym.py and bench_traffic.py compare with highway-env.
 EXTRAS['bench'] = ['gymnasium>=1.0', 'highway-env']
 

@@ -360,3 +360,47 @@ def test_a_segmenting_camera_gives_the_semantic_observation(make):
     assert semantic[-1, 16] == LABEL_IDS['ground']
     assert semantic[12, 16] in (LABEL_IDS['obstacle'], LABEL_IDS['wall'])
     assert 'semantic' not in make(camera=True).reset(seed=0)[0]
+
+
+def _mean_speed_scenario(tmp_path, min_mps):
+    path = tmp_path / 'mean_speed.yaml'
+    path.write_text('name: mean_speed\nworld: default\nduration: 2.0\n'
+                    'driver:\n  commands: [{t: 0.0, cruising_speed: 0.0}]\n'
+                    f'criteria:\n  - kind: mean_speed\n    min: {min_mps}\n', encoding='utf-8')
+    return str(path)
+
+
+@pytest.mark.parametrize('min_mps, verdict', [(0.5, 'passed'), (50.0, 'failed')])
+def test_a_criterion_judged_at_the_end_has_its_verdict_in_the_last_info(make, tmp_path,
+                                                                       min_mps, verdict):
+    # mean_speed is decided only when the scenario's time is up: the truncating step's info
+    # gives its verdict (not 'undecided'), so that an evaluation reads the outcome from info
+    env = make(scenario=_mean_speed_scenario(tmp_path, min_mps), action_repeat=10)
+    _, info = env.reset(seed=0)
+    assert info['criteria'] == {'mean_speed': 'undecided'}
+    for _ in range(100):
+        _, _, terminated, truncated, info = env.step([0.0, 5.0])
+        if terminated or truncated:
+            break
+    assert truncated and not terminated and info['time_s'] == pytest.approx(2.0)
+    assert info['criteria'] == {'mean_speed': verdict}
+    result = env.unwrapped.sim.criteria_results()['mean_speed']     # the measured value too
+    assert result.passed == (verdict == 'passed') and 0.5 < result.value < 5.0
+
+
+def test_max_steering_narrows_the_steering_actions_and_refuses_more_than_the_car_has(make):
+    env = make(max_steering=0.05)
+    assert env.action_space.low[0] == pytest.approx(-0.05)
+    assert env.action_space.high[0] == pytest.approx(0.05)
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match=r'action\[0\] \(steering_angle\) = 0.06'):
+        env.step([0.06, 1.0])
+    throttle = make(max_steering=0.05, control='throttle_steering')
+    assert list(throttle.action_space.low[:1]) == pytest.approx([-0.05])
+    wide = make()
+    limit = float(min(-wide.action_space.low[0], wide.action_space.high[0]))
+    with pytest.raises(InvalidParameterError, match=rf'max_steering = 2.0 rad: more than the '
+                       rf"car's steering limit \({limit:g} rad\)"):
+        make(max_steering=2.0)
+    with pytest.raises(InvalidParameterError, match=r'max_steering = 0.1 rad: .* is a robot'):
+        make(max_steering=0.1, **ROBOT)

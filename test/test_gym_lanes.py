@@ -299,3 +299,26 @@ def test_a_reset_after_leaving_the_lane_is_neither_a_crossing_nor_progress(make)
     # the jump back is not counted: the first step's progress is what the car drove
     assert info['lane_crossings'] == 0 and 0.0 <= info['progress_m'] < 0.1
     assert info['reward_terms']['lane'] == 0.0
+
+
+def test_lane_term_weights_the_distance_from_the_lane_centre():
+    weights = RewardWeights(lane_centre_penalty=2.0)
+    # 0.5 m off a 3.5 m lane's centre: 0.5 / 1.75 of the half width, 2 /s, for 0.1 s
+    assert lane_term(weights, True, 0, 0.1, 0.5 / 1.75) == pytest.approx(-2.0 * 0.1 / 3.5)
+    assert lane_term(weights, True, 0, 0.1, 0.0) == 0.0
+    assert lane_term(RewardWeights(), True, 0, 0.1, 0.9) == 0.0      # off by default
+    with pytest.raises(InvalidParameterError, match='lane_centre_penalty'):
+        RewardWeights(lane_centre_penalty=-1.0)
+
+
+def test_the_lane_centre_penalty_follows_the_observed_offset(make):
+    env = make(world=bend_world(100101, 10.0, offset_m=0.5), action_repeat=10,
+               lane_centre_penalty=3.0)
+    env.reset(seed=0)
+    obs, _, _, _, info = env.step(np.array([0.0, 2.0], dtype=np.float32))
+    _, offset, _, width, _, on_lane = obs['lane'].tolist()
+    assert on_lane == 1.0 and abs(offset) > 0.3
+    assert info['reward_terms']['lane'] == pytest.approx(-3.0 * abs(offset) / (width / 2) * 0.1,
+                                                         rel=1e-5)
+    with pytest.raises(InvalidParameterError, match='lane_centre_penalty'):
+        make(world='highway', lane_centre_penalty=-0.5)

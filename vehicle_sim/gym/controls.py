@@ -34,6 +34,7 @@ import numpy as np
 
 from vehicle_sim.core.diffdrive.kinematics import wheel_speeds_from_twist
 from vehicle_sim.core.diffdrive.speed_limiter import limit_wheel_speeds
+from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.units import mps_to_kmh, ros_steering_to_webots
 
 # Relative float rounding taken as the bound (float32 epsilon is 1.2e-7; a rescaled bound is a
@@ -98,16 +99,14 @@ class SpeedSteering(Control):
     names = ('steering_angle', 'speed')
     units = ('rad', 'm/s')
 
-    def __init__(self, car, max_speed_mps, max_reverse_mps):
+    def __init__(self, car, max_speed_mps, max_reverse_mps, max_steering_rad=None):
         logic = car.logic
         self.logic = logic
         top = logic.max_cruising_speed_kmh / 3.6 if logic.max_cruising_speed_kmh > 0 else \
             DEFAULT_MAX_SPEED_MPS
         if max_speed_mps is None:
             max_speed_mps = min(top, DEFAULT_MAX_SPEED_MPS)
-        # REP 103 (+ left) = -(Webots, + right): the bounds swap.
-        left = -logic.min_steering_angle_rad
-        right = -logic.max_steering_angle_rad
+        right, left = steering_bounds(logic, max_steering_rad)
         super().__init__((right, -max_reverse_mps), (left, max_speed_mps))
 
     def apply(self, action):
@@ -124,11 +123,11 @@ class ThrottleSteering(Control):
     names = ('steering_angle', 'throttle', 'brake')
     units = ('rad', '', '')
 
-    def __init__(self, car):
+    def __init__(self, car, max_steering_rad=None):
         logic = car.logic
         self.logic = logic
-        super().__init__((-logic.max_steering_angle_rad, 0.0, 0.0),
-                         (-logic.min_steering_angle_rad, 1.0, 1.0))
+        right, left = steering_bounds(logic, max_steering_rad)
+        super().__init__((right, 0.0, 0.0), (left, 1.0, 1.0))
 
     def apply(self, action):
         logic = self.logic
@@ -167,22 +166,48 @@ class Twist(Control):
         self.robot.set_wheel_velocities(0.0, 0.0)
 
 
-def make_control(name, vehicle, max_speed_mps=None, max_reverse_mps=5.0):
+def steering_bounds(logic, max_steering_rad=None):
+    """
+    Return the steering action's (low, high) [rad], + = left (REP 103).
+
+    :param logic: the car's driver logic (its Webots steering limits, + = right).
+    :param max_steering_rad: None: the car's limits; else (-it, it), which must lie within them.
+    :raises InvalidParameterError: for a bound beyond the car's steering limit.
+    """
+    # REP 103 (+ left) = -(Webots, + right): the bounds swap.
+    low, high = -logic.max_steering_angle_rad, -logic.min_steering_angle_rad
+    if max_steering_rad is None:
+        return low, high
+    limit = min(-low, high)
+    if max_steering_rad > limit:
+        raise InvalidParameterError(
+            f"option max_steering = {max_steering_rad!r} rad: more than the car's steering "
+            f'limit ({limit:g} rad); give at most that, or null for the limits')
+    return -max_steering_rad, max_steering_rad
+
+
+def make_control(name, vehicle, max_speed_mps=None, max_reverse_mps=5.0,
+                 max_steering_rad=None):
     """
     Return the Control of a layout for the ego.
 
     :param name: 'auto', 'speed_steering', 'throttle_steering' or 'twist'.
     :param vehicle: the ego's SceneVehicle (``car`` is None for a robot).
+    :param max_steering_rad: a car's largest steering action either way (None: its limits).
     :raises ValueError: for a car layout on a robot or the robot layout on a car.
     """
     is_car = vehicle.car is not None
     if name == 'auto':
         name = 'speed_steering' if is_car else 'twist'
     if is_car and name == 'speed_steering':
-        return SpeedSteering(vehicle.car, max_speed_mps, max_reverse_mps)
+        return SpeedSteering(vehicle.car, max_speed_mps, max_reverse_mps, max_steering_rad)
     if is_car and name == 'throttle_steering':
-        return ThrottleSteering(vehicle.car)
+        return ThrottleSteering(vehicle.car, max_steering_rad)
     if not is_car and name == 'twist':
+        if max_steering_rad is not None:
+            raise InvalidParameterError(
+                f'option max_steering = {max_steering_rad!r} rad: the ego {vehicle.name!r} is a '
+                'robot (twist actions have no steering angle); give null')
         return Twist(vehicle.body)
     kind = 'car' if is_car else 'robot'
     valid = 'speed_steering, throttle_steering' if is_car else 'twist'

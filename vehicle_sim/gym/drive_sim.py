@@ -253,6 +253,16 @@ class DriveSim:
         """Simulated time since the last reset [s]."""
         return (self.world.step_count - self._step0) * self.world.time_step_s
 
+    def criteria_results(self):
+        """
+        Return the scenario's criteria on the episode so far: {name: CriterionResult}.
+
+        Each result as the scenario runner's report gives it (measured value, unit, detail:
+        ``mean_speed``'s mean, ``no_collision``'s first contact); {} without a scenario.
+        """
+        watch = self._watch
+        return {} if watch is None else {c.name: c.result() for c in watch.criteria}
+
     def reset(self, rng):
         """
         Start an episode: every vehicle and movable obstacle as built; return (obs, info).

@@ -63,7 +63,7 @@ def reward_weights(options):
     """Return the RewardWeights of the environment's options."""
     return RewardWeights(options['progress_weight'], options['collision_penalty'],
                          options['goal_reward'], options['off_lane_penalty'],
-                         options['solid_line_penalty'])
+                         options['solid_line_penalty'], options['lane_centre_penalty'])
 
 
 def progress_measures(options, lanes, scenario_goal=None, scenario_path=None):
@@ -119,7 +119,7 @@ class Ego:
         self.terms = TERMS if graph is None else LANE_TERMS
         self.crossed = ()
         self.control = make_control(options['control'], self.ego, options['max_speed'],
-                                    options['max_reverse_speed'])
+                                    options['max_reverse_speed'], options['max_steering'])
         self.parts = list(parts)
         self.parts.extend(p for p in (factory(self) for factory in PART_FACTORIES)
                           if p is not None)
@@ -240,9 +240,11 @@ class Ego:
         weights = self.weights
         terms = reward_terms(weights, progress_m, bool(hits), reached_now)
         if self.lanes is not None:
-            terms['lane'] = lane_term(weights, self.lanes.state.on_lane,
-                                      solid_crossings(self.crossed),
-                                      repeat_done * self.world.time_step_s)
+            state = self.lanes.state
+            centre = min(1.0, abs(state.offset_m) / (0.5 * state.width_m)) \
+                if state.on_lane and state.width_m > 0.0 else 0.0
+            terms['lane'] = lane_term(weights, state.on_lane, solid_crossings(self.crossed),
+                                      repeat_done * self.world.time_step_s, centre)
         truncated = not terminated and elapsed_s >= episode_s - 1e-9
         other = ','.join(sorted({event.other for event in hits}))
         return self.observe(), terms, terminated, truncated, (progress_m, terms, other,

@@ -33,6 +33,12 @@ step); :func:`verdict_now` says whether a criterion is already decided:
   front of a vehicle with priority), and from the start when the world lacks what they watch;
 - otherwise undecided until the end.
 
+When the scenario's time is up (the step that reaches its duration), every criterion still
+undecided takes the verdict of its result (:meth:`CriteriaWatch.decide`): ``mean_speed``,
+``no_collision`` without one and the others that pass unless something happened give their
+outcome in the last step's info, as the scenario runner's report would; such a verdict ends
+nothing (the episode is truncated there).
+
 The episode is *terminated* when a criterion failed, or when every ``reach_goal`` criterion
 passed (there is at least one); it is *truncated* at the scenario's duration. ``topic``
 criteria read ROS messages, which an environment without ROS has none of: left out, with a
@@ -132,6 +138,7 @@ class CriteriaWatch:
 
     def __init__(self, specs, duration_s, world, handles, obstacles, lanes=None, signals=None):
         self.criteria = build_criteria(specs, duration_s)
+        self.duration_s = duration_s
         scene = world_scene(world, handles, obstacles, lanes=lanes, signals=signals)
         for criterion in self.criteria:
             criterion.bind(scene)
@@ -147,9 +154,19 @@ class CriteriaWatch:
             criterion.observe(sample)
 
     def decide(self, elapsed_s):
-        """Update ``verdicts``; return (terminated, reached every goal)."""
+        """
+        Update ``verdicts``; return (terminated, reached every goal).
+
+        At the scenario's duration a criterion still undecided takes its result's verdict;
+        such a verdict ends nothing (the episode is truncated there).
+        """
         for criterion in self.criteria:
             self.verdicts[criterion.name] = verdict_now(criterion, elapsed_s)
         failed = any(v == FAILED for v in self.verdicts.values())
         reached = bool(self.goals) and all(self.verdicts[c.name] == PASSED for c in self.goals)
+        if elapsed_s >= self.duration_s - _EPS_S:
+            for criterion in self.criteria:
+                if self.verdicts[criterion.name] == UNDECIDED:
+                    self.verdicts[criterion.name] = PASSED if criterion.result().passed \
+                        else FAILED
         return failed or reached, reached

@@ -83,6 +83,9 @@ OPTION_SPECS = (
     ParamSpec('max_speed', kind='float', default=None, unit='m/s', gt=0.0, optional=True,
               doc="speed_steering: largest speed action; null = min(the car's top speed, "
                   '20 m/s)'),
+    ParamSpec('max_steering', kind='float', default=None, unit='rad', gt=0.0, optional=True,
+              doc="car controls: largest steering angle action either way (at most the car's "
+                  "limit); null = the car's own limits"),
     ParamSpec('max_reverse_speed', kind='float', default=5.0, unit='m/s', ge=0.0,
               doc='speed_steering: largest reverse speed action'),
     ParamSpec(LIDAR, kind='raw', default=None, optional=True, check=_sensor_option,
@@ -119,6 +122,9 @@ OPTION_SPECS = (
     ParamSpec('solid_line_penalty', kind='float', default=1.0, ge=0.0,
               doc='with lanes: subtracted per solid line (or curb, road border, wall) the '
                   'ego crosses'),
+    ParamSpec('lane_centre_penalty', kind='float', default=0.0, unit='1/s', ge=0.0,
+              doc='with lanes: subtracted per second on a lane, times the distance from its '
+                  'centreline over half its width (0 at the centre, 1 at its edge)'),
     ParamSpec('terminate_on_collision', kind='bool', default=True,
               doc='a collision of the ego ends the episode (terminated)'),
     ParamSpec('terminate_off_road', kind='bool', default=False,

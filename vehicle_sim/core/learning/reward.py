@@ -20,6 +20,8 @@ reward = progress_weight * progress [m] - collision_penalty * (1 if a new collis
          + goal_reward * (1 on the step the goal is reached)
          [with a lane map:] - off_lane_penalty * (the step's duration [s] if it ends off
          every lane) - solid_line_penalty * (solid lines crossed in the step)
+         - lane_centre_penalty * (|offset| / half the lane's width, on a lane) * the step's
+         duration [s]
 
 Each term is reported separately (:func:`reward_terms`), so that a user's reward can reuse
 them and a learning curve can be read term by term. The ``lane`` term (:func:`lane_term`) is
@@ -37,7 +39,8 @@ from vehicle_sim.core.specs.errors import InvalidParameterError
 # with a lane map).
 TERMS = ('progress', 'collision', 'goal')
 LANE_TERMS = TERMS + ('lane',)
-_PENALTIES = ('collision_penalty', 'off_lane_penalty', 'solid_line_penalty')
+_PENALTIES = ('collision_penalty', 'off_lane_penalty', 'solid_line_penalty',
+              'lane_centre_penalty')
 
 
 @dataclass(frozen=True)
@@ -50,6 +53,8 @@ class RewardWeights:
     :param goal_reward: added on the step the goal is reached [-].
     :param off_lane_penalty: subtracted per second off every lane [1/s], >= 0.
     :param solid_line_penalty: subtracted per solid line crossed [-], >= 0.
+    :param lane_centre_penalty: subtracted per second on a lane, times the distance from its
+        centreline over half its width (0 at the centre, 1 at its edge) [1/s], >= 0.
     """
 
     progress_weight: float = 1.0
@@ -57,6 +62,7 @@ class RewardWeights:
     goal_reward: float = 10.0
     off_lane_penalty: float = 10.0
     solid_line_penalty: float = 1.0
+    lane_centre_penalty: float = 0.0
 
     def __post_init__(self):
         for name in ('progress_weight', 'goal_reward') + _PENALTIES:
@@ -90,7 +96,8 @@ def solid_crossings(invasions) -> int:
     return sum(1 for event in invasions if event.line_type in SOLID_TYPES)
 
 
-def lane_term(weights: RewardWeights, on_lane: bool, solid_lines: int, step_s: float) -> float:
+def lane_term(weights: RewardWeights, on_lane: bool, solid_lines: int, step_s: float,
+              centre_fraction: float = 0.0) -> float:
     """
     Return the weighted ``lane`` term of one step (0 or negative).
 
@@ -98,9 +105,16 @@ def lane_term(weights: RewardWeights, on_lane: bool, solid_lines: int, step_s: f
         of a lane's centreline, between its ends).
     :param solid_lines: solid lines crossed during the step (:func:`solid_crossings`).
     :param step_s: the step's duration [s] (an env step: action_repeat basic steps).
+    :param centre_fraction: on a lane, |offset from its centreline| / half its width at the
+        step's end (0 .. 1).
     """
-    penalty = (0.0 if on_lane else weights.off_lane_penalty * float(step_s)) \
-        + (weights.solid_line_penalty * solid_lines if solid_lines else 0.0)
+    if on_lane:
+        penalty = weights.lane_centre_penalty * float(centre_fraction) * float(step_s) \
+            if weights.lane_centre_penalty else 0.0
+    else:
+        penalty = weights.off_lane_penalty * float(step_s)
+    if solid_lines:
+        penalty += weights.solid_line_penalty * solid_lines
     return -penalty if penalty else 0.0
 
 

@@ -1,0 +1,59 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+docs/learning.md shows the figures of the committed training run, as the script wrote them.
+
+examples/train_highway.py wrote docs/learning/highway_ppo_summary.json and the curve files; the
+table in docs/learning.md must be ``results_markdown`` of that summary (not typed in), and the
+committed model's card must be the script's. Needs neither stable-baselines3 nor PyTorch.
+"""
+
+import csv
+import importlib.util
+import json
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+RUN = ROOT / 'docs' / 'learning'
+
+
+def _script():
+    spec = importlib.util.spec_from_file_location('train_highway',
+                                                  ROOT / 'examples' / 'train_highway.py')
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_the_docs_show_the_committed_runs_figures():
+    summary = json.loads((RUN / 'highway_ppo_summary.json').read_text(encoding='utf-8'))
+    text = (ROOT / 'docs' / 'learning.md').read_text(encoding='utf-8')
+    assert _script().results_markdown(summary) in text
+    assert summary['evaluation']['trained']['episodes'] == 100
+
+
+def test_the_committed_curve_is_the_runs_and_the_model_has_the_scripts_card():
+    summary = json.loads((RUN / 'highway_ppo_summary.json').read_text(encoding='utf-8'))
+    with open(RUN / 'highway_ppo_curve.csv', encoding='utf-8') as stream:
+        rows = list(csv.DictReader(stream))
+    assert rows and summary['final_training_row'] == {
+        key: type(value)(rows[-1][key]) for key, value in summary['final_training_row'].items()}
+    assert (ROOT / 'docs' / 'highway_ppo_learning_curve.png').is_file()
+    script = _script()
+    card = json.loads((ROOT / 'examples' / 'models' / 'highway_ppo.card.json')
+                      .read_text(encoding='utf-8'))
+    assert card == script.card().as_dict()
+    assert summary['env_options'] == script.ENV_OPTIONS
