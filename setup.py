@@ -43,6 +43,9 @@ EXTRAS = {
 # decode a SceneUpdate with the schema its channel advertises.
 EXTRAS['test'] = (['pytest', 'pytest-timeout', 'ruff', 'pyarrow', 'protobuf']
                   + sorted({req for reqs in EXTRAS.values() for req in reqs}))
+# Training on Ray (examples/train_highway_ray.py, docs/learning.md), not in `test`: RLlib
+# (which pins its Gymnasium release) and PyTorch (a CPU build: docs/learning.md).
+EXTRAS['learn-ray'] = ['ray[rllib]', 'torch']
 # Benchmark only, not in `test`: bench_gym.py and bench_traffic.py compare with highway-env.
 EXTRAS['bench'] = ['gymnasium>=1.0', 'highway-env']
 
