@@ -128,6 +128,9 @@ def make_config(card, seed, runners, envs_per_runner=1, batch=2000, window=20):
             .framework('torch')
             .env_runners(num_env_runners=runners, num_envs_per_env_runner=envs_per_runner,
                          num_cpus_per_env_runner=1,
+                         # wait for every EnvRunner's steps: RLlib's default (60 s) drops the
+                         # samples of an EnvRunner slower than that, on a loaded machine all
+                         sample_timeout_s=None,
                          env_to_module_connector=lambda env, spaces=None, device=None: [
                              FlattenObservations(), MeanStdFilter()])
             .learners(num_learners=0, num_gpus_per_learner=0)

@@ -64,6 +64,21 @@ def test_a_bad_option_is_refused_naming_it(tmp_path, option, value, said):
     assert not (tmp_path / 'out').exists()
 
 
+def test_a_slow_env_runner_s_samples_are_kept():
+    pytest.importorskip('ray.rllib', reason="training on Ray needs the 'learn-ray' extra "
+                                            "(pip install 'vehicle_sim[learn-ray]')")
+    sys.path.insert(0, str(SCRIPT.parent))
+    try:
+        import train_highway_ray
+    finally:
+        sys.path.remove(str(SCRIPT.parent))
+    config = train_highway_ray.make_config(train_highway_ray.highway_card(), seed=0, runners=2)
+    # RLlib's default, 60 s, discards what a slower EnvRunner sampled: 0 steps per iteration
+    # on a loaded machine
+    assert config.sample_timeout_s is None
+    assert config.num_env_runners == 2 and config.seed == 0
+
+
 def test_two_iterations_on_the_highway_give_a_finite_learning_curve(tmp_path):
     for module in ('ray.rllib', 'torch'):
         pytest.importorskip(module, reason="training on Ray needs the 'learn-ray' extra "
