@@ -39,6 +39,7 @@ throughput and the last row.
 
 import argparse
 import csv
+import json
 import math
 import os
 from pathlib import Path
@@ -162,13 +163,17 @@ def train(out, budget_s=600.0, seed=0, runners=None, envs_per_runner=1, batch=20
 
     :param runners: EnvRunners; None = one per CPU of the Ray cluster.
     :param address: a running Ray cluster to join; None = start Ray on this machine.
-    :return: the learning curve, a list of :data:`CURVE_FIELDS` dicts (also written to
-        ``out/learning_curve.csv``).
+    :return: (curve, facts): the learning curve, a list of :data:`CURVE_FIELDS` dicts (also
+        written to ``out/learning_curve.csv``), and {runners, cluster_cpus, setup_s (Ray's
+        start and the algorithm's build), load_start, load_end (the machine's 1-minute load
+        averages)}.
     """
     ray, _, _ = require_rllib()
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     card = card or highway_card()
+    facts = {'load_start': round(os.getloadavg()[0], 2)}
+    setup_start = time.perf_counter()
     started_here = not ray.is_initialized()
     if started_here:
         if address:
@@ -178,9 +183,12 @@ def train(out, budget_s=600.0, seed=0, runners=None, envs_per_runner=1, batch=20
                      log_to_driver=False)
     algo = None
     try:
+        cluster_cpus = int(ray.cluster_resources().get('CPU', 1))
         if runners is None:
-            runners = max(1, int(ray.cluster_resources().get('CPU', 1)))
+            runners = max(1, cluster_cpus)
         algo = make_config(card, seed, runners, envs_per_runner, batch, window).build_algo()
+        facts.update(runners=runners, cluster_cpus=cluster_cpus,
+                     setup_s=round(time.perf_counter() - setup_start, 1))
         curve = []
         start = time.perf_counter()
         while True:
@@ -194,15 +202,65 @@ def train(out, budget_s=600.0, seed=0, runners=None, envs_per_runner=1, batch=20
             if (iterations is not None and len(curve) >= iterations) \
                     or row['wall_s'] >= budget_s:
                 break
+        facts['load_end'] = round(os.getloadavg()[0], 2)
         checkpoint = out / 'checkpoint'
         algo.save_to_path(str(checkpoint))
         save_card(card, checkpoint)
-        return curve
+        return curve, facts
     finally:
         if algo is not None:
             algo.stop()
         if started_here:
             ray.shutdown()
+
+
+MARKS_S = (60.0, 120.0, 300.0, 600.0, 1200.0, 1800.0)
+
+
+def run_summary(args, curve, facts):
+    """Return the run's summary (summary.json): its settings, throughput and curve marks."""
+    last = curve[-1]
+    # the first iteration at or past each wall-time mark, and the last
+    marks = [next(row for row in curve if row['wall_s'] >= mark) for mark in MARKS_S
+             if last['wall_s'] >= mark]
+    if not marks or marks[-1] is not last:
+        marks.append(last)
+    return dict(facts, seed=args.seed, budget_s=args.budget_s,
+                envs_per_runner=args.envs_per_runner, batch=args.batch, window=args.window,
+                action_repeat=args.action_repeat, cpu_count=os.cpu_count(),
+                env_steps=last['env_steps'], episodes=last['episodes'],
+                train_wall_s=last['wall_s'],
+                env_steps_per_s=round(last['env_steps'] / max(last['wall_s'], 1e-9), 2),
+                marks=marks)
+
+
+def _figure(value, digits=2):
+    return 'n/a' if value is None or (isinstance(value, float) and math.isnan(value)) \
+        else f'{value:.{digits}f}'
+
+
+def results_markdown(summary):
+    """Return the run's figures as docs/learning.md shows them (from summary.json)."""
+    lines = [
+        f"Seed {summary['seed']}, {summary['runners']} EnvRunner(s) x "
+        f"{summary['envs_per_runner']} world(s) on a Ray cluster of {summary['cluster_cpus']} "
+        f"CPU(s), PyTorch on the CPU, {summary['batch']} env steps per iteration: "
+        f"{summary['env_steps']} env steps ({summary['episodes']} episodes) in "
+        f"{summary['train_wall_s'] / 60.0:.1f} min of training, "
+        f"{summary['env_steps_per_s']:.1f} env steps/s (Ray's start and the build before it: "
+        f"{summary['setup_s']:.0f} s). Load average {summary['load_start']:.1f} at the start, "
+        f"{summary['load_end']:.1f} at the end, on {summary['cpu_count']} CPUs.",
+        '',
+        '| after [min] | env steps | env steps/s | mean return | mean length [steps] '
+        '| success rate |',
+        '|---|---|---|---|---|---|',
+    ]
+    for row in summary['marks']:
+        lines.append(f"| {row['wall_s'] / 60.0:.1f} | {row['env_steps']} | "
+                     f"{row['env_steps'] / max(row['wall_s'], 1e-9):.1f} | "
+                     f"{_figure(row['mean_return'])} | {_figure(row['mean_length'], 1)} | "
+                     f"{_figure(row['success_rate'])} |")
+    return '\n'.join(lines) + '\n'
 
 
 def write_curve(curve, path):
@@ -262,9 +320,12 @@ def main(argv=None):
         require_rllib()
     except ImportError as error:
         raise SystemExit(str(error)) from None
-    curve = train(args.out, args.budget_s, args.seed, args.runners, args.envs_per_runner,
-                  args.batch, args.window, args.iterations, args.address,
-                  highway_card(args.action_repeat))
+    curve, facts = train(args.out, args.budget_s, args.seed, args.runners,
+                         args.envs_per_runner, args.batch, args.window, args.iterations,
+                         args.address, highway_card(args.action_repeat))
+    summary = run_summary(args, curve, facts)
+    Path(args.out, 'summary.json').write_text(json.dumps(summary, indent=2) + '\n',
+                                              encoding='utf-8')
     last = curve[-1]
     print(f"{last['env_steps']} env steps in {last['wall_s']:.0f} s "
           f"({last['env_steps'] / max(last['wall_s'], 1e-9):.1f} env steps/s); last "
