@@ -271,21 +271,25 @@ def write_curve(curve, path):
         writer.writerows(curve)
 
 
-def plot_curve(curve, path, title):
-    """Write the curve as a PNG (return and success rate against env steps); needs matplotlib."""
+def plot_curve(curve, path, title, window=20):
+    """Write the curve as a PNG: return and success rate against env steps and wall time."""
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
-    figure, (top, bottom) = plt.subplots(2, 1, figsize=(6, 5), sharex=True)
+    figure, axes = plt.subplots(2, 2, figsize=(8, 5), sharey='row')
     steps = [r['env_steps'] for r in curve]
-    top.plot(steps, [r['mean_return'] for r in curve])
-    top.set_ylabel('mean return')
-    bottom.plot(steps, [r['success_rate'] for r in curve])
-    bottom.set_ylabel('success rate')
-    bottom.set_xlabel('environment steps')
-    top.set_title(title)
+    minutes = [r['wall_s'] / 60.0 for r in curve]
+    for column, (x, label) in enumerate(((steps, 'environment steps'),
+                                         (minutes, 'wall time [min]'))):
+        axes[0, column].plot(x, [r['mean_return'] for r in curve])
+        axes[1, column].plot(x, [r['success_rate'] for r in curve], color='tab:green')
+        axes[1, column].set_xlabel(label)
+        axes[1, column].set_ylim(-0.02, 1.02)
+    axes[0, 0].set_ylabel(f'mean return,\nlast {window} episodes')
+    axes[1, 0].set_ylabel(f'success rate,\nlast {window} episodes')
+    figure.suptitle(title, fontsize=10)
     figure.tight_layout()
-    figure.savefig(path, dpi=100)
+    figure.savefig(path, dpi=80)
     plt.close(figure)
 
 
@@ -333,7 +337,7 @@ def main(argv=None):
           f"{last['success_rate']:.2f}; files in {args.out}")
     try:
         plot_curve(curve, os.path.join(args.out, 'learning_curve.png'),
-                   'RLlib PPO on vehicle_sim/Drive-v0, highway with traffic')
+                   'RLlib PPO on Drive-v0, highway_traffic (training episodes)', args.window)
     except ImportError:
         pass
 
