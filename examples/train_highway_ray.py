@@ -221,9 +221,12 @@ def run_summary(args, curve, facts):
     """Return the run's summary (summary.json): its settings, throughput and curve marks."""
     last = curve[-1]
     # the first iteration at or past each wall-time mark, and the last
-    marks = [next(row for row in curve if row['wall_s'] >= mark) for mark in MARKS_S
-             if last['wall_s'] >= mark]
-    if not marks or marks[-1] is not last:
+    marks = []
+    for mark in MARKS_S:
+        row = next((row for row in curve if row['wall_s'] >= mark), last)
+        if row not in marks:
+            marks.append(row)
+    if marks[-1] is not last:
         marks.append(last)
     return dict(facts, seed=args.seed, budget_s=args.budget_s,
                 envs_per_runner=args.envs_per_runner, batch=args.batch, window=args.window,

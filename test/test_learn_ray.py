@@ -24,6 +24,8 @@ script's clear errors (the extra missing, a bad budget) need neither.
 """
 
 import csv
+import importlib.util
+import json
 import math
 from pathlib import Path
 import subprocess
@@ -34,8 +36,16 @@ import pytest
 from vehicle_sim.gym.policy_card import load_card
 
 SCRIPT = Path(__file__).resolve().parents[1] / 'examples' / 'train_highway_ray.py'
+ROOT = SCRIPT.parents[1]
 # Generous bound: Ray's start, an EnvRunner process building the highway, two iterations.
 TIMEOUT_S = 540
+
+
+def _script():
+    spec = importlib.util.spec_from_file_location('train_highway_ray', SCRIPT)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def _run(*args, prelude=''):
@@ -67,11 +77,7 @@ def test_a_bad_option_is_refused_naming_it(tmp_path, option, value, said):
 def test_a_slow_env_runner_s_samples_are_kept():
     pytest.importorskip('ray.rllib', reason="training on Ray needs the 'learn-ray' extra "
                                             "(pip install 'vehicle_sim[learn-ray]')")
-    sys.path.insert(0, str(SCRIPT.parent))
-    try:
-        import train_highway_ray
-    finally:
-        sys.path.remove(str(SCRIPT.parent))
+    train_highway_ray = _script()
     config = train_highway_ray.make_config(train_highway_ray.highway_card(), seed=0, runners=2)
     # RLlib's default, 60 s, discards what a slower EnvRunner sampled: 0 steps per iteration
     # on a loaded machine
@@ -105,3 +111,23 @@ def test_two_iterations_on_the_highway_give_a_finite_learning_curve(tmp_path):
     assert card.observation_keys == ('lane', 'twist', 'objects')
     assert card.options['objects'] is True and card.options['max_speed'] == 40.0
     assert f'{steps[1]} env steps in' in done.stdout
+    # the run's summary, as docs/learning.md shows a committed one
+    summary = json.loads((out / 'summary.json').read_text(encoding='utf-8'))
+    assert summary['env_steps'] == steps[1] and summary['runners'] == 1
+    assert summary['seed'] == 3 and summary['batch'] == 200
+    assert summary['marks'][-1]['env_steps'] == steps[1]
+    assert f'| {steps[1]} |' in _script().results_markdown(summary)
+
+
+def test_the_docs_show_the_committed_ray_runs_figures():
+    # docs/learning.md's "Training with Ray" figures are the script's results_markdown of the
+    # committed run's summary (not typed in), beside its curve
+    run = ROOT / 'docs' / 'learning'
+    summary = json.loads((run / 'highway_ray_summary.json').read_text(encoding='utf-8'))
+    text = (ROOT / 'docs' / 'learning.md').read_text(encoding='utf-8')
+    assert _script().results_markdown(summary) in text
+    with open(run / 'highway_ray_curve.csv', encoding='utf-8') as stream:
+        rows = list(csv.DictReader(stream))
+    assert int(rows[-1]['env_steps']) == summary['env_steps']
+    assert float(rows[-1]['wall_s']) == summary['train_wall_s']
+    assert (ROOT / 'docs' / 'highway_ray_learning_curve.png').is_file()
