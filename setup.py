@@ -46,6 +46,9 @@ EXTRAS['test'] = (['pytest', 'pytest-timeout', 'ruff', 'pyarrow', 'protobuf']
 # Learning (examples/train_highway.py, vehicle_sim/gym/scaled_inputs.py), not in `test`: PyTorch
 # is large; `make learn` installs it from PyTorch's CPU wheel index (docs/learning.md).
 EXTRAS['learn'] = ['gymnasium>=1.0', 'stable-baselines3>=2.3', 'torch>=2.3', 'matplotlib']
+# Training on Ray (examples/train_highway_ray.py, docs/learning.md), not in `test`: RLlib
+# (which pins its Gymnasium release) and PyTorch (a CPU build: docs/learning.md).
+EXTRAS['learn-ray'] = ['ray[rllib]', 'torch>=2.3']
 # Benchmark only, not in `test`: bench_gym.py and bench_traffic.py compare with highway-env.
 EXTRAS['bench'] = ['gymnasium>=1.0', 'highway-env']
 
