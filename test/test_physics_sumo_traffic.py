@@ -328,6 +328,33 @@ def test_two_worlds_in_one_process_the_second_over_traci(net):
     assert a.session.closed and sumo_session._libsumo_user[0] is None
 
 
+def test_libsumo_is_read_by_its_getters_and_traci_by_subscriptions(net):
+    # SUMO works out every subscribed value at each of its steps (with 250 vehicles and persons
+    # that doubled its step): over libsumo the engine calls the getters and subscribes to no
+    # vehicle or person; over TraCI, where each getter is a round trip, one subscription each.
+    # The same bodies and objects (their predicted paths from each vehicle's lane) either way
+    first = _world(net, {'demand': DEMAND}, ego=(-30.0, -30.0, 0.0))
+    try:
+        second = _world(net, {'demand': DEMAND}, ego=(-30.0, -30.0, 0.0))
+        try:
+            a, b = first.parts['traffic'], second.parts['traffic']
+            for _ in range(1500):
+                first.world.step()
+                second.world.step()
+            assert (a.session.transport, b.session.transport) == ('libsumo', 'traci')
+            for domain in ('vehicle', 'person'):
+                assert getattr(a.session.api, domain).getAllSubscriptionResults() == {}
+                assert len(getattr(b.session.api, domain).getAllSubscriptionResults()) > 3
+            assert len(a.agents()) > 10 and sorted(a.agents()) == sorted(b.agents())
+            objects = [sorted((o.name, o.path) for o in bodies.objects()) for bodies in (a, b)]
+            assert objects[0] == objects[1]
+            assert sum(len(set(path)) > 1 for _, path in objects[0]) > 5
+        finally:
+            second.world.close()
+    finally:
+        first.world.close()
+
+
 def test_our_car_is_in_sumo_at_its_pose_and_speed_while_on_a_lane(net, tmp_path):
     routes = write_routes(tmp_path, [('a', 0, 'B0B1')])
     scene = _world(net, {'routes': routes}, ego=(LANE_X, 12.0, math.pi / 2), folder=tmp_path)

@@ -41,8 +41,8 @@ class SumoViews:
     """
     The traffic-body contract's views of SumoBodies' serving bodies (agents, objects, boxes).
 
-    Uses SumoBodies' ``world``, ``session``, ``graph``, ``_slots``, ``_by_id``, ``_lengths`` and
-    ``_placed_at``.
+    Uses SumoBodies' ``world``, ``session``, ``graph``, ``_slots``, ``_by_id``, ``_lengths``,
+    ``_reads`` and ``_placed_at``.
     """
 
     @property
@@ -130,8 +130,14 @@ class SumoViews:
 
     def _lane_path(self, slot, since, count, step_s):
         """Return a vehicle's path along the lane graph, or None (no graph, lane not in it)."""
-        if self.graph is None or slot.lane is None:
+        if self.graph is None or slot.person:
             return None
+        if slot.lane is None:             # read now, once per SUMO step (sumo_reads.py)
+            with self.session.errors(f'reading vehicle {slot.sumo_id!r}'):
+                try:
+                    slot.lane = self._reads.lane(self.session.api, slot.sumo_id)
+                except self.session.refusal:
+                    return None
         lane_id, position, route_index = slot.lane
         try:
             lane = self.graph.lane_named(lane_id)
