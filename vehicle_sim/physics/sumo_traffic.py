@@ -62,7 +62,7 @@ from vehicle_sim.core.traffic.idm import IdmParams
 from vehicle_sim.physics.gui import FRAME_PERIOD_S
 from vehicle_sim.physics.sumo_demand import demand_routes
 from vehicle_sim.physics.sumo_ours import OURS_PREFIX, SumoOurs
-from vehicle_sim.physics.sumo_pool import follow_trail, JUMP_M, SumoPool
+from vehicle_sim.physics.sumo_pool import extend_trail, JUMP_M, SumoPool
 from vehicle_sim.physics.sumo_reads import reads_for
 from vehicle_sim.physics.sumo_session import load_traci, SumoError, SumoSession
 from vehicle_sim.physics.sumo_signals import SumoSignals
@@ -189,6 +189,7 @@ class SumoBodies(SumoPool, SumoViews):
         self._cid = world.client_id
         self._slots = []
         self._table = MotionTable()       # kinematics(), rebuilt after each update
+        self._updates = 0                 # SUMO's positions taken (_place) since the start
         self._ours = world.vehicle_bodies()
         self._outlines = [body.outline for body in self._ours]
         self.session = None
@@ -314,12 +315,13 @@ class SumoBodies(SumoPool, SumoViews):
             if slot is None:                # back from a teleport (SUMO's jam resolution)
                 slot = self._take(api, False, sumo_id)
             seen.add(key)
-            if slot.front != (fx, fy, angle):   # centred on the path its front took
-                slot.front = (fx, fy, angle)      # (SUMO bends it so)
-                slot.state = (*follow_trail(slot.trail, fx, fy, radians(90.0 - angle),
-                                            slot.size[0], speed * step_s + JUMP_M), speed)
-            else:                                 # standing: where it was
+            if slot.front != (fx, fy, angle):   # centred on the path its front took (SUMO
+                slot.front = (fx, fy, angle)      # bends it so), worked out when read
+                extend_trail(slot.trail, fx, fy, speed * step_s + JUMP_M, slot.size[0])
+                slot.state = None
+            elif slot.state is not None:          # standing: where it was
                 slot.state = (*slot.state[:3], speed)
+            slot.speed = speed
             slot.lane = lane                      # None: read when the objects are
         for sumo_id, (fx, fy), angle, speed in reads.persons(api):
             key = (True, sumo_id)
@@ -329,6 +331,7 @@ class SumoBodies(SumoPool, SumoViews):
             seen.add(key)
             yaw = radians(90.0 - angle)
             half = 0.5 * slot.size[0]
+            slot.front, slot.speed = (fx, fy, angle), speed
             slot.state = (fx - half * cos(yaw), fy - half * sin(yaw), yaw, speed)
         for key in [key for key in self._by_id if key not in seen]:   # arrived
             slot = self._by_id.pop(key)
@@ -361,16 +364,25 @@ class SumoBodies(SumoPool, SumoViews):
 
     def _nearby(self, ours):
         # the bodies near each of ours, where SUMO has them or where they stand (not moved
-        # since an earlier update): put where they are at each step, their contacts checked
+        # since an earlier update): put where they are at each step, their contacts checked;
+        # a vehicle's box (within half its length of its front) worked out only when near
         limit = NEAR_M * NEAR_M
         serving = list(self._by_id.values())
         near = []
         for o in ours:
             x, y = o.x_m, o.y_m
-            near.append([slot for slot in serving
-                         if (slot.state[0] - x) ** 2 + (slot.state[1] - y) ** 2 < limit
-                         or (slot.at is not None
-                             and (slot.at[0] - x) ** 2 + (slot.at[1] - y) ** 2 < limit)])
+            found = []
+            for slot in serving:
+                at = slot.at
+                if at is not None and (at[0] - x) ** 2 + (at[1] - y) ** 2 < limit:
+                    found.append(slot)
+                    continue
+                fx, fy, _ = slot.front
+                if abs(fx - x) < NEAR_M + slot.size[0] and abs(fy - y) < NEAR_M + slot.size[0]:
+                    state = self._state(slot)
+                    if (state[0] - x) ** 2 + (state[1] - y) ** 2 < limit:
+                        found.append(slot)
+            near.append(found)
         found = {slot.index: slot for slots in near for slot in slots}
         return near, [found[index] for index in sorted(found)]
 
