@@ -41,9 +41,16 @@ from sumo_helpers import one_lane_grid_net, write_routes  # noqa: E402
 
 from vehicle_sim.config import world_from_data  # noqa: E402
 from vehicle_sim.core.specs.errors import InvalidParameterError  # noqa: E402
+from vehicle_sim.physics import sumo_pool  # noqa: E402
 from vehicle_sim.physics.scene import build_scene  # noqa: E402
 from vehicle_sim.physics.sensors.rays import cast_rays  # noqa: E402
-from vehicle_sim.physics.sumo_pool import follow_trail, JUMP_M  # noqa: E402
+from vehicle_sim.physics.sumo_pool import (  # noqa: E402
+    extend_trail,
+    follow_trail,
+    JUMP_M,
+    TRAIL_POINTS,
+    trail_pose,
+)
 
 LANE_X = 1.6          # edge A0A1's lane (northbound) runs along x = 1.6, y from 5.2 to 92.8
 STEPS_PER_S = 100     # world steps a second (the default step, 0.01 s)
@@ -104,6 +111,51 @@ def test_a_turning_vehicles_box_is_centred_on_the_path_its_front_took():
     cx, cy, yaw = follow_trail(trail, 50.0, 50.0, 0.0, length, 0.1 + JUMP_M)
     assert (cx, cy, yaw) == pytest.approx((47.5, 50.0, 0.0))
     assert trail == [(50.0, 50.0, 0.0)]               # (x, y, arc length)
+
+
+def test_a_box_worked_out_when_read_is_the_one_worked_out_at_every_step():
+    # the engine extends a vehicle's trail at each SUMO step and works its box out when
+    # something reads it: the same box as follow_trail's at every step, a long trail cut short
+    # on the way (a car creeping 2 cm a step round a bend, 600 steps; a jump starts it again)
+    path = [(20.0 * math.cos(0.002 * k), 20.0 * math.sin(0.002 * k), math.pi / 2 + 0.002 * k)
+            for k in range(600)] + [(90.0, 0.0, 0.0), (90.5, 0.0, 0.0)]
+    length, eager, lazy = 4.5, [], []
+    for k, (x, y, heading) in enumerate(path):
+        box = follow_trail(eager, x, y, heading, length, 0.1 + JUMP_M)
+        extend_trail(lazy, x, y, 0.1 + JUMP_M, length)
+        assert len(lazy) <= TRAIL_POINTS + 1
+        if k in (0, 450) or k >= 599:
+            assert trail_pose(lazy, x, y, heading, length) == box
+    assert box == pytest.approx((88.25, 0.0, 0.0))
+
+
+def _boxes_worked_out(monkeypatch):
+    calls = []
+    original = sumo_pool.trail_pose
+    monkeypatch.setattr(sumo_pool, 'trail_pose', lambda *a: calls.append(a) or original(*a))
+    return calls
+
+
+def test_boxes_are_worked_out_only_for_what_reads_them(net, monkeypatch):
+    # nothing reads the world (our car 300 m off): SUMO's steps work out no vehicle's box;
+    # reading the agents works each out once; all of them the boxes of a world where every
+    # body is put where it is at every step
+    calls = _boxes_worked_out(monkeypatch)
+    found = []
+    for every_step in (False, True):
+        scene = _world(net, {'demand': DEMAND, 'seed': 3}, ego=(-300.0, -300.0, 0.0))
+        try:
+            for _ in range(10 * STEPS_PER_S):
+                scene.world.step()
+                if every_step:
+                    scene.world.sync_bodies()
+            if not every_step:
+                assert calls == []
+            found.append(sorted(scene.parts['traffic'].agents()))
+        finally:
+            scene.world.close()
+    moving = sum(speed > 0.5 for *_, speed in found[0])
+    assert moving > 5 and found[0] == found[1]
 
 
 def test_the_bodies_are_where_sumo_has_its_vehicles_and_persons(net):
@@ -330,6 +382,33 @@ def test_two_worlds_in_one_process_the_second_over_traci(net):
     finally:
         first.world.close()
     assert a.session.closed and sumo_session._libsumo_user[0] is None
+
+
+def test_libsumo_is_read_by_its_getters_and_traci_by_subscriptions(net):
+    # SUMO works out every subscribed value at each of its steps (with 250 vehicles and persons
+    # that doubled its step): over libsumo the engine calls the getters and subscribes to no
+    # vehicle or person; over TraCI, where each getter is a round trip, one subscription each.
+    # The same bodies and objects (their predicted paths from each vehicle's lane) either way
+    first = _world(net, {'demand': DEMAND}, ego=(-30.0, -30.0, 0.0))
+    try:
+        second = _world(net, {'demand': DEMAND}, ego=(-30.0, -30.0, 0.0))
+        try:
+            a, b = first.parts['traffic'], second.parts['traffic']
+            for _ in range(1500):
+                first.world.step()
+                second.world.step()
+            assert (a.session.transport, b.session.transport) == ('libsumo', 'traci')
+            for domain in ('vehicle', 'person'):
+                assert getattr(a.session.api, domain).getAllSubscriptionResults() == {}
+                assert len(getattr(b.session.api, domain).getAllSubscriptionResults()) > 3
+            assert len(a.agents()) > 10 and sorted(a.agents()) == sorted(b.agents())
+            objects = [sorted((o.name, o.path) for o in bodies.objects()) for bodies in (a, b)]
+            assert objects[0] == objects[1]
+            assert sum(len(set(path)) > 1 for _, path in objects[0]) > 5
+        finally:
+            second.world.close()
+    finally:
+        first.world.close()
 
 
 def test_our_car_is_in_sumo_at_its_pose_and_speed_while_on_a_lane(net, tmp_path):

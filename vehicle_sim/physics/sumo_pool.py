@@ -41,8 +41,10 @@ PERSON_COLOUR = (0.95, 0.55, 0.15, 1.0)
 # jumped (SUMO's teleport): its trail starts again there
 JUMP_M = 3.0
 TRAIL_STEP_M = 0.01              # the front's points along its trail are this far apart at least
+TRAIL_POINTS = 200               # a trail no box was worked out on drops its old points past this
 
-__all__ = ['follow_trail', 'instance_name', 'JUMP_M', 'NAME_PREFIX', 'SumoPool', 'SumoSlot']
+__all__ = ['extend_trail', 'follow_trail', 'instance_name', 'JUMP_M', 'NAME_PREFIX', 'SumoPool',
+           'SumoSlot', 'trail_pose']
 
 
 def instance_name(person, sumo_id) -> str:
@@ -93,6 +95,9 @@ def follow_trail(trail, x, y, yaw, length, jump_m):
     end reaches over the corner's walking area. Where the path is shorter than the vehicle (it
     has just departed) the rest goes straight back along ``yaw`` from the path's oldest point.
 
+    :func:`extend_trail` then :func:`trail_pose`: the engine extends each vehicle's trail at
+    every SUMO step and works its box out only when something reads it, with the same result.
+
     :param trail: the front's earlier points [(x, y, arc length)], oldest first: (x, y) is
         added, and the points behind the rear's are dropped; the arc lengths let the points
         a half and a whole length back be found by bisection (a vehicle creeping in a queue
@@ -100,19 +105,41 @@ def follow_trail(trail, x, y, yaw, length, jump_m):
     :param jump_m: a front further than this from the trail's last point jumped (a teleport):
         the trail starts again.
     """
+    extend_trail(trail, x, y, jump_m, length)
+    return trail_pose(trail, x, y, yaw, length)
+
+
+def extend_trail(trail, x, y, jump_m, length):
+    """
+    Add a vehicle's front (x, y) [m] to its trail (:func:`follow_trail`): a point 1 cm on.
+
+    A front further than ``jump_m`` from the last point starts the trail again; a long trail
+    drops its points more than ``length`` behind the front (those a box never needs again).
+    """
     if trail:
         lx, ly, ls = trail[-1]
         d = math.hypot(x - lx, y - ly)
         if d > jump_m:
             trail.clear()
             trail.append((x, y, 0.0))
-            d, ls = 0.0, 0.0
         elif d >= TRAIL_STEP_M:
             trail.append((x, y, ls + d))
+            if len(trail) > TRAIL_POINTS:
+                _, index = _back_along(trail, x, y, ls + d, 0.0, length)
+                del trail[:index]
     else:
         trail.append((x, y, 0.0))
-        d, ls = 0.0, 0.0
-    s = ls + d
+
+
+def trail_pose(trail, x, y, yaw, length):
+    """
+    Return (centre x, y, yaw) of the box whose front (x, y) [m] is at the trail's end.
+
+    The front is the last one :func:`extend_trail` was given (the arc length to it from the
+    last point: less than TRAIL_STEP_M); the points behind the rear's are dropped.
+    """
+    lx, ly, ls = trail[-1]
+    s = ls + math.hypot(x - lx, y - ly)
     (mx, my), _ = _back_along(trail, x, y, s, yaw, 0.5 * length)
     (bx, by), index = _back_along(trail, x, y, s, yaw, length)
     del trail[:index]
@@ -125,7 +152,7 @@ class SumoSlot:
 
     __slots__ = ('index', 'name', 'body_id', 'size', 'clearance', 'colour', 'key', 'sumo_id',
                  'person', 'vclass', 'state', 'motion', 'stopped', 'lane', 'route',
-                 'trail', 'instance', 'front', 'at', 'synced')
+                 'trail', 'instance', 'front', 'speed', 'at', 'synced', 'placed')
 
     def __init__(self, index, body_id, size, clearance, colour, key):
         self.index = index
@@ -138,17 +165,22 @@ class SumoSlot:
         self.sumo_id = None                # whom it serves (None: parked)
         self.person = False
         self.vclass = 'passenger'
-        self.state = None                  # (x, y, yaw, speed) of the footprint centre
-        self.motion = None                 # (x, y, z, qz, qw, vx, vy) at the last update
+        self.state = None                  # (x, y, yaw, speed) of the footprint centre at the
+        #                                    update (None: not worked out yet, SumoPool._state)
+        self.motion = None                 # (x, y, z, qz, qw, vx, vy) at the update (when
+        #                                    ``placed`` is the pool's update: SumoPool._motion)
         self.stopped = False               # touched one of ours: stopped for good
         self.lane = None                   # (SUMO lane id, lane position [m], route index)
         self.route = ()                    # its route's SUMO edges (at its departure)
         self.trail = []                    # its front's earlier points (follow_trail)
         self.instance = 0                  # the instance id of whom it serves (0: parked)
         self.front = None                  # SUMO's (x, y, angle) of its front at the update
+        #                                    (None: parked, or not read from SUMO yet)
+        self.speed = 0.0                   # SUMO's speed at the update [m/s]
         self.at = None                     # (x, y) where its body stands now (None: parked)
         self.synced = -1                   # the world step it was put where it is (-1: not
         #                                    since SUMO's last step)
+        self.placed = -1                   # the update its ``motion`` is of
 
     @property
     def z(self):
@@ -161,7 +193,11 @@ class SumoPool:
     The pool's part of SumoBodies: its bodies taken, parked, placed, moved and stopped.
 
     Uses SumoBodies' ``world``, ``session``, ``_cid``, ``_slots``, ``_by_id``, ``_free``,
-    ``_table``, ``_types``, ``heights`` and ``_placed_at``.
+    ``_table``, ``_types``, ``heights``, ``_updates`` and ``_placed_at``.
+
+    A vehicle's box is worked out on its trail (:func:`trail_pose`) when something needs it
+    (:meth:`_state`, :meth:`_motion`), not at every SUMO step: a lidar in a city reads a tenth
+    of the bodies.
     """
 
     def _take(self, api, person, sumo_id):
@@ -198,7 +234,7 @@ class SumoPool:
             slot = SumoSlot(index, body_id, size, clearance, colour, key)
             self._slots.append(slot)
         slot.sumo_id, slot.person, slot.vclass, slot.stopped = sumo_id, person, vclass, False
-        slot.trail, slot.front = [], None
+        slot.trail, slot.front, slot.placed = [], None, -1
         labels = self.world.labels
         slot.instance = labels.instance(instance_name(person, sumo_id))
         labels.set(slot.body_id, LABELS[label_of_class(found_class)].name, slot.instance)
@@ -208,6 +244,7 @@ class SumoPool:
     def _park(self, slot):
         slot.sumo_id, slot.state, slot.motion, slot.stopped = None, None, None, False
         slot.lane, slot.route, slot.instance, slot.at, slot.synced = None, (), 0, None, -1
+        slot.placed, slot.front = -1, None
         self.world.labels.forget(slot.body_id)
         self._table.invalidate()
         pybullet.resetBasePositionAndOrientation(
@@ -222,16 +259,31 @@ class SumoPool:
         since the update) when it is near one of ours (each step), when rays pass near it, or
         before any other reading of the world.
         """
-        cos, sin = math.cos, math.sin
+        self._updates += 1
         for slot in self._by_id.values():
-            x, y, yaw, speed = slot.state
-            half = 0.5 * yaw
-            slot.motion = (x, y, slot.z, sin(half), cos(half), speed * cos(yaw),
-                           speed * sin(yaw))
             slot.synced = -1
         self._placed_at = self.world.time_s
         self._synced_step = -1
         self._table.invalidate()
+
+    def _state(self, slot):
+        """Return a serving body's (x, y, yaw, speed) at the update (a vehicle's on its trail)."""
+        state = slot.state
+        if state is None:
+            fx, fy, angle = slot.front
+            state = slot.state = (*trail_pose(slot.trail, fx, fy, math.radians(90.0 - angle),
+                                              slot.size[0]), slot.speed)
+        return state
+
+    def _motion(self, slot):
+        """Return a serving body's (x, y, z, qz, qw, vx, vy) at the update."""
+        if slot.placed != self._updates:
+            x, y, yaw, speed = self._state(slot)
+            half = 0.5 * yaw
+            slot.motion = (x, y, slot.z, math.sin(half), math.cos(half), speed * math.cos(yaw),
+                           speed * math.sin(yaw))
+            slot.placed = self._updates
+        return slot.motion
 
     def _move(self, slots):
         """Put the bodies of ``slots`` where their vehicles are now (straight on); say if any."""
@@ -241,10 +293,9 @@ class SumoPool:
         elapsed = self.world.time_s - self._placed_at
         moved = False
         for slot in slots:
-            state = slot.motion
-            if state is None or slot.synced == count:
+            if slot.synced == count or slot.front is None:   # put, or not read from SUMO yet
                 continue
-            x, y, z, qz, qw, vx, vy = state
+            x, y, z, qz, qw, vx, vy = self._motion(slot)
             if vx or vy or slot.synced < 0:       # moving, or not put there since the update
                 x, y = x + vx * elapsed, y + vy * elapsed
                 reset_pose(slot.body_id, (x, y, z), (0.0, 0.0, qz, qw), physicsClientId=cid)
@@ -260,17 +311,24 @@ class SumoPool:
         elapsed = self.world.time_s - self._placed_at
         found = []
         for slot in self._by_id.values():
-            state = slot.motion
-            if state is None or slot.synced == count:
+            if slot.synced == count or slot.front is None:
                 continue
-            reach = slot.size[0] + slot.size[1]          # more than its half diagonal
-            x, y = state[0] + state[5] * elapsed, state[1] + state[6] * elapsed
-            if xmin - reach <= x <= xmax + reach and ymin - reach <= y <= ymax + reach:
-                found.append(slot)
-                continue
+            length, width, _ = slot.size
+            reach = length + width                        # more than its half diagonal
             at = slot.at                                  # where it stands: moved off there
             if at is not None and xmin - reach <= at[0] <= xmax + reach and \
                     ymin - reach <= at[1] <= ymax + reach:
+                found.append(slot)
+                continue
+            # its box now: within half its length of its front and its run since (a stopped
+            # one's a little ahead of that): the box worked out only for those near
+            fx, fy, _ = slot.front
+            far = reach + length + abs(slot.speed) * elapsed
+            if not (xmin - far <= fx <= xmax + far and ymin - far <= fy <= ymax + far):
+                continue
+            state = self._motion(slot)
+            x, y = state[0] + state[5] * elapsed, state[1] + state[6] * elapsed
+            if xmin - reach <= x <= xmax + reach and ymin - reach <= y <= ymax + reach:
                 found.append(slot)
         return found
 
@@ -289,12 +347,12 @@ class SumoPool:
                 pass                        # stays where it was until SUMO's next step
         slot.stopped = True
         elapsed = max(0.0, self.world.time_s - self.world.time_step_s - self._placed_at)
-        x, y, z, qz, qw, vx, vy = slot.motion
+        x, y, z, qz, qw, vx, vy = self._motion(slot)
         x, y = x + vx * elapsed, y + vy * elapsed
         pybullet.resetBasePositionAndOrientation(slot.body_id, (x, y, z), (0.0, 0.0, qz, qw),
                                                  physicsClientId=self._cid)
         slot.motion = (x, y, z, qz, qw, 0.0, 0.0)
-        slot.at, slot.synced = (x, y), self.world.step_count
-        _, _, yaw, _ = slot.state
-        slot.state = (x, y, yaw, 0.0)
+        slot.at, slot.synced, slot.placed = (x, y), self.world.step_count, self._updates
+        _, _, yaw, _ = self._state(slot)
+        slot.state, slot.speed = (x, y, yaw, 0.0), 0.0
         self.world.mark_moved()

@@ -25,10 +25,11 @@ Every ``step`` of simulated time (a whole number of world steps) the hook puts o
 SUMO where the physics has them (each an external SUMO vehicle of its footprint's size, moved
 with ``moveToXY`` to its front bumper, SUMO taking its speed from the move: SUMO's drivers queue
 behind it and its pedestrians wait for it), pushes the signal states a scenario forces, advances
-SUMO by one step, reads every SUMO vehicle's and person's position, heading and speed (one
-subscription each, read in one call) and puts a body at each: a placed box of its vehicle type's
-length, width and height, a person an upright cylinder (its class's shape, core/traffic/objects.py
-CLASS_SHAPES: about 0.5 m across, 1.7 m high). The bodies come from a pool:
+SUMO by one step, reads every SUMO vehicle's and person's position, heading and speed (libsumo's
+getters, or over TraCI one subscription each read in one call: physics/sumo_reads.py) and puts a
+body at each: a placed box of its vehicle type's length, width and height, a person an upright
+cylinder (its class's shape, core/traffic/objects.py CLASS_SHAPES: about 0.5 m across, 1.7 m
+high). The bodies come from a pool:
 a body, named ``sumo_<k>``, serves one SUMO vehicle or person (its SUMO id: :meth:`sumo_id`) from
 its departure to its arrival, is parked under the ground after, and serves the next one of the
 same size; the order of SUMO's departures decides, so a seed gives the same names. Between
@@ -46,9 +47,9 @@ A SUMO error while the world runs stops the world's step with :class:`SumoError`
 message; closing the world closes SUMO.
 
 What it is made of: physics/sumo_pool.py (the pool of bodies: taken, parked, placed, moved,
-stopped), physics/sumo_ours.py (our vehicles in SUMO), physics/sumo_signals.py (the signal
-bridge), physics/sumo_views.py (the contract's views: agents, objects with their lane paths,
-boxes).
+stopped), physics/sumo_ours.py (our vehicles in SUMO), physics/sumo_reads.py (reading SUMO's
+vehicles and persons), physics/sumo_signals.py (the signal bridge), physics/sumo_views.py (the
+contract's views: agents, objects with their lane paths, boxes).
 """
 
 import math
@@ -62,7 +63,8 @@ from vehicle_sim.core.traffic.lane_paths import edges_along
 from vehicle_sim.physics.gui import FRAME_PERIOD_S
 from vehicle_sim.physics.sumo_demand import demand_routes
 from vehicle_sim.physics.sumo_ours import OURS_PREFIX, SumoOurs
-from vehicle_sim.physics.sumo_pool import follow_trail, JUMP_M, SumoPool
+from vehicle_sim.physics.sumo_pool import extend_trail, JUMP_M, SumoPool
+from vehicle_sim.physics.sumo_reads import reads_for
 from vehicle_sim.physics.sumo_session import load_traci, SumoError, SumoSession
 from vehicle_sim.physics.sumo_signals import SumoSignals
 from vehicle_sim.physics.sumo_views import SumoViews
@@ -189,6 +191,7 @@ class SumoBodies(SumoPool, SumoViews):
         self._cid = world.client_id
         self._slots = []
         self._table = MotionTable()       # kinematics(), rebuilt after each update
+        self._updates = 0                 # SUMO's positions taken (_place) since the start
         self._ours = world.vehicle_bodies()
         self._outlines = [body.outline for body in self._ours]
         self.session = None
@@ -228,6 +231,7 @@ class SumoBodies(SumoPool, SumoViews):
         self._our = SumoOurs(self.session, self._ours, self._outlines, self.routes,
                              self.spec.source)
         self._signals = SumoSignals(self.session, self.signals, self.programs, self._constants)
+        self._reads = reads_for(self.session, self._constants, OURS_PREFIX)
         self._our.check_routes(api)
         with self.session.errors('at the start'):
             self._our.add_types(api)
@@ -310,51 +314,48 @@ class SumoBodies(SumoPool, SumoViews):
         api.simulationStep()
         self._steps += 1
         c = self._constants
+        reads = self._reads
         departed = api.simulation.getSubscriptionResults()
         for vid in departed.get(c.VAR_ARRIVED_VEHICLES_IDS, ()):
             if vid.startswith(OURS_PREFIX):          # SUMO removed one of ours: back next step
                 self._our.arrived(vid)
-        fields = (c.VAR_POSITION, c.VAR_ANGLE, c.VAR_SPEED)
         for person, key in ((False, c.VAR_DEPARTED_VEHICLES_IDS),
                             (True, c.VAR_DEPARTED_PERSONS_IDS)):
-            domain = api.person if person else api.vehicle
             for sumo_id in departed.get(key, ()):       # bodies in the order of departure
                 if person or not sumo_id.startswith(OURS_PREFIX):
-                    # a person's vehicle too: one riding a bus has no body of its own; a
-                    # vehicle's lane, place on it and route index: its predicted path
-                    domain.subscribe(sumo_id, fields + ((c.VAR_VEHICLE,) if person else (
-                        c.VAR_LANE_ID, c.VAR_LANEPOSITION, c.VAR_ROUTE_INDEX)))
+                    # a person's body too: one riding a bus has none (parked below)
+                    reads.departed(api, person, sumo_id)
                     slot = self._take(api, person, sumo_id)
                     if not person:
                         slot.route = tuple(api.vehicle.getRoute(sumo_id))
+        by_id = self._by_id
         seen = set()
-        for person, results in ((False, api.vehicle.getAllSubscriptionResults()),
-                                (True, api.person.getAllSubscriptionResults())):
-            for sumo_id, values in results.items():
-                if (sumo_id.startswith(OURS_PREFIX) if not person
-                        else values.get(c.VAR_VEHICLE)):
-                    continue                        # ours, or a person riding a vehicle
-                key = (person, sumo_id)
-                slot = self._by_id.get(key)
-                if slot is None:            # back from a teleport (SUMO's jam resolution)
-                    slot = self._take(api, person, sumo_id)
-                seen.add(key)
-                (fx, fy), angle, speed = (values[c.VAR_POSITION], values[c.VAR_ANGLE],
-                                          values[c.VAR_SPEED])
-                yaw = math.radians(90.0 - angle)
-                if person:
-                    half = 0.5 * slot.size[0]
-                    cos, sin = math.cos(yaw), math.sin(yaw)
-                    slot.state = (fx - half * cos, fy - half * sin, yaw, speed)
-                elif slot.front != (fx, fy, angle):   # on the line nearest its front's path
-                    slot.front = (fx, fy, angle)        # (SUMO bends it so)
-                    slot.state = (*follow_trail(slot.trail, fx, fy, yaw, slot.size[0],
-                                                speed * self.spec.step_s + JUMP_M), speed)
-                else:                                   # standing: where it was
-                    slot.state = (*slot.state[:3], speed)
-                if not person:
-                    slot.lane = (values[c.VAR_LANE_ID], values[c.VAR_LANEPOSITION],
-                                 values[c.VAR_ROUTE_INDEX])
+        step_s = self.spec.step_s
+        radians, cos, sin = math.radians, math.cos, math.sin
+        for sumo_id, (fx, fy), angle, speed, lane in reads.vehicles(api):
+            key = (False, sumo_id)
+            slot = by_id.get(key)
+            if slot is None:                # back from a teleport (SUMO's jam resolution)
+                slot = self._take(api, False, sumo_id)
+            seen.add(key)
+            if slot.front != (fx, fy, angle):   # on the line nearest its front's path (SUMO
+                slot.front = (fx, fy, angle)      # bends it so), worked out when read
+                extend_trail(slot.trail, fx, fy, speed * step_s + JUMP_M, slot.size[0])
+                slot.state = None
+            elif slot.state is not None:          # standing: where it was
+                slot.state = (*slot.state[:3], speed)
+            slot.speed = speed
+            slot.lane = lane                      # None: read when the objects are
+        for sumo_id, (fx, fy), angle, speed in reads.persons(api):
+            key = (True, sumo_id)
+            slot = by_id.get(key)
+            if slot is None:
+                slot = self._take(api, True, sumo_id)
+            seen.add(key)
+            yaw = radians(90.0 - angle)
+            half = 0.5 * slot.size[0]
+            slot.front, slot.speed = (fx, fy, angle), speed
+            slot.state = (fx - half * cos(yaw), fy - half * sin(yaw), yaw, speed)
         for key in [key for key in self._by_id if key not in seen]:   # arrived
             slot = self._by_id.pop(key)
             self._park(slot)
@@ -386,16 +387,25 @@ class SumoBodies(SumoPool, SumoViews):
 
     def _nearby(self, ours):
         # the bodies near each of ours, where SUMO has them or where they stand (not moved
-        # since an earlier update): put where they are at each step, their contacts checked
+        # since an earlier update): put where they are at each step, their contacts checked;
+        # a vehicle's box (within half its length of its front) worked out only when near
         limit = NEAR_M * NEAR_M
         serving = list(self._by_id.values())
         near = []
         for o in ours:
             x, y = o.x_m, o.y_m
-            near.append([slot for slot in serving
-                         if (slot.state[0] - x) ** 2 + (slot.state[1] - y) ** 2 < limit
-                         or (slot.at is not None
-                             and (slot.at[0] - x) ** 2 + (slot.at[1] - y) ** 2 < limit)])
+            found = []
+            for slot in serving:
+                at = slot.at
+                if at is not None and (at[0] - x) ** 2 + (at[1] - y) ** 2 < limit:
+                    found.append(slot)
+                    continue
+                fx, fy, _ = slot.front
+                if abs(fx - x) < NEAR_M + slot.size[0] and abs(fy - y) < NEAR_M + slot.size[0]:
+                    state = self._state(slot)
+                    if (state[0] - x) ** 2 + (state[1] - y) ** 2 < limit:
+                        found.append(slot)
+            near.append(found)
         found = {slot.index: slot for slots in near for slot in slots}
         return near, [found[index] for index in sorted(found)]
 

@@ -41,8 +41,8 @@ class SumoViews:
     """
     The traffic-body contract's views of SumoBodies' serving bodies (agents, objects, boxes).
 
-    Uses SumoBodies' ``world``, ``session``, ``graph``, ``_slots``, ``_by_id``, ``_lengths`` and
-    ``_placed_at``.
+    Uses SumoBodies' ``world``, ``session``, ``graph``, ``_slots``, ``_by_id``, ``_lengths``,
+    ``_reads``, ``_placed_at``, ``_state`` and ``_motion``.
     """
 
     @property
@@ -65,8 +65,8 @@ class SumoViews:
         :return: [(name, x, y, yaw, length, width, speed)] at SUMO's last step: footprint
             centre and heading [m, rad], footprint size [m], speed along the heading [m/s].
         """
-        return [(slot.name, *slot.state[:3], slot.size[0], slot.size[1], slot.state[3])
-                for slot in self._serving()]
+        return [(slot.name, *state[:3], slot.size[0], slot.size[1], state[3])
+                for slot, state in ((slot, self._state(slot)) for slot in self._serving())]
 
     def moving_names(self):
         """Return the names of every body SUMO moves (serving or parked)."""
@@ -80,9 +80,9 @@ class SumoViews:
         where it is now is that plus the velocity times the time since.
         """
         def rows():
-            return [(slot.body_id, slot.motion, (slot.size[0], slot.size[1],
-                                                 slot.size[2] - slot.clearance))
-                    for slot in self._serving() if slot.motion is not None]
+            return [(slot.body_id, self._motion(slot), (slot.size[0], slot.size[1],
+                                                        slot.size[2] - slot.clearance))
+                    for slot in self._serving() if slot.front is not None]
         return self._table.now(self.since_update_s, rows)
 
     def boxes(self):
@@ -115,7 +115,7 @@ class SumoViews:
         count = int(round(horizon_s / step_s))
         found = []
         for slot in self._serving():
-            x, y, yaw, speed = slot.state
+            x, y, yaw, speed = self._state(slot)
             c, s = math.cos(yaw), math.sin(yaw)
             gone = speed * since
             x, y = x + gone * c, y + gone * s
@@ -130,8 +130,14 @@ class SumoViews:
 
     def _lane_path(self, slot, since, count, step_s):
         """Return a vehicle's path along the lane graph, or None (no graph, lane not in it)."""
-        if self.graph is None or slot.lane is None:
+        if self.graph is None or slot.person:
             return None
+        if slot.lane is None:             # read now, once per SUMO step (sumo_reads.py)
+            with self.session.errors(f'reading vehicle {slot.sumo_id!r}'):
+                try:
+                    slot.lane = self._reads.lane(self.session.api, slot.sumo_id)
+                except self.session.refusal:
+                    return None
         lane_id, position, route_index = slot.lane
         try:
             lane = self.graph.lane_named(lane_id)
@@ -142,7 +148,7 @@ class SumoViews:
             with self.session.errors(f'reading lane {lane_id!r}'):
                 length = self._lengths[lane_id] = self.session.api.lane.getLength(lane_id)
         scale = lane.length_m / length if length > 0.0 else 1.0
-        speed = slot.state[3]
+        speed = slot.speed
         centre = position * scale - 0.5 * slot.size[0] + speed * since
         return route_path(self.graph, lane.id, centre, speed, count, step_s,
                           slot.route[route_index + 1:])

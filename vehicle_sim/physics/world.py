@@ -606,8 +606,13 @@ class World:
         return [self.body_name(other) for other in self._overlapping(body_id, tolerance_m)]
 
     def _overlapping(self, body_id, tolerance_m=OVERLAP_TOLERANCE_M):
-        self.sync_bodies()
         cid = self.client_id
+        # only the placed bodies that may touch it need be where they are: those within its
+        # bounding box (a body's every link)
+        boxes = [pybullet.getAABB(body_id, link, physicsClientId=cid)
+                 for link in range(-1, pybullet.getNumJoints(body_id, physicsClientId=cid))]
+        self.sync_bodies((min(low[0] for low, _ in boxes), min(low[1] for low, _ in boxes),
+                          max(high[0] for _, high in boxes), max(high[1] for _, high in boxes)))
         found = []
         for index in range(pybullet.getNumBodies(physicsClientId=cid)):
             other = pybullet.getBodyUniqueId(index, physicsClientId=cid)
