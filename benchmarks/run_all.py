@@ -20,9 +20,9 @@ Issue 20's are the Gymnasium environment's (bench_gym.py); issue 21's the record
 issue 30's the lidar on a SLAM-like occupancy map (bench_occupancy_lidar.py); issue 31's the city
 on SUMO (bench_sumo.py); issue 32's perception ground truth (bench_perception.py, the labelled
 lidar: bench_lidar_labels.py, camera segmentation and recognition: bench_camera_perception.py,
-the radar: bench_radar.py); issue 33's multi-agent environment (bench_gym_multi.py) and its
+the radar: bench_radar.py); issue 33's multi-agent environment (bench_gym_multi.py), its
 equal-work race against highway-env (bench_gym.py, with full physics and with a kinematic
-vehicle_model).
+vehicle_model) and the environment's memory over a long run with resets (bench_gym_soak.py).
 
 ``make bench`` runs this. Each figure comes from its benchmark module (``bench_*.py``, which
 also run alone and say more); each ratio is measured in this run, its two sides interleaved or
@@ -131,6 +131,15 @@ def _multi_figures(quick):
         return [], [f'gym.multi figures skipped: {error}']
 
 
+def _soak_figures(quick):
+    # RSS growth of Drive-v0 and DriveVectorEnv over a run with resets (bench_gym_soak.py).
+    try:
+        import bench_gym_soak
+        return bench_gym_soak.figures(quick), []
+    except ImportError as error:
+        return [], [f'gym soak figures skipped: {error}']
+
+
 def _sumo_figures(quick):
     # SUMO alone, netconvert and the co-simulated city (bench_sumo.py); the sumo extra is in test.
     import bench_sumo
@@ -174,6 +183,7 @@ def collect(quick):
     ten = bench_step.measure_ten_cars(5 if quick else 15, 200 if quick else 400)
     gym_rows, gym_context = _gym_figures(quick)
     multi_rows, multi_context = _multi_figures(quick)
+    soak_rows, soak_context = _soak_figures(quick)
     traffic, traffic_core, highway_env = bench_traffic.figures(quick)
     ros = bench_ros_sync.figures(steps=1000, repeats=3 if quick else 5)
     share, _, counts = bench_topics_cpu.measure_node(4.0 if quick else 10.0, 10)
@@ -263,7 +273,7 @@ def collect(quick):
          bench_traffic.TARGETS[50], 'x'),
         ('highway with 200 traffic cars, in-process real-time factor', traffic[200][0], '>=',
          bench_traffic.TARGETS[200], 'x'),
-    ] + gym_rows + multi_rows + sumo_rows + perception_rows + [
+    ] + gym_rows + multi_rows + soak_rows + sumo_rows + perception_rows + [
         (f'radar ({name}) with {bench_radar.CARS} traffic cars, median reading, CPU time '
          f'(numpy op here: {numpy_op_us:.2f} us)', us, '<=', bench_radar.TARGET_US, 'us')
         for name, (us, _, _) in radar.items()]
@@ -319,7 +329,7 @@ def collect(quick):
         f'wall rectangles in {slam["bodies"]} bodies; lidar {slam["lidar_ms"]:.2f} ms per '
         f'sample on it, {slam["empty_ms"]:.2f} ms in the empty world (CPU); RSS '
         f'{slam["rss_after_mb"]:.0f} MB after loading, {slam["rss_peak_mb"]:.0f} MB at the peak',
-    ] + gym_context + multi_context + sumo_context
+    ] + gym_context + multi_context + soak_context + sumo_context
     floors.append(f'640 x 480 camera: {camera["colour_ms"]:.0f} ms per colour frame, '
                   f'{camera["seen_ms"]:.0f} ms with segmentation and recognition '
                   f'({camera["objects"]} objects), {camera["depth_ms"]:.0f} ms with depth too')

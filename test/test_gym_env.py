@@ -111,6 +111,30 @@ def test_one_seed_and_one_action_list_give_bit_identical_episodes(make):
     assert other[0]['pose'].tobytes() != first[0]['pose'].tobytes()   # the seed matters
 
 
+def test_resets_load_no_body_so_a_long_run_does_not_grow(make, monkeypatch):
+    # PyBullet keeps a loaded body's collision shapes until its simulation is reset: an env
+    # reset that loaded the ego's URDF again grew the process by ~18 KiB (60 KiB per 1000
+    # steps with a reset every 300; benchmarks/bench_gym_soak.py). With traffic, start noise
+    # (a start pose drawn, maybe several times, each reset) and a lidar.
+    import pybullet
+    env = make(world='highway_traffic', start_noise=[2.0, 0.5, 0.1],
+               lidar={'horizontal_resolution': 90})
+    env.reset(seed=0)
+    sim = env.unwrapped.sim
+    ego = sim.ego.body.body_id
+    bodies = pybullet.getNumBodies(physicsClientId=sim.world.client_id)
+    loads = []
+    load = pybullet.loadURDF
+    monkeypatch.setattr(pybullet, 'loadURDF', lambda *a, **k: loads.append(a) or load(*a, **k))
+    for episode in range(10):
+        for _ in range(20):
+            env.step([0.2, 10.0])
+        env.reset(seed=episode)
+    assert loads == []
+    assert sim.ego.body.body_id == ego
+    assert pybullet.getNumBodies(physicsClientId=sim.world.client_id) == bodies
+
+
 def test_start_noise_never_puts_the_ego_inside_an_obstacle(make):
     # the wall's face is at x = 19.5 m and the car 4.5 m long: offsets up to 18 m reach into it
     env = make(start_noise=[18.0, 2.0, 0.2])

@@ -24,7 +24,7 @@ lane map the ego's lane state (core/map/vehicle_lanes.py, updated once per env s
 ``DriveEnv`` wraps one, ``DriveVectorEnv`` holds several, each with its own physics client, in
 one process.
 
-A reset puts every vehicle back at its spawn pose (each body loaded afresh in the same client,
+A reset puts every vehicle back at its spawn pose (each body as built, in place,
 ``VehicleBody.reset``) and every movable obstacle at its start: no new physics client, a few
 milliseconds. Simulated time goes on across episodes (the World's clock never goes back); the
 episode's time is counted from its reset. With the same seed and the same actions two episodes

@@ -219,7 +219,7 @@ class CarBody(VehicleBody):
 
     def _teleport_joints(self):
         # The wheels and steering keep their angles and the suspension goes to 0; a reset
-        # loads the body afresh instead (rebuild).
+        # zeroes every joint (rebuild).
         return self._suspension, self._wheel + self._steer
 
     # ---------------------------------------------------------------- ground truth

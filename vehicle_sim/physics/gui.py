@@ -239,7 +239,7 @@ class ChaseCamera:
         self.period_s = float(period_s)
         self._last_s = world.time_s
         self.world = world
-        self._targets = list(targets)   # their ids are read each time: a reset reloads a body
+        self._targets = list(targets)   # their ids are read each time: a reset may reload a body
         self.settings = settings or ChaseSettings()
         self.index = 0
         self.following = True

@@ -60,7 +60,7 @@ class SimulatedCar:
         """
         Put the car back as it was built: spawn pose, at rest, joints at 0, logic reset.
 
-        The body is loaded afresh (CarBody.rebuild), so a reset repairs whatever state the
+        The body is put back as built (CarBody.rebuild), so a reset repairs whatever state the
         physics left it in. CarLogic.reset gives the start state of every command and
         estimate; simulated time goes on.
         """

@@ -23,7 +23,7 @@ A vehicle body is one URDF loaded into the World (:meth:`World.load_urdf`) with 
   ``mount_frame``, the link sensors mount on (``base_link``; mount poses are in it);
 - ground truth: :meth:`pose`, :meth:`velocity`, :meth:`body_twist`, :meth:`forward_speed_mps`,
   :meth:`yaw_rad`;
-- :meth:`reset` (loaded afresh at its spawn pose, :meth:`World.reload_urdf`) and
+- :meth:`reset` (as built at its spawn pose, in place: :meth:`rebuild`) and
   :meth:`teleport` (at rest at a pose, refused inside another body);
 - :attr:`outline`, its footprint rectangle in base_link (core Outline), from its parameters.
 
@@ -33,10 +33,19 @@ A subclass gives its URDF, its footprint function (``OUTLINE``), its spawn heigh
 """
 
 
+import math
+
 import pybullet
 
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.world.placement import WORLD_EXTENT_M
+
+
+def _inside_world(position):
+    # A pose (either form) with finite values and |x|, |y| <= WORLD_EXTENT_M.
+    return all(math.isfinite(v) for v in position) and abs(position[0]) <= WORLD_EXTENT_M \
+        and abs(position[1]) <= WORLD_EXTENT_M
 
 
 class VehicleBody:
@@ -55,6 +64,7 @@ class VehicleBody:
         self.urdf = urdf
         self.spawn = position
         cid = self._cid = world.client_id
+        self._placed_beyond = False     # placed beyond the world since loaded (rebuild)
         self.body_id, self._joint = world.load_urdf(urdf, position, self.SPAWN_CLEARANCE_M,
                                                     self.FIXED_BASE)
         self._label()
@@ -79,18 +89,30 @@ class VehicleBody:
     # ---------------------------------------------------------------- reset and teleport
     def rebuild(self, position):
         """
-        Load the body afresh at a pose, as it was built (a reset).
+        Put the body back as it was built, at a pose (a reset).
 
-        Whatever state the physics left the old body in (one Bullet took out of the simulation
-        falls through the ground after any reset of its pose), the new one is as built: at
-        rest, joints at 0, no command. Same URDF, so the same joint indices.
+        Whatever state the physics left it in, it is then at rest, joints at 0, no command.
+        In place: the same body, its pose, velocities, joints, dynamics and motors set as a
+        fresh load sets them. PyBullet keeps a body's collision shapes until the whole
+        simulation is reset, removed body or not, so loading the URDF again at every reset grew
+        the process by about 18 KiB a reset (a car), without bound over a training run. Only a
+        body Bullet may have taken out of the simulation (placed beyond the world or at a pose
+        that is not finite since it was loaded, or there now: it falls through the ground
+        after any reset of its pose) is loaded afresh (:meth:`World.reload_urdf`), with the same
+        joint indices.
 
         :param position: base_link pose, as the constructor takes it.
         """
-        self.world.labels.forget(self.body_id)
-        self.body_id, _ = self.world.reload_urdf(self.body_id, self.urdf, position,
-                                                 self.SPAWN_CLEARANCE_M, self.FIXED_BASE)
-        self._label()
+        if self._placed_beyond or not _inside_world(self.pose()):
+            self.world.labels.forget(self.body_id)
+            self.body_id, _ = self.world.reload_urdf(self.body_id, self.urdf, position,
+                                                     self.SPAWN_CLEARANCE_M, self.FIXED_BASE)
+            self._placed_beyond = False
+            self._label()
+        else:
+            joints = range(pybullet.getNumJoints(self.body_id, physicsClientId=self._cid))
+            self.world.place_at_rest(self.body_id, self._link_to_com, position,
+                                     self.SPAWN_CLEARANCE_M, zero_joints=joints)
         self._configure()
 
     def reset(self):
@@ -104,6 +126,8 @@ class VehicleBody:
         :param position: base_link pose, as the constructor takes it; the (x, y, yaw) form puts
             base_link on the ground, level, as at spawn.
         """
+        if not _inside_world(position):
+            self._placed_beyond = True      # Bullet may take it out: the next reset reloads it
         zero, stop = self._teleport_joints()
         self.world.place_at_rest(self.body_id, self._link_to_com, position,
                                  self.SPAWN_CLEARANCE_M, zero_joints=zero, stop_joints=stop)
