@@ -374,16 +374,6 @@ class DriveSim:
         return self.agent.info(self.elapsed_s, progress_m, terms, collided_with, collision,
                                self._watch)
 
-    def criteria_results(self):
-        """
-        Return the scenario criteria's results of the episode so far (CriterionResult list).
-
-        As the scenario runner reports them: at the end of an episode (truncated at the
-        scenario's duration) the criteria decided only at the end (``mean_speed``) are decided;
-        [] without a scenario or before the first reset.
-        """
-        return [] if self._watch is None else [c.result() for c in self._watch.criteria]
-
     def close(self):
         """Disconnect the physics client (idempotent)."""
         self.scene.world.close()

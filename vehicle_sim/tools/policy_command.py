@@ -165,7 +165,7 @@ def in_process_episode(card, model, scenario, seed):
         while not (terminated or truncated):
             action, _ = model.predict(obs, deterministic=True)
             obs, _, terminated, truncated, _ = env.step(action)
-        results = env.unwrapped.sim.criteria_results()
+        results = list(env.unwrapped.sim.criteria_results().values())
     finally:
         env.close()
     return _verdict(results)
