@@ -211,6 +211,25 @@ def test_topics_that_do_not_arrive_end_the_driver_naming_them(lockstep):
     assert driver.ticks == 0 and bed.car().car.logic.target_cruising_speed_kmh == 0.0
 
 
+def test_a_node_running_ahead_of_the_policy_is_driven_from_its_newest_messages(lockstep):
+    # A node running in real time does not wait for the policy: by the time the policy reads
+    # a tick's /clock, the node's odometry, lane state and objects are stamped later. The
+    # driver reads those instead of waiting for the tick's own until its timeout.
+    bed = lockstep(timeout_s=3.0)
+    policy = Scripted((0.0, 0.5))
+    driver = bed.start(policy, setup_of(period_s=0.2))
+    for _ in range(6):
+        for _ in range(5 * driver.answer_steps):     # half a second on, no answer awaited
+            bed.auto.step_once()
+            bed.auto.node.spin_once(0.0)
+        before = driver.ticks
+        assert wait_for(lambda: driver.ticks > before or driver.error, WAIT_S, bed)
+        assert driver.error is None, driver.error
+    assert driver.ticks >= 6 and len(policy.seen) >= 6
+    speed_kmh = mps_to_kmh(-5.0 + 0.75 * (SPEED_MAX_MPS + 5.0))   # 0.5 of [-1, 1] in the box
+    assert bed.car().car.logic.target_cruising_speed_kmh == pytest.approx(speed_kmh)
+
+
 def test_a_car_that_is_not_there_is_named(lockstep):
     bed = lockstep(namespace='nope', timeout_s=1.0)
     with pytest.raises(InvalidParameterError, match=r'no automobile node serves '

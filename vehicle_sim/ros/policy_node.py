@@ -26,8 +26,9 @@ Webots-level setters (:mod:`.policy_actions`), at the policy's rate on simulated
 - a *tick* is a grid /clock at a multiple of the policy's period (the card's action_repeat x
   time_step: the environment's env step), and the first grid /clock (with ``objects``: the
   first step the objects are published); at a tick the node waits until the odometry, lane
-  state and objects stamped at that time have arrived, asks the policy (``predict(obs,
-  deterministic=True)``) and calls the setters;
+  state and objects stamped at that time have arrived (or later ones: a node running in real
+  time does not wait for the policy, and its newest messages are read), asks the policy
+  (``predict(obs, deterministic=True)``) and calls the setters;
 - at every grid /clock, once a tick's setters answered, it publishes the action in force on
   ``<ns>/policy/action``: the scenario runner's lockstep topic (``sync_period`` = the grid), so
   that a scenario waits for the policy and runs as fast as the policy keeps up. Before the
@@ -90,6 +91,7 @@ class PolicyNode:
         self._objects_step = None       # the last step the objects were due
         self.error = None
         self.ticks = 0                  # ticks acted on
+        self._tick_step = 0             # the basic step of the last tick
         self.answers = 0                # /policy/action messages published
         self.last_obs = None
         self.action = None              # the physical action in force
@@ -183,7 +185,10 @@ class PolicyNode:
         if self._pending is not None or self._calls is not None:
             return          # a tick still waits for its topics or setters (free-running sim)
         ready = self._objects_due is None or self._objects_step is not None
-        if ready and (self.action is None or step % self.repeat == 0):
+        # a tick at each multiple of the policy's period; a node running in real time may skip
+        # the /clock of one (it does not wait for the policy): then the first /clock past it
+        if ready and (self.action is None or step // self.repeat > self._tick_step // self.repeat):
+            self._tick_step = step
             self._pending = now_s
             self._pending_since = time.monotonic()
             self._try_tick()
@@ -195,11 +200,13 @@ class PolicyNode:
         return tick_s
 
     def _missing(self, tick_s):
-        # the input rows whose latest message is not the one a tick at tick_s reads
+        # the input rows with no message stamped at the tick's time or later: in lockstep the
+        # tick's own (the runner waits for the answer); a node running in real time goes on
+        # without the policy, so its newest messages may be later than the tick: those are read
         half = 0.5 * self.step_s
         return [row for row in self.inputs
                 if row not in self._latest
-                or abs(stamp_s(self._latest[row]) - self._wanted_s(row, tick_s)) > half]
+                or stamp_s(self._latest[row]) < self._wanted_s(row, tick_s) - half]
 
     def _try_tick(self):
         tick_s = self._pending
