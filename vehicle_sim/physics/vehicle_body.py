@@ -41,6 +41,9 @@ from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.world.placement import WORLD_EXTENT_M
 
+# Where a body stands while its contacts are dropped at an in-place reset [m] (below the world).
+_AWAY_Z_M = -1.0e4
+
 
 def _inside_world(position):
     # A pose (either form) with finite values and |x|, |y| <= WORLD_EXTENT_M.
@@ -110,7 +113,17 @@ class VehicleBody:
             self._placed_beyond = False
             self._label()
         else:
-            joints = range(pybullet.getNumJoints(self.body_id, physicsClientId=self._cid))
+            # Bullet keeps a body's contact points (and their impulses, which warm-start the
+            # next solve) while the pair's boxes overlap: a body reset close to where it was
+            # would start its episode from them, unlike a fresh load. Out of the world for one
+            # collision pass, its pairs and their contacts are dropped.
+            cid = self._cid
+            _, orientation = pybullet.getBasePositionAndOrientation(self.body_id,
+                                                                    physicsClientId=cid)
+            pybullet.resetBasePositionAndOrientation(self.body_id, (0.0, 0.0, _AWAY_Z_M),
+                                                     orientation, physicsClientId=cid)
+            pybullet.performCollisionDetection(physicsClientId=cid)
+            joints = range(pybullet.getNumJoints(self.body_id, physicsClientId=cid))
             self.world.place_at_rest(self.body_id, self._link_to_com, position,
                                      self.SPAWN_CLEARANCE_M, zero_joints=joints)
         self._configure()
