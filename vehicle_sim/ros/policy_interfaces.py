@@ -28,6 +28,7 @@ from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros import messages as m
 from vehicle_sim.ros.endpoints import (
     CLOCK,
+    converter,
     EACH_STEP,
     input_topic,
     TF_STATIC,
@@ -54,7 +55,11 @@ OBJECTS_IN = _same(PREDICTED_OBJECTS_TOPIC,
                    "the 'objects' key (the policy's period a whole number of the objects' "
                    "periods: objects_rate, --objects-rate)")
 TF_STATIC_IN = _same(TF_STATIC, "world -> <p>odom: the ego's pose in the objects' frame")
+# Call context: ``action`` (the physical action in force; None before the first tick).
 ACTION = Topic('policy/action', m.FLOAT64_MULTI_ARRAY, QOS_DEFAULT, EACH_STEP,
+               converter(m.float64_multi_array_builder,
+                         lambda ctx: ([] if ctx.action is None
+                                      else [float(v) for v in ctx.action],)),
                unit='rad, m/s (speed_steering)',
                doc="the action in force, in the environment's units (speed_steering: steering "
                    'angle + left, speed; empty before the first), at each answer time (every '

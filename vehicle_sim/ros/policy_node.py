@@ -50,6 +50,7 @@ from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.params import OBJECTS_RATE
 from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros import policy_interfaces as pi
+from vehicle_sim.ros.endpoints import Outputs, subscribe
 from vehicle_sim.ros.policy_observation import LANE, OBJECTS, stamp_s
 from vehicle_sim.transport.selection import create_node
 
@@ -117,12 +118,9 @@ class PolicyNode:
             self.inputs.append(pi.LANE_STATE_IN)
         if OBJECTS in self.builder.keys:
             self.inputs.append(pi.OBJECTS_IN)
-        self._subs = [node.create_subscription(row.ros_type, self._name(row.name),
-                                               self._keeper(row), row.qos)
-                      for row in self.inputs]
-        self._subs.append(node.create_subscription(
-            pi.TF_STATIC_IN.ros_type, pi.TF_STATIC_IN.name, self.builder.frames.add,
-            pi.TF_STATIC_IN.qos))
+        self._subs = subscribe(node, {row: self._keeper(row) for row in self.inputs},
+                               resolve=self._name)
+        self._subs += subscribe(node, {pi.TF_STATIC_IN: self.builder.frames.add})
         self._clients = {name: node.create_client(pi.service_type(name), self._name(name))
                          for name in self.writer.services}
         step_name = 'robot/get_basic_time_step'
@@ -138,14 +136,11 @@ class PolicyNode:
             what='the objects period' if reads_objects else 'policy period')
         if reads_objects:
             self._objects_due = SampleSchedule.from_rate(self.objects_rate_hz, self.step_s)
-        self._action_pub = node.create_publisher(pi.ACTION.ros_type, self._name(pi.ACTION.name),
-                                                 pi.ACTION.qos)
-        self._action_msg = node.msg(pi.ACTION.ros_type)
+        self._outputs = Outputs(node, (pi.ACTION,), resolve=self._name)
         self._watch = node.create_timer(WATCH_PERIOD_S, self._check_deadlines)
         self._clock_deadline = time.monotonic() + self.timeout_s
         # last: the /clock subscription is what the scenario runner waits for to start time
-        self._clock = node.create_subscription(pi.CLOCK_IN.ros_type, pi.CLOCK_IN.name,
-                                               self._on_clock, pi.CLOCK_IN.qos)
+        self._clock, = subscribe(node, {pi.CLOCK_IN: self._on_clock})
         node.announce_ready(
             f'policy driver ready: {self.writer.control} on /{self._name("")}automobile/*, '
             f'observation {", ".join(self.builder.keys)}, every {self.period_s:g} s '
@@ -253,8 +248,7 @@ class PolicyNode:
 
     def _answer(self):
         # the action in force (none before the first tick: the car as it started)
-        held = () if self.action is None else self.action
-        self._action_pub.publish(self._action_msg(data=[float(v) for v in held]))
+        self._outputs.publish(pi.ACTION.cadence, self)
         self.answers += 1
 
     # ---------------------------------------------------------------- errors
