@@ -568,7 +568,7 @@ def main(argv=None):
     options = parser.parse_args(argv)
     load = '/'.join(f'{x:.1f}' for x in os.getloadavg())
     rows, context = (equal_figures if options.equal else figures)(options.quick)
-    width = max(len(row[0]) for row in rows)
+    width = max((len(row[0]) for row in rows), default=0)
     for name, value, relation, target, unit in rows:
         met = value >= target if relation == '>=' else value <= target
         print(f'{name:<{width}} | {value:>10.2f} {unit:<7} | {relation} {target:g} | '
