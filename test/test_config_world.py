@@ -29,13 +29,9 @@ from vehicle_sim.config import load_car, load_robot, load_world, parse_world, wo
 from vehicle_sim.core.car.params import car_params_from_dict, DEFAULT_CAR
 from vehicle_sim.core.diffdrive.params import DEFAULT_ROBOT
 from vehicle_sim.core.geometry.frames import Pose
-from vehicle_sim.core.sensors.params import (
-    CameraSpec,
-    LidarSpec,
-    sensor_from_dict,
-    SENSOR_TYPES,
-    sensors_markdown,
-)
+from vehicle_sim.core.sensors.camera_spec import CameraSpec
+from vehicle_sim.core.sensors.lidar_spec import LidarSpec
+from vehicle_sim.core.sensors.params import sensor_from_dict, SENSOR_TYPES, sensors_markdown
 from vehicle_sim.core.sensors.sets import enable_sensors, merge_sensors, mounted, static_transforms
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import parameter_table_markdown

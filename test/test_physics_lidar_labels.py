@@ -31,6 +31,7 @@ from vehicle_msgs_py import message_type, to_rosbags, typestore
 from vehicle_sim.config import load_car, load_world, world_from_data
 from vehicle_sim.core.map.grid_rays import GridRays
 from vehicle_sim.core.sensors.labels import LABEL_IDS, LABELS
+from vehicle_sim.core.sensors.params import sensor_as_dict
 from vehicle_sim.core.sensors.sets import merge_sensors
 from vehicle_sim.core.world.params import obstacle_from_dict
 from vehicle_sim.physics import World
@@ -120,7 +121,7 @@ def test_a_car_a_pedestrian_and_the_ground_read_their_labels_and_instances(world
 
 def test_an_occupancy_maps_walls_read_wall_with_the_cells_face_normal(tmp_path):
     spec = load_world('race_track')
-    lidar = dict(spec.vehicles[0].sensors[0].as_dict(), labels=True)
+    lidar = dict(sensor_as_dict(spec.vehicles[0].sensors[0]), labels=True)
     spec = world_from_data({'vehicles': [{'name': 'Car', 'model': 'CitroenCZero',
                                           'sensors': [lidar]}],
                             'map': {'type': 'occupancy_grid',

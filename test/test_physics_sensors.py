@@ -28,7 +28,7 @@ import pytest
 
 from vehicle_sim.config import load_car, load_world, world_from_data
 from vehicle_sim.core.geometry.geodesy import LocalTangentPlane
-from vehicle_sim.core.sensors.params import sensor_from_dict
+from vehicle_sim.core.sensors.params import sensor_as_dict, sensor_from_dict
 from vehicle_sim.core.sensors.readings import (
     COVARIANCE_TYPE_DIAGONAL_KNOWN,
     COVARIANCE_TYPE_UNKNOWN,
@@ -497,7 +497,8 @@ def test_robot_default_lidar_sees_an_obstacle():
              'position': [2.0, 0.0, 0.5]}]}, 'w.yaml').obstacles[0]
         world.add_obstacle(obstacle)
         robot = DiffRobotBody(world, 'caster_robot')
-        lidar = sensor_from_dict(robot.params.sensor_set[0].as_dict() | {'enabled': True}, 't')
+        data = sensor_as_dict(robot.params.sensor_set[0])
+        lidar = sensor_from_dict(data | {'enabled': True}, 't')
         suite = SensorSuite(world, robot, [lidar])
         world.step()
         scan = suite.sample('lidar')

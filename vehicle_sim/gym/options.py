@@ -24,7 +24,10 @@ naming the key and the rule, before anything is built. docs/gym.md shows the tab
 
 from dataclasses import replace
 
-from vehicle_sim.core.sensors.params import CameraSpec, LidarSpec, RangeFinderSpec, SENSOR_TYPES
+from vehicle_sim.core.sensors.camera_spec import CameraSpec
+from vehicle_sim.core.sensors.lidar_spec import LidarSpec
+from vehicle_sim.core.sensors.params import SENSOR_TYPES
+from vehicle_sim.core.sensors.range_finder_spec import RangeFinderSpec
 from vehicle_sim.core.specs.param_spec import parameter_table_markdown, ParamSpec, validate_table
 from vehicle_sim.core.specs.simulation import TIME_STEP_MS
 

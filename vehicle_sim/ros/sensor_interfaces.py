@@ -33,7 +33,8 @@ from dataclasses import dataclass, replace
 from typing import Callable, Dict, Iterable, Sequence, Tuple
 
 from vehicle_sim.core.sensors.labels import LABELS
-from vehicle_sim.core.sensors.params import check_layer, sensor_from_dict, SensorSpec
+from vehicle_sim.core.sensors.params import check_layer, sensor_from_dict
+from vehicle_sim.core.sensors.sensor_spec import SensorSpec
 from vehicle_sim.core.sensors.sets import mounted
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import ParamSpec

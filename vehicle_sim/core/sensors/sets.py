@@ -23,7 +23,8 @@ from dataclasses import dataclass, replace
 from typing import Dict, Sequence, Tuple
 
 from vehicle_sim.core.geometry.frames import OPTICAL_QUATERNION
-from vehicle_sim.core.sensors.params import sensor_from_dict, SensorSpec
+from vehicle_sim.core.sensors.params import sensor_as_dict, sensor_from_dict
+from vehicle_sim.core.sensors.sensor_spec import SensorSpec
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.param_spec import fail, REQUIRED
 from vehicle_sim.core.specs.value_kinds import register_kind
@@ -103,7 +104,7 @@ def merge_sensors(base: Sequence[SensorSpec], entries, source) -> Tuple[SensorSp
             if 'type' in entry and entry['type'] != old.sensor_type:
                 fail(where, 'type', entry['type'],
                       f'the preset sensor {brief(name)} is a {old.sensor_type}')
-            data = old.as_dict()
+            data = sensor_as_dict(old)
             data.update(entry)
             data['enabled'] = entry.get('enabled', True)
             result[index_of[name]] = sensor_from_dict(data, where)

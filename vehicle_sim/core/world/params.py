@@ -46,7 +46,7 @@ from vehicle_sim.core.map.kinds import is_lane_map, map_from_dict
 from vehicle_sim.core.map.lane_placement import is_lane_pose, lane_pose_values
 from vehicle_sim.core.map.road_segments import roads_from_list, RoadSpec
 from vehicle_sim.core.map.signal_params import signals_from_dict, SignalSpec
-from vehicle_sim.core.sensors.params import SensorSpec
+from vehicle_sim.core.sensors.sensor_spec import SensorSpec
 from vehicle_sim.core.sensors.sets import merge_sensors
 from vehicle_sim.core.specs.errors import InvalidParameterError, InvalidPoseError
 from vehicle_sim.core.specs.param_spec import (
