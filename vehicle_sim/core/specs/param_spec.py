@@ -18,7 +18,7 @@ The one parameter-spec kind: :class:`ParamSpec` rows, their validation and their
 Every parameter table of the project is a tuple of ParamSpec rows validated by
 :func:`validate_table`: the car presets (``car/params.py``), the robot presets
 (``diffdrive/params.py``), the bridge (``bridge/params.py``), world files, sensors and obstacles
-(``world/params.py``, ``sensors/params.py``) and every ROS node's parameters (declared on the node
+(``world/params.py``, ``sensors/*_spec.py``) and every ROS node's parameters (declared on the node
 by ``ros/node_support.py``). A refused value raises :class:`InvalidParameterError` naming the
 source, the key, the value and the valid range. Docs tables come from
 :func:`parameter_table_markdown`. The kinds of value and their checkers are :mod:`.value_kinds`.
