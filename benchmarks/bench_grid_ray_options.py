@@ -13,10 +13,10 @@
 # limitations under the License.
 
 """
-The SLAM-like map's lidar (issue 30) against two other ways of finding the grid's walls.
+The SLAM-like map's lidar (issue 30) against three other ways of finding the grid's walls.
 
 bench_occupancy_lidar.py's map, car and 1080-ray lidar, sampled in interleaved blocks (CPU time
-of this process, median per block) in five worlds:
+of this process, median per block) in six worlds:
 
 - ``empty``: the same car and lidar in a world without a map (the ratios' baseline);
 - ``grid``: the map as the simulator builds it: its walls found over the grid
@@ -24,7 +24,15 @@ of this process, median per block) in five worlds:
 - ``no march``: the map as built, its GridRays answering "no wall" at once (what the map costs
   besides the march: the walls' meshes moved out of the rays' way and back, Bullet's rays to
   the walls; the floor of any march);
-- ``trimesh``: the empty world plus the walls given to Bullet as static triangle meshes of their
+- ``fan``: the map as built, its GridRays with a first pass shared by the rays from the origin
+  (numpy, no new dependency; ``fan_grid_rays``): four more bytes a cell hold each cell's run
+  of free cells along its row towards +x and -x and along its column towards +y and -y; per
+  quadrant of directions, the rows from the origin's row on and the columns from its column
+  on are read once (256 of each, one gather for all), and each ray finds with one
+  np.searchsorted the first row (column) where it leaves the free run that starts at the
+  origin's column (row): there it meets a wall, or enters one, or is only known free up to
+  that line. The rays settled neither way march on (GridRays' march) from there;
+ the walls given to Bullet as static triangle meshes of their
   boundary only (a vertical quad from the ground to ``wall_height`` on every border between a
   wall cell and a free one, collinear runs of borders merged into one quad; at most 32 768
   quads a body, PyBullet's 131 072 vertices), every ray cast by one rayTestBatch;
@@ -33,7 +41,8 @@ of this process, median per block) in five worlds:
   with their corner checks, one ray at a time, no walk: the same hits but for rays that graze a
   wall cell's corner or run along its side, which the walk counts and the jumps may not).
 
-It prints the mesh's size and build time, numba's compile time, each world's cost per sample
+It prints the mesh's size and build time, numba's compile time, the fan's tables (build time,
+memory) and how many rays it leaves to the march, each world's cost per sample
 and its ratio to the empty world, and how far each scan lies from the grid's. Run:
 ``.venv/bin/python benchmarks/bench_grid_ray_options.py [--quick]``.
 """
@@ -208,6 +217,186 @@ def compiled_cast():
     return cast
 
 
+# The fan (``fan``): free runs along each row and column, capped at a byte, and the lines looked
+# at from the origin at once.
+_FAN_LINES = 256
+_MAX_RUN = 255
+# The rays the fan leaves march on from at least this far [cells] before where they are known
+# free, along each axis.
+_BACK_CELLS = 1e-5
+
+
+def free_runs(walls, out=None):
+    """
+    Return each cell's run of free cells up its column (towards +y), capped at 255: uint8.
+
+    :param walls: bool (height, width) wall mask (row 0 = the bottom row).
+    :param out: where to write them (a view will do), else a new array.
+    """
+    height = walls.shape[0]
+    dtype = np.int32 if height >= 32767 else np.int16
+    rows = np.arange(height, dtype=dtype)[:, None]
+    # per cell, the row of the first wall cell at or above it (the grid's top without one)
+    first = np.where(walls, rows, dtype(height))
+    np.minimum.accumulate(first[::-1], axis=0, out=first[::-1])
+    first -= rows
+    np.minimum(first, _MAX_RUN, out=first)
+    runs = np.empty(walls.shape, dtype=np.uint8) if out is None else out
+    runs[...] = first
+    return runs
+
+
+def fan_grid_rays():
+    """Return a GridRays class whose rays from the origin go through the fan before the march."""
+    from vehicle_sim.core.map import grid_rays
+    from vehicle_sim.core.map.grid_rays import GridRays
+    _NUDGE_CELLS = grid_rays._NUDGE_CELLS
+    _START, _SPEED, _T, _HIGH, _ID = (grid_rays._START, grid_rays._SPEED, grid_rays._T,
+                                      grid_rays._HIGH, grid_rays._ID)
+    count_nonzero = np.count_nonzero
+
+    class FanGridRays(GridRays):
+        """GridRays with the fan (module text): four more bytes a cell."""
+
+        def __init__(self, walls, resolution_m, corner, height_m):
+            super().__init__(walls, resolution_m, corner, height_m)
+            # free cells along each row towards +x and -x (stored column by column: a column
+            # of the grid is a row of theirs) and each column towards +y and -y, on the grid
+            # with a free border, one table after the other
+            border = np.zeros((walls.shape[0] + 2, walls.shape[1] + 2), dtype=bool)
+            border[1:-1, 1:-1] = walls
+            cells = border.size
+            self._runs = np.empty(4 * cells, dtype=np.uint8)
+            runs = self._runs.reshape(4, *border.shape)
+            across = np.ascontiguousarray(border.T)
+            along_x = self._runs[:2 * cells].reshape(2, *across.shape)
+            free_runs(across, out=along_x[0])
+            free_runs(across[::-1], out=along_x[1][::-1])
+            free_runs(border, out=runs[2])
+            free_runs(border[::-1], out=runs[3][::-1])
+            self._run_tables = cells * np.arange(4)
+            self._run_shape = border.shape
+            self.marched = 0
+
+        @property
+        def nbytes(self):
+            return super().nbytes + self._runs.nbytes
+
+        def _march(self, result, rays):
+            # the rays from the origin (inside their band from its start) through the fan, the
+            # others and the ones it leaves through GridRays' march
+            speed, t = rays[_SPEED], rays[_T]
+            fan = (t == 0.0) & ((speed[0] != 0.0) | (speed[1] != 0.0))
+            if count_nonzero(fan):
+                found = np.ones(rays.shape[1])
+                done = self._fan(rays[_START][:, 0], speed, t, rays[_HIGH], fan, found)
+                result[rays[_ID, done].astype(np.intp)] = found[done]
+                keep = ~done
+                if not count_nonzero(keep):
+                    self.marched = 0
+                    return result
+                rays = rays.compress(keep, axis=1)
+            self.marched = rays.shape[1]
+            return super()._march(result, rays)
+
+        def _fan(self, origin, speed, t, high, fan, result):
+            # The rays from the origin over lines of cells looked at once for all of them: per
+            # quadrant (sx, sy) of the rays' directions, the rows r0 + sy k (k = 0, 1, ...) from
+            # the origin's cell (r0, c0) and, in each, the run of free cells from column c0 towards
+            # sx; likewise the columns c0 + sx k and their runs from row r0 towards sy. A ray of
+            # the quadrant crosses rows k = 0, 1, ... in turn and spans, in each, the cells from
+            # where it enters to where it leaves, all at or past column c0: all free while it
+            # leaves the row before the run's end g(k). In the quadrant's own axes (the origin at
+            # (a, b) in its cell, the ray moving c cells along per cell across), it leaves row k
+            # at a + c (k + 1 - b), so rows 0..k are free while c < min over j <= k of
+            # (g(j) - a) / (j + 1 - b): a running minimum, shared by the quadrant's rays, in which
+            # each ray finds its first row k* that is not (np.searchsorted). There it enters the
+            # cell g(k*), a wall, unless it entered the row past it (or the run is capped): then
+            # it meets a wall where it enters the row if that cell is one (a wall across its
+            # way), else all it knows is that it is free up to row k*. Each ray is looked at both
+            # ways
+            # (rows and columns: walls beside it on one side stop only one of them); the ones
+            # with neither a hit nor their band's end march on from where they are known free.
+            # The families' keys are 2 apart, so that a ray's key never lands in the family
+            # before its own.
+            # Margins of a nudge: a ray leaving a row within one of the run's end counts as
+            # reaching it (the march's corner rule decides).
+            which = np.flatnonzero(fan)
+            vx, vy = speed[0, which], speed[1, which]
+            x0, y0 = float(origin[0]) + 1.0, float(origin[1]) + 1.0      # with the border
+            height, stride = self._run_shape
+            tables = self._run_tables
+            bases, steps, sideways, along, across = [], [], [], [], []
+            for quadrant in range(4):
+                sx, sy = (-1 if quadrant & 1 else 1), (-1 if quadrant & 2 else 1)
+                c0 = math.floor(x0 + sx * _NUDGE_CELLS)
+                r0 = math.floor(y0 + sy * _NUDGE_CELLS)
+                fx = x0 - c0 if sx > 0 else c0 + 1 - x0
+                fy = y0 - r0 if sy > 0 else r0 + 1 - y0
+                # rows: runs along x (stored by columns); columns: runs along y
+                bases += [tables[0 if sx > 0 else 1] + c0 * height + r0,
+                          tables[2 if sy > 0 else 3] + r0 * stride + c0]
+                steps += [sy, sx]
+                sideways += [sx * height, sy * stride]
+                along += [fx, fy]
+                across += [fy, fx]
+            along, across = np.array(along), np.array(across)
+            lines = np.arange(_FAN_LINES)
+            index = np.array(steps)[:, None] * lines
+            index += np.array(bases)[:, None]
+            runs = self._runs.take(index, mode='clip').astype(float)
+            bound = runs - (along + _NUDGE_CELLS)[:, None]
+            bound /= (lines + 1.0) - across[:, None]
+            np.minimum.accumulate(bound, axis=1, out=bound)
+            # keys rising along the lines, family f's in (2 f, 2 f + 1] (a ray's in [2 f, 2 f + 1])
+            np.maximum(bound, 0.0, out=bound)
+            bound += 1.0
+            keys = np.divide(1.0, bound, out=bound)
+            keys += 2.0 * np.arange(len(bases))[:, None]
+            # per ray, its rows' family (2 q) and its columns' (2 q + 1), as one
+            family = 2 * ((vx < 0.0) + 2 * (vy < 0.0))
+            family = np.concatenate([family, family + 1])
+            speed_along = np.abs(np.concatenate([vx, vy]))
+            speed_across = np.abs(np.concatenate([vy, vx]))
+            slope = speed_along / speed_across
+            slope += 1.0
+            found = keys.ravel().searchsorted(np.divide(1.0, slope, out=slope) + 2.0 * family)
+            line = found - family * _FAN_LINES
+            run = runs.ravel().take(found, mode='clip')
+            near, side = along[family], across[family]
+            enter = np.fmax((line - side) / speed_across, 0.0)
+            leave = (line + 1.0 - side) / speed_across
+            wall = (run - near) / speed_along
+            inside = near + speed_along * enter
+            within = line < _FAN_LINES
+            hits = within & (run < _MAX_RUN) & (inside <= run + 1.0) & (wall <= leave)
+            # or it enters the line in a wall cell past the run (a wall across its way)
+            cell = (np.array(bases)[family] + np.array(steps)[family] * line
+                    + np.array(sideways)[family] * np.floor(inside).astype(np.intp))
+            entered = within & (self._runs.take(cell, mode='clip') == 0)
+            wall = np.where(entered, -np.inf, wall)
+            hits |= entered
+            count = len(which)
+            hit_at = np.where(hits, np.fmax(enter, wall), np.inf)
+            hit_at = np.minimum(hit_at[:count], hit_at[count:])
+            known = np.maximum(enter[:count], enter[count:])
+            end = high[which]
+            done = (hit_at < np.inf) | (known >= end)
+            result[which] = np.where(hit_at <= end, hit_at, 1.0)
+            # the others march on from before where they are known free: half a cell along the
+            # ray's main axis and _BACK_CELLS at least along the other (the march looks its cell up
+            # a nudge ahead along both)
+            speed_x, speed_y = np.abs(vx), np.abs(vy)
+            back = np.maximum(0.5 / np.maximum(speed_x, speed_y),
+                              _BACK_CELLS / np.minimum(speed_x, speed_y))
+            t[which] = np.maximum(known - back, 0.0)
+            out = np.zeros(len(t), dtype=bool)
+            out[which] = done
+            return out
+
+    return FanGridRays
+
+
 def measure(blocks, samples):
     """Return {name: value}: the worlds' costs per sample [s], sizes and times."""
     from vehicle_sim.physics.scene import build_scene, mount_suite
@@ -223,6 +412,8 @@ def measure(blocks, samples):
                                          mount=mount_suite)}
         scenes['no march'] = build_scene(bench_occupancy_lidar._world(path, lidar),
                                          mount=mount_suite)
+        scenes['fan'] = build_scene(bench_occupancy_lidar._world(path, lidar),
+                                    mount=mount_suite)
         cast = compiled_cast()
         if cast is not None:
             scenes['numba'] = build_scene(bench_occupancy_lidar._world(path, lidar),
@@ -231,6 +422,18 @@ def measure(blocks, samples):
     start = time.perf_counter()
     bodies, found['quads'] = add_boundary_meshes(scenes['trimesh'].world, built)
     found['mesh_s'], found['mesh_bodies'] = time.perf_counter() - start, len(bodies)
+    from vehicle_sim.physics.map_layer import _grid_corner
+    walls_args = (built.walls, built.grid.resolution_m, _grid_corner(built.grid, built.spec),
+                  built.spec.wall_height_m)
+    fan_class = fan_grid_rays()
+    start = time.process_time()
+    fan = fan_class(*walls_args)
+    found['fan_s'] = time.process_time() - start
+    start = time.process_time()
+    found['grid_bytes'] = type(fan).__mro__[1](*walls_args).nbytes
+    found['grid_s'] = time.process_time() - start
+    found['fan_bytes'] = fan.nbytes
+    scenes['fan'].world.ray_grids[0] = fan
     rays = scenes['no march'].world.ray_grids[0]
     rays.cast = lambda origin, ends: np.ones(len(ends))
     if cast is not None:
@@ -241,6 +444,8 @@ def measure(blocks, samples):
             scene.world.step()
     suites = {name: scene.vehicles['car'].sensors for name, scene in scenes.items()}
     reference = suites['grid'].sample('lidar').scan
+    suites['fan'].sample('lidar')
+    found['fan_marched'] = fan.marched
     for name, suite in suites.items():
         start = time.perf_counter()
         scan = suite.sample('lidar').scan
@@ -286,15 +491,19 @@ def main(argv=None):
         print('  numba: not installed, its row left out')
     else:
         print(f"  numba: first sample (compiling the march) {found['numba', 'first_s']:.2f} s")
+    print(f"  fan: its ray tables built in {found['fan_s']:.2f} s of CPU against "
+          f"{found['grid_s']:.2f} s for the grid's alone, {found['fan_bytes'] / 1e6:.0f} MB "
+          f"against {found['grid_bytes'] / 1e6:.0f} MB; {found['fan_marched']} of "
+          f"{bench_occupancy_lidar.LIDAR['horizontal_resolution']} rays left to the march")
     empty = found['empty']
-    for name in ('empty', 'grid', 'no march', 'trimesh', 'numba'):
+    for name in ('empty', 'grid', 'no march', 'fan', 'trimesh', 'numba'):
         if name not in found:
             continue
         low, high = found[name, 'ratios']
         line = (f'  {name:9s}{found[name] * 1e3:6.3f} ms per sample, {found[name] * rate:5.1%} '
                 f'of one core, {found[name] / empty:.2f}x the empty world (blocks {low:.2f}-'
                 f'{high:.2f}x)')
-        if name in ('trimesh', 'numba'):
+        if name in ('trimesh', 'numba', 'fan'):
             line += (f"; scan against the grid's: {found[name, 'apart']} rays hit on one side "
                      f"only, {found[name, 'off_m']:.1e} m apart at most")
         print(line)
