@@ -28,6 +28,7 @@ basic steps of an env step (:meth:`begin`), after each (:meth:`after_basic_step`
 import math
 
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
+from vehicle_sim.core.learning.gap import Box, gap_fractions, gap_term, GapWeights
 from vehicle_sim.core.learning.progress import (
     GoalProgress,
     HeadingProgress,
@@ -45,6 +46,7 @@ from vehicle_sim.core.learning.reward import (
 )
 from vehicle_sim.core.map.vehicle_lanes import VehicleLanes
 from vehicle_sim.core.specs.errors import InvalidParameterError
+from vehicle_sim.core.traffic.objects import obstacle_objects
 from vehicle_sim.gym.controls import make_control
 from vehicle_sim.gym.observations import ego_parts, PART_FACTORIES, sensor_spec
 from vehicle_sim.gym.options import CAMERA, LIDAR, RANGE_FINDER, SOURCE
@@ -64,6 +66,28 @@ def reward_weights(options):
     return RewardWeights(options['progress_weight'], options['collision_penalty'],
                          options['goal_reward'], options['off_lane_penalty'],
                          options['solid_line_penalty'], options['lane_centre_penalty'])
+
+
+def gap_weights(options):
+    """Return the GapWeights of the environment's options (the ``gap`` term)."""
+    return GapWeights(options['headway_penalty'], options['headway_s'], options['ttc_penalty'],
+                      options['ttc_s'], options['side_gap_penalty'], options['gap_margin'])
+
+
+def road_users(scene):
+    """Return the traffic's vehicles and the world's obstacles now, as gap Boxes."""
+    traffic = scene.parts.get('traffic')
+    found = [] if traffic is None else [Box(o.x_m, o.y_m, o.yaw_rad, o.speed_mps, *o.size_m[:2])
+                                        for o in traffic.objects()]
+    world = scene.world
+
+    def pose_of(name):
+        (position, (qx, qy, qz, qw)), _, _ = world.body_state(world.obstacles[name])
+        return (*position, yaw_from_quaternion(qx, qy, qz, qw))
+
+    found.extend(Box(o.x_m, o.y_m, o.yaw_rad, 0.0, *o.size_m[:2])
+                 for o in obstacle_objects(scene.spec.obstacles, pose_of))
+    return found
 
 
 def progress_measures(options, lanes, scenario_goal=None, scenario_path=None):
@@ -112,11 +136,13 @@ class Ego:
         self.body = self.ego.body
         self.options = options
         self.weights = reward_weights(options)
+        self.gap = gap_weights(options)
         graph = scene.lanes
         # the ego's lane state and the markings it crosses (None: a world without lanes)
         signals = getattr(scene.parts.get('signals'), 'controller', None)
         self.lanes = None if graph is None else VehicleLanes(graph, signals)
-        self.terms = TERMS if graph is None else LANE_TERMS
+        self.terms = (TERMS if graph is None else LANE_TERMS) + (
+            ('gap',) if self.gap.enabled else ())
         self.crossed = ()
         self.control = make_control(options['control'], self.ego, options['max_speed'],
                                     options['max_reverse_speed'], options['max_steering'])
@@ -245,10 +271,18 @@ class Ego:
                 if state.on_lane and state.width_m > 0.0 else 0.0
             terms['lane'] = lane_term(weights, state.on_lane, solid_crossings(self.crossed),
                                       repeat_done * self.world.time_step_s, centre)
+        if self.gap.enabled:
+            terms['gap'] = gap_term(self.gap, self.gap_fractions(x, y, yaw),
+                                    repeat_done * self.world.time_step_s)
         truncated = not terminated and elapsed_s >= episode_s - 1e-9
         other = ','.join(sorted({event.other for event in hits}))
         return self.observe(), terms, terminated, truncated, (progress_m, terms, other,
                                                               bool(hits))
+
+    def gap_fractions(self, x, y, yaw):
+        """Return the gap term's (headway, ttc, side) fractions at the pose (x, y, yaw) now."""
+        return gap_fractions(self.gap, self.body.outline, x, y, yaw,
+                             self.body.forward_speed_mps(), road_users(self.scene))
 
     def info(self, elapsed_s, progress_m, terms, collided_with, collision, watch=None):
         """Return the info dict of a step (docs/gym.md)."""

@@ -128,6 +128,27 @@ OPTION_SPECS = (
     ParamSpec('lane_centre_penalty', kind='float', default=0.0, unit='1/s', ge=0.0,
               doc='with lanes: subtracted per second on a lane, times the distance from its '
                   'centreline over half its width (0 at the centre, 1 at its edge)'),
+    ParamSpec('headway_penalty', kind='float', default=0.0, unit='1/s', ge=0.0,
+              doc="subtracted per second times max(0, 1 - time headway / 'headway_s'), the "
+                  "smallest time headway to a road user in the ego's path (the gap term, "
+                  'docs/gym.md)'),
+    ParamSpec('headway_s', kind='float', default=1.0, unit='s', gt=0.0,
+              doc="time headway (bumper gap / the ego's speed) below which 'headway_penalty' "
+                  'starts'),
+    ParamSpec('ttc_penalty', kind='float', default=0.0, unit='1/s', ge=0.0,
+              doc="subtracted per second times max(0, 1 - time to collision / 'ttc_s'), the "
+                  "smallest time to collision with a road user in the ego's path (the gap "
+                  'term)'),
+    ParamSpec('ttc_s', kind='float', default=3.0, unit='s', gt=0.0,
+              doc="time to collision (bumper gap / closing speed) below which 'ttc_penalty' "
+                  'starts'),
+    ParamSpec('side_gap_penalty', kind='float', default=0.0, unit='1/s', ge=0.0,
+              doc="subtracted per second times max(0, 1 - clearance / 'gap_margin'), the "
+                  'smallest side-to-side clearance to a road user beside the ego (the gap '
+                  'term)'),
+    ParamSpec('gap_margin', kind='float', default=1.0, unit='m', gt=0.0,
+              doc="side-to-side clearance below which a road user ahead is in the ego's path "
+                  "and one beside is penalised ('side_gap_penalty')"),
     ParamSpec('terminate_on_collision', kind='bool', default=True,
               doc='a collision of the ego ends the episode (terminated)'),
     ParamSpec('terminate_off_road', kind='bool', default=False,
