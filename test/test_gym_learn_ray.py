@@ -24,7 +24,6 @@ script's clear errors (the extra missing, a bad budget) need neither.
 """
 
 import csv
-import importlib.util
 import json
 import math
 from pathlib import Path
@@ -32,6 +31,7 @@ import subprocess
 import sys
 
 import pytest
+from script_helpers import load_script
 
 from vehicle_sim.gym.policy_card import load_card
 
@@ -42,10 +42,7 @@ TIMEOUT_S = 540
 
 
 def _script():
-    spec = importlib.util.spec_from_file_location('train_highway_ray', SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_script(SCRIPT)
 
 
 def _run(*args, prelude=''):

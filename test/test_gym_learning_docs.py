@@ -22,20 +22,17 @@ committed model's card must be the script's. Needs neither stable-baselines3 nor
 """
 
 import csv
-import importlib.util
 import json
 from pathlib import Path
+
+from script_helpers import load_script
 
 ROOT = Path(__file__).resolve().parents[1]
 RUN = ROOT / 'docs' / 'learning'
 
 
 def _script():
-    spec = importlib.util.spec_from_file_location('train_highway',
-                                                  ROOT / 'examples' / 'train_highway.py')
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_script('examples/train_highway.py')
 
 
 def test_the_docs_show_the_committed_runs_figures():

@@ -26,11 +26,11 @@ extra (stable-baselines3 and PyTorch), which CI does not install.
 
 import argparse
 import csv
-import importlib.util
 import json
 
 import numpy as np
 import pytest
+from script_helpers import load_script
 
 pytest.importorskip('gymnasium', reason="needs the 'gym' extra (gymnasium)")
 pytest.importorskip('stable_baselines3',
@@ -49,11 +49,7 @@ EPISODES = 4
 
 
 def _script():
-    spec = importlib.util.spec_from_file_location('train_highway',
-                                                  ROOT / 'examples' / 'train_highway.py')
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_script('examples/train_highway.py')
 
 
 def _mean_return(env, policy, seeds):

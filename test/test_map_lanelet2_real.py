@@ -28,6 +28,7 @@ import time
 import warnings
 
 import pytest
+from script_helpers import load_script
 import yaml
 
 from vehicle_sim.config import load_world
@@ -211,11 +212,7 @@ REPO = Path(__file__).resolve().parent.parent
 
 
 def test_the_shipped_urban_map_is_what_its_script_draws():
-    import importlib.util
-    spec = importlib.util.spec_from_file_location('make_urban_map',
-                                                  REPO / 'config' / 'maps' / 'make_urban_map.py')
-    script = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(script)
+    script = load_script('config/maps/make_urban_map.py')
     assert script.osm_text() == (REPO / 'config' / 'maps' / 'urban_map.osm').read_text('utf-8')
 
 

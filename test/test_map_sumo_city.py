@@ -14,10 +14,10 @@
 
 """The shipped SUMO city (config/maps/city_sumo.net.xml) is what its script makes, as described."""
 
-import importlib.util
 from pathlib import Path
 
 import pytest
+from script_helpers import load_script
 
 sumolib = pytest.importorskip('sumolib', reason="needs the 'sumo' extra (sumolib)")
 pytest.importorskip('sumo', reason="needs the 'sumo' extra (eclipse-sumo: netgenerate)")
@@ -27,10 +27,7 @@ MAPS = REPO / 'config' / 'maps'
 
 
 def _script():
-    spec = importlib.util.spec_from_file_location('make_city_sumo', MAPS / 'make_city_sumo.py')
-    script = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(script)
-    return script
+    return load_script(MAPS / 'make_city_sumo.py')
 
 
 def _without_date(text):

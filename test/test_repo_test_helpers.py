@@ -62,3 +62,7 @@ def test_the_in_process_recording_is_set_up_once():
 def test_no_module_builds_the_node_process_client_and_automobile_client_itself():
     assert _fixtures_calling('VehicleClient') == []
     assert _fixtures_calling('client_node') == []
+
+
+def test_a_repository_script_is_loaded_by_path_in_one_place():
+    assert _modules_calling('spec_from_file_location') == ['script_helpers.py']
