@@ -346,6 +346,7 @@ class SumoBodies(SumoPool, SumoViews):
                 slot.state = (*slot.state[:3], speed)
             slot.speed = speed
             slot.lane = lane                      # None: read when the objects are
+        persons = []
         for sumo_id, (fx, fy), angle, speed in reads.persons(api):
             key = (True, sumo_id)
             slot = by_id.get(key)
@@ -356,6 +357,8 @@ class SumoBodies(SumoPool, SumoViews):
             half = 0.5 * slot.size[0]
             slot.front, slot.speed = (fx, fy, angle), speed
             slot.state = (fx - half * cos(yaw), fy - half * sin(yaw), yaw, speed)
+            persons.append(slot)
+        self._apart(persons)                # none closer than their width (SumoPool._apart)
         for key in [key for key in self._by_id if key not in seen]:   # arrived
             slot = self._by_id.pop(key)
             self._park(slot)
