@@ -30,6 +30,8 @@ Point = Tuple[float, float]
 # overlap); a pair that overlaps is moved apart to exactly the sum.
 TOUCH_M = 1.0e-4
 MAX_PASSES = 200                 # passes over every pair before giving up (a long queue's)
+# a cell's pairs: within it, and with the cells after it (each neighbouring pair of cells once)
+NEIGHBOURS = ((0, 0), (1, -1), (1, 0), (1, 1), (0, 1))
 
 __all__ = ['separate_discs', 'TOUCH_M']
 
@@ -42,7 +44,8 @@ def separate_discs(centres: Sequence[Point], radii: Sequence[float],
 
     Each overlapping pair is pushed apart along the line between its centres (two on the same
     point: along x), each disc by half the overlap; a pass goes over every pair near enough
-    to overlap (a grid of cells as wide as the widest disc) in the order given, and the passes
+    to overlap (a grid of cells as wide as the widest disc: each cell's pairs and those with
+    the cells next to it, the cells in the order of their first disc), and the passes
     repeat until one moves nothing: in a queue of discs, each closer to the next than their
     width, the push goes down the queue, which gets longer by the sum of the overlaps. The
     same input gives the same output. After ``max_passes`` passes the centres are returned as
@@ -77,23 +80,23 @@ def separate_discs(centres: Sequence[Point], radii: Sequence[float],
         for i, (x, y) in enumerate(points):
             grid.setdefault((floor(x / cell), floor(y / cell)), []).append(i)
         moved = False
-        for i, p in enumerate(points):
-            gx, gy = floor(p[0] / cell), floor(p[1] / cell)
-            vx, vy = velocities[i]
-            for cx in (gx - 1, gx, gx + 1):
-                for cy in (gy - 1, gy, gy + 1):
-                    for j in grid.get((cx, cy), ()):
-                        if j <= i:
-                            continue
-                        q = points[j]
+        for (gx, gy), members in grid.items():       # a cell with itself and 4 neighbours
+            for k, i in enumerate(members):
+                for cx, cy in NEIGHBOURS:
+                    others = members[k + 1:] if cx == cy == 0 else grid.get((gx + cx, gy + cy))
+                    for j in others or ():
+                        p, q = points[i], points[j]
                         dx, dy = q[0] - p[0], q[1] - p[1]
-                        wx, wy = velocities[j][0] - vx, velocities[j][1] - vy
+                        wx = velocities[j][0] - velocities[i][0]
+                        wy = velocities[j][1] - velocities[i][1]
                         closing = -(dx * wx + dy * wy)
                         if closing > 0.0:          # their closest approach in the horizon
                             t = min(horizon_s, closing / (wx * wx + wy * wy))
                             dx, dy = dx + wx * t, dy + wy * t
-                        d = hypot(dx, dy)
                         need = radii[i] + radii[j]
+                        if abs(dx) >= need or abs(dy) >= need:
+                            continue
+                        d = hypot(dx, dy)
                         if d >= need - TOUCH_M:
                             continue
                         ux, uy = (dx / d, dy / d) if d > 0.0 else (1.0, 0.0)
