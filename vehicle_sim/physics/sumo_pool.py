@@ -18,8 +18,9 @@ The SUMO engine's pool of bodies (physics/sumo_traffic.py): one body per SUMO ve
 A body, named ``sumo_<k>``, serves one SUMO vehicle or person from its departure to its arrival,
 is parked under the ground after, and serves the next one of the same size and shape (its
 class's, core/traffic/objects.py CLASS_SHAPES: a person an upright cylinder); the order of SUMO's
-departures decides, so a seed gives the same names. :class:`SumoPool` takes, parks, places,
-moves (straight on between SUMO's steps) and stops them; SumoBodies is one. A serving body's
+departures decides, so a seed gives the same names. :class:`SumoPool` takes, parks, places
+(two persons SUMO has closer than their width moved apart: :meth:`SumoPool._apart`), moves
+(straight on between SUMO's steps) and stops them; SumoBodies is one. A serving body's
 label (``World.labels``) is its class's, its instance id that of the SUMO vehicle or person it
 serves (:func:`instance_name`: one id per SUMO id for the world's life); a parked one has none.
 """
