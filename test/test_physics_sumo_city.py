@@ -31,7 +31,7 @@ and the tests read the record:
   a crosswalk area of our lane graph;
 - bodies in the physics (every pair, every 0.5 s, right after a SUMO step): no two vehicles
   overlap (SUMO's nor ours); no two pedestrians overlap, though SUMO has persons closer than
-  their width (their bodies moved apart by a few centimetres); no vehicle overlaps a pedestrian
+  their width (their bodies moved apart, by less than 0.2 m); no vehicle overlaps a pedestrian
   (a vehicle's box on the line nearest the path its front took, even on a U-turn inside a
   junction);
 - our car stopped in a lane queues SUMO's traffic behind it: a queue forms and no vehicle gets
@@ -71,7 +71,7 @@ STOPPED_MPS = 0.1
 NEAR_LINE_M = 5.0                # a vehicle this near its signal is waiting at it
 CROSSWALK_TOLERANCE_M = 0.3      # a person's centre within this of a crosswalk's strip
 WALKER_WIDTH_M = 0.478           # SUMO's default pedestrian type's width: its cylinder's diameter
-PERSON_SHIFT_M = 0.2             # a person's body at most this far from where SUMO has it
+PERSON_SHIFT_M = 0.2             # a person's body less than this from where SUMO has it [m]
 
 
 def city_net(folder):
@@ -373,8 +373,9 @@ def test_no_two_pedestrians_overlap_in_the_physics(city):
     assert [o for o in city.overlaps if _kinds(o) == ('person', 'person')] == []
 
 
-def test_a_pedestrians_body_is_where_sumo_has_it_but_by_a_few_centimetres(city):
-    # moved apart from the persons SUMO has closer than their width, and only then
+def test_a_pedestrians_body_is_where_sumo_has_it_or_near(city):
+    # moved apart from the persons SUMO has closer than their width, and only then (0.6 % of
+    # the samples, 0.154 m at most)
     shifts = [shift for _, _, shift in city.person_shifts]
     assert len(shifts) > 10_000 and max(shifts) < PERSON_SHIFT_M
     assert sum(shift > 1e-6 for shift in shifts) < 0.05 * len(shifts)
