@@ -498,6 +498,56 @@ def test_a_warmup_starts_the_world_with_traffic_and_each_reset_runs_it_again(net
         cold.world.close()
 
 
+def test_persons_queueing_closer_than_their_width_have_bodies_that_do_not_overlap(net,
+                                                                                  tmp_path):
+    # 15 persons walking north up A0A1's sidewalk wait at the red of crossing :A1_c2 (until
+    # about 45 s): SUMO keeps each a length and a minGap (0.215 + 0.25 m) behind the next, short
+    # of the cylinder's 0.478 m, and packs those waiting on the walking area closer still:
+    # their bodies are moved apart, and no two overlap right after a SUMO step nor between
+    routes = tmp_path / 'queue.rou.xml'
+    routes.write_text('<routes>\n' + ''.join(
+        f'  <person id="q{k}" depart="{k}" departPos="60"><walk edges="A0A1 A1A0"/></person>\n'
+        for k in range(15)) + '</routes>\n')
+    scene = _world(net, {'routes': str(routes)}, ego=(-30.0, -30.0, 0.0), folder=tmp_path)
+    try:
+        world, bodies = scene.world, scene.parts['traffic']
+        api, cid = bodies.session.api, scene.world.client_id
+        close, shifts, overlaps = 0, [], []
+        for _ in range(45 * STEPS_PER_S):
+            world.step()
+            since = round(bodies.since_update_s / world.time_step_s)
+            if world.time_s < 20.0 or since not in (1, 5):
+                continue
+            world.sync_bodies()
+            agents = bodies.agents()
+            if since == 1:                     # right after a SUMO step: SUMO's centres then
+                centres = []
+                for name, x, y, _, length, *_ in agents:
+                    pid = bodies.sumo_id(name)
+                    (fx, fy), heading = api.person.getPosition(pid), math.radians(
+                        90.0 - api.person.getAngle(pid))
+                    centres.append((fx - 0.5 * length * math.cos(heading),
+                                    fy - 0.5 * length * math.sin(heading)))
+                    shifts.append(math.dist((x, y), centres[-1]))
+                close += sum(math.dist(a, b) < 0.478
+                             for i, a in enumerate(centres) for b in centres[i + 1:])
+            ids = [bodies.body_of(name) for name, *_ in agents]
+            for i, a in enumerate(ids):
+                for b in ids[i + 1:]:
+                    depth = min((p[8] for p in pybullet.getClosestPoints(
+                        a, b, 0.0, physicsClientId=cid)), default=0.0)
+                    if depth < -1e-3:
+                        overlaps.append((world.time_s, a, b, depth))
+        assert close > 100                     # SUMO's closer than their width
+        assert overlaps == []
+        # moved by less than a person's width (0.32 m at most here: the crowd SUMO packs on
+        # the walking area at the red, some 0.34 m apart), most not at all
+        assert 0.0 < max(shifts) < 0.478
+        assert sum(shift > 1e-6 for shift in shifts) < 0.5 * len(shifts)
+    finally:
+        scene.world.close()
+
+
 def test_a_person_riding_a_vehicle_has_no_body_of_its_own(net, tmp_path):
     routes = tmp_path / 'ride.rou.xml'
     routes.write_text('<routes>\n  <vehicle id="car" depart="0" departSpeed="0">'

@@ -18,8 +18,9 @@ The SUMO engine's pool of bodies (physics/sumo_traffic.py): one body per SUMO ve
 A body, named ``sumo_<k>``, serves one SUMO vehicle or person from its departure to its arrival,
 is parked under the ground after, and serves the next one of the same size and shape (its
 class's, core/traffic/objects.py CLASS_SHAPES: a person an upright cylinder); the order of SUMO's
-departures decides, so a seed gives the same names. :class:`SumoPool` takes, parks, places,
-moves (straight on between SUMO's steps) and stops them; SumoBodies is one. A serving body's
+departures decides, so a seed gives the same names. :class:`SumoPool` takes, parks, places
+(two persons SUMO has closer than their width moved apart: :meth:`SumoPool._apart`), moves
+(straight on between SUMO's steps) and stops them; SumoBodies is one. A serving body's
 label (``World.labels``) is its class's, its instance id that of the SUMO vehicle or person it
 serves (:func:`instance_name`: one id per SUMO id for the world's life); a parked one has none.
 """
@@ -29,6 +30,7 @@ import math
 
 import pybullet
 
+from vehicle_sim.core.geometry.discs import separate_discs
 from vehicle_sim.core.sensors.labels import label_of_class, LABELS
 from vehicle_sim.core.traffic.objects import CLASS_SHAPES, shape_extents
 from vehicle_sim.core.traffic.sumo_params import object_class
@@ -150,15 +152,16 @@ def trail_pose(trail, x, y, yaw, length):
 class SumoSlot:
     """One body of the pool: its name, body id, box size, colour and whom it serves now."""
 
-    __slots__ = ('index', 'name', 'body_id', 'size', 'clearance', 'colour', 'key', 'sumo_id',
-                 'person', 'vclass', 'state', 'motion', 'stopped', 'lane', 'route',
+    __slots__ = ('index', 'name', 'body_id', 'size', 'radius', 'clearance', 'colour', 'key',
+                 'sumo_id', 'person', 'vclass', 'state', 'motion', 'stopped', 'lane', 'route',
                  'trail', 'instance', 'front', 'speed', 'at', 'synced', 'placed')
 
-    def __init__(self, index, body_id, size, clearance, colour, key):
+    def __init__(self, index, body_id, size, clearance, colour, key, radius=0.0):
         self.index = index
         self.name = f'{NAME_PREFIX}{index}'
         self.body_id = body_id
         self.size = size                   # (length, width, height) [m] of the SUMO type
+        self.radius = radius               # a person's cylinder's radius [m] (0: a box)
         self.clearance = clearance         # the box's underside above the ground [m]
         self.colour = colour
         self.key = key                     # the pool it returns to
@@ -231,7 +234,8 @@ class SumoPool:
                                 colour, extents, radius_m=0.5 * extents[0],
                                 height_m=extents[2])
             body_id = self.world.add_obstacle(spec, placed=True, label=('obstacle', 0))
-            slot = SumoSlot(index, body_id, size, clearance, colour, key)
+            slot = SumoSlot(index, body_id, size, clearance, colour, key,
+                            radius=spec.radius_m if spec.shape == 'cylinder' else 0.0)
             self._slots.append(slot)
         slot.sumo_id, slot.person, slot.vclass, slot.stopped = sumo_id, person, vclass, False
         slot.trail, slot.front, slot.placed = [], None, -1
@@ -265,6 +269,27 @@ class SumoPool:
         self._placed_at = self.world.time_s
         self._synced_step = -1
         self._table.invalidate()
+
+    def _apart(self, slots):
+        """
+        Move persons' bodies apart where SUMO has them closer than their cylinders are wide.
+
+        ``slots``: the persons read at this SUMO step (their ``state`` centres where SUMO has
+        them), in SUMO's order. SUMO's pedestrian model (striping) keeps a person a length and
+        a minGap (0.215 + 0.25 m) behind the next in line, short of the cylinder's 0.478 m, and
+        puts two persons closer still now and then where its paths across a walking area meet:
+        each overlapping pair is pushed apart, each by half its overlap
+        (core/geometry/discs.py ``separate_discs``), so that no two persons' bodies overlap in
+        the physics, there or going on straight until SUMO's next step (the pair pushed apart
+        at its closest approach then). A person's heading and speed stay SUMO's.
+        """
+        centres = [slot.state[:2] for slot in slots]
+        velocities = [(speed * math.cos(yaw), speed * math.sin(yaw))
+                      for _, _, yaw, speed in (slot.state for slot in slots)]
+        for slot, centre, apart in zip(slots, centres, separate_discs(
+                centres, [slot.radius for slot in slots], velocities, self.spec.step_s)):
+            if apart != centre:
+                slot.state = (*apart, *slot.state[2:])
 
     def _state(self, slot):
         """Return a serving body's (x, y, yaw, speed) at the update (a vehicle's on its trail)."""

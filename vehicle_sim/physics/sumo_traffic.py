@@ -29,7 +29,8 @@ SUMO by one step, reads every SUMO vehicle's and person's position, heading and 
 getters, or over TraCI one subscription each read in one call: physics/sumo_reads.py) and puts a
 body at each: a placed box of its vehicle type's length, width and height, a person an upright
 cylinder (its class's shape, core/traffic/objects.py CLASS_SHAPES: about 0.5 m across, 1.7 m
-high). The bodies come from a pool:
+high; two persons SUMO has closer than that moved apart, physics/sumo_pool.py). The bodies come
+from a pool:
 a body, named ``sumo_<k>``, serves one SUMO vehicle or person (its SUMO id: :meth:`sumo_id`) from
 its departure to its arrival, is parked under the ground after, and serves the next one of the
 same size; the order of SUMO's departures decides, so a seed gives the same names. Between
@@ -346,6 +347,7 @@ class SumoBodies(SumoPool, SumoViews):
                 slot.state = (*slot.state[:3], speed)
             slot.speed = speed
             slot.lane = lane                      # None: read when the objects are
+        persons = []
         for sumo_id, (fx, fy), angle, speed in reads.persons(api):
             key = (True, sumo_id)
             slot = by_id.get(key)
@@ -356,6 +358,8 @@ class SumoBodies(SumoPool, SumoViews):
             half = 0.5 * slot.size[0]
             slot.front, slot.speed = (fx, fy, angle), speed
             slot.state = (fx - half * cos(yaw), fy - half * sin(yaw), yaw, speed)
+            persons.append(slot)
+        self._apart(persons)                # none closer than their width (SumoPool._apart)
         for key in [key for key in self._by_id if key not in seen]:   # arrived
             slot = self._by_id.pop(key)
             self._park(slot)

@@ -14,7 +14,7 @@
 
 
 """
-Geometry: angles, frames and quaternions, footprints, geodesy, the chase camera.
+Geometry: angles, frames and quaternions, footprints, discs moved apart, geodesy, the chase camera.
 
 May import (core): specs.
 """
