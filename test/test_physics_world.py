@@ -288,3 +288,46 @@ def test_quieting_sees_a_notice_split_over_two_reads(capfd):
     assert time.monotonic() - start < NOTICE_WAIT_S     # seen, not waited out
     libc.fflush(None)
     assert 'ven = ' not in capfd.readouterr().out
+
+
+def test_contact_points_are_read_once_per_body_while_the_post_step_hooks_run(monkeypatch):
+    # A collision monitor and the traffic's contact check both ask for our car's contacts
+    # after each step: one getContactPoints read serves both, until a hook moves a body.
+    import pybullet
+
+    reads = []
+    real = pybullet.getContactPoints
+
+    def counted(*args, **kwargs):
+        reads.append(kwargs.get('bodyA'))
+        return real(*args, **kwargs)
+
+    class Reader:
+        def __init__(self, world, body_id, moves=False):
+            self.world, self.body_id, self.moves, self.seen = world, body_id, moves, []
+
+        def post_step(self):
+            self.seen.append(self.world.contact_points(self.body_id))
+            if self.moves:
+                self.world.mark_moved()
+
+    with World() as world:
+        car = CarBody(world, load_car('Car'))
+        for _ in range(50):                 # settled on its wheels: four points on the ground
+            world.step()
+        first = world.add_body(Reader(world, car.body_id))
+        second = world.add_body(Reader(world, car.body_id))
+        monkeypatch.setattr(pybullet, 'getContactPoints', counted)
+        world.step()
+        assert reads == [car.body_id]
+        assert second.seen[-1] is first.seen[-1]
+        assert len(first.seen[-1]) == 4 and {p[2] for p in first.seen[-1]} == {world.ground_id}
+        first.moves = True                  # a hook moved a body: the next one reads again
+        world.step()
+        assert reads == [car.body_id] * 3 and second.seen[-1] == first.seen[-1]
+        world.remove(first)
+        world.remove(second)
+        assert world.contact_points(car.body_id) == real(bodyA=car.body_id,
+                                                         physicsClientId=world.client_id)
+        world.contact_points(car.body_id)   # between steps: every call reads
+        assert reads == [car.body_id] * 5

@@ -280,14 +280,18 @@ class TrafficBodies:
 
     def post_step(self):
         """World hook: a traffic vehicle touching one of our vehicles stops for good."""
-        cid, manager, body_ids = self._cid, self.manager, self.body_ids
-        contacts = pybullet.getContactPoints
+        manager, body_ids, world = self.manager, self.body_ids, self.world
         for body, near in zip(self._ours, self._near):
+            touching = None         # the bodies ours touches: one read (World.contact_points)
             for i in near:
-                if not manager.vehicles[i].stopped and contacts(
-                        bodyA=body.body_id, bodyB=body_ids[i], physicsClientId=cid):
+                if manager.vehicles[i].stopped:
+                    continue
+                if touching is None:
+                    touching = {other for point in world.contact_points(body.body_id)
+                                for other in point[1:3]}
+                if body_ids[i] in touching:
                     self._stop(i)
-        world = self.world
+                    touching = None     # a box moved: read again
         if world.gui and world.time_s - self._drawn_at >= FRAME_PERIOD_S - 1e-9:
             self._drawn_at = world.time_s  # the window shows every box where it is, each frame
             self.before_query()

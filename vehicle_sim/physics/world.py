@@ -172,6 +172,7 @@ class World:
         self._ground_visual = False
         self._broadphase_stale = True   # bodies added since the last step: rays miss them
         self.revision = 0             # bumped by every step and every body moved between steps
+        self._contacts = None         # {body id: its contact points} while post-step hooks run
         self._step_count = 0
         self._rendering_pauses = 0    # rendering_paused blocks open (GUI)
         cid = self.client_id
@@ -672,6 +673,22 @@ class World:
             else:
                 hook_in(region)
 
+    def contact_points(self, body_id):
+        """
+        Return Bullet's contact points of a body now (``getContactPoints(bodyA=body_id)``).
+
+        While the post-step hooks run (a collision monitor, the traffic's contact check), each
+        body's points are read once and shared, until a hook moves a body (:meth:`mark_moved`).
+        """
+        contacts = self._contacts
+        if contacts is None:
+            return pybullet.getContactPoints(bodyA=body_id, physicsClientId=self.client_id)
+        points = contacts.get(body_id)
+        if points is None:
+            points = contacts[body_id] = pybullet.getContactPoints(
+                bodyA=body_id, physicsClientId=self.client_id)
+        return points
+
     def mark_moved(self):
         """
         Say that bodies were put somewhere between steps (a teleport, a reset, a new body).
@@ -680,6 +697,8 @@ class World:
         again (``revision``; physics/sensors/render.py).
         """
         self._broadphase_stale = True
+        if self._contacts:              # a body moved by a post-step hook: read them again
+            self._contacts = {}
         self.mark_redrawn()
 
     def mark_redrawn(self):
@@ -771,8 +790,12 @@ class World:
             self._step_count += 1
             self.revision += 1
             self._broadphase_stale = False
-            for hook in self._post_step:
-                hook()
+            self._contacts = {}
+            try:
+                for hook in self._post_step:
+                    hook()
+            finally:
+                self._contacts = None
         except pybullet.error:
             if self.gui and not pybullet.isConnected(physicsClientId=cid):
                 from vehicle_sim.physics.gui import GuiClosedError

@@ -192,6 +192,7 @@ class CarLogic:
         # Car.proto driven-wheel motors: acceleration (100/3.6)/time0To100/r, maxVelocity v/r.
         self._wheel_acceleration_radps2 = wheel_acceleration_radps2(params.time_0_to_100_s,
                                                                     radius)
+        self._wheel_acceleration_list = self._wheel_acceleration_radps2.tolist()
         self._max_wheel_radps = params.max_velocity_mps / radius
         self._max_cruising_kmh = mps_to_kmh(params.max_velocity_mps)
         self._min_steer = params.min_steering_angle_rad
@@ -223,10 +224,12 @@ class CarLogic:
         self._wiper = Wiper()
 
         # Estimates from the measurements.
-        self._encoder = np.zeros(WHEEL_COUNT)
+        # As lists of floats, as the step makes them (never changed in place).
+        self._encoder = [0.0] * WHEEL_COUNT
         self._measured_right_rad = 0.0
         self._measured_left_rad = 0.0
         self._cruise_target = np.zeros(WHEEL_COUNT)
+        self._cruise_target_list = [0.0] * WHEEL_COUNT   # its values, for the step
         self._actuation = Actuation()
         self._driven_mode = None       # wheel modes last written into the Actuation
         self._forget_motion()
@@ -239,8 +242,7 @@ class CarLogic:
         self._slip = np.zeros(3)
         self._have_sample = False
         self._previous_position = [0.0] * WHEEL_COUNT
-        self._speed = np.zeros(WHEEL_COUNT)
-        self._previous_speed = [0.0] * WHEEL_COUNT
+        self._speed = self._previous_speed = [0.0] * WHEEL_COUNT
         self._max_acceleration = 0.0
         self._ramp = np.zeros(WHEEL_COUNT)
         self._torque = np.zeros(WHEEL_COUNT)
@@ -491,10 +493,8 @@ class CarLogic:
         self._have_sample = True
         speed = wheel_speeds(now, previous, dt_s)
         self._max_acceleration = max_signed_acceleration(speed, self._previous_speed, dt_s)
-        self._previous_position = now
-        self._previous_speed = speed
-        self._speed[:] = speed
-        self._encoder[:] = now
+        self._previous_position = self._encoder = now
+        self._previous_speed = self._speed = speed
         self._measured_right_rad = float(measurement.steer_right_rad)
         self._measured_left_rad = float(measurement.steer_left_rad)
         # 5. Engine rpm (every mode).
@@ -530,6 +530,7 @@ class CarLogic:
         target[np.isnan(target)] = 0.0      # (np.nan_to_num costs 5x more on 4 wheels)
         np.clip(self._cruise_target, -self._max_wheel_radps, self._max_wheel_radps,
                 out=self._cruise_target)
+        self._cruise_target_list = self._cruise_target.tolist()
 
     def _write_actuation(self, dt_s):
         actuation = self._actuation
@@ -557,8 +558,8 @@ class CarLogic:
             ramp = self._ramp
             if self._mode == _SPEED:
                 current = ramp.tolist()
-                target = self._cruise_target.tolist()
-                limits = self._wheel_acceleration_radps2.tolist()
+                target = self._cruise_target_list
+                limits = self._wheel_acceleration_list
                 for wheel in self._driven:
                     ramp[wheel] = velocity[wheel] = ramp_toward(current[wheel], target[wheel],
                                                                 limits[wheel] * dt_s)

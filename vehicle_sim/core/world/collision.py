@@ -60,6 +60,11 @@ class CollisionDebouncer:
         self._touching = set()
         self._apart_since: Dict[str, float] = {}
 
+    @property
+    def idle(self):
+        """True when no pair is touching: an update without contacts changes nothing then."""
+        return not self._touching
+
     def update(self, now_s, contacts: Mapping[str, float]) -> List[CollisionEvent]:
         """
         Feed the contacts of one step.

@@ -26,8 +26,6 @@ name.
 
 from dataclasses import replace
 
-import pybullet
-
 from vehicle_sim.core.world.collision import CollisionDebouncer, DEFAULT_MIN_APART_S
 
 _BODY_B, _POSITION_ON_B, _DISTANCE, _NORMAL_FORCE = 2, 6, 8, 9
@@ -61,8 +59,7 @@ class CollisionMonitor:
         # a body the physics does not move (a kinematic car) finds its own contacts: Bullet
         # makes none between two static bodies
         read = getattr(self.body, 'contact_points', None)
-        points = read() if read is not None else pybullet.getContactPoints(
-            bodyA=own, physicsClientId=world.client_id)
+        points = read() if read is not None else world.contact_points(own)
         for point in points:
             other = point[_BODY_B]
             if other in (own, ground) or (point[_DISTANCE] > 0.0 and point[_NORMAL_FORCE] <= 0.0):
@@ -76,6 +73,9 @@ class CollisionMonitor:
     def post_step(self):
         """World hook: turn this step's contacts into events (``fresh``)."""
         touching = self.contacts()
+        if not touching and self._debouncer.idle:
+            self.fresh = []             # nothing touching, before or now (most steps)
+            return
         events = self._debouncer.update(
             self.world.time_s, {name: force for name, (force, _) in touching.items()})
         self.fresh = [replace(event, position_m=touching[event.other][1]) for event in events]
