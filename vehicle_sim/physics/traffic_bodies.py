@@ -56,6 +56,7 @@ from vehicle_sim.physics.traffic_boxes import (
     NEAR_M,
     our_vehicle,
     PARK_DEPTH_M,
+    touched,
 )
 from vehicle_sim.physics.traffic_kinematics import MotionTable
 
@@ -281,11 +282,12 @@ class TrafficBodies:
     def post_step(self):
         """World hook: a traffic vehicle touching one of our vehicles stops for good."""
         cid, manager, body_ids = self._cid, self.manager, self.body_ids
-        contacts = pybullet.getContactPoints
         for body, near in zip(self._ours, self._near):
+            if not near:
+                continue
+            touching = touched(body.body_id, cid)
             for i in near:
-                if not manager.vehicles[i].stopped and contacts(
-                        bodyA=body.body_id, bodyB=body_ids[i], physicsClientId=cid):
+                if body_ids[i] in touching and not manager.vehicles[i].stopped:
                     self._stop(i)
         world = self.world
         if world.gui and world.time_s - self._drawn_at >= FRAME_PERIOD_S - 1e-9:

@@ -19,10 +19,13 @@ What the traffic engines' bodies share: their colours, clearance, parking place,
 Every engine's bodies (physics/traffic_bodies.py: the builtin engine's; physics/sumo_traffic.py:
 SUMO's) are placed boxes lifted GROUND_CLEARANCE_M off the ground, parked under it while unused,
 coloured from COLOURS by index, and see our vehicles as the builtin traffic manager does
-(:func:`our_vehicle`: footprint centre, heading, speed, size).
+(:func:`our_vehicle`: footprint centre, heading, speed, size), and read which bodies touch one of
+ours after a step (:func:`touched`).
 """
 
 import math
+
+import pybullet
 
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.traffic.manager import OurVehicle
@@ -48,3 +51,17 @@ def our_vehicle(body, outline=None):
     c, s = math.cos(yaw), math.sin(yaw)
     return OurVehicle(body.name, x + c * cx - s * cy, y + s * cx + c * cy, yaw,
                       body.forward_speed_mps(), outline.length_m, outline.width_m)
+
+
+def touched(body_id, client_id):
+    """
+    Return the ids of the bodies in contact with ``body_id`` after the last step.
+
+    One ``getContactPoints`` for the body (its wheels' points on the ground among them), not
+    one per body near it: a car in a city has a dozen traffic bodies near it at every step.
+    """
+    found = set()
+    for point in pybullet.getContactPoints(bodyA=body_id, physicsClientId=client_id):
+        found.add(point[1])
+        found.add(point[2])
+    return found
