@@ -51,6 +51,7 @@ from vehicle_sim.physics.sumo_pool import (  # noqa: E402
     TRAIL_POINTS,
     trail_pose,
 )
+from vehicle_sim.physics.traffic_boxes import NEAR_M  # noqa: E402
 
 LANE_X = 1.6          # edge A0A1's lane (northbound) runs along x = 1.6, y from 5.2 to 92.8
 STEPS_PER_S = 100     # world steps a second (the default step, 0.01 s)
@@ -250,6 +251,57 @@ def test_rays_put_the_bodies_where_they_go_and_leave_the_others_standing(net, tm
         assert standing('c') == stood['c']                  # c, 100 m off: where it stood
         world.sync_bodies()
         assert standing('c')[:2] == pytest.approx(now('c'), abs=1e-6)
+    finally:
+        scene.world.close()
+
+
+def test_bodies_near_ours_out_of_its_reach_stand_until_read_and_reads_see_them_moved(
+        net, tmp_path):
+    # our car stands off the road 25 m east of street A: SUMO's car a drives north past it,
+    # within NEAR_M (its contacts with ours read after each step) but never within reach of
+    # touching it. Its body stands where it was put (no reset at each step) while nothing
+    # reads the world; a ray read right after a step, or any reading, finds it where SUMO has
+    # it now (gone on straight since SUMO's last step)
+    routes = write_routes(tmp_path, [('a', 0.0, 'A0A1 A1A2')])
+    ego = (LANE_X + 25.0, 40.0, math.pi / 2)
+    scene = _world(net, {'routes': routes}, ego=ego, folder=tmp_path)
+    try:
+        bodies, world = scene.parts['traffic'], scene.world
+        cid = world.client_id
+
+        def standing():
+            return pybullet.getBasePositionAndOrientation(
+                bodies.body_of(bodies.name_of('a')), physicsClientId=cid)[0]
+
+        def now():
+            since = bodies.since_update_s
+            _, x, y, yaw, _, _, speed = bodies.agents()[0]
+            return x + speed * since * math.cos(yaw), y + speed * since * math.sin(yaw)
+
+        def down(x, y):
+            return 20.0 - 21.0 * cast_rays(world, (x, y, 20.0), [(x, y, -1.0)], -1)[0]
+        while not bodies.agents() or now()[1] < 20.0:
+            world.step()
+        checked = 0
+        for _ in range(40):                # 0.4 s: 5 m or more at SUMO's speed there
+            world.sync_bodies()
+            stood = standing()
+            assert stood[:2] == pytest.approx(now(), abs=1e-6)
+            assert 20.0 < math.dist(now(), ego[:2]) < NEAR_M
+            world.step()
+            assert bodies.name_of('a') in {slot.name for slot in bodies._near_all}
+            if bodies.since_update_s > 0.011:   # not SUMO's step: nothing put it anew
+                assert standing() == stood
+                assert math.dist(now(), stood[:2]) > 0.05
+                checked += 1
+        assert checked > 30
+        world.step()
+        while bodies.since_update_s > 0.011:  # a ray read right after the step of SUMO's
+            world.step()
+        x, y = now()
+        assert math.dist((x, y), standing()[:2]) > 0.3
+        assert down(x, y) > 1.0             # its roof where SUMO has it now
+        assert standing()[:2] == pytest.approx((x, y), abs=1e-6)
     finally:
         scene.world.close()
 

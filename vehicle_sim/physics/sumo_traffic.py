@@ -69,10 +69,14 @@ from vehicle_sim.physics.sumo_reads import reads_for
 from vehicle_sim.physics.sumo_session import load_traci, SumoError, SumoSession
 from vehicle_sim.physics.sumo_signals import SumoSignals
 from vehicle_sim.physics.sumo_views import SumoViews
-from vehicle_sim.physics.traffic_boxes import NEAR_M
+from vehicle_sim.physics.traffic_boxes import NEAR_M, touched
 from vehicle_sim.physics.traffic_kinematics import MotionTable
 
 __all__ = ['build_sumo', 'SumoBodies', 'SumoError', 'sumo_network']
+
+# a body near ours is put where it is at each step when it is within this of touching one of
+# ours (their sizes apart): ours runs 0.3 m in a 10 ms step at 110 km/h
+TOUCH_MARGIN_M = 1.0
 
 
 def sumo_network(spec):
@@ -305,8 +309,44 @@ class SumoBodies(SumoPool, SumoViews):
             with self.session.errors(f'at t = {world.time_s:.3f} s'):
                 ours = self._advance()
             self._near, self._near_all = self._nearby(ours)
-        if self._synced_step != count and self._move(self._near_all):
+        if self._synced_step != count and self._move(self._touching()):
             world.mark_moved()
+
+    def _touching(self):
+        """
+        Return the bodies near ours that may touch one of them in this step: put where they are.
+
+        Those within reach of one of our vehicles now (its base) where they are or where they
+        stand: their size and ours (half a diagonal each, less than half their length and width
+        together; ours whole, for the base off the footprint's centre) and TOUCH_MARGIN_M. The
+        others near (NEAR_M) stay where they stand until something reads them (rays, a camera,
+        any reading: :meth:`before_query`); their contacts with ours are read after each step.
+        """
+        near = self._near_all
+        if not near:
+            return near
+        cid = self._cid
+        base = pybullet.getBasePositionAndOrientation
+        ours = [(base(body.body_id, physicsClientId=cid)[0], outline.length_m + outline.width_m)
+                for body, outline in zip(self._ours, self._outlines)]
+        count = self.world.step_count
+        elapsed = self.world.time_s - self._placed_at
+        found = []
+        for slot in near:
+            if slot.synced == count or slot.front is None:
+                continue
+            x, y, _, _, _, vx, vy = self._motion(slot)
+            x, y = x + vx * elapsed, y + vy * elapsed
+            at = slot.at
+            half = 0.5 * (slot.size[0] + slot.size[1]) + TOUCH_MARGIN_M
+            for (ox, oy, _), own in ours:
+                reach = half + own
+                reach *= reach
+                if (x - ox) ** 2 + (y - oy) ** 2 < reach or (
+                        at is not None and (at[0] - ox) ** 2 + (at[1] - oy) ** 2 < reach):
+                    found.append(slot)
+                    break
+        return found
 
     def _advance(self, place=True):
         api = self.session.api
@@ -415,14 +455,14 @@ class SumoBodies(SumoPool, SumoViews):
 
     def post_step(self):
         """World hook: a SUMO vehicle or person touching one of our vehicles stops for good."""
-        cid = self._cid
-        contacts = pybullet.getContactPoints
-        for body, near in zip(self._ours, self._near):
-            for slot in near:
-                if slot.sumo_id is not None and not slot.stopped and contacts(
-                        bodyA=body.body_id, bodyB=slot.body_id, physicsClientId=cid):
-                    self._stop(slot)
         world = self.world
+        for body, near in zip(self._ours, self._near):
+            if not near:
+                continue
+            touching = touched(world, body.body_id)
+            for slot in near:
+                if slot.body_id in touching and slot.sumo_id is not None and not slot.stopped:
+                    self._stop(slot)
         if world.gui and world.time_s - self._drawn_at >= FRAME_PERIOD_S - 1e-9:
             self._drawn_at = world.time_s
             self.before_query()

@@ -56,6 +56,7 @@ from vehicle_sim.physics.traffic_boxes import (
     NEAR_M,
     our_vehicle,
     PARK_DEPTH_M,
+    touched,
 )
 from vehicle_sim.physics.traffic_kinematics import MotionTable
 
@@ -282,13 +283,12 @@ class TrafficBodies:
         """World hook: a traffic vehicle touching one of our vehicles stops for good."""
         manager, body_ids, world = self.manager, self.body_ids, self.world
         for body, near in zip(self._ours, self._near):
-            touching = None         # the bodies ours touches: one read (World.contact_points)
+            touching = None         # the bodies ours touches (one read, when needed)
             for i in near:
                 if manager.vehicles[i].stopped:
                     continue
                 if touching is None:
-                    touching = {other for point in world.contact_points(body.body_id)
-                                for other in point[1:3]}
+                    touching = touched(world, body.body_id)
                 if body_ids[i] in touching:
                     self._stop(i)
                     touching = None     # a box moved: read again

@@ -19,7 +19,8 @@ What the traffic engines' bodies share: their colours, clearance, parking place,
 Every engine's bodies (physics/traffic_bodies.py: the builtin engine's; physics/sumo_traffic.py:
 SUMO's) are placed boxes lifted GROUND_CLEARANCE_M off the ground, parked under it while unused,
 coloured from COLOURS by index, and see our vehicles as the builtin traffic manager does
-(:func:`our_vehicle`: footprint centre, heading, speed, size).
+(:func:`our_vehicle`: footprint centre, heading, speed, size), and read which bodies touch one of
+ours after a step (:func:`touched`, from the world's one contact read).
 """
 
 import math
@@ -48,3 +49,14 @@ def our_vehicle(body, outline=None):
     c, s = math.cos(yaw), math.sin(yaw)
     return OurVehicle(body.name, x + c * cx - s * cy, y + s * cx + c * cy, yaw,
                       body.forward_speed_mps(), outline.length_m, outline.width_m)
+
+
+def touched(world, body_id):
+    """
+    Return the ids of the bodies in contact with ``body_id`` after the last step.
+
+    One contact read for the body (its wheels' points on the ground among them), shared with
+    the world's other post-step hooks (``World.contact_points``), not one per body near it: a
+    car in a city has a dozen traffic bodies near it at every step.
+    """
+    return {other for point in world.contact_points(body_id) for other in point[1:3]}
