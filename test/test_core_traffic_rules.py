@@ -329,3 +329,18 @@ def test_no_lane_change_reaches_a_conflict_zone():
     assert starts, 'the car never passed the truck'
     for s, speed in starts:     # the change (3 s at its speed, its length) ends before the zone
         assert s + speed * 3.0 + 4.5 < 300.0 - 3.0 or s - 2.25 - 3.0 > 310.0, starts
+
+
+def test_managers_on_one_graph_share_its_zones_until_the_graph_gets_other_rules():
+    # A reset builds a new manager on the same graph: its conflict zones are not worked out
+    # again (they are only read); new rules on the graph give new zones with their precedence.
+    graph = crossing(lines=None)
+    first, again = manager(graph, [EAST]), manager(graph, [NORTH])
+    assert again.rules.zones is first.rules.zones
+    assert not any(z.yields for zones in first.rules.zones.values() for z in zones)
+    ruled = crossing(lines=None, right_of_way=True).rules
+    graph.set_rules(ruled)
+    later = manager(graph, [EAST])
+    assert later.rules.zones is not first.rules.zones
+    assert {lane: [z.yields for z in zones] for lane, zones in later.rules.zones.items()} == {
+        EAST_X: [False], NORTH_X: [True]}

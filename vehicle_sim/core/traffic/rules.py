@@ -64,6 +64,7 @@ inputs give the same decisions.
 from bisect import bisect_left
 import math
 from typing import Dict, Tuple
+import weakref
 
 from vehicle_sim.core.map.priority import priority_test
 from vehicle_sim.core.traffic.conflict_zones import conflict_zones
@@ -80,6 +81,20 @@ SLOW_MPS = 2.0              # a leader slower than this may not clear the exit i
 GAP_S = 1.5                 # a yielding vehicle clears its zones this long before a priority one
 ROOM_MARGIN_M = 1.0         # room beyond the zones a vehicle needs besides its length and gap
 FORK_NEAR_M = 60.0          # a vehicle follows the other branches' vehicles from this far
+
+# The conflict zones of each lane graph, worked out once per rules object and vehicle size:
+# {graph: {(length, width): (the graph's rules then, ConflictZones)}}. A reset builds a new
+# manager on the same graph; the zones are read, never changed, so its managers share them.
+_ZONES = weakref.WeakKeyDictionary()
+
+
+def _zones_of(graph, length_m, width_m):
+    known = _ZONES.setdefault(graph, {})
+    rules, found = known.get((length_m, width_m), (None, None))
+    if rules is not graph.rules:        # first time, or the graph got other rules since
+        found = conflict_zones(graph, length_m, width_m, priority_test(graph))
+        known[(length_m, width_m)] = (graph.rules, found)
+    return found
 
 
 class TrafficRules:
@@ -99,8 +114,7 @@ class TrafficRules:
         self.signals = signals
         self.manager = manager
         rules = graph.rules
-        yields = priority_test(graph)       # the one rule of who goes first (core/map)
-        found = conflict_zones(graph, length_m, width_m, yields)
+        found = _zones_of(graph, length_m, width_m)    # who goes first: core/map/priority.py
         self.zones, self._other = found.zones, found.other
         self.forks, self.siblings = found.forks, found.siblings
         self.lines = {lane: tuple(line for line in rules.stop_lines_on(lane)
