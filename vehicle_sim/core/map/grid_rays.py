@@ -34,10 +34,11 @@ done ray stands still). On a SLAM-like map a 1080-ray scan takes about 1 ms of n
 (benchmarks/bench_occupancy_lidar.py), nearly all of it numpy's fixed cost per call; the same
 march compiled by numba (grid_rays_jit.py, the ``fast`` extra: ``march``, the map key
 ``ray_march``) gives the same fractions to the bit in about 0.1 ms. A ray leaves the grid
-once (it is convex) and nothing outside it is a wall. Why not Bullet: a ray cast against a map's static meshes walks the
-meshes' trees along its whole length, past its first hit, and a SLAM map's ragged walls hold
-a hundred thousand faces: 8 times the cost of the same lidar in an empty world there (meshes of
-the walls' boundary alone, 7 times; benchmarks/bench_grid_ray_options.py).
+once (it is convex) and nothing outside it is a wall. Why not Bullet: a ray cast against a
+map's static meshes walks the meshes' trees along its whole length, past its first hit, and a
+SLAM map's ragged walls hold a hundred thousand faces: 8 times the cost of the same lidar in an
+empty world there (meshes of the walls' boundary alone, 7 times;
+benchmarks/bench_grid_ray_options.py).
 """
 
 import importlib.util
