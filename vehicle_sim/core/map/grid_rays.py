@@ -233,17 +233,19 @@ class GridRays:
         result = np.ones(count)
         if count == 0:
             return result
-        # Per ray, a column of the rays' state (the rows named in _ROWS); in grid cells.
-        rays = np.empty((len(_ROWS), count))
-        speed, start, t, high = rays[_SPEED], rays[_START], rays[_T], rays[_HIGH]
-        np.matmul(self._axes, vectors[:, :2].T, out=speed)     # cells per unit of fraction
         grid_start = self._axes @ (origin[:2] - self._corner)
         if self._compiled is not None and self.compiled:
             # the same march, one ray at a time (grid_rays_jit.py)
+            speed = np.empty((2, count))
+            np.matmul(self._axes, vectors[:, :2].T, out=speed)
             self._compiled(self._squares, float(self._stride), float(self._quadrant_rows),
                            self._tops, origin, grid_start[0], grid_start[1], speed, vectors,
                            result, _JUMPS_PER_LOOK, _WINDOW_RAYS, _WINDOW_CELLS, _NUDGE_CELLS)
             return result
+        # Per ray, a column of the rays' state (the rows named in _ROWS); in grid cells.
+        rays = np.empty((len(_ROWS), count))
+        speed, start, t, high = rays[_SPEED], rays[_START], rays[_T], rays[_HIGH]
+        np.matmul(self._axes, vectors[:, :2].T, out=speed)     # cells per unit of fraction
         start[:] = grid_start[:, None]
         with np.errstate(divide='ignore', invalid='ignore'):
             self._band(origin[2], vectors[:, 2], start[:, 0], speed, t, high)

@@ -21,9 +21,9 @@ sensor mounted inside or behind the body sees past it; the vehicle stands aside 
 cast (World.rays_past_own: Bullet tests a ray against its shapes before the mask drops the
 hit). In a world with an occupancy map (``World.ray_grids``, added by physics/map_layer.py) the
 walls are found over the map's grid (core/map/grid_rays.py), and Bullet's rays, cast with the
-walls' meshes moved out of their way (World.rays_past_grids), stop where the walls are: Bullet
-walks a static mesh's tree along the whole ray, past its first hit, so a large map's meshes
-made each ray cost several times more (benchmarks/bench_occupancy_lidar.py).
+walls' meshes they reach moved out of their way (World.rays_past_grids), stop where the walls
+are: Bullet walks a static mesh's tree along the whole ray, past its first hit, so a large
+map's meshes made each ray cost several times more (benchmarks/bench_occupancy_lidar.py).
 :func:`cast_rays_hits` also gives what each ray hit (a labelled lidar's bodies and surface
 normals).
 """
@@ -63,12 +63,23 @@ def cast_rays(world, origin, ends, mask):
     if not world.ray_grids:
         with world.rays_past_own(mask):
             return _fractions(world, starts, ends, mask)
-    # The walls over their grid, then Bullet's rays up to them, the walls' meshes away.
-    walls = np.minimum.reduce([grid.cast(origin, ends) for grid in world.ray_grids])
+    # The walls over their grid, then Bullet's rays up to them, the walls' meshes they reach
+    # away.
+    grids = world.ray_grids
+    walls = grids[0].cast(origin, ends) if len(grids) == 1 else np.minimum.reduce(
+        [grid.cast(origin, ends) for grid in grids])
     near = origin + (ends - origin) * walls[:, None]
-    with world.rays_past_grids(), world.rays_past_own(mask):
+    with world.rays_past_grids(_reach(origin, near)), world.rays_past_own(mask):
         fractions = _fractions(world, starts, near, mask)
-    return np.where(fractions < 1.0, fractions * walls, walls)
+    fractions *= walls          # a miss (1.0) gives the wall's own fraction, exactly
+    return fractions
+
+
+def _reach(origin, ends):
+    # ((x, y, z) lowest, (x, y, z) highest) of rays from origin to ends
+    start = origin.tolist()
+    low, high = ends.min(axis=0).tolist(), ends.max(axis=0).tolist()
+    return ([min(a, b) for a, b in zip(low, start)], [max(a, b) for a, b in zip(high, start)])
 
 
 def cast_rays_hits(world, origin, ends, mask):
@@ -96,7 +107,7 @@ def cast_rays_hits(world, origin, ends, mask):
     which = walls.argmin(axis=0)
     walls = walls[which, np.arange(len(ends))]
     near = origin + (ends - origin) * walls[:, None]
-    with world.rays_past_grids(), world.rays_past_own(mask):
+    with world.rays_past_grids(_reach(origin, near)), world.rays_past_own(mask):
         fractions, bodies, links, normals = _hits(world, starts, near, mask,
                                                   world.labels.has_links)
     grid = (fractions >= 1.0) & (walls < 1.0)
