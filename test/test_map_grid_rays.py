@@ -282,6 +282,27 @@ def test_the_compiled_march_gives_the_numpy_march_s_fractions_to_the_bit(draw, j
                 assert got.tobytes() == expected.tobytes(), (seed, origin, count)
 
 
+def test_cast_cut_gives_the_fractions_the_rays_cut_there_and_their_box(march):
+    # what physics/sensors/rays.py casts Bullet's rays along: origin + (ends - origin) * f,
+    # to the bit as numpy works it out, and the box of the origin and those ends
+    walls = _blobby_walls(3)
+    rays = _rays(walls, 0.1, (-3.0, 2.0, 0.4), march)
+    rng = np.random.default_rng(11)
+    hits = 0
+    for origin in ((0.8, 8.5, 0.5), (-8.0, 1.0, 0.2), (3.0, 4.0, 1.5)):     # in, out, above
+        origin = np.array(origin)
+        ends = origin + _scan(rng, 500, 30.0)
+        fractions, cut, box = rays.cast_cut(origin, ends)
+        assert fractions.tobytes() == rays.cast(origin, ends).tobytes()
+        hits += np.count_nonzero(fractions < 1.0)
+        assert cut.tobytes() == (origin + (ends - origin) * fractions[:, None]).tobytes()
+        assert box.tolist() == [np.minimum(cut.min(axis=0), origin).tolist(),
+                                np.maximum(cut.max(axis=0), origin).tolist()]
+    assert hits > 300
+    fractions, cut, box = rays.cast_cut(np.ones(3), np.zeros((0, 3)))
+    assert fractions.shape == (0,) and cut.shape == (0, 3) and box.tolist() == [[1.0] * 3] * 2
+
+
 def test_a_march_that_is_not_one_of_the_three_is_refused_naming_it():
     with pytest.raises(InvalidParameterError, match=r"ray march 'fast': must be one of auto, "
                                                     r'numpy, compiled'):

@@ -458,7 +458,8 @@ class World:
         gives the same hits (physics/sensors/rays.py casts Bullet's rays only up to them, with
         the bodies out of the way: :meth:`rays_past_grids`).
 
-        :param grid_rays: an object with ``cast(origin, ends)`` -> (n,) fractions (1.0: none):
+        :param grid_rays: an object with ``cast(origin, ends)`` -> (n,) fractions (1.0: none)
+            and ``cast_cut(origin, ends)`` -> (fractions, rays cut there, their box):
             core/map/grid_rays.py's GridRays.
         :param body_ids: the static bodies it stands for, at the origin unturned (their
             vertices in the world frame), already named with add_static.

@@ -193,15 +193,37 @@ def _walk(squares, stride, nudge, cells, speed_x, speed_y, start_x, start_y, sig
 
 @numba.njit(**_JIT)
 def march(squares, stride, quadrant_rows, tops, origin, start_x, start_y, speed, vectors,
-          result, jumps_per_look, window_rays, window_cells, nudge):
+          result, jumps_per_look, window_rays, window_cells, nudge, cut, box):
     """
     Cast the rays over the quadrant squares; write each ray's fraction into ``result``.
 
     The arguments are GridRays' own: its padded squares (flat), their row stride and the rows
     of one quadrant, the band's tops, the rays' origin (3,), their start in grid cells, their
     speed (2, n) [cells per unit of fraction] and vectors (n, 3) [m], the result (n,) (1.0
-    where nothing is met; left as it is), and grid_rays.py's constants, read when called.
+    where nothing is met; left as it is), grid_rays.py's constants (read when called), and
+    where GridRays.cast_cut wants the cut rays (n, 3) and their box (2, 3) (no rows: not
+    asked for).
     """
+    _march(squares, stride, quadrant_rows, tops, origin, start_x, start_y, speed, vectors,
+           result, jumps_per_look, window_rays, window_cells, nudge)
+    if cut.shape[0] == 0:
+        return
+    for axis in range(3):
+        box[0, axis] = box[1, axis] = origin[axis]
+    for ray in range(result.shape[0]):
+        for axis in range(3):
+            end = origin[axis] + vectors[ray, axis] * result[ray]
+            cut[ray, axis] = end
+            if end < box[0, axis]:
+                box[0, axis] = end
+            if end > box[1, axis]:
+                box[1, axis] = end
+
+
+@numba.njit(**_JIT)
+def _march(squares, stride, quadrant_rows, tops, origin, start_x, start_y, speed, vectors,
+           result, jumps_per_look, window_rays, window_cells, nudge):
+    # GridRays._band, _march, _corner_hits and _window
     count = speed.shape[1]
     z = origin[2]
     on_border = False

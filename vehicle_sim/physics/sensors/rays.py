@@ -65,21 +65,28 @@ def cast_rays(world, origin, ends, mask):
             return _fractions(world, starts, ends, mask)
     # The walls over their grid, then Bullet's rays up to them, the walls' meshes they reach
     # away.
-    grids = world.ray_grids
-    walls = grids[0].cast(origin, ends) if len(grids) == 1 else np.minimum.reduce(
-        [grid.cast(origin, ends) for grid in grids])
-    near = origin + (ends - origin) * walls[:, None]
-    with world.rays_past_grids(_reach(origin, near)), world.rays_past_own(mask):
+    walls, _, near, reach = _cut_at_walls(world, origin, ends)
+    with world.rays_past_grids(reach), world.rays_past_own(mask):
         fractions = _fractions(world, starts, near, mask)
     fractions *= walls          # a miss (1.0) gives the wall's own fraction, exactly
     return fractions
 
 
-def _reach(origin, ends):
-    # ((x, y, z) lowest, (x, y, z) highest) of rays from origin to ends
-    start = origin.tolist()
-    low, high = ends.min(axis=0).tolist(), ends.max(axis=0).tolist()
-    return ([min(a, b) for a, b in zip(low, start)], [max(a, b) for a, b in zip(high, start)])
+def _cut_at_walls(world, origin, ends):
+    # The fraction of each ray where it meets a ray grid's wall, which grid's (None: the one
+    # grid's), the rays cut there, and the box ((x, y, z) lowest, (x, y, z) highest) [m] that
+    # holds them (GridRays.cast_cut).
+    grids = world.ray_grids
+    if len(grids) == 1:
+        walls, near, box = grids[0].cast_cut(origin, ends)
+        return walls, None, near, box.tolist()
+    every = np.stack([grid.cast(origin, ends) for grid in grids])
+    which = every.argmin(axis=0)
+    walls = every[which, np.arange(len(ends))]
+    near = origin + (ends - origin) * walls[:, None]
+    box = [np.minimum(near.min(axis=0), origin).tolist(),
+           np.maximum(near.max(axis=0), origin).tolist()]
+    return walls, which, near, box
 
 
 def cast_rays_hits(world, origin, ends, mask):
@@ -103,11 +110,10 @@ def cast_rays_hits(world, origin, ends, mask):
     if not world.ray_grids:
         with world.rays_past_own(mask):
             return _hits(world, starts, ends, mask, world.labels.has_links)
-    walls = np.stack([grid.cast(origin, ends) for grid in world.ray_grids])
-    which = walls.argmin(axis=0)
-    walls = walls[which, np.arange(len(ends))]
-    near = origin + (ends - origin) * walls[:, None]
-    with world.rays_past_grids(_reach(origin, near)), world.rays_past_own(mask):
+    walls, which, near, reach = _cut_at_walls(world, origin, ends)
+    if which is None:
+        which = np.zeros(len(ends), dtype=np.intp)
+    with world.rays_past_grids(reach), world.rays_past_own(mask):
         fractions, bodies, links, normals = _hits(world, starts, near, mask,
                                                   world.labels.has_links)
     grid = (fractions >= 1.0) & (walls < 1.0)
