@@ -172,8 +172,8 @@ def fan_grid_rays():
     class FanGridRays(GridRays):
         """GridRays with the fan (module text): four more bytes a cell."""
 
-        def __init__(self, walls, resolution_m, corner, height_m):
-            super().__init__(walls, resolution_m, corner, height_m)
+        def __init__(self, walls, resolution_m, corner, height_m, march='numpy'):
+            super().__init__(walls, resolution_m, corner, height_m, march)
             # free cells along each row towards +x and -x (stored column by column: a column
             # of the grid is a row of theirs) and each column towards +y and -y, on the grid
             # with a free border, one table after the other
