@@ -38,6 +38,9 @@ EXTRAS = {
     # SUMO networks, netconvert (OpenDRIVE, OSM) and the SUMO traffic engine (docs/sumo.md):
     # libsumo in process, traci where libsumo cannot load.
     'sumo': ['eclipse-sumo>=1.20', 'libsumo>=1.20', 'sumolib>=1.20', 'traci>=1.20'],
+    # the occupancy grid's ray march compiled (vehicle_sim/core/map/grid_rays_jit.py): used
+    # when numba imports (docs/maps.md, "Walls"); 0.60 is its first release for NumPy 2
+    'fast': ['numba>=0.60'],
 }
 # pyarrow: a sweep writes results.parquet when it imports. protobuf: the Foxglove scene tests
 # decode a SceneUpdate with the schema its channel advertises.

@@ -19,8 +19,8 @@ bench_occupancy_lidar.py's map, car and 1080-ray lidar, sampled in interleaved b
 of this process, median per block) in six worlds:
 
 - ``empty``: the same car and lidar in a world without a map (the ratios' baseline);
-- ``grid``: the map as the simulator builds it: its walls found over the grid
-  (core/map/grid_rays.py, numpy), Bullet's rays cast with the walls' meshes away;
+- ``grid``: the map as the simulator builds it with ``ray_march: numpy``: its walls found over
+  the grid (core/map/grid_rays.py), Bullet's rays cast with the walls' meshes they reach away;
 - ``no march``: the map as built, its GridRays answering "no wall" at once (what the map costs
   besides the march: the walls' meshes moved out of the rays' way and back, Bullet's rays to
   the walls; the floor of any march);
@@ -36,12 +36,12 @@ of this process, median per block) in six worlds:
   boundary only (a vertical quad from the ground to ``wall_height`` on every border between a
   wall cell and a free one, collinear runs of borders merged into one quad; at most 32 768
   quads a body, PyBullet's 131 072 vertices), every ray cast by one rayTestBatch;
-- ``numba`` (only where numba is installed; it is no dependency of vehicle_sim): the map as
-  built, its GridRays' cast compiled by numba (GridRays._band and the jumps of GridRays._march
-  with their corner checks, one ray at a time, no walk: the same hits but for rays that graze a
-  wall cell's corner or run along its side, which the walk counts and the jumps may not).
+- ``compiled`` (where numba, the ``fast`` extra, is installed): the map as built with
+  ``ray_march: compiled``, the same march compiled (core/map/grid_rays_jit.py), what a world
+  gets by default with numba.
 
-It prints the mesh's size and build time, numba's compile time, the fan's tables (build time,
+It prints the mesh's size and build time, the compiled march's first sample (numba imported,
+the march compiled or read from its cache), the fan's tables (build time,
 memory) and how many rays it leaves to the march, each world's cost per sample
 and its ratio to the empty world, and how far each scan lies from the grid's. Run:
 ``.venv/bin/python benchmarks/bench_grid_ray_options.py [--quick]``.
@@ -54,7 +54,6 @@ import statistics
 import sys
 import tempfile
 import time
-import types
 
 import numpy as np
 import pybullet
@@ -132,91 +131,6 @@ def add_boundary_meshes(world, built):
     return bodies, len(quads)
 
 
-def compiled_cast():
-    """Return a GridRays.cast whose march numba compiles (None without numba)."""
-    try:
-        import numba
-    except ImportError:
-        return None
-    from vehicle_sim.core.map.grid_rays import _NUDGE_CELLS as NUDGE
-
-    @numba.njit(nogil=True, error_model='numpy', inline='always')
-    def band(position, speeds, tops):
-        # GridRays._band for one ray: its fractions [low, high] between the ground and the
-        # walls' top and inside the grid, within [0, 1]
-        low, high = 0.0, 1.0
-        for axis in range(3):
-            if speeds[axis] == 0.0:
-                if not 0.0 <= position[axis] <= tops[axis]:
-                    return 1.0, 0.0
-                continue
-            inverse = 1.0 / speeds[axis]
-            near, far = -position[axis] * inverse, (tops[axis] - position[axis]) * inverse
-            low, high = max(low, min(near, far)), min(high, max(near, far))
-        return low, high
-
-    @numba.njit(nogil=True, error_model='numpy')
-    def march(squares, stride, quadrant_rows, tops, z, start_x, start_y, speed, speed_z,
-              result):
-        # GridRays._band, then _march's jumps and _corner_hits, one ray at a time (the same
-        # arithmetic)
-        position, speeds = np.array([z, start_x, start_y]), np.empty(3)
-        for ray in range(speed.shape[1]):
-            vx, vy = speed[0, ray], speed[1, ray]
-            speeds[0], speeds[1], speeds[2] = speed_z[ray], vx, vy
-            t, end = band(position, speeds, tops)
-            if not t <= end:
-                continue
-            back_x, back_y = (1.0 if vx < 0.0 else 0.0), (1.0 if vy < 0.0 else 0.0)
-            sign_x = 1.0 if vx > 0.0 else (-1.0 if vx < 0.0 else 0.0)
-            sign_y = 1.0 if vy > 0.0 else (-1.0 if vy < 0.0 else 0.0)
-            inverse_x, inverse_y = 1.0 / abs(vx), 1.0 / abs(vy)
-            padded_x = start_x + 1.0
-            padded_y = start_y + 1.0 + (2.0 * back_y + back_x) * quadrant_rows
-            nudged_x, nudged_y = padded_x + sign_x * NUDGE, padded_y + sign_y * NUDGE
-            offset_x, offset_y = sign_x * padded_x + back_x, sign_y * padded_y + back_y
-            tie = max(inverse_x, inverse_y) * (4.0 * NUDGE)
-            if tie == np.inf:
-                tie = 0.0
-            hit = False
-            while True:
-                cell_x, cell_y = math.floor(vx * t + nudged_x), math.floor(vy * t + nudged_y)
-                k = squares[int(cell_y * stride + cell_x)]
-                if k == 0:
-                    hit = True
-                    break
-                exit_x = ((sign_x * cell_x + k) - offset_x) * inverse_x if vx != 0.0 else np.inf
-                exit_y = ((sign_y * cell_y + k) - offset_y) * inverse_y if vy != 0.0 else np.inf
-                t = min(max(t, min(exit_x, exit_y)), end)
-                if abs(exit_x - exit_y) <= tie and t < end:
-                    x, y = nudged_x + vx * t, nudged_y + vy * t
-                    ahead_x, ahead_y = math.floor(x), math.floor(y)
-                    behind_x = math.floor(x - sign_x * (2.0 * NUDGE))
-                    behind_y = math.floor(y - sign_y * (2.0 * NUDGE))
-                    if ahead_x != behind_x and ahead_y != behind_y and min(
-                            squares[int(behind_y * stride + ahead_x)],
-                            squares[int(ahead_y * stride + behind_x)]) == 0:
-                        hit = True
-                        break
-                if t >= end:
-                    break
-            result[ray] = t if hit else 1.0
-
-    def cast(self, origin, ends):
-        origin = np.asarray(origin, dtype=float)
-        vectors = np.asarray(ends, dtype=float) - origin
-        result = np.ones(len(vectors))
-        if len(vectors) == 0:
-            return result
-        speed = np.ascontiguousarray(self._axes @ vectors[:, :2].T)
-        start = self._axes @ (origin[:2] - self._corner)
-        march(self._squares, float(self._stride), float(self._quadrant_rows), self._tops,
-              origin[2], start[0], start[1], speed, np.ascontiguousarray(vectors[:, 2]), result)
-        return result
-
-    return cast
-
-
 # The fan (``fan``): free runs along each row and column, capped at a byte, and the lines looked
 # at from the origin at once.
 _FAN_LINES = 256
@@ -258,8 +172,8 @@ def fan_grid_rays():
     class FanGridRays(GridRays):
         """GridRays with the fan (module text): four more bytes a cell."""
 
-        def __init__(self, walls, resolution_m, corner, height_m):
-            super().__init__(walls, resolution_m, corner, height_m)
+        def __init__(self, walls, resolution_m, corner, height_m, march='numpy'):
+            super().__init__(walls, resolution_m, corner, height_m, march)
             # free cells along each row towards +x and -x (stored column by column: a column
             # of the grid is a row of theirs) and each column towards +y and -y, on the grid
             # with a free border, one table after the other
@@ -399,32 +313,28 @@ def fan_grid_rays():
 
 def measure(blocks, samples):
     """Return {name: value}: the worlds' costs per sample [s], sizes and times."""
+    from vehicle_sim.core.map.grid_rays import compiled_march_installed
     from vehicle_sim.physics.scene import build_scene, mount_suite
     lidar = [bench_occupancy_lidar.LIDAR]
     found = {}
     with tempfile.TemporaryDirectory(prefix='bench_grid_rays_') as folder:
         path = bench_occupancy_lidar.draw_map(folder)
-        scenes = {'empty': build_scene(bench_occupancy_lidar._world(None, lidar),
-                                       mount=mount_suite),
-                  'grid': build_scene(bench_occupancy_lidar._world(path, lidar),
-                                      mount=mount_suite),
-                  'trimesh': build_scene(bench_occupancy_lidar._world(None, lidar),
-                                         mount=mount_suite)}
-        scenes['no march'] = build_scene(bench_occupancy_lidar._world(path, lidar),
-                                         mount=mount_suite)
-        scenes['fan'] = build_scene(bench_occupancy_lidar._world(path, lidar),
-                                    mount=mount_suite)
-        cast = compiled_cast()
-        if cast is not None:
-            scenes['numba'] = build_scene(bench_occupancy_lidar._world(path, lidar),
-                                          mount=mount_suite)
+        world = bench_occupancy_lidar._world
+        scenes = {'empty': build_scene(world(None, lidar), mount=mount_suite),
+                  'grid': build_scene(world(path, lidar, 'numpy'), mount=mount_suite),
+                  'trimesh': build_scene(world(None, lidar), mount=mount_suite),
+                  'no march': build_scene(world(path, lidar, 'numpy'), mount=mount_suite),
+                  'fan': build_scene(world(path, lidar, 'numpy'), mount=mount_suite)}
+        if compiled_march_installed():
+            scenes['compiled'] = build_scene(world(path, lidar, 'compiled'),
+                                             mount=mount_suite)
     built = scenes['grid'].parts['map']
     start = time.perf_counter()
     bodies, found['quads'] = add_boundary_meshes(scenes['trimesh'].world, built)
     found['mesh_s'], found['mesh_bodies'] = time.perf_counter() - start, len(bodies)
     from vehicle_sim.physics.map_layer import _grid_corner
     walls_args = (built.walls, built.grid.resolution_m, _grid_corner(built.grid, built.spec),
-                  built.spec.wall_height_m)
+                  built.spec.wall_height_m, 'numpy')
     fan_class = fan_grid_rays()
     start = time.process_time()
     fan = fan_class(*walls_args)
@@ -436,9 +346,9 @@ def measure(blocks, samples):
     scenes['fan'].world.ray_grids[0] = fan
     rays = scenes['no march'].world.ray_grids[0]
     rays.cast = lambda origin, ends: np.ones(len(ends))
-    if cast is not None:
-        rays = scenes['numba'].world.ray_grids[0]
-        rays.cast = types.MethodType(cast, rays)
+    everywhere = np.array([[-np.inf] * 3, [np.inf] * 3])      # every wall body moves
+    rays.cast_cut = lambda origin, ends: (np.ones(len(ends)), np.asarray(ends, dtype=float),
+                                          everywhere)
     for scene in scenes.values():
         for _ in range(50):
             scene.world.step()
@@ -487,23 +397,25 @@ def main(argv=None):
           '1080 rays, 270 deg, 30 m, 40 Hz)')
     print(f"  boundary mesh: {found['quads']} quads ({2 * found['quads']} triangles) in "
           f"{found['mesh_bodies']} bodies, built in {found['mesh_s']:.2f} s")
-    if 'numba' not in found:
-        print('  numba: not installed, its row left out')
+    if 'compiled' not in found:
+        print("  compiled: numba is not installed, its row left out (pip install "
+              "'vehicle_sim[fast]')")
     else:
-        print(f"  numba: first sample (compiling the march) {found['numba', 'first_s']:.2f} s")
+        print(f"  compiled: first sample (numba imported, the march compiled or read from its "
+              f"cache) {found['compiled', 'first_s']:.2f} s")
     print(f"  fan: its ray tables built in {found['fan_s']:.2f} s of CPU against "
           f"{found['grid_s']:.2f} s for the grid's alone, {found['fan_bytes'] / 1e6:.0f} MB "
           f"against {found['grid_bytes'] / 1e6:.0f} MB; {found['fan_marched']} of "
           f"{bench_occupancy_lidar.LIDAR['horizontal_resolution']} rays left to the march")
     empty = found['empty']
-    for name in ('empty', 'grid', 'no march', 'fan', 'trimesh', 'numba'):
+    for name in ('empty', 'grid', 'no march', 'fan', 'trimesh', 'compiled'):
         if name not in found:
             continue
         low, high = found[name, 'ratios']
         line = (f'  {name:9s}{found[name] * 1e3:6.3f} ms per sample, {found[name] * rate:5.1%} '
                 f'of one core, {found[name] / empty:.2f}x the empty world (blocks {low:.2f}-'
                 f'{high:.2f}x)')
-        if name in ('trimesh', 'numba', 'fan'):
+        if name in ('trimesh', 'compiled', 'fan'):
             line += (f"; scan against the grid's: {found[name, 'apart']} rays hit on one side "
                      f"only, {found[name, 'off_m']:.1e} m apart at most")
         print(line)

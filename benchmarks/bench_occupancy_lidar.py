@@ -25,9 +25,11 @@ The map is drawn here (seeded): a building of rooms whose walls are 6 to 16 cell
 behind a closed door), furniture seen from one side (unknown blobs with an occupied rim), the
 unknown world outside the building (about half of the map is unknown or occupied), and
 SLAM's ragged edges (cells along every occupied / free border flipped at random). The car stands
-in a large room. The lidar's cost per sample is this process's CPU time (one thread), the map
-and the empty world sampled in interleaved blocks; load time and RSS are measured in a fresh
-process (benchmarks/bench_maps.py's ``measure_load``). Run:
+in a large room. The lidar's cost per sample is this process's CPU time (one thread), the empty
+world and the map with each ray march (``ray_march: compiled``, numba's, where it is installed,
+and ``numpy``) sampled in interleaved blocks; the targets are read on the march a world gets by
+default (``auto``: the compiled one where numba imports). Load time and RSS are measured in a
+fresh process (benchmarks/bench_maps.py's ``measure_load``). Run:
 ``.venv/bin/python benchmarks/bench_occupancy_lidar.py [--quick]``.
 """
 
@@ -147,13 +149,14 @@ def car_pose():
     return ORIGIN[0] + CAR_CELL[1] * RESOLUTION_M, ORIGIN[1] + CAR_CELL[0] * RESOLUTION_M
 
 
-def _world(map_path, sensors=()):
+def _world(map_path, sensors=(), ray_march='auto'):
     from vehicle_sim.config import world_from_data
     x, y = car_pose()
     data = {'vehicles': [{'name': 'car', 'model': 'Car', 'pose': {'x': x, 'y': y},
                           'sensors': list(sensors)}]}
     if map_path:
-        data['map'] = {'type': 'occupancy_grid', 'file': map_path, 'unknown': 'occupied'}
+        data['map'] = {'type': 'occupancy_grid', 'file': map_path, 'unknown': 'occupied',
+                       'ray_march': ray_march}
     return world_from_data(data, 'bench_occupancy_lidar.yaml')
 
 
@@ -168,28 +171,52 @@ def _sample_cost(suite, samples):
 
 def measure_lidar(map_path, blocks, samples):
     """
-    Median CPU time of one lidar sample on the map and in the empty world, interleaved blocks.
+    Median CPU time of one lidar sample in the empty world and on the map with each march.
 
-    :return: (seconds on the map, seconds in the empty world, rays that hit on the map,
-        the built map).
+    The worlds are sampled in interleaved blocks (their order turned each block): ``empty``,
+    ``numpy`` (the map, ``ray_march: numpy``) and ``compiled`` (``ray_march: compiled``, left
+    out where numba is not installed).
+
+    :return: {name: median seconds}, {name: (lowest, highest) ratio to the empty world's
+        block}, rays that hit on the map, whether the marches' scans are equal to the bit,
+        the compiled march's first sample (wall, CPU) [s] (numba imported, the march compiled
+        or read from numba's cache; None without it), and the built map.
     """
+    from vehicle_sim.core.map.grid_rays import compiled_march_installed
     from vehicle_sim.physics.scene import build_scene, mount_suite
-    mapped = build_scene(_world(map_path, [LIDAR]), mount=mount_suite)
-    empty = build_scene(_world(None, [LIDAR]), mount=mount_suite)
-    for scene in (mapped, empty):
+    scenes = {'empty': build_scene(_world(None, [LIDAR]), mount=mount_suite),
+              'numpy': build_scene(_world(map_path, [LIDAR], 'numpy'), mount=mount_suite)}
+    if compiled_march_installed():
+        scenes['compiled'] = build_scene(_world(map_path, [LIDAR], 'compiled'),
+                                         mount=mount_suite)
+    for scene in scenes.values():
         for _ in range(50):
             scene.world.step()
-    suites = {'mapped': mapped.vehicles['car'].sensors, 'empty': empty.vehicles['car'].sensors}
-    costs = {'mapped': [], 'empty': []}
+    suites = {name: scene.vehicles['car'].sensors for name, scene in scenes.items()}
+    scans, first_s = {}, None
+    for name, suite in suites.items():
+        start, start_cpu = time.perf_counter(), time.process_time()
+        scans[name] = suite.sample('lidar').scan
+        if name == 'compiled':
+            first_s = (time.perf_counter() - start, time.process_time() - start_cpu)
+    same = all(scans[name].tobytes() == scans['numpy'].tobytes() for name in scans
+               if name != 'empty')
+    names = list(suites)
+    costs = {name: [] for name in names}
     for block in range(blocks):
-        for name in (('mapped', 'empty') if block % 2 else ('empty', 'mapped')):
+        turn = block % len(names)
+        for name in names[turn:] + names[:turn]:
             costs[name].append(_sample_cost(suites[name], samples))
-    scan = suites['mapped'].sample('lidar')
-    hits = int(np.isfinite(scan.scan).sum())
-    built = mapped.parts['map']
-    mapped.world.close()
-    empty.world.close()
-    return statistics.median(costs['mapped']), statistics.median(costs['empty']), hits, built
+    medians = {name: statistics.median(blocks_s) for name, blocks_s in costs.items()}
+    spread = {}
+    for name, blocks_s in costs.items():
+        ratios = [cost / empty for cost, empty in zip(blocks_s, costs['empty'])]
+        spread[name] = (min(ratios), max(ratios))
+    hits = int(np.isfinite(scans['numpy']).sum())
+    built = scenes['numpy'].parts['map']
+    for scene in scenes.values():
+        scene.world.close()
+    return medians, spread, hits, same, first_s, built
 
 
 def figures(quick=False):
@@ -197,14 +224,22 @@ def figures(quick=False):
     with tempfile.TemporaryDirectory(prefix='bench_occupancy_') as folder:
         map_path = draw_map(folder)
         load = bench_maps.measure_load(map_path, unknown='occupied', car=car_pose())
-        mapped_s, empty_s, hits, built = measure_lidar(map_path, 5 if quick else 11,
-                                                       10 if quick else 20)
+        medians, spread, hits, same, first_s, built = measure_lidar(
+            map_path, 5 if quick else 11, 10 if quick else 20)
     solid = built.walls
-    return dict(load, lidar_ms=mapped_s * 1e3, empty_ms=empty_s * 1e3,
-                lidar_share=mapped_s * LIDAR['rate_hz'], empty_share=empty_s * LIDAR['rate_hz'],
-                lidar_ratio=mapped_s / empty_s, lidar_hits=hits,
-                solid_share=float(solid.mean()),
-                rss_mb=max(load['rss_after_mb'], load['rss_peak_mb']))
+    march = 'compiled' if 'compiled' in medians else 'numpy'     # what ray_march auto gives
+    found = dict(load, march=march, lidar_hits=hits, same_scans=same, first_s=first_s,
+                 solid_share=float(solid.mean()),
+                 rss_mb=max(load['rss_after_mb'], load['rss_peak_mb']))
+    rate = LIDAR['rate_hz']
+    for name, cost in medians.items():
+        found[name + '_ms'] = cost * 1e3
+        found[name + '_share'] = cost * rate
+        found[name + '_ratio'] = cost / medians['empty']
+        found[name + '_spread'] = spread[name]
+    found.update(lidar_ms=found[march + '_ms'], lidar_share=found[march + '_share'],
+                 lidar_ratio=found[march + '_ratio'])
+    return found
 
 
 def _verdict(value, target):
@@ -224,14 +259,29 @@ def main(argv=None):
           f'(<= {TARGETS["load_s"]} s: {_verdict(found["load_s"], TARGETS["load_s"])})')
     print(f'  RSS added: {found["rss_after_mb"]:.0f} MB after, {found["rss_peak_mb"]:.0f} MB at '
           'the peak')
-    print(f'  lidar 1080 rays, 270 deg, 30 m, 40 Hz on the map: {found["lidar_ms"]:.3f} ms per '
-          f'sample, {found["lidar_share"]:.1%} of one core, {found["lidar_hits"]} rays hit '
+    print(f'  lidar 1080 rays, 270 deg, 30 m, 40 Hz on the map ({found["march"]} march, '
+          f'what ray_march auto gives here): {found["lidar_ms"]:.3f} ms per sample, '
+          f'{found["lidar_share"]:.1%} of one core, {found["lidar_hits"]} rays hit '
           f'(<= {TARGETS["lidar_share"]:.0%}: '
-          f'{_verdict(found["lidar_share"], TARGETS["lidar_share"])})')
-    print(f'  same lidar in the empty world: {found["empty_ms"]:.3f} ms, '
-          f'{found["empty_share"]:.1%} of one core; on the map / empty: '
+          f'{_verdict(found["lidar_share"], TARGETS["lidar_share"])}); on the map / empty: '
           f'{found["lidar_ratio"]:.2f}x (<= {TARGETS["lidar_ratio"]}x: '
           f'{_verdict(found["lidar_ratio"], TARGETS["lidar_ratio"])})')
+    print(f'  same lidar in the empty world: {found["empty_ms"]:.3f} ms, '
+          f'{found["empty_share"]:.1%} of one core')
+    for name in ('compiled', 'numpy'):
+        if name + '_ms' not in found:
+            print('  compiled march: numba is not installed, its row left out (pip install '
+                  "'vehicle_sim[fast]')")
+            continue
+        low, high = found[name + '_spread']
+        print(f'  {name} march: {found[name + "_ms"]:.3f} ms per sample, '
+              f'{found[name + "_share"]:.1%} of one core, {found[name + "_ratio"]:.2f}x the '
+              f'empty world (blocks {low:.2f}-{high:.2f}x)')
+    if found['first_s'] is not None:
+        wall_s, cpu_s = found['first_s']
+        print(f'  compiled march: first sample {wall_s:.2f} s, {cpu_s:.2f} s of CPU (numba '
+              "imported, the march compiled or read from numba's cache); the two marches' "
+              'scans ' + ('equal to the bit' if found['same_scans'] else 'DIFFER'))
     print(f'  load average {load_before} before, '
           + '/'.join(f'{x:.1f}' for x in os.getloadavg()) + ' after')
     return 0

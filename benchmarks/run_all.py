@@ -240,10 +240,12 @@ def collect(quick):
         ('  same: lidar 1080 rays, 270 deg, 40 Hz on the map, share of one core',
          maps['lidar_share'] * 100.0, '<=', 15.0, '%'),
         (f'SLAM-like map {bench_occupancy_lidar.WIDTH} x {bench_occupancy_lidar.HEIGHT} cells '
-         '(thick walls, unknown occupied): lidar 1080 rays at 40 Hz, share of one core',
-         slam['lidar_share'] * 100.0, '<=', 15.0, '%'),
+         f"(thick walls, unknown occupied; {slam['march']} ray march): lidar 1080 rays at "
+         '40 Hz, share of one core', slam['lidar_share'] * 100.0, '<=', 15.0, '%'),
         ('  same lidar: on the SLAM-like map / in an empty world', slam['lidar_ratio'], '<=',
          1.3, 'x'),
+        ('  same, ray_march: numpy (without the fast extra) / empty world (stated)',
+         slam['numpy_ratio'], None, None, 'x'),
         ('  same map: load time', slam['load_s'], '<=', 2.0, 's'),
         ('  same map: RSS added by loading it (stated)', slam['rss_mb'], None, None, 'MB'),
         ('labelled lidar 32 x 1024 rays (label, instance, intensity) / the same lidar plain',

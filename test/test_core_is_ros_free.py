@@ -12,7 +12,11 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""The core imports only the standard library, numpy and vehicle_sim.core."""
+"""
+The core imports only the standard library, numpy and vehicle_sim.core.
+
+And numba: the compiled ray march of the ``fast`` extra (core/map/grid_rays_jit.py).
+"""
 
 import ast
 from pathlib import Path
@@ -21,7 +25,7 @@ import sys
 import pytest
 
 CORE_DIR = Path(__file__).resolve().parent.parent / 'vehicle_sim' / 'core'
-ALLOWED_THIRD_PARTY = {'numpy'}
+ALLOWED_THIRD_PARTY = {'numpy', 'numba'}
 FORBIDDEN_EXAMPLES = ('rclpy', 'pybullet', 'yaml', 'cyclonedds', 'vehicle_msgs_py')
 
 

@@ -252,3 +252,46 @@ def test_a_lidar_sampled_every_step_leaves_the_walls_where_they_collide(tmp_path
         events.extend(monitor.fresh)
     assert [e.other for e in events] == ['map']
     assert car.body.pose()[0] + 4.5 == pytest.approx(10.0 - 0.3, abs=0.1)
+
+
+def test_rays_move_only_the_wall_bodies_whose_boxes_they_reach(tmp_path, scenes, monkeypatch):
+    # One wall rectangle a body (the room's four walls and the pillar): while Bullet's rays
+    # are cast, the bodies whose bounding boxes the rays (cut at the walls) reach stand away,
+    # the others stay (no ray can meet them); the fractions are those with every body away.
+    import pybullet
+
+    from vehicle_sim.physics import map_layer
+    from vehicle_sim.physics.sensors import rays
+    monkeypatch.setattr(map_layer, 'BOXES_PER_BODY', 1)
+    scene = scenes(world_data(write_map(tmp_path)))
+    world, bodies = scene.world, scene.parts['map'].body_ids
+    assert len(bodies) == 5
+    away = []
+    ray_test = pybullet.rayTestBatch
+
+    def spy(*args, **kwargs):
+        cid = world.client_id
+        away.append({body for body in bodies if pybullet.getBasePositionAndOrientation(
+            body, physicsClientId=cid)[0][2] < -1000.0})
+        return ray_test(*args, **kwargs)
+    monkeypatch.setattr(pybullet, 'rayTestBatch', spy)
+    mask = world.ray_mask_excluding(scene.vehicles['car'].body.body_id)
+    origin = np.array([1.0, 0.0, 0.5])
+    angles = np.linspace(-math.pi, math.pi, 360, endpoint=False)
+    ring = np.stack([np.cos(angles), np.sin(angles), np.zeros(angles.shape)], axis=1)
+    # 1 m rays in the middle of the room reach no wall's box: nothing moves
+    rays.cast_rays(world, origin, origin + ring, mask)
+    assert away == [set()]
+    # rays east, cut at the east wall (x = 10 m) before the pillar's box: that wall alone
+    east = np.abs(angles) < 0.2
+    fractions = rays.cast_rays(world, origin, origin + 30.0 * ring[east], mask)
+    east_wall = [body for body in bodies
+                 if pybullet.getAABB(body, physicsClientId=world.client_id)[0][0] > 9.0]
+    assert away[-1] == set(east_wall) and len(east_wall) == 1
+    # every direction: every wall and the pillar; the same fractions as with all of them away
+    fractions = rays.cast_rays(world, origin, origin + 30.0 * ring, mask)
+    assert away[-1] == set(bodies)
+    every = world.rays_past_grids
+    monkeypatch.setattr(world, 'rays_past_grids', lambda reach=None: every())
+    assert rays.cast_rays(world, origin, origin + 30.0 * ring, mask).tobytes() \
+        == fractions.tobytes()

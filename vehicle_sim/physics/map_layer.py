@@ -200,7 +200,7 @@ def build_occupancy_grid(world, spec: WorldSpec) -> OccupancyMap:
         world.labels.set(body_id, 'wall')
     if built.body_ids:
         built.rays = GridRays(walls, grid.resolution_m, _grid_corner(grid, map_spec),
-                              map_spec.wall_height_m)
+                              map_spec.wall_height_m, map_spec.ray_march)
         world.add_ray_grid(built.rays, built.body_ids)
     return built
 

@@ -67,6 +67,9 @@ GROUND_COLOR = (0.45, 0.45, 0.45, 1.0)
 _FIRST_RAY_GROUP_BIT = 4
 # Where the bodies of a ray grid stand while Bullet casts rays (World.rays_past_grids) [m].
 _AWAY_Z_M = -1.0e4
+# A ray grid's body stays where it is when its bounding box is farther than this from the box
+# of the rays [m] (Bullet's boxes hold a margin of their own).
+_REACH_SLACK_M = 0.1
 _LAST_RAY_GROUP_BIT = 30
 ALL_GROUPS = -1
 # A teleported body overlaps another when they interpenetrate by more than this [m] (touching,
@@ -455,34 +458,51 @@ class World:
         gives the same hits (physics/sensors/rays.py casts Bullet's rays only up to them, with
         the bodies out of the way: :meth:`rays_past_grids`).
 
-        :param grid_rays: an object with ``cast(origin, ends)`` -> (n,) fractions (1.0: none):
+        :param grid_rays: an object with ``cast(origin, ends)`` -> (n,) fractions (1.0: none)
+            and ``cast_cut(origin, ends)`` -> (fractions, rays cut there, their box):
             core/map/grid_rays.py's GridRays.
         :param body_ids: the static bodies it stands for, at the origin unturned (their
             vertices in the world frame), already named with add_static.
         """
         self.ray_grids.append(grid_rays)
         self.ray_grid_bodies.append(body_ids[0] if len(body_ids) else -1)
-        self._ray_grid_bodies.extend(body_ids)
+        cid = self.client_id
+        for body_id in body_ids:        # static: their boxes stay
+            low, high = pybullet.getAABB(body_id, physicsClientId=cid)
+            self._ray_grid_bodies.append(
+                (body_id, tuple(v - _REACH_SLACK_M for v in low),
+                 tuple(v + _REACH_SLACK_M for v in high)))
 
     @contextmanager
-    def rays_past_grids(self):
+    def rays_past_grids(self, reach=None):
         """
-        Within the block, the ray grids' bodies stand 10 km below the world (rays miss them).
+        Within the block, the ray grids' bodies that rays reach stand 10 km below the world.
 
         PyBullet's ray mask drops a body's hits only after Bullet has walked its mesh's tree
         (measured: a 1080-ray batch costs the same with the map masked out), while a ray far
-        from a body's box skips it at once. Moving the static bodies and back costs about
-        3 us each; contacts are untouched (the next step finds them where they were).
+        from a body's box skips it at once. Moving a static body and back costs 3 to 10 us;
+        contacts are untouched (the next step finds them where they were). A body whose box
+        the rays do not reach stays: no ray can meet it, and Bullet skips it all the same.
+
+        :param reach: ((x, y, z) lowest, (x, y, z) highest) [m]: a box that holds every ray,
+            its start and end; None: every body moves.
         """
         cid = self.client_id
+        if reach is None:
+            moved = [body_id for body_id, _, _ in self._ray_grid_bodies]
+        else:
+            (x0, y0, z0), (x1, y1, z1) = reach
+            moved = [body_id for body_id, low, high in self._ray_grid_bodies
+                     if low[0] <= x1 and x0 <= high[0] and low[1] <= y1 and y0 <= high[1]
+                     and low[2] <= z1 and z0 <= high[2]]
         try:
-            for body_id in self._ray_grid_bodies:
+            for body_id in moved:
                 pybullet.resetBasePositionAndOrientation(body_id, (0.0, 0.0, _AWAY_Z_M),
                                                          (0.0, 0.0, 0.0, 1.0),
                                                          physicsClientId=cid)
             yield
         finally:
-            for body_id in self._ray_grid_bodies:
+            for body_id in moved:
                 pybullet.resetBasePositionAndOrientation(body_id, (0.0, 0.0, 0.0),
                                                          (0.0, 0.0, 0.0, 1.0),
                                                          physicsClientId=cid)

@@ -31,17 +31,24 @@ two jumps, and walls behind it or beside it do not shorten its jumps; among ragg
 squares shrink to a cell or two, so the last few rays left walk the next cells one by one, in one
 go (:meth:`GridRays._window`). The rays jump three times between looks at which are done (a
 done ray stands still). On a SLAM-like map a 1080-ray scan takes about 1 ms of numpy
-(benchmarks/bench_occupancy_lidar.py). A ray leaves the grid once (it is convex) and nothing
-outside it is a wall. Why not Bullet: a ray cast against a map's static meshes walks the
-meshes' trees along its whole length, past its first hit, and a SLAM map's ragged walls hold
-a hundred thousand faces: 8 times the cost of the same lidar in an empty world there (meshes of
-the walls' boundary alone, 7 times; benchmarks/bench_grid_ray_options.py).
+(benchmarks/bench_occupancy_lidar.py), nearly all of it numpy's fixed cost per call; the same
+march compiled by numba (grid_rays_jit.py, the ``fast`` extra: ``march``, the map key
+``ray_march``) gives the same fractions to the bit in about 0.1 ms. A ray leaves the grid
+once (it is convex) and nothing outside it is a wall. Why not Bullet: a ray cast against a
+map's static meshes walks the meshes' trees along its whole length, past its first hit, and a
+SLAM map's ragged walls hold a hundred thousand faces: 8 times the cost of the same lidar in an
+empty world there (meshes of the walls' boundary alone, 7 times;
+benchmarks/bench_grid_ray_options.py).
 """
 
+import importlib.util
 import math
 from typing import Optional
+import warnings
 
 import numpy as np
+
+from vehicle_sim.core.specs.errors import InvalidParameterError
 
 # The squares are stored in a byte: at most this many cells wide (a ray through a larger empty
 # area takes a few more jumps).
@@ -65,6 +72,39 @@ _ROWS = ('speed_x', 'speed_y', 'start_x', 'start_y', 'nudged_x', 'nudged_y', 'si
          'offset_x', 'offset_y', 'inverse_x', 'inverse_y', 'tie', 't', 'high', 'id')
 _SPEED, _START, _NUDGED, _SIGN = slice(0, 2), slice(2, 4), slice(4, 6), slice(6, 8)
 _OFFSET, _INVERSE, _TIE, _T, _HIGH, _ID = slice(8, 10), slice(10, 12), 12, 13, 14, 15
+# Which march casts (the map key ``ray_march``, core/map/kinds.py): ``compiled`` is this march
+# compiled by numba (grid_rays_jit.py, the ``fast`` extra), ``numpy`` the one below, ``auto``
+# the compiled one where numba imports, else numpy.
+RAY_MARCHES = ('auto', 'numpy', 'compiled')
+FAST_EXTRA_HINT = "pip install 'vehicle_sim[fast]' (or pip install numba)"
+# grid_rays_jit's march once imported, or the ImportError it raised (imported once a process).
+_COMPILED = {}
+# What the compiled march gets for the cut rays and their box when they are not asked for.
+_NO_CUT, _NO_BOX = np.empty((0, 3)), np.empty((0, 3))
+
+
+def compiled_march_installed() -> bool:
+    """Return whether numba is installed (found, not imported: that takes 0.3 s or more)."""
+    return importlib.util.find_spec('numba') is not None
+
+
+def compiled_march():
+    """
+    Return grid_rays_jit's compiled march, importing numba the first time.
+
+    :raises ImportError: naming the ``fast`` extra, where numba is missing or does not import.
+    """
+    if not _COMPILED:
+        try:
+            from vehicle_sim.core.map.grid_rays_jit import march
+            _COMPILED['march'] = march
+        except ImportError as error:
+            _COMPILED['error'] = ImportError(
+                f'the compiled ray march needs numba, which does not import ({error}): '
+                f'{FAST_EXTRA_HINT}')
+    if 'error' in _COMPILED:
+        raise _COMPILED['error']
+    return _COMPILED['march']
 
 
 def free_squares(walls: np.ndarray, out: Optional[np.ndarray] = None) -> np.ndarray:
@@ -129,9 +169,17 @@ class GridRays:
     :param corner: (x [m], y [m], yaw [rad]) of cell (0, 0)'s lower-left corner in the rays'
         frame (the grid's origin composed with the map's placement).
     :param height_m: the walls' height above z = 0 [m].
+    :param march: which march casts, one of :data:`RAY_MARCHES` (``auto``: the compiled one
+        where numba imports); numba is imported on the first cast, not here.
     """
 
-    def __init__(self, walls: np.ndarray, resolution_m: float, corner, height_m: float):
+    def __init__(self, walls: np.ndarray, resolution_m: float, corner, height_m: float,
+                 march: str = 'auto'):
+        if march not in RAY_MARCHES:
+            raise InvalidParameterError(
+                f"ray march {march!r}: must be one of {', '.join(RAY_MARCHES)}")
+        self.march = march
+        self._compiled = None if march == 'numpy' else ...     # ...: not looked up yet
         self.height_m = float(height_m)
         self._shape = walls.shape
         padded = np.full((4, walls.shape[0] + 2, walls.shape[1] + 2), MAX_SQUARE_CELLS,
@@ -154,6 +202,26 @@ class GridRays:
         """Memory held [bytes]: the squares, four bytes a cell (with a border)."""
         return self._squares.nbytes
 
+    @property
+    def compiled(self) -> bool:
+        """
+        Whether the casts run the compiled march (numba imported the first time it is asked).
+
+        :raises ImportError: naming the ``fast`` extra, for ``march='compiled'`` where numba
+            does not import.
+        """
+        if self._compiled is ...:
+            try:
+                self._compiled = compiled_march()
+            except ImportError as error:
+                if self.march == 'compiled':
+                    raise
+                if compiled_march_installed():      # installed but broken: say so
+                    warnings.warn(f'ray_march auto: {error}; the numpy march casts',
+                                  RuntimeWarning, stacklevel=2)
+                self._compiled = None
+        return self._compiled is not None
+
     def cast(self, origin, ends) -> np.ndarray:
         """
         Return each ray's fraction of its length where it first meets a wall; 1.0 for none.
@@ -161,26 +229,70 @@ class GridRays:
         :param origin: (3,) start of every ray [m].
         :param ends: (n, 3) ends of the rays [m].
         """
+        return self._cast(origin, ends, None)
+
+    def cast_cut(self, origin, ends):
+        """
+        Return :meth:`cast`'s fractions, the rays cut there and a box that holds them.
+
+        :param origin: (3,) start of every ray [m].
+        :param ends: (n, 3) ends of the rays [m].
+        :return: (fractions (n,), cut (n, 3) [m]: ``origin + (ends - origin) * fraction``, each
+            ray up to the wall it meets, box ((3,) lowest, (3,) highest corner) [m] of the
+            origin and the cut ends). The compiled march works them out as it goes: numpy's
+            reductions over an (n, 3) array cost tens of microseconds.
+        """
+        cut = np.empty((len(ends), 3))
+        box = np.empty((2, 3))
+        return self._cast(origin, ends, (cut, box)), cut, box
+
+    def _cast(self, origin, ends, outputs):
         origin = np.asarray(origin, dtype=float)
         vectors = np.asarray(ends, dtype=float) - origin
         count = len(vectors)
         result = np.ones(count)
-        if count == 0:
+        grid_start = self._axes @ (origin[:2] - self._corner)
+        if self._compiled is not None and self.compiled and count:
+            # the same march, one ray at a time (grid_rays_jit.py)
+            speed = np.empty((2, count))
+            np.matmul(self._axes, vectors[:, :2].T, out=speed)
+            cut, box = (_NO_CUT, _NO_BOX) if outputs is None else outputs
+            self._compiled(self._squares, float(self._stride), float(self._quadrant_rows),
+                           self._tops, origin, grid_start[0], grid_start[1], speed, vectors,
+                           result, _JUMPS_PER_LOOK, _WINDOW_RAYS, _WINDOW_CELLS, _NUDGE_CELLS,
+                           cut, box)
             return result
+        if count:
+            self._numpy_march(origin, vectors, grid_start, result)
+        if outputs is not None:
+            cut, box = outputs
+            np.multiply(vectors, result[:, None], out=cut)
+            np.add(origin, cut, out=cut)
+            box[:] = origin
+            if count:
+                np.minimum(box[0], cut.min(axis=0), out=box[0])
+                np.maximum(box[1], cut.max(axis=0), out=box[1])
+        return result
+
+    def _numpy_march(self, origin, vectors, grid_start, result):
+        # The band, then the march (below), in numpy; writes the fractions into result.
+        count = len(vectors)
         # Per ray, a column of the rays' state (the rows named in _ROWS); in grid cells.
         rays = np.empty((len(_ROWS), count))
         speed, start, t, high = rays[_SPEED], rays[_START], rays[_T], rays[_HIGH]
         np.matmul(self._axes, vectors[:, :2].T, out=speed)     # cells per unit of fraction
-        start[:] = (self._axes @ (origin[:2] - self._corner))[:, None]
+        start[:] = grid_start[:, None]
         with np.errstate(divide='ignore', invalid='ignore'):
             self._band(origin[2], vectors[:, 2], start[:, 0], speed, t, high)
             live = t <= high
             if not live.all():
                 if not live.any():
-                    return result
+                    return
                 rays = rays.compress(live, axis=1)
             rays[_ID] = np.flatnonzero(live)
-            return self._march(result, rays)
+            self._march(result, rays)
+        # a hit at the ray's start reads +0.0 (which zero numpy's max gives depends on its loop)
+        result += 0.0
 
     def normals(self, origin, ends, fractions) -> np.ndarray:
         """

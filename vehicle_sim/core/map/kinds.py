@@ -38,6 +38,11 @@ import os
 from typing import Callable, Dict, Tuple
 
 from vehicle_sim.core.geometry.frames import Pose
+from vehicle_sim.core.map.grid_rays import (
+    compiled_march_installed,
+    FAST_EXTRA_HINT,
+    RAY_MARCHES,
+)
 from vehicle_sim.core.map.lanelet2_params import LANELET2_SPECS, Lanelet2MapSpec
 from vehicle_sim.core.map.sumo_net_params import (
     NETCONVERT_SPECS,
@@ -100,6 +105,10 @@ OCCUPANCY_GRID_SPECS = COMMON_MAP_SPECS + (
     ParamSpec('unknown', 'unknown', 'enum', 'free', '',
               'what unknown cells (-1) are: free (no wall) or occupied (a wall)',
               choices=UNKNOWN_CHOICES),
+    ParamSpec('ray_march', 'ray_march', 'enum', 'auto', '',
+              'how lidar and distance sensors find the walls over the grid: compiled (numba, '
+              'the fast extra), numpy, or auto (compiled where numba imports); the same hits',
+              choices=RAY_MARCHES),
 )
 
 
@@ -111,6 +120,8 @@ class OccupancyMapSpec:
     :param file: the map YAML's path, resolved against the world file's folder.
     :param wall_height_m: height of the walls on occupied cells [m].
     :param unknown: 'free' or 'occupied': what an unknown cell is.
+    :param ray_march: which march finds the walls for rays (core/map/grid_rays.py's
+        RAY_MARCHES).
     """
 
     type: str
@@ -119,6 +130,7 @@ class OccupancyMapSpec:
     wall_height_m: float = 1.0
     unknown: str = 'free'
     source: str = ''
+    ray_march: str = 'auto'
 
 
 def _placement(pose: Pose) -> MapPlacement:
@@ -130,9 +142,13 @@ def _resolved(base_dir, name):
 
 
 def _occupancy_grid(values, source, base_dir) -> OccupancyMapSpec:
+    if values['ray_march'] == 'compiled' and not compiled_march_installed():
+        raise InvalidParameterError(
+            f"{source}: field 'ray_march' = 'compiled' needs numba, which is not installed: "
+            f'{FAST_EXTRA_HINT}')
     return OccupancyMapSpec(values['type'], _placement(values['world_in_map']),
                             _resolved(base_dir, values['file']), values['wall_height_m'],
-                            values['unknown'], source)
+                            values['unknown'], source, values['ray_march'])
 
 
 LANELET2_MAP_SPECS = COMMON_MAP_SPECS + tuple(s for s in LANELET2_SPECS if s.key != 'type')

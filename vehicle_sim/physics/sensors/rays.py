@@ -21,9 +21,9 @@ sensor mounted inside or behind the body sees past it; the vehicle stands aside 
 cast (World.rays_past_own: Bullet tests a ray against its shapes before the mask drops the
 hit). In a world with an occupancy map (``World.ray_grids``, added by physics/map_layer.py) the
 walls are found over the map's grid (core/map/grid_rays.py), and Bullet's rays, cast with the
-walls' meshes moved out of their way (World.rays_past_grids), stop where the walls are: Bullet
-walks a static mesh's tree along the whole ray, past its first hit, so a large map's meshes
-made each ray cost several times more (benchmarks/bench_occupancy_lidar.py).
+walls' meshes they reach moved out of their way (World.rays_past_grids), stop where the walls
+are: Bullet walks a static mesh's tree along the whole ray, past its first hit, so a large
+map's meshes made each ray cost several times more (benchmarks/bench_occupancy_lidar.py).
 :func:`cast_rays_hits` also gives what each ray hit (a labelled lidar's bodies and surface
 normals).
 """
@@ -63,12 +63,30 @@ def cast_rays(world, origin, ends, mask):
     if not world.ray_grids:
         with world.rays_past_own(mask):
             return _fractions(world, starts, ends, mask)
-    # The walls over their grid, then Bullet's rays up to them, the walls' meshes away.
-    walls = np.minimum.reduce([grid.cast(origin, ends) for grid in world.ray_grids])
-    near = origin + (ends - origin) * walls[:, None]
-    with world.rays_past_grids(), world.rays_past_own(mask):
+    # The walls over their grid, then Bullet's rays up to them, the walls' meshes they reach
+    # away.
+    walls, _, near, reach = _cut_at_walls(world, origin, ends)
+    with world.rays_past_grids(reach), world.rays_past_own(mask):
         fractions = _fractions(world, starts, near, mask)
-    return np.where(fractions < 1.0, fractions * walls, walls)
+    fractions *= walls          # a miss (1.0) gives the wall's own fraction, exactly
+    return fractions
+
+
+def _cut_at_walls(world, origin, ends):
+    # The fraction of each ray where it meets a ray grid's wall, which grid's (None: the one
+    # grid's), the rays cut there, and the box ((x, y, z) lowest, (x, y, z) highest) [m] that
+    # holds them (GridRays.cast_cut).
+    grids = world.ray_grids
+    if len(grids) == 1:
+        walls, near, box = grids[0].cast_cut(origin, ends)
+        return walls, None, near, box.tolist()
+    every = np.stack([grid.cast(origin, ends) for grid in grids])
+    which = every.argmin(axis=0)
+    walls = every[which, np.arange(len(ends))]
+    near = origin + (ends - origin) * walls[:, None]
+    box = [np.minimum(near.min(axis=0), origin).tolist(),
+           np.maximum(near.max(axis=0), origin).tolist()]
+    return walls, which, near, box
 
 
 def cast_rays_hits(world, origin, ends, mask):
@@ -92,11 +110,10 @@ def cast_rays_hits(world, origin, ends, mask):
     if not world.ray_grids:
         with world.rays_past_own(mask):
             return _hits(world, starts, ends, mask, world.labels.has_links)
-    walls = np.stack([grid.cast(origin, ends) for grid in world.ray_grids])
-    which = walls.argmin(axis=0)
-    walls = walls[which, np.arange(len(ends))]
-    near = origin + (ends - origin) * walls[:, None]
-    with world.rays_past_grids(), world.rays_past_own(mask):
+    walls, which, near, reach = _cut_at_walls(world, origin, ends)
+    if which is None:
+        which = np.zeros(len(ends), dtype=np.intp)
+    with world.rays_past_grids(reach), world.rays_past_own(mask):
         fractions, bodies, links, normals = _hits(world, starts, near, mask,
                                                   world.labels.has_links)
     grid = (fractions >= 1.0) & (walls < 1.0)
