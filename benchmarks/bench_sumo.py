@@ -24,7 +24,8 @@ seconds / wall seconds over the next 60 (30 with ``--quick``); the same on CPU t
 beside it (less moved by other work on a shared machine).
 
 - SUMO alone: libsumo steps the city, nothing else; the mean numbers of vehicles and persons
-  over the window, the process's RSS.
+  over the window, the process's RSS. SUMO runs with the same options on both sides
+  (:data:`SUMO_OPTIONS`: its warnings off, which the engine gets as ``options:``).
 - Co-simulated: the world of the city map with ``traffic: {engine: sumo, routes: ...}`` (the
   same routes) and one ego car (ToyotaPrius, at rest on lane A1B1_1) with a 1080-ray lidar
   (270 degrees, 30 m) sampled at 10 Hz, built by the scene builder and stepped by
@@ -66,6 +67,9 @@ XODR_GRID = 6                # netgenerate grid of 6 x 6 junctions: about 1 MB o
 TARGET_RTF = 20.0            # co-simulated real-time factor (docs/sumo.md)
 PARTS = ('alone', 'cosim', 'netconvert')
 TARGET_COST = 2.0            # co-simulated / (SUMO alone + the empty world), per simulated s
+# SUMO's options on both sides (alone, and the engine's ``options:``): its warnings off (SUMO
+# writes each to the terminal and the error log; they change no result)
+SUMO_OPTIONS = ('--no-warnings', 'true')
 # The ego car: at rest on the right lane of A1B1 (eastbound, row 1), 20 m in; its lidar as the
 # other benchmarks' (1080 rays over 270 degrees, 30 m) at 10 Hz.
 EGO_POSE = {'x': 90.0, 'y': 155.2, 'yaw': 0.0}
@@ -112,6 +116,12 @@ def _rss_mb(key='VmRSS'):
     return float('nan')
 
 
+def alone_arguments(vehicles, persons, seed=1):
+    """Return sumo's options for SUMO alone: the city, the routes, SUMO_OPTIONS as the engine's."""
+    return ['-n', str(CITY), '-r', f'{vehicles},{persons}', '--step-length', f'{STEP_S:g}',
+            '--seed', str(seed), '--no-step-log', 'true', *SUMO_OPTIONS]
+
+
 def sumo_alone(measure_s, seed=1):
     """Return the SUMO-alone figures (this process runs libsumo: call it in a fresh one)."""
     from vehicle_sim.physics.sumo_session import load_libsumo
@@ -119,9 +129,7 @@ def sumo_alone(measure_s, seed=1):
     with tempfile.TemporaryDirectory(prefix='bench_sumo_') as folder:
         vehicles, persons = city_routes(folder, FILL_S + measure_s + 60.0, seed)
         rss_before = _rss_mb()
-        libsumo.start(['sumo', '-n', str(CITY), '-r', f'{vehicles},{persons}',
-                       '--step-length', f'{STEP_S:g}', '--seed', str(seed),
-                       '--no-step-log', 'true', '--no-warnings', 'true'])
+        libsumo.start(['sumo', *alone_arguments(vehicles, persons, seed)])
         try:
             for _ in range(int(round(FILL_S / STEP_S))):
                 libsumo.simulationStep()
@@ -151,7 +159,7 @@ def _ego_world(folder, routes=None, seed=1):
     if routes is not None:
         data['map'] = {'type': 'sumo', 'net': str(CITY)}
         data['traffic'] = {'engine': 'sumo', 'routes': [str(path) for path in routes],
-                           'step': STEP_S, 'seed': seed}
+                           'step': STEP_S, 'seed': seed, 'options': list(SUMO_OPTIONS)}
     return world_from_data(data, 'bench_sumo.yaml', base_dir=str(folder))
 
 
