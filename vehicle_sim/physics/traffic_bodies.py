@@ -25,16 +25,17 @@ cameras, collision monitors and teleport checks see it like any obstacle; its la
 (``World.labels``) is its object class's and its instance id its name's.
 
 Every ``update_period`` (a whole number of world steps) the step hook gives the manager our
-vehicles (footprint centre, heading, speed, size), advances it and puts each box at its vehicle's
-pose. Between updates a vehicle goes on straight at its speed, and its box is put there whenever
-something can tell: before each step for the vehicles near ours (the step's contacts), before
-anything reads the world (``World.sync_bodies``: rays, cameras, overlap checks, body states) for
-all of them, and once a frame (gui.FRAME_PERIOD_S) with a GUI window, not each step. Bullet never
-moves the boxes itself: a static rigid body costs its step almost nothing, where 50 moving bodies
-cost it some 20 us a step (docs/traffic.md, Cost). A vehicle waiting to re-enter the map is parked
-under the ground. After every step the contacts of our vehicles with the traffic vehicles near them
-(within NEAR_M at the last update) are read: a traffic vehicle touching one of ours stops for good
-where its box was (it stays there, an obstacle).
+vehicles (footprint centre, heading, speed, size), advances it and puts the boxes near ours (within
+NEAR_M) at their vehicles' poses; the others wait under the ground until they come near or
+something reads the world. Between updates a vehicle goes on straight at its speed, and its box is
+put there whenever something can tell: before each step for the vehicles near ours (the step's
+contacts), before anything reads the world (``World.sync_bodies``: rays, cameras, overlap checks,
+body states) for all of them, and once a frame (gui.FRAME_PERIOD_S) with a GUI window, not each
+step. Bullet never moves the boxes itself: a static rigid body costs its step almost nothing, where
+50 moving bodies cost it some 20 us a step (docs/traffic.md, Cost). A vehicle waiting to re-enter
+the map is parked under the ground. After every step the contacts of our vehicles with the traffic
+vehicles near them (within NEAR_M at the last update) are read: a traffic vehicle touching one of
+ours stops for good where its box was (it stays there, an obstacle).
 """
 
 from dataclasses import replace
