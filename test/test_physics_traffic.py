@@ -133,6 +133,42 @@ def test_a_collision_with_our_car_stops_the_traffic_car_and_names_it(scenes):
     assert after == pytest.approx(where, abs=1e-9)      # no jump at the next updates
 
 
+def test_a_traffic_box_far_from_ours_waits_under_the_ground_until_the_world_is_read(scenes):
+    # An update puts the boxes near our vehicles; the far ones wait under the ground (putting
+    # every box cost more than the rest of the update), until something reads the world:
+    # rays, cameras and body states find each where its vehicle is, moving or standing.
+    import pybullet
+    scene = scenes(highway({'update_period': 0.1, 'placed': [
+        {'model': 'ToyotaPrius', 'lanelet': MIDDLE, 's': 40.0, 'speed': 20.0,
+         'route': [100102]},
+        {'model': 'ToyotaPrius', 'lanelet': MIDDLE, 's': 400.0, 'speed': 20.0,
+         'route': [100102]},
+        {'model': 'ToyotaPrius', 'lanelet': MIDDLE, 's': 600.0, 'speed': 0.0,
+         'route': [100102]}]}, sensors=()))
+    traffic = scene.parts['traffic']
+    manager, bodies, cid = traffic.manager, traffic.body_ids, scene.world.client_id
+    manager.stop(2)                        # standing: only a read puts it
+    for _ in range(25):                    # two updates
+        scene.world.step()
+
+    def put_at(index):                     # where Bullet has the box, nothing synced
+        return pybullet.getBasePositionAndOrientation(bodies[index], physicsClientId=cid)[0]
+    assert put_at(0)[2] > 0.0                              # near ours: put
+    assert put_at(1)[2] < -40.0 and put_at(2)[2] < -40.0   # far: under the ground
+    for index in (1, 2):
+        v = manager.vehicles[index]
+        x, y, _ = manager.pose(v)          # along +x: on at its speed since the update
+        (where, _), *_ = scene.world.body_state(bodies[index])
+        assert where[:2] == pytest.approx((x + v.speed_mps * traffic.since_update_s, y),
+                                          abs=1e-9)
+        assert where[2] > 0.0
+    since = traffic.since_update_s
+    while traffic.since_update_s >= since:     # on to the next update
+        since = traffic.since_update_s
+        scene.world.step()
+    assert put_at(1)[2] < -40.0 and put_at(2)[2] < -40.0   # down again
+
+
 def test_traffic_bodies_are_seen_by_the_teleport_check(scenes):
     scene = scenes(highway({'placed': [{'lanelet': MIDDLE, 's': 60.0, 'speed': 0.0,
                                         'route': [100102]}]}, sensors=()))

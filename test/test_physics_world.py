@@ -299,7 +299,7 @@ def test_contact_points_are_read_once_per_body_while_the_post_step_hooks_run(mon
     real = pybullet.getContactPoints
 
     def counted(*args, **kwargs):
-        reads.append(kwargs.get('bodyA'))
+        reads.append(args[0] if args else kwargs.get('bodyA'))    # (bodyA, by position or not)
         return real(*args, **kwargs)
 
     class Reader:

@@ -343,7 +343,8 @@ class DriveSim:
         for _ in range(repeat):
             world.step()
             repeat_done += 1
-            hit = agent.after_basic_step(watch, self.elapsed_s)
+            # (the elapsed time is the watch's only: not worked out at every basic step)
+            hit = agent.after_basic_step(watch, 0.0 if watch is None else self.elapsed_s)
             if hit and stop_on_hit:
                 break
         self._repeat_done = repeat_done

@@ -170,7 +170,9 @@ class CarBody(VehicleBody):
         on them, as in Webots' SPEED mode); TORQUE wheels get their torque plus the brake
         motor; FREE wheels only the brake motor.
         """
-        self._set_steering(float(actuation.steer_right_rad), float(actuation.steer_left_rad))
+        right, left = actuation.steer_right_rad, actuation.steer_left_rad
+        if (right, left) != self._last_steer_cmd:      # (it changes at decisions only)
+            self._set_steering(float(right), float(left))
         # Plain floats first: indexing numpy arrays element by element costs more.
         velocities = as_floats(actuation.wheel_velocity_radps)
         brakes = as_floats(actuation.brake_torque_nm)
@@ -208,8 +210,8 @@ class CarBody(VehicleBody):
         Wheel spin positions (FR, FL, RR, RL; unwrapped, continuous) and the right/left
         steering angles (Webots sign, positive = right) [rad].
         """
-        states = pybullet.getJointStates(self.body_id, self._read_joints,
-                                         physicsClientId=self._cid)
+        # (the client id passed by position: keyword arguments cost PyBullet 0.3 us a call)
+        states = pybullet.getJointStates(self.body_id, self._read_joints, self._cid)
         positions = measurement.wheel_position_rad
         for index in range(WHEEL_COUNT):
             positions[index] = states[index][0]

@@ -25,16 +25,17 @@ cameras, collision monitors and teleport checks see it like any obstacle; its la
 (``World.labels``) is its object class's and its instance id its name's.
 
 Every ``update_period`` (a whole number of world steps) the step hook gives the manager our
-vehicles (footprint centre, heading, speed, size), advances it and puts each box at its vehicle's
-pose. Between updates a vehicle goes on straight at its speed, and its box is put there whenever
-something can tell: before each step for the vehicles near ours (the step's contacts), before
-anything reads the world (``World.sync_bodies``: rays, cameras, overlap checks, body states) for
-all of them, and once a frame (gui.FRAME_PERIOD_S) with a GUI window, not each step. Bullet never
-moves the boxes itself: a static rigid body costs its step almost nothing, where 50 moving bodies
-cost it some 20 us a step (docs/traffic.md, Cost). A vehicle waiting to re-enter the map is parked
-under the ground. After every step the contacts of our vehicles with the traffic vehicles near them
-(within NEAR_M at the last update) are read: a traffic vehicle touching one of ours stops for good
-where its box was (it stays there, an obstacle).
+vehicles (footprint centre, heading, speed, size), advances it and puts the boxes near ours (within
+NEAR_M) at their vehicles' poses; the others wait under the ground until they come near or
+something reads the world. Between updates a vehicle goes on straight at its speed, and its box is
+put there whenever something can tell: before each step for the vehicles near ours (the step's
+contacts), before anything reads the world (``World.sync_bodies``: rays, cameras, overlap checks,
+body states) for all of them, and once a frame (gui.FRAME_PERIOD_S) with a GUI window, not each
+step. Bullet never moves the boxes itself: a static rigid body costs its step almost nothing, where
+50 moving bodies cost it some 20 us a step (docs/traffic.md, Cost). A vehicle waiting to re-enter
+the map is parked under the ground. After every step the contacts of our vehicles with the traffic
+vehicles near them (within NEAR_M at the last update) are read: a traffic vehicle touching one of
+ours stops for good where its box was (it stays there, an obstacle).
 """
 
 from dataclasses import replace
@@ -166,6 +167,7 @@ class TrafficBodies:
         self._ours = world.vehicle_bodies()
         self._outlines = [body.outline for body in self._ours]
         self._parked = set()
+        self._away = set()             # vehicles on the map whose boxes wait under the ground
         # per vehicle on the map: (x, y, z, qz, qw, vx, vy) of its box at the last update
         self._motion = [None] * len(self.body_ids)
         self._placed_at = 0.0          # the time of the last update [s]
@@ -174,8 +176,6 @@ class TrafficBodies:
         self._drawn_at = -math.inf     # when every box was last put for the GUI window [s]
         self._table = MotionTable()    # kinematics(), rebuilt after each update
         self._place()
-        self._near, self._near_all = self._nearby([
-            our_vehicle(body, outline) for body, outline in zip(self._ours, self._outlines)])
         world.add_body(self)
 
     def reset(self, seed=None):
@@ -193,45 +193,75 @@ class TrafficBodies:
         self.manager = TrafficManager(old.graph, spec, old.dimensions, ours, old.signals)
         self._start_step = self.world.step_count
         self._parked = set()
-        self._place()
-        self._near, self._near_all = self._nearby(ours)
+        self._away = set()
+        self._place(ours)
         return f'traffic: its {len(self.manager.vehicles)} vehicles back at their start'
 
     def _z(self, index):
         return 0.5 * (self._heights[index] + GROUND_CLEARANCE_M)
 
-    def _place(self):
-        """Put every box at its vehicle's pose now (an update)."""
+    def _place(self, ours=None):
+        """
+        Put the boxes near ``ours`` (OurVehicles; None: read now) at their vehicles' poses.
+
+        The others wait under the ground, where no vehicle of ours can touch them, until
+        something reads the world (:meth:`before_query`) or they come near: a box left where it
+        was put long ago could stand in our vehicles' way with its vehicle far off. Putting a
+        box costs more than the rest of its update.
+        """
+        if ours is None:
+            ours = [our_vehicle(body, outline)
+                    for body, outline in zip(self._ours, self._outlines)]
         cid = self._cid
         manager = self.manager
         reset_pose = pybullet.resetBasePositionAndOrientation
-        parked, heights, motion = self._parked, self._heights, self._motion
+        parked, away, heights = self._parked, self._away, self._heights
+        motion, body_ids = self._motion, self.body_ids
         self._positions = positions = []       # (index, x, y) of the vehicles on the map
         cos, sin = math.cos, math.sin
-        for v, body_id in zip(manager.vehicles, self.body_ids):
+        for v in manager.vehicles:
             index = v.index
             if not v.active:
                 motion[index] = None
+                away.discard(index)
                 if index not in parked:        # under the ground until it re-enters
-                    reset_pose(body_id, (0.0, 0.0, PARK_DEPTH_M - 10.0 * index),
-                               (0.0, 0.0, 0.0, 1.0), physicsClientId=cid)
+                    self._park(index)
                     parked.add(index)
                 continue
             parked.discard(index)
             x, y, yaw = manager.pose(v)
             positions.append((index, x, y))
             half = 0.5 * yaw
-            z, qz, qw = 0.5 * (heights[index] + GROUND_CLEARANCE_M), sin(half), cos(half)
-            reset_pose(body_id, (x, y, z), (0.0, 0.0, qz, qw), physicsClientId=cid)
             speed = v.speed_mps
-            motion[index] = (x, y, z, qz, qw, speed * cos(yaw), speed * sin(yaw))
+            motion[index] = (x, y, 0.5 * (heights[index] + GROUND_CLEARANCE_M), sin(half),
+                             cos(half), speed * cos(yaw), speed * sin(yaw))
+        self._near, self._near_all = self._nearby(ours)
+        near = set(self._near_all)
+        for index, _, _ in positions:
+            if index in near:
+                x, y, z, qz, qw, _, _ = motion[index]
+                reset_pose(body_ids[index], (x, y, z), (0.0, 0.0, qz, qw), physicsClientId=cid)
+                away.discard(index)
+            elif index not in away:
+                self._park(index)
+                away.add(index)
         self._placed_at = self.world.time_s
         self._synced_step = self.world.step_count
         self._table.invalidate()
         self.world.mark_moved()
 
-    def _move(self, indices):
-        """Put the boxes of ``indices`` where their vehicles are now (straight on)."""
+    def _park(self, index):
+        # a box under the ground (each at its own depth): off the map, or far from ours
+        pybullet.resetBasePositionAndOrientation(
+            self.body_ids[index], (0.0, 0.0, PARK_DEPTH_M - 10.0 * index), (0.0, 0.0, 0.0, 1.0),
+            physicsClientId=self._cid)
+
+    def _move(self, indices, standing=()):
+        """
+        Put the boxes of ``indices`` where their vehicles are now (straight on).
+
+        A vehicle at rest is put only when it is in ``standing`` (its box is elsewhere).
+        """
         cid, body_ids, motion = self._cid, self.body_ids, self._motion
         reset_pose = pybullet.resetBasePositionAndOrientation
         elapsed = self.world.time_s - self._placed_at
@@ -240,9 +270,10 @@ class TrafficBodies:
             if state is None:
                 continue
             x, y, z, qz, qw, vx, vy = state
-            if vx or vy:
+            if vx or vy or index in standing:
+                # (the client id by position: its keyword costs PyBullet 0.2 us a call)
                 reset_pose(body_ids[index], (x + vx * elapsed, y + vy * elapsed, z),
-                           (0.0, 0.0, qz, qw), physicsClientId=cid)
+                           (0.0, 0.0, qz, qw), cid)
 
     def pre_step(self):
         """
@@ -259,16 +290,16 @@ class TrafficBodies:
                     for body, outline in zip(self._ours, self._outlines)]
             self.manager.set_ours(ours)
             self.manager.step(self.every * world.time_step_s)
-            self._place()
-            self._near, self._near_all = self._nearby(ours)
+            self._place(ours)
         elif self._synced_step != count:
             self._move(self._near_all)
 
     def before_query(self):
         """World hook (``World.sync_bodies``): every box where its vehicle is now."""
         count = self.world.step_count
-        if self._synced_step != count:
-            self._move(range(len(self.body_ids)))
+        if self._synced_step != count or self._away:
+            self._move(range(len(self.body_ids)), self._away)
+            self._away = set()
             self._synced_step = count
             self.world.mark_moved()
 

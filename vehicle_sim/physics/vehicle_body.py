@@ -199,8 +199,9 @@ class VehicleBody:
 
     def forward_speed_mps(self):
         """Speed of base_link along its heading (x axis) [m/s]; negative when reversing."""
-        linear, _ = self.velocity()
-        heading, _ = self._axes(self.pose())
+        pose = self.pose()          # read once: the velocity's point and the heading
+        linear, _ = self.world.base_link_velocity(self.body_id, pose[:3])
+        heading, _ = self._axes(pose)
         return sum(a * b for a, b in zip(linear, heading))
 
     def yaw_rate_radps(self):

@@ -46,7 +46,6 @@ from vehicle_sim.core.car.drivetrain import (
     front_ratio,
     max_signed_acceleration,
     output_torque_nm,
-    ramp_toward,
     rear_ratio,
     update_slip_ratios,
     wheel_acceleration_radps2,
@@ -127,6 +126,7 @@ _NEW = object.__new__
 # Enum members as plain names for the per-step code: each ``ControlMode.X`` lookup costs about
 # 0.1 us on CPython 3.11, a dozen of them per step (benchmarks/bench_step.py).
 _SPEED, _TORQUE = ControlMode.SPEED, ControlMode.TORQUE
+_INDICATOR_OFF, _WIPER_DOWN = Indicator.OFF, WiperMode.DOWN
 _WHEEL_TORQUE, _WHEEL_VELOCITY = WheelMode.TORQUE, WheelMode.VELOCITY
 
 
@@ -232,6 +232,7 @@ class CarLogic:
         self._cruise_target_list = [0.0] * WHEEL_COUNT   # its values, for the step
         self._actuation = Actuation()
         self._driven_mode = None       # wheel modes last written into the Actuation
+        self._brake_written = 0.0      # the brake torque in it (Actuation() starts with 0)
         self._forget_motion()
 
     def _forget_motion(self):
@@ -244,7 +245,7 @@ class CarLogic:
         self._previous_position = [0.0] * WHEEL_COUNT
         self._speed = self._previous_speed = [0.0] * WHEEL_COUNT
         self._max_acceleration = 0.0
-        self._ramp = np.zeros(WHEEL_COUNT)
+        self._ramp = [0.0] * WHEEL_COUNT     # a list: the step reads and writes it per wheel
         self._torque = np.zeros(WHEEL_COUNT)
         self._write_actuation(0.0)
 
@@ -479,11 +480,17 @@ class CarLogic:
             raise InvalidCommandError(f'time step = {dt_s!r} s must be > 0 s')
         self._time_s = now_s
         lights = self._lights
-        # 1. Indicator lamps, with the time before the step.
-        lights.right_indicator, lights.left_indicator = indicator_lamps(
-            self._indicator, self._hazard, now_s, self._indicator_period_s)
-        # 2. Wipers. 3. Backwards light.
-        self._wiper.step(now_s, dt_s)
+        # 1. Indicator lamps, with the time before the step (without the indicator or the
+        # hazard flashers both are dark: no call).
+        if self._hazard or self._indicator != _INDICATOR_OFF:
+            lights.right_indicator, lights.left_indicator = indicator_lamps(
+                self._indicator, self._hazard, now_s, self._indicator_period_s)
+        else:
+            lights.right_indicator = lights.left_indicator = False
+        # 2. Wipers (parked ones stay where they are: no call). 3. Backwards light.
+        wiper = self._wiper
+        if wiper.mode != _WIPER_DOWN or wiper.angle_rad != wiper.target_rad:
+            wiper.step(now_s, dt_s)
         lights.backwards = backwards_light_on(self._mode, self._gear, self._cruising_kmh)
         # 4. Wheel speeds; without a previous sample they are 0 (Webots: NaN twice).
         # As lists of floats: numpy calls on 4 elements cost more than the arithmetic.
@@ -534,10 +541,11 @@ class CarLogic:
 
     def _write_actuation(self, dt_s):
         actuation = self._actuation
-        actuation.steer_right_rad = min(max(self._right_angle_rad, self._min_steer),
-                                        self._max_steer)
-        actuation.steer_left_rad = min(max(self._left_angle_rad, self._min_steer),
-                                       self._max_steer)
+        # min(max(angle, low), high), without the two calls
+        low, high = self._min_steer, self._max_steer
+        right, left = self._right_angle_rad, self._left_angle_rad
+        actuation.steer_right_rad = low if right < low else (high if right > high else right)
+        actuation.steer_left_rad = low if left < low else (high if left > high else left)
         # Per-wheel writes in plain Python: numpy calls on 4-element arrays cost more than the
         # arithmetic (benchmarks/bench_step.py).
         modes = actuation.wheel_mode
@@ -557,16 +565,26 @@ class CarLogic:
         else:
             ramp = self._ramp
             if self._mode == _SPEED:
-                current = ramp.tolist()
                 target = self._cruise_target_list
                 limits = self._wheel_acceleration_list
                 for wheel in self._driven:
-                    ramp[wheel] = velocity[wheel] = ramp_toward(current[wheel], target[wheel],
-                                                                limits[wheel] * dt_s)
+                    # ramp_toward(current, target, limit * dt), inline and without the min()
+                    # and max() calls (the hot loop)
+                    current = ramp[wheel]
+                    step = limits[wheel] * dt_s
+                    delta = target[wheel] - current
+                    if delta > step:
+                        delta = step
+                    elif delta < -step:
+                        delta = -step
+                    ramp[wheel] = velocity[wheel] = current + delta
             else:
                 for wheel in self._driven:
                     velocity[wheel] = ramp[wheel]
-        actuation.brake_torque_nm.fill(self._brake * self._params.brake_coefficient_nm)
+        brake = self._brake * self._params.brake_coefficient_nm
+        if brake != self._brake_written:        # (a fill costs more than the comparison)
+            actuation.brake_torque_nm.fill(brake)
+            self._brake_written = brake
         return actuation
 
     # -----------------------------------------------------------------------------------------

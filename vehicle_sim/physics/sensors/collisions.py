@@ -45,6 +45,10 @@ class CollisionMonitor:
         self.body = body
         self._debouncer = CollisionDebouncer(min_apart_s)
         self.fresh = []                # events of the last step
+        # a body the physics does not move (a kinematic car) finds its own contacts: Bullet
+        # makes none between two static bodies (looked up once: a missing attribute costs
+        # more than the step's contact read)
+        self._read = getattr(body, 'contact_points', None)
         world.add_body(self)
 
     def contacts(self):
@@ -56,9 +60,7 @@ class CollisionMonitor:
         world = self.world
         own, ground = self.body.body_id, world.ground_id
         found = {}
-        # a body the physics does not move (a kinematic car) finds its own contacts: Bullet
-        # makes none between two static bodies
-        read = getattr(self.body, 'contact_points', None)
+        read = self._read
         points = read() if read is not None else world.contact_points(own)
         for point in points:
             other = point[_BODY_B]
