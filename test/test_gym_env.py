@@ -265,7 +265,8 @@ def test_an_action_outside_the_space_is_refused_naming_the_entry(make):
 @pytest.mark.parametrize('kwargs, message', [
     ({'action_repeat': 0}, "option 'action_repeat' = 0: must be in 1 .. 10000"),
     ({'colour': 'red'}, "unknown option 'colour'"),
-    ({'control': 'twist'}, "control 'twist' does not fit the ego 'Car', a car"),
+    ({'control': 'twist'}, "control 'twist' does not fit the ego 'Car', a car; valid: "
+                           'speed_steering, braking_speed_steering, throttle_steering'),
     (dict(ROBOT, control='speed_steering'), 'does not fit the ego .ego., a robot'),
     ({'vehicle': 'Bus'}, "option 'vehicle' = 'Bus': no such vehicle in the world; vehicles: "
                          'Car'),
@@ -410,6 +411,49 @@ def test_a_criterion_judged_at_the_end_has_its_verdict_in_the_last_info(make, tm
     assert info['criteria'] == {'mean_speed': verdict}
     result = env.unwrapped.sim.criteria_results()['mean_speed']     # the measured value too
     assert result.passed == (verdict == 'passed') and 0.5 < result.value < 5.0
+
+
+def test_braking_speed_steering_brakes_for_a_speed_well_below_the_cars_and_cruises_else(make):
+    from vehicle_sim.core.car.drivetrain import ControlMode, SPEED_100_KMH_MPS
+    from vehicle_sim.core.specs.units import mps_to_kmh
+    options = dict(world='highway', max_speed=20.0, max_steering=0.02, action_repeat=10)
+    env = make(control='braking_speed_steering', **options)
+    plain = make(control='speed_steering', **options)
+    assert env.action_space == plain.action_space       # the entries and bounds of speed_steering
+    assert list(env.action_space.high) == pytest.approx([0.02, 20.0])
+    obs, _ = env.reset(seed=0)
+    logic = env.unwrapped.sim.control.logic
+    while obs['twist'][0] < 14.0:                       # cruising up: never braking
+        obs, *_ = env.step([0.0, 15.0])
+        assert logic.control_mode == ControlMode.SPEED and logic.brake_intensity == 0.0
+        assert env.unwrapped.sim.elapsed_s < 20.0
+    # 2.5 m/s slower than the car: throttle released, half the brake
+    speed = float(obs['twist'][0])
+    obs, *_ = env.step([0.0, speed - 2.5])
+    assert logic.control_mode == ControlMode.TORQUE and logic.throttle == 0.0
+    assert logic.brake_intensity == pytest.approx(0.5, abs=1e-5)
+    assert logic.target_cruising_speed_kmh == pytest.approx(mps_to_kmh(15.0))    # untouched
+    # speed 0: full brake, faster than the cruise control's ramp (time0To100) slows the car
+    before = float(obs['twist'][0])
+    for _ in range(10):                                 # 1 s
+        obs, *_ = env.step([0.0, 0.0])
+        assert logic.brake_intensity == 1.0
+    ramp_mps2 = SPEED_100_KMH_MPS / logic.params.time_0_to_100_s
+    assert before - float(obs['twist'][0]) > 1.5 * ramp_mps2
+    # within 1 m/s of the car's speed: the brake released, cruise control takes the speed
+    speed = float(obs['twist'][0])
+    env.step([0.0, speed - 0.9])
+    assert logic.control_mode == ControlMode.SPEED and logic.brake_intensity == 0.0
+    assert logic.target_cruising_speed_kmh == pytest.approx(mps_to_kmh(speed - 0.9))
+    # outside the Box: refused naming the entry, nothing stepped or commanded
+    steps = env.unwrapped.sim.world.step_count
+    with pytest.raises(ValueError, match=r'action\[1\] \(speed\) = 25.0 m/s: outside '
+                                         r'\[-5, 20\]'):
+        env.step([0.0, 25.0])
+    with pytest.raises(ValueError, match=r'action\[1\] \(speed\) = nan'):
+        env.step([0.0, float('nan')])
+    assert env.unwrapped.sim.world.step_count == steps
+    assert logic.target_cruising_speed_kmh == pytest.approx(mps_to_kmh(speed - 0.9))
 
 
 def test_max_steering_narrows_the_steering_actions_and_refuses_more_than_the_car_has(make):

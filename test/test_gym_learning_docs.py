@@ -54,3 +54,18 @@ def test_the_committed_curve_is_the_runs_and_the_model_has_the_scripts_card():
                       .read_text(encoding='utf-8'))
     assert card == script.card().as_dict()
     assert summary['env_options'] == script.ENV_OPTIONS
+
+
+def test_the_docs_show_the_braking_runs_figures_and_its_options_are_the_scripts_and_the_brakes():
+    summary = json.loads((RUN / 'highway_ppo_braking_summary.json').read_text(encoding='utf-8'))
+    text = (ROOT / 'docs' / 'learning.md').read_text(encoding='utf-8')
+    script = _script()
+    assert script.results_markdown(summary) in text
+    assert summary['evaluation']['trained']['episodes'] == 100
+    with open(RUN / 'highway_ppo_braking_curve.csv', encoding='utf-8') as stream:
+        rows = list(csv.DictReader(stream))
+    assert summary['final_training_row'] == {
+        key: type(value)(rows[-1][key]) for key, value in summary['final_training_row'].items()}
+    variant = {'control': 'braking_speed_steering', 'headway_penalty': 1.0, 'headway_s': 1.0,
+               'ttc_penalty': 2.0, 'ttc_s': 4.0, 'side_gap_penalty': 1.0, 'gap_margin': 1.0}
+    assert summary['env_options'] == dict(script.ENV_OPTIONS, **variant)

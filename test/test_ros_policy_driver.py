@@ -45,9 +45,9 @@ STEER_MAX_RAD, SPEED_MAX_MPS = 0.5, 35.0
 TOLERANCE = {'lane': 1e-4, 'twist': 1e-4, 'objects': 1e-5}
 
 
-def setup_of(period_s=0.1, keys=KEYS):
-    """Return a speed_steering policy's DriveSetup (bounds as the environment's)."""
-    return DriveSetup(keys, ObjectsTableSpec(), 'speed_steering',
+def setup_of(period_s=0.1, keys=KEYS, control='speed_steering'):
+    """Return a (braking_)speed_steering policy's DriveSetup (bounds as the environment's)."""
+    return DriveSetup(keys, ObjectsTableSpec(), control,
                       (-STEER_MAX_RAD, -5.0), (STEER_MAX_RAD, SPEED_MAX_MPS), (-1.0, 1.0),
                       period_s)
 
@@ -186,6 +186,46 @@ def test_the_commands_arrive_in_the_units_of_the_setters(lockstep):
     assert tuple(driver.action) == pytest.approx((steer_rad, speed_mps), abs=1e-6)
 
 
+class Slowing:
+    """A policy that speeds up to 8 m/s, then always asks for 3 m/s less than the car's speed."""
+
+    def __init__(self):
+        self.seen = []
+        self.slowing = False
+
+    def predict(self, obs, deterministic=True):
+        forward = float(obs['twist'][0])
+        self.seen.append(forward)
+        self.slowing = self.slowing or forward >= 8.0
+        target = forward - 3.0 if self.slowing else 10.0
+        # the physical speed in the box (-5 .. SPEED_MAX_MPS) rescaled to [-1, 1]
+        speed = 2.0 * (target + 5.0) / (SPEED_MAX_MPS + 5.0) - 1.0
+        return np.array((0.0, speed), np.float32), None
+
+
+def test_braking_speed_steering_brakes_over_the_wire_for_a_speed_well_below_the_cars(lockstep):
+    from vehicle_sim.core.car.drivetrain import ControlMode
+    bed = lockstep()
+    policy = Slowing()
+    driver = bed.start(policy, setup_of(period_s=0.1, control='braking_speed_steering'))
+    logic = bed.car().car.logic
+    bed.step()
+    while policy.seen[-1] < 8.0:    # cruising up to 10 m/s: cruise control, no brake
+        assert logic.control_mode == ControlMode.SPEED and logic.brake_intensity == 0.0
+        assert logic.target_cruising_speed_kmh == pytest.approx(36.0, abs=1e-3)
+        assert len(policy.seen) < 100, 'the car did not reach 8 m/s in 10 s'
+        bed.step()
+    # the tick that read 8 m/s or more asked for 3 m/s less: throttle 0, brake 3/5
+    assert driver.ticks == len(policy.seen)
+    assert logic.control_mode == ControlMode.TORQUE and logic.throttle == 0.0
+    assert logic.brake_intensity == pytest.approx(0.6, abs=1e-4)
+    assert logic.target_cruising_speed_kmh == pytest.approx(36.0, abs=1e-3)    # untouched
+    assert tuple(driver.action) == pytest.approx((0.0, policy.seen[-1] - 3.0), abs=1e-4)
+    for _ in range(5):
+        bed.step()
+    assert policy.seen[-1] < policy.seen[-6] - 1.5     # 0.5 s of braking: faster than 2.6 m/s^2
+
+
 def test_a_policy_faster_than_the_simulation_is_refused(lockstep):
     bed = lockstep()
     with pytest.raises(InvalidParameterError, match=r'policy period 5 ms \(200 Hz\) is shorter '
@@ -269,5 +309,31 @@ def test_the_action_writer_undoes_rescale_action_and_checks_the_box():
         writer.physical(np.array((1.5, 0.0), np.float32))
     with pytest.raises(InvalidParameterError, match="control 'twist': the automobile node is "
                                                     'driven by speed_steering, '
+                                                    'braking_speed_steering, '
                                                     'throttle_steering'):
         ActionWriter('twist', low, high)
+
+
+def test_the_braking_writer_brakes_or_cruises_by_the_cars_forward_speed():
+    from vehicle_sim.ros.policy_actions import ActionWriter
+    low, high = np.array((-0.5, -5.0), np.float32), np.array((0.5, 35.0), np.float32)
+    writer = ActionWriter('braking_speed_steering', low, high)
+    assert writer.services == ('automobile/set_steering_angle', 'automobile/set_cruising_speed',
+                               'automobile/set_throttle', 'automobile/set_brake_intensity')
+    action = np.array((0.2, 0.0), np.float32)           # 0.1 rad left, 15 m/s
+    steer, speed = writer.physical(action)
+    assert speed == pytest.approx(15.0)
+    # the car at 17 m/s: 2 m/s too fast -> throttle 0, brake 2/5
+    assert writer.commands(action, 17.0) == [
+        ('automobile/set_steering_angle', pytest.approx(-steer)),
+        ('automobile/set_throttle', 0.0), ('automobile/set_brake_intensity', pytest.approx(0.4))]
+    # 10 m/s too fast: full brake; 0.5 m/s too fast or slower: the cruise control
+    assert writer.commands(action, 25.0)[2] == ('automobile/set_brake_intensity', 1.0)
+    for forward in (15.5, 15.0, 3.0, 0.0):
+        assert writer.commands(action, forward) == [
+            ('automobile/set_steering_angle', pytest.approx(-steer)),
+            ('automobile/set_brake_intensity', 0.0),
+            ('automobile/set_cruising_speed', pytest.approx(15.0 * 3.6))]
+    with pytest.raises(ValueError, match=r'action\[1\] \(speed\) = 55.0 m/s: outside '
+                                         r'\[-5, 35\]'):
+        writer.commands(np.array((0.0, 2.0), np.float32), 10.0)

@@ -23,6 +23,10 @@ the entry. Nothing is clipped here beyond float rounding at a bound: wrap the en
 
 - ``speed_steering`` (car): [steering angle [rad], + = left (REP 103); cruising speed [m/s],
   negative = reverse]. The car's speed controller (Webots' cruising speed) tracks the speed.
+- ``braking_speed_steering`` (car): the entries of ``speed_steering``; a speed more than 1 m/s
+  slower than the car's is reached with the brakes instead (throttle released, Webots' brake
+  intensity growing to full at 5 m/s slower: core/car/speed_braking.py), as a driver brakes
+  out of cruise control; else as ``speed_steering``.
 - ``throttle_steering`` (car): [steering angle [rad], + = left; throttle [0, 1]; brake
   [0, 1]]. The car's engine model gives the torque (Webots' throttle and brake).
 - ``twist`` (robot): [forward speed [m/s]; yaw rate [rad/s], + = left]. The wheel speeds are
@@ -32,6 +36,7 @@ the entry. Nothing is clipped here beyond float rounding at a bound: wrap the en
 
 import numpy as np
 
+from vehicle_sim.core.car.speed_braking import brake_for_speed
 from vehicle_sim.core.diffdrive.kinematics import wheel_speeds_from_twist
 from vehicle_sim.core.diffdrive.speed_limiter import limit_wheel_speeds
 from vehicle_sim.core.specs.errors import InvalidParameterError
@@ -117,6 +122,33 @@ class SpeedSteering(Control):
         self.apply((0.0, 0.0))
 
 
+class BrakingSpeedSteering(SpeedSteering):
+    """
+    Car: [steering angle [rad] (+ left), speed [m/s]], braking for a speed well below the car's.
+
+    The brake intensity comes from the car's forward speed when the action is applied
+    (core/car/speed_braking.py): above 0, the throttle is released (TORQUE mode) and the brakes
+    applied; else the brake is released and the cruise control takes the speed (its ramp starts
+    at the wheels' speeds, driver.c).
+    """
+
+    def __init__(self, car, max_speed_mps, max_reverse_mps, max_steering_rad=None):
+        super().__init__(car, max_speed_mps, max_reverse_mps, max_steering_rad)
+        self.body = car.body
+
+    def apply(self, action):
+        logic = self.logic
+        logic.set_steering_angle(ros_steering_to_webots(float(action[0])))
+        speed = float(action[1])
+        brake = brake_for_speed(self.body.body_twist()[0][0], speed)
+        if brake > 0.0:
+            logic.set_throttle(0.0)
+            logic.set_brake_intensity(brake)
+        else:
+            logic.set_brake_intensity(0.0)
+            logic.set_cruising_speed_kmh(mps_to_kmh(speed))
+
+
 class ThrottleSteering(Control):
     """Car: [steering angle [rad] (+ left), throttle [0, 1], brake [0, 1]]."""
 
@@ -191,7 +223,8 @@ def make_control(name, vehicle, max_speed_mps=None, max_reverse_mps=5.0,
     """
     Return the Control of a layout for the ego.
 
-    :param name: 'auto', 'speed_steering', 'throttle_steering' or 'twist'.
+    :param name: 'auto', 'speed_steering', 'braking_speed_steering', 'throttle_steering' or
+        'twist'.
     :param vehicle: the ego's SceneVehicle (``car`` is None for a robot).
     :param max_steering_rad: a car's largest steering action either way (None: its limits).
     :raises ValueError: for a car layout on a robot or the robot layout on a car.
@@ -201,6 +234,9 @@ def make_control(name, vehicle, max_speed_mps=None, max_reverse_mps=5.0,
         name = 'speed_steering' if is_car else 'twist'
     if is_car and name == 'speed_steering':
         return SpeedSteering(vehicle.car, max_speed_mps, max_reverse_mps, max_steering_rad)
+    if is_car and name == 'braking_speed_steering':
+        return BrakingSpeedSteering(vehicle.car, max_speed_mps, max_reverse_mps,
+                                    max_steering_rad)
     if is_car and name == 'throttle_steering':
         return ThrottleSteering(vehicle.car, max_steering_rad)
     if not is_car and name == 'twist':
@@ -210,6 +246,6 @@ def make_control(name, vehicle, max_speed_mps=None, max_reverse_mps=5.0,
                 'robot (twist actions have no steering angle); give null')
         return Twist(vehicle.body)
     kind = 'car' if is_car else 'robot'
-    valid = 'speed_steering, throttle_steering' if is_car else 'twist'
+    valid = 'speed_steering, braking_speed_steering, throttle_steering' if is_car else 'twist'
     raise ValueError(f'control {name!r} does not fit the ego {vehicle.name!r}, a {kind}; '
                      f'valid: {valid}')

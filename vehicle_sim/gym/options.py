@@ -31,7 +31,8 @@ from vehicle_sim.core.sensors.range_finder_spec import RangeFinderSpec
 from vehicle_sim.core.specs.param_spec import parameter_table_markdown, ParamSpec, validate_table
 from vehicle_sim.core.specs.simulation import TIME_STEP_MS
 
-CONTROLS = ('auto', 'speed_steering', 'throttle_steering', 'twist')
+CONTROLS = ('auto', 'speed_steering', 'braking_speed_steering', 'throttle_steering',
+            'twist')
 SOURCE = 'vehicle_sim/Drive-v0'
 
 
@@ -84,13 +85,13 @@ OPTION_SPECS = (
     replace(TIME_STEP_MS, default=None, optional=True,
             doc=f"basic time step; null = the scenario's, else {TIME_STEP_MS.default} ms"),
     ParamSpec('max_speed', kind='float', default=None, unit='m/s', gt=0.0, optional=True,
-              doc="speed_steering: largest speed action; null = min(the car's top speed, "
-                  '20 m/s)'),
+              doc="(braking_)speed_steering: largest speed action; null = min(the car's top "
+                  "speed, 20 m/s)"),
     ParamSpec('max_steering', kind='float', default=None, unit='rad', gt=0.0, optional=True,
               doc="car controls: largest steering angle action either way (at most the car's "
                   "limit); null = the car's own limits"),
     ParamSpec('max_reverse_speed', kind='float', default=5.0, unit='m/s', ge=0.0,
-              doc='speed_steering: largest reverse speed action'),
+              doc='(braking_)speed_steering: largest reverse speed action'),
     ParamSpec(LIDAR, kind='raw', default=None, optional=True, check=_sensor_option,
               doc="lidar observation: null = none, true = a 1080-ray 270 deg lidar, a name = "
                   "that lidar of the ego's world entry, a mapping = lidar keys "

@@ -26,6 +26,11 @@ turned into the Webots-level setters of the car, the services of the automobile 
 - ``speed_steering`` [steering angle [rad], + left; speed [m/s]] ->
   ``automobile/set_steering_angle`` (rad, + RIGHT: the sign flips) and
   ``automobile/set_cruising_speed`` (km/h: m/s x 3.6);
+- ``braking_speed_steering`` [the same entries]: for a speed more than 1 m/s below the car's
+  forward speed (its odometry's at the tick; core/car/speed_braking.py)
+  ``automobile/set_steering_angle``, ``automobile/set_throttle`` 0 and
+  ``automobile/set_brake_intensity``; else ``set_steering_angle``, ``set_brake_intensity`` 0 and
+  ``set_cruising_speed``;
 - ``throttle_steering`` [steering angle; throttle; brake] -> ``automobile/set_steering_angle``,
   ``automobile/set_throttle``, ``automobile/set_brake_intensity``.
 
@@ -34,6 +39,7 @@ The environment applies the same values through the same car logic setters (gym/
 
 import numpy as np
 
+from vehicle_sim.core.car.speed_braking import brake_for_speed
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.specs.units import mps_to_kmh, ros_steering_to_webots
 
@@ -45,15 +51,36 @@ SET_BRAKE = 'automobile/set_brake_intensity'
 # Relative float rounding taken as the bound (the environment's, gym/controls.py).
 ROUNDING_TOLERANCE = 1.0e-6
 
-# layout -> (entry names, units, [(service, value of the physical action)])
+
+def _speed_steering(a, _forward_mps):
+    return [(SET_STEERING, ros_steering_to_webots(a[0])), (SET_CRUISING_SPEED, mps_to_kmh(a[1]))]
+
+
+def _braking_speed_steering(a, forward_mps):
+    # as gym/controls.py's BrakingSpeedSteering: brake out of cruise control for a speed well
+    # below the car's (core/car/speed_braking.py), else cruise
+    brake = brake_for_speed(forward_mps, a[1])
+    if brake > 0.0:
+        return [(SET_STEERING, ros_steering_to_webots(a[0])), (SET_THROTTLE, 0.0),
+                (SET_BRAKE, brake)]
+    return [(SET_STEERING, ros_steering_to_webots(a[0])), (SET_BRAKE, 0.0),
+            (SET_CRUISING_SPEED, mps_to_kmh(a[1]))]
+
+
+def _throttle_steering(a, _forward_mps):
+    return [(SET_STEERING, ros_steering_to_webots(a[0])), (SET_THROTTLE, a[1]), (SET_BRAKE, a[2])]
+
+
+# layout -> (entry names, units, the services it may call, (physical action, forward speed
+# [m/s]) -> [(service, value)])
 LAYOUTS = {
-    'speed_steering': (('steering_angle', 'speed'), ('rad', 'm/s'), (
-        (SET_STEERING, lambda a: ros_steering_to_webots(a[0])),
-        (SET_CRUISING_SPEED, lambda a: mps_to_kmh(a[1])))),
-    'throttle_steering': (('steering_angle', 'throttle', 'brake'), ('rad', '', ''), (
-        (SET_STEERING, lambda a: ros_steering_to_webots(a[0])),
-        (SET_THROTTLE, lambda a: a[1]),
-        (SET_BRAKE, lambda a: a[2]))),
+    'speed_steering': (('steering_angle', 'speed'), ('rad', 'm/s'),
+                       (SET_STEERING, SET_CRUISING_SPEED), _speed_steering),
+    'braking_speed_steering': (('steering_angle', 'speed'), ('rad', 'm/s'),
+                               (SET_STEERING, SET_CRUISING_SPEED, SET_THROTTLE, SET_BRAKE),
+                               _braking_speed_steering),
+    'throttle_steering': (('steering_angle', 'throttle', 'brake'), ('rad', '', ''),
+                          (SET_STEERING, SET_THROTTLE, SET_BRAKE), _throttle_steering),
 }
 
 
@@ -74,7 +101,7 @@ class ActionWriter:
                 f'control {control!r}: the automobile node is driven by '
                 f'{", ".join(LAYOUTS)} (a robot policy, twist, drives no car)')
         self.control = control
-        self.names, self.units, self._commands = LAYOUTS[control]
+        self.names, self.units, self._services, self._setters = LAYOUTS[control]
         self.low = np.asarray(low, dtype=np.float32)
         self.high = np.asarray(high, dtype=np.float32)
         if self.low.shape != (len(self.names),) or self.high.shape != self.low.shape:
@@ -90,8 +117,8 @@ class ActionWriter:
 
     @property
     def services(self):
-        """The services this layout calls, in order."""
-        return tuple(name for name, _ in self._commands)
+        """The services this layout may call."""
+        return self._services
 
     def physical(self, action):
         """
@@ -117,10 +144,15 @@ class ActionWriter:
                                  f'{self.units[i]}: outside [{low:g}, {high:g}]')
         return values
 
-    def setters(self, values):
-        """Return [(service, value in its unit)] of a physical action, in call order."""
-        return [(name, float(value(values))) for name, value in self._commands]
+    def setters(self, values, forward_mps=0.0):
+        """
+        Return [(service, value in its unit)] of a physical action, in call order.
 
-    def commands(self, action):
+        :param forward_mps: the car's forward speed (its odometry's) when the action is taken:
+            braking_speed_steering brakes or cruises by it.
+        """
+        return [(name, float(value)) for name, value in self._setters(values, forward_mps)]
+
+    def commands(self, action, forward_mps=0.0):
         """Return [(service, value in its unit)] for a policy's action, in call order."""
-        return self.setters(self.physical(action))
+        return self.setters(self.physical(action), forward_mps)

@@ -28,7 +28,10 @@ Webots-level setters (:mod:`.policy_actions`), at the policy's rate on simulated
   first step the objects are published); at a tick the node waits until the odometry, lane
   state and objects stamped at that time have arrived (or later ones: a node running in real
   time does not wait for the policy, and its newest messages are read), asks the policy
-  (``predict(obs, deterministic=True)``) and calls the setters;
+  (``predict(obs, deterministic=True)``) and calls the setters, one after another in the
+  environment's order (a brake sent before the throttle that leaves cruise control would
+  reach a car still cruising); a tick that falls due while they are answered (a node running
+  in real time) comes once they have;
 - at every grid /clock, once a tick's setters answered, it publishes the action in force on
   ``<ns>/policy/action``: the scenario runner's lockstep topic (``sync_period`` = the grid), so
   that a scenario waits for the policy and runs as fast as the policy keeps up. Before the
@@ -99,7 +102,8 @@ class PolicyNode:
         self._latest = {}               # input row -> latest message
         self._pending = None            # tick time waiting for its topics, or None
         self._pending_since = None
-        self._calls = None              # futures of a tick's setters
+        self._calls = None              # a tick's setters still to answer, in call order
+        self._deferred = None           # (step, time) of a tick due while they were answered
         self._clock_deadline = None
         self.node = create_node(node_name, args=args, transport=transport)
         try:
@@ -177,18 +181,29 @@ class PolicyNode:
             self._objects_step = step
         if step % self.answer_steps:
             return          # between the grid's times
-        if self._pending is not None or self._calls is not None:
-            return          # a tick still waits for its topics or setters (free-running sim)
+        if self._pending is not None:
+            return          # a tick still waits for its topics (free-running sim)
         ready = self._objects_due is None or self._objects_step is not None
         # a tick at each multiple of the policy's period; a node running in real time may skip
         # the /clock of one (it does not wait for the policy): then the first /clock past it
-        if ready and (self.action is None or step // self.repeat > self._tick_step // self.repeat):
-            self._tick_step = step
-            self._pending = now_s
-            self._pending_since = time.monotonic()
-            self._try_tick()
+        due = ready and (self.action is None
+                         or step // self.repeat > self._tick_step // self.repeat)
+        if self._calls is not None:
+            # the last tick's setters are still being answered (free-running sim): a tick due
+            # now comes once they have answered
+            if due:
+                self._deferred = (step, now_s)
+            return
+        if due:
+            self._tick(step, now_s)
         else:
             self._answer()
+
+    def _tick(self, step, now_s):
+        self._tick_step = step
+        self._pending = now_s
+        self._pending_since = time.monotonic()
+        self._try_tick()
 
     def _wanted_s(self, row, tick_s):
         # the stamp a tick reads of an input: the tick's (the objects are due then too)
@@ -217,34 +232,46 @@ class PolicyNode:
         except (InvalidParameterError, ValueError) as error:
             self._fail(f'at /clock {tick_s:.3f} s: {error}')
             return
-        commands = self.writer.setters(values)
+        commands = self.writer.setters(values, latest[pi.ODOM_IN].twist.twist.linear.x)
         self.last_obs = obs
         self.ticks += 1
         self._tick_s = tick_s
         self._next_action = values
-        self._calls = []
-        for name, value in commands:
-            request = self.node.srv(pi.service_type(name)).Request()
-            request.value = value
-            future = self._clients[name].call_async(request)
-            self._calls.append((name, value, future))
-            future.add_done_callback(self._on_reply)
+        self._calls = list(commands)
+        self._call_next()
 
-    def _on_reply(self, _future):
+    def _call_next(self):
+        # one setter after another, in the layout's order (the environment's): a brake sent
+        # before the throttle that leaves cruise control would reach a car still cruising
+        name, value = self._calls[0]
+        request = self.node.srv(pi.service_type(name)).Request()
+        request.value = value
+        future = self._clients[name].call_async(request)
+        future.add_done_callback(self._on_reply)
+
+    def _on_reply(self, future):
         calls = self._calls
-        if calls is None or not all(f.done() for _, _, f in calls):
+        if calls is None:
+            return
+        name, value = calls[0]
+        error = future.exception()
+        if error is None and not future.result().success:
+            error = 'refused (success=false)'
+        if error is not None:
+            self._calls = None
+            self._fail(f'at /clock {self._tick_s:.3f} s: /{self._name(name)} {value:g}: '
+                       f'{error}')
+            return
+        del calls[0]
+        if calls:
+            self._call_next()
             return
         self._calls = None
-        for name, value, future in calls:
-            error = future.exception()
-            if error is None and not future.result().success:
-                error = 'refused (success=false)'
-            if error is not None:
-                self._fail(f'at /clock {self._tick_s:.3f} s: /{self._name(name)} {value:g}: '
-                           f'{error}')
-                return
         self.action = self._next_action
         self._answer()
+        deferred, self._deferred = self._deferred, None
+        if deferred is not None and self.error is None:
+            self._tick(*deferred)
 
     def _answer(self):
         # the action in force (none before the first tick: the car as it started)
