@@ -220,10 +220,12 @@ def black_death_class():
     Return :class:`BlackDeath`: SuperSuit's black_death for this task (imported lazily).
 
     SuperSuit 3.11.0 (its latest release) ends the world's episode only when every agent is
-    terminated *and* truncated at once, so an episode whose last agents are truncated at the
-    time limit never ends (the next step steps an env without agents); fixed upstream
-    (Farama-Foundation/SuperSuit#265, an OR), not released. It also takes Box observations
-    only; an agent that left reads zeros of each key of the Dict here.
+    terminated *and* truncated at once; fixed upstream (Farama-Foundation/SuperSuit#265, an
+    OR), not released. When the last agents are truncated at the time limit, no slot is done:
+    on MultiDriveEnv itself the next step then raises (every agent has left), behind the
+    lambda wrappers it ends the world a step late, on a step of zero observations for every
+    slot, the time limit's truncation lost. It also takes Box observations only; an agent that
+    left reads zeros of each key of the Dict here.
     """
     from supersuit.multiagent_wrappers.black_death import black_death_par
 

@@ -21,7 +21,7 @@ agents, one stable-baselines3 PPO policy for all four) for a few thousand agent 
 trivial version of the crossing: 3 s episodes, too short for any car to reach the crossing, so
 driving fast along the lane is all there is to learn; the trained policy must score well above a
 random one on the same seeds. And the script's BlackDeath wrapper: a world whose agents leave
-at different times ends, every slot at once, when the last one leaves. Seeded; bounded by
+at different times ends, every slot at once, at the step the last one leaves. Seeded; bounded by
 steps, not by time. Skipped, saying why, without the ``learn`` extra (stable-baselines3,
 PyTorch, SuperSuit), which CI does not install.
 """
@@ -82,9 +82,9 @@ def test_the_shared_policy_learns_to_drive_faster_than_a_random_one(tmp_path):
 
 
 def test_a_world_ends_when_its_last_agent_leaves_every_slot_at_once():
-    # SuperSuit 3.11.0's black_death never ends a world whose last agents are truncated (it
-    # ANDs terminations and truncations): the script's BlackDeath ends it, zeroing the agents
-    # that left before.
+    # SuperSuit 3.11.0's black_death ANDs terminations and truncations: a world whose last
+    # agents are truncated at the time limit ends a step late (51 steps, the 50th not done) or
+    # raises; the script's BlackDeath ends it at its 50th step, zeroing the agents that left.
     script = _script()
     env = script.black_death_class()(script.policy_env())
     try:
