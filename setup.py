@@ -47,8 +47,10 @@ EXTRAS = {
 EXTRAS['test'] = (['pytest', 'pytest-timeout', 'ruff', 'pyarrow', 'protobuf']
                   + sorted({req for reqs in EXTRAS.values() for req in reqs}))
 # Learning (examples/train_highway.py, vehicle_sim/gym/scaled_inputs.py), not in `test`: PyTorch
-# is large; `make learn` installs it from PyTorch's CPU wheel index (docs/learning.md).
-EXTRAS['learn'] = ['gymnasium>=1.0', 'stable-baselines3>=2.3', 'torch>=2.3', 'matplotlib']
+# is large; `make learn` installs it from PyTorch's CPU wheel index (docs/learning.md). SuperSuit
+# and PettingZoo: the crossing's 4 agents as one vector env (examples/train_crossing_shared.py).
+EXTRAS['learn'] = ['gymnasium>=1.0', 'stable-baselines3>=2.3', 'torch>=2.3', 'matplotlib',
+                   'pettingzoo>=1.24', 'supersuit>=3.11']
 # Training on Ray (examples/train_highway_ray.py, docs/learning.md), not in `test`: RLlib
 # (which pins its Gymnasium release) and PyTorch (a CPU build: docs/learning.md).
 EXTRAS['learn-ray'] = ['ray[rllib]', 'torch>=2.3']

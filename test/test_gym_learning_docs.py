@@ -18,7 +18,8 @@ docs/learning.md shows the figures of the committed training run, as the script 
 
 examples/train_highway.py wrote docs/learning/highway_ppo_summary.json and the curve files; the
 table in docs/learning.md must be ``results_markdown`` of that summary (not typed in), and the
-committed model's card must be the script's. Needs neither stable-baselines3 nor PyTorch.
+committed model's card must be the script's. The same for examples/train_crossing_shared.py's
+run (docs/learning/crossing_shared_*). Needs neither stable-baselines3 nor PyTorch.
 """
 
 import csv
@@ -69,3 +70,18 @@ def test_the_docs_show_the_braking_runs_figures_and_its_options_are_the_scripts_
     variant = {'control': 'braking_speed_steering', 'headway_penalty': 1.0, 'headway_s': 1.0,
                'ttc_penalty': 2.0, 'ttc_s': 4.0, 'side_gap_penalty': 1.0, 'gap_margin': 1.0}
     assert summary['env_options'] == dict(script.ENV_OPTIONS, **variant)
+
+
+def test_the_docs_show_the_committed_crossing_runs_figures():
+    # examples/train_crossing_shared.py's run: its summary, curve and table in docs/learning.md
+    script = load_script('examples/train_crossing_shared.py')
+    summary = json.loads((RUN / 'crossing_shared_summary.json').read_text(encoding='utf-8'))
+    text = (ROOT / 'docs' / 'learning.md').read_text(encoding='utf-8')
+    assert script.results_markdown(summary) in text
+    assert summary['evaluation']['trained']['episodes'] == 100
+    assert summary['env_options'] == json.loads(json.dumps(script.task_options()))
+    with open(RUN / 'crossing_shared_curve.csv', encoding='utf-8') as stream:
+        rows = list(csv.DictReader(stream))
+    assert rows and summary['final_training_row'] == {
+        key: type(value)(rows[-1][key]) for key, value in summary['final_training_row'].items()}
+    assert (ROOT / 'docs' / 'crossing_shared_learning_curve.png').is_file()

@@ -168,6 +168,24 @@ def test_reset_and_teleport_put_the_model_back(tmp_path):
         driver.close()
 
 
+def test_a_rebuild_at_another_pose_moves_the_model_with_the_body(tmp_path):
+    # A Gym reset with start_noise rebuilds the ego's body at an offset pose
+    # (gym/drive_sim.py reset_world): the model must go on from there, not from the spawn.
+    driver = _driver(tmp_path)
+    try:
+        car = driver.simulated_car
+        car.reset()
+        car.body.rebuild((3.0, 1.0, 0.2))
+        for _ in range(10):
+            driver.step()               # no command: at rest where it was put
+        assert (car.model.x_m, car.model.y_m, car.model.yaw_rad, car.model.vx_mps) == \
+            pytest.approx((3.0, 1.0, 0.2, 0.0), abs=1e-6)
+        assert car.body.pose()[:2] == pytest.approx((3.0, 1.0), abs=1e-6)
+        assert car.body.yaw_rad() == pytest.approx(0.2, abs=1e-6)
+    finally:
+        driver.close()
+
+
 @pytest.mark.parametrize('model, field', [
     ('{type: DELAY_STEER_ACC, steer_time_constant: 0.0}', 'steer_time_constant'),
     ('FAST_CAR', 'type'),

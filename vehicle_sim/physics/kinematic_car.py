@@ -47,6 +47,8 @@ class KinematicCarBody(VehicleBody):
 
     OUTLINE = staticmethod(car_outline)
     FIXED_BASE = True
+    # its KinematicCar's hook, called with the pose of each rebuild (None: none)
+    on_rebuild = None
 
     def __init__(self, world, params, position=(0.0, 0.0, 0.0), name=None):
         """
@@ -83,6 +85,18 @@ class KinematicCarBody(VehicleBody):
 
     def _teleport_joints(self):
         return self._suspension, self._wheel + self._steer
+
+    def rebuild(self, position):
+        """
+        Put the body back as built at a pose (a reset), and its car's model there with it.
+
+        A Gym reset with ``start_noise`` rebuilds an ego's body at an offset pose
+        (gym/drive_sim.py ``reset_world``): without the model following, the next step would
+        put the body back where the model was.
+        """
+        super().rebuild(position)
+        if self.on_rebuild is not None:
+            self.on_rebuild(position)
 
     def put(self, x_m, y_m, yaw_rad, steer_rad, distance_m):
         """
@@ -187,6 +201,7 @@ class KinematicCar:
         self.body = KinematicCarBody(world, params, position, name=name)
         self.model = KinematicModel(vehicle_model, params.wheelbase_m, world.time_step_s,
                                     self._pose_of(position))
+        self.body.on_rebuild = self._rebuilt
         self.measurement = Measurement()
         self._a_ramp = ramp_acceleration_mps2(params)
         world.add_body(self)
@@ -210,11 +225,15 @@ class KinematicCar:
         """World hook: the base gets the model's velocity, for every reader of the twist."""
         self.body.set_velocity(self.model.vx_mps, self.model.yaw_rate_radps)
 
+    def _rebuilt(self, position):
+        # the body was rebuilt at a pose (its reset, a Gym reset's start_noise): the model
+        # starts there, at rest, its delayed inputs 0
+        self.model.reset(self._pose_of(position))
+
     def reset(self):
         """Back as built: spawn pose, at rest, the model's delayed inputs 0, logic reset."""
         self.body.reset()
         self.logic.reset()
-        self.model.reset(self._pose_of(self.spawn))
 
     def teleport(self, position):
         """
