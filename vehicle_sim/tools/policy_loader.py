@@ -45,10 +45,13 @@ def load_model(path, algorithm='PPO'):
     :raises InvalidParameterError: naming the file: missing, not a model of ``algorithm``, or
         stable-baselines3 (the ``learn`` extra) or RLlib (``learn-ray``) not installed.
     """
-    from vehicle_sim.tools.rllib_policy import is_rllib_checkpoint, RllibPolicy
+    from vehicle_sim.tools.rllib_policy import CHECKPOINT_FILE, is_rllib_checkpoint, RllibPolicy
     path = Path(path)
     if is_rllib_checkpoint(path):
         return RllibPolicy.load(path)
+    if path.is_dir():
+        raise InvalidParameterError(f'{path}: a folder without {CHECKPOINT_FILE}: neither an '
+                                    'RLlib checkpoint nor a model file')
     if not path.is_file():
         raise InvalidParameterError(f'{path}: no such model file')
     if algorithm not in ALGORITHMS:
