@@ -179,8 +179,8 @@ def train(out, budget_s=600.0, seed=0, runners=None, envs_per_runner=1, batch=BA
     :param address: a running Ray cluster to join; None = start Ray on this machine.
     :return: (curve, facts): the learning curve, a list of :data:`CURVE_FIELDS` dicts (also
         written to ``out/learning_curve.csv``), and {runners, cluster_cpus, setup_s (Ray's
-        start and the algorithm's build), load_start, load_end (the machine's 1-minute load
-        averages)}.
+        start and the algorithm's build), load_start, load_mean (over the iterations),
+        load_end (the machine's 1-minute load averages)}.
     """
     ray, _, _ = require_rllib()
     out = Path(out)
@@ -203,12 +203,13 @@ def train(out, budget_s=600.0, seed=0, runners=None, envs_per_runner=1, batch=BA
         algo = make_config(card, seed, runners, envs_per_runner, batch, window).build_algo()
         facts.update(runners=runners, cluster_cpus=cluster_cpus,
                      setup_s=round(time.perf_counter() - setup_start, 1))
-        curve = []
+        curve, loads = [], []       # loads: the 1-minute load average after each iteration
         start = time.perf_counter()
         while True:
             result = algo.train()
             row = _row(len(curve) + 1, result, time.perf_counter() - start)
             curve.append(row)
+            loads.append(os.getloadavg()[0])
             write_curve(curve, out / 'learning_curve.csv')
             log(f"iteration {row['iteration']}: {row['env_steps']} env steps in "
                 f"{row['wall_s']:.0f} s, return {row['mean_return']:.2f}, length "
@@ -217,6 +218,7 @@ def train(out, budget_s=600.0, seed=0, runners=None, envs_per_runner=1, batch=BA
                     or row['wall_s'] >= budget_s:
                 break
         facts['load_end'] = round(os.getloadavg()[0], 2)
+        facts['load_mean'] = round(sum(loads) / len(loads), 2)
         checkpoint = out / 'checkpoint'
         algo.save_to_path(str(checkpoint))
         save_card(card, checkpoint)
@@ -295,7 +297,8 @@ def results_markdown(summary):
         f"{summary['train_wall_s'] / 60.0:.1f} min of training, "
         f"{summary['env_steps_per_s']:.1f} env steps/s (Ray's start and the build before it: "
         f"{summary['setup_s']:.0f} s). Load average {summary['load_start']:.1f} at the start, "
-        f"{summary['load_end']:.1f} at the end, on {summary['cpu_count']} CPUs.",
+        f"{summary['load_mean']:.1f} on average over the iterations, {summary['load_end']:.1f} "
+        f"at the end, on {summary['cpu_count']} CPUs.",
         '',
         '| after [min] | env steps | env steps/s | mean return | mean length [steps] '
         '| success rate |',
@@ -306,6 +309,24 @@ def results_markdown(summary):
                      f"{row['env_steps'] / max(row['wall_s'], 1e-9):.1f} | "
                      f"{_figure(row['mean_return'])} | {_figure(row['mean_length'], 1)} | "
                      f"{_figure(row['success_rate'])} |")
+    evaluation = summary.get('evaluation')
+    if evaluation:
+        first, last = summary['eval_seeds']
+        lines += [
+            '',
+            f"Evaluation (train_highway's): {evaluation['trained']['episodes']} episodes of 60 s "
+            f'per policy, seeds {first} .. {last}, in {summary["eval_wall_s"] / 60.0:.1f} min.',
+            '',
+            '| policy | success | collision | lane departure | mean speed [m/s] | of the limit '
+            '| mean episode [s] |',
+            '|---|---|---|---|---|---|---|',
+        ]
+        for name, label in (('trained', 'RLlib PPO (deterministic)'), ('random', 'random')):
+            f = evaluation[name]
+            lines.append(f"| {label} | {f['success_rate']:.0%} | {f['collision_rate']:.0%} | "
+                         f"{f['lane_departure_rate']:.0%} | {f['mean_speed_mps']:.2f} | "
+                         f"{f['mean_speed_fraction_of_limit']:.1%} | "
+                         f"{f['mean_episode_s']:.1f} |")
     return '\n'.join(lines) + '\n'
 
 

@@ -170,6 +170,9 @@ def test_the_trained_policy_is_evaluated_as_train_highway_s(ray_run):
         assert figures['mean_speed_mps'] == pytest.approx(float(row['mean_speed_mps']),
                                                           abs=1e-3)
         assert 0.0 < float(row['time_s']) <= 60.0 + 1e-6
+    table = _script().results_markdown(summary)
+    rate = summary['evaluation']['trained']['success_rate']
+    assert f'| RLlib PPO (deterministic) | {rate:.0%} |' in table
 
 
 def test_the_checkpoint_is_a_policy_with_frozen_input_statistics(ray_run):
