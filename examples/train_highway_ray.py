@@ -38,7 +38,8 @@ environment steps, wall time, the mean return, length and success rate of the la
 ``Algorithm.save_to_path``) and ``DIR/checkpoint.card.json`` (the policy card:
 ``vehicle-sim policy run DIR/checkpoint`` drives a node with it), and evaluates the trained
 policy (deterministic) beside a random one as train_highway.py does (``--eval-episodes``:
-its seeds, its criteria, its figures) into ``DIR/evaluation.csv`` and ``DIR/summary.json``.
+its seeds, its criteria, its figures) into ``DIR/evaluation.csv`` and ``DIR/summary.json``
+(``--evaluate-only``: that evaluation alone, of the finished run in ``DIR``).
 """
 
 import argparse
@@ -380,6 +381,9 @@ def main(argv=None):
     parser.add_argument('--address', default=None,
                         help='a running Ray cluster (auto, head:6379, ray://head:10001); '
                              'default: start Ray on this machine')
+    parser.add_argument('--evaluate-only', action='store_true',
+                        help='evaluate the finished run in --out (its checkpoint) instead of '
+                             'training; its summary.json gets the evaluation')
     parser.add_argument('--out', default='ppo_highway_ray')
     args = parser.parse_args(argv)
     for name in ('budget_s', 'iterations', 'runners', 'envs_per_runner', 'batch', 'window',
@@ -389,10 +393,23 @@ def main(argv=None):
         if value is not None and not value > (-1 if at_least_0 else 0):
             parser.error(f"--{name.replace('_', '-')} {value}: must be "
                          f"{'>= 0' if at_least_0 else '> 0'}")
+    out = Path(args.out)
+    if args.evaluate_only:
+        if not args.eval_episodes:
+            parser.error('--evaluate-only with --eval-episodes 0: nothing to do')
+        if not (out / 'checkpoint').is_dir():
+            parser.error(f"--evaluate-only: {out / 'checkpoint'}: no such checkpoint (a run's "
+                         '--out folder is expected)')
     try:
         require_rllib()
     except ImportError as error:
         raise SystemExit(str(error)) from None
+    if args.evaluate_only:
+        path = out / 'summary.json'
+        summary = json.loads(path.read_text(encoding='utf-8')) if path.is_file() else {}
+        summary.update(evaluate(out, args.eval_episodes, args.eval_workers))
+        path.write_text(json.dumps(summary, indent=2) + '\n', encoding='utf-8')
+        return
     curve, facts = train(args.out, args.budget_s, args.seed, args.runners,
                          args.envs_per_runner, args.batch, args.window, args.iterations,
                          args.address, train_highway.card())

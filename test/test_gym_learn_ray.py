@@ -80,6 +80,13 @@ def test_a_bad_option_is_refused_naming_it(tmp_path, option, value, said):
     assert not (tmp_path / 'out').exists()
 
 
+def test_evaluate_only_needs_a_finished_run(tmp_path):
+    done = _run('--evaluate-only', '--out', str(tmp_path))
+    assert done.returncode == 2
+    assert f"--evaluate-only: {tmp_path / 'checkpoint'}: no such checkpoint" in done.stderr
+    assert not (tmp_path / 'summary.json').exists()
+
+
 def test_the_env_runners_build_train_highway_s_task():
     # the environment every EnvRunner builds is train_highway's: its card, judged by its
     # scenario (episodes end on the scenario's criteria), the same spaces
@@ -173,6 +180,24 @@ def test_the_trained_policy_is_evaluated_as_train_highway_s(ray_run):
     table = _script().results_markdown(summary)
     rate = summary['evaluation']['trained']['success_rate']
     assert f'| RLlib PPO (deterministic) | {rate:.0%} |' in table
+
+
+def test_evaluate_only_evaluates_a_finished_run_again_with_the_same_figures(ray_run, tmp_path):
+    # the evaluation is deterministic for its seeds: a finished run's evaluation, made again
+    # by --evaluate-only (on a copy), gives the same figures and episodes
+    out, _ = ray_run
+    again = tmp_path / 'run'
+    shutil.copytree(out, again)
+    (again / 'evaluation.csv').unlink()
+    done = _run('--evaluate-only', '--eval-episodes', '1', '--eval-workers', '1', '--out',
+                str(again))
+    assert done.returncode == 0, done.stderr[-3000:]
+    first = json.loads((out / 'summary.json').read_text(encoding='utf-8'))
+    second = json.loads((again / 'summary.json').read_text(encoding='utf-8'))
+    assert second['evaluation'] == first['evaluation']
+    assert second['env_steps'] == first['env_steps']       # the training's figures kept
+    assert ((again / 'evaluation.csv').read_text(encoding='utf-8')
+            == (out / 'evaluation.csv').read_text(encoding='utf-8'))
 
 
 def test_the_checkpoint_is_a_policy_with_frozen_input_statistics(ray_run):
