@@ -217,9 +217,9 @@ def _evaluate_chunk(job):
     if model_path is None:
         policy_card, model = card(), None
     else:
-        from stable_baselines3 import PPO
+        from vehicle_sim.tools.policy_loader import load_model
         policy_card = load_card(model_path)
-        model = PPO.load(model_path, device='cpu')
+        model = load_model(model_path)  # PPO's model.zip, or train_highway_ray's checkpoint
     env = make_task_env(policy_card)
     outcomes = []
     for seed in seeds:

@@ -14,13 +14,15 @@
 
 
 """
-Train RLlib's PPO to drive on the highway with traffic, on Ray (optional, docs/learning.md).
+Train RLlib's PPO on train_highway.py's task, the highway with traffic, on Ray (docs/learning.md).
 
-The task is issue 33's (scenarios/highway_policy.yaml: 60 s in the traffic of
-config/worlds/highway_traffic.yaml, no collision, on the road, a mean speed of at least 80 % of
-the limit): ``vehicle_sim/Drive-v0`` of the policy card :func:`highway_card` (observations
-``lane``, ``twist``, ``objects``; actions rescaled to [-1, 1]), built by the card's
-``make_env`` and registered with Ray's tune registry. Everything of learning is Ray's: RLlib's
+The task is examples/train_highway.py's, taken from it, not copied: its policy card
+(``train_highway.card()``: ``vehicle_sim/Drive-v0`` in the traffic of
+config/worlds/highway_traffic.yaml, its observation keys, reward weights, action bounds and
+rate) and its scenario (``train_highway.make_task_env``: scenarios/highway_policy.yaml judges
+every episode: 60 s, no collision, on the road, a mean speed of at least 80 % of the limit), so
+that the returns, success rates and evaluations of the two scripts are on one scale. The
+environment is registered with Ray's tune registry. Everything of learning is Ray's: RLlib's
 PPO (torch, on the CPU), its EnvRunners (one per CPU of the Ray cluster by default, each a
 process with its own worlds), its connectors (``FlattenObservations`` of the Dict,
 ``MeanStdFilter`` scaling the physical-unit inputs), its metrics, its checkpoint.
@@ -33,8 +35,11 @@ this machine (``ray.init()``, shut down at the end) unless ``--address`` names a
 (or ``--iterations``), then writes ``DIR/learning_curve.csv`` (one row per training iteration:
 environment steps, wall time, the mean return, length and success rate of the last
 ``--window`` episodes), ``DIR/learning_curve.png`` with matplotlib, ``DIR/checkpoint`` (RLlib's
-``Algorithm.save_to_path``) and ``DIR/checkpoint.card.json`` (the policy card), and prints the
-throughput and the last row.
+``Algorithm.save_to_path``) and ``DIR/checkpoint.card.json`` (the policy card:
+``vehicle-sim policy run DIR/checkpoint`` drives a node with it), and evaluates the trained
+policy (deterministic) beside a random one as train_highway.py does (``--eval-episodes``:
+its seeds, its criteria, its figures) into ``DIR/evaluation.csv`` and ``DIR/summary.json``
+(``--evaluate-only``: that evaluation alone, of the finished run in ``DIR``).
 """
 
 import argparse
@@ -43,29 +48,23 @@ import json
 import math
 import os
 from pathlib import Path
+import sys
 import time
 
-from vehicle_sim.gym.policy_card import make_env, PolicyCard, save_card
+from vehicle_sim.gym.policy_card import PolicyCard, save_card
 
-REPO = Path(__file__).resolve().parents[1]
-SCENARIO = REPO / 'scenarios' / 'highway_policy.yaml'
+EXAMPLES = Path(__file__).resolve().parent
+if str(EXAMPLES) not in sys.path:       # the task's module beside this script
+    sys.path.insert(0, str(EXAMPLES))
+import train_highway  # noqa: E402  (the task: its card, scenario, evaluation)
+
 ENV_NAME = 'vehicle_sim_highway'
 LEARN_RAY_HINT = ("pip install 'vehicle_sim[learn-ray]' (Ray's RLlib and PyTorch; a CPU build of "
                   'PyTorch: docs/learning.md)')
+# env steps per PPO update: train_highway's, 256 steps in each of its 8 environments
+BATCH = 2048
 CURVE_FIELDS = ('iteration', 'env_steps', 'wall_s', 'episodes', 'mean_return', 'mean_length',
                 'success_rate')
-
-
-def highway_card(action_repeat=20):
-    """
-    Return the policy card of the highway task: the environment the policy sees.
-
-    :param action_repeat: basic steps (10 ms) per decision; 20 = 5 Hz, highway-v0's policy rate.
-    """
-    return PolicyCard('vehicle_sim/Drive-v0',
-                      {'scenario': str(SCENARIO), 'objects': True, 'max_speed': 40.0,
-                       'action_repeat': action_repeat},
-                      ('lane', 'twist', 'objects'), (-1.0, 1.0))
 
 
 def require_rllib():
@@ -106,7 +105,19 @@ def _callbacks_class(window):
     return SuccessRate
 
 
-def make_config(card, seed, runners, envs_per_runner=1, batch=2000, window=20):
+def env_config(card):
+    """Return the EnvRunners' ``env_config`` of a card: its fields (:func:`_task_env` reads)."""
+    return {'env_id': card.env_id, 'options': dict(card.options),
+            'observation_keys': tuple(card.observation_keys),
+            'action_range': tuple(card.action_range)}
+
+
+def _task_env(config, make_task_env=train_highway.make_task_env):
+    """Return the task's environment of the card in ``config``, judged by the scenario."""
+    return make_task_env(PolicyCard(**config))
+
+
+def make_config(card, seed, runners, envs_per_runner=1, batch=BATCH, window=20):
     """
     Return RLlib's PPOConfig for the card's environment (registered as ``ENV_NAME``).
 
@@ -115,17 +126,18 @@ def make_config(card, seed, runners, envs_per_runner=1, batch=2000, window=20):
     :param batch: environment steps per training iteration.
     :param window: episodes that the curve's means and success rate are taken over.
     """
-    _, PPOConfig, _ = require_rllib()
+    ray, PPOConfig, _ = require_rllib()
     from ray.rllib.connectors.env_to_module import FlattenObservations, MeanStdFilter
     from ray.rllib.core.rl_module.default_model_config import DefaultModelConfig
     from ray.tune.registry import register_env
 
-    register_env(ENV_NAME, lambda config: make_env(PolicyCard(**config)))
-    env_config = {'env_id': card.env_id, 'options': dict(card.options),
-                  'observation_keys': tuple(card.observation_keys),
-                  'action_range': tuple(card.action_range)}
+    # the task's env maker travels to the EnvRunners by value: they need not import the
+    # examples folder (a cluster's machines, Ray Client)
+    ray.cloudpickle.register_pickle_by_value(train_highway)
+    register_env(ENV_NAME, _task_env)
+    ppo = train_highway.PPO_OPTIONS
     return (PPOConfig()
-            .environment(ENV_NAME, env_config=env_config)
+            .environment(ENV_NAME, env_config=env_config(card))
             .framework('torch')
             .env_runners(num_env_runners=runners, num_envs_per_env_runner=envs_per_runner,
                          num_cpus_per_env_runner=1,
@@ -135,9 +147,12 @@ def make_config(card, seed, runners, envs_per_runner=1, batch=2000, window=20):
                          env_to_module_connector=lambda env, spaces=None, device=None: [
                              FlattenObservations(), MeanStdFilter()])
             .learners(num_learners=0, num_gpus_per_learner=0)
-            .training(train_batch_size_per_learner=batch, minibatch_size=min(250, batch),
-                      num_epochs=10, lr=3e-4, gamma=0.99, lambda_=0.95, entropy_coeff=0.005)
-            .rl_module(model_config=DefaultModelConfig(fcnet_hiddens=[128, 128],
+            # train_highway's PPO settings, in RLlib's names
+            .training(train_batch_size_per_learner=batch,
+                      minibatch_size=min(ppo['batch_size'], batch), num_epochs=ppo['n_epochs'],
+                      lr=ppo['learning_rate'], gamma=ppo['gamma'], lambda_=ppo['gae_lambda'],
+                      clip_param=ppo['clip_range'], entropy_coeff=ppo['ent_coef'])
+            .rl_module(model_config=DefaultModelConfig(fcnet_hiddens=list(train_highway.NET_ARCH),
                                                        fcnet_activation='tanh'))
             .callbacks(_callbacks_class(window))
             .reporting(metrics_num_episodes_for_smoothing=window)
@@ -156,7 +171,7 @@ def _row(iteration, result, wall_s):
             'success_rate': float(runners.get('success_rate', math.nan))}
 
 
-def train(out, budget_s=600.0, seed=0, runners=None, envs_per_runner=1, batch=2000,
+def train(out, budget_s=600.0, seed=0, runners=None, envs_per_runner=1, batch=BATCH,
           window=20, iterations=None, address=None, card=None, log=print):
     """
     Train PPO on Ray until ``budget_s`` of wall time (or ``iterations``) is spent.
@@ -165,13 +180,13 @@ def train(out, budget_s=600.0, seed=0, runners=None, envs_per_runner=1, batch=20
     :param address: a running Ray cluster to join; None = start Ray on this machine.
     :return: (curve, facts): the learning curve, a list of :data:`CURVE_FIELDS` dicts (also
         written to ``out/learning_curve.csv``), and {runners, cluster_cpus, setup_s (Ray's
-        start and the algorithm's build), load_start, load_end (the machine's 1-minute load
-        averages)}.
+        start and the algorithm's build), load_start, load_mean (over the iterations),
+        load_end (the machine's 1-minute load averages)}.
     """
     ray, _, _ = require_rllib()
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    card = card or highway_card()
+    card = card or train_highway.card()
     facts = {'load_start': round(os.getloadavg()[0], 2)}
     setup_start = time.perf_counter()
     started_here = not ray.is_initialized()
@@ -189,12 +204,13 @@ def train(out, budget_s=600.0, seed=0, runners=None, envs_per_runner=1, batch=20
         algo = make_config(card, seed, runners, envs_per_runner, batch, window).build_algo()
         facts.update(runners=runners, cluster_cpus=cluster_cpus,
                      setup_s=round(time.perf_counter() - setup_start, 1))
-        curve = []
+        curve, loads = [], []       # loads: the 1-minute load average after each iteration
         start = time.perf_counter()
         while True:
             result = algo.train()
             row = _row(len(curve) + 1, result, time.perf_counter() - start)
             curve.append(row)
+            loads.append(os.getloadavg()[0])
             write_curve(curve, out / 'learning_curve.csv')
             log(f"iteration {row['iteration']}: {row['env_steps']} env steps in "
                 f"{row['wall_s']:.0f} s, return {row['mean_return']:.2f}, length "
@@ -203,6 +219,7 @@ def train(out, budget_s=600.0, seed=0, runners=None, envs_per_runner=1, batch=20
                     or row['wall_s'] >= budget_s:
                 break
         facts['load_end'] = round(os.getloadavg()[0], 2)
+        facts['load_mean'] = round(sum(loads) / len(loads), 2)
         checkpoint = out / 'checkpoint'
         algo.save_to_path(str(checkpoint))
         save_card(card, checkpoint)
@@ -212,6 +229,34 @@ def train(out, budget_s=600.0, seed=0, runners=None, envs_per_runner=1, batch=20
             algo.stop()
         if started_here:
             ray.shutdown()
+
+
+def evaluate(out, episodes, workers):
+    """
+    Evaluate the trained policy (deterministic) and a random one as train_highway.py does.
+
+    train_highway's ``evaluate`` on its seeds (``EVAL_SEED_BASE`` ..), judged by its scenario,
+    summed up by its ``figures``; the checkpoint is read by vehicle_sim's policy loader, as
+    ``vehicle-sim policy run`` reads it. Writes ``out/evaluation.csv``; returns the summary's
+    evaluation entries.
+    """
+    seeds = [train_highway.EVAL_SEED_BASE + k for k in range(episodes)]
+    start = time.perf_counter()
+    results = {'trained': train_highway.evaluate(str(out / 'checkpoint'), seeds, workers),
+               'random': train_highway.evaluate(None, seeds, workers)}
+    with open(out / 'evaluation.csv', 'w', encoding='utf-8', newline='') as stream:
+        writer = csv.DictWriter(stream, fieldnames=['policy'] + list(results['trained'][0]))
+        writer.writeheader()
+        for name, outcomes in results.items():
+            writer.writerows(dict(o, policy=name) for o in outcomes)
+    evaluation = {name: train_highway.figures(outcomes) for name, outcomes in results.items()}
+    for name, values in evaluation.items():
+        print(f"{name:>8}: success {values['success_rate']:.2f}, collision "
+              f"{values['collision_rate']:.2f}, lane departure "
+              f"{values['lane_departure_rate']:.2f}, mean speed {values['mean_speed_mps']:.2f} "
+              f"m/s ({values['mean_speed_fraction_of_limit']:.1%} of the limit)", flush=True)
+    return {'eval_seeds': [seeds[0], seeds[-1]],
+            'eval_wall_s': round(time.perf_counter() - start, 1), 'evaluation': evaluation}
 
 
 MARKS_S = (60.0, 120.0, 300.0, 600.0, 1200.0, 1800.0)
@@ -230,7 +275,8 @@ def run_summary(args, curve, facts):
         marks.append(last)
     return dict(facts, seed=args.seed, budget_s=args.budget_s,
                 envs_per_runner=args.envs_per_runner, batch=args.batch, window=args.window,
-                action_repeat=args.action_repeat, cpu_count=os.cpu_count(),
+                card=train_highway.card().as_dict(), scenario=train_highway.SCENARIO.name,
+                cpu_count=os.cpu_count(),
                 env_steps=last['env_steps'], episodes=last['episodes'],
                 train_wall_s=last['wall_s'],
                 env_steps_per_s=round(last['env_steps'] / max(last['wall_s'], 1e-9), 2),
@@ -252,7 +298,8 @@ def results_markdown(summary):
         f"{summary['train_wall_s'] / 60.0:.1f} min of training, "
         f"{summary['env_steps_per_s']:.1f} env steps/s (Ray's start and the build before it: "
         f"{summary['setup_s']:.0f} s). Load average {summary['load_start']:.1f} at the start, "
-        f"{summary['load_end']:.1f} at the end, on {summary['cpu_count']} CPUs.",
+        f"{summary['load_mean']:.1f} on average over the iterations, {summary['load_end']:.1f} "
+        f"at the end, on {summary['cpu_count']} CPUs.",
         '',
         '| after [min] | env steps | env steps/s | mean return | mean length [steps] '
         '| success rate |',
@@ -263,6 +310,24 @@ def results_markdown(summary):
                      f"{row['env_steps'] / max(row['wall_s'], 1e-9):.1f} | "
                      f"{_figure(row['mean_return'])} | {_figure(row['mean_length'], 1)} | "
                      f"{_figure(row['success_rate'])} |")
+    evaluation = summary.get('evaluation')
+    if evaluation:
+        first, last = summary['eval_seeds']
+        lines += [
+            '',
+            f"Evaluation (train_highway's): {evaluation['trained']['episodes']} episodes of 60 s "
+            f'per policy, seeds {first} .. {last}, in {summary["eval_wall_s"] / 60.0:.1f} min.',
+            '',
+            '| policy | success | collision | lane departure | mean speed [m/s] | of the limit '
+            '| mean episode [s] |',
+            '|---|---|---|---|---|---|---|',
+        ]
+        for name, label in (('trained', 'RLlib PPO (deterministic)'), ('random', 'random')):
+            f = evaluation[name]
+            lines.append(f"| {label} | {f['success_rate']:.0%} | {f['collision_rate']:.0%} | "
+                         f"{f['lane_departure_rate']:.0%} | {f['mean_speed_mps']:.2f} | "
+                         f"{f['mean_speed_fraction_of_limit']:.1%} | "
+                         f"{f['mean_episode_s']:.1f} |")
     return '\n'.join(lines) + '\n'
 
 
@@ -306,30 +371,48 @@ def main(argv=None):
     parser.add_argument('--runners', type=int, default=None,
                         help="EnvRunner processes (default: the Ray cluster's CPU count)")
     parser.add_argument('--envs-per-runner', type=int, default=1)
-    parser.add_argument('--batch', type=int, default=2000,
-                        help='environment steps per training iteration (default 2000)')
+    parser.add_argument('--batch', type=int, default=BATCH,
+                        help=f'environment steps per training iteration (default {BATCH})')
     parser.add_argument('--window', type=int, default=20,
                         help='episodes the means and the success rate are taken over')
-    parser.add_argument('--action-repeat', type=int, default=20,
-                        help='basic steps (10 ms) per decision (default 20: 5 Hz)')
+    parser.add_argument('--eval-episodes', type=int, default=100,
+                        help="evaluation episodes per policy, train_highway.py's (0: none)")
+    parser.add_argument('--eval-workers', type=int, default=2)
     parser.add_argument('--address', default=None,
                         help='a running Ray cluster (auto, head:6379, ray://head:10001); '
                              'default: start Ray on this machine')
+    parser.add_argument('--evaluate-only', action='store_true',
+                        help='evaluate the finished run in --out (its checkpoint) instead of '
+                             'training; its summary.json gets the evaluation')
     parser.add_argument('--out', default='ppo_highway_ray')
     args = parser.parse_args(argv)
     for name in ('budget_s', 'iterations', 'runners', 'envs_per_runner', 'batch', 'window',
-                 'action_repeat'):
+                 'eval_episodes', 'eval_workers'):
         value = getattr(args, name)
-        if value is not None and not value > (-1 if name == 'runners' else 0):
+        at_least_0 = name in ('runners', 'eval_episodes')
+        if value is not None and not value > (-1 if at_least_0 else 0):
             parser.error(f"--{name.replace('_', '-')} {value}: must be "
-                         f"{'>= 0' if name == 'runners' else '> 0'}")
+                         f"{'>= 0' if at_least_0 else '> 0'}")
+    out = Path(args.out)
+    if args.evaluate_only:
+        if not args.eval_episodes:
+            parser.error('--evaluate-only with --eval-episodes 0: nothing to do')
+        if not (out / 'checkpoint').is_dir():
+            parser.error(f"--evaluate-only: {out / 'checkpoint'}: no such checkpoint (a run's "
+                         '--out folder is expected)')
     try:
         require_rllib()
     except ImportError as error:
         raise SystemExit(str(error)) from None
+    if args.evaluate_only:
+        path = out / 'summary.json'
+        summary = json.loads(path.read_text(encoding='utf-8')) if path.is_file() else {}
+        summary.update(evaluate(out, args.eval_episodes, args.eval_workers))
+        path.write_text(json.dumps(summary, indent=2) + '\n', encoding='utf-8')
+        return
     curve, facts = train(args.out, args.budget_s, args.seed, args.runners,
                          args.envs_per_runner, args.batch, args.window, args.iterations,
-                         args.address, highway_card(args.action_repeat))
+                         args.address, train_highway.card())
     summary = run_summary(args, curve, facts)
     Path(args.out, 'summary.json').write_text(json.dumps(summary, indent=2) + '\n',
                                               encoding='utf-8')
@@ -343,6 +426,10 @@ def main(argv=None):
                    'RLlib PPO on Drive-v0, highway_traffic (training episodes)', args.window)
     except ImportError:
         pass
+    if args.eval_episodes:
+        summary.update(evaluate(Path(args.out), args.eval_episodes, args.eval_workers))
+        Path(args.out, 'summary.json').write_text(json.dumps(summary, indent=2) + '\n',
+                                                  encoding='utf-8')
 
 
 if __name__ == '__main__':

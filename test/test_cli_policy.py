@@ -68,6 +68,18 @@ def test_a_card_without_its_model_file_is_refused(tmp_path):
     assert f'{model}: no such model file' in result.stderr
 
 
+def test_a_folder_that_is_not_an_rllib_checkpoint_is_refused_naming_it(tmp_path):
+    # a folder is read as an RLlib checkpoint (train_highway_ray's checkpoint/) only when it
+    # holds RLlib's rllib_checkpoint.json
+    folder = tmp_path / 'checkpoint'
+    folder.mkdir()
+    save_card(CARD, folder)
+    result = vehicle_sim('policy', 'run', str(folder))
+    assert result.returncode == 2
+    assert (f'{folder}: a folder without rllib_checkpoint.json: neither an RLlib checkpoint '
+            'nor a model file') in result.stderr
+
+
 # ---------------------------------------------------------------- with stable-baselines3
 def _require_sb3():
     try:

@@ -80,9 +80,11 @@ def add_arguments(parser):
 
 def _model_arguments(parser):
     parser.add_argument('model', metavar='MODEL.zip',
-                        help='a stable-baselines3 model file, its card beside it')
+                        help='a stable-baselines3 model file or an RLlib checkpoint folder, '
+                             'its card beside it')
     parser.add_argument('--algorithm', default='PPO', metavar='ALGO',
-                        help='its stable-baselines3 class (default PPO)')
+                        help="a model file's stable-baselines3 class (default PPO; an RLlib "
+                             'checkpoint says its own)')
 
 
 def load_policy(path, algorithm='PPO', rate_hz=None):

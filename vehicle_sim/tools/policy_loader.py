@@ -17,10 +17,11 @@
 A trained policy and what drives the ROS node with it: the model, its card, the checks.
 
 :func:`load_model` is the thin loader (stable-baselines3's ``PPO.load``, or the algorithm the
-caller names); :func:`drive_setup` checks a model against its card's environment (the
-observation space, key by key, and the action space) and returns the observation builder, the
-action writer and the period the node runs it with. Anything with ``predict(obs,
-deterministic=True)`` and the two spaces serves as a policy (the tests' scripted ones).
+caller names; an RLlib checkpoint folder through tools/rllib_policy.py); :func:`drive_setup`
+checks a model against its card's environment (the observation space, key by key, and the
+action space) and returns the observation builder, the action writer and the period the node
+runs it with. Anything with ``predict(obs, deterministic=True)`` and the two spaces serves as
+a policy (the tests' scripted ones).
 """
 
 from dataclasses import dataclass
@@ -36,12 +37,21 @@ ALGORITHMS = ('PPO', 'A2C', 'SAC', 'TD3', 'DDPG')
 
 def load_model(path, algorithm='PPO'):
     """
-    Load a stable-baselines3 model file (``model.zip``) on the CPU.
+    Load a stable-baselines3 model file (``model.zip``) or an RLlib checkpoint, on the CPU.
+
+    An RLlib checkpoint folder (``Algorithm.save_to_path``) says its own algorithm:
+    ``algorithm`` names the stable-baselines3 class of a model file only.
 
     :raises InvalidParameterError: naming the file: missing, not a model of ``algorithm``, or
-        stable-baselines3 not installed (the ``learn`` extra).
+        stable-baselines3 (the ``learn`` extra) or RLlib (``learn-ray``) not installed.
     """
+    from vehicle_sim.tools.rllib_policy import CHECKPOINT_FILE, is_rllib_checkpoint, RllibPolicy
     path = Path(path)
+    if is_rllib_checkpoint(path):
+        return RllibPolicy.load(path)
+    if path.is_dir():
+        raise InvalidParameterError(f'{path}: a folder without {CHECKPOINT_FILE}: neither an '
+                                    'RLlib checkpoint nor a model file')
     if not path.is_file():
         raise InvalidParameterError(f'{path}: no such model file')
     if algorithm not in ALGORITHMS:
