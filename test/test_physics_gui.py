@@ -257,10 +257,10 @@ def test_traffic_boxes_are_placed_for_the_window_once_a_frame_not_every_step(mon
         placed_at = []
         real_move = traffic._move
 
-        def move(indices):
+        def move(indices, standing=()):
             if list(indices) == everyone:           # every box: for the window (or a query)
                 placed_at.append(world.time_s)
-            real_move(indices)
+            real_move(indices, standing)
         monkeypatch.setattr(traffic, '_move', move)
         for _ in range(60):                      # 0.6 s, no sensor or other query
             world.step()
