@@ -27,8 +27,8 @@ With ``speed_control: idm`` (the default; :class:`IdmSpeed`) the waypoint's spee
 desired speed of the Intelligent Driver Model (core/traffic/idm.py) behind the nearest vehicle
 ahead within the actor's width (traffic vehicles and the scenario's other vehicles): the actor
 slows down and stops behind it as traffic does; a car brakes (cruising speed 0 and the brakes)
-when it must slow down by more than BRAKE_ABOVE_MPS. ``speed_control: waypoints`` drives the
-waypoints' speeds whatever is ahead.
+when it must slow down by more than core/car/speed_braking.py's BRAKE_ABOVE_MPS.
+``speed_control: waypoints`` drives the waypoints' speeds whatever is ahead.
 
 :func:`make_actors` tells the world's traffic where each actor will drive (its path from where it
 stands through its waypoints): the SUMO engine gives the actor's vehicle in SUMO the route of the
@@ -37,6 +37,7 @@ edges the path passes (docs/sumo_engine.md), so that SUMO's drivers know where i
 
 import math
 
+from vehicle_sim.core.car.speed_braking import brake_for_speed
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.specs.units import mps_to_kmh, ros_steering_to_webots
 from vehicle_sim.core.traffic.idm import idm_acceleration, IdmParams
@@ -46,9 +47,8 @@ from vehicle_sim.core.traffic.idm import idm_acceleration, IdmParams
 ARRIVE_M = 1.0
 LOOKAHEAD_TIME_S = 1.0
 # IDM speed control: the speed asked for is the speed IDM reaches after this time [s]; a car
-# brakes instead of cruising when that is this much below its speed [m/s].
+# brakes instead of cruising when that is well below its speed (core/car/speed_braking.py).
 IDM_HORIZON_S = 0.5
-BRAKE_ABOVE_MPS = 1.0
 LEADER_RANGE_M = 250.0
 
 
@@ -185,9 +185,10 @@ class CarActor:
         if self.idm is not None:
             now = self.car.body.forward_speed_mps()
             speed = self.idm.speed(x, y, yaw, now, speed)
-            if speed < now - BRAKE_ABOVE_MPS:      # the cruise control slows too gently
+            brake = brake_for_speed(now, speed)
+            if brake > 0.0:                         # the cruise control slows too gently
                 logic.set_cruising_speed_kmh(0.0)
-                logic.set_brake_intensity(min(1.0, (now - speed) / 5.0))
+                logic.set_brake_intensity(brake)
                 return
             logic.set_brake_intensity(0.0)
         logic.set_cruising_speed_kmh(mps_to_kmh(speed))

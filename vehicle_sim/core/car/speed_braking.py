@@ -21,11 +21,10 @@ brake (wbu_driver_set_brake_intensity) barely acts while the cruise control hold
 driven wheels' motors follow the ramp (driver.c). A driver who must slow down faster presses the
 brake pedal, which disengages cruise control: the throttle released (wbu_driver_set_throttle(0),
 torque control) and the brakes applied (the Prius at full brake: about 5.4 m/s^2 from 33 m/s).
-This module decides between the two, as the scenario runner's IDM actors do
-(scenarios/actors.py: brake when the speed asked is more than 1 m/s below the car's, the
-intensity growing to full at 5 m/s below): the speed asked more than BRAKE_ABOVE_MPS slower
-than the car in its direction of travel -> brake, intensity min(1, difference / FULL_BRAKE_MPS);
-else the cruise control takes the speed.
+This module decides between the two, for Drive-v0's braking_speed_steering action, the policy
+node and the scenario runner's IDM actors (scenarios/actors.py): the speed asked more than
+BRAKE_ABOVE_MPS slower than the car in its direction of travel -> brake, intensity
+min(1, difference / FULL_BRAKE_MPS); else the cruise control takes the speed.
 """
 
 # Brake (instead of cruising) when the speed asked is this much slower than the car's [m/s].
