@@ -28,11 +28,9 @@ serves (:func:`instance_name`: one id per SUMO id for the world's life); a parke
 import bisect
 import math
 
-import numpy as np
 import pybullet
 
 from vehicle_sim.core.geometry.discs import separate_discs
-from vehicle_sim.core.geometry.ray_shapes import cast_shapes
 from vehicle_sim.core.sensors.labels import label_of_class, LABELS
 from vehicle_sim.core.traffic.objects import CLASS_SHAPES, shape_extents
 from vehicle_sim.core.traffic.sumo_params import object_class
@@ -249,16 +247,10 @@ class SumoPool:
 
     def _park(self, slot):
         slot.sumo_id, slot.state, slot.motion, slot.stopped = None, None, None, False
-        slot.lane, slot.route, slot.instance = None, (), 0
+        slot.lane, slot.route, slot.instance, slot.at, slot.synced = None, (), 0, None, -1
         slot.placed, slot.front = -1, None
         self.world.labels.forget(slot.body_id)
         self._table.invalidate()
-        self._aside(slot)
-
-    def _aside(self, slot):
-        # Under the ground in its own place (serving or not): out of every query's way, put
-        # where its vehicle is by the next _move.
-        slot.at, slot.synced = None, -1
         pybullet.resetBasePositionAndOrientation(
             slot.body_id, (0.0, 0.0, PARK_DEPTH_M - 10.0 * slot.index), (0.0, 0.0, 0.0, 1.0),
             physicsClientId=self._cid)
@@ -364,63 +356,6 @@ class SumoPool:
             if xmin - reach <= x <= xmax + reach and ymin - reach <= y <= ymax + reach:
                 found.append(slot)
         return found
-
-    def cast(self, origin, ends, region):
-        """
-        Cast rays against the serving bodies where their vehicles are now (``World.ray_bodies``).
-
-        A vehicle's box and a person's cylinder as their bodies' shapes, each where
-        :meth:`_move` would put it (core/geometry/ray_shapes.py): the rays need no body put
-        anywhere (those standing in their way are put aside first: :meth:`_aside_in`).
-
-        :param origin: (3,) start of every ray [m].
-        :param ends: (n, 3) ends of the rays [m].
-        :param region: (x min, y min, x max, y max) [m] holding the rays.
-        :return: (fractions (n,), 1.0 for none; body ids (n,), -1 for none; normals (n, 3)).
-        """
-        xmin, ymin, xmax, ymax = region
-        elapsed = self.world.time_s - self._placed_at
-        boxes, box_ids, cylinders, cylinder_ids = [], [], [], []
-        for slot in self._by_id.values():
-            if slot.front is None:                        # not read from SUMO yet: parked
-                continue
-            length, width, height = slot.size
-            reach = length + width                        # more than its half diagonal
-            fx, fy, _ = slot.front
-            far = reach + length + abs(slot.speed) * elapsed
-            if not (xmin - far <= fx <= xmax + far and ymin - far <= fy <= ymax + far):
-                continue
-            x, y, z, _, _, vx, vy = self._motion(slot)
-            x, y = x + vx * elapsed, y + vy * elapsed
-            if not (xmin - reach <= x <= xmax + reach and ymin - reach <= y <= ymax + reach):
-                continue
-            half_height = 0.5 * (height - slot.clearance)
-            if slot.radius:
-                cylinders.append((x, y, z, slot.radius, half_height))
-                cylinder_ids.append(slot.body_id)
-            else:
-                boxes.append((x, y, z, self._state(slot)[2], 0.5 * length, 0.5 * width,
-                              half_height))
-                box_ids.append(slot.body_id)
-        fractions, shapes, normals = cast_shapes(origin, ends, boxes, cylinders)
-        ids = np.array(box_ids + cylinder_ids + [-1], dtype=np.int64)
-        return fractions, ids[shapes], normals
-
-    def _aside_in(self, region):
-        """Put the bodies standing within ``region`` (a margin on) aside; say if any."""
-        xmin, ymin, xmax, ymax = region
-        count = self.world.step_count
-        moved = False
-        for slot in self._by_id.values():
-            at = slot.at
-            if at is None or slot.synced == count:        # parked, or where it is now
-                continue
-            length, width, _ = slot.size
-            reach = length + width
-            if xmin - reach <= at[0] <= xmax + reach and ymin - reach <= at[1] <= ymax + reach:
-                self._aside(slot)
-                moved = True
-        return moved
 
     def _stop(self, slot):
         # Stopped where its body was during the step, in SUMO at once (no deceleration bound).

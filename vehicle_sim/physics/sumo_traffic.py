@@ -202,7 +202,6 @@ class SumoBodies(SumoPool, SumoViews):
         self.session = None
         self._start(spec.seed)
         world.add_body(self)
-        world.add_ray_bodies(self)
 
     # ------------------------------------------------------------------ starting, closing
     def _start(self, seed):
@@ -428,19 +427,6 @@ class SumoBodies(SumoPool, SumoViews):
         in a city moves a tenth of the bodies, not every one at every SUMO step.
         """
         if self._synced_step != self.world.step_count and self._move(self._reaching(region)):
-            self.world.mark_moved()
-
-    def before_rays_in(self, region):
-        """
-        World hook (``World.sync_bodies`` before rays over a region): the bodies there aside.
-
-        Rays find the bodies where their vehicles are now without Bullet (:meth:`cast`, the
-        world's ``ray_bodies``); a body standing in ``region`` since an earlier step is put
-        aside under the ground (out of Bullet's tree: a ray walks it past every box near it),
-        where it stays until something else reads it or it comes near one of ours. After a
-        reading that put every body where it is in this step (a camera's), nothing moves.
-        """
-        if self._synced_step != self.world.step_count and self._aside_in(region):
             self.world.mark_moved()
 
     def _nearby(self, ours):

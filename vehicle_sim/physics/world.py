@@ -170,10 +170,6 @@ class World:
         self.ray_grid_bodies = []     # per ray grid: the body its hits read as (labels)
         self._ray_grid_bodies = []
         self._ray_masks = {}          # body id -> ray mask excluding that body
-        # Placed bodies that ray sensors find by other means than Bullet (the traffic's boxes
-        # and cylinders: core/geometry/ray_shapes.py), each with a cast(origin, ends, region)
-        # -> (fractions, body ids, normals) (add_ray_bodies).
-        self.ray_bodies = []
         self._renderer = None
         self.labels = BodyLabels()    # what each body is, for perception (body_labels.py)
         self._ground_visual = False
@@ -287,11 +283,8 @@ class World:
         and ``before_query()`` (called by :meth:`sync_bodies` before anything reads the world
         between steps: rays, cameras, overlap checks, body states; bodies that are only placed
         now and then, as traffic, are put where they are now), ``before_query_in(region)``
-        (with it, called instead when the reading is confined to a region, an overlap check:
-        only the bodies there need to be where they are), ``before_rays_in(region)`` (with it,
-        called instead before rays are cast over a region: a body whose bodies the rays find by
-        other means, :meth:`add_ray_bodies`, takes those standing there out of Bullet's way or
-        puts them where they are), and ``on_close()`` (called by
+        (with it, called instead when the reading is confined to a region, rays: only the
+        bodies there need to be where they are), and ``on_close()`` (called by
         :meth:`close`: what the body runs beside the world, e.g. SUMO, ends).
         """
         if body in self._bodies:
@@ -479,22 +472,6 @@ class World:
             self._ray_grid_bodies.append(
                 (body_id, tuple(v - _REACH_SLACK_M for v in low),
                  tuple(v + _REACH_SLACK_M for v in high)))
-
-    def add_ray_bodies(self, ray_bodies):
-        """
-        Let ray sensors find placed bodies through ``ray_bodies`` instead of Bullet.
-
-        The traffic's bodies (physics/sumo_traffic.py): a ray walks Bullet's tree of bounding
-        boxes past every box standing near it, and each body must first be put where its
-        vehicle is now; their shapes where they are now give the same hits without either
-        (physics/sensors/rays.py casts Bullet's rays up to them). The owner keeps its bodies
-        out of the rays' way (its ``before_rays_in(region)`` hook: parked, or where they are).
-
-        :param ray_bodies: an object with ``cast(origin, ends, region)`` -> (fractions (n,),
-            1.0 for none; body ids (n,), -1 for none; normals (n, 3)), ``region`` the rays'
-            (x min, y min, x max, y max) [m].
-        """
-        self.ray_bodies.append(ray_bodies)
 
     @contextmanager
     def rays_past_grids(self, reach=None):
@@ -685,20 +662,20 @@ class World:
             self.restore_body_state(body_id, saved)
             raise InvalidPoseError(f'that place is inside {", ".join(blocking)}')
 
-    def update_collision_state(self, region=None, rays=False):
+    def update_collision_state(self, region=None):
         """
         Bring Bullet's collision structures up to date before a query between steps.
 
         Rays only see bodies whose bounding boxes the last step (or this call) computed; bodies
         added or moved since are refreshed here, once. Placed bodies are synced first
-        (:meth:`sync_bodies`, within ``region`` when one is given; ``rays``: for rays).
+        (:meth:`sync_bodies`, within ``region`` when one is given).
         """
-        self.sync_bodies(region, rays)
+        self.sync_bodies(region)
         if self._broadphase_stale:
             pybullet.performCollisionDetection(physicsClientId=self.client_id)
             self._broadphase_stale = False
 
-    def sync_bodies(self, region=None, rays=False):
+    def sync_bodies(self, region=None):
         """
         Put the bodies that are only placed now and then (traffic) where they are now.
 
@@ -709,15 +686,10 @@ class World:
         :param region: (x min, y min, x max, y max) [m] the reading is confined to (rays), or
             None (anywhere): a body with a ``before_query_in(region)`` hook then puts only its
             bodies there (and those standing there) where they are.
-        :param rays: the reading is rays cast over ``region``: a body with a
-            ``before_rays_in(region)`` hook (one whose bodies rays find by other means,
-            :meth:`add_ray_bodies`) only clears their way.
         """
-        for hook, hook_in, hook_rays in self._before_query:
+        for hook, hook_in in self._before_query:
             if region is None or hook_in is None:
                 hook()
-            elif rays and hook_rays is not None:
-                hook_rays(region)
             else:
                 hook_in(region)
 
@@ -821,8 +793,7 @@ class World:
         self._pre_step = [b.pre_step for b in self._bodies if hasattr(b, 'pre_step')]
         self._pre_substep = [b.pre_substep for b in self._bodies if hasattr(b, 'pre_substep')]
         self._post_step = [b.post_step for b in self._bodies if hasattr(b, 'post_step')]
-        self._before_query = [(b.before_query, getattr(b, 'before_query_in', None),
-                               getattr(b, 'before_rays_in', None))
+        self._before_query = [(b.before_query, getattr(b, 'before_query_in', None))
                               for b in self._bodies if hasattr(b, 'before_query')]
 
     def step(self):

@@ -25,10 +25,7 @@ walls' meshes they reach moved out of their way (World.rays_past_grids), stop wh
 are: Bullet walks a static mesh's tree along the whole ray, past its first hit, so a large
 map's meshes made each ray cost several times more (benchmarks/bench_occupancy_lidar.py).
 :func:`cast_rays_hits` also gives what each ray hit (a labelled lidar's bodies and surface
-normals). Placed bodies that the world finds by other means (``World.ray_bodies``: the SUMO
-traffic's boxes and cylinders where they are now, core/geometry/ray_shapes.py) are cast first,
-and Bullet's rays go only up to their hits (the bodies stand out of Bullet's way: a ray walks
-Bullet's tree past every box near it).
+normals).
 """
 
 from itertools import chain
@@ -59,38 +56,9 @@ def cast_rays(world, origin, ends, mask):
     ends = np.asarray(ends, dtype=float)
     if len(ends) == 0:
         return np.ones(0)
-    # the bodies placed now and then (traffic) put where they are where the rays go, or out
-    # of their way where the world finds them by other means (then cast first)
-    placed, ends = _placed_first(world, origin, ends)
-    if placed is None:
-        return _cast(world, origin, ends, mask)
-    fractions = _cast(world, origin, ends, mask)
-    return np.where(fractions < 1.0, fractions * placed[0], placed[0])
-
-
-def _placed_first(world, origin, ends):
-    # The world's collision state brought up to date for rays over the rays' region, and the
-    # first hits among the bodies it finds by other means (World.ray_bodies: fractions, bodies,
-    # normals; None without any) with the rays cut there.
+    # the bodies placed now and then (traffic) put where they are where the rays go
     low, high = np.minimum(ends.min(axis=0), origin), np.maximum(ends.max(axis=0), origin)
-    region = (low[0], low[1], high[0], high[1])
-    world.update_collision_state(region, rays=True)
-    found = None
-    for ray_bodies in world.ray_bodies:
-        fractions, bodies, normals = ray_bodies.cast(origin, ends, region)
-        if found is None:
-            found = [fractions, bodies, normals]
-            continue
-        closer = fractions < found[0]
-        for mine, theirs in zip(found, (fractions, bodies, normals)):
-            mine[closer] = theirs[closer]
-    if found is None:
-        return None, ends
-    return found, origin + (ends - origin) * found[0][:, None]
-
-
-def _cast(world, origin, ends, mask):
-    # cast_rays past the world's collision state update.
+    world.update_collision_state((low[0], low[1], high[0], high[1]))
     starts = [origin.tolist()] * len(ends)
     if not world.ray_grids:
         with world.rays_past_own(mask):
@@ -134,21 +102,11 @@ def cast_rays_hits(world, origin, ends, mask):
     """
     origin = np.asarray(origin, dtype=float)
     ends = np.asarray(ends, dtype=float)
-    if len(ends) == 0:
-        return _hits(world, [], ends, mask, world.labels.has_links)
-    placed, ends = _placed_first(world, origin, ends)
-    if placed is None:
-        return _cast_hits(world, origin, ends, mask)
-    fractions, bodies, links, normals = _cast_hits(world, origin, ends, mask)
-    theirs = fractions >= 1.0
-    bodies[theirs], normals[theirs] = placed[1][theirs], placed[2][theirs]
-    links[theirs] = -1
-    return np.where(theirs, placed[0], fractions * placed[0]), bodies, links, normals
-
-
-def _cast_hits(world, origin, ends, mask):
-    # cast_rays_hits past the world's collision state update.
     starts = [origin.tolist()] * len(ends)
+    if len(ends) == 0:
+        return _hits(world, starts, ends, mask, world.labels.has_links)
+    low, high = np.minimum(ends.min(axis=0), origin), np.maximum(ends.max(axis=0), origin)
+    world.update_collision_state((low[0], low[1], high[0], high[1]))
     if not world.ray_grids:
         with world.rays_past_own(mask):
             return _hits(world, starts, ends, mask, world.labels.has_links)
