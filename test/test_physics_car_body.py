@@ -104,6 +104,17 @@ def test_car_body_rests_on_its_wheels_with_a_small_static_sag(model):
         assert max(abs(v) for v in linear + angular) < 1e-3
 
 
+def test_forward_speed_from_a_pose_just_read_is_the_speed_it_reads_itself():
+    # the traffic's view of our vehicles (traffic_boxes.our_vehicle) reads the pose once and
+    # hands it to forward_speed_mps: the same number as the call that reads it again
+    with World() as world:
+        car = CarBody(world, load_car('Car'))
+        _run(world, car, _all_wheels(WheelMode.VELOCITY, 12.0), 1.0)
+        speed = car.forward_speed_mps()
+        assert speed > 3.0
+        assert car.forward_speed_mps(car.pose()) == speed
+
+
 @pytest.mark.parametrize('model', ['Car', 'TeslaModel3', 'LincolnMKZ'])
 def test_car_body_velocity_controlled_wheels_move_the_chassis_at_omega_r(model):
     params = load_car(model)

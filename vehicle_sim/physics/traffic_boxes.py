@@ -41,14 +41,15 @@ NEAR_M = 40.0
 
 def our_vehicle(body, outline=None):
     """Return a VehicleBody as the traffic manager sees it (OurVehicle); ``outline``: cached."""
-    x, y, _, qx, qy, qz, qw = body.pose()
+    pose = body.pose()              # (read once: its speed needs it too)
+    x, y, _, qx, qy, qz, qw = pose
     yaw = yaw_from_quaternion(qx, qy, qz, qw)
     outline = body.outline if outline is None else outline
     cx = 0.5 * (outline.x_min_m + outline.x_max_m)
     cy = 0.5 * (outline.y_min_m + outline.y_max_m)
     c, s = math.cos(yaw), math.sin(yaw)
     return OurVehicle(body.name, x + c * cx - s * cy, y + s * cx + c * cy, yaw,
-                      body.forward_speed_mps(), outline.length_m, outline.width_m)
+                      body.forward_speed_mps(pose), outline.length_m, outline.width_m)
 
 
 def touched(world, body_id):

@@ -197,9 +197,14 @@ class VehicleBody:
         return (tuple(sum(a * b for a, b in zip(axis, linear)) for axis in axes),
                 tuple(sum(a * b for a, b in zip(axis, angular)) for axis in axes))
 
-    def forward_speed_mps(self):
-        """Speed of base_link along its heading (x axis) [m/s]; negative when reversing."""
-        pose = self.pose()          # read once: the velocity's point and the heading
+    def forward_speed_mps(self, pose=None):
+        """
+        Speed of base_link along its heading (x axis) [m/s]; negative when reversing.
+
+        :param pose: its :meth:`pose` now, when the caller has just read it (read here if None).
+        """
+        if pose is None:
+            pose = self.pose()      # read once: the velocity's point and the heading
         linear, _ = self.world.base_link_velocity(self.body_id, pose[:3])
         heading, _ = self._axes(pose)
         return sum(a * b for a, b in zip(linear, heading))

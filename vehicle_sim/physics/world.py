@@ -805,11 +805,10 @@ class World:
             for hook in self._pre_step:
                 hook()
             self._step_simulation(cid)      # (by position: a keyword costs PyBullet 0.3 us)
-            if self.substeps > 1:
-                for _ in range(self.substeps - 1):
-                    for hook in self._pre_substep:
-                        hook()
-                    self._step_simulation(physicsClientId=cid)
+            for _ in range(self.substeps - 1):
+                for hook in self._pre_substep:
+                    hook()
+                self._step_simulation(cid)
             self._step_count += 1
             self.revision += 1
             self._broadphase_stale = False
