@@ -31,7 +31,7 @@ A controller that knows the deceleration it wants (the scenario actors' IDM) ask
 :func:`cruise_ramp_mps2`; beyond it the brake, in proportion to the car's full-brake
 deceleration :func:`full_brake_deceleration_mps2` (the brakes' torque, brakeCoefficient per
 wheel, over the tyre radii and the car's mass with its wheels: the Prius 4.8 m/s^2; the
-wheels' damping and rolling add a little, about 0.2 m/s^2 at 20 m/s).
+wheels' damping and rolling add 0.1 to 0.3 m/s^2, more at speed).
 """
 
 from vehicle_sim.core.specs.units import kmh_to_mps
