@@ -34,7 +34,6 @@ from vehicle_sim.core.commands.drive_input import (
     rear_axle_speed_ratio,
     STANDSTILL_SPEED_MPS,
     steering_from_yaw_rate,
-    TIMEOUT_BRAKE_INTENSITY,
 )
 from vehicle_sim.core.diffdrive.kinematics import yaw_rate_from_steering
 from vehicle_sim.core.specs.errors import InvalidCommandError
@@ -168,8 +167,10 @@ def test_car_watchdog_brakes_once_after_the_timeout_and_not_before():
     assert not drive.tick(1.5)                    # an age equal to the timeout is fresh
     assert logic.brake_intensity == 0.0
     assert drive.tick(1.51)
+    # a safety stop: cruise control off (throttle 0, TORQUE mode, its target 0) and full brake
     assert logic.target_cruising_speed_kmh == 0.0
-    assert logic.brake_intensity == TIMEOUT_BRAKE_INTENSITY
+    assert (logic.control_mode, logic.throttle) == (ControlMode.TORQUE, 0.0)
+    assert logic.brake_intensity == 1.0
     assert not drive.tick(2.0)                    # once per staleness
     drive.twist(1.0, 0.0, now_s=2.0)             # the next command drives again
     assert logic.brake_intensity == 0.0 and logic.target_cruising_speed_kmh > 0.0

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 
-"""Golden tests of the Intelligent Driver Model (core/traffic/idm.py)."""
+"""Golden tests of the Intelligent Driver Model and the improved IDM (core/traffic/idm.py)."""
 
 import math
 
@@ -26,6 +26,7 @@ from vehicle_sim.core.traffic.idm import (
     equilibrium_gap,
     idm_acceleration,
     IdmParams,
+    iidm_acceleration,
 )
 
 P = IdmParams()       # the documented defaults
@@ -105,3 +106,63 @@ def test_bad_parameters_are_refused_naming_the_field():
         IdmParams.from_dict({'time_headway': -1.0}, 'w.yaml: traffic: idm')
     with pytest.raises(InvalidParameterError, match="unknown field 'headway'"):
         IdmParams.from_dict({'headway': 1.0}, 'w.yaml: traffic: idm')
+
+
+# ---------------------------------------------------------------------------- the improved IDM
+# Treiber and Kesting, "Traffic Flow Dynamics" (2013): the IIDM (module docstring).
+
+
+@pytest.mark.parametrize('v, v0', [(20.0, 3.0), (6.0, 3.0), (30.0, 25.0), (8.0, 0.0)])
+def test_iidm_above_the_desired_speed_slows_down_at_most_at_b(v, v0):
+    # IDM asks a(1 - (v/v0)^4) there: -2960 m/s^2 from 20 to 3 m/s (cut at the physical limit)
+    expected = -P.deceleration_mps2 * (1.0 - (v0 / v) ** (1.5 * 4.0 / 2.0))
+    assert iidm_acceleration(v, v0, None, 0.0, P) == pytest.approx(expected, rel=1e-12)
+    assert -P.deceleration_mps2 <= expected < 0.0
+    if v0 > 0.0:
+        assert idm_acceleration(v, v0, None, 0.0, P) < expected
+    # far behind a leader (z < 1) the free-road term alone
+    assert iidm_acceleration(v, v0, 1e4, 0.0, P) == pytest.approx(expected, rel=1e-12)
+
+
+def test_iidm_below_the_desired_speed_is_idm_on_a_free_road():
+    for v in (0.0, 5.0, 15.0, 29.9, 30.0):
+        assert iidm_acceleration(v, 30.0, None, 0.0, P) == pytest.approx(
+            idm_acceleration(v, 30.0, None, 0.0, P), rel=1e-12, abs=1e-12)
+    assert iidm_acceleration(0.0, 0.0, None, 0.0, P) == 0.0     # standing, asked to stand
+
+
+def test_iidm_interaction_term_as_treiber_and_kesting_combine_it():
+    v, v0 = 10.0, 20.0
+    free = P.acceleration_mps2 * (1.0 - (v / v0) ** 4)
+    s_star = desired_gap(v, 2.0, P)
+    for gap in (0.5 * s_star, s_star, 2.0 * s_star):
+        z = s_star / gap
+        expected = (P.acceleration_mps2 * (1.0 - z * z) if z >= 1.0
+                    else free * (1.0 - z ** (2.0 * P.acceleration_mps2 / free)))
+        assert iidm_acceleration(v, v0, gap, 2.0, P) == pytest.approx(
+            max(expected, -P.max_deceleration_mps2), rel=1e-12)
+    # above v0 and close: the free-road braking plus the interaction's
+    v, v0 = 20.0, 10.0
+    free = -P.deceleration_mps2 * (1.0 - (v0 / v) ** 3.0)
+    gap = 0.8 * desired_gap(v, 0.0, P)
+    assert iidm_acceleration(v, v0, gap, 0.0, P) == pytest.approx(
+        free + P.acceleration_mps2 * (1.0 - 1.25 ** 2), rel=1e-12)
+    assert iidm_acceleration(v, v0, 0.0, 0.0, P) == -P.max_deceleration_mps2
+
+
+@pytest.mark.parametrize('v', [10.0, 20.0])
+def test_an_iidm_follower_keeps_s0_plus_vt_behind_a_leader_and_stops_s0_behind_a_stop(v):
+    v0, s, own = 33.3, 0.0, v - 5.0
+    lead_s, lead_v = P.min_gap_m + v * P.time_headway_s + 40.0, v
+    for _ in range(int(300.0 / DT)):
+        acc = iidm_acceleration(own, v0, lead_s - s, own - lead_v, P)
+        s, own = advance(s, own, acc, DT)
+        lead_s, lead_v = advance(lead_s, lead_v, 0.0, DT)
+    assert lead_s - s == pytest.approx(P.min_gap_m + v * P.time_headway_s, rel=0.01)
+    for _ in range(int(60.0 / DT)):       # the leader brakes hard to a stop
+        acc = iidm_acceleration(own, v0, lead_s - s, own - lead_v, P)
+        s, own = advance(s, own, acc, DT)
+        lead_s, lead_v = advance(lead_s, lead_v, -P.max_deceleration_mps2, DT)
+        assert lead_s - s > 0.0
+    assert own == 0.0
+    assert lead_s - s == pytest.approx(P.min_gap_m, abs=0.5)

@@ -352,3 +352,57 @@ def test_node_subprocess_control_over_dds_drives_the_car_and_reports_velocity():
               f'{last.heading_rate:.4f} rad/s')
         assert last.longitudinal_velocity == pytest.approx(5.0, rel=0.01)
         assert last.heading_rate > 0.0
+
+
+PRIUS_FULL_BRAKE_MPS2 = 4.81    # speed_braking.full_brake_deceleration_mps2 (ToyotaPrius)
+
+
+def test_node_subprocess_watchdog_brake_stops_at_the_full_brake_deceleration_over_dds():
+    # Control at 10 m/s, then silence: the watchdog's brake is a safety stop (throttle released,
+    # full brake), so velocity_status falls at the Prius's full-brake deceleration, 4.81 m/s^2
+    # (-0.1, +0.4: the wheels' damping and rolling), and the car stops within
+    # v^2 / (2 * 4.81) = 10.4 m (-1.5 m, +0.3 m) of where it acted; at the cruise control's
+    # 2.6 m/s^2 (a cruising speed of 0, as before) it took 19 m.
+    with node_and_tester() as (proc, node):
+        reports = []
+        node.create_subscription(awi.VELOCITY_STATUS.ros_type, awi.VELOCITY_STATUS.name,
+                                 reports.append, awi.VELOCITY_STATUS.qos)
+        publisher = node.create_publisher(awi.CONTROL, awi.BRIDGE_INPUTS[awi.CONTROL].name)
+        step = node.create_client('vehicle_msgs/srv/SetInt', '/robot/time_step')
+        assert node.spin_until(lambda: step.service_is_ready()
+                               and publisher.get_subscription_count() > 0, WAIT_S), \
+            proc.stderr.read() if proc.poll() is not None else 'node did not come up'
+        msg = node.msg(awi.CONTROL)()
+        msg.longitudinal.velocity = 10.0
+        for _ in range(60):                 # 6 s of sim time, a command every 0.1 s
+            publisher.publish(msg)
+            node.spin_once(0.005)
+            assert step.call(node.srv('vehicle_msgs/srv/SetInt').Request(value=100),
+                             timeout_s=WAIT_S).success
+        assert node.spin_until(lambda: reports and reports[-1].longitudinal_velocity > 9.9,
+                               WAIT_S)
+        start = len(reports)
+        for _ in range(60):                 # 3 s without a command, 50 ms at a time
+            assert step.call(node.srv('vehicle_msgs/srv/SetInt').Request(value=50),
+                             timeout_s=WAIT_S).success
+        assert node.spin_until(lambda: len(reports) >= start + 85, WAIT_S)   # 30 Hz
+        samples = [(m.header.stamp.sec + 1e-9 * m.header.stamp.nanosec,
+                    m.longitudinal_velocity) for m in reports[start - 1:]]
+        slowing = [i for i, (_, v) in enumerate(samples) if v < 9.95]
+        assert slowing, samples
+        first = slowing[0] - 1            # the last report at speed, before the stop acted
+        t0, v0 = samples[first]
+        assert v0 == pytest.approx(10.0, abs=0.1)
+        fit = [(t, v) for t, v in samples if 2.0 < v < 9.0]
+        assert len(fit) > 30
+        ts, vs = zip(*fit)
+        mt, mv = sum(ts) / len(ts), sum(vs) / len(vs)
+        slope = sum((t - mt) * (v - mv) for t, v in fit) / sum((t - mt) ** 2 for t in ts)
+        assert PRIUS_FULL_BRAKE_MPS2 - 0.1 < -slope < PRIUS_FULL_BRAKE_MPS2 + 0.4
+        # the distance from the last report at speed: the reported speeds, integrated
+        after = samples[first:]
+        distance = sum(0.5 * (v1 + v2) * (t2 - t1)
+                       for (t1, v1), (t2, v2) in zip(after, after[1:]))
+        ideal = v0 * v0 / (2.0 * PRIUS_FULL_BRAKE_MPS2)
+        assert ideal - 1.5 < distance < ideal + 0.3
+        assert abs(samples[-1][1]) < 0.01

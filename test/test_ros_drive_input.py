@@ -232,6 +232,47 @@ def test_car_reset_after_a_command_stands_the_watchdog_down(watched_car):
     assert client.latest('brake_intensity').data == 0.0
 
 
+PRIUS_FULL_BRAKE_MPS2 = 4.81    # speed_braking.full_brake_deceleration_mps2 (ToyotaPrius)
+PRIUS_RAMP_MPS2 = 100.0 / 3.6 / 10.7
+
+
+def test_car_watchdog_stop_brakes_at_the_full_brake_deceleration_not_the_cruise_ramp():
+    # The Prius at 10 m/s, then no command: the watchdog's safety stop releases the throttle
+    # and brakes fully, so the car slows at its full-brake deceleration, 4.81 m/s^2 (+ up to
+    # 0.4 from the wheels' damping and rolling), and stops within v^2 / (2 * 4.81) = 10.4 m
+    # (-1.5 m, + 0.3 m) of where the watchdog acted, not at the cruise control's 2.6 m/s^2
+    # (19 m) as a cruising speed of 0 did.
+    car = Car('/prius_stop', car_model='ToyotaPrius')
+    try:
+        client = car.client
+        for i in range(45):
+            car.twist(10.0 + 0.001 * (i % 2), 0.0)
+            client.step(10)
+        samples = []
+        while client.sim_time() < 8.0 and (not samples or abs(samples[-1][2]) > 1e-3):
+            client.step(1)
+            odom = car.latest_odom()
+            samples.append((stamp_s(odom), odom.pose.pose.position.x, odom.twist.twist.linear.x,
+                            client.latest('brake_intensity').data))
+        braked = [sample for sample in samples if sample[3] == 1.0]
+        assert braked, 'the watchdog never braked' + car.sim.output()
+        t0, x0, v0, _ = braked[0]
+        assert v0 == pytest.approx(10.0, abs=0.1)
+        # the deceleration from 9 to 2 m/s (a straight line through the speeds)
+        fit = [(t, v) for t, _, v, _ in braked if 2.0 < v < 9.0]
+        assert len(fit) > 50
+        ts, vs = zip(*fit)
+        mt, mv = sum(ts) / len(ts), sum(vs) / len(vs)
+        slope = sum((t - mt) * (v - mv) for t, v in fit) / sum((t - mt) ** 2 for t in ts)
+        assert PRIUS_FULL_BRAKE_MPS2 - 0.1 < -slope < PRIUS_FULL_BRAKE_MPS2 + 0.4
+        distance = samples[-1][1] - x0
+        ideal = v0 * v0 / (2.0 * PRIUS_FULL_BRAKE_MPS2)
+        assert ideal - 1.5 < distance < ideal + 0.3
+        assert abs(samples[-1][2]) <= 1e-3
+    finally:
+        car.close()
+
+
 # ------------------------------------------------------------------------------ the robot
 
 class Robot:

@@ -20,6 +20,7 @@ from pathlib import Path
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 import yaml
 
@@ -164,3 +165,88 @@ def test_a_sweep_row_of_the_hit_has_min_gap_0_failed(tmp_path):
     assert (row['status'], row['no_collision'], row['no_collision.passed']) == \
         ('fail', '1', 'false')
     assert (float(row['min_gap']), row['min_gap.passed']) == (0.0, 'false')
+
+
+# --------------------------------------------------------- IDM actors that must slow down hard
+PRIUS_FRONT_M, PRIUS_REAR_M = 3.585, 0.715      # bumpers from the rear axle (ToyotaPrius.yaml)
+PRIUS_RAMP_MPS2 = 100.0 / 3.6 / 10.7             # its cruise control's ramp (time0To100)
+PRIUS_FULL_BRAKE_MPS2 = 4.81                     # speed_braking.full_brake_deceleration_mps2
+
+
+def _speeds_and_decelerations(track):
+    # mean speeds over 0.5 s windows, and the deceleration between windows 0.5 s apart
+    t, x = np.asarray(track.time_s), np.asarray(track.x_m)
+    k = int(round(0.5 / float(np.median(np.diff(t)))))
+    v = (x[k:] - x[:-k]) / (t[k:] - t[:-k])
+    tv = 0.5 * (t[k:] + t[:-k])
+    return tv, v, 0.5 * (v[:-k] + v[k:]), (v[:-k] - v[k:]) / (tv[k:] - tv[:-k])
+
+
+def test_an_idm_actor_slows_to_a_lower_waypoint_speed_at_the_iidm_deceleration(tmp_path):
+    # The Prius actor at 20 m/s, then waypoints asking 3 m/s, with IDM's comfortable
+    # deceleration b = 4 m/s^2 (the world's traffic: idm:, no traffic vehicles). The improved
+    # IDM asks -b (1 - (v0 / v)^(a delta / b)) = -4 (1 - (3 / v)^1.5) (3.6 m/s^2 at 15 m/s),
+    # beyond the cruise control's 2.6 m/s^2: the actor brakes (throttle 0, brake 4 / 4.81 m/s^2
+    # of full brake). Tolerance 0.4 m/s^2: the wheels' damping and rolling add about 0.3. Before:
+    # IDM asked thousands of m/s^2, and the actor set a cruising speed of 0 (2.6 m/s^2).
+    data = {
+        'name': 'actor_slows',
+        'world': {
+            'vehicles': [
+                {'name': 'ego', 'model': 'Car', 'pose': {'x': 0.0, 'y': 20.0, 'yaw': 0.0}},
+                {'name': 'other', 'namespace': 'other', 'model': 'ToyotaPrius',
+                 'pose': {'x': 0.0, 'y': 0.0, 'yaw': 0.0}}],
+            'roads': [{'name': 'r', 'start': {'x': -20.0, 'y': 1.875, 'yaw': 0.0}, 'lanes': 1,
+                       'lane_width': 3.75, 'speed_limit': 33.3,
+                       'segments': [{'type': 'straight', 'length': 1000.0}]}],
+            'traffic': {'vehicles': 0, 'idm': {'deceleration': 4.0}}},
+        'vehicle': 'ego',
+        'duration': 24.0,
+        'actors': [{'vehicle': 'other', 'waypoints': [[250.0, 0.0, 20.0], [800.0, 0.0, 3.0]]}],
+        'driver': {'commands': [{'t': 0.0, 'cruising_speed': 0.0, 'brake_intensity': 1.0}]},
+        'criteria': [{'kind': 'no_collision', 'vehicle': 'other'}],
+    }
+    path = tmp_path / 'actor_slows.yaml'
+    path.write_text(yaml.safe_dump(data), encoding='utf-8')
+    _, v, mean, deceleration = _speeds_and_decelerations(run_scenario(path).tracks['other'])
+    assert np.max(v) == pytest.approx(20.0, abs=0.3)     # at speed before x = 250 m
+    assert v[-1] == pytest.approx(3.0, abs=0.2)           # then at the slower waypoint's speed
+    after_peak = np.arange(len(mean)) > np.argmax(mean)
+    braking = after_peak & (mean > 7.0) & (mean < 18.0)
+    assert np.count_nonzero(braking) > 100                  # 10 ms samples: over 1 s of it
+    rule = 4.0 * (1.0 - (3.0 / mean[braking]) ** 1.5)
+    assert np.all(rule > PRIUS_RAMP_MPS2)
+    assert np.max(np.abs(deceleration[braking] - rule)) < 0.4, \
+        list(zip(mean[braking][::25], deceleration[braking][::25], rule[::25]))
+
+
+def test_an_idm_actor_behind_a_car_braking_hard_brakes_too_and_stops_behind_it(tmp_path):
+    # The ego Prius cruises at 20 m/s, the actor Prius (waypoint speed 25 m/s) follows it with
+    # IDM; at 30 s the ego brakes fully (5 m/s^2, 40 m to a stop). IDM asks the follower more
+    # than its cruise control's 2.6 m/s^2, so it brakes: up to about 4 m/s^2 (within full brake,
+    # 4.8 m/s^2 plus the wheels' damping), and stops s0 = 2 m (+-0.5 m) behind it. Before,
+    # its cruising speed 0 slowed it at 2.6 m/s^2 at most.
+    data = {
+        'name': 'leader_brakes',
+        'world': {'vehicles': [
+            {'name': 'ego', 'model': 'ToyotaPrius', 'pose': {'x': 60.0, 'y': 0.0, 'yaw': 0.0}},
+            {'name': 'other', 'namespace': 'other', 'model': 'ToyotaPrius',
+             'pose': {'x': 0.0, 'y': 0.0, 'yaw': 0.0}}]},
+        'vehicle': 'ego',
+        'duration': 46.0,
+        'actors': [{'vehicle': 'other', 'waypoints': [[2000.0, 0.0, 25.0]]}],
+        'driver': {'commands': [{'t': 0.0, 'cruising_speed': 72.0},
+                                {'t': 30.0, 'throttle': 0.0, 'brake_intensity': 1.0}]},
+        'criteria': [{'kind': 'no_collision', 'vehicle': 'other'}],
+    }
+    path = tmp_path / 'leader_brakes.yaml'
+    path.write_text(yaml.safe_dump(data), encoding='utf-8')
+    result = run_scenario(path)
+    assert result.passed, [c.detail for c in result.criteria]
+    ego, other = result.tracks['ego'], result.tracks['other']
+    t, v, _, deceleration = _speeds_and_decelerations(other)
+    assert v[np.searchsorted(t, 29.0)] == pytest.approx(20.0, abs=0.5)   # following at 20
+    assert abs(v[-1]) < 0.05                                                # stopped
+    assert 3.5 < np.max(deceleration) < PRIUS_FULL_BRAKE_MPS2 + 0.5
+    gap = (ego.x_m[-1] - PRIUS_REAR_M) - (other.x_m[-1] + PRIUS_FRONT_M)
+    assert gap == pytest.approx(2.0, abs=0.5)

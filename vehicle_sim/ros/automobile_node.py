@@ -477,8 +477,8 @@ class AutomobileNode:
                 if vehicle.drive.tick(time_s):
                     self._logger.warn(
                         f'{itf.vehicle_name("cmd_vel", vehicle.spec.namespace)}: no cmd_vel or '
-                        f'drive command for {vehicle.drive.watchdog.timeout_s:g} s: cruising '
-                        'speed 0, brake 1')
+                        f'drive command for {vehicle.drive.watchdog.timeout_s:g} s: safety '
+                        'stop (cruising speed 0, throttle released, brake 1)')
             self.node.serve_pending()
             self._publish_step(time_s)
             if self._pace.update(self._wall_clock(), time_s):

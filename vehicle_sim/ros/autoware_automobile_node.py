@@ -80,8 +80,8 @@ AUTOWARE_PARAMETERS = (
                   'timeout_action applies (0 disables)'),
     ParamSpec('timeout_action', kind='enum', default=DEFAULT_TIMEOUT_ACTION,
               choices=TIMEOUT_ACTIONS,
-              doc='brake: cruising speed 0 and full brake; coast: neutral; hold: keep the last '
-                  'command'),
+              doc='brake: a safety stop (throttle released, full brake); coast: neutral; hold: '
+                  'keep the last command'),
     ParamSpec('status_rate_hz', kind='float', default=30.0, unit='Hz', gt=0.0,
               doc='rate of the /vehicle/status reports (simulated time)'),
     ParamSpec('frame_id', kind='str', default='base_link', doc='frame_id of VelocityReport'),

@@ -294,7 +294,8 @@ CMD_VEL_STAMPED_PARAMETER = ParamSpec(
 CMD_VEL_TIMEOUT_PARAMETER = ParamSpec(
     'cmd_vel_timeout_s', kind='float', default=DEFAULT_TIMEOUT_S, unit='s', ge=0.0, le=3600.0,
     doc='age (receipt, simulated time) of the last cmd_vel (or drive) command after which the '
-        'vehicle stops (car: cruising speed 0 and full brake; robot: wheels 0); 0 disables')
+        'vehicle stops (car: a safety stop, throttle released and full brake; robot: wheels '
+        '0); 0 disables')
 
 
 # ---------------------------------------------------------------------------------------------

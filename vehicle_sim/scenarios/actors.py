@@ -20,15 +20,21 @@ steering angle, the one from pure pursuit (Coulter 1992: δ = atan(2 L sin α / 
 of the aim point seen from the rear axle, L_d its distance), limited to the car's steering range
 by the follower (the follower's choice, not an input clamp). A robot actor gets the same
 curvature κ = 2 sin α / L_d as wheel speeds v ∓ κ v t / 2. After the last waypoint (unless it
-loops) the vehicle stops: cruising speed 0 and full brake for a car, zero wheel speeds for a
-robot.
+loops) the vehicle stops: core/car/speed_braking.py's full_stop (full brake, the throttle
+released: the Prius slows at about 5 m/s^2) for a car, zero wheel speeds for a robot.
 
 With ``speed_control: idm`` (the default; :class:`IdmSpeed`) the waypoint's speed is the
-desired speed of the Intelligent Driver Model (core/traffic/idm.py) behind the nearest vehicle
-ahead within the actor's width (traffic vehicles and the scenario's other vehicles): the actor
-slows down and stops behind it as traffic does; a car brakes (cruising speed 0 and the brakes)
-when it must slow down by more than core/car/speed_braking.py's BRAKE_ABOVE_MPS.
-``speed_control: waypoints`` drives the waypoints' speeds whatever is ahead.
+desired speed of the improved Intelligent Driver Model (IIDM, core/traffic/idm.py's
+iidm_acceleration) behind the nearest vehicle ahead within the actor's width (traffic vehicles
+and the scenario's other vehicles): the actor slows down and stops behind it as traffic does;
+IIDM asks at most the comfortable deceleration b to slow down to a lower waypoint speed (IDM
+would ask a slam on the brakes there). While IIDM asks no more deceleration than the car's
+cruise control gives, its ramp (100 km/h) / time0To100 (2.6 m/s^2 for the Prius), the cruise
+control takes IIDM's speed IDM_HORIZON_S ahead (and approaches it at up to its ramp); beyond,
+the car brakes as a driver presses the brake pedal: the throttle released (cruise control off)
+and the brake at deceleration / full-brake deceleration (core/car/speed_braking.py's
+brake_for_deceleration; the Prius at full brake: 4.8 m/s^2). ``speed_control: waypoints``
+drives the waypoints' speeds whatever is ahead.
 
 :func:`make_actors` tells the world's traffic where each actor will drive (its path from where it
 stands through its waypoints): the SUMO engine gives the actor's vehicle in SUMO the route of the
@@ -37,24 +43,29 @@ edges the path passes (docs/sumo_engine.md), so that SUMO's drivers know where i
 
 import math
 
-from vehicle_sim.core.car.speed_braking import brake_for_speed
+from vehicle_sim.core.car.speed_braking import (
+    brake_for_deceleration,
+    cruise_ramp_mps2,
+    full_brake_deceleration_mps2,
+    full_stop,
+)
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
 from vehicle_sim.core.specs.units import mps_to_kmh, ros_steering_to_webots
-from vehicle_sim.core.traffic.idm import idm_acceleration, IdmParams
+from vehicle_sim.core.traffic.idm import IdmParams, iidm_acceleration
 
 # The aim point moves on once the vehicle is this close to it (its look-ahead), and the last
 # waypoint counts as reached within ARRIVE_M or one wheelbase (a robot: its tread), the smaller.
 ARRIVE_M = 1.0
 LOOKAHEAD_TIME_S = 1.0
-# IDM speed control: the speed asked for is the speed IDM reaches after this time [s]; a car
-# brakes instead of cruising when that is well below its speed (core/car/speed_braking.py).
+# IDM speed control: the speed asked for is the speed IIDM reaches after this time [s] (a car
+# brakes instead where IIDM asks more deceleration than its cruise control gives).
 IDM_HORIZON_S = 0.5
 LEADER_RANGE_M = 250.0
 
 
 class IdmSpeed:
     """
-    The Intelligent Driver Model's speed for an actor behind whatever drives ahead of it.
+    The improved Intelligent Driver Model's speed for an actor behind whatever drives ahead.
 
     :param outline: the actor's footprint (core Outline) in its base_link frame.
     :param others: ``others()`` -> [(name, x, y, yaw, length, width, speed)] of the vehicles
@@ -87,18 +98,26 @@ class IdmSpeed:
                 best = (gap, speed * math.cos(turn))
         return best
 
-    def speed(self, x_m, y_m, yaw_rad, speed_mps, desired_mps):
-        """Return the speed [m/s] to ask for: IDM's after IDM_HORIZON_S, within 0 .. desired."""
-        if desired_mps <= 0.0:
-            return 0.0
+    def acceleration(self, x_m, y_m, yaw_rad, speed_mps, desired_mps):
+        """Return IIDM's acceleration [m/s^2] toward ``desired_mps`` (>= 0) behind the leader."""
         found = self.leader(x_m, y_m, yaw_rad)
         speed = max(speed_mps, 0.0)
+        desired = max(desired_mps, 0.0)
         if found is None:
-            acc = idm_acceleration(speed, desired_mps, None, 0.0, self.params)
-        else:
-            gap, leader_speed = found
-            acc = idm_acceleration(speed, desired_mps, gap, speed - leader_speed, self.params)
-        return min(max(speed + acc * IDM_HORIZON_S, 0.0), desired_mps)
+            return iidm_acceleration(speed, desired, None, 0.0, self.params)
+        gap, leader_speed = found
+        return iidm_acceleration(speed, desired, gap, speed - leader_speed, self.params)
+
+    @staticmethod
+    def speed_after(speed_mps, acceleration_mps2, desired_mps):
+        """Return the speed [m/s] to ask for: after IDM_HORIZON_S, within 0 .. desired."""
+        speed = max(speed_mps, 0.0) + acceleration_mps2 * IDM_HORIZON_S
+        return min(max(speed, 0.0), max(desired_mps, 0.0))
+
+    def speed(self, x_m, y_m, yaw_rad, speed_mps, desired_mps):
+        """Return the speed [m/s] to ask for: IIDM's after IDM_HORIZON_S, within 0 .. desired."""
+        return self.speed_after(speed_mps, self.acceleration(x_m, y_m, yaw_rad, speed_mps,
+                                                              desired_mps), desired_mps)
 
 
 class WaypointFollower:
@@ -166,6 +185,8 @@ class CarActor:
         logic = car.logic
         self.follower = WaypointFollower(spec, logic.wheelbase_m)
         self._limits = (logic.min_steering_angle_rad, logic.max_steering_angle_rad)
+        self._ramp_mps2 = cruise_ramp_mps2(logic.params)
+        self._full_brake_mps2 = full_brake_deceleration_mps2(logic.params)
         logic.set_brake_intensity(0.0)
 
     def control(self):
@@ -175,8 +196,7 @@ class CarActor:
         yaw = yaw_from_quaternion(qx, qy, qz, qw)
         command = self.follower.command(x, y, yaw)
         if command is None:
-            logic.set_cruising_speed_kmh(0.0)
-            logic.set_brake_intensity(1.0)
+            full_stop(logic)
             return
         speed, curvature = command
         steer = ros_steering_to_webots(math.atan(curvature * self.follower.wheelbase_m))
@@ -184,12 +204,13 @@ class CarActor:
         logic.set_steering_angle(min(max(steer, low), high))
         if self.idm is not None:
             now = self.car.body.forward_speed_mps()
-            speed = self.idm.speed(x, y, yaw, now, speed)
-            brake = brake_for_speed(now, speed)
-            if brake > 0.0:                         # the cruise control slows too gently
-                logic.set_cruising_speed_kmh(0.0)
+            acc = self.idm.acceleration(x, y, yaw, now, speed)
+            brake = brake_for_deceleration(-acc, self._ramp_mps2, self._full_brake_mps2)
+            if brake > 0.0:     # beyond the cruise control's ramp: the brake pedal instead
+                logic.set_throttle(0.0)
                 logic.set_brake_intensity(brake)
                 return
+            speed = self.idm.speed_after(now, acc, speed)
             logic.set_brake_intensity(0.0)
         logic.set_cruising_speed_kmh(mps_to_kmh(speed))
 

@@ -108,9 +108,9 @@ ACTOR_SPECS = (
               '(else stop there)'),
     ParamSpec('speed_control', 'speed_control', 'enum', 'idm',
               choices=('idm', 'waypoints'), doc="idm: at most the waypoints' speeds, slower as "
-              'the Intelligent Driver Model (docs/traffic.md) asks behind whatever drives ahead '
-              "within the actor's width (traffic, other vehicles); waypoints: exactly the "
-              "waypoints' speeds, whatever is ahead"),
+              'the improved Intelligent Driver Model (docs/traffic.md) asks behind whatever '
+              "drives ahead within the actor's width (traffic, other vehicles); waypoints: "
+              "exactly the waypoints' speeds, whatever is ahead"),
 )
 
 @dataclass(frozen=True)

@@ -29,13 +29,17 @@ are direct calls), so a run is deterministic. The reference is the kinematic bic
 (ẋ = v cos ψ, ẏ = v sin ψ, ψ̇ = v tan δ / L) integrated from the commands AS APPLIED: for the
 robots the bridge's applied (v, ω) after its ramps, wheel-speed limit and watchdog (δ_applied =
 atan(ω L / v)); for the car the cruising speed the node set on the car, ramped at the car's
-acceleration (time0To100), with the commanded steering. docs/end_to_end.md has the figures.
+acceleration (time0To100), and after the watchdog's safety stop (throttle released, full brake)
+the speed falling at the car's full-brake deceleration, with the commanded steering.
+docs/end_to_end.md has the figures.
 """
 
 from dataclasses import dataclass, field
 import math
 from typing import Callable, List, Optional, Sequence, Tuple
 
+from vehicle_sim.core.car.drivetrain import ControlMode
+from vehicle_sim.core.car.speed_braking import full_brake_deceleration_mps2
 from vehicle_sim.core.diffdrive.kinematics import integrate_pose
 from vehicle_sim.core.diffdrive.speed_limiter import SpeedLimiter
 from vehicle_sim.core.geometry.angles import wrap_angle_rad, yaw_from_quaternion
@@ -396,6 +400,7 @@ def run_car(stream, car_model=DEFAULT_CAR, transport='dds', record_every=5):
         # the car's cruise ramp: Car.proto's acceleration (100 km/h)/time0To100, up and down
         accel = kmh_to_mps(100.0) / params.time_0_to_100_s
         ramp = SpeedLimiter(accel, accel, 'car speed')
+        full_brake = full_brake_deceleration_mps2(params)
         speed = 0.0
         automobile = node.automobile
         _record_pose(track, automobile.world.time_s, car.body.pose())
@@ -410,7 +415,12 @@ def run_car(stream, car_model=DEFAULT_CAR, transport='dds', record_every=5):
             automobile.step_once()
             # as applied: the cruising speed the node set, ramped like the car's wheel motors;
             # the commanded steering (the steering motors reach it within a few steps)
-            speed = ramp.limit(kmh_to_mps(logic.effective_cruising_speed_kmh), speed, DT_S)
+            if logic.control_mode == ControlMode.TORQUE and logic.throttle == 0.0:
+                # the watchdog's safety stop: the brakes, at their deceleration
+                slower = abs(speed) - logic.brake_intensity * full_brake * DT_S
+                speed = math.copysign(max(slower, 0.0), speed)
+            else:
+                speed = ramp.limit(kmh_to_mps(logic.effective_cruising_speed_kmh), speed, DT_S)
             steer = -logic.commanded_steering_angle_rad   # Webots + right -> + left
             track.applied.append((speed, steer))
             _record_pose(track, automobile.world.time_s, car.body.pose())

@@ -46,6 +46,7 @@ from vehicle_sim.core.autoware.codes import (
     REVERSE_GEARS,
 )
 from vehicle_sim.core.car.signals import Indicator
+from vehicle_sim.core.car.speed_braking import full_stop
 from vehicle_sim.core.commands.watchdog import (
     CommandWatchdog,
     DEFAULT_TIMEOUT_ACTION,
@@ -253,8 +254,10 @@ class AutowareCar:
 
     Commands are validated before anything changes. In MANUAL the car is left to its
     /automobile services (one stop is applied when switching). The watchdog (receipt time,
-    accepted commands only) acts once per staleness: brake = cruising speed 0 and full brake,
-    coast = NEUTRAL behaviour, hold = nothing.
+    accepted commands only) acts once per staleness: brake = a safety stop (core/car/
+    speed_braking.py's full_stop: cruising speed 0, the throttle released and full brake, so
+    that the car slows at its full-brake deceleration, not at its cruise control's ramp), coast =
+    NEUTRAL behaviour, hold = nothing.
     """
 
     def __init__(self, logic, timeout_s=DEFAULT_TIMEOUT_S, timeout_action=DEFAULT_TIMEOUT_ACTION):
@@ -329,8 +332,9 @@ class AutowareCar:
             return False
         steering = ros_steering_to_webots(self.target[1])
         if action == 'brake':
-            apply_car_command(self.logic, CarCommand(0.0, steering, PARK_BRAKE_INTENSITY,
-                                                     WEBOTS_GEAR[self.action]))
+            self.logic.set_steering_angle(steering)
+            self.logic.set_gear(WEBOTS_GEAR[self.action])
+            full_stop(self.logic)
         else:
             apply_car_command(self.logic, CarCommand(0.0, steering, 0.0, 0, coast=True))
         return True

@@ -34,8 +34,8 @@ car's cruising speed and steering angle (docs/drive.md, "cmd_vel and drive"):
 - Negative speed: the cruising speed becomes negative, the car backs (SPEED mode drives the
   wheels backwards, as Webots' setCruisingSpeed does).
 - Watchdog (:class:`~vehicle_sim.core.commands.watchdog.CommandWatchdog`, receipt time): once the
-last
-  command is older than the timeout, cruising speed 0 and full brake, once per staleness.
+  last command is older than the timeout, a safety stop (core/car/speed_braking.py's full_stop:
+  cruising speed 0, the throttle released and full brake), once per staleness.
 - A service call that changes the car after a command disarms the watchdog, so the service's
   setting holds until the next command arrives.
 """
@@ -45,6 +45,7 @@ import math
 from typing import Optional, Tuple
 
 from vehicle_sim.core.car.drivetrain import central_ratio
+from vehicle_sim.core.car.speed_braking import full_stop
 from vehicle_sim.core.commands.watchdog import CommandWatchdog, DEFAULT_TIMEOUT_S
 from vehicle_sim.core.diffdrive.kinematics import wheel_speeds_from_twist
 from vehicle_sim.core.diffdrive.speed_limiter import limit_wheel_speeds
@@ -58,8 +59,6 @@ from vehicle_sim.core.specs.units import (
 
 # |v| below which a car is at a standstill for cmd_vel: δ = atan(ω·L/v) is undefined there.
 STANDSTILL_SPEED_MPS = 1e-3
-# Brake intensity the watchdog applies (with cruising speed 0).
-TIMEOUT_BRAKE_INTENSITY = 1.0
 
 
 def steering_from_yaw_rate(speed_mps, yaw_rate_radps, wheelbase_m,
@@ -258,15 +257,15 @@ class CarDriveInput:
         """
         Run the watchdog at ``now_s``; return True when it acted on this call.
 
-        Once the command in force is stale: cruising speed 0 and full brake (the steering is
-        kept), once; the next command drives again.
+        Once the command in force is stale: a safety stop (full_stop: cruising speed 0, the
+        throttle released and full brake; the steering is kept), once; the next command drives
+        again.
         """
         if not self.armed or not self.watchdog.is_stale(now_s):
             return False
         self.armed = False
         self.timeouts += 1
-        self.logic.set_cruising_speed_kmh(0.0)
-        self.logic.set_brake_intensity(TIMEOUT_BRAKE_INTENSITY)
+        full_stop(self.logic)
         return True
 
 
