@@ -23,12 +23,16 @@ rest; a success is no collision, no lane departure (stay_in_lane) and a mean spe
 
 Observations (the keys a running ROS node gives too): ``lane`` (the lane state), ``twist``
 (base_link velocity) and ``objects`` (the 8 nearest traffic cars as highway-env's Kinematics
-table), scaled inside the policy (vehicle_sim/gym/scaled_inputs.py). Actions: steering angle
-within +-0.02 rad and cruising speed 0 .. 33.3 m/s, rescaled to [-1, 1], at 5 Hz. Reward
+table), scaled inside the policy (vehicle_sim/gym/scaled_inputs.py). Actions
+(``braking_speed_steering``): steering angle within +-0.02 rad and cruising speed 0 .. 33.3
+m/s, rescaled to [-1, 1], at 5 Hz; a speed more than 1 m/s below the car's brakes. Reward
 (Drive-v0's terms, weights in ENV_OPTIONS): progress along the lanes x 0.03 /m (one per
 second at the limit), -10 for a collision, -10 per second off the lanes, -5 per solid line
-crossed, -0.3 per second times the distance from the lane's centre over half its width; a
-collision or a lane departure also ends the episode, losing the progress to come.
+crossed, -0.3 per second times the distance from the lane's centre over half its width, and
+the gap term (a time headway under 1 s, a time to collision under 4 s, a side clearance under
+1 m); a collision or a lane departure also ends the episode, losing the progress to come.
+Every second training environment runs denser traffic with a wider spread of speeds
+(TRAINING_TRAFFIC); the evaluation runs the scenario's own.
 
 Run: ``python examples/train_highway.py [--minutes 30] [--seed 0] [--out DIR]``; it writes
 ``DIR/learning_curve.csv`` (a row per PPO update: env steps, wall time, mean return and success
@@ -62,6 +66,7 @@ ENV_OPTIONS = {
     'world': 'highway_traffic',
     'objects': {'count': 8, 'range': 80.0, 'speed_scale': 40.0},
     'action_repeat': 20,                # 0.2 s per action: 5 Hz decisions
+    'control': 'braking_speed_steering',    # a speed well below the car's brakes (5.4 m/s^2)
     'max_speed': LIMIT_MPS,             # never faster than the limit
     'max_reverse_speed': 0.0,
     'max_steering': 0.02,               # rad: 0.02 rad at 33 m/s is 8 m/s^2 lateral
@@ -71,6 +76,14 @@ ENV_OPTIONS = {
     'off_lane_penalty': 10.0,
     'solid_line_penalty': 5.0,
     'lane_centre_penalty': 0.3,         # per second at a lane's edge: keep to the centre
+    # the gap term (core/learning/gap.py, docs/gym.md): per second, in proportion, a time
+    # headway under 1 s, a time to collision under 4 s (x 2), a side clearance under 1 m
+    'headway_penalty': 1.0,
+    'headway_s': 1.0,
+    'ttc_penalty': 2.0,
+    'ttc_s': 4.0,
+    'side_gap_penalty': 1.0,
+    'gap_margin': 1.0,
 }
 # Input factors (ScaledInputs): each entry to about [-1, 1] where it matters.
 SCALES = {
@@ -87,6 +100,14 @@ PPO_OPTIONS = {
 }
 NET_ARCH = [128, 128]
 LOG_STD_INIT = -0.5
+POLICY_OPTIONS = {}             # more keywords of the policy (e.g. squash_output with use_sde)
+# The traffic of every TRAINING_TRAFFIC_EVERY-th training environment (1, 1 + k, ...; 0: none)
+# replaced by these TrafficSpec fields (core/traffic/params.py): the training worlds only, the
+# evaluation keeps the scenario's traffic.
+# Every second one gets 80 cars whose desired speeds spread twice as wide (a factor 0.667 +- 2 x
+# 0.15 of the limit: 12 to 32 m/s, against 17 to 28 m/s): more cars much slower than the ego.
+TRAINING_TRAFFIC = {'vehicles': 80, 'speed_factor_std': 0.15}
+TRAINING_TRAFFIC_EVERY = 2
 EVAL_SEED_BASE = 1_000_000      # evaluation seeds: EVAL_SEED_BASE + k; training's are seed + i
 WINDOW = 50                     # training episodes per curve point
 # RescaleAction's float64 bounds are cast to the float32 Box: expected, not news.
@@ -122,15 +143,44 @@ def episode_outcome(info, sim):
             'time_s': float(info['time_s'])}
 
 
-class _EnvFactory:
-    """A picklable env maker for SubprocVecEnv (the card travels, not a closure)."""
+def scenario_with_traffic(scenario, traffic):
+    """Return the scenario file's ScenarioSpec with its world's traffic fields replaced."""
+    from dataclasses import replace
 
-    def __init__(self, policy_card, scenario):
+    from vehicle_sim.scenarios.schema import load_scenario
+    spec = load_scenario(scenario)
+    world = replace(spec.world, traffic=replace(spec.world.traffic, **traffic))
+    return replace(spec, world=world)
+
+
+class _EnvFactory:
+    """
+    A picklable env maker for SubprocVecEnv (the card travels, not a closure).
+
+    With ``rank`` it makes what stable-baselines3's ``make_vec_env`` makes for that rank: the
+    environment in a Monitor, its action space seeded ``seed + rank``; with ``traffic`` the
+    scenario's traffic fields replaced (scenario_with_traffic).
+    """
+
+    def __init__(self, policy_card, scenario, traffic=None, rank=None, seed=None):
         self.card = policy_card
         self.scenario = scenario
+        self.traffic = traffic
+        self.rank = rank
+        self.seed = seed
 
     def __call__(self):
-        return make_task_env(self.card, self.scenario)
+        if self.traffic and self.scenario is not None:
+            env = make_env(self.card, world=None,
+                           scenario=scenario_with_traffic(self.scenario, self.traffic))
+        else:
+            env = make_task_env(self.card, self.scenario)
+        if self.rank is None:
+            return env
+        from stable_baselines3.common.monitor import Monitor
+        if self.seed is not None:
+            env.action_space.seed(self.seed + self.rank)
+        return Monitor(env)
 
 
 def train(args, policy_card, out, scenario=SCENARIO, ppo_options=None, scales=None):
@@ -144,7 +194,6 @@ def train(args, policy_card, out, scenario=SCENARIO, ppo_options=None, scales=No
     """
     from stable_baselines3 import PPO
     from stable_baselines3.common.callbacks import BaseCallback
-    from stable_baselines3.common.env_util import make_vec_env
     from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
     import torch
 
@@ -152,13 +201,18 @@ def train(args, policy_card, out, scenario=SCENARIO, ppo_options=None, scales=No
 
     torch.set_num_threads(args.threads)
     vec_cls = SubprocVecEnv if args.envs > 1 else DummyVecEnv
-    envs = make_vec_env(_EnvFactory(policy_card, scenario), n_envs=args.envs, seed=args.seed,
-                        vec_env_cls=vec_cls)
+    every = TRAINING_TRAFFIC_EVERY
+    envs = vec_cls([_EnvFactory(policy_card, scenario,
+                                TRAINING_TRAFFIC if every and i % every == 1 % every else None,
+                                rank=i, seed=args.seed)
+                    for i in range(args.envs)])
+    envs.seed(args.seed)
     model = PPO('MultiInputPolicy', envs, seed=args.seed, device='cpu', verbose=0,
-                policy_kwargs={'net_arch': NET_ARCH, 'log_std_init': LOG_STD_INIT,
-                               'features_extractor_class': ScaledInputs,
-                               'features_extractor_kwargs': {
-                                   'scales': SCALES if scales is None else scales}},
+                policy_kwargs=dict({'net_arch': NET_ARCH, 'log_std_init': LOG_STD_INIT,
+                                    'features_extractor_class': ScaledInputs,
+                                    'features_extractor_kwargs': {
+                                        'scales': SCALES if scales is None else scales}},
+                                   **POLICY_OPTIONS),
                 **dict(PPO_OPTIONS, **(ppo_options or {})))
     episodes, rows = [], []
     start = time.monotonic()
@@ -345,7 +399,10 @@ def main(argv=None):
                'torch_threads': args.threads, 'cpu_count': os.cpu_count(),
                'env_id': ENV_ID, 'env_options': ENV_OPTIONS, 'scenario': SCENARIO.name,
                'observation_keys': list(OBSERVATION_KEYS), 'scales': SCALES,
-               'ppo': dict(PPO_OPTIONS, net_arch=NET_ARCH, log_std_init=LOG_STD_INIT)}
+               'ppo': dict(PPO_OPTIONS, net_arch=NET_ARCH, log_std_init=LOG_STD_INIT,
+                           **POLICY_OPTIONS)}
+    if TRAINING_TRAFFIC_EVERY:
+        summary['training_traffic'] = dict(TRAINING_TRAFFIC, every=TRAINING_TRAFFIC_EVERY)
     if args.evaluate:
         model_path = Path(args.evaluate)
     else:

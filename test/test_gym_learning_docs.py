@@ -18,8 +18,10 @@ docs/learning.md shows the figures of the committed training run, as the script 
 
 examples/train_highway.py wrote docs/learning/highway_ppo_summary.json and the curve files; the
 table in docs/learning.md must be ``results_markdown`` of that summary (not typed in), and the
-committed model's card must be the script's. The same for examples/train_crossing_shared.py's
-run (docs/learning/crossing_shared_*). Needs neither stable-baselines3 nor PyTorch.
+committed model's card must be the script's. The same for the two earlier runs of the script
+whose figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*) and for
+examples/train_crossing_shared.py's run (docs/learning/crossing_shared_*). Needs neither
+stable-baselines3 nor PyTorch.
 """
 
 import csv
@@ -55,21 +57,42 @@ def test_the_committed_curve_is_the_runs_and_the_model_has_the_scripts_card():
                       .read_text(encoding='utf-8'))
     assert card == script.card().as_dict()
     assert summary['env_options'] == script.ENV_OPTIONS
+    assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
+                                               every=script.TRAINING_TRAFFIC_EVERY)
 
 
-def test_the_docs_show_the_braking_runs_figures_and_its_options_are_the_scripts_and_the_brakes():
-    summary = json.loads((RUN / 'highway_ppo_braking_summary.json').read_text(encoding='utf-8'))
+# The options the committed run added to the first run's: the braking action and the gap term.
+BRAKING_AND_GAP = {'control': 'braking_speed_steering', 'headway_penalty': 1.0,
+                   'headway_s': 1.0, 'ttc_penalty': 2.0, 'ttc_s': 4.0, 'side_gap_penalty': 1.0,
+                   'gap_margin': 1.0}
+
+
+def _earlier_run(name):
+    # An earlier run's summary: its table in docs/learning.md, its curve's last row its own
+    summary = json.loads((RUN / f'{name}_summary.json').read_text(encoding='utf-8'))
     text = (ROOT / 'docs' / 'learning.md').read_text(encoding='utf-8')
-    script = _script()
-    assert script.results_markdown(summary) in text
+    assert _script().results_markdown(summary) in text
     assert summary['evaluation']['trained']['episodes'] == 100
-    with open(RUN / 'highway_ppo_braking_curve.csv', encoding='utf-8') as stream:
+    with open(RUN / f'{name}_curve.csv', encoding='utf-8') as stream:
         rows = list(csv.DictReader(stream))
     assert summary['final_training_row'] == {
         key: type(value)(rows[-1][key]) for key, value in summary['final_training_row'].items()}
-    variant = {'control': 'braking_speed_steering', 'headway_penalty': 1.0, 'headway_s': 1.0,
-               'ttc_penalty': 2.0, 'ttc_s': 4.0, 'side_gap_penalty': 1.0, 'gap_margin': 1.0}
-    assert summary['env_options'] == dict(script.ENV_OPTIONS, **variant)
+    return summary
+
+
+def test_the_docs_show_the_braking_runs_figures_and_its_options_are_the_scripts():
+    # the braking run: the script's options of today, its own traffic in every environment
+    summary = _earlier_run('highway_ppo_braking')
+    script = _script()
+    assert summary['env_options'] == dict(script.ENV_OPTIONS, **BRAKING_AND_GAP)
+    assert 'training_traffic' not in summary and script.TRAINING_TRAFFIC_EVERY
+
+
+def test_the_docs_show_the_first_runs_figures_without_the_brakes_and_the_gap_term():
+    summary = _earlier_run('highway_ppo_speed_steering')
+    options = {key: value for key, value in _script().ENV_OPTIONS.items()
+               if key not in BRAKING_AND_GAP}
+    assert summary['env_options'] == options
 
 
 def test_the_docs_show_the_committed_crossing_runs_figures():
