@@ -221,7 +221,8 @@ def train(out, budget_s=600.0, seed=0, runners=None, envs_per_runner=1, batch=BA
         facts['load_end'] = round(os.getloadavg()[0], 2)
         facts['load_mean'] = round(sum(loads) / len(loads), 2)
         checkpoint = out / 'checkpoint'
-        algo.save_to_path(str(checkpoint))
+        # absolute: RLlib takes a relative path for a URI without a scheme (pyarrow refuses it)
+        algo.save_to_path(str(checkpoint.resolve()))
         save_card(card, checkpoint)
         return curve, facts
     finally:

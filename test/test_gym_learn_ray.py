@@ -53,11 +53,11 @@ def _script():
     return load_script(SCRIPT)
 
 
-def _run(*args, prelude=''):
+def _run(*args, prelude='', cwd=None):
     code = (f'{prelude}import runpy, sys; sys.argv = {[str(SCRIPT), *args]!r}; '
             f'runpy.run_path({str(SCRIPT)!r}, run_name="__main__")')
     return subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
-                          timeout=TIMEOUT_S)
+                          timeout=TIMEOUT_S, cwd=cwd)
 
 
 def test_without_rllib_the_script_names_the_extra():
@@ -126,11 +126,13 @@ def ray_run(tmp_path_factory):
     """Run the shipped script's smoke run once; return (its folder, the finished process)."""
     for module in ('ray.rllib', 'torch'):
         pytest.importorskip(module, reason=LEARN_RAY)
-    out = tmp_path_factory.mktemp('ray') / 'run'
+    folder = tmp_path_factory.mktemp('ray')
+    # a relative --out, as docs/learning.md runs it (RLlib's save_to_path takes a relative path
+    # for a URI without a scheme: the script gives it the absolute one)
     done = _run('--iterations', '2', '--batch', '200', '--runners', '1', '--seed', '3',
-                '--eval-episodes', '1', '--eval-workers', '1', '--out', str(out))
+                '--eval-episodes', '1', '--eval-workers', '1', '--out', 'run', cwd=folder)
     assert done.returncode == 0, done.stderr[-3000:]
-    return out, done
+    return folder / 'run', done
 
 
 def test_two_iterations_on_the_highway_give_a_finite_learning_curve(ray_run):
@@ -223,10 +225,10 @@ def test_the_checkpoint_is_a_policy_with_frozen_input_statistics(ray_run):
         env.close()
 
 
-def _vehicle_sim(*args):
+def _vehicle_sim(*args, cwd=ROOT):
     command = Path(sys.executable).with_name('vehicle-sim')
     return subprocess.run([str(command), *args], capture_output=True, text=True,
-                          timeout=TIMEOUT_S, cwd=ROOT)
+                          timeout=TIMEOUT_S, cwd=cwd)
 
 
 def test_policy_evaluate_reads_the_checkpoint_with_the_script_s_verdict(ray_run):
@@ -241,6 +243,30 @@ def test_policy_evaluate_reads_the_checkpoint_with_the_script_s_verdict(ray_run)
     verdict = 'PASS' if trained['success'] == 'True' else 'FAIL'
     assert f'in-process seed {EVAL_SEED}: {verdict}' in done.stdout
     assert f"in-process success rate {100.0 * (verdict == 'PASS'):5.1f} %" in done.stdout
+
+
+def test_policy_evaluate_drives_the_node_with_the_checkpoint_as_in_process(ray_run):
+    # over the wire (the automobile node, policy run, lockstep) the checkpoint, given by a
+    # relative path as docs/learning.md gives it, gets the verdict it gets in process
+    # (5 s of the evaluation scenario's highway traffic: a 60 s episode over the wire takes
+    # minutes on a loaded machine)
+    out, _ = ray_run
+    (out.parent / 'short.yaml').write_text(
+        'name: short\nworld: highway_traffic\nduration: 5.0\nseed: 0\n'
+        'driver: {commands: [{t: 0.0, cruising_speed: 100.0}]}\n'
+        'criteria:\n  - kind: no_collision\n  - kind: stay_in_lane\n', encoding='utf-8')
+    done = _vehicle_sim('policy', 'evaluate', 'run/checkpoint', '--scenario', 'short.yaml',
+                        '--episodes', '1', '--first-seed', str(EVAL_SEED), cwd=out.parent)
+    assert done.returncode == 0, done.stderr[-3000:]
+    verdicts = {}
+    for path in ('in-process', 'wire'):
+        line = next(line for line in done.stdout.splitlines()
+                    if line.strip().startswith(f'{path} seed {EVAL_SEED}: '))
+        verdicts[path] = line.split(': ')[1].split()[0]
+    assert verdicts['wire'] == verdicts['in-process'] in ('PASS', 'FAIL'), done.stdout
+    rate = 100.0 * (verdicts['wire'] == 'PASS')
+    assert f'in-process success rate {rate:5.1f} %' in done.stdout
+    assert f'wire       success rate {rate:5.1f} %' in done.stdout
 
 
 def test_policy_run_refuses_a_checkpoint_of_another_observation_space(ray_run, tmp_path):

@@ -24,6 +24,7 @@ naming the key and the rule, before anything is built. docs/gym.md shows the tab
 
 from dataclasses import replace
 
+from vehicle_sim.core.learning.actions import LAYOUTS
 from vehicle_sim.core.sensors.camera_spec import CameraSpec
 from vehicle_sim.core.sensors.lidar_spec import LidarSpec
 from vehicle_sim.core.sensors.params import SENSOR_TYPES
@@ -31,8 +32,8 @@ from vehicle_sim.core.sensors.range_finder_spec import RangeFinderSpec
 from vehicle_sim.core.specs.param_spec import parameter_table_markdown, ParamSpec, validate_table
 from vehicle_sim.core.specs.simulation import TIME_STEP_MS
 
-CONTROLS = ('auto', 'speed_steering', 'braking_speed_steering', 'throttle_steering',
-            'twist')
+# 'auto' (the vehicle's default) and core's action layouts (core/learning/actions.py).
+CONTROLS = ('auto',) + tuple(LAYOUTS)
 SOURCE = 'vehicle_sim/Drive-v0'
 
 

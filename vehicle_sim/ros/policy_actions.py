@@ -18,10 +18,11 @@ A policy's action written as the automobile node's drive commands.
 
 The policy's action is in its card's ``action_range`` (RescaleAction's [-1, 1]); it is mapped
 back to the environment's physical action Box with RescaleAction's own affine map (float32, as
-gymnasium computes it), checked against that Box as the environment checks it (a value past a
-bound by float rounding only is the bound; anything else is refused, naming the entry), and
-turned into the Webots-level setters of the car, the services of the automobile node's table
-(docs/ros_interface.md), in their units:
+gymnasium computes it), checked against that Box as the environment checks it, and turned into
+the car's Webots-level setters with their values by core's table of the action layouts
+(``vehicle_sim/core/learning/actions.py``: the rule the environment applies in process,
+gym/controls.py), each sent as the automobile node's service of the same name
+(``automobile/<setter>``, docs/ros_interface.md), in its unit:
 
 - ``speed_steering`` [steering angle [rad], + left; speed [m/s]] ->
   ``automobile/set_steering_angle`` (rad, + RIGHT: the sign flips) and
@@ -33,55 +34,20 @@ turned into the Webots-level setters of the car, the services of the automobile 
   ``set_cruising_speed``;
 - ``throttle_steering`` [steering angle; throttle; brake] -> ``automobile/set_steering_angle``,
   ``automobile/set_throttle``, ``automobile/set_brake_intensity``.
-
-The environment applies the same values through the same car logic setters (gym/controls.py).
 """
 
 import numpy as np
 
-from vehicle_sim.core.car.speed_braking import brake_for_speed
+from vehicle_sim.core.learning import actions
 from vehicle_sim.core.specs.errors import InvalidParameterError
-from vehicle_sim.core.specs.units import mps_to_kmh, ros_steering_to_webots
 
-SET_STEERING = 'automobile/set_steering_angle'
-SET_CRUISING_SPEED = 'automobile/set_cruising_speed'
-SET_THROTTLE = 'automobile/set_throttle'
-SET_BRAKE = 'automobile/set_brake_intensity'
-
-# Relative float rounding taken as the bound (the environment's, gym/controls.py).
-ROUNDING_TOLERANCE = 1.0e-6
+# The layouts the node offers: core's layouts of a car (a robot's drives no automobile node).
+LAYOUTS = {name: actions.LAYOUTS[name] for name in actions.layouts_of(actions.CAR)}
 
 
-def _speed_steering(a, _forward_mps):
-    return [(SET_STEERING, ros_steering_to_webots(a[0])), (SET_CRUISING_SPEED, mps_to_kmh(a[1]))]
-
-
-def _braking_speed_steering(a, forward_mps):
-    # as gym/controls.py's BrakingSpeedSteering: brake out of cruise control for a speed well
-    # below the car's (core/car/speed_braking.py), else cruise
-    brake = brake_for_speed(forward_mps, a[1])
-    if brake > 0.0:
-        return [(SET_STEERING, ros_steering_to_webots(a[0])), (SET_THROTTLE, 0.0),
-                (SET_BRAKE, brake)]
-    return [(SET_STEERING, ros_steering_to_webots(a[0])), (SET_BRAKE, 0.0),
-            (SET_CRUISING_SPEED, mps_to_kmh(a[1]))]
-
-
-def _throttle_steering(a, _forward_mps):
-    return [(SET_STEERING, ros_steering_to_webots(a[0])), (SET_THROTTLE, a[1]), (SET_BRAKE, a[2])]
-
-
-# layout -> (entry names, units, the services it may call, (physical action, forward speed
-# [m/s]) -> [(service, value)])
-LAYOUTS = {
-    'speed_steering': (('steering_angle', 'speed'), ('rad', 'm/s'),
-                       (SET_STEERING, SET_CRUISING_SPEED), _speed_steering),
-    'braking_speed_steering': (('steering_angle', 'speed'), ('rad', 'm/s'),
-                               (SET_STEERING, SET_CRUISING_SPEED, SET_THROTTLE, SET_BRAKE),
-                               _braking_speed_steering),
-    'throttle_steering': (('steering_angle', 'throttle', 'brake'), ('rad', '', ''),
-                          (SET_STEERING, SET_THROTTLE, SET_BRAKE), _throttle_steering),
-}
+def service_of(setter):
+    """Return the automobile node's service of a car's setter (core's SETTERS)."""
+    return 'automobile/' + setter
 
 
 class ActionWriter:
@@ -101,7 +67,8 @@ class ActionWriter:
                 f'control {control!r}: the automobile node is driven by '
                 f'{", ".join(LAYOUTS)} (a robot policy, twist, drives no car)')
         self.control = control
-        self.names, self.units, self._services, self._setters = LAYOUTS[control]
+        self.layout = LAYOUTS[control]
+        self.names, self.units = self.layout.names, self.layout.units
         self.low = np.asarray(low, dtype=np.float32)
         self.high = np.asarray(high, dtype=np.float32)
         if self.low.shape != (len(self.names),) or self.high.shape != self.low.shape:
@@ -118,7 +85,7 @@ class ActionWriter:
     @property
     def services(self):
         """The services this layout may call."""
-        return self._services
+        return tuple(service_of(setter) for setter in self.layout.setters)
 
     def physical(self, action):
         """
@@ -126,23 +93,9 @@ class ActionWriter:
 
         :raises ValueError: naming the entry: a wrong shape, NaN, or a value outside the Box.
         """
-        action = np.asarray(action, dtype=np.float32)
-        if action.shape != self.low.shape:
-            raise ValueError(f'action of shape {action.shape}: expected {self.low.shape} '
-                             f'({", ".join(self.names)})')
+        action = actions.check_shape(np.asarray(action, dtype=np.float32), self.low, self.names)
         values = ((action - self._intercept) / self._gradient).astype(np.float64)
-        for i, value in enumerate(values):
-            low, high = float(self.low[i]), float(self.high[i])
-            if low <= value <= high:
-                continue
-            if low - ROUNDING_TOLERANCE * max(1.0, abs(low)) <= value < low:
-                values[i] = low
-            elif high < value <= high + ROUNDING_TOLERANCE * max(1.0, abs(high)):
-                values[i] = high
-            else:
-                raise ValueError(f'action[{i}] ({self.names[i]}) = {float(value)!r} '
-                                 f'{self.units[i]}: outside [{low:g}, {high:g}]')
-        return values
+        return actions.check_action(values, self.low, self.high, self.names, self.units)
 
     def setters(self, values, forward_mps=0.0):
         """
@@ -151,7 +104,8 @@ class ActionWriter:
         :param forward_mps: the car's forward speed (its odometry's) when the action is taken:
             braking_speed_steering brakes or cruises by it.
         """
-        return [(name, float(value)) for name, value in self._setters(values, forward_mps)]
+        return [(service_of(setter), float(value))
+                for setter, value in self.layout.values(values, forward_mps)]
 
     def commands(self, action, forward_mps=0.0):
         """Return [(service, value in its unit)] for a policy's action, in call order."""

@@ -30,6 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
+from vehicle_sim.core.learning.actions import CAR, DEFAULT_LAYOUT, ROBOT
 from vehicle_sim.core.specs.errors import InvalidParameterError
 
 ALGORITHMS = ('PPO', 'A2C', 'SAC', 'TD3', 'DDPG')
@@ -135,8 +136,8 @@ def drive_setup(card, model, rate_hz=None, source='the model'):
         options = sim.options
         control = options['control']
         if control == 'auto':
-            control = ('speed_steering' if sim.scene.vehicles[sim.ego_name].car is not None
-                       else 'twist')
+            control = DEFAULT_LAYOUT[CAR if sim.scene.vehicles[sim.ego_name].car is not None
+                                     else ROBOT]
         space = env.unwrapped.action_space
         step_ms = sim.world.time_step_s * 1000.0
         period_s = options['action_repeat'] * step_ms / 1000.0

@@ -88,12 +88,14 @@ class RllibPolicy:
             raise InvalidParameterError(
                 f"{path}: loading an RLlib checkpoint needs Ray's RLlib ({error.name} is "
                 f'missing): {LEARN_RAY_HINT}') from None
-        runner = path / COMPONENT_ENV_RUNNER
+        # absolute: RLlib reads a relative path as a URI without a scheme (pyarrow refuses it)
+        folder = path.resolve()
+        runner = folder / COMPONENT_ENV_RUNNER
         try:
             env_to_module = EnvToModulePipeline.from_checkpoint(
                 runner / COMPONENT_ENV_TO_MODULE_CONNECTOR)
             module = RLModule.from_checkpoint(
-                path / COMPONENT_LEARNER_GROUP / COMPONENT_LEARNER / COMPONENT_RL_MODULE
+                folder / COMPONENT_LEARNER_GROUP / COMPONENT_LEARNER / COMPONENT_RL_MODULE
                 / DEFAULT_MODULE_ID)
             module_to_env = ModuleToEnvPipeline.from_checkpoint(
                 runner / COMPONENT_MODULE_TO_ENV_CONNECTOR)

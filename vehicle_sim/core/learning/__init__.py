@@ -14,10 +14,12 @@
 
 
 """
-Learning math without ROS or PyBullet: progress measures and reward terms (numpy only).
+Learning math without ROS or PyBullet: progress measures, reward terms, action layouts.
 
 The Gym environment (``vehicle_sim.gym``) reads the ego vehicle's pose after each step and asks
-this package how far it got (:mod:`.progress`) and what that is worth (:mod:`.reward`).
+this package how far it got (:mod:`.progress`) and what that is worth (:mod:`.reward`); it and
+the policy node (``vehicle_sim.ros.policy_node``) turn a policy's action into the vehicle's
+setters by one table (:mod:`.actions`).
 
 May import (core): specs, geometry, sensors, map, traffic, diffdrive, car, commands, autoware,
 bridge, world.

@@ -1,0 +1,139 @@
+# Copyright 2026 vehicle_sim contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The action layouts have one source, core's table: the environment and the policy node offer it.
+
+The Gym environment (gym/controls.py, its ``control`` option) and the policy node
+(ros/policy_actions.py) offer exactly the layouts of ``vehicle_sim/core/learning/actions.py``
+(the node: those of a car), with its entries, and set the same setters with the same values for
+the same action and forward speed: a layout added, or its rule changed, on one side only fails
+here.
+"""
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from vehicle_sim.core.learning import actions
+from vehicle_sim.gym import controls, options
+from vehicle_sim.ros import automobile_interfaces as itf
+from vehicle_sim.ros import policy_actions
+
+CAR_LAYOUTS = actions.layouts_of(actions.CAR)
+
+
+class RecordingLogic:
+    """A car's driver logic that records its setters' calls (asymmetric Webots limits)."""
+
+    min_steering_angle_rad = -0.6        # Webots: + = right
+    max_steering_angle_rad = 0.5
+    max_cruising_speed_kmh = 180.0
+
+    def __init__(self):
+        self.calls = []
+        for method in controls.CAR_SETTERS.values():
+            setattr(self, method, lambda value, method=method: self.calls.append((method, value)))
+
+
+class Body:
+    """The car's body: its forward speed as body_twist gives it."""
+
+    forward_mps = 0.0
+
+    def body_twist(self):
+        return (self.forward_mps, 0.0, 0.0), (0.0, 0.0, 0.0)
+
+
+def _car():
+    car = SimpleNamespace(logic=RecordingLogic(), body=Body())
+    return car, SimpleNamespace(name='ego', car=car, body=car.body)
+
+
+def test_the_environment_and_the_node_offer_exactly_the_table_s_layouts():
+    assert tuple(actions.LAYOUTS) == ('speed_steering', 'braking_speed_steering',
+                                      'throttle_steering', 'twist')
+    assert options.CONTROLS == ('auto',) + tuple(actions.LAYOUTS)
+    assert controls.CONTROLS == tuple(actions.LAYOUTS)
+    assert tuple(policy_actions.LAYOUTS) == CAR_LAYOUTS == (
+        'speed_steering', 'braking_speed_steering', 'throttle_steering')
+    for name, layout in policy_actions.LAYOUTS.items():
+        assert layout is actions.LAYOUTS[name]
+    # every setter of a layout is the vehicle's: a car's a driver logic method and an
+    # automobile service of the same unit, a robot's its body's
+    for layout in actions.LAYOUTS.values():
+        assert len(layout.names) == len(layout.units) == len(layout.halt)
+        for setter in layout.setters:
+            vehicle, unit = actions.SETTERS[setter]
+            assert vehicle == layout.vehicle
+            if vehicle == actions.CAR:
+                assert setter in controls.CAR_SETTERS
+                assert itf.service(policy_actions.service_of(setter)).unit == unit
+            else:
+                assert setter in controls.ROBOT_SETTERS
+    assert set(controls.CAR_SETTERS) == {s for s, (v, _) in actions.SETTERS.items()
+                                         if v == actions.CAR}
+    assert set(controls.ROBOT_SETTERS) == {s for s, (v, _) in actions.SETTERS.items()
+                                           if v == actions.ROBOT}
+
+
+@pytest.mark.parametrize('name', CAR_LAYOUTS)
+def test_the_environment_and_the_node_set_the_same_values(name):
+    car, vehicle = _car()
+    control = controls.make_control(name, vehicle, None, 5.0, None)
+    layout = actions.LAYOUTS[name]
+    assert control.layout is layout
+    assert control.names == layout.names and control.units == layout.units
+    # the bounds: steering + = left (the car's limits swapped), speed min(top, 20 m/s)
+    steering = ((-0.5, -5.0), (0.6, 20.0)) if len(layout.names) == 2 else \
+        ((-0.5, 0.0, 0.0), (0.6, 1.0, 1.0))
+    assert np.array_equal(control.low, np.float32(steering[0]))
+    assert np.array_equal(control.high, np.float32(steering[1]))
+    writer = policy_actions.ActionWriter(name, control.low, control.high)
+    assert writer.services == tuple(policy_actions.service_of(s) for s in layout.setters)
+    rng = np.random.default_rng(3)
+    samples = [control.low, control.high, (control.low + control.high) / 2]
+    samples += list(rng.uniform(control.low, control.high, size=(20, len(layout.names))))
+    seen = set()
+    for sample in samples:
+        for forward in (-3.0, 0.0, 3.0, 14.5, 17.0, 25.0):
+            physical = control.check(np.float32(sample))
+            car.logic.calls.clear()
+            car.body.forward_mps = forward
+            control.apply(physical)
+            in_process = [(setter, value) for (method, value) in car.logic.calls
+                          for setter in controls.CAR_SETTERS
+                          if controls.CAR_SETTERS[setter] == method]
+            assert writer.setters(physical, forward) == [
+                (policy_actions.service_of(setter), value) for setter, value in in_process]
+            seen.add(tuple(setter for setter, _ in in_process))
+    # the braking layout both brakes and cruises over these speeds; the others set one way
+    assert len(seen) == (2 if layout.reads_speed else 1)
+    car.logic.calls.clear()
+    control.halt()
+    assert car.logic.calls and all(value in (0.0, 1.0) for _, value in car.logic.calls)
+
+
+def test_the_node_refuses_a_robot_layout_and_the_environment_a_mismatched_one():
+    from vehicle_sim.core.specs.errors import InvalidParameterError
+    with pytest.raises(InvalidParameterError, match="control 'twist': the automobile node is "
+                                                    'driven by speed_steering, '
+                                                    'braking_speed_steering, throttle_steering'):
+        policy_actions.ActionWriter('twist', (-1.0, -1.0), (1.0, 1.0))
+    _, vehicle = _car()
+    with pytest.raises(ValueError, match="control 'twist' does not fit the ego 'ego', a car; "
+                                         'valid: speed_steering, braking_speed_steering, '
+                                         'throttle_steering'):
+        controls.make_control('twist', vehicle)
