@@ -427,3 +427,44 @@ def test_junit_uses_the_elements_and_attributes_pytest_junitxml_writes(blind_res
         assert tag in pytest_shape, f"<{tag}> is not in pytest's --junitxml output"
         assert attributes <= pytest_shape[tag], (tag, attributes - pytest_shape[tag])
         assert pytest_shape[tag] <= attributes, (tag, pytest_shape[tag] - attributes)
+
+
+def test_runner_sigterm_stops_its_processes_before_it_exits(tmp_path):
+    # `timeout`, a CI cancel or a test harness SIGTERMs the runner: its processes (each in its
+    # own session, so the signal does not reach them) are stopped before it exits with 143.
+    import os
+    import signal
+    import time
+    pid_file = tmp_path / 'child.pid'
+    (tmp_path / 'child.py').write_text(
+        'import os, time\n'
+        f'open({str(pid_file)!r}, "w").write(str(os.getpid()))\n'
+        'time.sleep(300)\n', encoding='utf-8')
+    path = _process_scenario(tmp_path, 'python child.py')
+    path.write_text(path.read_text().replace('clock_subscribers: 1', 'clock_subscribers: 1\n'
+                                             '  startup_timeout: 300'))
+    runner = subprocess.Popen([sys.executable, '-m', 'vehicle_sim', 'scenario', str(path),
+                               '--no-progress'], stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT)
+    try:
+        deadline = time.monotonic() + 120
+        while not (pid_file.exists() and pid_file.read_text()):
+            assert runner.poll() is None, runner.communicate()[0]
+            assert time.monotonic() < deadline, 'the child never started'
+            time.sleep(0.05)
+        child = int(pid_file.read_text())
+        runner.send_signal(signal.SIGTERM)
+        assert runner.wait(timeout=120) == 128 + signal.SIGTERM
+    finally:
+        if runner.poll() is None:
+            runner.kill()
+    deadline = time.monotonic() + 30
+    while True:    # stopped by the runner, reaped by init once the runner is gone
+        try:
+            os.kill(child, 0)
+        except ProcessLookupError:
+            break
+        if time.monotonic() > deadline:
+            os.kill(child, signal.SIGKILL)
+            raise AssertionError(f'the runner left its process {child} running')
+        time.sleep(0.05)
