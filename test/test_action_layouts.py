@@ -22,6 +22,7 @@ the same action and forward speed: a layout added, or its rule changed, on one s
 here.
 """
 
+import os
 from types import SimpleNamespace
 
 import numpy as np
@@ -137,3 +138,32 @@ def test_the_node_refuses_a_robot_layout_and_the_environment_a_mismatched_one():
                                          'valid: speed_steering, braking_speed_steering, '
                                          'throttle_steering'):
         controls.make_control('twist', vehicle)
+
+
+def _docs_action_rows():
+    path = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                        'docs', 'gym.md')
+    with open(path, encoding='utf-8') as stream:
+        section = stream.read().split('\n## Actions\n', 1)[1].split('\n## ', 1)[0]
+    rows = {}
+    for line in section.splitlines():
+        cells = [cell.strip() for cell in line.strip().strip('|').split('|')]
+        if line.startswith('| `') and len(cells) == 4:
+            rows[cells[0].split('`')[1]] = (cells[1], cells[2])
+    return rows
+
+
+def test_docs_actions_table_lists_the_tables_layouts_with_their_vehicles_and_units():
+    # docs/gym.md's Actions table is prose for people; it must name exactly the layouts of the
+    # one table, each for its vehicle, with one entry per action entry in the table's units.
+    rows = _docs_action_rows()
+    assert set(rows) == set(actions.LAYOUTS)
+    for name, layout in actions.LAYOUTS.items():
+        vehicle, entries = rows[name]
+        assert vehicle == layout.vehicle, name
+        while entries.startswith('as `'):     # 'as `speed_steering`; ...': that row's entries
+            entries = rows[entries.split('`')[1]][1]
+        parts = entries.split(';')
+        assert len(parts) == len(layout.names), (name, parts)
+        for part, unit in zip(parts, layout.units):
+            assert f'[{unit or "0, 1"}]' in part, (name, part, unit)
