@@ -56,7 +56,7 @@ from vehicle_sim.core.car.speed_braking import brake_for_speed
 from vehicle_sim.core.diffdrive.kinematics import wheel_speeds_from_twist
 from vehicle_sim.core.diffdrive.speed_limiter import limit_wheel_speeds
 from vehicle_sim.core.specs.errors import InvalidParameterError
-from vehicle_sim.core.specs.units import mps_to_kmh, ros_steering_to_webots
+from vehicle_sim.core.specs.units import kmh_to_mps, mps_to_kmh, ros_steering_to_webots
 
 CAR = 'car'
 ROBOT = 'robot'
@@ -194,7 +194,7 @@ def steering_bounds(logic, max_steering_rad=None):
 
 
 def _speed_bounds(logic, max_speed_mps, max_reverse_mps, max_steering_rad):
-    top = logic.max_cruising_speed_kmh / 3.6 if logic.max_cruising_speed_kmh > 0 else \
+    top = kmh_to_mps(logic.max_cruising_speed_kmh) if logic.max_cruising_speed_kmh > 0 else \
         DEFAULT_MAX_SPEED_MPS
     if max_speed_mps is None:
         max_speed_mps = min(top, DEFAULT_MAX_SPEED_MPS)
