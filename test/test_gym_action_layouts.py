@@ -58,6 +58,12 @@ class Body:
         return (self.forward_mps, 0.0, 0.0), (0.0, 0.0, 0.0)
 
 
+class Lanes:
+    """The car's VehicleLanes: its lane state as the environment's step left it."""
+
+    state = SimpleNamespace(offset_m=0.0, heading_error_rad=0.0)
+
+
 def _car():
     car = SimpleNamespace(logic=RecordingLogic(), body=Body())
     return car, SimpleNamespace(name='ego', car=car, body=car.body)
@@ -65,11 +71,11 @@ def _car():
 
 def test_the_environment_and_the_node_offer_exactly_the_table_s_layouts():
     assert tuple(actions.LAYOUTS) == ('speed_steering', 'braking_speed_steering',
-                                      'throttle_steering', 'twist')
+                                      'lane_speed', 'throttle_steering', 'twist')
     assert options.CONTROLS == ('auto',) + tuple(actions.LAYOUTS)
     assert controls.CONTROLS == tuple(actions.LAYOUTS)
     assert tuple(policy_actions.LAYOUTS) == CAR_LAYOUTS == (
-        'speed_steering', 'braking_speed_steering', 'throttle_steering')
+        'speed_steering', 'braking_speed_steering', 'lane_speed', 'throttle_steering')
     for name, layout in policy_actions.LAYOUTS.items():
         assert layout is actions.LAYOUTS[name]
     # every setter of a layout is the vehicle's: a car's a driver logic method and an
@@ -90,54 +96,83 @@ def test_the_environment_and_the_node_offer_exactly_the_table_s_layouts():
                                            if v == actions.ROBOT}
 
 
+# Lane states (offset [m], heading error [rad]) the lane_speed law steers from.
+LANE_STATES = ((0.0, 0.0), (1.2, -0.03), (-1.8, 0.05))
+# The bounds: steering + = left (the car's limits swapped), speed min(top, 20 m/s); lane_speed
+# a lateral offset of up to 4 m either way and forward speeds only.
+BOUNDS = {
+    'speed_steering': ((-0.5, -5.0), (0.6, 20.0)),
+    'braking_speed_steering': ((-0.5, -5.0), (0.6, 20.0)),
+    'lane_speed': ((-4.0, 0.0), (4.0, 20.0)),
+    'throttle_steering': ((-0.5, 0.0, 0.0), (0.6, 1.0, 1.0)),
+}
+
+
 @pytest.mark.parametrize('name', CAR_LAYOUTS)
 def test_the_environment_and_the_node_set_the_same_values(name):
     car, vehicle = _car()
-    control = controls.make_control(name, vehicle, None, 5.0, None)
+    lanes = Lanes()
+    control = controls.make_control(name, vehicle, None, 5.0, None, lanes)
     layout = actions.LAYOUTS[name]
     assert control.layout is layout
     assert control.names == layout.names and control.units == layout.units
-    # the bounds: steering + = left (the car's limits swapped), speed min(top, 20 m/s)
-    steering = ((-0.5, -5.0), (0.6, 20.0)) if len(layout.names) == 2 else \
-        ((-0.5, 0.0, 0.0), (0.6, 1.0, 1.0))
-    assert np.array_equal(control.low, np.float32(steering[0]))
-    assert np.array_equal(control.high, np.float32(steering[1]))
-    writer = policy_actions.ActionWriter(name, control.low, control.high)
+    assert np.array_equal(control.low, np.float32(BOUNDS[name][0]))
+    assert np.array_equal(control.high, np.float32(BOUNDS[name][1]))
+    writer = policy_actions.ActionWriter(name, control.low, control.high, (-1.0, 1.0),
+                                         control.steering_bounds)
     assert writer.services == tuple(policy_actions.service_of(s) for s in layout.setters)
     rng = np.random.default_rng(3)
     samples = [control.low, control.high, (control.low + control.high) / 2]
     samples += list(rng.uniform(control.low, control.high, size=(20, len(layout.names))))
     seen = set()
+    steered = set()
     for sample in samples:
         for forward in (-3.0, 0.0, 3.0, 14.5, 17.0, 25.0):
-            physical = control.check(np.float32(sample))
-            car.logic.calls.clear()
-            car.body.forward_mps = forward
-            control.apply(physical)
-            in_process = [(setter, value) for (method, value) in car.logic.calls
-                          for setter in controls.CAR_SETTERS
-                          if controls.CAR_SETTERS[setter] == method]
-            assert writer.setters(physical, forward) == [
-                (policy_actions.service_of(setter), value) for setter, value in in_process]
-            seen.add(tuple(setter for setter, _ in in_process))
-    # the braking layout both brakes and cruises over these speeds; the others set one way
+            for offset, heading_error in LANE_STATES:
+                physical = control.check(np.float32(sample))
+                car.logic.calls.clear()
+                car.body.forward_mps = forward
+                lanes.state = SimpleNamespace(offset_m=offset, heading_error_rad=heading_error)
+                control.apply(physical)
+                in_process = [(setter, value) for (method, value) in car.logic.calls
+                              for setter in controls.CAR_SETTERS
+                              if controls.CAR_SETTERS[setter] == method]
+                # the node reads the same from the car's lane_state message
+                message = SimpleNamespace(offset=offset, heading_error=heading_error)
+                assert writer.setters(physical, forward, message) == [
+                    (policy_actions.service_of(setter), value) for setter, value in in_process]
+                seen.add(tuple(setter for setter, _ in in_process))
+                steered.add(in_process[0])
+    # the braking layouts both brake and cruise over these speeds; the others set one way
     assert len(seen) == (2 if layout.reads_speed else 1)
+    # lane_speed steers by the lane state: within the car's limits, both ways
+    if layout.reads_lane:
+        angles = {value for setter, value in steered}
+        assert min(angles) < -0.1 and max(angles) > 0.1
+        assert all(-0.6 <= angle <= 0.5 for angle in angles)     # Webots' limits, + = right
     car.logic.calls.clear()
     control.halt()
-    assert car.logic.calls and all(value in (0.0, 1.0) for _, value in car.logic.calls)
+    # a halt brakes (throttle 0, brake 1, or a stand asked of the cruise control); lane_speed
+    # steers on toward its lane's centre meanwhile
+    halted = car.logic.calls[1:] if layout.reads_lane else car.logic.calls
+    assert halted and all(value in (0.0, 1.0) for _, value in halted)
 
 
 def test_the_node_refuses_a_robot_layout_and_the_environment_a_mismatched_one():
     from vehicle_sim.core.specs.errors import InvalidParameterError
     with pytest.raises(InvalidParameterError, match="control 'twist': the automobile node is "
                                                     'driven by speed_steering, '
-                                                    'braking_speed_steering, throttle_steering'):
+                                                    'braking_speed_steering, lane_speed, '
+                                                    'throttle_steering'):
         policy_actions.ActionWriter('twist', (-1.0, -1.0), (1.0, 1.0))
     _, vehicle = _car()
     with pytest.raises(ValueError, match="control 'twist' does not fit the ego 'ego', a car; "
                                          'valid: speed_steering, braking_speed_steering, '
-                                         'throttle_steering'):
+                                         'lane_speed, throttle_steering'):
         controls.make_control('twist', vehicle)
+    with pytest.raises(InvalidParameterError, match="control 'lane_speed' steers by the lane "
+                                                    'state: the world has no lanes'):
+        controls.make_control('lane_speed', vehicle)
 
 
 def _docs_action_rows():

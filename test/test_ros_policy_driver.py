@@ -226,6 +226,38 @@ def test_braking_speed_steering_brakes_over_the_wire_for_a_speed_well_below_the_
     assert policy.seen[-1] < policy.seen[-6] - 1.5     # 0.5 s of braking: faster than 2.6 m/s^2
 
 
+def test_lane_speed_steers_over_the_wire_by_the_cars_lane_state_topic(lockstep):
+    from vehicle_sim.core.car.lane_keeping import lane_keeping_steering
+    bed = lockstep()
+    lanes = bed.auto._vehicles[0].lanes
+    body = bed.car().body
+
+    def state():       # the node's world at the tick: what core's law reads in process
+        return (lanes.state.offset_m, lanes.state.heading_error_rad, body.body_twist()[0][0])
+    # 1 m left of the lane's centre at 10 m/s; the policy reads only the twist, so the lane
+    # state is the driver's for the law alone
+    offset_asked, speed_asked = 1.0, 10.0
+    action = (offset_asked / 4.0, 2.0 * speed_asked / SPEED_MAX_MPS - 1.0)
+    policy = Scripted(action, state)
+    setup = DriveSetup(('twist',), ObjectsTableSpec(), 'lane_speed', (-4.0, 0.0),
+                       (4.0, SPEED_MAX_MPS), (-1.0, 1.0), 0.1, (-0.02, 0.02))
+    driver = bed.start(policy, setup)
+    assert '/lane_state' in [sub.topic_name for sub in driver._subs]
+    logic = bed.car().car.logic
+    steered = []
+    for _ in range(80):             # 8 s
+        bed.step()
+        offset, heading_error, forward = policy.seen[-1][1]
+        law = lane_keeping_steering(offset_asked, offset, heading_error, forward, -0.02, 0.02)
+        # Webots' setter: + right
+        assert logic.commanded_steering_angle_rad == pytest.approx(-law, abs=1e-6)
+        steered.append(law)
+    assert tuple(driver.action) == pytest.approx((offset_asked, speed_asked), abs=1e-5)
+    # it steered left, then settled near the offset asked
+    assert max(steered) > 0.005
+    assert lanes.state.offset_m == pytest.approx(offset_asked, abs=0.1)
+
+
 def test_a_policy_faster_than_the_simulation_is_refused(lockstep):
     bed = lockstep()
     with pytest.raises(InvalidParameterError, match=r'policy period 5 ms \(200 Hz\) is shorter '
@@ -310,7 +342,7 @@ def test_the_action_writer_undoes_rescale_action_and_checks_the_box():
     with pytest.raises(InvalidParameterError, match="control 'twist': the automobile node is "
                                                     'driven by speed_steering, '
                                                     'braking_speed_steering, '
-                                                    'throttle_steering'):
+                                                    'lane_speed, throttle_steering'):
         ActionWriter('twist', low, high)
 
 

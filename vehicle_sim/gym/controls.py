@@ -26,7 +26,15 @@ clip a policy's samples, or ``RescaleAction`` for [-1, 1].
 
 import numpy as np
 
-from vehicle_sim.core.learning.actions import CAR, check_action, layout_for, LAYOUTS, ROBOT
+from vehicle_sim.core.learning.actions import (
+    CAR,
+    check_action,
+    layout_for,
+    LAYOUTS,
+    Reading,
+    ROBOT,
+    steering_bounds,
+)
 from vehicle_sim.core.specs.errors import InvalidParameterError
 
 # A car's setters (core learning/actions.py SETTERS) -> its driver logic's methods.
@@ -74,12 +82,11 @@ class Control:
 
     def apply(self, action):
         """Command the vehicle (a checked action)."""
-        forward = self._forward_mps() if self.layout.reads_speed else 0.0
-        for setter, value in self.layout.values(action, forward, self._limits):
+        for setter, value in self.layout.values(action, self._reading(), self._limits):
             self._setters[setter](value)
 
-    def _forward_mps(self):
-        raise NotImplementedError
+    def _reading(self):
+        return Reading()
 
     def stop(self):
         """Command the vehicle to stand still (the state after a reset)."""
@@ -90,17 +97,31 @@ class Control:
 
 
 class CarControl(Control):
-    """A car's layout: the setters are its driver logic's (Webots' driver API)."""
+    """
+    A car's layout: the setters are its driver logic's (Webots' driver API).
 
-    def __init__(self, layout, car, *bounds):
-        super().__init__(layout, car.logic, *bounds)
+    :param lanes: the car's VehicleLanes (its lane state, updated once per env step), or None
+        in a world without lanes; a layout that reads the lane state needs them.
+    """
+
+    def __init__(self, layout, car, max_speed_mps=None, max_reverse_mps=5.0,
+                 max_steering_rad=None, lanes=None):
+        super().__init__(layout, car.logic, max_speed_mps, max_reverse_mps, max_steering_rad)
         self.logic = car.logic
         self.body = car.body
+        self.lanes = lanes
+        # the steering angles allowed, + = left: the Box's, or the lane-keeping law's limits
+        self.steering_bounds = steering_bounds(car.logic, max_steering_rad)
         self._setters = {setter: getattr(car.logic, method)
                          for setter, method in CAR_SETTERS.items()}
 
-    def _forward_mps(self):
-        return self.body.body_twist()[0][0]
+    def _reading(self):
+        layout = self.layout
+        forward = self.body.body_twist()[0][0] if layout.reads_speed else 0.0
+        if not layout.reads_lane:
+            return Reading(forward)
+        state = self.lanes.state
+        return Reading(forward, state.offset_m, state.heading_error_rad, self.steering_bounds)
 
 
 class RobotControl(Control):
@@ -117,19 +138,26 @@ class RobotControl(Control):
 
 
 def make_control(name, vehicle, max_speed_mps=None, max_reverse_mps=5.0,
-                 max_steering_rad=None):
+                 max_steering_rad=None, lanes=None):
     """
     Return the Control of a layout for the ego.
 
     :param name: 'auto' or a layout of core's table: 'speed_steering',
-        'braking_speed_steering', 'throttle_steering' or 'twist'.
+        'braking_speed_steering', 'lane_speed', 'throttle_steering' or 'twist'.
     :param vehicle: the ego's SceneVehicle (``car`` is None for a robot).
     :param max_steering_rad: a car's largest steering action either way (None: its limits).
+    :param lanes: the ego's VehicleLanes, None in a world without lanes.
     :raises ValueError: for a car layout on a robot or the robot layout on a car.
+    :raises InvalidParameterError: a layout that reads the lane state in a world without lanes.
     """
     layout = layout_for(name, CAR if vehicle.car is not None else ROBOT, vehicle.name)
+    if layout.reads_lane and lanes is None:
+        raise InvalidParameterError(
+            f'control {layout.name!r} steers by the lane state: the world has no lanes '
+            '(roads: or a lane map); give a control with a steering entry')
     if layout.vehicle == CAR:
-        return CarControl(layout, vehicle.car, max_speed_mps, max_reverse_mps, max_steering_rad)
+        return CarControl(layout, vehicle.car, max_speed_mps, max_reverse_mps, max_steering_rad,
+                          lanes)
     if max_steering_rad is not None:
         raise InvalidParameterError(
             f'option max_steering = {max_steering_rad!r} rad: the ego {vehicle.name!r} is a '

@@ -145,7 +145,8 @@ class Ego:
             ('gap',) if self.gap.enabled else ())
         self.crossed = ()
         self.control = make_control(options['control'], self.ego, options['max_speed'],
-                                    options['max_reverse_speed'], options['max_steering'])
+                                    options['max_reverse_speed'], options['max_steering'],
+                                    self.lanes)
         self.parts = list(parts)
         self.parts.extend(p for p in (factory(self) for factory in PART_FACTORIES)
                           if p is not None)

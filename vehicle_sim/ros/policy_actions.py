@@ -32,6 +32,10 @@ gym/controls.py), each sent as the automobile node's service of the same name
   ``automobile/set_steering_angle``, ``automobile/set_throttle`` 0 and
   ``automobile/set_brake_intensity``; else ``set_steering_angle``, ``set_brake_intensity`` 0 and
   ``set_cruising_speed``;
+- ``lane_speed`` [lateral offset in the lane [m], + left; speed [m/s]]: the steering angle of
+  core's lane-keeping law (core/car/lane_keeping.py) from the car's lane state
+  (``<ns>/lane_state`` at the tick) and forward speed, within the steering bounds of the
+  environment (its card's ``max_steering``), then the setters of ``braking_speed_steering``;
 - ``throttle_steering`` [steering angle; throttle; brake] -> ``automobile/set_steering_angle``,
   ``automobile/set_throttle``, ``automobile/set_brake_intensity``.
 """
@@ -58,16 +62,19 @@ class ActionWriter:
     :param low: the environment's physical action Box low bounds (its ``unwrapped`` space).
     :param high: its high bounds.
     :param action_range: (low, high) the policy's actions were rescaled to (its card's).
+    :param steering_bounds: the environment's steering angles allowed (low, high) [rad],
+        + = left (``lane_speed``'s law keeps within them).
     :raises InvalidParameterError: an unknown layout, or bounds of the wrong length.
     """
 
-    def __init__(self, control, low, high, action_range=(-1.0, 1.0)):
+    def __init__(self, control, low, high, action_range=(-1.0, 1.0), steering_bounds=(0.0, 0.0)):
         if control not in LAYOUTS:
             raise InvalidParameterError(
                 f'control {control!r}: the automobile node is driven by '
                 f'{", ".join(LAYOUTS)} (a robot policy, twist, drives no car)')
         self.control = control
         self.layout = LAYOUTS[control]
+        self.steering_bounds = (float(steering_bounds[0]), float(steering_bounds[1]))
         self.names, self.units = self.layout.names, self.layout.units
         self.low = np.asarray(low, dtype=np.float32)
         self.high = np.asarray(high, dtype=np.float32)
@@ -97,16 +104,30 @@ class ActionWriter:
         values = ((action - self._intercept) / self._gradient).astype(np.float64)
         return actions.check_action(values, self.low, self.high, self.names, self.units)
 
-    def setters(self, values, forward_mps=0.0):
+    def reading(self, forward_mps=0.0, lane_state=None):
+        """
+        Return core's Reading of the car when an action is taken.
+
+        :param forward_mps: the car's forward speed (its odometry's): braking_speed_steering
+            and lane_speed brake or cruise by it.
+        :param lane_state: its vehicle_msgs/LaneState (lane_speed steers by its offset and
+            heading error), or None.
+        """
+        if lane_state is None:
+            return actions.Reading(float(forward_mps), steering_bounds=self.steering_bounds)
+        return actions.Reading(float(forward_mps), float(lane_state.offset),
+                               float(lane_state.heading_error), self.steering_bounds)
+
+    def setters(self, values, forward_mps=0.0, lane_state=None):
         """
         Return [(service, value in its unit)] of a physical action, in call order.
 
-        :param forward_mps: the car's forward speed (its odometry's) when the action is taken:
-            braking_speed_steering brakes or cruises by it.
+        :param forward_mps: the car's forward speed (its odometry's) when the action is taken.
+        :param lane_state: its vehicle_msgs/LaneState then (lane_speed), or None.
         """
-        return [(service_of(setter), float(value))
-                for setter, value in self.layout.values(values, forward_mps)]
+        return [(service_of(setter), float(value)) for setter, value
+                in self.layout.values(values, self.reading(forward_mps, lane_state))]
 
-    def commands(self, action, forward_mps=0.0):
+    def commands(self, action, forward_mps=0.0, lane_state=None):
         """Return [(service, value in its unit)] for a policy's action, in call order."""
-        return self.setters(self.physical(action), forward_mps)
+        return self.setters(self.physical(action), forward_mps, lane_state)

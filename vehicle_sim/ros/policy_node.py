@@ -118,7 +118,7 @@ class PolicyNode:
     def _setup(self):
         node = self.node
         self.inputs = [pi.ODOM_IN]
-        if LANE in self.builder.keys:
+        if LANE in self.builder.keys or self.writer.layout.reads_lane:
             self.inputs.append(pi.LANE_STATE_IN)
         if OBJECTS in self.builder.keys:
             self.inputs.append(pi.OBJECTS_IN)
@@ -232,7 +232,8 @@ class PolicyNode:
         except (InvalidParameterError, ValueError) as error:
             self._fail(f'at /clock {tick_s:.3f} s: {error}')
             return
-        commands = self.writer.setters(values, latest[pi.ODOM_IN].twist.twist.linear.x)
+        commands = self.writer.setters(values, latest[pi.ODOM_IN].twist.twist.linear.x,
+                                       latest.get(pi.LANE_STATE_IN))
         self.last_obs = obs
         self.ticks += 1
         self._tick_s = tick_s

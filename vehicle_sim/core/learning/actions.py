@@ -36,6 +36,13 @@ rounding only is the bound). Nothing is clipped.
   ``set_steering_angle``, ``set_throttle`` 0 (TORQUE mode) and ``set_brake_intensity``; else
   ``set_steering_angle``, ``set_brake_intensity`` 0 and ``set_cruising_speed`` (whose ramp
   starts at the wheels' speeds, driver.c).
+- ``lane_speed`` (car): [lateral offset [m] asked from the centreline of the lane the car is on,
+  + = left; cruising speed [m/s], forward only]: a lane-keeping law steers toward the offset
+  (core/car/lane_keeping.py: from the car's lane state and speed, within the steering bounds),
+  the speed as ``braking_speed_steering``. An offset of one lane's width asks for the next
+  lane; once the car is over the line, its lane state is the new lane's, and an offset of 0
+  keeps it there (highway-env's lane-change meta-actions as one continuous entry). Needs a
+  world with lanes.
 - ``throttle_steering`` (car): [steering angle [rad], + = left; throttle [0, 1]; brake [0, 1]]
   -> ``set_steering_angle``, ``set_throttle``, ``set_brake_intensity`` (Webots' engine model).
 - ``twist`` (robot): [forward speed [m/s]; yaw rate [rad/s], + = left] ->
@@ -52,6 +59,7 @@ from typing import Callable, Tuple
 
 import numpy as np
 
+from vehicle_sim.core.car.lane_keeping import lane_keeping_steering
 from vehicle_sim.core.car.speed_braking import brake_for_speed
 from vehicle_sim.core.diffdrive.kinematics import wheel_speeds_from_twist
 from vehicle_sim.core.diffdrive.speed_limiter import limit_wheel_speeds
@@ -68,6 +76,8 @@ ROUNDING_TOLERANCE = 1.0e-6
 DEFAULT_MAX_SPEED_MPS = 20.0
 # The default largest reverse speed action [m/s].
 DEFAULT_MAX_REVERSE_MPS = 5.0
+# The largest lateral offset a lane_speed action asks for either way [m]: one lane of up to 4 m.
+MAX_LANE_OFFSET_M = 4.0
 
 SET_STEERING = 'set_steering_angle'
 SET_CRUISING_SPEED = 'set_cruising_speed'
@@ -88,6 +98,25 @@ SETTERS = {
 
 
 @dataclass(frozen=True)
+class Reading:
+    """
+    What a layout's rule reads of the vehicle when an action is applied.
+
+    :ivar forward_mps: the car's forward speed [m/s] (its odometry's).
+    :ivar lane_offset_m: its lateral offset from its lane's centreline, + = left [m] (its lane
+        state's; 0 off every lane).
+    :ivar heading_error_rad: its yaw minus the lane's direction [rad] (its lane state's).
+    :ivar steering_bounds: the steering angles allowed (low, high) [rad], + = left: the Box's
+        for the layouts with a steering entry, the law's limits for ``lane_speed``.
+    """
+
+    forward_mps: float = 0.0
+    lane_offset_m: float = 0.0
+    heading_error_rad: float = 0.0
+    steering_bounds: Tuple[float, float] = (0.0, 0.0)
+
+
+@dataclass(frozen=True)
 class ActionLayout:
     """
     One action layout: its entries, the setters it calls and the rules of both.
@@ -99,6 +128,7 @@ class ActionLayout:
     :ivar setters: the setters it may call (keys of :data:`SETTERS`).
     :ivar halt: the action that brakes the vehicle to a stand.
     :ivar reads_speed: whether its setters depend on the car's forward speed.
+    :ivar reads_lane: whether they depend on the car's lane state (a world with lanes).
     """
 
     name: str
@@ -108,6 +138,7 @@ class ActionLayout:
     setters: Tuple[str, ...]
     halt: Tuple[float, ...]
     reads_speed: bool
+    reads_lane: bool
     _bounds: Callable
     _values: Callable
 
@@ -125,15 +156,16 @@ class ActionLayout:
         """
         return self._bounds(limits, max_speed_mps, max_reverse_mps, max_steering_rad)
 
-    def values(self, action, forward_mps=0.0, limits=None):
+    def values(self, action, reading=Reading(), limits=None):
         """
         Return [(setter, value in its unit)] of a checked physical action, in call order.
 
-        :param forward_mps: the car's forward speed [m/s] when the action is applied (read
-            when :attr:`reads_speed`).
+        :param reading: the vehicle's :class:`Reading` when the action is applied (its speed
+            read when :attr:`reads_speed`, its lane state and steering bounds when
+            :attr:`reads_lane`).
         :param limits: a robot's parameters (twist); unused for a car.
         """
-        return self._values(action, forward_mps, limits)
+        return self._values(action, reading, limits)
 
 
 def check_shape(action, low, names):
@@ -202,6 +234,12 @@ def _speed_bounds(logic, max_speed_mps, max_reverse_mps, max_steering_rad):
     return (right, -max_reverse_mps), (left, max_speed_mps)
 
 
+def _lane_speed_bounds(logic, max_speed_mps, _max_reverse_mps, max_steering_rad):
+    # forward only: the law steers a car driving forward
+    (_, _), (_, top) = _speed_bounds(logic, max_speed_mps, 0.0, max_steering_rad)
+    return (-MAX_LANE_OFFSET_M, 0.0), (MAX_LANE_OFFSET_M, top)
+
+
 def _throttle_bounds(logic, _max_speed_mps, _max_reverse_mps, max_steering_rad):
     right, left = steering_bounds(logic, max_steering_rad)
     return (right, 0.0, 0.0), (left, 1.0, 1.0)
@@ -212,27 +250,37 @@ def _twist_bounds(params, _max_speed_mps, _max_reverse_mps, _max_steering_rad):
     return (-top, -2.0 * top / params.wheel_tread_m), (top, 2.0 * top / params.wheel_tread_m)
 
 
-def _speed_steering(a, _forward_mps, _limits):
+def _speed_steering(a, _reading, _limits):
     return [(SET_STEERING, ros_steering_to_webots(float(a[0]))),
             (SET_CRUISING_SPEED, mps_to_kmh(float(a[1])))]
 
 
-def _braking_speed_steering(a, forward_mps, _limits):
+def _braking_speed_steering(a, reading, _limits):
+    return _brake_or_cruise(ros_steering_to_webots(float(a[0])), float(a[1]),
+                            reading.forward_mps)
+
+
+def _lane_speed(a, reading, _limits):
+    low, high = reading.steering_bounds
+    steering = lane_keeping_steering(float(a[0]), reading.lane_offset_m,
+                                     reading.heading_error_rad, reading.forward_mps, low, high)
+    return _brake_or_cruise(ros_steering_to_webots(steering), float(a[1]), reading.forward_mps)
+
+
+def _brake_or_cruise(steering, speed, forward_mps):
     # brake out of cruise control for a speed well below the car's, else cruise
-    steering = ros_steering_to_webots(float(a[0]))
-    speed = float(a[1])
     brake = brake_for_speed(forward_mps, speed)
     if brake > 0.0:
         return [(SET_STEERING, steering), (SET_THROTTLE, 0.0), (SET_BRAKE, brake)]
     return [(SET_STEERING, steering), (SET_BRAKE, 0.0), (SET_CRUISING_SPEED, mps_to_kmh(speed))]
 
 
-def _throttle_steering(a, _forward_mps, _limits):
+def _throttle_steering(a, _reading, _limits):
     return [(SET_STEERING, ros_steering_to_webots(float(a[0]))), (SET_THROTTLE, float(a[1])),
             (SET_BRAKE, float(a[2]))]
 
 
-def _twist(a, _forward_mps, params):
+def _twist(a, _reading, params):
     left, right = wheel_speeds_from_twist(float(a[0]), float(a[1]), params.wheel_tread_m)
     left, right = limit_wheel_speeds(left, right, params.max_wheel_speed_mps)
     # rounding may put a scaled wheel a hair above the limit: the body refuses that
@@ -243,18 +291,20 @@ def _twist(a, _forward_mps, params):
 
 
 _STEERING_SPEED = (('steering_angle', 'speed'), ('rad', 'm/s'))
+_BRAKING_SETTERS = (SET_STEERING, SET_CRUISING_SPEED, SET_THROTTLE, SET_BRAKE)
 
 LAYOUTS = {layout.name: layout for layout in (
     ActionLayout('speed_steering', CAR, *_STEERING_SPEED, (SET_STEERING, SET_CRUISING_SPEED),
-                 (0.0, 0.0), False, _speed_bounds, _speed_steering),
-    ActionLayout('braking_speed_steering', CAR, *_STEERING_SPEED,
-                 (SET_STEERING, SET_CRUISING_SPEED, SET_THROTTLE, SET_BRAKE), (0.0, 0.0), True,
-                 _speed_bounds, _braking_speed_steering),
+                 (0.0, 0.0), False, False, _speed_bounds, _speed_steering),
+    ActionLayout('braking_speed_steering', CAR, *_STEERING_SPEED, _BRAKING_SETTERS, (0.0, 0.0),
+                 True, False, _speed_bounds, _braking_speed_steering),
+    ActionLayout('lane_speed', CAR, ('lane_offset', 'speed'), ('m', 'm/s'), _BRAKING_SETTERS,
+                 (0.0, 0.0), True, True, _lane_speed_bounds, _lane_speed),
     ActionLayout('throttle_steering', CAR, ('steering_angle', 'throttle', 'brake'),
                  ('rad', '', ''), (SET_STEERING, SET_THROTTLE, SET_BRAKE), (0.0, 0.0, 1.0),
-                 False, _throttle_bounds, _throttle_steering),
+                 False, False, _throttle_bounds, _throttle_steering),
     ActionLayout('twist', ROBOT, ('speed', 'yaw_rate'), ('m/s', 'rad/s'),
-                 (SET_WHEEL_VELOCITIES,), (0.0, 0.0), False, _twist_bounds, _twist),
+                 (SET_WHEEL_VELOCITIES,), (0.0, 0.0), False, False, _twist_bounds, _twist),
 )}
 # The layout a vehicle gets for ``control: auto``.
 DEFAULT_LAYOUT = {CAR: 'speed_steering', ROBOT: 'twist'}
