@@ -50,7 +50,7 @@ CLOCK_IN = _same(CLOCK, 'simulated time: the policy acts at every multiple of it
                         '(action_repeat x time_step), the first time at the first answer time '
                         '(the first objects)', QOS_CLOCK)
 ODOM_IN = _same(itf.ODOM, "the ego's odometry: the 'twist' key, and its pose for 'objects'")
-LANE_STATE_IN = _same(itf.LANE_STATE, "the ego's lane: the 'lane' key")
+LANE_STATE_IN = _same(itf.LANE_STATE, "the ego's lane: the 'lane' key, lane_speed's steering law")
 OBJECTS_IN = _same(PREDICTED_OBJECTS_TOPIC,
                    "the 'objects' key (the policy's period a whole number of the objects' "
                    "periods: objects_rate, --objects-rate)")
