@@ -114,9 +114,16 @@ WINDOW = 50                     # training episodes per curve point
 warnings.filterwarnings('ignore', message='.*precision lowered by casting to float32.*')
 
 
-def card():
-    """Return the policy card of this task (the environment the policy reads and drives)."""
-    return PolicyCard(ENV_ID, dict(ENV_OPTIONS), OBSERVATION_KEYS, (-1.0, 1.0))
+def card(control=None):
+    """
+    Return the policy card of this task (the environment the policy reads and drives).
+
+    :param control: the action layout instead of ENV_OPTIONS' (``--control``), or None.
+    """
+    options = dict(ENV_OPTIONS)
+    if control is not None:
+        options['control'] = control
+    return PolicyCard(ENV_ID, options, OBSERVATION_KEYS, (-1.0, 1.0))
 
 
 def make_task_env(policy_card, scenario=SCENARIO):
@@ -264,12 +271,17 @@ def train(args, policy_card, out, scenario=SCENARIO, ppo_options=None, scales=No
 
 
 def _evaluate_chunk(job):
-    """Run evaluation episodes in a worker: job = (model path or None for random, seeds)."""
-    model_path, seeds, threads = job
+    """
+    Run evaluation episodes in a worker.
+
+    :param job: (model path, or None for the random policy; seeds; PyTorch's threads; the
+        random policy's action layout, None: ENV_OPTIONS').
+    """
+    model_path, seeds, threads, control = job
     import torch
     torch.set_num_threads(threads)
     if model_path is None:
-        policy_card, model = card(), None
+        policy_card, model = card(control), None
     else:
         from vehicle_sim.tools.policy_loader import load_model
         policy_card = load_card(model_path)
@@ -292,12 +304,17 @@ def _evaluate_chunk(job):
     return outcomes
 
 
-def evaluate(model_path, seeds, workers):
-    """Return the outcomes of one episode per seed (model_path None: the random policy)."""
+def evaluate(model_path, seeds, workers, control=None):
+    """
+    Return the outcomes of one episode per seed.
+
+    :param model_path: the model, or None for the random policy (in ``control``'s action
+        layout, None: ENV_OPTIONS').
+    """
     chunks = [seeds[i::workers] for i in range(workers)]
     context = multiprocessing.get_context('forkserver')
     with context.Pool(workers) as pool:
-        parts = pool.map(_evaluate_chunk, [(model_path, chunk, 1) for chunk in chunks])
+        parts = pool.map(_evaluate_chunk, [(model_path, chunk, 1, control) for chunk in chunks])
     return sorted((o for part in parts for o in part), key=lambda o: o['seed'])
 
 
@@ -388,6 +405,9 @@ def main(argv=None):
     parser.add_argument('--evaluate', metavar='MODEL',
                         help='evaluate this model.zip (with its card) instead of training')
     parser.add_argument('--out', default='train_highway_out')
+    parser.add_argument('--control', default=ENV_OPTIONS['control'],
+                        choices=('speed_steering', 'braking_speed_steering', 'lane_speed'),
+                        help='the action layout (docs/gym.md, Actions; default: %(default)s)')
     args = parser.parse_args(argv)
     try:
         import vehicle_sim.gym.learn_require  # noqa: F401
@@ -397,7 +417,8 @@ def main(argv=None):
     out.mkdir(parents=True, exist_ok=True)
     summary = {'seed': args.seed, 'minutes': args.minutes, 'envs': args.envs,
                'torch_threads': args.threads, 'cpu_count': os.cpu_count(),
-               'env_id': ENV_ID, 'env_options': ENV_OPTIONS, 'scenario': SCENARIO.name,
+               'env_id': ENV_ID, 'env_options': card(args.control).options,
+               'scenario': SCENARIO.name,
                'observation_keys': list(OBSERVATION_KEYS), 'scales': SCALES,
                'ppo': dict(PPO_OPTIONS, net_arch=NET_ARCH, log_std_init=LOG_STD_INIT,
                            **POLICY_OPTIONS)}
@@ -406,7 +427,7 @@ def main(argv=None):
     if args.evaluate:
         model_path = Path(args.evaluate)
     else:
-        model_path, rows, episodes, facts = train(args, card(), out)
+        model_path, rows, episodes, facts = train(args, card(args.control), out)
         write_curve(out, rows, episodes)
         summary.update(facts)
         summary['final_training_row'] = rows[-1] if rows else None
@@ -418,8 +439,10 @@ def main(argv=None):
         return
     seeds = [EVAL_SEED_BASE + k for k in range(args.eval_episodes)]
     start = time.monotonic()
+    # the random policy in the trained one's action layout
+    control = load_card(model_path).options.get('control')
     results = {'trained': evaluate(str(model_path), seeds, args.eval_workers),
-               'random': evaluate(None, seeds, args.eval_workers)}
+               'random': evaluate(None, seeds, args.eval_workers, control)}
     summary['eval_wall_s'] = round(time.monotonic() - start, 1)
     summary['eval_seeds'] = [seeds[0], seeds[-1]]
     summary['evaluation'] = {name: figures(outcomes) for name, outcomes in results.items()}
