@@ -19,7 +19,8 @@ docs/learning.md shows the figures of the committed training run, as the script 
 examples/train_highway.py wrote docs/learning/highway_ppo_summary.json and the curve files; the
 table in docs/learning.md must be ``results_markdown`` of that summary (not typed in), and the
 committed model's card must be the script's. The same for the two earlier runs of the script
-whose figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*) and for
+whose figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*,
+highway_ppo_lane_speed_*) and for
 examples/train_crossing_shared.py's run (docs/learning/crossing_shared_*). Needs neither
 stable-baselines3 nor PyTorch.
 """
@@ -93,6 +94,17 @@ def test_the_docs_show_the_first_runs_figures_without_the_brakes_and_the_gap_ter
     options = {key: value for key, value in _script().ENV_OPTIONS.items()
                if key not in BRAKING_AND_GAP}
     assert summary['env_options'] == options
+
+
+def test_the_docs_show_the_lane_speed_runs_figures_and_its_options_are_the_scripts():
+    # the lane-change actions tried: the committed run's options and training traffic but the
+    # lane_speed layout (--control lane_speed)
+    summary = _earlier_run('highway_ppo_lane_speed')
+    script = _script()
+    assert summary['env_options'] == dict(script.ENV_OPTIONS, control='lane_speed')
+    assert summary['env_options'] == script.card('lane_speed').options
+    assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
+                                               every=script.TRAINING_TRAFFIC_EVERY)
 
 
 def test_the_docs_show_the_committed_crossing_runs_figures():
