@@ -49,7 +49,6 @@ Needs the ``learn`` extra (stable-baselines3, PyTorch, SuperSuit) and PettingZoo
 """
 
 import argparse
-import csv
 import json
 import math
 import multiprocessing
@@ -61,6 +60,7 @@ import numpy as np
 import yaml
 
 from vehicle_sim.core.learning.objects_table import Neighbour, objects_table, ObjectsTableSpec
+from vehicle_sim.gym import learning_curve as lc
 
 ROOT = Path(__file__).resolve().parents[1]
 WORLD_FILE = ROOT / 'config' / 'worlds' / 'crossing4.yaml'
@@ -103,6 +103,9 @@ NET_ARCH = [64, 64]
 LOG_STD_INIT = -0.5
 EVAL_SEED_BASE = 1_000_000      # evaluation seeds: EVAL_SEED_BASE + k; training's: seed + world
 WINDOW = 50                     # training episodes (worlds) per curve point
+# The columns of learning_curve.csv.
+CURVE_FIELDS = ['agent_steps', 'world_steps', 'wall_s', 'episodes', 'mean_return',
+                'success_rate', 'collision_rate']
 
 
 def crossing_world(vehicle_model=VEHICLE_MODEL):
@@ -467,44 +470,14 @@ def results_markdown(summary):
 
 def write_curve(out, rows, episodes):
     """Write learning_curve.csv, episodes.csv and learning_curve.png."""
-    fields = ['agent_steps', 'world_steps', 'wall_s', 'episodes', 'mean_return',
-              'success_rate', 'collision_rate']
-    with open(out / 'learning_curve.csv', 'w', encoding='utf-8', newline='') as stream:
-        writer = csv.DictWriter(stream, fieldnames=fields)
-        writer.writeheader()
-        writer.writerows(rows)
+    lc.write_rows(out / 'learning_curve.csv', rows, CURVE_FIELDS)
     if episodes:
-        with open(out / 'episodes.csv', 'w', encoding='utf-8', newline='') as stream:
-            writer = csv.DictWriter(stream, fieldnames=list(episodes[0]))
-            writer.writeheader()
-            writer.writerows(episodes)
-    try:
-        import matplotlib
-    except ImportError:
-        print("matplotlib is missing (pip install 'vehicle_sim[plot]'): no learning_curve.png")
-        return
-    matplotlib.use('Agg')
-    import matplotlib.pyplot as plt
-    figure, axes = plt.subplots(2, 2, figsize=(8, 5), sharey='row')
-    steps = [r['agent_steps'] for r in rows]
-    minutes = [r['wall_s'] / 60.0 for r in rows]
-    for column, (x, label) in enumerate(((steps, 'agent steps (0.2 s each)'),
-                                         (minutes, 'wall time [min]'))):
-        axes[0, column].plot(x, [r['mean_return'] for r in rows])
-        axes[1, column].plot(x, [r['success_rate'] for r in rows], color='tab:green',
-                             label='success')
-        axes[1, column].plot(x, [r['collision_rate'] for r in rows], color='tab:red',
-                             label='collision')
-        axes[1, column].set_xlabel(label)
-        axes[1, column].set_ylim(-0.02, 1.02)
-    axes[1, 0].legend(loc='center right', fontsize=8)
-    axes[0, 0].set_ylabel(f'mean return per agent,\nlast {WINDOW} episodes')
-    axes[1, 0].set_ylabel(f'rate,\nlast {WINDOW} episodes')
-    figure.suptitle('PPO shared by the 4 agents of crossing4 (training episodes, stochastic '
-                    'policy)', fontsize=10)
-    figure.tight_layout()
-    figure.savefig(out / 'learning_curve.png', dpi=80)
-    plt.close(figure)
+        lc.write_rows(out / 'episodes.csv', episodes)
+    lc.plot_curve(out / 'learning_curve.png', rows,
+                  'PPO shared by the 4 agents of crossing4 (training episodes, stochastic '
+                  'policy)', WINDOW, steps_key='agent_steps',
+                  steps_label='agent steps (0.2 s each)', rates=(lc.SUCCESS, lc.COLLISION),
+                  return_label='mean return per agent')
 
 
 def main(argv=None):
@@ -576,12 +549,7 @@ def main(argv=None):
         summary['eval_seeds'] = [seeds[0], seeds[-1]]
         summary['evaluation'] = {name: figures(outcomes, agents)
                                  for name, outcomes in results.items()}
-        with open(out / 'evaluation.csv', 'w', encoding='utf-8', newline='') as stream:
-            writer = csv.DictWriter(stream,
-                                    fieldnames=['policy'] + list(results['trained'][0]))
-            writer.writeheader()
-            for name, outcomes in results.items():
-                writer.writerows(dict(o, policy=name) for o in outcomes)
+        lc.write_evaluation(out / 'evaluation.csv', results)
         for name, values in summary['evaluation'].items():
             print(f"{name:>8}: success {values['success_rate']:.2f}, collision "
                   f"{values['collision_rate']:.2f}, mean return {values['mean_return']}, "

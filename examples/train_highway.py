@@ -44,7 +44,6 @@ Needs the ``learn`` extra (stable-baselines3, PyTorch) and matplotlib (the ``plo
 """
 
 import argparse
-import csv
 import json
 import multiprocessing
 import os
@@ -54,6 +53,7 @@ import warnings
 
 import numpy as np
 
+from vehicle_sim.gym.learning_curve import plot_curve, write_evaluation, write_rows
 from vehicle_sim.gym.policy_card import load_card, make_env, PolicyCard, save_card
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -110,6 +110,9 @@ TRAINING_TRAFFIC = {'vehicles': 80, 'speed_factor_std': 0.15}
 TRAINING_TRAFFIC_EVERY = 2
 EVAL_SEED_BASE = 1_000_000      # evaluation seeds: EVAL_SEED_BASE + k; training's are seed + i
 WINDOW = 50                     # training episodes per curve point
+# The columns of learning_curve.csv.
+CURVE_FIELDS = ['env_steps', 'wall_s', 'episodes', 'mean_return', 'success_rate',
+                'mean_episode_s']
 # RescaleAction's float64 bounds are cast to the float32 Box: expected, not news.
 warnings.filterwarnings('ignore', message='.*precision lowered by casting to float32.*')
 
@@ -354,40 +357,12 @@ def results_markdown(summary):
 
 def write_curve(out, rows, episodes):
     """Write learning_curve.csv, episodes.csv and learning_curve.png."""
-    fields = ['env_steps', 'wall_s', 'episodes', 'mean_return', 'success_rate',
-              'mean_episode_s']
-    with open(out / 'learning_curve.csv', 'w', encoding='utf-8', newline='') as stream:
-        writer = csv.DictWriter(stream, fieldnames=fields)
-        writer.writeheader()
-        writer.writerows(rows)
+    write_rows(out / 'learning_curve.csv', rows, CURVE_FIELDS)
     if episodes:
-        with open(out / 'episodes.csv', 'w', encoding='utf-8', newline='') as stream:
-            writer = csv.DictWriter(stream, fieldnames=list(episodes[0]))
-            writer.writeheader()
-            writer.writerows(episodes)
-    try:
-        import matplotlib
-    except ImportError:
-        print("matplotlib is missing (pip install 'vehicle_sim[plot]'): no learning_curve.png")
-        return
-    matplotlib.use('Agg')
-    import matplotlib.pyplot as plt
-    figure, axes = plt.subplots(2, 2, figsize=(8, 5), sharey='row')
-    steps = [r['env_steps'] for r in rows]
-    minutes = [r['wall_s'] / 60.0 for r in rows]
-    for column, (x, label) in enumerate(((steps, 'environment steps (0.2 s each)'),
-                                         (minutes, 'wall time [min]'))):
-        axes[0, column].plot(x, [r['mean_return'] for r in rows])
-        axes[1, column].plot(x, [r['success_rate'] for r in rows], color='tab:green')
-        axes[1, column].set_xlabel(label)
-        axes[1, column].set_ylim(-0.02, 1.02)
-    axes[0, 0].set_ylabel(f'mean return,\nlast {WINDOW} episodes')
-    axes[1, 0].set_ylabel(f'success rate,\nlast {WINDOW} episodes')
-    figure.suptitle('PPO on Drive-v0, highway_traffic (training episodes, stochastic policy)',
-                    fontsize=10)
-    figure.tight_layout()
-    figure.savefig(out / 'learning_curve.png', dpi=80)
-    plt.close(figure)
+        write_rows(out / 'episodes.csv', episodes)
+    plot_curve(out / 'learning_curve.png', rows,
+               'PPO on Drive-v0, highway_traffic (training episodes, stochastic policy)',
+               WINDOW, steps_label='environment steps (0.2 s each)')
 
 
 def main(argv=None):
@@ -447,11 +422,7 @@ def main(argv=None):
     summary['eval_seeds'] = [seeds[0], seeds[-1]]
     summary['evaluation'] = {name: figures(outcomes) for name, outcomes in results.items()}
     summary['target'] = {'success_rate': 0.9, 'mean_speed_fraction_of_limit': MIN_MEAN_FRACTION}
-    with open(out / 'evaluation.csv', 'w', encoding='utf-8', newline='') as stream:
-        writer = csv.DictWriter(stream, fieldnames=['policy'] + list(results['trained'][0]))
-        writer.writeheader()
-        for name, outcomes in results.items():
-            writer.writerows(dict(o, policy=name) for o in outcomes)
+    write_evaluation(out / 'evaluation.csv', results)
     (out / 'summary.json').write_text(json.dumps(summary, indent=2) + '\n', encoding='utf-8')
     for name, values in summary['evaluation'].items():
         print(f"{name:>8}: success {values['success_rate']:.2f}, collision "

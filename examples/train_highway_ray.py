@@ -43,7 +43,6 @@ its seeds, its criteria, its figures) into ``DIR/evaluation.csv`` and ``DIR/summ
 """
 
 import argparse
-import csv
 import json
 import math
 import os
@@ -51,6 +50,8 @@ from pathlib import Path
 import sys
 import time
 
+from vehicle_sim.gym import learning_curve
+from vehicle_sim.gym.learning_curve import write_evaluation, write_rows
 from vehicle_sim.gym.policy_card import PolicyCard, save_card
 
 EXAMPLES = Path(__file__).resolve().parent
@@ -245,11 +246,7 @@ def evaluate(out, episodes, workers):
     start = time.perf_counter()
     results = {'trained': train_highway.evaluate(str(out / 'checkpoint'), seeds, workers),
                'random': train_highway.evaluate(None, seeds, workers)}
-    with open(out / 'evaluation.csv', 'w', encoding='utf-8', newline='') as stream:
-        writer = csv.DictWriter(stream, fieldnames=['policy'] + list(results['trained'][0]))
-        writer.writeheader()
-        for name, outcomes in results.items():
-            writer.writerows(dict(o, policy=name) for o in outcomes)
+    write_evaluation(out / 'evaluation.csv', results)
     evaluation = {name: train_highway.figures(outcomes) for name, outcomes in results.items()}
     for name, values in evaluation.items():
         print(f"{name:>8}: success {values['success_rate']:.2f}, collision "
@@ -334,32 +331,12 @@ def results_markdown(summary):
 
 def write_curve(curve, path):
     """Write the learning curve rows as CSV."""
-    with open(path, 'w', encoding='utf-8', newline='') as stream:
-        writer = csv.DictWriter(stream, fieldnames=CURVE_FIELDS)
-        writer.writeheader()
-        writer.writerows(curve)
+    write_rows(path, curve, CURVE_FIELDS)
 
 
 def plot_curve(curve, path, title, window=20):
     """Write the curve as a PNG: return and success rate against env steps and wall time."""
-    import matplotlib
-    matplotlib.use('Agg')
-    import matplotlib.pyplot as plt
-    figure, axes = plt.subplots(2, 2, figsize=(8, 5), sharey='row')
-    steps = [r['env_steps'] for r in curve]
-    minutes = [r['wall_s'] / 60.0 for r in curve]
-    for column, (x, label) in enumerate(((steps, 'environment steps'),
-                                         (minutes, 'wall time [min]'))):
-        axes[0, column].plot(x, [r['mean_return'] for r in curve])
-        axes[1, column].plot(x, [r['success_rate'] for r in curve], color='tab:green')
-        axes[1, column].set_xlabel(label)
-        axes[1, column].set_ylim(-0.02, 1.02)
-    axes[0, 0].set_ylabel(f'mean return,\nlast {window} episodes')
-    axes[1, 0].set_ylabel(f'success rate,\nlast {window} episodes')
-    figure.suptitle(title, fontsize=10)
-    figure.tight_layout()
-    figure.savefig(path, dpi=80)
-    plt.close(figure)
+    learning_curve.plot_curve(path, curve, title, window)
 
 
 def main(argv=None):
