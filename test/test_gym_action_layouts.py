@@ -173,6 +173,15 @@ def test_the_node_refuses_a_robot_layout_and_the_environment_a_mismatched_one():
     with pytest.raises(InvalidParameterError, match="control 'lane_speed' steers by the lane "
                                                     'state: the world has no lanes'):
         controls.make_control('lane_speed', vehicle)
+    # the node's writer needs the environment's steering bounds for lane_speed's law: none
+    # given is refused, not steered within (0, 0)
+    with pytest.raises(InvalidParameterError, match="control 'lane_speed' steers by a law "
+                                                    'within the steering bounds of its '
+                                                    'environment: none given'):
+        policy_actions.ActionWriter('lane_speed', (-4.0, 0.0), (4.0, 20.0))
+    with pytest.raises(ValueError, match='lane_speed steers within the steering bounds of its '
+                                         'environment: none given'):
+        actions.LAYOUTS['lane_speed'].values((1.0, 10.0), actions.Reading(10.0))
 
 
 def _docs_action_rows():

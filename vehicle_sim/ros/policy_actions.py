@@ -63,18 +63,26 @@ class ActionWriter:
     :param high: its high bounds.
     :param action_range: (low, high) the policy's actions were rescaled to (its card's).
     :param steering_bounds: the environment's steering angles allowed (low, high) [rad],
-        + = left (``lane_speed``'s law keeps within them).
-    :raises InvalidParameterError: an unknown layout, or bounds of the wrong length.
+        + = left: ``lane_speed``'s law keeps within them (required for it).
+    :raises InvalidParameterError: an unknown layout, bounds of the wrong length, or
+        ``lane_speed`` without steering bounds.
     """
 
-    def __init__(self, control, low, high, action_range=(-1.0, 1.0), steering_bounds=(0.0, 0.0)):
+    def __init__(self, control, low, high, action_range=(-1.0, 1.0), steering_bounds=None):
         if control not in LAYOUTS:
             raise InvalidParameterError(
                 f'control {control!r}: the automobile node is driven by '
                 f'{", ".join(LAYOUTS)} (a robot policy, twist, drives no car)')
         self.control = control
         self.layout = LAYOUTS[control]
-        self.steering_bounds = (float(steering_bounds[0]), float(steering_bounds[1]))
+        if steering_bounds is None:
+            if self.layout.reads_lane:
+                raise InvalidParameterError(
+                    f'control {control!r} steers by a law within the steering bounds of its '
+                    "environment: none given (the card's environment gives them)")
+            self.steering_bounds = None
+        else:
+            self.steering_bounds = (float(steering_bounds[0]), float(steering_bounds[1]))
         self.names, self.units = self.layout.names, self.layout.units
         self.low = np.asarray(low, dtype=np.float32)
         self.high = np.asarray(high, dtype=np.float32)

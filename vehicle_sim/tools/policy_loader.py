@@ -110,7 +110,7 @@ class DriveSetup:
     high: tuple
     action_range: tuple
     period_s: float
-    steering_bounds: tuple = (0.0, 0.0)
+    steering_bounds: tuple = None        # (low, high) [rad], + = left; None for a robot
 
 
 def drive_setup(card, model, rate_hz=None, source='the model'):
@@ -140,7 +140,7 @@ def drive_setup(card, model, rate_hz=None, source='the model'):
             control = DEFAULT_LAYOUT[CAR if sim.scene.vehicles[sim.ego_name].car is not None
                                      else ROBOT]
         space = env.unwrapped.action_space
-        steering = getattr(sim.control, 'steering_bounds', (0.0, 0.0))
+        steering = getattr(sim.control, 'steering_bounds', None)
         step_ms = sim.world.time_step_s * 1000.0
         period_s = options['action_repeat'] * step_ms / 1000.0
         objects = _objects_spec(card)
@@ -153,7 +153,7 @@ def drive_setup(card, model, rate_hz=None, source='the model'):
     keys = tuple(card.observation_keys) or tuple(_shapes(model.observation_space))
     return DriveSetup(keys, objects, control, tuple(np.asarray(space.low, dtype=float)),
                       tuple(np.asarray(space.high, dtype=float)), tuple(card.action_range),
-                      period_s, tuple(float(b) for b in steering))
+                      period_s, None if steering is None else tuple(float(b) for b in steering))
 
 
 def _objects_spec(card):

@@ -55,7 +55,7 @@ control would reach a car still cruising).
 """
 
 from dataclasses import dataclass
-from typing import Callable, Tuple
+from typing import Callable, Optional, Tuple
 
 import numpy as np
 
@@ -106,14 +106,14 @@ class Reading:
     :ivar lane_offset_m: its lateral offset from its lane's centreline, + = left [m] (its lane
         state's; 0 off every lane).
     :ivar heading_error_rad: its yaw minus the lane's direction [rad] (its lane state's).
-    :ivar steering_bounds: the steering angles allowed (low, high) [rad], + = left: the Box's
-        for the layouts with a steering entry, the law's limits for ``lane_speed``.
+    :ivar steering_bounds: the steering angles allowed (low, high) [rad], + = left: the
+        law's limits for ``lane_speed`` (which refuses None); unused by the others.
     """
 
     forward_mps: float = 0.0
     lane_offset_m: float = 0.0
     heading_error_rad: float = 0.0
-    steering_bounds: Tuple[float, float] = (0.0, 0.0)
+    steering_bounds: Optional[Tuple[float, float]] = None
 
 
 @dataclass(frozen=True)
@@ -261,6 +261,9 @@ def _braking_speed_steering(a, reading, _limits):
 
 
 def _lane_speed(a, reading, _limits):
+    if reading.steering_bounds is None:
+        raise ValueError('lane_speed steers within the steering bounds of its environment: '
+                         'none given')
     low, high = reading.steering_bounds
     steering = lane_keeping_steering(float(a[0]), reading.lane_offset_m,
                                      reading.heading_error_rad, reading.forward_mps, low, high)
