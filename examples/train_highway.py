@@ -53,6 +53,7 @@ import warnings
 
 import numpy as np
 
+from vehicle_sim.core.learning.actions import CAR, LAYOUTS, layouts_of
 from vehicle_sim.gym.learning_curve import plot_curve, write_evaluation, write_rows
 from vehicle_sim.gym.policy_card import load_card, make_env, PolicyCard, save_card
 
@@ -110,6 +111,8 @@ TRAINING_TRAFFIC = {'vehicles': 80, 'speed_factor_std': 0.15}
 TRAINING_TRAFFIC_EVERY = 2
 EVAL_SEED_BASE = 1_000_000      # evaluation seeds: EVAL_SEED_BASE + k; training's are seed + i
 WINDOW = 50                     # training episodes per curve point
+# --control: the car's layouts with a speed entry (max_speed bounds it), from core's table.
+SPEED_CONTROLS = tuple(name for name in layouts_of(CAR) if 'speed' in LAYOUTS[name].names)
 # The columns of learning_curve.csv.
 CURVE_FIELDS = ['env_steps', 'wall_s', 'episodes', 'mean_return', 'success_rate',
                 'mean_episode_s']
@@ -381,7 +384,7 @@ def main(argv=None):
                         help='evaluate this model.zip (with its card) instead of training')
     parser.add_argument('--out', default='train_highway_out')
     parser.add_argument('--control', default=ENV_OPTIONS['control'],
-                        choices=('speed_steering', 'braking_speed_steering', 'lane_speed'),
+                        choices=SPEED_CONTROLS,
                         help='the action layout (docs/gym.md, Actions; default: %(default)s)')
     args = parser.parse_args(argv)
     try:
