@@ -179,6 +179,12 @@ def test_the_node_refuses_a_robot_layout_and_the_environment_a_mismatched_one():
                                                     'within the steering bounds of its '
                                                     'environment: none given'):
         policy_actions.ActionWriter('lane_speed', (-4.0, 0.0), (4.0, 20.0))
+    # nor without the car's lane state: refused, not steered as if centred
+    writer = policy_actions.ActionWriter('lane_speed', (-4.0, 0.0), (4.0, 20.0), (-1.0, 1.0),
+                                         (-0.02, 0.02))
+    with pytest.raises(ValueError, match="control 'lane_speed' steers by the lane state: no "
+                                         'lane_state message'):
+        writer.setters((1.0, 10.0), 10.0)
     with pytest.raises(ValueError, match='lane_speed steers within the steering bounds of its '
                                          'environment: none given'):
         actions.LAYOUTS['lane_speed'].values((1.0, 10.0), actions.Reading(10.0))

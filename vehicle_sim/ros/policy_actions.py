@@ -122,6 +122,9 @@ class ActionWriter:
             heading error), or None.
         """
         if lane_state is None:
+            if self.layout.reads_lane:
+                raise ValueError(f'control {self.control!r} steers by the lane state: no '
+                                 'lane_state message')
             return actions.Reading(float(forward_mps), steering_bounds=self.steering_bounds)
         return actions.Reading(float(forward_mps), float(lane_state.offset),
                                float(lane_state.heading_error), self.steering_bounds)

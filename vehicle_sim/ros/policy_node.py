@@ -229,11 +229,11 @@ class PolicyNode:
                                      latest.get(pi.OBJECTS_IN))
             action, _ = self.policy.predict(obs, deterministic=True)
             values = self.writer.physical(np.asarray(action))
+            commands = self.writer.setters(values, latest[pi.ODOM_IN].twist.twist.linear.x,
+                                           latest.get(pi.LANE_STATE_IN))
         except (InvalidParameterError, ValueError) as error:
             self._fail(f'at /clock {tick_s:.3f} s: {error}')
             return
-        commands = self.writer.setters(values, latest[pi.ODOM_IN].twist.twist.linear.x,
-                                       latest.get(pi.LANE_STATE_IN))
         self.last_obs = obs
         self.ticks += 1
         self._tick_s = tick_s
