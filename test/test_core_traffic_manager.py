@@ -348,3 +348,17 @@ def test_objects_are_where_the_vehicles_are_at_the_stamp():
     assert later.path[0][0] - now.path[0][0] == pytest.approx(1.0, abs=1e-9)
     with pytest.raises(ValueError, match='since_s = -0.1'):
         traffic_objects(m, heights, since_s=-0.1)
+
+
+def test_objects_without_paths_are_the_same_objects_with_empty_paths():
+    from dataclasses import replace
+
+    from vehicle_sim.core.traffic.objects import traffic_objects
+    m = manager({'placed': [{'lanelet': MIDDLE, 's': 100.0, 'speed': 20.0,
+                             'route': [100102]},
+                            {'lanelet': MIDDLE, 's': 160.0, 'speed': 15.0}]})
+    heights = {'Car': 1.5, 'Truck': 3.0}
+    full = traffic_objects(m, heights, since_s=0.05)
+    bare = traffic_objects(m, heights, since_s=0.05, paths=False)
+    assert len(full) == 2 and all(len(o.path) == 10 for o in full)
+    assert bare == tuple(replace(o, path=()) for o in full)

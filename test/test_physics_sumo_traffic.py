@@ -24,6 +24,7 @@ trajectories twice and another seed others; reset starts SUMO again; two worlds 
 run (the second over TraCI); closing the world closes SUMO.
 """
 
+from dataclasses import replace
 import math
 import re
 
@@ -645,5 +646,8 @@ def test_a_sumo_vehicles_predicted_path_follows_its_route_through_the_junction(n
         assert x0 == pytest.approx(1.6, abs=0.3) and yaw0 == pytest.approx(math.pi / 2, abs=0.05)
         assert x9 > 10.0 and y9 == pytest.approx(98.4, abs=0.3) and yaw9 == pytest.approx(
             0.0, abs=0.05)
+        # without paths (the Gym env's readers): the same objects, each path empty
+        bare = {bodies.sumo_id(o.name): o for o in bodies.objects(paths=False)}
+        assert bare == {key: replace(o, path=()) for key, o in objects.items()}
     finally:
         scene.world.close()

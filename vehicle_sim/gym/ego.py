@@ -78,7 +78,7 @@ def road_users(scene):
     """Return the traffic's vehicles and the world's obstacles now, as gap Boxes."""
     traffic = scene.parts.get('traffic')
     found = [] if traffic is None else [Box(o.x_m, o.y_m, o.yaw_rad, o.speed_mps, *o.size_m[:2])
-                                        for o in traffic.objects()]
+                                        for o in traffic.objects(paths=False)]
     world = scene.world
 
     def pose_of(name):

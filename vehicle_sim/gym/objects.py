@@ -73,7 +73,7 @@ class ObjectsPart:
         """Return the traffic's objects and the obstacles now, as Neighbours."""
         traffic = self.scene.parts.get('traffic')
         found = [] if traffic is None else [Neighbour(o.x_m, o.y_m, o.yaw_rad, o.speed_mps)
-                                            for o in traffic.objects()]
+                                            for o in traffic.objects(paths=False)]
         found.extend(Neighbour(o.x_m, o.y_m, o.yaw_rad) for o in obstacle_objects(
             self.scene.spec.obstacles, self._obstacle_pose))
         return found

@@ -101,7 +101,7 @@ class SumoViews:
                           slot.colour, CLASS_SHAPES[name]))
         return found
 
-    def objects(self, horizon_s=PREDICTION_HORIZON_S, step_s=PREDICTION_STEP_S):
+    def objects(self, horizon_s=PREDICTION_HORIZON_S, step_s=PREDICTION_STEP_S, paths=True):
         """
         Return SUMO's vehicles and persons as core TrafficObjects now.
 
@@ -109,7 +109,7 @@ class SumoViews:
         SUMO vehicle class (core/traffic/sumo_params.py object_class); a vehicle's predicted
         path follows its lane and the lanes of its route after it at its speed
         (core/traffic/lane_paths.py), a person's (or one on a lane the lane graph lacks) goes
-        on straight.
+        on straight. ``paths`` False: no paths (each empty), for readers of poses and speeds.
         """
         since = self.since_update_s
         count = int(round(horizon_s / step_s))
@@ -119,7 +119,7 @@ class SumoViews:
             c, s = math.cos(yaw), math.sin(yaw)
             gone = speed * since
             x, y = x + gone * c, y + gone * s
-            path = self._lane_path(slot, since, count, step_s)
+            path = self._lane_path(slot, since, count, step_s) if paths else ()
             if path is None:
                 path = tuple((x + speed * step_s * k * c, y + speed * step_s * k * s, yaw)
                              for k in range(1, count + 1))

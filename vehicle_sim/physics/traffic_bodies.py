@@ -394,10 +394,15 @@ class TrafficBodies:
                     if v.active and motion[v.index] is not None]
         return self._table.now(self.since_update_s, rows)
 
-    def objects(self):
-        """Return the traffic on the map as core TrafficObjects now (core/traffic/objects.py)."""
+    def objects(self, paths=True):
+        """
+        Return the traffic on the map as core TrafficObjects now (core/traffic/objects.py).
+
+        :param paths: False: without predicted paths (each empty), for readers of poses and
+            speeds only.
+        """
         return traffic_objects(self.manager, self.heights, since_s=self.since_update_s,
-                               instance_of=self.world.labels.instance)
+                               instance_of=self.world.labels.instance, paths=paths)
 
     @property
     def follow_params(self):

@@ -134,7 +134,7 @@ def _path(manager, v, horizon_s, step_s, since_s):
 
 def traffic_objects(manager, heights: Mapping[str, float], horizon_s=PREDICTION_HORIZON_S,
                     step_s=PREDICTION_STEP_S, since_s=0.0,
-                    instance_of=None) -> Tuple[TrafficObject, ...]:
+                    instance_of=None, paths=True) -> Tuple[TrafficObject, ...]:
     """
     Return the vehicles on the map as TrafficObjects, in index order.
 
@@ -146,6 +146,8 @@ def traffic_objects(manager, heights: Mapping[str, float], horizon_s=PREDICTION_
         is now, gone on straight at its speed (as its body in the physics world), and its
         path starts from there.
     :param instance_of: ``instance_of(name)`` -> a vehicle's instance id (None: 0).
+    :param paths: False: no prediction (each path empty), for readers of poses and speeds only
+        (the Gym env's objects table and gap reward): the paths are most of the cost.
     """
     if not (math.isfinite(horizon_s) and math.isfinite(step_s) and 0.0 < step_s <= horizon_s):
         raise ValueError(f'horizon_s = {horizon_s!r}, step_s = {step_s!r}: need '
@@ -161,7 +163,8 @@ def traffic_objects(manager, heights: Mapping[str, float], horizon_s=PREDICTION_
         found.append(TrafficObject(v.index, v.name, x + gone * math.cos(yaw),
                                    y + gone * math.sin(yaw), yaw, v.speed_mps, v.length_m,
                                    v.width_m, heights[v.model],
-                                   _path(manager, v, horizon_s, step_s, since_s), step_s,
+                                   _path(manager, v, horizon_s, step_s, since_s) if paths
+                                   else (), step_s,
                                    instance_id=0 if instance_of is None else instance_of(v.name)))
     return tuple(found)
 
