@@ -20,7 +20,7 @@ examples/train_highway.py wrote docs/learning/highway_ppo_summary.json and the c
 table in docs/learning.md must be ``results_markdown`` of that summary (not typed in), and the
 committed model's card must be the script's. The same for the two earlier runs of the script
 whose figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*,
-highway_ppo_lane_speed_*, highway_ppo_more_steps_*) and for
+highway_ppo_lane_speed_*, highway_ppo_more_steps_*, highway_ppo_every4_*) and for
 examples/train_crossing_shared.py's run (docs/learning/crossing_shared_*). Needs neither
 stable-baselines3 nor PyTorch.
 """
@@ -117,6 +117,14 @@ def test_the_docs_show_the_more_steps_runs_figures_and_its_options_are_the_scrip
                                                every=script.TRAINING_TRAFFIC_EVERY)
     assert summary['minutes'] == 30.0 and summary['env_steps'] > 1.5 * json.loads(
         (RUN / 'highway_ppo_summary.json').read_text(encoding='utf-8'))['env_steps']
+
+
+def test_the_docs_show_the_every4_runs_figures_and_its_options_are_the_scripts():
+    # fewer training worlds in the denser traffic: the script's options, every fourth
+    summary = _earlier_run('highway_ppo_every4')
+    script = _script()
+    assert summary['env_options'] == script.ENV_OPTIONS
+    assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC, every=4)
 
 
 def test_the_docs_show_the_committed_crossing_runs_figures():
