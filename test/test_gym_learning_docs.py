@@ -18,10 +18,11 @@ docs/learning.md shows the figures of the committed training run, as the script 
 
 examples/train_highway.py wrote docs/learning/highway_ppo_summary.json and the curve files; the
 table in docs/learning.md must be ``results_markdown`` of that summary (not typed in), and the
-committed model's card must be the script's. The same for the two earlier runs of the script
-whose figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*,
-highway_ppo_lane_speed_*, highway_ppo_more_steps_*, highway_ppo_every4_*) and for
-examples/train_crossing_shared.py's run (docs/learning/crossing_shared_*). Needs neither
+committed model's card must be the script's. The same for the earlier runs of the script whose
+figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*,
+highway_ppo_lane_speed_*, highway_ppo_more_steps_*, highway_ppo_every4_* and its second seed's
+highway_ppo_every4_seed1_*) and for examples/train_crossing_shared.py's run
+(docs/learning/crossing_shared_*). Needs neither
 stable-baselines3 nor PyTorch.
 """
 
@@ -119,12 +120,14 @@ def test_the_docs_show_the_more_steps_runs_figures_and_its_options_are_the_scrip
         (RUN / 'highway_ppo_summary.json').read_text(encoding='utf-8'))['env_steps']
 
 
-def test_the_docs_show_the_every4_runs_figures_and_its_options_are_the_scripts():
+def test_the_docs_show_the_every4_runs_figures_and_their_options_are_the_scripts():
     # fewer training worlds in the denser traffic: the script's options, every fourth
-    summary = _earlier_run('highway_ppo_every4')
-    script = _script()
-    assert summary['env_options'] == script.ENV_OPTIONS
-    assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC, every=4)
+    for name, seed in (('highway_ppo_every4', 0), ('highway_ppo_every4_seed1', 1)):
+        summary = _earlier_run(name)
+        script = _script()
+        assert summary['seed'] == seed
+        assert summary['env_options'] == script.ENV_OPTIONS
+        assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC, every=4)
 
 
 def test_the_docs_show_the_committed_crossing_runs_figures():
