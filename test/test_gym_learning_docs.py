@@ -21,9 +21,8 @@ table in docs/learning.md must be ``results_markdown`` of that summary (not type
 committed model's card must be the script's. The same for the earlier runs of the script whose
 figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*,
 highway_ppo_lane_speed_*, highway_ppo_more_steps_*, highway_ppo_every4_* and its second seed's
-highway_ppo_every4_seed1_*) and for examples/train_crossing_shared.py's run
-(docs/learning/crossing_shared_*). Needs neither
-stable-baselines3 nor PyTorch.
+highway_ppo_every4_seed1_*, highway_ppo_lr_decay_*) and for examples/train_crossing_shared.py's
+run (docs/learning/crossing_shared_*). Needs neither stable-baselines3 nor PyTorch.
 """
 
 import csv
@@ -128,6 +127,19 @@ def test_the_docs_show_the_every4_runs_figures_and_their_options_are_the_scripts
         assert summary['seed'] == seed
         assert summary['env_options'] == script.ENV_OPTIONS
         assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC, every=4)
+
+
+def test_the_docs_show_the_lr_decay_runs_figures_and_its_options_are_the_scripts():
+    # a decaying learning rate: the script's options, PPO's learning rate from 3e-4 to 3e-5
+    # over the first 400 000 env steps
+    summary = _earlier_run('highway_ppo_lr_decay')
+    script = _script()
+    assert summary['env_options'] == script.ENV_OPTIONS
+    assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
+                                               every=script.TRAINING_TRAFFIC_EVERY)
+    assert summary['ppo'] == dict(script.PPO_OPTIONS, learning_rate=[3e-4, 3e-5, 400_000],
+                                  net_arch=script.NET_ARCH, log_std_init=script.LOG_STD_INIT)
+    assert summary['seed'] == 0 and summary['env_steps'] > 400_000
 
 
 def test_the_docs_show_the_committed_crossing_runs_figures():
