@@ -21,9 +21,9 @@ table in docs/learning.md must be ``results_markdown`` of that summary (not type
 committed model's card must be the script's. The same for the earlier runs of the script whose
 figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*,
 highway_ppo_lane_speed_*, highway_ppo_more_steps_*, highway_ppo_every4_* and its second seed's
-highway_ppo_every4_seed1_*, highway_ppo_lr_decay_*, highway_ppo_lr_decay_c20_*) and for
-examples/train_crossing_shared.py's run (docs/learning/crossing_shared_*). Needs neither
-stable-baselines3 nor PyTorch.
+highway_ppo_every4_seed1_*, highway_ppo_lr_decay_*, highway_ppo_lr_decay_c20_*,
+highway_ppo_lr_decay_ttc5_*) and for examples/train_crossing_shared.py's run
+(docs/learning/crossing_shared_*). Needs neither stable-baselines3 nor PyTorch.
 """
 
 import csv
@@ -147,6 +147,14 @@ def test_the_docs_show_the_lr_decay_with_a_doubled_collision_penalty_runs_figure
     summary = _earlier_run('highway_ppo_lr_decay_c20')
     script = _script()
     assert summary['env_options'] == dict(script.ENV_OPTIONS, collision_penalty=20.0)
+    assert summary['ppo'] == dict(script.PPO_OPTIONS, learning_rate=[3e-4, 3e-5, 400_000],
+                                  net_arch=script.NET_ARCH, log_std_init=script.LOG_STD_INIT)
+
+
+def test_the_docs_show_the_lr_decay_with_a_stronger_ttc_penalty_runs_figures():
+    summary = _earlier_run('highway_ppo_lr_decay_ttc5')
+    script = _script()
+    assert summary['env_options'] == dict(script.ENV_OPTIONS, ttc_penalty=5.0)
     assert summary['ppo'] == dict(script.PPO_OPTIONS, learning_rate=[3e-4, 3e-5, 400_000],
                                   net_arch=script.NET_ARCH, log_std_init=script.LOG_STD_INIT)
 
