@@ -130,33 +130,24 @@ def test_the_docs_show_the_every4_runs_figures_and_their_options_are_the_scripts
         assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC, every=4)
 
 
-def test_the_docs_show_the_lr_decay_runs_figures_and_its_options_are_the_scripts():
-    # a decaying learning rate: the script's options, PPO's learning rate from 3e-4 to 3e-5
-    # over the first 400 000 env steps
-    summary = _earlier_run('highway_ppo_lr_decay')
+# The decaying learning rate's runs: PPO's learning rate from 3e-4 to 3e-5 over the first
+# 400 000 env steps, alone and with one reward weight changed -> that run's options.
+LR_DECAY_RUNS = {'highway_ppo_lr_decay': {},
+                 'highway_ppo_lr_decay_c20': {'collision_penalty': 20.0},
+                 'highway_ppo_lr_decay_ttc5': {'ttc_penalty': 5.0}}
+
+
+def test_the_docs_show_the_lr_decay_runs_figures_and_their_options_are_the_scripts():
     script = _script()
-    assert summary['env_options'] == script.ENV_OPTIONS
-    assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
-                                               every=script.TRAINING_TRAFFIC_EVERY)
-    assert summary['ppo'] == dict(script.PPO_OPTIONS, learning_rate=[3e-4, 3e-5, 400_000],
-                                  net_arch=script.NET_ARCH, log_std_init=script.LOG_STD_INIT)
-    assert summary['seed'] == 0 and summary['env_steps'] > 400_000
-
-
-def test_the_docs_show_the_lr_decay_with_a_doubled_collision_penalty_runs_figures():
-    summary = _earlier_run('highway_ppo_lr_decay_c20')
-    script = _script()
-    assert summary['env_options'] == dict(script.ENV_OPTIONS, collision_penalty=20.0)
-    assert summary['ppo'] == dict(script.PPO_OPTIONS, learning_rate=[3e-4, 3e-5, 400_000],
-                                  net_arch=script.NET_ARCH, log_std_init=script.LOG_STD_INIT)
-
-
-def test_the_docs_show_the_lr_decay_with_a_stronger_ttc_penalty_runs_figures():
-    summary = _earlier_run('highway_ppo_lr_decay_ttc5')
-    script = _script()
-    assert summary['env_options'] == dict(script.ENV_OPTIONS, ttc_penalty=5.0)
-    assert summary['ppo'] == dict(script.PPO_OPTIONS, learning_rate=[3e-4, 3e-5, 400_000],
-                                  net_arch=script.NET_ARCH, log_std_init=script.LOG_STD_INIT)
+    for name, changed in LR_DECAY_RUNS.items():
+        summary = _earlier_run(name)
+        assert summary['env_options'] == dict(script.ENV_OPTIONS, **changed), name
+        assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
+                                                   every=script.TRAINING_TRAFFIC_EVERY)
+        assert summary['ppo'] == dict(script.PPO_OPTIONS, learning_rate=[3e-4, 3e-5, 400_000],
+                                      net_arch=script.NET_ARCH,
+                                      log_std_init=script.LOG_STD_INIT), name
+        assert summary['seed'] == 0
 
 
 def test_the_docs_show_the_committed_crossing_runs_figures():
