@@ -20,7 +20,8 @@ examples/train_highway.py wrote docs/learning/highway_ppo_summary.json and the c
 table in docs/learning.md must be ``results_markdown`` of that summary (not typed in), and the
 committed model's card must be the script's. The same for the earlier runs of the script whose
 figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*,
-highway_ppo_lane_speed_*, highway_ppo_more_steps_*, highway_ppo_every4_* and its second seed's
+highway_ppo_lane_speed_*, highway_ppo_more_steps_*, its second seed's highway_ppo_seed1_*,
+highway_ppo_every4_* and its second seed's
 highway_ppo_every4_seed1_*, highway_ppo_lr_decay_*, highway_ppo_lr_decay_c20_*,
 highway_ppo_lr_decay_ttc5_*) and for examples/train_crossing_shared.py's run
 (docs/learning/crossing_shared_*). Needs neither stable-baselines3 nor PyTorch.
@@ -108,15 +109,19 @@ def test_the_docs_show_the_lane_speed_runs_figures_and_its_options_are_the_scrip
                                                every=script.TRAINING_TRAFFIC_EVERY)
 
 
-def test_the_docs_show_the_more_steps_runs_figures_and_its_options_are_the_scripts():
+def test_the_docs_show_the_shipped_scripts_later_runs_figures_and_options():
     # the committed run's command again once the env step no longer predicted the objects'
-    # paths: the script as it is, more env steps in the same 30 minutes
-    summary = _earlier_run('highway_ppo_more_steps')
+    # paths (more env steps in the same 30 minutes), and the same with the second seed
     script = _script()
-    assert summary['env_options'] == script.ENV_OPTIONS
-    assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
-                                               every=script.TRAINING_TRAFFIC_EVERY)
-    assert summary['minutes'] == 30.0 and summary['env_steps'] > 1.5 * json.loads(
+    for name, seed in (('highway_ppo_more_steps', 0), ('highway_ppo_seed1', 1)):
+        summary = _earlier_run(name)
+        assert summary['seed'] == seed and summary['minutes'] == 30.0, name
+        assert summary['env_options'] == script.ENV_OPTIONS, name
+        assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
+                                                   every=script.TRAINING_TRAFFIC_EVERY), name
+        assert summary['ppo'] == dict(script.PPO_OPTIONS, net_arch=script.NET_ARCH,
+                                      log_std_init=script.LOG_STD_INIT, **script.POLICY_OPTIONS)
+    assert _earlier_run('highway_ppo_more_steps')['env_steps'] > 1.5 * json.loads(
         (RUN / 'highway_ppo_summary.json').read_text(encoding='utf-8'))['env_steps']
 
 
