@@ -21,10 +21,10 @@ table in docs/learning.md must be ``results_markdown`` of that summary (not type
 committed model's card must be the script's. The same for the earlier runs of the script whose
 figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*,
 highway_ppo_lane_speed_*, highway_ppo_more_steps_*, its second seed's highway_ppo_seed1_*,
-highway_ppo_every4_* and its second seed's
-highway_ppo_every4_seed1_*, highway_ppo_lr_decay_*, highway_ppo_lr_decay_c20_*,
-highway_ppo_lr_decay_ttc5_*) and for examples/train_crossing_shared.py's run
-(docs/learning/crossing_shared_*). Needs neither stable-baselines3 nor PyTorch.
+highway_ppo_every4_* and its second seed's highway_ppo_every4_seed1_*, highway_ppo_lr_decay_*,
+highway_ppo_lr_decay_c20_*, highway_ppo_lr_decay_ttc5_*, highway_ppo_lane_choice_*) and for
+examples/train_crossing_shared.py's run (docs/learning/crossing_shared_*).
+Needs neither stable-baselines3 nor PyTorch.
 """
 
 import csv
@@ -153,6 +153,26 @@ def test_the_docs_show_the_lr_decay_runs_figures_and_their_options_are_the_scrip
                                       net_arch=script.NET_ARCH,
                                       log_std_init=script.LOG_STD_INIT), name
         assert summary['seed'] == 0
+
+
+# The lane-choice runs: a wrapper around the lane_speed environment whose lane choice (keep,
+# left, right) is held until the lane is reached -> what the run's summary says of its actions.
+LANE_CHOICE_RUNS = {
+    'highway_ppo_lane_choice': {'lane_choice_speeds': [0.0, 10.0, 18.0, 24.0, 28.0, 31.0, 33.3]},
+}
+
+
+def test_the_docs_show_the_lane_choice_runs_figures_and_their_options_are_the_scripts():
+    script = _script()
+    for name, actions in LANE_CHOICE_RUNS.items():
+        summary = _earlier_run(name)
+        assert summary['env_options'] == dict(script.ENV_OPTIONS, control='lane_speed'), name
+        assert {key: summary[key] for key in actions} == actions, name
+        assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
+                                                   every=script.TRAINING_TRAFFIC_EVERY)
+        assert summary['ppo'] == dict(script.PPO_OPTIONS, net_arch=script.NET_ARCH,
+                                      log_std_init=script.LOG_STD_INIT), name
+        assert summary['seed'] == 0 and summary['minutes'] == 30.0
 
 
 def test_the_docs_show_the_committed_crossing_runs_figures():
