@@ -22,7 +22,8 @@ committed model's card must be the script's. The same for the earlier runs of th
 figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*,
 highway_ppo_lane_speed_*, highway_ppo_more_steps_*, its second seed's highway_ppo_seed1_*,
 highway_ppo_every4_* and its second seed's highway_ppo_every4_seed1_*, highway_ppo_lr_decay_*,
-highway_ppo_lr_decay_c20_*, highway_ppo_lr_decay_ttc5_*, highway_ppo_lane_choice_*) and for
+highway_ppo_lr_decay_c20_*, highway_ppo_lr_decay_ttc5_*, highway_ppo_lane_choice_* and
+highway_ppo_lane_choice_box_*) and for
 examples/train_crossing_shared.py's run (docs/learning/crossing_shared_*).
 Needs neither stable-baselines3 nor PyTorch.
 """
@@ -127,9 +128,9 @@ def test_the_docs_show_the_shipped_scripts_later_runs_figures_and_options():
 
 def test_the_docs_show_the_every4_runs_figures_and_their_options_are_the_scripts():
     # fewer training worlds in the denser traffic: the script's options, every fourth
+    script = _script()
     for name, seed in (('highway_ppo_every4', 0), ('highway_ppo_every4_seed1', 1)):
         summary = _earlier_run(name)
-        script = _script()
         assert summary['seed'] == seed
         assert summary['env_options'] == script.ENV_OPTIONS
         assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC, every=4)
@@ -159,6 +160,7 @@ def test_the_docs_show_the_lr_decay_runs_figures_and_their_options_are_the_scrip
 # left, right) is held until the lane is reached -> what the run's summary says of its actions.
 LANE_CHOICE_RUNS = {
     'highway_ppo_lane_choice': {'lane_choice_speeds': [0.0, 10.0, 18.0, 24.0, 28.0, 31.0, 33.3]},
+    'highway_ppo_lane_choice_box': {'lane_choice_threshold': 1.0 / 3.0},
 }
 
 
