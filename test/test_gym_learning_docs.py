@@ -23,9 +23,8 @@ figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*,
 highway_ppo_lane_speed_*, highway_ppo_more_steps_*, its second seed's highway_ppo_seed1_*,
 highway_ppo_every4_* and its second seed's highway_ppo_every4_seed1_*, highway_ppo_lr_decay_*,
 highway_ppo_lr_decay_c20_*, highway_ppo_lr_decay_ttc5_*, highway_ppo_lane_choice_* and
-highway_ppo_lane_choice_box_*) and for
-examples/train_crossing_shared.py's run (docs/learning/crossing_shared_*).
-Needs neither stable-baselines3 nor PyTorch.
+highway_ppo_lane_choice_box_*) and for examples/train_crossing_shared.py's run
+(docs/learning/crossing_shared_*). Needs neither stable-baselines3 nor PyTorch.
 """
 
 import csv
