@@ -22,9 +22,10 @@ committed model's card must be the script's. The same for the earlier runs of th
 figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*,
 highway_ppo_lane_speed_*, highway_ppo_more_steps_*, its second seed's highway_ppo_seed1_*,
 highway_ppo_every4_* and its second seed's highway_ppo_every4_seed1_*, highway_ppo_lr_decay_*,
-highway_ppo_lr_decay_c20_*, highway_ppo_lr_decay_ttc5_*, highway_ppo_lane_choice_* and
-highway_ppo_lane_choice_box_*) and for examples/train_crossing_shared.py's run
-(docs/learning/crossing_shared_*). Needs neither stable-baselines3 nor PyTorch.
+highway_ppo_lr_decay_c20_*, highway_ppo_lr_decay_ttc5_*, highway_ppo_lane_choice_*,
+highway_ppo_lane_choice_box_* and highway_ppo_lane_choice_back_*) and for
+examples/train_crossing_shared.py's run (docs/learning/crossing_shared_*). Needs neither
+stable-baselines3 nor PyTorch.
 """
 
 import csv
@@ -156,10 +157,13 @@ def test_the_docs_show_the_lr_decay_runs_figures_and_their_options_are_the_scrip
 
 
 # The lane-choice runs: a wrapper around the lane_speed environment whose lane choice (keep,
-# left, right) is held until the lane is reached -> what the run's summary says of its actions.
+# left, right) is held until the lane is reached (or, in the last, called back by the opposite
+# choice) -> what the run's summary says of its actions.
 LANE_CHOICE_RUNS = {
     'highway_ppo_lane_choice': {'lane_choice_speeds': [0.0, 10.0, 18.0, 24.0, 28.0, 31.0, 33.3]},
     'highway_ppo_lane_choice_box': {'lane_choice_threshold': 1.0 / 3.0},
+    'highway_ppo_lane_choice_back': {'lane_choice_threshold': 1.0 / 3.0,
+                                     'lane_choice_call_back': True},
 }
 
 
