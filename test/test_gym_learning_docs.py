@@ -84,6 +84,12 @@ def _earlier_run(name):
     return summary
 
 
+def _ppo_options(script, **changed):
+    # the PPO settings a run of the script records in its summary, with those changed
+    return dict(script.PPO_OPTIONS, net_arch=script.NET_ARCH, log_std_init=script.LOG_STD_INIT,
+                **dict(script.POLICY_OPTIONS, **changed))
+
+
 def test_the_docs_show_the_braking_runs_figures_and_its_options_are_the_scripts():
     # the braking run: the script's options of today, its own traffic in every environment
     summary = _earlier_run('highway_ppo_braking')
@@ -120,8 +126,7 @@ def test_the_docs_show_the_shipped_scripts_later_runs_figures_and_options():
         assert summary['env_options'] == script.ENV_OPTIONS, name
         assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
                                                    every=script.TRAINING_TRAFFIC_EVERY), name
-        assert summary['ppo'] == dict(script.PPO_OPTIONS, net_arch=script.NET_ARCH,
-                                      log_std_init=script.LOG_STD_INIT, **script.POLICY_OPTIONS)
+        assert summary['ppo'] == _ppo_options(script), name
     assert _earlier_run('highway_ppo_more_steps')['env_steps'] > 1.5 * json.loads(
         (RUN / 'highway_ppo_summary.json').read_text(encoding='utf-8'))['env_steps']
 
@@ -150,10 +155,10 @@ def test_the_docs_show_the_lr_decay_runs_figures_and_their_options_are_the_scrip
         assert summary['env_options'] == dict(script.ENV_OPTIONS, **changed), name
         assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
                                                    every=script.TRAINING_TRAFFIC_EVERY)
-        assert summary['ppo'] == dict(script.PPO_OPTIONS, learning_rate=[3e-4, 3e-5, 400_000],
-                                      net_arch=script.NET_ARCH,
-                                      log_std_init=script.LOG_STD_INIT), name
+        assert summary['ppo'] == _ppo_options(script, learning_rate=[3e-4, 3e-5, 400_000]), name
         assert summary['seed'] == 0
+    # the first ran past the end of the decay
+    assert _earlier_run('highway_ppo_lr_decay')['env_steps'] > 400_000
 
 
 # The lane-choice runs: a wrapper around the lane_speed environment whose lane choice (keep,
@@ -175,8 +180,7 @@ def test_the_docs_show_the_lane_choice_runs_figures_and_their_options_are_the_sc
         assert {key: summary[key] for key in actions} == actions, name
         assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
                                                    every=script.TRAINING_TRAFFIC_EVERY)
-        assert summary['ppo'] == dict(script.PPO_OPTIONS, net_arch=script.NET_ARCH,
-                                      log_std_init=script.LOG_STD_INIT), name
+        assert summary['ppo'] == _ppo_options(script), name
         assert summary['seed'] == 0 and summary['minutes'] == 30.0
 
 
