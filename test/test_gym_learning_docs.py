@@ -23,7 +23,7 @@ figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*,
 highway_ppo_lane_speed_*, highway_ppo_more_steps_*, its second seed's highway_ppo_seed1_*,
 highway_ppo_every4_* and its second seed's highway_ppo_every4_seed1_*, highway_ppo_lr_decay_*,
 highway_ppo_lr_decay_c20_*, highway_ppo_lr_decay_ttc5_*, highway_ppo_lane_choice_*,
-highway_ppo_lane_choice_box_* and highway_ppo_lane_choice_back_*) and for
+highway_ppo_lane_choice_box_*, highway_ppo_lane_choice_back_* and highway_ppo_average_*) and for
 examples/train_crossing_shared.py's run (docs/learning/crossing_shared_*). Needs neither
 stable-baselines3 nor PyTorch.
 """
@@ -182,6 +182,33 @@ def test_the_docs_show_the_lane_choice_runs_figures_and_their_options_are_the_sc
                                                    every=script.TRAINING_TRAFFIC_EVERY)
         assert summary['ppo'] == _ppo_options(script), name
         assert summary['seed'] == 0 and summary['minutes'] == 30.0
+
+
+def test_the_docs_show_the_averaged_and_last_policys_figures_of_one_training():
+    # the average of the policies of the second half: the shipped script's training (its curve
+    # the 499 736-step run's up to where it stopped), its last policy evaluated beside it
+    script = _script()
+    summary = _earlier_run('highway_ppo_average')
+    assert summary['seed'] == 0 and summary['minutes'] == 30.0
+    assert summary['env_options'] == script.ENV_OPTIONS
+    assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
+                                               every=script.TRAINING_TRAFFIC_EVERY)
+    assert summary['ppo'] == _ppo_options(script)
+    assert summary['averaged_policies'] == 91
+    text = (ROOT / 'docs' / 'learning.md').read_text(encoding='utf-8')
+    for name in ('trained', 'last'):
+        figures = summary['evaluation'][name]
+        collisions = round(figures['collision_rate'] * figures['episodes'])
+        assert (f"**{figures['success_rate'] * 100:.0f} %**, {collisions} collisions"
+                in text), name
+    with open(RUN / 'highway_ppo_average_curve.csv', encoding='utf-8') as stream:
+        rows = list(csv.DictReader(stream))
+    with open(RUN / 'highway_ppo_more_steps_curve.csv', encoding='utf-8') as stream:
+        longer = {row['env_steps']: row for row in csv.DictReader(stream)}
+    for row in rows:
+        assert {key: row[key] for key in ('episodes', 'mean_return', 'success_rate')} == {
+            key: longer[row['env_steps']][key] for key in ('episodes', 'mean_return',
+                                                           'success_rate')}, row['env_steps']
 
 
 def test_the_docs_show_the_committed_crossing_runs_figures():
