@@ -14,16 +14,17 @@
 
 
 """
-The evaluation seed that no driver can pass (docs/learning.md, "The seeds every run fails").
+The evaluation seed that leaves no room to pass (docs/learning.md, "The seeds every run fails").
 
 On seed 1 000 020 of scenarios/highway_policy.yaml three traffic cars drive side by side in the
 three forward lanes from 25 s to the end, at about 20 m/s. A car that drives at the limit from
 the start (the Prius's time0To100 ramp, then 33.3 m/s) is still behind the rearmost of them at
-25 s, so the most it can cover in the 60 s is up to that car at 60 s: under the 26.64 m/s that
-``mean_speed`` asks. Here the ego holds 10 m/s in its lane (it stays far behind them and so
-cannot change them); the test finds the three, follows them every 5 s and checks the bound and
-the figures the page gives. The same page's figures of the trained policies on this seed (none
-succeeds) come from the runs' evaluation files. Needs neither stable-baselines3 nor PyTorch.
+25 s, so behind them the most it can cover in the 60 s is up to that car at 60 s: under the
+26.64 m/s that ``mean_speed`` asks. Here the ego holds 10 m/s in its lane (it stays far behind
+them and so cannot change them); the test finds the three, follows them every 5 s and checks
+the bound and the figures the page gives. The same page's figures of the trained policies on
+this seed (none succeeds) come from the runs' evaluation files. Needs neither
+stable-baselines3 nor PyTorch.
 """
 
 import csv
@@ -128,7 +129,7 @@ def _limit_driver_m(t_s, limit_mps, ramp_mps2):
     return 0.5 * limit_mps * ramp_s + limit_mps * (t_s - ramp_s)
 
 
-def test_three_cars_side_by_side_from_25_s_leave_no_driver_the_mean_speed():
+def test_three_cars_side_by_side_from_25_s_leave_a_driver_behind_them_short_of_the_mean_speed():
     snapshots, info, script = _run()
     assert info['time_s'] == 60.0 and info['criteria']['no_collision'] == 'passed'
     wall = _wall(snapshots[25])
@@ -147,7 +148,7 @@ def test_three_cars_side_by_side_from_25_s_leave_no_driver_the_mean_speed():
     ramp = (100.0 / 3.6) / prius.time_0_to_100_s
     limit = script.LIMIT_MPS
     assert START_M + _limit_driver_m(25.0, limit, ramp) < rear[25]
-    # so it covers at most up to the rearmost at 60 s: under mean_speed's 26.64 m/s
+    # so behind them it covers at most up to the rearmost at 60 s: under mean_speed's 26.64 m/s
     bound = (rear[60] - START_M) / 60.0
     minimum = limit * script.MIN_MEAN_FRACTION
     assert bound < minimum - 4.0
