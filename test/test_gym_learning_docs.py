@@ -23,7 +23,8 @@ figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*,
 highway_ppo_lane_speed_*, highway_ppo_more_steps_*, its second seed's highway_ppo_seed1_*,
 highway_ppo_every4_* and its second seed's highway_ppo_every4_seed1_*, highway_ppo_lr_decay_*,
 highway_ppo_lr_decay_c20_*, highway_ppo_lr_decay_ttc5_*, highway_ppo_lane_choice_*,
-highway_ppo_lane_choice_box_*, highway_ppo_lane_choice_back_* and highway_ppo_average_*) and for
+highway_ppo_lane_choice_box_*, highway_ppo_lane_choice_back_*, highway_ppo_average_* and
+highway_ppo_curriculum_*) and for
 examples/train_crossing_shared.py's run (docs/learning/crossing_shared_*). Needs neither
 stable-baselines3 nor PyTorch.
 """
@@ -209,6 +210,22 @@ def test_the_docs_show_the_averaged_and_last_policys_figures_of_one_training():
         assert {key: row[key] for key in ('episodes', 'mean_return', 'success_rate')} == {
             key: longer[row['env_steps']][key] for key in ('episodes', 'mean_return',
                                                            'success_rate')}, row['env_steps']
+
+
+def test_the_docs_show_the_curriculum_runs_figures_and_its_options_are_the_scripts():
+    # sparse traffic first: the first third in 30 cars of the training traffic's spread, then
+    # the script's own mix
+    script = _script()
+    summary = _earlier_run('highway_ppo_curriculum')
+    assert summary['seed'] == 0 and summary['minutes'] == 30.0
+    assert summary['env_options'] == script.ENV_OPTIONS
+    assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
+                                               every=script.TRAINING_TRAFFIC_EVERY)
+    assert summary['first_phase'] == {'vehicles': 30, 'fraction': 1.0 / 3.0,
+                                      'speed_factor_std': script.TRAINING_TRAFFIC[
+                                          'speed_factor_std']}
+    assert 0 < summary['first_phase_env_steps'] < summary['env_steps'] / 2
+    assert summary['ppo'] == _ppo_options(script)
 
 
 def test_the_docs_show_the_committed_crossing_runs_figures():
