@@ -91,6 +91,18 @@ def _ppo_options(script, **changed):
                 **dict(script.POLICY_OPTIONS, **changed))
 
 
+def _shipped_settings_run(name, seed=0):
+    # a 30-minute run with the script's options, training traffic and PPO settings
+    script = _script()
+    summary = _earlier_run(name)
+    assert summary['seed'] == seed and summary['minutes'] == 30.0, name
+    assert summary['env_options'] == script.ENV_OPTIONS, name
+    assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
+                                               every=script.TRAINING_TRAFFIC_EVERY), name
+    assert summary['ppo'] == _ppo_options(script), name
+    return script, summary
+
+
 def test_the_docs_show_the_braking_runs_figures_and_its_options_are_the_scripts():
     # the braking run: the script's options of today, its own traffic in every environment
     summary = _earlier_run('highway_ppo_braking')
@@ -120,14 +132,8 @@ def test_the_docs_show_the_lane_speed_runs_figures_and_its_options_are_the_scrip
 def test_the_docs_show_the_shipped_scripts_later_runs_figures_and_options():
     # the committed run's command again once the env step no longer predicted the objects'
     # paths (more env steps in the same 30 minutes), and the same with the second seed
-    script = _script()
     for name, seed in (('highway_ppo_more_steps', 0), ('highway_ppo_seed1', 1)):
-        summary = _earlier_run(name)
-        assert summary['seed'] == seed and summary['minutes'] == 30.0, name
-        assert summary['env_options'] == script.ENV_OPTIONS, name
-        assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
-                                                   every=script.TRAINING_TRAFFIC_EVERY), name
-        assert summary['ppo'] == _ppo_options(script), name
+        _shipped_settings_run(name, seed)
     assert _earlier_run('highway_ppo_more_steps')['env_steps'] > 1.5 * json.loads(
         (RUN / 'highway_ppo_summary.json').read_text(encoding='utf-8'))['env_steps']
 
@@ -188,13 +194,7 @@ def test_the_docs_show_the_lane_choice_runs_figures_and_their_options_are_the_sc
 def test_the_docs_show_the_averaged_and_last_policys_figures_of_one_training():
     # the average of the policies of the second half: the shipped script's training (its curve
     # the 499 736-step run's up to where it stopped), its last policy evaluated beside it
-    script = _script()
-    summary = _earlier_run('highway_ppo_average')
-    assert summary['seed'] == 0 and summary['minutes'] == 30.0
-    assert summary['env_options'] == script.ENV_OPTIONS
-    assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
-                                               every=script.TRAINING_TRAFFIC_EVERY)
-    assert summary['ppo'] == _ppo_options(script)
+    _, summary = _shipped_settings_run('highway_ppo_average')
     assert summary['averaged_policies'] == 91
     text = (ROOT / 'docs' / 'learning.md').read_text(encoding='utf-8')
     for name in ('trained', 'last'):
@@ -215,17 +215,11 @@ def test_the_docs_show_the_averaged_and_last_policys_figures_of_one_training():
 def test_the_docs_show_the_curriculum_runs_figures_and_its_options_are_the_scripts():
     # sparse traffic first: the first third in 30 cars of the training traffic's spread, then
     # the script's own mix
-    script = _script()
-    summary = _earlier_run('highway_ppo_curriculum')
-    assert summary['seed'] == 0 and summary['minutes'] == 30.0
-    assert summary['env_options'] == script.ENV_OPTIONS
-    assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
-                                               every=script.TRAINING_TRAFFIC_EVERY)
+    script, summary = _shipped_settings_run('highway_ppo_curriculum')
     assert summary['first_phase'] == {'vehicles': 30, 'fraction': 1.0 / 3.0,
                                       'speed_factor_std': script.TRAINING_TRAFFIC[
                                           'speed_factor_std']}
     assert 0 < summary['first_phase_env_steps'] < summary['env_steps'] / 2
-    assert summary['ppo'] == _ppo_options(script)
 
 
 def test_the_docs_show_the_committed_crossing_runs_figures():
