@@ -21,12 +21,11 @@ table in docs/learning.md must be ``results_markdown`` of that summary (not type
 committed model's card must be the script's. The same for the earlier runs of the script whose
 figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*,
 highway_ppo_lane_speed_*, highway_ppo_more_steps_*, its second seed's highway_ppo_seed1_*,
-highway_ppo_every4_* and its second seed's highway_ppo_every4_seed1_*, highway_ppo_lr_decay_*,
-highway_ppo_lr_decay_c20_*, highway_ppo_lr_decay_ttc5_*, highway_ppo_lane_choice_*,
-highway_ppo_lane_choice_box_*, highway_ppo_lane_choice_back_*, highway_ppo_average_* and
-highway_ppo_curriculum_*) and for
-examples/train_crossing_shared.py's run (docs/learning/crossing_shared_*). Needs neither
-stable-baselines3 nor PyTorch.
+highway_ppo_every4_* and its other seeds' highway_ppo_every4_seed1_* and _seed2_*,
+highway_ppo_lr_decay_*, highway_ppo_lr_decay_c20_*, highway_ppo_lr_decay_ttc5_*,
+highway_ppo_lane_choice_*, highway_ppo_lane_choice_box_*, highway_ppo_lane_choice_back_*,
+highway_ppo_average_* and highway_ppo_curriculum_*) and for examples/train_crossing_shared.py's
+run (docs/learning/crossing_shared_*). Needs neither stable-baselines3 nor PyTorch.
 """
 
 import csv
@@ -141,7 +140,8 @@ def test_the_docs_show_the_shipped_scripts_later_runs_figures_and_options():
 def test_the_docs_show_the_every4_runs_figures_and_their_options_are_the_scripts():
     # fewer training worlds in the denser traffic: the script's options, every fourth
     script = _script()
-    for name, seed in (('highway_ppo_every4', 0), ('highway_ppo_every4_seed1', 1)):
+    for name, seed in (('highway_ppo_every4', 0), ('highway_ppo_every4_seed1', 1),
+                       ('highway_ppo_every4_seed2', 2)):
         summary = _earlier_run(name)
         assert summary['seed'] == seed
         assert summary['env_options'] == script.ENV_OPTIONS
