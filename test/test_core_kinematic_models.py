@@ -21,11 +21,11 @@ import pytest
 from vehicle_sim.config import load_car
 from vehicle_sim.core.car.kinematic_drive import (
     model_inputs,
-    ramp_acceleration_mps2,
     SPEED_GAIN_PER_S,
 )
 from vehicle_sim.core.car.kinematic_models import KinematicModel, vehicle_model_from
 from vehicle_sim.core.car.logic import CarLogic
+from vehicle_sim.core.car.speed_braking import cruise_ramp_mps2
 from vehicle_sim.core.specs.errors import InvalidParameterError
 
 DT = 0.01
@@ -155,7 +155,7 @@ def test_bad_vehicle_model_refused_naming_the_field(data, field):
 
 def test_driver_commands_become_the_model_inputs():
     params = load_car('ToyotaPrius')
-    a_ramp = ramp_acceleration_mps2(params)
+    a_ramp = cruise_ramp_mps2(params)
     assert a_ramp == pytest.approx(100.0 / 3.6 / 10.7)
     logic = CarLogic(params)
     model = _model()

@@ -25,9 +25,10 @@ from automobile_helpers import automobile_fixtures, wait_for
 import pytest
 
 from vehicle_sim.config import load_car
-from vehicle_sim.core.car.kinematic_drive import model_inputs, ramp_acceleration_mps2
+from vehicle_sim.core.car.kinematic_drive import model_inputs
 from vehicle_sim.core.car.kinematic_models import KinematicModel, vehicle_model_from
 from vehicle_sim.core.car.logic import CarLogic
+from vehicle_sim.core.car.speed_braking import cruise_ramp_mps2
 from vehicle_sim.ros import automobile_interfaces as itf
 
 pytestmark = pytest.mark.transport
@@ -66,7 +67,7 @@ def _expected(seconds, speed_kmh, steering_rad, dt=0.01):
     logic.set_cruising_speed_within_top_kmh(speed_kmh)
     model = KinematicModel(vehicle_model_from('DELAY_STEER_ACC'), params.wheelbase_m, dt)
     for _ in range(int(round(seconds / dt))):
-        model.step(*model_inputs(logic, model, ramp_acceleration_mps2(params)))
+        model.step(*model_inputs(logic, model, cruise_ramp_mps2(params)))
     return model
 
 

@@ -33,9 +33,10 @@ import math
 import pybullet
 
 from vehicle_sim.core.car.ackermann import ackermann_angles
-from vehicle_sim.core.car.kinematic_drive import model_inputs, ramp_acceleration_mps2
+from vehicle_sim.core.car.kinematic_drive import model_inputs
 from vehicle_sim.core.car.kinematic_models import KinematicModel
 from vehicle_sim.core.car.logic import CarLogic
+from vehicle_sim.core.car.speed_braking import cruise_ramp_mps2
 from vehicle_sim.core.car.vehicle_io import Measurement, WHEEL_COUNT
 from vehicle_sim.core.geometry.footprint import car_outline
 from vehicle_sim.physics.urdf import car_urdf, joint_names
@@ -203,7 +204,7 @@ class KinematicCar:
                                     self._pose_of(position))
         self.body.on_rebuild = self._rebuilt
         self.measurement = Measurement()
-        self._a_ramp = ramp_acceleration_mps2(params)
+        self._a_ramp = cruise_ramp_mps2(params)
         world.add_body(self)
 
     def _pose_of(self, position):

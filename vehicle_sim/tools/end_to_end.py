@@ -39,7 +39,7 @@ import math
 from typing import Callable, List, Optional, Sequence, Tuple
 
 from vehicle_sim.core.car.drivetrain import ControlMode
-from vehicle_sim.core.car.speed_braking import full_brake_deceleration_mps2
+from vehicle_sim.core.car.speed_braking import cruise_ramp_mps2, full_brake_deceleration_mps2
 from vehicle_sim.core.diffdrive.kinematics import integrate_pose
 from vehicle_sim.core.diffdrive.speed_limiter import SpeedLimiter
 from vehicle_sim.core.geometry.angles import wrap_angle_rad, yaw_from_quaternion
@@ -398,7 +398,7 @@ def run_car(stream, car_model=DEFAULT_CAR, transport='dds', record_every=5):
                               wheel_unit='rad/s')
         track.silence_start_s = _bounds_or_none(stream, 'silence')
         # the car's cruise ramp: Car.proto's acceleration (100 km/h)/time0To100, up and down
-        accel = kmh_to_mps(100.0) / params.time_0_to_100_s
+        accel = cruise_ramp_mps2(params)
         ramp = SpeedLimiter(accel, accel, 'car speed')
         full_brake = full_brake_deceleration_mps2(params)
         speed = 0.0

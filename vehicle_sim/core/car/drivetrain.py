@@ -167,15 +167,28 @@ def cruise_wheel_targets(speed_mps, car_type, ratio_f, ratio_r, ratio_c, front_r
     return out
 
 
+def speed_ramp_mps2(time_0_to_100_s):
+    """
+    Return Car.proto's SPEED-mode acceleration limit at the tyre, (100 km/h) / time0To100.
+
+    The cruise control's ramp, the same for speeding up and slowing down: the driven wheels'
+    motors follow it (:func:`wheel_acceleration_radps2`).
+
+    :param time_0_to_100_s: time0To100 [s].
+    :return: [m/s²].
+    """
+    return SPEED_100_KMH_MPS / time_0_to_100_s
+
+
 def wheel_acceleration_radps2(time_0_to_100_s, radius_m):
     """
     Return the velocity-motor acceleration limit of a driven wheel (Car.proto).
 
     :param time_0_to_100_s: time0To100 [s].
     :param radius_m: tyre radius [m].
-    :return: (100/3.6) / time0To100 / r [rad/s²], the same for speeding up and slowing down.
+    :return: :func:`speed_ramp_mps2` / r [rad/s²], the same for speeding up and slowing down.
     """
-    return SPEED_100_KMH_MPS / time_0_to_100_s / radius_m
+    return speed_ramp_mps2(time_0_to_100_s) / radius_m
 
 
 def ramp_toward(current, target, max_delta, out=None):

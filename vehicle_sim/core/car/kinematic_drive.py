@@ -43,18 +43,14 @@ from vehicle_sim.core.specs.units import kmh_to_mps
 SPEED_GAIN_PER_S = 2.0
 
 
-def ramp_acceleration_mps2(params):
-    """Car.proto's SPEED-mode acceleration (100 km/h) / time0To100 [m/s^2]."""
-    return kmh_to_mps(100.0) / params.time_0_to_100_s
-
-
 def model_inputs(logic, model, a_ramp_mps2):
     """
     Return (longitudinal input, steer_des [rad], gear) for ``model`` from ``logic``'s commands.
 
     :param logic: the car's CarLogic.
     :param model: its KinematicModel (state vx, params, dt).
-    :param a_ramp_mps2: :func:`ramp_acceleration_mps2` of the car.
+    :param a_ramp_mps2: the car's cruise ramp (core/car/speed_braking.py
+        ``cruise_ramp_mps2``).
     """
     steer_des = -logic.commanded_steering_angle_rad
     vx, dt = model.vx_mps, model.dt_s

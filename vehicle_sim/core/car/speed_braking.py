@@ -34,7 +34,7 @@ wheel, over the tyre radii and the car's mass with its wheels: the Prius 4.8 m/s
 wheels' damping and rolling add 0.1 to 0.3 m/s^2, more at speed).
 """
 
-from vehicle_sim.core.specs.units import kmh_to_mps
+from vehicle_sim.core.car.drivetrain import speed_ramp_mps2
 
 # Brake (instead of cruising) when the speed asked is this much slower than the car's [m/s].
 BRAKE_ABOVE_MPS = 1.0
@@ -62,7 +62,7 @@ def brake_for_speed(speed_mps, target_mps):
 
 def cruise_ramp_mps2(params):
     """Return the cruise control's acceleration limit (100 km/h) / time0To100 [m/s^2]."""
-    return kmh_to_mps(100.0) / params.time_0_to_100_s
+    return speed_ramp_mps2(params.time_0_to_100_s)
 
 
 def full_brake_deceleration_mps2(params):
