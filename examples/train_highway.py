@@ -350,7 +350,8 @@ def results_markdown(summary):
         '| mean episode [s] |',
         '|---|---|---|---|---|---|---|',
     ]
-    for name, label in (('trained', 'PPO (deterministic)'), ('random', 'random')):
+    learner = summary.get('algorithm', 'PPO')      # PPO where the summary does not say
+    for name, label in (('trained', f'{learner} (deterministic)'), ('random', 'random')):
         f = summary['evaluation'][name]
         lines.append(f"| {label} | {f['success_rate']:.0%} | {f['collision_rate']:.0%} | "
                      f"{f['lane_departure_rate']:.0%} | {f['mean_speed_mps']:.2f} | "
@@ -393,7 +394,7 @@ def main(argv=None):
         raise SystemExit(str(error)) from None
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    summary = {'seed': args.seed, 'minutes': args.minutes, 'envs': args.envs,
+    summary = {'algorithm': 'PPO', 'seed': args.seed, 'minutes': args.minutes, 'envs': args.envs,
                'torch_threads': args.threads, 'cpu_count': os.cpu_count(),
                'env_id': ENV_ID, 'env_options': card(args.control).options,
                'scenario': SCENARIO.name,

@@ -162,7 +162,9 @@ def test_three_cars_side_by_side_from_25_s_leave_a_driver_behind_them_short_of_t
 def _trained_outcomes():
     # every trained policy's outcome on each seed, from the evaluation files of the page
     policies = {}
-    for path in sorted((ROOT / 'docs' / 'learning').glob('highway_ppo*_evaluation.csv')):
+    learning = ROOT / 'docs' / 'learning'
+    for path in sorted([*learning.glob('highway_ppo*_evaluation.csv'),
+                        *learning.glob('highway_sac*_evaluation.csv')]):
         with open(path, encoding='utf-8') as stream:
             for row in csv.DictReader(stream):
                 if row['policy'] != 'random':
