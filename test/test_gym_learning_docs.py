@@ -24,7 +24,7 @@ highway_ppo_lane_speed_*, highway_ppo_more_steps_*, its second seed's highway_pp
 highway_ppo_every4_* and its other seeds' highway_ppo_every4_seed1_* and _seed2_*,
 highway_ppo_lr_decay_*, highway_ppo_lr_decay_c20_*, highway_ppo_lr_decay_ttc5_*,
 highway_ppo_lane_choice_*, highway_ppo_lane_choice_box_*, highway_ppo_lane_choice_back_*,
-highway_ppo_average_*, highway_ppo_curriculum_* and the SAC run's highway_sac_*) and for
+highway_ppo_average_*, highway_ppo_curriculum_* and the SAC runs' highway_sac_*) and for
 examples/train_crossing_shared.py's run (docs/learning/crossing_shared_*). Needs neither
 stable-baselines3 nor PyTorch.
 """
@@ -223,34 +223,37 @@ def test_the_docs_show_the_curriculum_runs_figures_and_its_options_are_the_scrip
     assert 0 < summary['first_phase_env_steps'] < summary['env_steps'] / 2
 
 
-# SAC's settings of the runs with another learner (docs/learning.md, "Tried: another learner")
+# SAC's settings of the runs with another learner (docs/learning.md, "Tried: another learner"),
+# and the gradient steps of each run
 SAC_SETTINGS = {'buffer_size': 1_000_000, 'learning_starts': 10_000, 'batch_size': 256,
                 'learning_rate': 3e-4, 'gamma': 0.99, 'tau': 0.005, 'train_freq': 1,
                 'gradient_steps': 2, 'ent_coef': 'auto', 'net_arch': [128, 128]}
+SAC_RUNS = {'highway_sac': 2, 'highway_sac_g4': 4}
 
 
-def test_the_docs_show_the_sac_runs_figures_and_its_task_is_the_scripts():
+def test_the_docs_show_the_sac_runs_figures_and_their_task_is_the_scripts():
     # the same task, observations, reward and training traffic as the script, SAC's learner
     script = _script()
-    summary = _earlier_run('highway_sac')
-    assert summary['algorithm'] == 'SAC' and 'ppo' not in summary
-    assert summary['seed'] == 0 and summary['minutes'] == 30.0
-    assert summary['env_options'] == script.ENV_OPTIONS
-    assert summary['scales'] == script.SCALES
-    assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
-                                               every=script.TRAINING_TRAFFIC_EVERY)
-    assert summary['sac'] == SAC_SETTINGS
-    with open(RUN / 'highway_sac_evaluation.csv', encoding='utf-8') as stream:
-        rows = [row for row in csv.DictReader(stream) if row['policy'] == 'trained']
-    slow = [float(row['mean_speed_mps']) for row in rows
-            if row['success'] == 'False' and row['collision'] == 'False']
-    collisions = sum(row['collision'] == 'True' for row in rows)
-    text = (ROOT / 'docs' / 'learning.md').read_text(encoding='utf-8')
-    assert (f"**{summary['evaluation']['trained']['success_rate'] * 100:.0f} %**, but with "
-            f'**{collisions} collisions**') in text
-    assert (f'{len(slow)}\nepisodes without a collision were too slow for `mean_speed` '
-            f'({min(slow):.1f}–{max(slow):.1f} m/s, {sum(v >= 26.0 for v in slow)} of them at\n'
-            '26.0 m/s or more)') in text
+    text = ' '.join((ROOT / 'docs' / 'learning.md').read_text(encoding='utf-8').split())
+    for name, gradient_steps in SAC_RUNS.items():
+        summary = _earlier_run(name)
+        assert summary['algorithm'] == 'SAC' and 'ppo' not in summary, name
+        assert summary['seed'] == 0 and summary['minutes'] == 30.0, name
+        assert summary['env_options'] == script.ENV_OPTIONS, name
+        assert summary['scales'] == script.SCALES, name
+        assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
+                                                   every=script.TRAINING_TRAFFIC_EVERY), name
+        assert summary['sac'] == dict(SAC_SETTINGS, gradient_steps=gradient_steps), name
+        with open(RUN / f'{name}_evaluation.csv', encoding='utf-8') as stream:
+            rows = [row for row in csv.DictReader(stream) if row['policy'] == 'trained']
+        slow = [float(row['mean_speed_mps']) for row in rows
+                if row['success'] == 'False' and row['collision'] == 'False']
+        collisions = sum(row['collision'] == 'True' for row in rows)
+        assert (f"**{summary['evaluation']['trained']['success_rate'] * 100:.0f} %**, with "
+                f'**{collisions} collisions**') in text, name
+        assert (f'{len(slow)} episodes without a collision were too slow for `mean_speed` '
+                f'({min(slow):.1f}–{max(slow):.1f} m/s, {sum(v >= 26.0 for v in slow)} of them '
+                'at 26.0 m/s or more)') in text, name
 
 
 def test_the_docs_show_the_committed_crossing_runs_figures():
