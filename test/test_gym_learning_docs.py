@@ -228,7 +228,7 @@ def test_the_docs_show_the_curriculum_runs_figures_and_its_options_are_the_scrip
 SAC_SETTINGS = {'buffer_size': 1_000_000, 'learning_starts': 10_000, 'batch_size': 256,
                 'learning_rate': 3e-4, 'gamma': 0.99, 'tau': 0.005, 'train_freq': 1,
                 'gradient_steps': 2, 'ent_coef': 'auto', 'net_arch': [128, 128]}
-SAC_RUNS = {'highway_sac': 2, 'highway_sac_g4': 4}
+SAC_RUNS = {'highway_sac': 2, 'highway_sac_g4': 4, 'highway_sac_g8': 8}
 
 
 def test_the_docs_show_the_sac_runs_figures_and_their_task_is_the_scripts():
