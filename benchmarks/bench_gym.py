@@ -38,9 +38,11 @@ Figures, each in env steps per second (one step = one action, action_repeat 1, 1
    highway with 20 traffic vehicles, decisions at 1 Hz (highway-fast-v0: 20 vehicles, 5 Hz
    simulation, 1 Hz policy) and at 5 Hz (the same with policy_frequency 5), against ours on
    highway_traffic with 20 vehicles updated at 5 Hz (update_period 0.2 s, as highway-fast-v0's
-   simulation): with full physics (10 ms steps, action_repeat 100 or 20; target >= 3x) and
-   with a kinematic ``vehicle_model: DELAY_STEER_ACC`` (200 ms steps, highway-fast-v0's; target
-   >= 10x). Short blocks of the three interleaved; per block the ratio of simulated seconds
+   simulation): with full physics at 10 ms steps (the default, Webots' city worlds;
+   action_repeat 100 or 20) and at 20 ms steps (the coarsest step at which the physics car's
+   checks run, docs/physics.md; action_repeat 50 or 10), target >= 3x, and with a kinematic
+   ``vehicle_model: DELAY_STEER_ACC`` (200 ms steps, highway-fast-v0's; target >= 10x). Short
+   blocks of the four interleaved; per block the ratio of simulated seconds
    per CPU second of this process; the median printed, the blocks' range beside it. highway-env
    takes random meta-actions; ours a lane keeper (steering from the lane observation) at a
    random speed of 20 to 33 m/s, so that both drive on the road among the traffic; both reset
@@ -338,16 +340,17 @@ class _LaneKeeper:
     # (heading gain, offset gain) per decision rate: they keep the car in its lane at 1 and 5 Hz
     GAINS = {1.0: (1.5, 0.4), 5.0: (0.6, 0.15)}
 
-    def __init__(self, policy_hz, vehicle_model=None):
+    def __init__(self, policy_hz, vehicle_model=None, step_ms=None):
         import yaml
 
         from vehicle_sim.config import world_path
+        from vehicle_sim.core.specs.simulation import TIME_STEP_MS
         gymnasium = _gym()
         with open(world_path('highway_traffic'), encoding='utf-8') as stream:
             world = yaml.safe_load(stream)
         world['traffic']['vehicles'] = EQUAL_VEHICLES
         world['traffic']['update_period'] = EQUAL_TRAFFIC_PERIOD_S
-        step_ms = 10
+        step_ms = TIME_STEP_MS.default if step_ms is None else step_ms
         if vehicle_model is not None:
             world['vehicles'][0]['vehicle_model'] = vehicle_model
             step_ms = EQUAL_KINEMATIC_STEP_MS
@@ -411,15 +414,19 @@ def equal_work(policy_hz, blocks, seconds):
     Return {side: (sim s per CPU s, sim s per wall s, ratios, mean episode [s])}.
 
     ratios: (median, lowest, highest) of the blocks' ratios to highway-env. Sides 'highway-env',
-    'physics' and 'kinematic', stepped ``seconds`` simulated seconds each
-    in turn, ``blocks`` times; None without highway-env.
+    'physics 10 ms' and 'physics 20 ms' (the full physics car at each step of
+    CHECKED_TIME_STEPS_MS) and 'kinematic', stepped ``seconds`` simulated seconds each in turn,
+    ``blocks`` times; None without highway-env.
     """
     try:
         import highway_env  # noqa: F401
     except ImportError:
         return None
-    sides = {'highway-env': _HighwayEnvSide(policy_hz), 'physics': _LaneKeeper(policy_hz),
-             'kinematic': _LaneKeeper(policy_hz, EQUAL_KINEMATIC_MODEL)}
+    from vehicle_sim.core.specs.simulation import CHECKED_TIME_STEPS_MS
+    sides = {'highway-env': _HighwayEnvSide(policy_hz)}
+    for step_ms in CHECKED_TIME_STEPS_MS:      # the full physics car's checked steps
+        sides[f'physics {step_ms} ms'] = _LaneKeeper(policy_hz, step_ms=step_ms)
+    sides['kinematic'] = _LaneKeeper(policy_hz, EQUAL_KINEMATIC_MODEL)
     try:
         for side in sides.values():         # warm up (first episode, caches)
             side.block(2.0)
@@ -480,22 +487,21 @@ def _equal_rows(equal, rows, context):
     for hz, result in equal.items():
         if result is None:
             continue
-        for key, target, what in (('physics', TARGET_EQUAL_PHYSICS, 'full physics'),
-                                  ('kinematic', TARGET_EQUAL_KINEMATIC,
-                                   f'{EQUAL_KINEMATIC_MODEL} model')):
+        ours = [(key, TARGET_EQUAL_PHYSICS, f'full physics, {key.split()[1]} ms steps')
+                for key in result if key.startswith('physics ')]
+        ours.append(('kinematic', TARGET_EQUAL_KINEMATIC, f'{EQUAL_KINEMATIC_MODEL} model'))
+        for key, target, what in ours:
             rows.append((f'gym: equal work, {hz:.0f} Hz decisions, ours ({what}) / '
                          'highway-fast-v0, sim s per CPU s', result[key][2][0], '>=', target,
                          'x'))
-        theirs, physics, kinematic = (result[key] for key in ('highway-env', 'physics',
-                                                               'kinematic'))
+        theirs = result['highway-env']
         context.append(
             f'gym: equal work at {hz:.0f} Hz decisions, {EQUAL_VEHICLES} traffic vehicles, '
             f'simulated s per CPU s (per wall s) [mean episode s]: highway-fast-v0 '
-            f'{theirs[0]:.1f} ({theirs[1]:.1f}) [{theirs[3]:.0f}]; ours with full physics '
-            f'{physics[0]:.1f} ({physics[1]:.1f}) [{physics[3]:.0f}], blocks '
-            f'{physics[2][1]:.2f}-{physics[2][2]:.2f}x; ours with {EQUAL_KINEMATIC_MODEL} '
-            f'{kinematic[0]:.1f} ({kinematic[1]:.1f}) [{kinematic[3]:.0f}], blocks '
-            f'{kinematic[2][1]:.2f}-{kinematic[2][2]:.2f}x')
+            f'{theirs[0]:.1f} ({theirs[1]:.1f}) [{theirs[3]:.0f}]; ' + '; '.join(
+                f'ours ({what}) {result[key][0]:.1f} ({result[key][1]:.1f}) '
+                f'[{result[key][3]:.0f}], blocks {result[key][2][1]:.2f}-{result[key][2][2]:.2f}x'
+                for key, _, what in ours))
 
 
 def figures(quick=False):

@@ -22,6 +22,7 @@ import pytest
 from vehicle_sim.config import car_names, load_car
 from vehicle_sim.core.car.vehicle_io import Actuation, Measurement, Wheel, WheelMode
 from vehicle_sim.core.geometry.angles import yaw_from_quaternion
+from vehicle_sim.core.specs.simulation import CHECKED_TIME_STEPS_MS
 from vehicle_sim.physics import CarBody, joint_names, World
 from vehicle_sim.physics.urdf import car_urdf
 
@@ -81,12 +82,13 @@ def test_car_urdf_prefix_applies_to_every_link_and_joint():
     assert names and all(name.startswith('car1/') for name in names)
 
 
+@pytest.mark.parametrize('step_ms', CHECKED_TIME_STEPS_MS)
 @pytest.mark.parametrize('model', car_names())
-def test_car_body_rests_on_its_wheels_with_a_small_static_sag(model):
+def test_car_body_rests_on_its_wheels_with_a_small_static_sag(model, step_ms):
     params = load_car(model)
-    with World() as world:
+    with World(time_step_s=step_ms / 1000.0) as world:
         car = CarBody(world, params, position=(3.0, -2.0, 0.7))
-        _run(world, car, Actuation(), 2.0)
+        _run(world, car, Actuation(), 3.0)   # (the MercedesBenzSprinter's pitch settles last)
         pose = car.pose()
         # base_link starts on the ground; the suspension servos and the contacts give a few
         # millimetres (docs/physics.md): 0.5 mm above to 10 mm below, level within 0.3 deg.
@@ -115,21 +117,23 @@ def test_forward_speed_from_a_pose_just_read_is_the_speed_it_reads_itself():
         assert car.forward_speed_mps(car.pose()) == speed
 
 
+@pytest.mark.parametrize('step_ms', CHECKED_TIME_STEPS_MS)
 @pytest.mark.parametrize('model', ['Car', 'TeslaModel3', 'LincolnMKZ'])
-def test_car_body_velocity_controlled_wheels_move_the_chassis_at_omega_r(model):
+def test_car_body_velocity_controlled_wheels_move_the_chassis_at_omega_r(model, step_ms):
     params = load_car(model)
     speed = 8.0
-    with World() as world:
+    ramp = 2000 // step_ms                      # steps in 2 s
+    with World(time_step_s=step_ms / 1000.0) as world:
         car = CarBody(world, params)
         actuation = Actuation()
         for index in Wheel:
             actuation.wheel_mode[index] = WheelMode.VELOCITY
             # Ramp over 2 s (as the SPEED-mode logic does), then hold.
             actuation.wheel_velocity_radps[index] = 0.0
-        for step in range(400):
+        for step in range(2 * ramp):
             for index in Wheel:
                 actuation.wheel_velocity_radps[index] = \
-                    min(1.0, step / 200) * speed / _radius(params, index)
+                    min(1.0, step / ramp) * speed / _radius(params, index)
             car.apply(actuation)
             world.step()
         # Rolling without slip: v = omega * r within 0.5 %, straight ahead.
@@ -139,11 +143,14 @@ def test_car_body_velocity_controlled_wheels_move_the_chassis_at_omega_r(model):
         assert all(measurement.wheel_position_rad > 0.0)
 
 
-def test_car_body_steering_follows_the_webots_motor_and_is_capped_at_10_radps():
-    # Webots RotationalMotor: commanded velocity = 10 * error, capped at 10 rad/s; so one 10 ms
-    # step moves 10 * error * dt while |error| <= 1 rad and 0.1 rad beyond.
+@pytest.mark.parametrize('step_ms', CHECKED_TIME_STEPS_MS)
+def test_car_body_steering_follows_the_webots_motor_and_is_capped_at_10_radps(step_ms):
+    # Webots RotationalMotor: commanded velocity = 10 * error, capped at 10 rad/s; so one step
+    # of dt moves 10 * error * dt while |error| <= 1 rad and 10 * dt beyond, and the error left
+    # after a step is (1 - 10 dt) of the error before it.
     params = load_car('BmwX5')
-    with World() as world:
+    dt = step_ms / 1000.0
+    with World(time_step_s=dt) as world:
         car = CarBody(world, params)
         actuation = Actuation()
         measurement = Measurement()
@@ -157,18 +164,22 @@ def test_car_body_steering_follows_the_webots_motor_and_is_capped_at_10_radps():
             return (measurement.steer_right_rad - before.steer_right_rad,
                     measurement.steer_left_rad - before.steer_left_rad)
 
-        assert step_to(0.5, -0.4) == pytest.approx((0.05, -0.04), abs=2e-4)
-        assert step_to(0.5, -0.4) == pytest.approx((0.045, -0.036), abs=2e-4)   # decays 0.9x
+        gain, cap = 10.0 * dt, 10.0 * dt            # per step: of the error, at most [rad]
+        first = (gain * 0.5, -gain * 0.4)
+        assert step_to(0.5, -0.4) == pytest.approx(first, abs=2e-4)
+        assert step_to(0.5, -0.4) == pytest.approx(
+            tuple((1.0 - gain) * move for move in first), abs=2e-4)
         for _ in range(100):
             step_to(1.0, -1.0)
         assert (measurement.steer_right_rad, measurement.steer_left_rad) == \
             pytest.approx((1.0, -1.0), abs=1e-3)
         # Error 2 rad: 20 rad/s asked, 10 rad/s given, until the error drops below 1 rad.
-        moves = [step_to(-1.0, 1.0) for _ in range(12)]
-        for right, left in moves[:9]:
-            assert (right, left) == pytest.approx((-0.1, 0.1), abs=2e-4)
-        assert max(max(abs(r), abs(left)) for r, left in moves) <= 0.1 + 1e-4
-        assert abs(moves[11][0]) < 0.1
+        capped = round(1.0 / cap) - 1               # the steps with more than 1 rad to go
+        moves = [step_to(-1.0, 1.0) for _ in range(capped + 3)]
+        for right, left in moves[:capped]:
+            assert (right, left) == pytest.approx((-cap, cap), abs=2e-4)
+        assert max(max(abs(r), abs(left)) for r, left in moves) <= cap + 1e-4
+        assert abs(moves[-1][0]) < cap
 
 
 def test_car_body_brake_stops_a_rolling_car_and_holds_it():
@@ -256,8 +267,9 @@ def test_car_body_two_cars_do_not_interact_unless_they_touch():
         assert target.forward_speed_mps() > 1.0
 
 
+@pytest.mark.parametrize('step_ms', CHECKED_TIME_STEPS_MS)
 @pytest.mark.parametrize('model', ['BmwX5', 'TeslaModel3'])
-def test_car_body_steady_turn_yaw_rate_matches_the_bicycle_model(model):
+def test_car_body_steady_turn_yaw_rate_matches_the_bicycle_model(model, step_ms):
     # Webots driver.c §3.2-3.3: Ackermann wheel angles and the differential's wheel speeds for
     # delta = 0.1 rad (right) at 10 km/h; the yaw rate must be v * tan(delta) / L within 5 %
     # (negative: a right turn, REP 103).
@@ -274,16 +286,17 @@ def test_car_body_steady_turn_yaw_rate_matches_the_bicycle_model(model):
     ratio_r = radius_rr / (radius_rl + radius_rr)
     targets = {Wheel.FRONT_RIGHT: 2 * speed * ratio_f, Wheel.FRONT_LEFT: 2 * speed * (1 - ratio_f),
                Wheel.REAR_RIGHT: 2 * speed * ratio_r, Wheel.REAR_LEFT: 2 * speed * (1 - ratio_r)}
-    with World() as world:
+    ramp = 2000 // step_ms                      # steps in 2 s
+    with World(time_step_s=step_ms / 1000.0) as world:
         car = CarBody(world, params)
         actuation = Actuation()
         actuation.steer_right_rad, actuation.steer_left_rad = theta_r, theta_l
         for index in params.driven_wheels:
             actuation.wheel_mode[index] = WheelMode.VELOCITY
-        for step in range(600):
+        for step in range(3 * ramp):
             for index in params.driven_wheels:
                 actuation.wheel_velocity_radps[index] = \
-                    min(1.0, step / 200) * targets[index] / _radius(params, index)
+                    min(1.0, step / ramp) * targets[index] / _radius(params, index)
             car.apply(actuation)
             world.step()
         v = car.forward_speed_mps()
@@ -315,14 +328,15 @@ def test_car_body_full_pose_spawn_and_invalid_pose():
             CarBody(world, params, position=(1.0, 2.0))
 
 
+@pytest.mark.parametrize('step_ms', CHECKED_TIME_STEPS_MS)
 @pytest.mark.parametrize('model', car_names())
-def test_car_body_default_grip_lets_every_preset_follow_its_0_to_100_ramp(model):
+def test_car_body_default_grip_lets_every_preset_follow_its_0_to_100_ramp(model, step_ms):
     # Webots SPEED mode ramps the driven wheels at 27.78 / time0To100 m/s^2 at the tyre
     # (Webots' driver.c); with the default friction the chassis (ground truth) keeps up, so
     # 100 km/h is reached within 2 % of time0To100 and the car stays on its line.
     params = load_car(model)
     accel = 100.0 / 3.6 / params.time_0_to_100_s
-    with World() as world:
+    with World(time_step_s=step_ms / 1000.0) as world:
         car = CarBody(world, params)
         actuation = Actuation()
         for index in params.driven_wheels:

@@ -26,6 +26,7 @@ import pybullet
 import pytest
 
 from vehicle_sim.config import load_car
+from vehicle_sim.core.specs.simulation import CHECKED_TIME_STEPS_MS
 from vehicle_sim.core.specs.units import kmh_to_mps, RPM_PER_RADPS
 from vehicle_sim.webots import Car, Driver
 
@@ -37,8 +38,9 @@ def _ground_speed_mps(car):
     return car.simulated_car.body.forward_speed_mps()
 
 
+@pytest.mark.parametrize('step_ms', CHECKED_TIME_STEPS_MS)
 @pytest.mark.parametrize('model', PRESETS)
-def test_speed_mode_zero_to_hundred_matches_time0to100_within_ten_percent(model):
+def test_speed_mode_zero_to_hundred_matches_time0to100_within_ten_percent(model, step_ms):
     # SPEED mode ramps the driven wheels at (100/3.6)/time0To100 m/s^2 at the tyre (Car.proto
     # motor acceleration), so ground truth reaches a target v after time0To100 * v / 100 km/h.
     # Cars slower than 100 km/h are measured to 90 % of their top speed (docs/physics.md, grip).
@@ -46,24 +48,25 @@ def test_speed_mode_zero_to_hundred_matches_time0to100_within_ten_percent(model)
     top_kmh = params.max_velocity_mps * 3.6
     target_kmh = 100.0 if top_kmh > 100.0 else 0.9 * top_kmh
     expected_s = params.time_0_to_100_s * target_kmh / 100.0
-    with Car(model) as car:
+    with Car(model, time_step_ms=step_ms) as car:
         car.setCruisingSpeed(top_kmh)
         while _ground_speed_mps(car) < kmh_to_mps(target_kmh) and car.getTime() < 2 * expected_s:
             car.step()
         assert car.getTime() == pytest.approx(expected_s, rel=0.10)
 
 
+@pytest.mark.parametrize('step_ms', CHECKED_TIME_STEPS_MS)
 @pytest.mark.parametrize('model', ['BmwX5', 'TeslaModel3', 'LincolnMKZ'])
-def test_steady_turn_yaw_rate_matches_kinematic_bicycle_within_five_percent(model):
+def test_steady_turn_yaw_rate_matches_kinematic_bicycle_within_five_percent(model, step_ms):
     # Low-speed steady cornering without slip: yaw rate = v * tan(delta) / wheelbase, with v the
     # rear-axle centre speed and delta the driver's (centre) steering angle.
     steering_rad = 0.1
-    with Car(model) as car:
+    with Car(model, time_step_ms=step_ms) as car:
         car.setCruisingSpeed(10.0)
         car.setSteeringAngle(steering_rad)
-        car.step(8000)       # settle: ramp to 10 km/h, steering motors, transients
+        car.step(8000)       # settle 8 s: ramp to 10 km/h, steering motors, transients
         yaw_rates, speeds = [], []
-        for _ in range(100):
+        for _ in range(1000 // step_ms):        # 1 s
             car.step()
             yaw_rates.append(car.simulated_car.body.yaw_rate_radps())
             speeds.append(_ground_speed_mps(car))
@@ -143,8 +146,8 @@ def test_torque_mode_higher_gear_at_same_engine_rpm_gives_less_wheel_torque():
     assert torque2 < torque1 * 0.8
 
 
-def _stop_from_50(model, brake):
-    with Car(model) as car:
+def _stop_from_50(model, brake, step_ms=None):
+    with Car(model, time_step_ms=step_ms) as car:
         car.setCruisingSpeed(60.0)   # the chassis only approaches the cruise target
         while _ground_speed_mps(car) < kmh_to_mps(50.0) and car.getTime() < 60.0:
             car.step()
@@ -157,7 +160,8 @@ def _stop_from_50(model, brake):
         return car.getTime() - start, car.getBrakeLights()
 
 
-def test_full_brake_from_50_kmh_stops_the_car_as_the_braking_torque_predicts():
+@pytest.mark.parametrize('step_ms', CHECKED_TIME_STEPS_MS)
+def test_full_brake_from_50_kmh_stops_the_car_as_the_braking_torque_predicts(step_ms):
     # Braking torque brake * brakeCoefficient on each of 4 wheels: deceleration
     # a = 4 b C / r / m_eff (below the friction limit), m_eff = body + wheels + wheel inertia.
     params = load_car('BmwX5')
@@ -165,7 +169,7 @@ def test_full_brake_from_50_kmh_stops_the_car_as_the_braking_torque_predicts():
     m_eff = params.mass_kg + 4 * wheel_mass * 1.5   # + rotational inertia of ~uniform discs
     decel = 4 * params.brake_coefficient_nm / params.front_tire_radius_m / m_eff
     expected_s = kmh_to_mps(50.0) / decel
-    stop_s, brake_light = _stop_from_50('BmwX5', 1.0)
+    stop_s, brake_light = _stop_from_50('BmwX5', 1.0, step_ms)
     assert stop_s == pytest.approx(expected_s, rel=0.15)
     assert brake_light
 

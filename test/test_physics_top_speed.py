@@ -26,6 +26,7 @@ import pytest
 
 from vehicle_sim.config import car_names, load_car
 from vehicle_sim.core.car.vehicle_io import Actuation, Wheel, WheelMode
+from vehicle_sim.core.specs.simulation import CHECKED_TIME_STEPS_MS
 from vehicle_sim.core.specs.units import mps_to_kmh, RPM_PER_RADPS
 from vehicle_sim.physics import CarBody, World
 from vehicle_sim.physics.diff_robot import DiffRobotBody, load_robot
@@ -47,8 +48,9 @@ def _radius(params, index):
     return params.front_tire_radius_m if index < 2 else params.rear_tire_radius_m
 
 
+@pytest.mark.parametrize('step_ms', CHECKED_TIME_STEPS_MS)
 @pytest.mark.parametrize('model', car_names())
-def test_every_preset_reaches_its_top_speed_with_consistent_wheel_speeds(model):
+def test_every_preset_reaches_its_top_speed_with_consistent_wheel_speeds(model, step_ms):
     # SPEED mode at maxVelocity: the wheel motors ramp at (100/3.6)/time0To100 m/s^2 at the tyre
     # and saturate at maxVelocity / r, so after time0To100 * top / (100 km/h) the car holds its
     # top speed, every wheel turning at maxVelocity / r (TeslaModel3: 138.9 rad/s).
@@ -56,9 +58,9 @@ def test_every_preset_reaches_its_top_speed_with_consistent_wheel_speeds(model):
     top_mps = params.max_velocity_mps
     top_kmh = mps_to_kmh(top_mps)
     ramp_s = params.time_0_to_100_s * top_kmh / 100.0
-    with Car(model) as car:
+    with Car(model, time_step_ms=step_ms) as car:
         car.setCruisingSpeed(top_kmh)
-        for _ in range(round((ramp_s + SETTLE_S) / 0.01)):
+        for _ in range(round((ramp_s + SETTLE_S) * 1000.0 / step_ms)):
             car.step()
         assert car.getTargetCruisingSpeed() == top_kmh
         assert car.simulated_car.body.forward_speed_mps() == pytest.approx(top_mps, rel=STEADY_REL)

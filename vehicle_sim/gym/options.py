@@ -30,7 +30,7 @@ from vehicle_sim.core.sensors.lidar_spec import LidarSpec
 from vehicle_sim.core.sensors.params import SENSOR_TYPES
 from vehicle_sim.core.sensors.range_finder_spec import RangeFinderSpec
 from vehicle_sim.core.specs.param_spec import parameter_table_markdown, ParamSpec, validate_table
-from vehicle_sim.core.specs.simulation import TIME_STEP_MS
+from vehicle_sim.core.specs.simulation import CHECKED_TIME_STEPS_MS, TIME_STEP_MS
 
 # 'auto' (the vehicle's default) and core's action layouts (core/learning/actions.py).
 CONTROLS = ('auto',) + tuple(LAYOUTS)
@@ -84,7 +84,9 @@ OPTION_SPECS = (
     ParamSpec('action_repeat', kind='int', default=1, ge=1, le=10000,
               doc='basic steps per env step, each with the same action'),
     replace(TIME_STEP_MS, default=None, optional=True,
-            doc=f"basic time step; null = the scenario's, else {TIME_STEP_MS.default} ms"),
+            doc=f"basic time step; null = the scenario's, else {TIME_STEP_MS.default} ms (the "
+                f"physics car's checks run at "
+                f"{' and '.join(str(ms) for ms in CHECKED_TIME_STEPS_MS)} ms: docs/physics.md)"),
     ParamSpec('max_speed', kind='float', default=None, unit='m/s', gt=0.0, optional=True,
               doc="(braking_)speed_steering, lane_speed: largest speed action; null = "
                   "min(the car's top speed, 20 m/s)"),

@@ -30,6 +30,10 @@ from vehicle_sim.core.specs.param_spec import ParamSpec
 # steps a car's controllers sensibly.
 TIME_STEP_MS = ParamSpec('time_step_ms', kind='int', default=10, unit='ms', ge=1, le=1000,
                          doc='basic time step of the world (Webots basicTimeStep)')
+# The basic steps [ms] at which the physics car's checks run (docs/physics.md, World: the 0-100
+# ramps, top speeds, braking, steady turns, static sag and the steering motor's law): the default
+# and the coarsest step the car is shown to keep them at.
+CHECKED_TIME_STEPS_MS = (TIME_STEP_MS.default, 20)
 
 # Tyre-road friction coefficient of the ground (Bullet multiplies the two materials' values; car
 # wheels have 1.0). 0-100 km/h in time0To100 needs about 1.1 on the driven axle (docs/physics.md
