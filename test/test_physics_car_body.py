@@ -182,9 +182,10 @@ def test_car_body_steering_follows_the_webots_motor_and_is_capped_at_10_radps(st
         assert abs(moves[-1][0]) < cap
 
 
-def test_car_body_brake_stops_a_rolling_car_and_holds_it():
+@pytest.mark.parametrize('step_ms', CHECKED_TIME_STEPS_MS)
+def test_car_body_brake_stops_a_rolling_car_and_holds_it(step_ms):
     params = load_car('Car')
-    with World() as world:
+    with World(time_step_s=step_ms / 1000.0) as world:
         car = CarBody(world, params)
         _run(world, car, _all_wheels(WheelMode.VELOCITY, 5.0 / params.rear_tire_radius_m), 2.0)
         assert car.forward_speed_mps() == pytest.approx(5.0, rel=0.01)
@@ -205,9 +206,10 @@ def test_car_body_brake_stops_a_rolling_car_and_holds_it():
         assert max(abs(v) for v in velocities[:4]) < 1e-2
 
 
-def test_car_body_torque_mode_accelerates_and_a_larger_brake_holds():
+@pytest.mark.parametrize('step_ms', CHECKED_TIME_STEPS_MS)
+def test_car_body_torque_mode_accelerates_and_a_larger_brake_holds(step_ms):
     params = load_car('TeslaModel3')
-    with World() as world:
+    with World(time_step_s=step_ms / 1000.0) as world:
         car = CarBody(world, params)
         actuation = Actuation()
         for index in params.driven_wheels:
