@@ -91,14 +91,15 @@ def _ppo_options(script, **changed):
                 **dict(script.POLICY_OPTIONS, **changed))
 
 
-def _shipped_task_run(name, seed=0):
-    # a 30-minute run with the script's options and training traffic (whatever its learner)
+def _shipped_task_run(name, seed=0, every=None):
+    # a 30-minute run with the script's options and training traffic (whatever its learner;
+    # ``every``: the training traffic in every so many worlds, the script's when None)
     script = _script()
     summary = _earlier_run(name)
     assert summary['seed'] == seed and summary['minutes'] == 30.0, name
     assert summary['env_options'] == script.ENV_OPTIONS, name
-    assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
-                                               every=script.TRAINING_TRAFFIC_EVERY), name
+    every = script.TRAINING_TRAFFIC_EVERY if every is None else every
+    assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC, every=every), name
     return script, summary
 
 
@@ -230,18 +231,20 @@ def test_the_docs_show_the_curriculum_runs_figures_and_its_options_are_the_scrip
 
 
 # SAC's settings of the runs with another learner (docs/learning.md, "Tried: another learner"),
-# and the gradient steps of each run
+# and each run's gradient steps and training traffic (in every so many worlds; None: the
+# script's)
 SAC_SETTINGS = {'buffer_size': 1_000_000, 'learning_starts': 10_000, 'batch_size': 256,
                 'learning_rate': 3e-4, 'gamma': 0.99, 'tau': 0.005, 'train_freq': 1,
                 'ent_coef': 'auto', 'net_arch': [128, 128]}
-SAC_RUNS = {'highway_sac': 2, 'highway_sac_g4': 4, 'highway_sac_g8': 8}
+SAC_RUNS = {'highway_sac': (2, None), 'highway_sac_g4': (4, None), 'highway_sac_g8': (8, None),
+            'highway_sac_g4_e4': (4, 4)}
 
 
 def test_the_docs_show_the_sac_runs_figures_and_their_task_is_the_scripts():
     # the same task, observations, reward and training traffic as the script, SAC's learner
     text = ' '.join((ROOT / 'docs' / 'learning.md').read_text(encoding='utf-8').split())
-    for name, gradient_steps in SAC_RUNS.items():
-        script, summary = _shipped_task_run(name)
+    for name, (gradient_steps, every) in SAC_RUNS.items():
+        script, summary = _shipped_task_run(name, every=every)
         assert summary['algorithm'] == 'SAC' and 'ppo' not in summary, name
         assert summary['scales'] == script.SCALES, name
         assert summary['sac'] == dict(SAC_SETTINGS, gradient_steps=gradient_steps), name
