@@ -24,7 +24,8 @@ highway_ppo_lane_speed_*, highway_ppo_more_steps_*, its second seed's highway_pp
 highway_ppo_every4_* and its other seeds' highway_ppo_every4_seed1_* and _seed2_*,
 highway_ppo_lr_decay_*, highway_ppo_lr_decay_c20_*, highway_ppo_lr_decay_ttc5_*,
 highway_ppo_lane_choice_*, highway_ppo_lane_choice_box_*, highway_ppo_lane_choice_back_*,
-highway_ppo_average_*, highway_ppo_curriculum_* and the SAC runs' highway_sac_*) and for
+highway_ppo_average_*, highway_ppo_curriculum_*, highway_ppo_20ms_* and the SAC runs'
+highway_sac_*) and for
 examples/train_crossing_shared.py's run (docs/learning/crossing_shared_*). Needs neither
 stable-baselines3 nor PyTorch.
 """
@@ -228,6 +229,28 @@ def test_the_docs_show_the_curriculum_runs_figures_and_its_options_are_the_scrip
                                       'speed_factor_std': script.TRAINING_TRAFFIC[
                                           'speed_factor_std']}
     assert 0 < summary['first_phase_env_steps'] < summary['env_steps'] / 2
+
+
+def test_the_docs_show_the_20ms_runs_figures_and_it_trained_at_a_checked_step():
+    # training at 20 ms steps (the same 5 Hz decisions) with twice the batch, evaluated on the
+    # task as shipped (its summary's options are the script's card)
+    from vehicle_sim.core.specs.simulation import CHECKED_TIME_STEPS_MS, TIME_STEP_MS
+    script, summary = _shipped_task_run('highway_ppo_20ms')
+    assert summary['ppo'] == _ppo_options(script, n_steps=512, batch_size=512)
+    steps = summary['training_steps']
+    assert steps['time_step_ms'] in CHECKED_TIME_STEPS_MS and steps['time_step_ms'] > 10
+    assert (steps['time_step_ms'] * steps['action_repeat']
+            == TIME_STEP_MS.default * script.ENV_OPTIONS['action_repeat'])
+    text = ' '.join((ROOT / 'docs' / 'learning.md').read_text(encoding='utf-8').split())
+    with open(RUN / 'highway_ppo_20ms_evaluation.csv', encoding='utf-8') as stream:
+        rows = [row for row in csv.DictReader(stream) if row['policy'] == 'trained']
+    slow = [float(row['mean_speed_mps']) for row in rows
+            if row['success'] == 'False' and row['collision'] == 'False']
+    collisions = sum(row['collision'] == 'True' for row in rows)
+    assert (f"**{summary['evaluation']['trained']['success_rate'] * 100:.0f} %**: "
+            f'{collisions} collisions and {len(slow)} episodes without one too slow for '
+            f'`mean_speed` ({min(slow):.1f}–{max(slow):.1f} m/s)') in text
+    assert f"**{summary['env_steps']:,} env steps**".replace(',', ' ') in text
 
 
 # SAC's settings of the runs with another learner (docs/learning.md, "Tried: another learner"),
