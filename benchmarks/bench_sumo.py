@@ -31,7 +31,9 @@ beside it (less moved by other work on a shared machine).
   (270 degrees, 30 m) sampled at 10 Hz, built by the scene builder and stepped by
   ``World.step`` at 10 ms (target >= 20x real time); before it, in the same process, the same
   car and lidar in an empty world (no map, no traffic). The cost: the co-simulation's time per
-  simulated second over SUMO alone's plus the empty world's (target <= 2x). Its RSS.
+  simulated second over SUMO alone's plus the empty world's (target <= 2x). Its RSS. The same
+  again (both worlds) at 20 ms steps, the coarsest step at which the physics car's checks run
+  (``CHECKED_TIME_STEPS_MS``, docs/physics.md), with the same targets.
 - netconvert: an OpenDRIVE file of about 1 MB made by the benchmark (netgenerate's 6 x 6 grid of
   two-lane roads with traffic lights, written as OpenDRIVE by netconvert
   ``--opendrive-output``) converted as a world's ``map: {type: opendrive}`` converts it
@@ -65,7 +67,7 @@ PERSON_PERIOD_S = 5.5        # one person every 5.5 s -> about 50 walking
 FILL_S = 300.0               # simulated seconds before timing: the city fills up
 XODR_GRID = 6                # netgenerate grid of 6 x 6 junctions: about 1 MB of OpenDRIVE
 TARGET_RTF = 20.0            # co-simulated real-time factor (docs/sumo.md)
-PARTS = ('alone', 'cosim', 'netconvert')
+PARTS = ('alone', 'cosim', 'cosim_coarse', 'netconvert')
 TARGET_COST = 2.0            # co-simulated / (SUMO alone + the empty world), per simulated s
 # SUMO's options on both sides (alone, and the engine's ``options:``): its warnings off (SUMO
 # writes each to the terminal and the error log; they change no result)
@@ -170,19 +172,21 @@ def _timed_steps(world, steps):
     return time.perf_counter() - start, time.process_time() - start_cpu
 
 
-def cosim(measure_s, seed=1):
+def cosim(measure_s, seed=1, step_ms=None):
     """
     Return the co-simulation figures (this process runs libsumo: call it in a fresh one).
 
     First the empty world (the ego car and its lidar, nothing else), then the city with SUMO's
     traffic filled for :data:`FILL_S` simulated seconds (not timed, the lidar off), each
-    stepped by ``World.step`` at 10 ms for ``measure_s`` simulated seconds with the lidar
-    sampled at its 10 Hz.
+    stepped by ``World.step`` at ``step_ms`` (None: the default 10 ms) for ``measure_s``
+    simulated seconds with the lidar sampled at its 10 Hz.
     """
+    from vehicle_sim.core.specs.simulation import TIME_STEP_MS
     from vehicle_sim.physics.scene import build_scene, mount_suite
-    found = {}
+    step_s = (TIME_STEP_MS.default if step_ms is None else step_ms) / 1000.0
+    found = {'step_ms': round(step_s * 1000.0)}
     with tempfile.TemporaryDirectory(prefix='bench_sumo_') as folder:
-        empty = build_scene(_ego_world(folder), mount=mount_suite)
+        empty = build_scene(_ego_world(folder), mount=mount_suite, time_step_s=step_s)
         try:
             world = empty.world
             empty.vehicles['ego'].sensors.start(['lidar'])
@@ -195,7 +199,8 @@ def cosim(measure_s, seed=1):
         routes = city_routes(folder, FILL_S + measure_s + 60.0, seed)
         rss_before = _rss_mb()
         start = time.perf_counter()
-        city = build_scene(_ego_world(folder, routes, seed), mount=mount_suite)
+        city = build_scene(_ego_world(folder, routes, seed), mount=mount_suite,
+                           time_step_s=step_s)
         found['build_s'] = time.perf_counter() - start
         try:
             world = city.world
@@ -273,12 +278,15 @@ def _in_fresh_process(part, quick):
 def measure(quick=False):
     """Return every figure of this benchmark, each part measured in a fresh process."""
     found = {part: _in_fresh_process(part, quick) for part in PARTS}
-    cosim, alone = found['cosim'], found['alone']
+    alone = found['alone']
     # per simulated second: the co-simulation's wall time over SUMO alone's plus the empty
-    # world's (the ego car and its lidar, nothing else)
-    found['cost'] = (1.0 / cosim['rtf']) / (1.0 / alone['rtf'] + 1.0 / cosim['empty_rtf'])
-    found['cpu_cost'] = (1.0 / cosim['cpu_rtf']) / (1.0 / alone['cpu_rtf']
-                                                    + 1.0 / cosim['empty_cpu_rtf'])
+    # world's (the ego car and its lidar, nothing else), at each step
+    for part in ('cosim', 'cosim_coarse'):
+        cosim = found[part]
+        cosim['cost'] = (1.0 / cosim['rtf']) / (1.0 / alone['rtf'] + 1.0 / cosim['empty_rtf'])
+        cosim['cpu_cost'] = (1.0 / cosim['cpu_rtf']) / (1.0 / alone['cpu_rtf']
+                                                        + 1.0 / cosim['empty_cpu_rtf'])
+    found['cost'], found['cpu_cost'] = found['cosim']['cost'], found['cosim']['cpu_cost']
     return found
 
 
@@ -291,12 +299,17 @@ def figures(quick=False):
                     "(pip install 'vehicle_sim[sumo]')"]
     found = measure(quick)
     alone, cosim, convert = found['alone'], found['cosim'], found['netconvert']
+    coarse = found['cosim_coarse']
     rows = [
         (f'SUMO city co-simulated ({alone["vehicles"]:.0f} vehicles + {alone["persons"]:.0f} '
          'persons, 0.1 s; ego with a 1080-ray lidar, 10 ms): real-time factor', cosim['rtf'],
          '>=', TARGET_RTF, 'x'),
         ('  same: cost / (SUMO alone + the empty world), per simulated second', found['cost'],
          '<=', TARGET_COST, 'x'),
+        (f'  same at {coarse["step_ms"]} ms steps (the coarsest checked step): real-time '
+         'factor', coarse['rtf'], '>=', TARGET_RTF, 'x'),
+        (f'  same at {coarse["step_ms"]} ms steps: cost / (SUMO alone + the empty world at '
+         f'{coarse["step_ms"]} ms)', coarse['cost'], '<=', TARGET_COST, 'x'),
         ('  same: SUMO alone (libsumo), real-time factor', alone['rtf'], None, None, 'x'),
         ('  same: RSS of the co-simulating process', cosim['rss_mb'], None, None, 'MB'),
         (f'netconvert of a {convert["size_mb"]:.2f} MB OpenDRIVE file', convert['seconds'],
@@ -329,6 +342,9 @@ def _part(name, quick):
         return sumo_alone(30.0 if quick else 60.0)
     if name == 'cosim':
         return cosim(30.0 if quick else 60.0)
+    if name == 'cosim_coarse':
+        from vehicle_sim.core.specs.simulation import CHECKED_TIME_STEPS_MS
+        return cosim(30.0 if quick else 60.0, step_ms=max(CHECKED_TIME_STEPS_MS))
     return netconvert_xodr(2 if quick else 3)
 
 
