@@ -286,7 +286,6 @@ def measure(quick=False):
         cosim['cost'] = (1.0 / cosim['rtf']) / (1.0 / alone['rtf'] + 1.0 / cosim['empty_rtf'])
         cosim['cpu_cost'] = (1.0 / cosim['cpu_rtf']) / (1.0 / alone['cpu_rtf']
                                                         + 1.0 / cosim['empty_cpu_rtf'])
-    found['cost'], found['cpu_cost'] = found['cosim']['cost'], found['cosim']['cpu_cost']
     return found
 
 
@@ -304,7 +303,7 @@ def figures(quick=False):
         (f'SUMO city co-simulated ({alone["vehicles"]:.0f} vehicles + {alone["persons"]:.0f} '
          'persons, 0.1 s; ego with a 1080-ray lidar, 10 ms): real-time factor', cosim['rtf'],
          '>=', TARGET_RTF, 'x'),
-        ('  same: cost / (SUMO alone + the empty world), per simulated second', found['cost'],
+        ('  same: cost / (SUMO alone + the empty world), per simulated second', cosim['cost'],
          '<=', TARGET_COST, 'x'),
         (f'  same at {coarse["step_ms"]} ms steps (the coarsest checked step): real-time '
          'factor', coarse['rtf'], '>=', TARGET_RTF, 'x'),
@@ -328,7 +327,7 @@ def describe(found):
             f'({cosim["cpu_rtf"]:.1f}x on CPU time, {cosim["agents"]} SUMO bodies at the end), '
             f'the empty world with the lidar {cosim["empty_rtf"]:.0f}x '
             f'({cosim["empty_cpu_rtf"]:.0f}x on CPU time); cost '
-            f'{found["cost"]:.2f}x SUMO alone + the empty world ({found["cpu_cost"]:.2f}x on CPU '
+            f'{cosim["cost"]:.2f}x SUMO alone + the empty world ({cosim["cpu_cost"]:.2f}x on CPU '
             f'time); built in '
             f'{cosim["build_s"]:.1f} s, RSS {cosim["rss_mb"]:.0f} MB '
             f'({cosim["rss_added_mb"]:+.0f} MB by the city and SUMO); netconvert: '
