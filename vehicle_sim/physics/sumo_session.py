@@ -14,14 +14,16 @@
 
 
 """
-One running SUMO: started with libsumo in this process, or as a sumo process over TraCI.
+One running SUMO: libsumo in this process, a sumo process over TraCI, or libsumo in a worker.
 
 libsumo (SUMO as a Python extension) runs one simulation per process: :class:`SumoSession`
 takes it when it is free (``transport: auto`` or ``libsumo``) and otherwise starts the sumo
 binary of the ``eclipse-sumo`` package and talks to it over TraCI (``traci.start`` with a label of
 its own), the same calls through a connection instead of the module. A second world in one process
 (a Gym vector env's worlds, a test's two worlds) therefore gets TraCI; a process per world
-(the async vector env) gets libsumo in each.
+(the async vector env) gets libsumo in each. ``transport: worker`` runs libsumo in a process of
+the session's own (physics/sumo_worker.py: SUMO steps while the physics runs; any number per
+process).
 
 Every message of SUMO goes to an error log of the session's own (``--error-log``): a failed
 start raises InvalidParameterError, a failure while it runs :class:`SumoError`, each with SUMO's
@@ -84,7 +86,8 @@ class SumoSession:
     One SUMO simulation: ``api`` offers TraCI's domains (``api.vehicle``, ``api.simulation``...).
 
     :param args: sumo's options (the network, routes, seed, step length...).
-    :param transport: 'auto', 'libsumo' or 'traci' (core/traffic/sumo_params.py TRANSPORTS).
+    :param transport: 'auto', 'libsumo', 'traci' or 'worker' (core/traffic/sumo_params.py
+        TRANSPORTS).
     :param source: quoted in errors ('world.yaml: traffic').
     :raises InvalidParameterError: SUMO refused to start (its message); libsumo asked for and
         taken; SumoUnavailable (maps/sumo_net.py): SUMO, libsumo (asked for) or traci not
@@ -105,6 +108,10 @@ class SumoSession:
                     f"{source}: field 'transport' = 'libsumo': this process runs a SUMO through "
                     'libsumo already (one per process): close that world first, or use '
                     'transport: traci or auto')
+        elif transport == 'worker' and libsumo is None:
+            raise SumoUnavailable(f"{source}: field 'transport' = 'worker': libsumo does not "
+                                  'load in this Python (transport: traci runs SUMO as a '
+                                  'process): ' + EXTRA_HINT)
         elif transport == 'auto':
             free = libsumo is not None and _libsumo_user[0] is None and \
                 not libsumo.simulation.isLoaded()
@@ -123,6 +130,9 @@ class SumoSession:
                     libsumo.start(command)
                 _libsumo_user[0] = self
                 self.api = libsumo
+            elif transport == 'worker':
+                from vehicle_sim.physics.sumo_worker import SumoWorker, WorkerApi
+                self.api = WorkerApi(SumoWorker(command, load_traci().exceptions))
             else:
                 traci = load_traci()
                 label = f'vehicle_sim_{os.getpid()}_{next(_labels)}'

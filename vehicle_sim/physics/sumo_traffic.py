@@ -349,14 +349,47 @@ class SumoBodies(SumoPool, SumoViews):
         return found
 
     def _advance(self, place=True):
+        """
+        SUMO's step: our vehicles pushed, SUMO stepped, its readings taken; return ours.
+
+        In this process (libsumo, TraCI) SUMO steps here. With a worker (``transport:
+        worker``, physics/sumo_worker.py) the step started at the previous update is collected
+        and the next one started with our vehicles as they are now, so that SUMO steps while
+        the physics runs (the first update steps and collects at once).
+        """
         api = self.session.api
-        self._signals.push()
-        ours = self._our.push(self._steps)
-        api.simulationStep()
+        worker = getattr(api, 'worker', None)
+        if worker is None:
+            ours = self._push()
+            api.simulationStep()
+            self._steps += 1
+            reads = self._reads
+            self._read_step(api, api.simulation.getSubscriptionResults(),
+                            lambda: (reads.vehicles(api), reads.persons(api), None), place)
+            return ours
+        if not worker.stepped:
+            self._push()
+            worker.step(OURS_PREFIX)
+            self._steps += 1
+        departed, vehicles, persons, lights = worker.collect()
+        self._read_step(api, departed, lambda: (vehicles, persons, lights), place)
+        ours = self._push()
+        worker.step(OURS_PREFIX)
         self._steps += 1
+        return ours
+
+    def _push(self):
+        # the states a scenario forces on the signals, and our vehicles, to SUMO
+        self._signals.push()
+        return self._our.push(self._steps)
+
+    def _read_step(self, api, departed, readings, place):
+        # SUMO's readings after a step: departures and arrivals (the simulation's subscription
+        # results), then ``readings()``: the vehicles and persons (sumo_reads.py; over TraCI
+        # the departed ones' subscriptions are made first) and the lights' states (None: read
+        # from their subscriptions here)
         c = self._constants
         reads = self._reads
-        departed = api.simulation.getSubscriptionResults()
         for vid in departed.get(c.VAR_ARRIVED_VEHICLES_IDS, ()):
             if vid.startswith(OURS_PREFIX):          # SUMO removed one of ours: back next step
                 self._our.arrived(vid)
@@ -369,11 +402,12 @@ class SumoBodies(SumoPool, SumoViews):
                     slot = self._take(api, person, sumo_id)
                     if not person:
                         slot.route = tuple(api.vehicle.getRoute(sumo_id))
+        vehicles, persons_read, lights = readings()
         by_id = self._by_id
         seen = set()
         step_s = self.spec.step_s
         radians, cos, sin = math.radians, math.cos, math.sin
-        for sumo_id, (fx, fy), angle, speed, lane in reads.vehicles(api):
+        for sumo_id, (fx, fy), angle, speed, lane in vehicles:
             key = (False, sumo_id)
             slot = by_id.get(key)
             if slot is None:                # back from a teleport (SUMO's jam resolution)
@@ -388,7 +422,7 @@ class SumoBodies(SumoPool, SumoViews):
             slot.speed = speed
             slot.lane = lane                      # None: read when the objects are
         persons = []
-        for sumo_id, (fx, fy), angle, speed in reads.persons(api):
+        for sumo_id, (fx, fy), angle, speed in persons_read:
             key = (True, sumo_id)
             slot = by_id.get(key)
             if slot is None:
@@ -404,10 +438,11 @@ class SumoBodies(SumoPool, SumoViews):
             slot = self._by_id.pop(key)
             self._park(slot)
             self._free.setdefault(slot.key, []).append(slot)
-        self._signals.drive(api)
+        if lights is not None:
+            lights = {tls: values[c.TL_RED_YELLOW_GREEN_STATE] for tls, values in lights.items()}
+        self._signals.drive(api, lights)
         if place:
             self._place()
-        return ours
 
     def before_query(self):
         """World hook (``World.sync_bodies``): every body where its vehicle is now."""

@@ -52,7 +52,7 @@ from vehicle_sim.core.specs.value_text import brief
 from vehicle_sim.core.traffic.params import OBJECTS_RATE
 
 ENGINE = 'sumo'
-TRANSPORTS = ('auto', 'libsumo', 'traci')
+TRANSPORTS = ('auto', 'libsumo', 'traci', 'worker')
 # The object class (core/traffic/objects.py OBJECT_CLASSES) of each SUMO vehicle class
 # (https://sumo.dlr.de/docs/Definition_of_Vehicles%2C_Vehicle_Types%2C_and_Routes.html,
 # "Abstract Vehicle Class"); a class not listed is a car.
@@ -103,7 +103,9 @@ SUMO_TRAFFIC_SPECS = (
               ge=0.0, le=3600.0),
     ParamSpec('transport', 'transport', 'enum', 'auto', '', 'how SUMO runs: libsumo (in this '
               'process; one SUMO per process), traci (a sumo process, over a socket; slower), '
-              'auto (libsumo when this process has no SUMO running yet, else traci)',
+              'auto (libsumo when this process has no SUMO running yet, else traci), worker '
+              '(libsumo in a process of its own, stepping while the physics runs: our vehicles '
+              'reach SUMO one SUMO step later)',
               choices=TRANSPORTS),
     ParamSpec('options', 'options', 'str_list', None, '', 'further sumo command-line options, '
               "e.g. ['--time-to-teleport', '-1'] (not those the engine sets: "
