@@ -94,6 +94,10 @@ def test_a_worker_gives_the_bodies_and_objects_of_libsumo_step_for_step(net):
         # getter each), as over libsumo
         lanes = [slot.lane for slot in bodies[1]._by_id.values() if not slot.person]
         assert len(lanes) > 5 and all(lane[0] for lane in lanes)
+        # read by libsumo's getters in the worker: no vehicle or person subscribed (each
+        # subscription costs SUMO's step)
+        for domain in ('vehicle', 'person'):
+            assert getattr(bodies[1].session.api, domain).getAllSubscriptionResults() == {}
     finally:
         for scene in worlds:
             scene.world.close()

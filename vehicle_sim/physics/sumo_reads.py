@@ -36,8 +36,14 @@ __all__ = ['GetterReads', 'reads_for', 'SubscribedReads']
 
 
 def reads_for(session, constants, ours_prefix):
-    """Return the reader for a started SumoSession: getters on libsumo, else subscriptions."""
-    kind = GetterReads if session.transport == 'libsumo' else SubscribedReads
+    """
+    Return the reader for a started SumoSession: getters on libsumo, else subscriptions.
+
+    A worker (``transport: worker``, physics/sumo_worker.py) runs libsumo: its readings after
+    each step come from its getters in one message; between steps (a vehicle's lane when it
+    is not known) the getters are called in it.
+    """
+    kind = GetterReads if session.transport in ('libsumo', 'worker') else SubscribedReads
     return kind(constants, ours_prefix)
 
 
