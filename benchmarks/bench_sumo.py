@@ -33,7 +33,10 @@ beside it (less moved by other work on a shared machine).
   car and lidar in an empty world (no map, no traffic). The cost: the co-simulation's time per
   simulated second over SUMO alone's plus the empty world's (target <= 2x). Its RSS. The same
   again (both worlds) at 20 ms steps, the coarsest step at which the physics car's checks run
-  (``CHECKED_TIME_STEPS_MS``, docs/physics.md), with the same targets.
+  (``CHECKED_TIME_STEPS_MS``, docs/physics.md), with the same targets; and again at 10 ms with
+  ``transport: worker`` (libsumo in a process of its own, stepping while the physics runs:
+  physics/sumo_worker.py), the same targets; its CPU time figures add the worker's (read from
+  /proc) to the world process's.
 - netconvert: an OpenDRIVE file of about 1 MB made by the benchmark (netgenerate's 6 x 6 grid of
   two-lane roads with traffic lights, written as OpenDRIVE by netconvert
   ``--opendrive-output``) converted as a world's ``map: {type: opendrive}`` converts it
@@ -49,6 +52,7 @@ Run: ``.venv/bin/python benchmarks/bench_sumo.py [--quick]``.
 
 import argparse
 import json
+import math
 import os
 from pathlib import Path
 import resource
@@ -67,7 +71,7 @@ PERSON_PERIOD_S = 5.5        # one person every 5.5 s -> about 50 walking
 FILL_S = 300.0               # simulated seconds before timing: the city fills up
 XODR_GRID = 6                # netgenerate grid of 6 x 6 junctions: about 1 MB of OpenDRIVE
 TARGET_RTF = 20.0            # co-simulated real-time factor (docs/sumo.md)
-PARTS = ('alone', 'cosim', 'cosim_coarse', 'netconvert')
+PARTS = ('alone', 'cosim', 'cosim_coarse', 'cosim_worker', 'netconvert')
 TARGET_COST = 2.0            # co-simulated / (SUMO alone + the empty world), per simulated s
 # SUMO's options on both sides (alone, and the engine's ``options:``): its warnings off (SUMO
 # writes each to the terminal and the error log; they change no result)
@@ -153,7 +157,7 @@ def sumo_alone(measure_s, seed=1):
             'persons': person_sum / steps, 'rss_mb': rss, 'rss_added_mb': rss - rss_before}
 
 
-def _ego_world(folder, routes=None, seed=1):
+def _ego_world(folder, routes=None, seed=1, transport='auto'):
     """Return the WorldSpec of the ego car and its lidar: in the city with SUMO, or alone."""
     from vehicle_sim.config import world_from_data
     data = {'vehicles': [{'name': 'ego', 'model': 'ToyotaPrius', 'pose': dict(EGO_POSE),
@@ -161,7 +165,8 @@ def _ego_world(folder, routes=None, seed=1):
     if routes is not None:
         data['map'] = {'type': 'sumo', 'net': str(CITY)}
         data['traffic'] = {'engine': 'sumo', 'routes': [str(path) for path in routes],
-                           'step': STEP_S, 'seed': seed, 'options': list(SUMO_OPTIONS)}
+                           'step': STEP_S, 'seed': seed, 'options': list(SUMO_OPTIONS),
+                           'transport': transport}
     return world_from_data(data, 'bench_sumo.yaml', base_dir=str(folder))
 
 
@@ -172,14 +177,22 @@ def _timed_steps(world, steps):
     return time.perf_counter() - start, time.process_time() - start_cpu
 
 
-def cosim(measure_s, seed=1, step_ms=None):
+def _children_cpu_s(process):
+    # CPU time [s] of a child process so far (/proc/<pid>/stat utime + stime)
+    with open(f'/proc/{process.pid}/stat', encoding='ascii') as stream:
+        fields = stream.read().rsplit(')', 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
+
+
+def cosim(measure_s, seed=1, step_ms=None, transport='auto'):
     """
     Return the co-simulation figures (this process runs libsumo: call it in a fresh one).
 
     First the empty world (the ego car and its lidar, nothing else), then the city with SUMO's
     traffic filled for :data:`FILL_S` simulated seconds (not timed, the lidar off), each
     stepped by ``World.step`` at ``step_ms`` (None: the default 10 ms) for ``measure_s``
-    simulated seconds with the lidar sampled at its 10 Hz.
+    simulated seconds with the lidar sampled at its 10 Hz; SUMO through ``transport``
+    (a worker's CPU time over the window as ``worker_cpu_rtf``).
     """
     from vehicle_sim.core.specs.simulation import TIME_STEP_MS
     from vehicle_sim.physics.scene import build_scene, mount_suite
@@ -199,7 +212,7 @@ def cosim(measure_s, seed=1, step_ms=None):
         routes = city_routes(folder, FILL_S + measure_s + 60.0, seed)
         rss_before = _rss_mb()
         start = time.perf_counter()
-        city = build_scene(_ego_world(folder, routes, seed), mount=mount_suite,
+        city = build_scene(_ego_world(folder, routes, seed, transport), mount=mount_suite,
                            time_step_s=step_s)
         found['build_s'] = time.perf_counter() - start
         try:
@@ -207,8 +220,13 @@ def cosim(measure_s, seed=1, step_ms=None):
             _timed_steps(world, int(round(FILL_S / world.time_step_s)))
             traffic = city.parts['traffic'] if hasattr(city, 'parts') else None
             city.vehicles['ego'].sensors.start(['lidar'])
+            worker = None if traffic is None else getattr(traffic.session.api, 'worker', None)
+            before = None if worker is None else _children_cpu_s(worker._process)
             wall, cpu = _timed_steps(world, steps)
             found['rtf'], found['cpu_rtf'] = measure_s / wall, measure_s / cpu
+            if worker is not None:
+                found['worker_cpu_rtf'] = measure_s / (_children_cpu_s(worker._process)
+                                                       - before)
             found['agents'] = len(traffic.agents()) if traffic is not None else -1
             found['rss_mb'] = _rss_mb()
             found['rss_added_mb'] = found['rss_mb'] - rss_before
@@ -281,11 +299,12 @@ def measure(quick=False):
     alone = found['alone']
     # per simulated second: the co-simulation's wall time over SUMO alone's plus the empty
     # world's (the ego car and its lidar, nothing else), at each step
-    for part in ('cosim', 'cosim_coarse'):
+    # (through a worker, its CPU time added to the world process's)
+    for part in ('cosim', 'cosim_coarse', 'cosim_worker'):
         cosim = found[part]
         cosim['cost'] = (1.0 / cosim['rtf']) / (1.0 / alone['rtf'] + 1.0 / cosim['empty_rtf'])
-        cosim['cpu_cost'] = (1.0 / cosim['cpu_rtf']) / (1.0 / alone['cpu_rtf']
-                                                        + 1.0 / cosim['empty_cpu_rtf'])
+        cpu = 1.0 / cosim['cpu_rtf'] + 1.0 / cosim.get('worker_cpu_rtf', math.inf)
+        cosim['cpu_cost'] = cpu / (1.0 / alone['cpu_rtf'] + 1.0 / cosim['empty_cpu_rtf'])
     return found
 
 
@@ -309,6 +328,10 @@ def figures(quick=False):
          'factor', coarse['rtf'], '>=', TARGET_RTF, 'x'),
         (f'  same at {coarse["step_ms"]} ms steps: cost / (SUMO alone + the empty world at '
          f'{coarse["step_ms"]} ms)', coarse['cost'], '<=', TARGET_COST, 'x'),
+        ('  same through a SUMO worker (transport: worker, 10 ms): real-time factor',
+         found['cosim_worker']['rtf'], '>=', TARGET_RTF, 'x'),
+        ('  same through a SUMO worker: cost / (SUMO alone + the empty world)',
+         found['cosim_worker']['cost'], '<=', TARGET_COST, 'x'),
         ('  same: SUMO alone (libsumo), real-time factor', alone['rtf'], None, None, 'x'),
         ('  same: RSS of the co-simulating process', cosim['rss_mb'], None, None, 'MB'),
         (f'netconvert of a {convert["size_mb"]:.2f} MB OpenDRIVE file', convert['seconds'],
@@ -328,7 +351,11 @@ def describe(found):
             f'the empty world with the lidar {cosim["empty_rtf"]:.0f}x '
             f'({cosim["empty_cpu_rtf"]:.0f}x on CPU time); cost '
             f'{cosim["cost"]:.2f}x SUMO alone + the empty world ({cosim["cpu_cost"]:.2f}x on CPU '
-            f'time); built in '
+            f'time); through a SUMO worker {found["cosim_worker"]["rtf"]:.1f}x '
+            f'({found["cosim_worker"]["cpu_rtf"]:.1f}x on the world process\'s CPU time, the '
+            f'worker {found["cosim_worker"]["worker_cpu_rtf"]:.0f}x on its own), cost '
+            f'{found["cosim_worker"]["cost"]:.2f}x ({found["cosim_worker"]["cpu_cost"]:.2f}x '
+            'on the CPU time of both processes); built in '
             f'{cosim["build_s"]:.1f} s, RSS {cosim["rss_mb"]:.0f} MB '
             f'({cosim["rss_added_mb"]:+.0f} MB by the city and SUMO); netconvert: '
             f'{convert["size_mb"]:.2f} MB of OpenDRIVE in {convert["seconds"]:.2f} s (peak RSS '
@@ -341,6 +368,8 @@ def _part(name, quick):
         return sumo_alone(30.0 if quick else 60.0)
     if name == 'cosim':
         return cosim(30.0 if quick else 60.0)
+    if name == 'cosim_worker':
+        return cosim(30.0 if quick else 60.0, transport='worker')
     if name == 'cosim_coarse':
         from vehicle_sim.core.specs.simulation import CHECKED_TIME_STEPS_MS
         return cosim(30.0 if quick else 60.0, step_ms=max(CHECKED_TIME_STEPS_MS))
