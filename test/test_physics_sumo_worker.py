@@ -20,7 +20,8 @@ With our car off every road (so not in SUMO) a worker's world has the bodies, ob
 lanes of a libsumo world step for step, seed for seed, any number of them in one process beside
 libsumo; a step is in flight between SUMO's updates and our car reaches SUMO one SUMO step
 later; SUMO refusing a route, failing mid-run or its worker killed stops the world with SUMO's
-words; closing the world ends the worker; a reset starts it again.
+words; closing the world ends the worker; a reset starts it again. Without libsumo it is
+refused naming the extra; beside it, this process's libsumo stays free for another world.
 """
 
 import math
@@ -40,7 +41,7 @@ from vehicle_sim.config import world_from_data  # noqa: E402
 from vehicle_sim.core.specs.errors import InvalidParameterError  # noqa: E402
 from vehicle_sim.physics.scene import build_scene  # noqa: E402
 from vehicle_sim.physics.sumo_ours import OURS_PREFIX  # noqa: E402
-from vehicle_sim.physics.sumo_session import SumoError  # noqa: E402
+from vehicle_sim.physics.sumo_session import SumoError, SumoUnavailable  # noqa: E402
 
 OFF_ROAD = (-30.0, -30.0, 0.0)       # our car's pose: 30 m from every road of the grid
 LANE_X = 1.6                         # edge A0A1's lane (northbound) along x = 1.6
@@ -207,3 +208,28 @@ def test_reset_starts_the_worker_again_with_its_seed(net):
         assert run(scene, 1000) == first and first[-1]
     finally:
         scene.world.close()
+
+
+def test_a_worker_without_libsumo_is_refused_naming_the_extra(net, tmp_path, monkeypatch):
+    routes = write_routes(tmp_path, [('a', 0, 'A0A1')])
+    monkeypatch.setattr(sumo_session, 'load_libsumo', lambda: None)
+    with pytest.raises(SumoUnavailable,
+                       match=r"field 'transport' = 'worker': libsumo does not load in this "
+                             r'Python \(transport: traci runs SUMO as a process\): pip install '
+                             r"'vehicle_sim\[sumo\]'"):
+        _world(net, {'routes': routes, 'transport': 'worker'}, folder=tmp_path)
+
+
+def test_a_worker_beside_libsumo_leaves_this_process_libsumo_to_its_world(net, tmp_path):
+    routes = write_routes(tmp_path, [('a', 0, 'A0A1')])
+    worker = _world(net, {'routes': routes, 'transport': 'worker'}, folder=tmp_path)
+    try:
+        # the worker's libsumo is its own: this process's is still free for a world
+        assert sumo_session._libsumo_user[0] is None
+        inside = _world(net, {'routes': routes}, folder=tmp_path)
+        try:
+            assert inside.parts['traffic'].session.transport == 'libsumo'
+        finally:
+            inside.world.close()
+    finally:
+        worker.world.close()

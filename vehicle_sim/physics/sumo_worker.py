@@ -77,8 +77,8 @@ def serve(read_fd, write_fd):
     while True:
         try:
             message = requests.recv()
-        except EOFError:                  # the world's process ended: so does SUMO
-            return
+        except (EOFError, KeyboardInterrupt):    # the world's process ended (or was stopped
+            return                                # with Ctrl-C, which reaches this one too)
         kind = message[0]
         try:
             if kind == 'step':            # answered at 'collect'
@@ -124,10 +124,14 @@ class SumoWorker:
         self._refused, self._fatal = exceptions.TraCIException, exceptions.FatalTraCIError
         ours_read, theirs_write = os.pipe()
         theirs_read, ours_write = os.pipe()
+        # the worker imports this package from where this process has it (installed or not)
+        root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+        path = os.environ.get('PYTHONPATH')
+        env = dict(os.environ, PYTHONPATH=root if not path else root + os.pathsep + path)
         self._process = subprocess.Popen(
             [sys.executable, '-m', 'vehicle_sim.physics.sumo_worker', str(theirs_read),
              str(theirs_write)], pass_fds=(theirs_read, theirs_write),
-            stdout=subprocess.DEVNULL)
+            stdout=subprocess.DEVNULL, env=env)
         os.close(theirs_read)
         os.close(theirs_write)
         self._requests = Connection(ours_write, readable=False)
@@ -266,4 +270,7 @@ class WorkerApi:
 
 
 if __name__ == '__main__':
-    serve(int(sys.argv[1]), int(sys.argv[2]))
+    try:
+        serve(int(sys.argv[1]), int(sys.argv[2]))
+    except KeyboardInterrupt:             # Ctrl-C in the world's terminal: the world ends it
+        pass
