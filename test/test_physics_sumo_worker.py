@@ -233,3 +233,25 @@ def test_a_worker_beside_libsumo_leaves_this_process_libsumo_to_its_world(net, t
             inside.world.close()
     finally:
         worker.world.close()
+
+
+def test_our_vehicles_route_reaches_sumo_through_the_worker(net, tmp_path):
+    # ours on A0A1 (northbound) with route [A1B1_1] (east at A1): the engine asks SUMO's
+    # router (simulation.findRoute, whose libsumo result comes back as its fields) and SUMO's
+    # route for it is A0A1 A1B1, its next link the right turn onto A1B1
+    data = {'vehicles': [{'name': 'ego', 'model': 'Car', 'route': ['A1B1_1'],
+                          'pose': {'x': LANE_X, 'y': 40.0, 'yaw': math.pi / 2}}],
+            'map': {'type': 'sumo', 'net': net},
+            'traffic': {'engine': 'sumo', 'routes': write_routes(tmp_path, []),
+                        'transport': 'worker'}}
+    scene = build_scene(world_from_data(data, 'w.yaml', base_dir=str(tmp_path)))
+    try:
+        for _ in range(20):
+            scene.world.step()
+        api = scene.parts['traffic'].session.api
+        assert api.vehicle.getRoute(f'{OURS_PREFIX}ego') == ('A0A1', 'A1B1')
+        assert [(link[0], link[6]) for link in api.vehicle.getNextLinks(
+            f'{OURS_PREFIX}ego')] == [('A1B1_1', 'r')]
+        assert api.simulation.findRoute('A0A1', 'A1B1').edges == ('A0A1', 'A1B1')
+    finally:
+        scene.world.close()

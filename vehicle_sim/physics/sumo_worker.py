@@ -22,7 +22,8 @@ messages):
 
 - ``('start', command)``: libsumo.start; answered.
 - ``('call', domain, name, args, kwargs)``: one of TraCI's calls (``vehicle.getLaneID``...);
-  answered with its result. :class:`WorkerApi` makes these look like libsumo's module.
+  answered with its result (libsumo's own objects, such as ``simulation.findRoute``'s stage,
+  as namespaces of their fields). :class:`WorkerApi` makes these look like libsumo's module.
 - ``('step', prefix)``: SUMO's step, not answered: the caller goes on while SUMO steps. The
   step's readings are kept: the simulation's subscription results, every vehicle's (but ours,
   whose ids start with ``prefix``) id, front position, angle, speed and (lane, place on it,
@@ -42,8 +43,10 @@ import contextlib
 import io
 from multiprocessing.connection import Connection
 import os
+import pickle
 import subprocess
 import sys
+import types
 
 DOMAINS = ('edge', 'junction', 'lane', 'person', 'route', 'simulation', 'trafficlight',
            'vehicle', 'vehicletype')
@@ -64,6 +67,25 @@ def _readings(libsumo, prefix):
                for pid in person.getIDList() if not riding(pid)]
     return (libsumo.simulation.getSubscriptionResults(), vehicles, persons,
             libsumo.trafficlight.getAllSubscriptionResults())
+
+
+def _plain(value):
+    # A result that pickles: libsumo's objects (a TraCIStage of simulation.findRoute, a
+    # TraCILogic...) as namespaces of their fields, also inside a list or tuple.
+    if isinstance(value, (list, tuple)):
+        if value and _from_libsumo(value[0]):
+            return type(value)(_plain(item) for item in value)
+        return value
+    if not _from_libsumo(value):
+        return value
+    return types.SimpleNamespace(**{
+        name: _plain(getattr(value, name)) for name in dir(value)
+        if not name.startswith('_') and name not in ('this', 'thisown')
+        and not callable(getattr(value, name))})
+
+
+def _from_libsumo(value):
+    return type(value).__module__.startswith('libsumo')
 
 
 def serve(read_fd, write_fd):
@@ -94,7 +116,8 @@ def serve(read_fd, write_fd):
                 answer, kept = kept, None
             elif kind == 'call':
                 _, domain, name, args, kwargs = message
-                answer = ('ok', getattr(getattr(libsumo, domain), name)(*args, **kwargs))
+                answer = ('ok', _plain(getattr(getattr(libsumo, domain), name)(*args,
+                                                                            **kwargs)))
             elif kind == 'start':
                 with contextlib.redirect_stdout(io.StringIO()):
                     libsumo.start(message[1])
@@ -108,7 +131,11 @@ def serve(read_fd, write_fd):
             answer = ('error', False, str(error))
         except Exception as error:       # libsumo's fatal errors, and anything else
             answer = ('error', True, str(error) or type(error).__name__)
-        answers.send(answer)
+        try:
+            answers.send(answer)
+        except (pickle.PicklingError, TypeError, AttributeError) as error:
+            answers.send(('error', True, f'the SUMO worker cannot send the answer to {kind!r}: '
+                                         f'{error}'))
 
 
 class SumoWorker:
