@@ -22,8 +22,9 @@ steps per second of all worlds (one env step = 0.1 s: action_repeat 10, one SUMO
 netgenerate 4 x 4 signalised grid (two lanes each way, sidewalks, crossings) with 1200 vehicles
 and 300 pedestrians an hour and a 120 s warmup (some 45 vehicles and 10 persons on the map):
 
-1. one environment (libsumo), and the same with ``transport: traci`` (TraCI's cost);
-2. ``DriveVectorEnv`` of N worlds (1 libsumo + N - 1 TraCI);
+1. one environment (libsumo), and the same with ``transport: traci`` (TraCI's cost) and with
+   ``transport: worker`` (libsumo in a process of its own, stepping while the world runs);
+2. ``DriveVectorEnv`` of N worlds (1 libsumo + N - 1 TraCI), and of N worlds each with a worker;
 3. ``AsyncVectorEnv`` of N processes (N libsumo);
 4. a reset (SUMO started again and warmed up; the demand's trips from the cache).
 
@@ -169,10 +170,17 @@ def main(argv=None):
         single_traci, _ = single_rate(traci_world, steps)
         print(f'one env (transport: traci):     {single_traci:7.0f} env steps/s '
               f'({single_traci / single:.2f}x)')
+        worker_world = make_world(folder, 'worker')
+        single_worker, _ = single_rate(worker_world, steps)
+        print(f'one env (transport: worker):    {single_worker:7.0f} env steps/s '
+              f'({single_worker / single:.2f}x)')
         vector, transports = in_process_rate(world, steps // 2, args.worlds)
         print(f'DriveVectorEnv of {args.worlds} ({transports.count("libsumo")} libsumo + '
               f'{transports.count("traci")} traci): {vector:7.0f} env steps/s of all '
               f'({vector / single:.2f}x one env)')
+        vector, transports = in_process_rate(worker_world, steps // 2, args.worlds)
+        print(f'DriveVectorEnv of {args.worlds} ({transports.count("worker")} workers): '
+              f'{vector:7.0f} env steps/s of all ({vector / single:.2f}x one env)')
         asynchronous = async_rate(world, steps // 2, args.worlds)
         print(f'AsyncVectorEnv of {args.worlds} processes (libsumo each): {asynchronous:7.0f} '
               f'env steps/s of all ({asynchronous / single:.2f}x one env)')

@@ -107,7 +107,7 @@ class SumoSession:
                 raise InvalidParameterError(
                     f"{source}: field 'transport' = 'libsumo': this process runs a SUMO through "
                     'libsumo already (one per process): close that world first, or use '
-                    'transport: traci or auto')
+                    'transport: traci, worker or auto')
         elif transport == 'worker' and libsumo is None:
             raise SumoUnavailable(f"{source}: field 'transport' = 'worker': libsumo does not "
                                   'load in this Python (transport: traci runs SUMO as a '
