@@ -19,8 +19,9 @@ The SUMO engine refuses what it cannot run, with SUMO's own words, and stops whe
 Routes on edges the network lacks (SUMO's message, at the build); a world without a SUMO
 network; a step that is no multiple of the world's; SUMO, libsumo or traci missing (the error
 names the ``sumo`` extra; without libsumo, ``transport: auto`` runs SUMO over TraCI); SUMO
-failing while the world runs (a route SUMO reads late, a sumo process killed): the world's step
-raises SumoError with SUMO's message, and the next world starts. Our car touching a SUMO
+failing while the world runs (a route SUMO reads late, a sumo process or a SUMO worker killed):
+the world's step raises SumoError with SUMO's message, and the next world starts; the same
+through a worker (``transport: worker``). Our car touching a SUMO
 vehicle is a collision naming its body, and the SUMO vehicle stops for good.
 """
 
@@ -72,12 +73,14 @@ def _still_runs(net, folder):
         scene.world.close()
 
 
-def test_routes_on_edges_not_in_the_network_are_refused_with_sumos_message(net, tmp_path):
+@pytest.mark.parametrize('transport', ['auto', 'worker'])
+def test_routes_on_edges_not_in_the_network_are_refused_with_sumos_message(net, tmp_path,
+                                                                           transport):
     routes = write_routes(tmp_path, [('a', 0, 'A0A1 NOPE')])
     with pytest.raises(InvalidParameterError,
                        match=r"^w\.yaml: traffic: SUMO did not start: The edge 'NOPE' within "
                              r"the route for vehicle 'a' is not known"):
-        build_scene(_spec(net, {'routes': routes}, tmp_path))
+        build_scene(_spec(net, {'routes': routes, 'transport': transport}, tmp_path))
     assert sumo_session._libsumo_user[0] is None
     _still_runs(net, tmp_path)
 
@@ -114,11 +117,12 @@ def test_without_libsumo_auto_runs_sumo_over_traci_and_libsumo_is_refused(net, t
                                                                            monkeypatch):
     routes = write_routes(tmp_path, [('a', 0, 'A0A1')])
     monkeypatch.setattr(sumo_session, 'load_libsumo', lambda: None)
-    with pytest.raises(SumoUnavailable,
-                       match=r"field 'transport' = 'libsumo': libsumo does not load in this "
-                             r'Python \(transport: traci runs SUMO as a process\): pip install '
-                             r"'vehicle_sim\[sumo\]'"):
-        build_scene(_spec(net, {'routes': routes, 'transport': 'libsumo'}, tmp_path))
+    for transport in ('libsumo', 'worker'):       # a worker runs libsumo too
+        with pytest.raises(SumoUnavailable,
+                           match=rf"field 'transport' = '{transport}': libsumo does not load in "
+                                 r'this Python \(transport: traci runs SUMO as a process\): pip '
+                                 r"install 'vehicle_sim\[sumo\]'"):
+            build_scene(_spec(net, {'routes': routes, 'transport': transport}, tmp_path))
     scene = build_scene(_spec(net, {'routes': routes}, tmp_path))
     try:
         bodies = scene.parts['traffic']
@@ -143,12 +147,15 @@ def test_libsumo_asked_for_twice_in_one_process_is_refused(net, tmp_path):
         first.world.close()
 
 
-def test_sumo_failing_mid_run_stops_the_world_with_its_message(net, tmp_path):
+@pytest.mark.parametrize('transport', ['auto', 'worker'])
+def test_sumo_failing_mid_run_stops_the_world_with_its_message(net, tmp_path, transport):
     # SUMO reads its routes ahead, in steps of 200 s: a bad route departing at 400 s fails
-    # when SUMO reads it, at 300 s (after the 300 s departure)
+    # when SUMO reads it, at 300 s (after the 300 s departure; through a worker in the step
+    # started at 299 s, collected at 300 s)
     routes = write_routes(tmp_path, [('a', 0, 'A0A1'), ('mid', 300, 'A0A1'),
                                      ('late', 400, 'A0A1 NOPE')])
-    scene = build_scene(_spec(net, {'routes': routes, 'step': 1.0}, tmp_path))
+    scene = build_scene(_spec(net, {'routes': routes, 'step': 1.0, 'transport': transport},
+                              tmp_path))
     try:
         with pytest.raises(SumoError,
                            match=r"^w\.yaml: traffic: SUMO at t = \d+\.\d+ s: The edge 'NOPE' "
@@ -161,9 +168,13 @@ def test_sumo_failing_mid_run_stops_the_world_with_its_message(net, tmp_path):
     _still_runs(net, tmp_path)
 
 
-def test_a_killed_sumo_process_stops_the_world_with_sumos_words(net, tmp_path):
+@pytest.mark.parametrize('transport, closed', [('traci', r'Connection closed by SUMO\.'),
+                                               ('worker', r'Connection closed by the SUMO '
+                                                          r'worker\.')])
+def test_a_killed_sumo_process_stops_the_world_with_sumos_words(net, tmp_path, transport,
+                                                                closed):
     routes = write_routes(tmp_path, [('a', 0, 'A0A1')])
-    scene = build_scene(_spec(net, {'routes': routes, 'transport': 'traci'}, tmp_path))
+    scene = build_scene(_spec(net, {'routes': routes, 'transport': transport}, tmp_path))
     try:
         session = scene.parts['traffic'].session
         for _ in range(50):
@@ -171,7 +182,7 @@ def test_a_killed_sumo_process_stops_the_world_with_sumos_words(net, tmp_path):
         session.api._process.kill()
         session.api._process.wait(timeout=60)
         with pytest.raises(SumoError, match=r'^w\.yaml: traffic: SUMO at t = 0\.500 s: '
-                                            r'Connection closed by SUMO\. \(the sumo process '
+                                            + closed + r' \(the sumo process '
                                             r'ended with status -9\)$'):
             for _ in range(20):
                 scene.world.step()

@@ -19,9 +19,9 @@
 With our car off every road (so not in SUMO) a worker's world has the bodies, objects and
 lanes of a libsumo world step for step, seed for seed, any number of them in one process beside
 libsumo; a step is in flight between SUMO's updates and our car reaches SUMO one SUMO step
-later; SUMO refusing a route, failing mid-run or its worker killed stops the world with SUMO's
-words; closing the world ends the worker; a reset starts it again. Without libsumo it is
-refused naming the extra; beside it, this process's libsumo stays free for another world.
+later; closing the world ends the worker; a reset starts it again; beside it, this process's
+libsumo stays free for another world. (SUMO refusing a route, failing mid-run or its worker
+killed, and a worker without libsumo: test_physics_sumo_bad_input.py.)
 """
 
 import math
@@ -38,10 +38,8 @@ if sumo_session.load_libsumo() is None:      # (imported quietly: its pyarrow no
 from sumo_helpers import one_lane_grid_net, write_routes  # noqa: E402
 
 from vehicle_sim.config import world_from_data  # noqa: E402
-from vehicle_sim.core.specs.errors import InvalidParameterError  # noqa: E402
 from vehicle_sim.physics.scene import build_scene  # noqa: E402
 from vehicle_sim.physics.sumo_ours import OURS_PREFIX  # noqa: E402
-from vehicle_sim.physics.sumo_session import SumoError, SumoUnavailable  # noqa: E402
 
 OFF_ROAD = (-30.0, -30.0, 0.0)       # our car's pose: 30 m from every road of the grid
 LANE_X = 1.6                         # edge A0A1's lane (northbound) along x = 1.6
@@ -144,50 +142,6 @@ def test_our_car_reaches_sumo_one_sumo_step_later_through_a_worker(net, tmp_path
         assert b == pytest.approx(a, abs=1e-6)
 
 
-def test_sumo_refusing_a_route_stops_the_build_with_its_message(net, tmp_path):
-    routes = write_routes(tmp_path, [('a', 0, 'A0A1 NOPE')])
-    with pytest.raises(InvalidParameterError,
-                       match=r"^w\.yaml: traffic: SUMO did not start: The edge 'NOPE' within "
-                             r"the route for vehicle 'a' is not known"):
-        _world(net, {'routes': routes, 'transport': 'worker'}, folder=tmp_path)
-
-
-def test_sumo_failing_mid_run_stops_the_world_with_its_message(net, tmp_path):
-    # SUMO reads its routes ahead, in steps of 200 s: the bad one fails at 300 s
-    routes = write_routes(tmp_path, [('a', 0, 'A0A1'), ('mid', 300, 'A0A1'),
-                                     ('late', 400, 'A0A1 NOPE')])
-    scene = _world(net, {'routes': routes, 'step': 1.0, 'transport': 'worker'}, folder=tmp_path)
-    try:
-        with pytest.raises(SumoError,
-                           match=r"^w\.yaml: traffic: SUMO at t = \d+\.\d+ s: The edge 'NOPE' "
-                                 r"within the route for vehicle 'late' is not known"):
-            for _ in range(40000):
-                scene.world.step()
-        assert 299.0 < scene.world.time_s < 302.0
-    finally:
-        scene.world.close()
-
-
-def test_a_killed_worker_stops_the_world_with_its_status(net, tmp_path):
-    routes = write_routes(tmp_path, [('a', 0, 'A0A1')])
-    scene = _world(net, {'routes': routes, 'transport': 'worker'}, folder=tmp_path)
-    try:
-        session = scene.parts['traffic'].session
-        for _ in range(50):
-            scene.world.step()
-        process = session.api.worker._process
-        process.kill()
-        process.wait(timeout=60)
-        with pytest.raises(SumoError, match=r'^w\.yaml: traffic: SUMO at t = 0\.500 s: '
-                                            r'Connection closed by the SUMO worker\. \(the sumo '
-                                            r'process ended with status -9\)$'):
-            for _ in range(20):
-                scene.world.step()
-    finally:
-        scene.world.close()
-    assert session.closed
-
-
 def test_reset_starts_the_worker_again_with_its_seed(net):
     def run(scene, steps):
         found = []
@@ -208,16 +162,6 @@ def test_reset_starts_the_worker_again_with_its_seed(net):
         assert run(scene, 1000) == first and first[-1]
     finally:
         scene.world.close()
-
-
-def test_a_worker_without_libsumo_is_refused_naming_the_extra(net, tmp_path, monkeypatch):
-    routes = write_routes(tmp_path, [('a', 0, 'A0A1')])
-    monkeypatch.setattr(sumo_session, 'load_libsumo', lambda: None)
-    with pytest.raises(SumoUnavailable,
-                       match=r"field 'transport' = 'worker': libsumo does not load in this "
-                             r'Python \(transport: traci runs SUMO as a process\): pip install '
-                             r"'vehicle_sim\[sumo\]'"):
-        _world(net, {'routes': routes, 'transport': 'worker'}, folder=tmp_path)
 
 
 def test_a_worker_beside_libsumo_leaves_this_process_libsumo_to_its_world(net, tmp_path):
