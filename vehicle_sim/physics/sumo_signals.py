@@ -64,15 +64,22 @@ class SumoSignals:
             self.drive(api, {tls: api.trafficlight.getRedYellowGreenState(tls)
                              for tls in self._programs_of})
 
-    def drive(self, api, strings=None):
-        """Give the world's signal controller SUMO's states ({tls: state string}: now)."""
+    def drive(self, api, strings=None, subscribed=None):
+        """
+        Give the world's signal controller SUMO's states ({tls: state string}: now).
+
+        :param subscribed: the lights' subscription results when read elsewhere (a SUMO
+            worker's readings); None: read here (``strings`` None).
+        """
         controller = self.signals
         if controller is None or not self._tls_links:
             return
         if strings is None:
+            if subscribed is None:
+                subscribed = api.trafficlight.getAllSubscriptionResults()
             c = self._constants
             strings = {tls: values[c.TL_RED_YELLOW_GREEN_STATE]
-                       for tls, values in api.trafficlight.getAllSubscriptionResults().items()}
+                       for tls, values in subscribed.items()}
         states, last = {}, self._strings
         for tls, text in strings.items():
             if last.get(tls) == text:

@@ -438,9 +438,7 @@ class SumoBodies(SumoPool, SumoViews):
             slot = self._by_id.pop(key)
             self._park(slot)
             self._free.setdefault(slot.key, []).append(slot)
-        if lights is not None:
-            lights = {tls: values[c.TL_RED_YELLOW_GREEN_STATE] for tls, values in lights.items()}
-        self._signals.drive(api, lights)
+        self._signals.drive(api, subscribed=lights)
         if place:
             self._place()
 

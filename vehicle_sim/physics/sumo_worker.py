@@ -48,24 +48,20 @@ import subprocess
 import sys
 import types
 
+from vehicle_sim.physics.sumo_reads import GetterReads
+
 DOMAINS = ('edge', 'junction', 'lane', 'person', 'route', 'simulation', 'trafficlight',
            'vehicle', 'vehicletype')
 CLOSED_TEXT = 'Connection closed by the SUMO worker.'
 
 
 def _readings(libsumo, prefix):
-    # What the engine reads after each step (physics/sumo_reads.py GetterReads, the signals'
-    # subscriptions), read here in one go.
-    vehicle, person = libsumo.vehicle, libsumo.person
-    position, angle, speed = vehicle.getPosition, vehicle.getAngle, vehicle.getSpeed
-    lane, place, index = vehicle.getLaneID, vehicle.getLanePosition, vehicle.getRouteIndex
-    vehicles = [(vid, position(vid), angle(vid), speed(vid), (lane(vid), place(vid), index(vid)))
-                for vid in vehicle.getIDList() if not vid.startswith(prefix)]
-    position, angle, speed, riding = (person.getPosition, person.getAngle, person.getSpeed,
-                                      person.getVehicle)
-    persons = [(pid, position(pid), angle(pid), speed(pid))
-               for pid in person.getIDList() if not riding(pid)]
-    return (libsumo.simulation.getSubscriptionResults(), vehicles, persons,
+    # What the engine reads after each step (physics/sumo_reads.py GetterReads, each vehicle's
+    # lane with it; the signals' subscriptions), read here in one go.
+    reads = GetterReads(None, prefix)
+    vehicles = [(vid, position, angle, speed, reads.lane(libsumo, vid))
+                for vid, position, angle, speed, _ in reads.vehicles(libsumo)]
+    return (libsumo.simulation.getSubscriptionResults(), vehicles, reads.persons(libsumo),
             libsumo.trafficlight.getAllSubscriptionResults())
 
 
