@@ -23,7 +23,8 @@ rest; a success is no collision, no lane departure (stay_in_lane) and a mean spe
 
 Observations (the keys a running ROS node gives too): ``lane`` (the lane state), ``twist``
 (base_link velocity) and ``objects`` (the 8 nearest traffic cars as highway-env's Kinematics
-table), scaled inside the policy (vehicle_sim/gym/scaled_inputs.py). Actions
+table), scaled inside the policy (vehicle_sim/gym/scaled_inputs.py; ``--derived-inputs closing
+lane_lateral`` adds each row's closing rate and its lateral position in lane widths). Actions
 (``braking_speed_steering``): steering angle within +-0.02 rad and cruising speed 0 .. 33.3
 m/s, rescaled to [-1, 1], at 5 Hz; a speed more than 1 m/s below the car's brakes. Reward
 (Drive-v0's terms, weights in ENV_OPTIONS): progress along the lanes x 0.03 /m (one per
@@ -94,6 +95,20 @@ SCALES = {
     'twist': [1.0 / LIMIT_MPS, 1.0, 5.0],
     # presence, x, y (over 80 m: a lane is 0.047, x 10 makes it 0.47), vx, vy, cos_h, sin_h
     'objects': [1.0, 2.0, 10.0, 2.0, 5.0, 1.0, 1.0],
+}
+# ScaledInputs' derived inputs (--derived-inputs; none by default: docs/learning.md, "Tried:
+# inputs derived inside the policy"), each one more input per row of the objects table.
+# closing: the row's closing rate (inverse time to collision) x 4 s, so that a time to collision
+# of 4 s (the gap term's ttc_s) reads 1 and one of 0.8 s reads 5.
+# lane_lateral: the row's lateral position in the ego's lane widths, from the lane state (0: in
+# the ego's lane, +-1: the next lane): the table's y alone moves by a lane's width when the
+# ego's heading is a degree or two off its lane's.
+DERIVED_INPUTS = {
+    'closing': {'key': 'objects', 'range': ENV_OPTIONS['objects']['range'],
+                'speed_scale': ENV_OPTIONS['objects']['speed_scale'], 'min_distance': 5.0,
+                'factor': 4.0},
+    'lane_lateral': {'key': 'objects', 'lane_key': 'lane',
+                     'range': ENV_OPTIONS['objects']['range']},
 }
 PPO_OPTIONS = {
     'n_steps': 256, 'batch_size': 256, 'n_epochs': 10, 'learning_rate': 3e-4, 'gamma': 0.99,
@@ -196,7 +211,26 @@ class _EnvFactory:
         return Monitor(env)
 
 
-def train(args, policy_card, out, scenario=SCENARIO, ppo_options=None, scales=None):
+def derived_inputs(policy_card, names):
+    """
+    Return ScaledInputs' keywords for the derived inputs ``names`` (of DERIVED_INPUTS).
+
+    :raises SystemExit: naming an input whose observation keys the card does not read.
+    """
+    keys = set(policy_card.observation_keys)
+    chosen = {}
+    for name in names:
+        value = DERIVED_INPUTS[name]
+        needed = {value['key'], value.get('lane_key', value['key'])}
+        if not needed <= keys:
+            raise SystemExit(f'derived input {name!r} reads the keys {sorted(needed)}; the '
+                             f'policy reads {sorted(keys)}')
+        chosen[name] = value
+    return chosen
+
+
+def train(args, policy_card, out, scenario=SCENARIO, ppo_options=None, scales=None,
+          derived=()):
     """
     Train PPO within the wall-clock budget; return (model path, curve rows, episodes, facts).
 
@@ -204,6 +238,7 @@ def train(args, policy_card, out, scenario=SCENARIO, ppo_options=None, scales=No
     :param scenario: the scenario judging the episodes (None: the card's environment alone).
     :param ppo_options: PPO keywords replacing PPO_OPTIONS' (a smoke test's smaller batches).
     :param scales: ScaledInputs' factors for the card's keys (None: SCALES).
+    :param derived: the names of ScaledInputs' derived inputs (DERIVED_INPUTS) to add.
     """
     from stable_baselines3 import PPO
     from stable_baselines3.common.callbacks import BaseCallback
@@ -224,7 +259,8 @@ def train(args, policy_card, out, scenario=SCENARIO, ppo_options=None, scales=No
                 policy_kwargs=dict({'net_arch': NET_ARCH, 'log_std_init': LOG_STD_INIT,
                                     'features_extractor_class': ScaledInputs,
                                     'features_extractor_kwargs': {
-                                        'scales': SCALES if scales is None else scales}},
+                                        'scales': SCALES if scales is None else scales,
+                                        **derived_inputs(policy_card, derived)}},
                                    **POLICY_OPTIONS),
                 **dict(PPO_OPTIONS, **(ppo_options or {})))
     episodes, rows = [], []
@@ -384,6 +420,10 @@ def main(argv=None):
     parser.add_argument('--evaluate', metavar='MODEL',
                         help='evaluate this model.zip (with its card) instead of training')
     parser.add_argument('--out', default='train_highway_out')
+    parser.add_argument('--derived-inputs', nargs='*', default=[], choices=sorted(DERIVED_INPUTS),
+                        metavar='NAME',
+                        help='inputs the policy derives from the objects table: '
+                             f'{", ".join(sorted(DERIVED_INPUTS))} (default: none)')
     parser.add_argument('--control', default=ENV_OPTIONS['control'],
                         choices=SPEED_CONTROLS,
                         help='the action layout (docs/gym.md, Actions; default: %(default)s)')
@@ -401,12 +441,15 @@ def main(argv=None):
                'observation_keys': list(OBSERVATION_KEYS), 'scales': SCALES,
                'ppo': dict(PPO_OPTIONS, net_arch=NET_ARCH, log_std_init=LOG_STD_INIT,
                            **POLICY_OPTIONS)}
+    if args.derived_inputs:
+        summary['derived_inputs'] = derived_inputs(card(args.control), args.derived_inputs)
     if TRAINING_TRAFFIC_EVERY:
         summary['training_traffic'] = dict(TRAINING_TRAFFIC, every=TRAINING_TRAFFIC_EVERY)
     if args.evaluate:
         model_path = Path(args.evaluate)
     else:
-        model_path, rows, episodes, facts = train(args, card(args.control), out)
+        model_path, rows, episodes, facts = train(args, card(args.control), out,
+                                                  derived=args.derived_inputs)
         write_curve(out, rows, episodes)
         summary.update(facts)
         summary['final_training_row'] = rows[-1] if rows else None
