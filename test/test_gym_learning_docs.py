@@ -24,8 +24,9 @@ highway_ppo_lane_speed_*, highway_ppo_more_steps_*, its second seed's highway_pp
 highway_ppo_every4_* and its other seeds' highway_ppo_every4_seed1_* and _seed2_*,
 highway_ppo_lr_decay_*, highway_ppo_lr_decay_c20_*, highway_ppo_lr_decay_ttc5_*,
 highway_ppo_lane_choice_*, highway_ppo_lane_choice_box_*, highway_ppo_lane_choice_back_*,
-highway_ppo_average_*, highway_ppo_curriculum_*, highway_ppo_20ms_* and the SAC runs'
-highway_sac_*) and for
+highway_ppo_average_*, highway_ppo_curriculum_*, highway_ppo_20ms_*, the derived inputs'
+highway_ppo_closing_*, highway_ppo_derived_*, highway_ppo_derived_every4_* and
+highway_ppo_derived_seed1_*, and the SAC runs' highway_sac_*) and for
 examples/train_crossing_shared.py's run (docs/learning/crossing_shared_*). Needs neither
 stable-baselines3 nor PyTorch.
 """
@@ -34,6 +35,7 @@ import csv
 import json
 from pathlib import Path
 
+import pytest
 from script_helpers import load_script
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -251,6 +253,37 @@ def test_the_docs_show_the_20ms_runs_figures_and_it_trained_at_a_checked_step():
             f'{collisions} collisions and {len(slow)} episodes without one too slow for '
             f'`mean_speed` ({min(slow):.1f}–{max(slow):.1f} m/s)') in text
     assert f"**{summary['env_steps']:,} env steps**".replace(',', ' ') in text
+
+
+# The runs with inputs derived inside the policy (docs/learning.md, "Tried: inputs derived
+# inside the policy"): the derived inputs, the training traffic's every, the seed
+DERIVED_RUNS = {'highway_ppo_closing': (('closing',), 2, 0),
+                'highway_ppo_derived': (('closing', 'lane_lateral'), 2, 0),
+                'highway_ppo_derived_every4': (('closing', 'lane_lateral'), 4, 0),
+                'highway_ppo_derived_seed1': (('closing', 'lane_lateral'), 2, 1)}
+
+
+def test_the_docs_show_the_derived_inputs_runs_figures_and_their_settings_are_the_scripts():
+    script = _script()
+    assert script.TRAINING_TRAFFIC_EVERY == 2
+    for name, (names, every, seed) in DERIVED_RUNS.items():
+        summary = _earlier_run(name)
+        assert summary['seed'] == seed and summary['minutes'] == 30.0, name
+        assert summary['env_options'] == script.ENV_OPTIONS, name
+        assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC, every=every), name
+        assert summary['ppo'] == _ppo_options(script), name
+        assert summary['derived_inputs'] == {n: script.DERIVED_INPUTS[n] for n in names}, name
+        assert summary['derived_inputs'] == script.derived_inputs(script.card(), names)
+
+
+def test_the_scripts_derived_inputs_need_the_keys_they_read():
+    from vehicle_sim.gym.policy_card import PolicyCard
+    script = _script()
+    assert script.derived_inputs(script.card(), ()) == {}
+    no_lane = PolicyCard(script.ENV_ID, script.ENV_OPTIONS, ('twist', 'objects'), (-1.0, 1.0))
+    assert list(script.derived_inputs(no_lane, ['closing'])) == ['closing']
+    with pytest.raises(SystemExit, match=r"'lane_lateral' reads the keys \['lane', 'objects'\]"):
+        script.derived_inputs(no_lane, ['lane_lateral'])
 
 
 # SAC's settings of the runs with another learner (docs/learning.md, "Tried: another learner"),
