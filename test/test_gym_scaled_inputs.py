@@ -122,6 +122,8 @@ def test_bad_settings_refused_by_name():
         ScaledInputs(SPACE, closing=dict(CLOSING, key='lane'))
     with pytest.raises(ValueError, match="lane_lateral: lane_key 'twist' is not a lane state"):
         ScaledInputs(SPACE, lane_lateral=dict(LANE_LATERAL, lane_key='twist'))
+    with pytest.raises(ValueError, match=r"closing: key \['objects'\] is not an objects table"):
+        ScaledInputs(SPACE, closing=dict(CLOSING, key=['objects']))
     with pytest.raises(ValueError, match='min_distance must be a positive number, got 0'):
         ScaledInputs(SPACE, closing=dict(CLOSING, min_distance=0))
     with pytest.raises(ValueError, match=r"expected \['key', 'range'"):

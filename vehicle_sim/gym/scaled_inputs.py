@@ -155,7 +155,7 @@ def _derived(what, mapping, entries, spaces):
     for name in entries:
         value = mapping[name]
         if name.endswith('key'):
-            shape = spaces[value].shape if value in spaces else None
+            shape = spaces[value].shape if isinstance(value, str) and value in spaces else None
             table = name == 'key'
             fits = shape is not None and (
                 len(shape) == 2 and shape[1] >= _TABLE_COLUMNS if table
