@@ -518,3 +518,25 @@ def test_bridge_sim_time_tick_behind_the_node_clock_does_not_trip_the_watchdog(m
         assert (out.left_mps, out.right_mps) == pytest.approx((f32(0.3), f32(0.3)), rel=1e-9)
     finally:
         bridge.destroy()
+
+
+def test_bridge_sim_time_ticks_on_the_first_clock_of_every_control_period(monkeypatch):
+    # At the period's multiples however late the node started (its first /clock at 10 ms): a
+    # lockstep runner then knows which wheel commands answer which /clock. Sim time going back
+    # (a reset) ticks at once.
+    from vehicle_sim.ros.bridge_node import AckermannToDifferentialNode
+    bridge = AckermannToDifferentialNode(
+        [], transport='dds', parameter_overrides={
+            'wheel_base': L_M, 'wheel_tread': T_M, 'wheel_radius': R_M, 'use_sim_time': True,
+            'control_rate_hz': 50.0})
+    try:
+        ticks = []
+        monkeypatch.setattr(bridge, 'tick', lambda now_s=None: ticks.append(round(now_s, 6)))
+        clock_msg = bridge.node.msg('rosgraph_msgs/msg/Clock')
+        for t_ms in [10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 30, 35, 40]:
+            msg = clock_msg()
+            msg.clock.sec, msg.clock.nanosec = 0, t_ms * 1_000_000
+            bridge._on_clock(msg)
+        assert ticks == [0.01, 0.02, 0.04, 0.06, 0.08, 0.1, 0.03, 0.04]
+    finally:
+        bridge.destroy()

@@ -21,6 +21,7 @@ shape, and ``vehicle-sim scenario`` exits as documented.
 
 import math
 from pathlib import Path
+import re
 import subprocess
 import sys
 import textwrap
@@ -301,7 +302,36 @@ def test_runner_bridge_drives_the_caster_robot_along_the_s_curve():
     assert result.passed, [c.detail for c in result.criteria]
     assert not result.deterministic
     assert result.criterion('stay_on_path').value < 0.15
+    # The lockstep waits for the bridge's two wheel commands of each /clock period, so the robot
+    # is at most one period (20 ms) behind the commands: 0.016-0.026 m measured, also with six
+    # busy loops on two cores (syncing on the commander alone gave 0.02-0.19 m under load).
+    assert result.criterion('stay_on_path').value < 0.05
     assert result.criterion('max_speed').value == pytest.approx(0.8, abs=0.02)
+
+
+def test_runner_lockstep_short_of_a_sync_count_ends_the_run_naming_it(tmp_path):
+    # The commander publishes one command per 20 ms of /clock: a count of 2 is never met.
+    path = tmp_path / 'count.yaml'
+    path.write_text(textwrap.dedent(f"""\
+        world: {{}}
+        robots: [{{name: diff_robot, model: caster_robot}}]
+        duration: 1.0
+        driver:
+          processes: ['python {ROOT / 'examples' / 's_curve_commander.py'}']
+          clock_subscribers: 1
+          sync: [{{topic: /control/command/control_cmd, type: autoware_control_msgs/msg/Control,
+                  count: 2}}]
+          sync_period: 0.02
+          sync_timeout: 1.0
+          real_time_factor: 0.0
+        criteria: [{{kind: max_speed, limit: 1.0}}]
+        """), encoding='utf-8')
+    result = run_scenario(path)
+    assert not result.passed
+    # at the first sync (0.02 s), or at the second when the command of the first /clock (0.01 s)
+    # came in late enough to count for the first
+    assert re.match(r'lockstep: fewer than 2 messages on /control/command/control_cmd within '
+                    r'1 s \(wall\) after /clock 0\.0[24]0 s\n', result.error), result.error
 
 
 def test_hosted_driver_binds_to_the_host_car_and_leaves_it_in_the_world():

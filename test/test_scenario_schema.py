@@ -239,3 +239,35 @@ def test_a_criterion_without_kind_says_kind_is_needed(tmp_path):
     assert error.value.line == 5
     assert ("a criterion needs 'kind': one of clearance, max_speed, mean_speed, min_gap"
             in str(error.value))
+
+
+SYNCED = ('duration: 1\nworld: {vehicles: [{name: ego}]}\n'
+          'driver:\n  processes: [python -c pass]\n  sync_period: 0.02\n  sync:\n'
+          '    - {topic: /a, type: std_msgs/msg/Float64}\n'
+          '    - SECOND\n'
+          'criteria: [{kind: no_collision}]\n')
+
+
+def test_schema_sync_count_is_read_and_defaults_to_one_message(tmp_path):
+    path = _write(tmp_path, SYNCED.replace(
+        'SECOND', '{topic: /b, type: vehicle_msgs/msg/DifferentialCommand, count: 2}'))
+    assert load_scenario(path).driver.sync == (
+        ('/a', 'std_msgs/msg/Float64', 1), ('/b', 'vehicle_msgs/msg/DifferentialCommand', 2))
+
+
+@pytest.mark.parametrize('entry, fragment', [
+    ('{topic: /b, type: std_msgs/msg/Float64, count: 0}',
+     'sync count = 0: must be an integer >= 1 (messages per sync period)'),
+    ('{topic: /b, type: std_msgs/msg/Float64, count: 1.5}', 'sync count = 1.5: must be an '),
+    ('{topic: /b, type: std_msgs/msg/Float64, count: true}', 'sync count = True: must be an '),
+    ("{topic: /b, type: std_msgs/msg/Float64, count: 'two'}", "sync count = 'two': must be "),
+    ('{topic: /b, type: std_msgs/msg/Float64, cnt: 2}',
+     'must be {topic: /name, type: pkg/msg/Type, count: messages (optional, 1)}'),
+    ('{topic: /b}', 'must be {topic: /name, type: pkg/msg/Type'),
+])
+def test_schema_a_bad_sync_entry_is_refused_at_its_line(tmp_path, entry, fragment):
+    path = _write(tmp_path, SYNCED.replace('SECOND', entry))
+    with pytest.raises(ScenarioError) as error:
+        load_scenario(path)
+    assert fragment in str(error.value)
+    assert error.value.line == 8, str(error.value)

@@ -22,8 +22,10 @@ types and QoS: ``ros/autoware_interfaces.py`` and ``ros/bridge_interfaces.py``; 
 parameters: ``docs/autoware.md``.
 
 Output is published on receipt of every accepted command (lowest latency) and on the control
-tick (ramps, watchdog): a wall timer at ``control_rate_hz``, or, with ``use_sim_time``, every
-``1/control_rate_hz`` of simulated time as /clock advances, so the watchdog acts in sim time.
+tick (ramps, watchdog): a wall timer at ``control_rate_hz``, or, with ``use_sim_time``, on the
+first /clock of every period of ``1/control_rate_hz`` of simulated time (at its multiples when no
+/clock is missed, however late the node started), so the watchdog acts in sim time and a lockstep
+runner knows which messages answer which /clock.
 """
 
 import math
@@ -135,6 +137,7 @@ class AckermannToDifferentialNode:
         self._use_sim_time = bool(node.get_parameter('use_sim_time'))
         self._last_clock_s = None
         self._last_tick_s = None
+        self._last_tick_period = None
         self._warn = ThrottledWarning(node.get_logger())
         self.rejected = 0
         self._measured = None        # (v [m/s], yaw rate [rad/s]) from joint_states
@@ -197,11 +200,13 @@ class AckermannToDifferentialNode:
     def _on_clock(self, msg):
         now_s = bi.CLOCK_IN.converter(msg)
         self._last_clock_s = now_s
-        if self._last_tick_s is not None and now_s < self._last_tick_s:
-            self._last_tick_s = None            # sim time went back (reset): restart ticks
-        if self._last_tick_s is None or \
-                now_s - self._last_tick_s >= self._control_period_s - 1e-9:
+        # the period's index, robust to the rounding of multiples (0.06 / 0.02 = 2.9999...)
+        period = math.floor(now_s / self._control_period_s + 1e-6)
+        if self._last_tick_s is None or now_s < self._last_tick_s or \
+                period != self._last_tick_period:
+            # the first /clock of a period, or sim time went back (a reset): tick
             self._last_tick_s = now_s
+            self._last_tick_period = period
             self.tick(now_s)
 
     def _on_timer(self):

@@ -42,6 +42,8 @@ DRIVER_KINDS = ('commands', 'controller', 'processes')
 # busy for ever.
 MAX_DURATION_S = 86400.0
 MAX_WAIT_S = 3600.0
+# The keys of a driver.sync entry: a topic, its type and the messages per sync period.
+SYNC_KEYS = frozenset(('topic', 'type', 'count'))
 
 DRIVER_SPECS = (
     ParamSpec('commands', 'commands', 'raw', None, optional=True,
@@ -59,9 +61,10 @@ DRIVER_SPECS = (
     ParamSpec('real_time_factor', 'real_time_factor', 'float', 1.0, '',
               'processes: simulated seconds per wall-clock second; 0 = as fast as possible; '
               f'duration / real_time_factor at most {MAX_DURATION_S:g} s', ge=0.0),
-    ParamSpec('sync', 'sync', 'raw', (), doc='processes: lockstep topics [{topic, type}, ...]: '
-              'after every sync_period the runner waits until each has a new message (the '
-              "controller's answer to that /clock)"),
+    ParamSpec('sync', 'sync', 'raw', (), doc='processes: lockstep topics [{topic, type, '
+              'count}, ...]: after every sync_period the runner waits until each has count '
+              "(default 1) new messages (the controller's answers to that /clock), and the "
+              'served robots have taken them'),
     ParamSpec('sync_period', 'sync_period_s', 'float', 0.0, 's', 'processes: simulated time '
               'between lockstep waits; 0 = every basic step', ge=0.0),
     ParamSpec('sync_timeout', 'sync_timeout_s', 'float', 5.0, 's', 'processes: longest '
@@ -113,7 +116,7 @@ class DriverSpec:
     real_time_factor: float = 1.0
     clock_subscribers: int = -1
     startup_timeout_s: float = 60.0
-    sync: Tuple[Tuple[str, str], ...] = ()
+    sync: Tuple[Tuple[str, str, int], ...] = ()   # (topic, type, messages per sync period)
     sync_period_s: float = 0.0
     sync_timeout_s: float = 5.0
 
@@ -161,14 +164,18 @@ def driver_from_data(ctx, value, drives_car, world=None):
 def _sync(ctx, value):
     path = ('driver', 'sync')
     if not isinstance(value, (list, tuple)):
-        raise ctx.fail(path, 'sync must be a list of {topic, type}')
+        raise ctx.fail(path, 'sync must be a list of {topic, type, count}')
     topics = []
     for index, entry in enumerate(value):
-        if not (isinstance(entry, dict) and set(entry) == {'topic', 'type'}
-                and all(isinstance(v, str) and v for v in entry.values())):
+        if not (isinstance(entry, dict) and {'topic', 'type'} <= set(entry) <= SYNC_KEYS
+                and all(isinstance(entry[k], str) and entry[k] for k in ('topic', 'type'))):
             raise ctx.fail(path + (index,), f'sync entry {brief(entry)}: must be {{topic: /name, '
-                                            'type: pkg/msg/Type}')
-        topics.append((entry['topic'], entry['type']))
+                                            'type: pkg/msg/Type, count: messages (optional, 1)}')
+        count = entry.get('count', 1)
+        if isinstance(count, bool) or not isinstance(count, int) or count < 1:
+            raise ctx.fail(path + (index, 'count'), f'sync count = {brief(count)}: must be an '
+                                                    'integer >= 1 (messages per sync period)')
+        topics.append((entry['topic'], entry['type'], count))
     return tuple(topics)
 
 

@@ -63,7 +63,8 @@ class TopicWatcher:
                     criterion.values['ros_type'], criterion.values['topic'],
                     self._callback(criterion), qos))
         self.sync_counts = []
-        for topic, ros_type in sync:
+        self.sync_wanted = [count for _, _, count in sync]
+        for topic, ros_type, _ in sync:
             index = len(self.sync_counts)
             self.sync_counts.append(0)
             self._subs.append(self.node.create_subscription(ros_type, topic,
@@ -84,15 +85,22 @@ class TopicWatcher:
 
     def await_sync(self, before, timeout_s):
         """
-        Spin until every sync topic has a message beyond the counts ``before``.
+        Spin until every sync topic has its count of messages beyond the counts ``before``.
 
-        :return: None, or the index of a topic with none after ``timeout_s`` (wall clock).
+        The served robots then take what reached this process with them (one participant per
+        process: a message this node has read is in their readers too), so the next step runs
+        on the controller's answer, not on the one before.
+
+        :return: None, or the index of a topic short of its count after ``timeout_s`` (wall
+            clock).
         """
         deadline = time.monotonic() + timeout_s
         while True:
-            waiting = [i for i, (now, then) in enumerate(zip(self.sync_counts, before))
-                       if now <= then]
+            waiting = [i for i, (now, then, wanted)
+                       in enumerate(zip(self.sync_counts, before, self.sync_wanted))
+                       if now - then < wanted]
             if not waiting:
+                self.sim.spin()
                 return None
             if time.monotonic() > deadline:
                 return waiting[0]
@@ -163,7 +171,9 @@ def run_processes(spec, sim, criteria, transport):
             if driver.sync and steps % sync_every == 0:
                 late = watcher.await_sync(before, driver.sync_timeout_s)
                 if late is not None:
-                    return (f'lockstep: no message on {driver.sync[late][0]} within '
+                    topic, _, count = driver.sync[late]
+                    missing = 'no message' if count == 1 else f'fewer than {count} messages'
+                    return (f'lockstep: {missing} on {topic} within '
                             f'{driver.sync_timeout_s:g} s (wall) after /clock {now_s:.3f} s\n'
                             + processes.output())
             pacer.wait(now_s)

@@ -213,7 +213,7 @@ def wire_spec(spec, model_path, seed, setup, timeout_s=30.0):
                              OBJECTS in setup.keys)
     driver = DriverSpec('processes', processes=(command,), real_time_factor=0.0,
                         clock_subscribers=1, startup_timeout_s=900.0,
-                        sync=(('/policy/action', ACTION_TOPIC_TYPE),), sync_period_s=grid_s,
+                        sync=(('/policy/action', ACTION_TOPIC_TYPE, 1),), sync_period_s=grid_s,
                         sync_timeout_s=timeout_s)
     return replace(spec, world=world, world_file=None if data is not None else spec.world_file,
                    world_data=data, driver=driver, seed=int(seed))
