@@ -32,9 +32,12 @@ import pytest
 from vehicle_sim.core.specs.units import stamp_to_seconds
 from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.transport.dds import DdsNode
+from vehicle_sim.transport.errors import ServiceTimeoutError
 from vehicle_sim.transport.qos import QOS_TF_STATIC_LISTENER
 
 WAIT_S = 60.0
+# How long wait_node_matched waits for a reply before it sends its request again [s].
+RESEND_S = 5.0
 NODE_MODULE = 'vehicle_sim.ros.automobile_node'
 
 
@@ -60,10 +63,23 @@ def wait_node_matched(node, service, srv_type):
     nothing to it before. A participant announces its readers in the order it creates them, and
     a node answers a client only once it has matched the client's reply reader: the reply to a
     client created after the subscriptions says that the node has matched them.
+
+    The request is sent again every ``RESEND_S`` without a reply, until ``WAIT_S``: a node gives
+    up on a reply whose client reply reader it has not matched within its
+    ``reply_match_timeout_s`` (1 s), which a loaded machine (or a node just resumed from
+    SIGSTOP, with its discovery backlog) can exceed. Any reply is the event waited for.
     """
     client = node.create_client(srv_type, service)
     assert client.wait_for_service(WAIT_S), f'{service} not available'
-    client.call(node.srv(srv_type).Request(), WAIT_S)
+    request = node.srv(srv_type).Request()
+    deadline = time.monotonic() + WAIT_S
+    while True:
+        try:
+            client.call(request, max(0.0, min(RESEND_S, deadline - time.monotonic())))
+            return
+        except ServiceTimeoutError:
+            if time.monotonic() >= deadline:
+                raise
 
 
 class NodeProcess:

@@ -56,7 +56,10 @@ def test_wait_matched_returns_only_once_the_node_has_matched_the_subscription(no
         finally:
             os.kill(node.proc.pid, signal.SIGCONT)
         monkeypatch.undo()
-        car.wait_matched(['odom'])
+        try:
+            car.wait_matched(['odom'])
+        except ServiceTimeoutError as error:      # the node's own account, for the next reader
+            pytest.fail(f'{error}\nnode output:\n{node.text()[-4000:]}')
         odom = car.step_and_read('odom', 20)
         assert stamp_of(odom) == car.time_s() == pytest.approx(0.02, abs=1e-9)
 
