@@ -266,8 +266,8 @@ def test_an_action_outside_the_space_is_refused_naming_the_entry(make):
     ({'action_repeat': 0}, "option 'action_repeat' = 0: must be in 1 .. 10000"),
     ({'colour': 'red'}, "unknown option 'colour'"),
     ({'control': 'twist'}, "control 'twist' does not fit the ego 'Car', a car; valid: "
-                           'speed_steering, braking_speed_steering, lane_speed, '
-                           'throttle_steering'),
+                           'speed_steering, braking_speed_steering, guarded_speed_steering, '
+                           'lane_speed, throttle_steering'),
     (dict(ROBOT, control='speed_steering'), 'does not fit the ego .ego., a robot'),
     ({'vehicle': 'Bus'}, "option 'vehicle' = 'Bus': no such vehicle in the world; vehicles: "
                          'Car'),

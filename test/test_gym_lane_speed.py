@@ -82,6 +82,6 @@ def test_a_lane_change_to_the_left_and_lane_keeping_on_the_arcs():
 
 
 def test_a_world_without_lanes_refuses_the_action():
-    with pytest.raises(InvalidParameterError, match="control 'lane_speed' steers by the lane "
+    with pytest.raises(InvalidParameterError, match="control 'lane_speed' reads the lane "
                                                     'state: the world has no lanes'):
         _env('default')

@@ -23,6 +23,8 @@ environment's observation parts on the node's own world at that state and record
 observation built from the topics is compared with the environment's at the same state.
 """
 
+from pathlib import Path
+
 from automobile_helpers import wait_for
 import numpy as np
 import pytest
@@ -39,6 +41,7 @@ from vehicle_sim.tools.policy_command import make_driver
 from vehicle_sim.tools.policy_loader import DriveSetup
 
 WAIT_S = 60.0
+PARKED_CAR_AHEAD = str(Path(__file__).resolve().parent / 'data' / 'parked_car_ahead.yaml')
 KEYS = ('lane', 'objects', 'twist')
 STEER_MAX_RAD, SPEED_MAX_MPS = 0.5, 35.0
 # float32 observations of float64 values: a few float32 ulps of their magnitudes
@@ -258,6 +261,62 @@ def test_lane_speed_steers_over_the_wire_by_the_cars_lane_state_topic(lockstep):
     assert lanes.state.offset_m == pytest.approx(offset_asked, abs=0.1)
 
 
+def test_guarded_speed_steering_caps_the_speed_over_the_wire_as_in_process(lockstep):
+    # the guard reads the objects table the driver builds from the objects topic and the lane
+    # state topic, though the policy reads only the twist: each tick's setters are core's for
+    # the environment's table and lane state at that tick. A policy asking for 35 m/s straight
+    # ahead toward a parked car 200 m down the lane (test/data/parked_car_ahead.yaml) is
+    # stopped short of it.
+    from vehicle_sim.core.car.drivetrain import ControlMode
+    from vehicle_sim.core.learning import actions
+    from vehicle_sim.core.learning.headway_guard import guard_speed
+    bed = lockstep(world=PARKED_CAR_AHEAD)
+    lanes = bed.auto._vehicles[0].lanes
+    body = bed.car().body
+    spec = ObjectsTableSpec()
+    objects = ObjectsPart(bed.auto.scene, body, spec)
+
+    def state():
+        out = {}
+        objects.read(out)
+        forward = body.body_twist()[0][0]
+        offset, heading = lanes.state.offset_m, lanes.state.heading_error_rad
+        return forward, offset, heading, guard_speed(out['objects'], spec.range_m,
+                                                     spec.speed_scale_mps, forward, offset,
+                                                     heading)
+    speed_asked = SPEED_MAX_MPS
+    policy = Scripted((0.0, 1.0), state)
+    setup = DriveSetup(('twist',), spec, 'guarded_speed_steering', (-STEER_MAX_RAD, 0.0),
+                       (STEER_MAX_RAD, SPEED_MAX_MPS), (-1.0, 1.0), 0.1)
+    driver = bed.start(policy, setup)
+    topics = [sub.topic_name for sub in driver._subs]
+    assert '/lane_state' in topics and '/perception/object_recognition/objects' in topics
+    logic = bed.car().car.logic
+    capped = braked = 0
+    for _ in range(250):            # 25 s
+        bed.step()
+        forward, offset, heading, guard = policy.seen[-1][1]
+        expected = dict(actions.LAYOUTS['guarded_speed_steering'].values(
+            (0.0, speed_asked), actions.Reading(forward, offset, heading, None, guard)))
+        if expected.get(actions.SET_BRAKE, 0.0) > 0.0:
+            braked += 1
+            assert logic.control_mode == ControlMode.TORQUE and logic.throttle == 0.0
+            assert logic.brake_intensity == pytest.approx(expected[actions.SET_BRAKE], abs=1e-3)
+        else:
+            assert logic.brake_intensity == 0.0
+            assert logic.target_cruising_speed_kmh == pytest.approx(
+                expected[actions.SET_CRUISING_SPEED], abs=1e-2)
+        capped += guard < speed_asked
+    print(f'guard below the {speed_asked} m/s asked at {capped} of 250 ticks, braking at '
+          f'{braked}; the car at {body.pose()[0]:.2f} m')
+    # the guard capped the speed and braked; the car stands short of the parked car (its
+    # centre at x = 220 m, the Prius's bumper 3.7 m ahead of base_link, half the box 2.25 m)
+    assert capped > 50 and braked > 5
+    assert abs(policy.seen[-1][1][0]) < 0.05
+    assert 220.0 - 2.25 - 3.7 - 0.5 > body.pose()[0] > 220.0 - 9.0 - 0.5
+    assert tuple(driver.action) == pytest.approx((0.0, speed_asked), abs=1e-5)
+
+
 def test_a_policy_faster_than_the_simulation_is_refused(lockstep):
     bed = lockstep()
     with pytest.raises(InvalidParameterError, match=r'policy period 5 ms \(200 Hz\) is shorter '
@@ -342,6 +401,7 @@ def test_the_action_writer_undoes_rescale_action_and_checks_the_box():
     with pytest.raises(InvalidParameterError, match="control 'twist': the automobile node is "
                                                     'driven by speed_steering, '
                                                     'braking_speed_steering, '
+                                                    'guarded_speed_steering, '
                                                     'lane_speed, throttle_steering'):
         ActionWriter('twist', low, high)
 

@@ -24,6 +24,8 @@ beyond float rounding at a bound: wrap the environment in ``gymnasium.wrappers.C
 clip a policy's samples, or ``RescaleAction`` for [-1, 1].
 """
 
+import math
+
 import numpy as np
 
 from vehicle_sim.core.learning.actions import (
@@ -35,6 +37,7 @@ from vehicle_sim.core.learning.actions import (
     ROBOT,
     steering_bounds,
 )
+from vehicle_sim.core.learning.headway_guard import guard_speed
 from vehicle_sim.core.specs.errors import InvalidParameterError
 
 # A car's setters (core learning/actions.py SETTERS) -> its driver logic's methods.
@@ -102,14 +105,17 @@ class CarControl(Control):
 
     :param lanes: the car's VehicleLanes (its lane state, updated once per env step), or None
         in a world without lanes; a layout that reads the lane state needs them.
+    :param objects: the ego's objects part (gym/objects.py: its spec and the table of the last
+        observation), or None; a layout that reads the objects table needs it.
     """
 
     def __init__(self, layout, car, max_speed_mps=None, max_reverse_mps=5.0,
-                 max_steering_rad=None, lanes=None):
+                 max_steering_rad=None, lanes=None, objects=None):
         super().__init__(layout, car.logic, max_speed_mps, max_reverse_mps, max_steering_rad)
         self.logic = car.logic
         self.body = car.body
         self.lanes = lanes
+        self.objects = objects
         # the steering angles allowed, + = left: the Box's, or the lane-keeping law's limits
         self.steering_bounds = steering_bounds(car.logic, max_steering_rad)
         self._setters = {setter: getattr(car.logic, method)
@@ -121,7 +127,14 @@ class CarControl(Control):
         if not layout.reads_lane:
             return Reading(forward)
         state = self.lanes.state
-        return Reading(forward, state.offset_m, state.heading_error_rad, self.steering_bounds)
+        guard = math.inf
+        if layout.reads_objects:
+            spec = self.objects.spec
+            # the table the policy saw: the last observation's, at this same time
+            guard = guard_speed(self.objects.last_table(), spec.range_m, spec.speed_scale_mps,
+                                forward, state.offset_m, state.heading_error_rad)
+        return Reading(forward, state.offset_m, state.heading_error_rad, self.steering_bounds,
+                       guard)
 
 
 class RobotControl(Control):
@@ -138,26 +151,34 @@ class RobotControl(Control):
 
 
 def make_control(name, vehicle, max_speed_mps=None, max_reverse_mps=5.0,
-                 max_steering_rad=None, lanes=None):
+                 max_steering_rad=None, lanes=None, objects=None):
     """
     Return the Control of a layout for the ego.
 
     :param name: 'auto' or a layout of core's table: 'speed_steering',
-        'braking_speed_steering', 'lane_speed', 'throttle_steering' or 'twist'.
+        'braking_speed_steering', 'guarded_speed_steering', 'lane_speed', 'throttle_steering'
+        or 'twist'.
     :param vehicle: the ego's SceneVehicle (``car`` is None for a robot).
     :param max_steering_rad: a car's largest steering action either way (None: its limits).
     :param lanes: the ego's VehicleLanes, None in a world without lanes.
+    :param objects: the ego's objects part (gym/objects.py), None without the option
+        ``objects``.
     :raises ValueError: for a car layout on a robot or the robot layout on a car.
-    :raises InvalidParameterError: a layout that reads the lane state in a world without lanes.
+    :raises InvalidParameterError: a layout that reads the lane state in a world without lanes,
+        or the objects table without the option ``objects``.
     """
     layout = layout_for(name, CAR if vehicle.car is not None else ROBOT, vehicle.name)
     if layout.reads_lane and lanes is None:
         raise InvalidParameterError(
-            f'control {layout.name!r} steers by the lane state: the world has no lanes '
+            f'control {layout.name!r} reads the lane state: the world has no lanes '
             '(roads: or a lane map); give a control with a steering entry')
+    if layout.reads_objects and objects is None:
+        raise InvalidParameterError(
+            f"control {layout.name!r} reads the objects table (its headway guard): give the "
+            "option 'objects' (true, or its count, range and speed_scale)")
     if layout.vehicle == CAR:
         return CarControl(layout, vehicle.car, max_speed_mps, max_reverse_mps, max_steering_rad,
-                          lanes)
+                          lanes, objects)
     if max_steering_rad is not None:
         raise InvalidParameterError(
             f'option max_steering = {max_steering_rad!r} rad: the ego {vehicle.name!r} is a '

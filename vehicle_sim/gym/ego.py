@@ -48,6 +48,7 @@ from vehicle_sim.core.map.vehicle_lanes import VehicleLanes
 from vehicle_sim.core.specs.errors import InvalidParameterError
 from vehicle_sim.core.traffic.objects import obstacle_objects
 from vehicle_sim.gym.controls import make_control
+from vehicle_sim.gym.objects import ObjectsPart
 from vehicle_sim.gym.observations import ego_parts, PART_FACTORIES, sensor_spec
 from vehicle_sim.gym.options import CAMERA, LIDAR, RANGE_FINDER, SOURCE
 from vehicle_sim.physics.sensors.collisions import CollisionMonitor
@@ -144,13 +145,14 @@ class Ego:
         self.terms = (TERMS if graph is None else LANE_TERMS) + (
             ('gap',) if self.gap.enabled else ())
         self.crossed = ()
-        self.control = make_control(options['control'], self.ego, options['max_speed'],
-                                    options['max_reverse_speed'], options['max_steering'],
-                                    self.lanes)
         self.parts = list(parts)
         self.parts.extend(p for p in (factory(self) for factory in PART_FACTORIES)
                           if p is not None)
         self.parts.extend(observation_parts)
+        objects = next((p for p in self.parts if isinstance(p, ObjectsPart)), None)
+        self.control = make_control(options['control'], self.ego, options['max_speed'],
+                                    options['max_reverse_speed'], options['max_steering'],
+                                    self.lanes, objects)
         self.spaces = {}
         for part in self.parts:
             self.spaces.update(part.spaces())

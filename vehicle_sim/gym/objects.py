@@ -58,12 +58,13 @@ class ObjectsPart:
         self.world = scene.world
         self.body = body
         self.spec = spec
+        self._table = None
 
     def spaces(self):
         return {OBJECTS: (-1.0, 1.0, self.spec.shape, np.float32)}
 
     def reset(self):
-        pass
+        self._table = None
 
     def _obstacle_pose(self, name):
         (position, (qx, qy, qz, qw)), _, _ = self.world.body_state(self.world.obstacles[name])
@@ -84,7 +85,14 @@ class ObjectsPart:
         (vx, vy, _), _ = self.world.base_link_velocity(self.body.body_id, (x, y, z))
         forward = vx * np.cos(yaw) + vy * np.sin(yaw)
         left = -vx * np.sin(yaw) + vy * np.cos(yaw)
-        out[OBJECTS] = objects_table(self.spec, x, y, yaw, forward, left, self.neighbours())
+        self._table = objects_table(self.spec, x, y, yaw, forward, left, self.neighbours())
+        out[OBJECTS] = self._table
+
+    def last_table(self):
+        """Return the table of the last observation (read now if there was none)."""
+        if self._table is None:
+            self.read({})
+        return self._table
 
 
 def objects_part(ego):

@@ -88,14 +88,14 @@ OPTION_SPECS = (
                 f"physics car's checks run at "
                 f"{' and '.join(str(ms) for ms in CHECKED_TIME_STEPS_MS)} ms: docs/physics.md)"),
     ParamSpec('max_speed', kind='float', default=None, unit='m/s', gt=0.0, optional=True,
-              doc="(braking_)speed_steering, lane_speed: largest speed action; null = "
+              doc="the *speed_steering layouts, lane_speed: largest speed action; null = "
                   "min(the car's top speed, 20 m/s)"),
     ParamSpec('max_steering', kind='float', default=None, unit='rad', gt=0.0, optional=True,
               doc="car controls: largest steering angle action either way (lane_speed: "
                   "its lane-keeping law's limit; at most the car's limit); null = the car's "
                   "own limits"),
     ParamSpec('max_reverse_speed', kind='float', default=5.0, unit='m/s', ge=0.0,
-              doc='(braking_)speed_steering: largest reverse speed action (lane_speed '
+              doc='the *speed_steering layouts: largest reverse speed action (lane_speed '
                   'drives forward only)'),
     ParamSpec(LIDAR, kind='raw', default=None, optional=True, check=_sensor_option,
               doc="lidar observation: null = none, true = a 1080-ray 270 deg lidar, a name = "

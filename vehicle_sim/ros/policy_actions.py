@@ -36,13 +36,21 @@ gym/controls.py), each sent as the automobile node's service of the same name
   core's lane-keeping law (core/car/lane_keeping.py) from the car's lane state
   (``<ns>/lane_state`` at the tick) and forward speed, within the steering bounds of the
   environment (its card's ``max_steering``), then the setters of ``braking_speed_steering``;
+- ``guarded_speed_steering`` [the same entries]: the speed min(the action's, core's headway
+  guard's for the vehicles ahead in the car's lane, core/learning/headway_guard.py), the guard
+  reading the objects table built from ``/perception/object_recognition/objects`` at the tick
+  (the environment's own function) and the tick's lane state, then the setters of
+  ``braking_speed_steering``;
 - ``throttle_steering`` [steering angle; throttle; brake] -> ``automobile/set_steering_angle``,
   ``automobile/set_throttle``, ``automobile/set_brake_intensity``.
 """
 
+import math
+
 import numpy as np
 
 from vehicle_sim.core.learning import actions
+from vehicle_sim.core.learning.headway_guard import guard_speed
 from vehicle_sim.core.specs.errors import InvalidParameterError
 
 # The layouts the node offers: core's layouts of a car (a robot's drives no automobile node).
@@ -64,11 +72,14 @@ class ActionWriter:
     :param action_range: (low, high) the policy's actions were rescaled to (its card's).
     :param steering_bounds: the environment's steering angles allowed (low, high) [rad],
         + = left: ``lane_speed``'s law keeps within them (required for it).
-    :raises InvalidParameterError: an unknown layout, bounds of the wrong length, or
-        ``lane_speed`` without steering bounds.
+    :param objects_spec: the ObjectsTableSpec of the environment's objects table (its range
+        and speed scale): ``guarded_speed_steering``'s guard reads the table (required for it).
+    :raises InvalidParameterError: an unknown layout, bounds of the wrong length,
+        ``lane_speed`` without steering bounds, or ``guarded_speed_steering`` without a table.
     """
 
-    def __init__(self, control, low, high, action_range=(-1.0, 1.0), steering_bounds=None):
+    def __init__(self, control, low, high, action_range=(-1.0, 1.0), steering_bounds=None,
+                 objects_spec=None):
         if control not in LAYOUTS:
             raise InvalidParameterError(
                 f'control {control!r}: the automobile node is driven by '
@@ -76,13 +87,20 @@ class ActionWriter:
         self.control = control
         self.layout = LAYOUTS[control]
         if steering_bounds is None:
-            if self.layout.reads_lane:
+            # a layout without a steering entry that reads the lane state steers by core's
+            # lane-keeping law (lane_speed), within the environment's steering bounds
+            if self.layout.reads_lane and actions.STEERING_ENTRY not in self.layout.names:
                 raise InvalidParameterError(
                     f'control {control!r} steers by a law within the steering bounds of its '
                     "environment: none given (the card's environment gives them)")
             self.steering_bounds = None
         else:
             self.steering_bounds = (float(steering_bounds[0]), float(steering_bounds[1]))
+        if self.layout.reads_objects and objects_spec is None:
+            raise InvalidParameterError(
+                f"control {control!r} reads the objects table (its headway guard): the "
+                "environment has none (its option 'objects')")
+        self.objects_spec = objects_spec
         self.names, self.units = self.layout.names, self.layout.units
         self.low = np.asarray(low, dtype=np.float32)
         self.high = np.asarray(high, dtype=np.float32)
@@ -112,33 +130,47 @@ class ActionWriter:
         values = ((action - self._intercept) / self._gradient).astype(np.float64)
         return actions.check_action(values, self.low, self.high, self.names, self.units)
 
-    def reading(self, forward_mps=0.0, lane_state=None):
+    def reading(self, forward_mps=0.0, lane_state=None, objects_table=None):
         """
         Return core's Reading of the car when an action is taken.
 
-        :param forward_mps: the car's forward speed (its odometry's): braking_speed_steering
-            and lane_speed brake or cruise by it.
+        :param forward_mps: the car's forward speed (its odometry's): braking_speed_steering,
+            guarded_speed_steering and lane_speed brake or cruise by it.
         :param lane_state: its vehicle_msgs/LaneState (lane_speed steers by its offset and
-            heading error), or None.
+            heading error, guarded_speed_steering's guard finds the car's lane by them), or
+            None.
+        :param objects_table: the objects table around the car then (the environment's
+            layout, :attr:`objects_spec`'s), for guarded_speed_steering's guard; or None.
         """
         if lane_state is None:
             if self.layout.reads_lane:
-                raise ValueError(f'control {self.control!r} steers by the lane state: no '
+                raise ValueError(f'control {self.control!r} reads the lane state: no '
                                  'lane_state message')
             return actions.Reading(float(forward_mps), steering_bounds=self.steering_bounds)
-        return actions.Reading(float(forward_mps), float(lane_state.offset),
-                               float(lane_state.heading_error), self.steering_bounds)
+        offset, heading = float(lane_state.offset), float(lane_state.heading_error)
+        guard = math.inf
+        if self.layout.reads_objects:
+            if objects_table is None:
+                raise ValueError(f'control {self.control!r} reads the objects table: none '
+                                 'given')
+            spec = self.objects_spec
+            guard = guard_speed(objects_table, spec.range_m, spec.speed_scale_mps,
+                                float(forward_mps), offset, heading)
+        return actions.Reading(float(forward_mps), offset, heading, self.steering_bounds, guard)
 
-    def setters(self, values, forward_mps=0.0, lane_state=None):
+    def setters(self, values, forward_mps=0.0, lane_state=None, objects_table=None):
         """
         Return [(service, value in its unit)] of a physical action, in call order.
 
         :param forward_mps: the car's forward speed (its odometry's) when the action is taken.
-        :param lane_state: its vehicle_msgs/LaneState then (lane_speed), or None.
+        :param lane_state: its vehicle_msgs/LaneState then (lane_speed,
+            guarded_speed_steering), or None.
+        :param objects_table: the objects table then (guarded_speed_steering), or None.
         """
+        reading = self.reading(forward_mps, lane_state, objects_table)
         return [(service_of(setter), float(value)) for setter, value
-                in self.layout.values(values, self.reading(forward_mps, lane_state))]
+                in self.layout.values(values, reading)]
 
-    def commands(self, action, forward_mps=0.0, lane_state=None):
+    def commands(self, action, forward_mps=0.0, lane_state=None, objects_table=None):
         """Return [(service, value in its unit)] for a policy's action, in call order."""
-        return self.setters(self.physical(action), forward_mps, lane_state)
+        return self.setters(self.physical(action), forward_mps, lane_state, objects_table)

@@ -120,7 +120,9 @@ class PolicyNode:
         self.inputs = [pi.ODOM_IN]
         if LANE in self.builder.keys or self.writer.layout.reads_lane:
             self.inputs.append(pi.LANE_STATE_IN)
-        if OBJECTS in self.builder.keys:
+        # the objects table: the policy's key, or the guard of guarded_speed_steering
+        self._reads_objects = OBJECTS in self.builder.keys or self.writer.layout.reads_objects
+        if self._reads_objects:
             self.inputs.append(pi.OBJECTS_IN)
         self._subs = subscribe(node, {row: self._keeper(row) for row in self.inputs},
                                resolve=self._name)
@@ -134,7 +136,7 @@ class PolicyNode:
         step_ms = step_client.call(request, timeout_s=self.timeout_s).value
         self.step_s = step_ms / 1000.0
         self.repeat = check_period(self.period_s, step_ms)
-        reads_objects = OBJECTS in self.builder.keys
+        reads_objects = self._reads_objects
         self.answer_steps = check_period(
             answer_period_s(self.period_s, self.objects_rate_hz, reads_objects), step_ms,
             what='the objects period' if reads_objects else 'policy period')
@@ -229,8 +231,14 @@ class PolicyNode:
                                      latest.get(pi.OBJECTS_IN))
             action, _ = self.policy.predict(obs, deterministic=True)
             values = self.writer.physical(np.asarray(action))
-            commands = self.writer.setters(values, latest[pi.ODOM_IN].twist.twist.linear.x,
-                                           latest.get(pi.LANE_STATE_IN))
+            odom = latest[pi.ODOM_IN]
+            table = None
+            if self.writer.layout.reads_objects:
+                table = obs[OBJECTS] if OBJECTS in obs else self.builder.objects(
+                    odom, latest[pi.OBJECTS_IN], odom.twist.twist.linear.x,
+                    odom.twist.twist.linear.y)
+            commands = self.writer.setters(values, odom.twist.twist.linear.x,
+                                           latest.get(pi.LANE_STATE_IN), table)
         except (InvalidParameterError, ValueError) as error:
             self._fail(f'at /clock {tick_s:.3f} s: {error}')
             return

@@ -111,7 +111,7 @@ def make_driver(model, setup, namespace='', timeout_s=None, args=None, transport
     from vehicle_sim.ros.policy_observation import ObservationBuilder
     builder = ObservationBuilder(setup.keys, setup.objects_spec)
     writer = ActionWriter(setup.control, setup.low, setup.high, setup.action_range,
-                          setup.steering_bounds)
+                          setup.steering_bounds, setup.objects_spec)
     return PolicyNode(model, builder, writer, setup.period_s, namespace, timeout_s, args=args,
                       transport=transport, objects_rate_hz=objects_rate_hz or
                       OBJECTS_RATE.default)

@@ -36,6 +36,11 @@ rounding only is the bound). Nothing is clipped.
   ``set_steering_angle``, ``set_throttle`` 0 (TORQUE mode) and ``set_brake_intensity``; else
   ``set_steering_angle``, ``set_brake_intensity`` 0 and ``set_cruising_speed`` (whose ramp
   starts at the wheels' speeds, driver.c).
+- ``guarded_speed_steering`` (car): the entries of ``speed_steering``; the speed asked is
+  min(the action's, the headway guard's speed for the vehicles ahead in the car's lane,
+  core/learning/headway_guard.py, from the objects table the policy reads), then the rule of
+  ``braking_speed_steering``: the policy chooses the lane and the speed, the guard keeps it from
+  running into the car ahead (an adaptive cruise control). Needs the objects table.
 - ``lane_speed`` (car): [lateral offset [m] asked from the centreline of the lane the car is on,
   + = left; cruising speed [m/s], forward only]: a lane-keeping law steers toward the offset
   (core/car/lane_keeping.py: from the car's lane state and speed, within the steering bounds),
@@ -55,6 +60,7 @@ control would reach a car still cruising).
 """
 
 from dataclasses import dataclass
+import math
 from typing import Callable, Optional, Tuple
 
 import numpy as np
@@ -78,6 +84,8 @@ DEFAULT_MAX_SPEED_MPS = 20.0
 DEFAULT_MAX_REVERSE_MPS = 5.0
 # The largest lateral offset a lane_speed action asks for either way [m]: one lane of up to 4 m.
 MAX_LANE_OFFSET_M = 4.0
+# The name of a steering angle entry (a layout without one steers by core's lane-keeping law).
+STEERING_ENTRY = 'steering_angle'
 
 SET_STEERING = 'set_steering_angle'
 SET_CRUISING_SPEED = 'set_cruising_speed'
@@ -108,12 +116,15 @@ class Reading:
     :ivar heading_error_rad: its yaw minus the lane's direction [rad] (its lane state's).
     :ivar steering_bounds: the steering angles allowed (low, high) [rad], + = left: the
         law's limits for ``lane_speed`` (which refuses None); unused by the others.
+    :ivar guard_speed_mps: the headway guard's speed [m/s] (core/learning/headway_guard.py;
+        infinity: no vehicle ahead): ``guarded_speed_steering`` asks for no more.
     """
 
     forward_mps: float = 0.0
     lane_offset_m: float = 0.0
     heading_error_rad: float = 0.0
     steering_bounds: Optional[Tuple[float, float]] = None
+    guard_speed_mps: float = math.inf
 
 
 @dataclass(frozen=True)
@@ -129,6 +140,7 @@ class ActionLayout:
     :ivar halt: the action that brakes the vehicle to a stand.
     :ivar reads_speed: whether its setters depend on the car's forward speed.
     :ivar reads_lane: whether they depend on the car's lane state (a world with lanes).
+    :ivar reads_objects: whether they depend on the objects table (the headway guard's speed).
     """
 
     name: str
@@ -141,6 +153,7 @@ class ActionLayout:
     reads_lane: bool
     _bounds: Callable
     _values: Callable
+    reads_objects: bool = False
 
     def bounds(self, limits, max_speed_mps=None, max_reverse_mps=DEFAULT_MAX_REVERSE_MPS,
                max_steering_rad=None):
@@ -162,7 +175,7 @@ class ActionLayout:
 
         :param reading: the vehicle's :class:`Reading` when the action is applied (its speed
             read when :attr:`reads_speed`, its lane state and steering bounds when
-            :attr:`reads_lane`).
+            :attr:`reads_lane`, the guard's speed when :attr:`reads_objects`).
         :param limits: a robot's parameters (twist); unused for a car.
         """
         return self._values(action, reading, limits)
@@ -260,6 +273,14 @@ def _braking_speed_steering(a, reading, _limits):
                             reading.forward_mps)
 
 
+def _guarded_speed_steering(a, reading, _limits):
+    speed = float(a[1])
+    if speed > 0.0:
+        # never below 0: a guard's speed is no reverse gear
+        speed = min(speed, max(reading.guard_speed_mps, 0.0))
+    return _brake_or_cruise(ros_steering_to_webots(float(a[0])), speed, reading.forward_mps)
+
+
 def _lane_speed(a, reading, _limits):
     if reading.steering_bounds is None:
         raise ValueError('lane_speed steers within the steering bounds of its environment: '
@@ -293,7 +314,7 @@ def _twist(a, _reading, params):
                                     min(max(right / radius, -limit), limit)))]
 
 
-_STEERING_SPEED = (('steering_angle', 'speed'), ('rad', 'm/s'))
+_STEERING_SPEED = ((STEERING_ENTRY, 'speed'), ('rad', 'm/s'))
 _BRAKING_SETTERS = (SET_STEERING, SET_CRUISING_SPEED, SET_THROTTLE, SET_BRAKE)
 
 LAYOUTS = {layout.name: layout for layout in (
@@ -301,9 +322,11 @@ LAYOUTS = {layout.name: layout for layout in (
                  (0.0, 0.0), False, False, _speed_bounds, _speed_steering),
     ActionLayout('braking_speed_steering', CAR, *_STEERING_SPEED, _BRAKING_SETTERS, (0.0, 0.0),
                  True, False, _speed_bounds, _braking_speed_steering),
+    ActionLayout('guarded_speed_steering', CAR, *_STEERING_SPEED, _BRAKING_SETTERS, (0.0, 0.0),
+                 True, True, _speed_bounds, _guarded_speed_steering, reads_objects=True),
     ActionLayout('lane_speed', CAR, ('lane_offset', 'speed'), ('m', 'm/s'), _BRAKING_SETTERS,
                  (0.0, 0.0), True, True, _lane_speed_bounds, _lane_speed),
-    ActionLayout('throttle_steering', CAR, ('steering_angle', 'throttle', 'brake'),
+    ActionLayout('throttle_steering', CAR, (STEERING_ENTRY, 'throttle', 'brake'),
                  ('rad', '', ''), (SET_STEERING, SET_THROTTLE, SET_BRAKE), (0.0, 0.0, 1.0),
                  False, False, _throttle_bounds, _throttle_steering),
     ActionLayout('twist', ROBOT, ('speed', 'yaw_rate'), ('m/s', 'rad/s'),
