@@ -25,8 +25,10 @@ Observations (the keys a running ROS node gives too): ``lane`` (the lane state),
 (base_link velocity) and ``objects`` (the 8 nearest traffic cars as highway-env's Kinematics
 table), scaled inside the policy (vehicle_sim/gym/scaled_inputs.py; ``--derived-inputs closing
 lane_lateral`` adds each row's closing rate and its lateral position in lane widths). Actions
-(``braking_speed_steering``): steering angle within +-0.02 rad and cruising speed 0 .. 33.3
-m/s, rescaled to [-1, 1], at 5 Hz; a speed more than 1 m/s below the car's brakes. Reward
+(``guarded_speed_steering``): steering angle within +-0.02 rad and cruising speed 0 .. 33.3
+m/s, rescaled to [-1, 1], at 5 Hz; the speed is capped by a headway guard (no faster than the
+car can stop behind the car ahead in its lane), and a speed more than 1 m/s below the car's
+brakes. Reward
 (Drive-v0's terms, weights in ENV_OPTIONS): progress along the lanes x 0.03 /m (one per
 second at the limit), -10 for a collision, -10 per second off the lanes, -5 per solid line
 crossed, -0.3 per second times the distance from the lane's centre over half its width, and
@@ -68,7 +70,10 @@ ENV_OPTIONS = {
     'world': 'highway_traffic',
     'objects': {'count': 8, 'range': 80.0, 'speed_scale': 40.0},
     'action_repeat': 20,                # 0.2 s per action: 5 Hz decisions
-    'control': 'braking_speed_steering',    # a speed well below the car's brakes (5.4 m/s^2)
+    # braking_speed_steering (a speed well below the car's brakes, up to 5.4 m/s^2) under the
+    # headway guard (core/learning/headway_guard.py: no faster than it can stop behind the car
+    # ahead in its lane); it reads the objects table, so 'objects' stays
+    'control': 'guarded_speed_steering',
     'max_speed': LIMIT_MPS,             # never faster than the limit
     'max_reverse_speed': 0.0,
     'max_steering': 0.02,               # rad: 0.02 rad at 33 m/s is 8 m/s^2 lateral

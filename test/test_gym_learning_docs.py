@@ -19,7 +19,8 @@ docs/learning.md shows the figures of the committed training run, as the script 
 examples/train_highway.py wrote docs/learning/highway_ppo_summary.json and the curve files; the
 table in docs/learning.md must be ``results_markdown`` of that summary (not typed in), and the
 committed model's card must be the script's. The same for the earlier runs of the script whose
-figures the page keeps (highway_ppo_speed_steering_*, highway_ppo_braking_*,
+figures the page keeps (the committed run before the headway guard highway_ppo_unguarded_*,
+highway_ppo_speed_steering_*, highway_ppo_braking_*,
 highway_ppo_lane_speed_*, highway_ppo_more_steps_*, its second seed's highway_ppo_seed1_*,
 highway_ppo_every4_* and its other seeds' highway_ppo_every4_seed1_* and _seed2_*,
 highway_ppo_lr_decay_*, highway_ppo_lr_decay_c20_*, highway_ppo_lr_decay_ttc5_*,
@@ -67,9 +68,22 @@ def test_the_committed_curve_is_the_runs_and_the_model_has_the_scripts_card():
     assert summary['env_options'] == script.ENV_OPTIONS
     assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
                                                every=script.TRAINING_TRAFFIC_EVERY)
+    # the guard's run: no collision in the 100 evaluation episodes
+    assert summary['env_options']['control'] == 'guarded_speed_steering'
+    assert summary['evaluation']['trained']['collision_rate'] == 0.0
 
 
-# The options the committed run added to the first run's: the braking action and the gap term.
+# The control of every run before the committed one (the script's until the headway guard).
+UNGUARDED = {'control': 'braking_speed_steering'}
+
+
+def _unguarded(script, **changed):
+    # the script's environment options as an earlier run had them: braking_speed_steering,
+    # and what that run changed
+    return dict(script.ENV_OPTIONS, **dict(UNGUARDED, **changed))
+
+
+# The options the braking run added to the first run's: the braking action and the gap term.
 BRAKING_AND_GAP = {'control': 'braking_speed_steering', 'headway_penalty': 1.0,
                    'headway_s': 1.0, 'ttc_penalty': 2.0, 'ttc_s': 4.0, 'side_gap_penalty': 1.0,
                    'gap_margin': 1.0}
@@ -100,7 +114,7 @@ def _shipped_task_run(name, seed=0, every=None):
     script = _script()
     summary = _earlier_run(name)
     assert summary['seed'] == seed and summary['minutes'] == 30.0, name
-    assert summary['env_options'] == script.ENV_OPTIONS, name
+    assert summary['env_options'] == _unguarded(script), name
     every = script.TRAINING_TRAFFIC_EVERY if every is None else every
     assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC, every=every), name
     return script, summary
@@ -117,7 +131,7 @@ def test_the_docs_show_the_braking_runs_figures_and_its_options_are_the_scripts(
     # the braking run: the script's options of today, its own traffic in every environment
     summary = _earlier_run('highway_ppo_braking')
     script = _script()
-    assert summary['env_options'] == dict(script.ENV_OPTIONS, **BRAKING_AND_GAP)
+    assert summary['env_options'] == _unguarded(script, **BRAKING_AND_GAP)
     assert 'training_traffic' not in summary and script.TRAINING_TRAFFIC_EVERY
 
 
@@ -129,7 +143,7 @@ def test_the_docs_show_the_first_runs_figures_without_the_brakes_and_the_gap_ter
 
 
 def test_the_docs_show_the_lane_speed_runs_figures_and_its_options_are_the_scripts():
-    # the lane-change actions tried: the committed run's options and training traffic but the
+    # the lane-change actions tried: the script's options and training traffic but the
     # lane_speed layout (--control lane_speed)
     summary = _earlier_run('highway_ppo_lane_speed')
     script = _script()
@@ -140,12 +154,15 @@ def test_the_docs_show_the_lane_speed_runs_figures_and_its_options_are_the_scrip
 
 
 def test_the_docs_show_the_shipped_scripts_later_runs_figures_and_options():
-    # the committed run's command again once the env step no longer predicted the objects'
-    # paths (more env steps in the same 30 minutes), and the same with the second seed
-    for name, seed in (('highway_ppo_more_steps', 0), ('highway_ppo_seed1', 1)):
+    # the committed run before the guard (its curve drawn beside it), its command again once
+    # the env step no longer predicted the objects' paths (more env steps in the same 30
+    # minutes), and the same with the second seed
+    for name, seed in (('highway_ppo_unguarded', 0), ('highway_ppo_more_steps', 0),
+                       ('highway_ppo_seed1', 1)):
         _shipped_settings_run(name, seed)
+    assert (ROOT / 'docs' / 'highway_ppo_unguarded_learning_curve.png').is_file()
     assert _earlier_run('highway_ppo_more_steps')['env_steps'] > 1.5 * json.loads(
-        (RUN / 'highway_ppo_summary.json').read_text(encoding='utf-8'))['env_steps']
+        (RUN / 'highway_ppo_unguarded_summary.json').read_text(encoding='utf-8'))['env_steps']
 
 
 def test_the_docs_show_the_every4_runs_figures_and_their_options_are_the_scripts():
@@ -155,7 +172,7 @@ def test_the_docs_show_the_every4_runs_figures_and_their_options_are_the_scripts
                        ('highway_ppo_every4_seed2', 2)):
         summary = _earlier_run(name)
         assert summary['seed'] == seed
-        assert summary['env_options'] == script.ENV_OPTIONS
+        assert summary['env_options'] == _unguarded(script)
         assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC, every=4)
 
 
@@ -170,7 +187,7 @@ def test_the_docs_show_the_lr_decay_runs_figures_and_their_options_are_the_scrip
     script = _script()
     for name, changed in LR_DECAY_RUNS.items():
         summary = _earlier_run(name)
-        assert summary['env_options'] == dict(script.ENV_OPTIONS, **changed), name
+        assert summary['env_options'] == _unguarded(script, **changed), name
         assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC,
                                                    every=script.TRAINING_TRAFFIC_EVERY)
         assert summary['ppo'] == _ppo_options(script, learning_rate=[3e-4, 3e-5, 400_000]), name
@@ -269,7 +286,7 @@ def test_the_docs_show_the_derived_inputs_runs_figures_and_their_settings_are_th
     for name, (names, every, seed) in DERIVED_RUNS.items():
         summary = _earlier_run(name)
         assert summary['seed'] == seed and summary['minutes'] == 30.0, name
-        assert summary['env_options'] == script.ENV_OPTIONS, name
+        assert summary['env_options'] == _unguarded(script), name
         assert summary['training_traffic'] == dict(script.TRAINING_TRAFFIC, every=every), name
         assert summary['ppo'] == _ppo_options(script), name
         assert summary['derived_inputs'] == {n: script.DERIVED_INPUTS[n] for n in names}, name

@@ -155,7 +155,7 @@ def test_three_cars_side_by_side_from_25_s_leave_a_driver_behind_them_short_of_t
     assert bound < minimum - 4.0
     # the page's figures
     text = (ROOT / 'docs' / 'learning.md').read_text(encoding='utf-8')
-    assert f'at most {bound:.1f} m/s' in text
+    assert f'covers about {bound:.1f} m/s' in text
     assert f'{rear[25] - start_m - _limit_driver_m(25.0, limit, ramp):.0f} m behind' in text
 
 
@@ -179,11 +179,15 @@ def test_the_seeds_every_trained_policy_fails_are_the_pages():
                      if all(p[seed]['success'] == 'False' for p in policies.values())]
     text = (ROOT / 'docs' / 'learning.md').read_text(encoding='utf-8')
     assert f'all {len(policies)} trained policies' in text
-    assert failed_by_all == [1_000_000, 1_000_020, 1_000_066, 1_000_085]
-    # on the wall's seed those that did not collide queued: under 22 m/s
+    assert failed_by_all == [1_000_020, 1_000_066, 1_000_085]
+    # 1 000 000 too, but for the guarded run's policy
+    passed = [name for name, p in policies.items() if p[1_000_000]['success'] == 'True']
+    assert passed == [('highway_ppo_evaluation.csv', 'trained')]
+    # on the wall's seed those that did not collide queued: under 22.5 m/s (the bound of a car
+    # behind the rearmost, about 22.1 m/s, and a few metres more in another lane)
     queued = [float(p[SEED]['mean_speed_mps']) for p in policies.values()
               if p[SEED]['collision'] == 'False']
-    assert queued and max(queued) < 22.0
+    assert queued and max(queued) < 22.5
     assert f'{min(queued):.1f}–{max(queued):.1f} m/s' in text
     # the others: what those without a collision drove
     assert _speeds_text(policies, [1_000_085]) in text
