@@ -64,10 +64,15 @@ def wait_node_matched(node, service, srv_type):
     a node answers a client only once it has matched the client's reply reader: the reply to a
     client created after the subscriptions says that the node has matched them.
 
-    The request is sent again every ``RESEND_S`` without a reply, until ``WAIT_S``: a node gives
-    up on a reply whose client reply reader it has not matched within its
-    ``reply_match_timeout_s`` (1 s), which a loaded machine (or a node just resumed from
-    SIGSTOP, with its discovery backlog) can exceed. Any reply is the event waited for.
+    Writers are announced in order too, so the reply also says that the node has matched the
+    request writers of the clients created before this one, and their first requests reach it.
+
+    The request is sent again every ``RESEND_S`` without a reply, until ``WAIT_S``: a request
+    written before the node matched the client's request writer is lost (docs/transport.md, "A
+    service just discovered"), and a node gives up on a reply whose client reply reader it has
+    not matched within its ``reply_match_timeout_s`` (10 s by default), which a loaded machine
+    (or a node just resumed from SIGSTOP, with its discovery backlog) can exceed. Any reply is
+    the event waited for.
     """
     client = node.create_client(srv_type, service)
     assert client.wait_for_service(WAIT_S), f'{service} not available'

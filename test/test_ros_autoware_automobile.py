@@ -25,6 +25,7 @@ import math
 import subprocess
 import sys
 
+from automobile_helpers import wait_node_matched
 from conftest import peer_env, sleeper_process, stop_processes
 import pytest
 
@@ -301,6 +302,11 @@ def node_and_tester():
     try:
         node = DdsNode('autoware_tester', '/aw_test')
         yield proc, node
+    except Exception as error:      # what the node said goes with the failure (its log)
+        stop_processes([proc], WAIT_S)
+        if hasattr(error, 'add_note'):      # (Python 3.11 and later)
+            error.add_note("the node's stderr:\n" + (proc.stderr.read() if proc.stderr else ''))
+        raise
     finally:
         if node is not None:
             node.shutdown()
@@ -337,6 +343,9 @@ def test_node_subprocess_control_over_dds_drives_the_car_and_reports_velocity():
         assert node.spin_until(lambda: step.service_is_ready()
                                and publisher.get_subscription_count() > 0, WAIT_S), \
             proc.stderr.read() if proc.poll() is not None else 'node did not come up'
+        # ready on this side is not yet matched on the node's: a request written before the
+        # node matched the client's request writer is lost (docs/transport.md)
+        wait_node_matched(node, '/robot/get_time', 'vehicle_msgs/srv/GetFloat')
         msg = node.msg(awi.CONTROL)()
         msg.longitudinal.velocity, msg.lateral.steering_tire_angle = 5.0, 0.1
         request = node.srv('vehicle_msgs/srv/SetInt').Request(value=100)
@@ -372,6 +381,9 @@ def test_node_subprocess_watchdog_brake_stops_at_the_full_brake_deceleration_ove
         assert node.spin_until(lambda: step.service_is_ready()
                                and publisher.get_subscription_count() > 0, WAIT_S), \
             proc.stderr.read() if proc.poll() is not None else 'node did not come up'
+        # ready on this side is not yet matched on the node's: a request written before the
+        # node matched the client's request writer is lost (docs/transport.md)
+        wait_node_matched(node, '/robot/get_time', 'vehicle_msgs/srv/GetFloat')
         msg = node.msg(awi.CONTROL)()
         msg.longitudinal.velocity = 10.0
         for _ in range(60):                 # 6 s of sim time, a command every 0.1 s

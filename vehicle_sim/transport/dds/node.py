@@ -42,7 +42,7 @@ from vehicle_sim.transport.dds.endpoints import (
 from vehicle_sim.transport.dds.executor import DdsTimer, Executor, SPIN_SLICE_S
 from vehicle_sim.transport.dds.parameters import ParameterStore
 from vehicle_sim.transport.dds.qos import dds_qos, endpoint_user_data
-from vehicle_sim.transport.dds.services import DdsClient, DdsService
+from vehicle_sim.transport.dds.services import DdsClient, DdsService, REPLY_MATCH_TIMEOUT_S
 from vehicle_sim.transport.errors import TransportError
 from vehicle_sim.transport.logger import LOG_LEVEL_NAMES, Logger
 from vehicle_sim.transport.names import resolve_name, validate_node_name
@@ -107,12 +107,13 @@ class DdsNode(port.NodePort):
     :param namespace: node namespace (``__ns`` remaps in ``args`` win).
     :param args: the full command line; the ``--ros-args`` part is applied.
     :param parameter_overrides: initial values that win over the command line.
-    :param reply_match_timeout_s: how long a reply waits for its client's reply reader [s].
+    :param reply_match_timeout_s: how long a reply waits for its client's reply reader [s]
+        (services.REPLY_MATCH_TIMEOUT_S by default).
     """
 
     def __init__(self, name: str, namespace: str = '', args=None,
                  parameter_overrides: Optional[Dict[str, Any]] = None,
-                 reply_match_timeout_s: float = 1.0):
+                 reply_match_timeout_s: float = REPLY_MATCH_TIMEOUT_S):
         ros_args = parse_ros_args(args)
         self._ros_args = ros_args
         self._name = validate_node_name(ros_args.node_name(name))

@@ -19,9 +19,12 @@ A service is a request reader and a reply writer sharing one ``serviceid`` token
 reply reader (created first) and a request writer sharing one ``clientid``; every request and
 reply carries the 16-byte rmw_cyclonedds header (client id, sequence number). A reply whose
 client reply reader is not matched yet is queued and retried by the executor for up to the
-node's ``reply_match_timeout_s``: the caller is never blocked (rmw_cyclonedds itself blocks up to
-100 ms). A service callback may return a port ``Future`` instead of the response: the reply is
-sent once it is done (a deferred reply).
+node's ``reply_match_timeout_s`` (REPLY_MATCH_TIMEOUT_S by default), while the client's request
+writer stays matched: the caller is never blocked (rmw_cyclonedds itself blocks up to 100 ms).
+The bound is long because the server matches the client's reply reader when discovery has
+handled its announcement, and on a loaded machine that can come seconds after the request; a
+reply dropped at the bound is logged as a warning. A service callback may return a port
+``Future`` instead of the response: the reply is sent once it is done (a deferred reply).
 
 A client that is not rmw_cyclonedds (Fast DDS: its request carries no header, the request id
 travels as the sample identity) cannot be served: Cyclone DDS drops its requests before they
@@ -106,6 +109,11 @@ def _wire_writer(writer, codec: Optional[_WireCodec]):
         else:
             write_serialized(data)
     return write
+
+
+# How long a reply waits by default for its client's reply reader to be matched [s]; a client
+# that went away (its request writer unmatched) drops its replies at once.
+REPLY_MATCH_TIMEOUT_S = 10.0
 
 
 class _PendingReply:
@@ -263,11 +271,12 @@ class DdsService(port.ServiceServer):
         for item in self.pending:
             if self._reply_reader_matched(item.token):
                 self._write(item.wire)
-            elif now >= item.deadline:
-                self._node.get_logger().debug(
-                    f'{self.service_name}: client reply reader never matched; reply dropped')
             elif self._reader.get_matched_publication_data(item.publication_handle) is None:
-                self._client_tokens.pop(item.publication_handle, None)
+                self._client_tokens.pop(item.publication_handle, None)   # the client went away
+            elif now >= item.deadline:
+                self._node.get_logger().warning(
+                    f"{self.service_name}: reply dropped: the client's reply reader was not "
+                    f'matched within {self._node.reply_match_timeout_s:g} s')
             else:
                 keep.append(item)
         self.pending = keep
