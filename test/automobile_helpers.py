@@ -151,12 +151,19 @@ class VehicleClient:
         return name if name.startswith('/') else '/' + name
 
     def client(self, table_name):
-        """Return this test's client of a table service (created once, service available)."""
+        """
+        Return this test's client of a table service (created once, available, matched).
+
+        A new client is returned once the node has matched it too (:meth:`wait_node_matched`):
+        its first request would be lost otherwise (docs/transport.md, "A service just
+        discovered").
+        """
         client = self._clients.get(table_name)
         if client is None:
             spec = _service_row(table_name)
             client = self.node.create_client(spec.srv_type, self.name(table_name))
             assert client.wait_for_service(WAIT_S), f'{self.name(table_name)} not available'
+            self.wait_node_matched()
             self._clients[table_name] = client
         return client
 
