@@ -409,6 +409,31 @@ def test_runner_processes_that_do_not_come_up_time_out_and_are_stopped(tmp_path)
     assert '0 of 1 /clock subscriber(s)' in result.error
 
 
+def test_runner_waits_for_the_sync_topics_publishers_before_time_starts(tmp_path):
+    # The commander listens to /clock but never publishes the sync topic: time does not start
+    # (an answer written before the runner matched its writer would be lost), and the start-up
+    # timeout names the topic.
+    path = tmp_path / 'unmatched.yaml'
+    path.write_text(textwrap.dedent(f"""\
+        world: {{}}
+        robots: [{{name: diff_robot, model: caster_robot}}]
+        duration: 1.0
+        driver:
+          processes: ['python {ROOT / 'examples' / 's_curve_commander.py'}']
+          clock_subscribers: 1
+          startup_timeout: 3.0
+          sync: [{{topic: /nobody/publishes, type: std_msgs/msg/String}}]
+          sync_period: 0.02
+          real_time_factor: 0.0
+        criteria: [{{kind: max_speed, limit: 1.0}}]
+        """), encoding='utf-8')
+    result = run_scenario(path)
+    assert not result.passed
+    assert result.error.startswith('1 of 1 /clock subscriber(s), no publisher of '
+                                   '/nobody/publishes after 3 s: the processes did not come up'
+                                   ), result.error
+
+
 def test_runner_odometry_stream_is_identical_across_processes(tmp_path):
     # Two separate processes (no shared interpreter or PyBullet state) give the same hash.
     import subprocess

@@ -55,6 +55,7 @@ from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.ros import policy_interfaces as pi
 from vehicle_sim.ros.endpoints import Outputs, subscribe
 from vehicle_sim.ros.policy_observation import LANE, OBJECTS, stamp_s
+from vehicle_sim.transport.first_call import call_until_answered
 from vehicle_sim.transport.selection import create_node
 
 # How often the node checks its wall-clock deadlines [s].
@@ -133,7 +134,9 @@ class PolicyNode:
         step_client = node.create_client(pi.service_type(step_name), self._name(step_name))
         self._wait_for_services(dict(self._clients, **{step_name: step_client}))
         request = node.srv(pi.service_type(step_name)).Request()
-        step_ms = step_client.call(request, timeout_s=self.timeout_s).value
+        # a getter, sent again until answered: the answer says that the automobile node has
+        # matched the setters' clients too (created before), so their first calls arrive
+        step_ms = call_until_answered(step_client, request, self.timeout_s).value
         self.step_s = step_ms / 1000.0
         self.repeat = check_period(self.period_s, step_ms)
         reads_objects = self._reads_objects

@@ -71,8 +71,8 @@ DRIVER_SPECS = (
               'lockstep wait (wall clock); a longer one ends the run with an error', gt=0.0,
               le=MAX_WAIT_S),
     ParamSpec('clock_subscribers', 'clock_subscribers', 'int', -1, '',
-              'processes: time starts once /clock has this many subscribers; -1 = one per '
-              'process', ge=-1),
+              'processes: time starts once /clock has this many subscribers (and the runner '
+              'has matched a publisher of each sync topic); -1 = one per process', ge=-1),
     ParamSpec('startup_timeout', 'startup_timeout_s', 'float', 60.0, 's',
               'processes: how long to wait for them (wall clock)', gt=0.0, le=MAX_WAIT_S),
 )

@@ -64,11 +64,13 @@ class TopicWatcher:
                     self._callback(criterion), qos))
         self.sync_counts = []
         self.sync_wanted = [count for _, _, count in sync]
+        self._sync, self._sync_subs = tuple(sync), []
         for topic, ros_type, _ in sync:
             index = len(self.sync_counts)
             self.sync_counts.append(0)
-            self._subs.append(self.node.create_subscription(ros_type, topic,
-                                                            self._counter(index)))
+            self._sync_subs.append(self.node.create_subscription(ros_type, topic,
+                                                                 self._counter(index)))
+        self._subs += self._sync_subs
         # Never publishes: it matches the /clock subscribers, to count them.
         self._clock = self.node.create_publisher('rosgraph_msgs/msg/Clock', '/clock',
                                                  QOS_CLOCK)
@@ -110,6 +112,11 @@ class TopicWatcher:
     def clock_subscribers(self):
         return self._clock.get_subscription_count()
 
+    def sync_unmatched(self):
+        """Return the sync topics whose subscription has matched no publisher yet."""
+        return [topic for (topic, _, _), sub in zip(self._sync, self._sync_subs)
+                if sub.get_publisher_count() < 1]
+
     def spin(self):
         self.sim.spin()
         self.node.spin_once(0.0)
@@ -148,14 +155,19 @@ def run_processes(spec, sim, criteria, transport):
         wanted = (len(driver.processes) if driver.clock_subscribers < 0
                   else driver.clock_subscribers)
         deadline = time.monotonic() + driver.startup_timeout_s
-        while watcher.clock_subscribers() < wanted:
+        # Time starts once the processes listen to /clock and this node has matched their sync
+        # topics' publishers: an answer written before this reader matched its writer would be
+        # lost (a late-matching reader starts at the writer's next sample), and lockstep with it
+        while watcher.clock_subscribers() < wanted or watcher.sync_unmatched():
             error = processes.failed()
             if error:
                 return error
             if time.monotonic() > deadline:
-                return (f'{watcher.clock_subscribers()} of {wanted} /clock subscriber(s) after '
-                        f'{driver.startup_timeout_s:g} s: the processes did not come up\n'
-                        + processes.output())
+                unmatched = watcher.sync_unmatched()
+                return (f'{watcher.clock_subscribers()} of {wanted} /clock subscriber(s)'
+                        + (f', no publisher of {", ".join(unmatched)}' if unmatched else '')
+                        + f' after {driver.startup_timeout_s:g} s: the processes did not come '
+                        'up\n' + processes.output())
             watcher.spin()
             time.sleep(0.01)
         pacer = Pacer(driver.real_time_factor, watcher.spin)
