@@ -346,3 +346,23 @@ def test_the_docs_show_the_committed_crossing_runs_figures():
     assert rows and summary['final_training_row'] == {
         key: type(value)(rows[-1][key]) for key, value in summary['final_training_row'].items()}
     assert (ROOT / 'docs' / 'crossing_shared_learning_curve.png').is_file()
+
+
+def test_the_docs_show_the_policy_evaluations_verdicts_of_all_100_seeds():
+    # `vehicle-sim policy evaluate` of the committed model on both paths: the table and the
+    # failures in docs/learning.md are the CSV's (written from the command's printed lines)
+    with open(RUN / 'highway_ppo_policy_evaluate.csv', encoding='utf-8') as stream:
+        rows = list(csv.DictReader(stream))
+    assert [int(row['seed']) for row in rows] == list(range(1000, 1100))
+    text = (ROOT / 'docs' / 'learning.md').read_text(encoding='utf-8')
+    passed = {path: sum(row[f'{path}_success'] == 'True' for row in rows)
+              for path in ('in_process', 'wire')}
+    assert (f"| in process | 100 | {passed['in_process']} | {passed['in_process']} % |\n"
+            f"| over the wire | 100 | {passed['wire']} | {passed['wire']} % |") in text
+    assert f"differ by **{abs(passed['in_process'] - passed['wire'])} point" in text
+    verdicts = [row[f'{path}_verdict'] for row in rows for path in ('in_process', 'wire')
+                if row[f'{path}_success'] == 'False']
+    assert verdicts and all(v.startswith('mean_speed: ') for v in verdicts)   # no collision
+    same = sum(row['in_process_success'] == row['wire_success'] for row in rows)
+    assert f'The same verdict on {same} of the 100 seeds' in text
+    assert not any('lockstep' in row['wire_verdict'] for row in rows)
