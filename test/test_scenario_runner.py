@@ -309,9 +309,10 @@ def test_runner_bridge_drives_the_caster_robot_along_the_s_curve():
     assert result.criterion('max_speed').value == pytest.approx(0.8, abs=0.02)
 
 
-def test_runner_lockstep_short_of_a_sync_count_ends_the_run_naming_it(tmp_path):
-    # The commander publishes one command per 20 ms of /clock: a count of 2 is never met.
-    path = tmp_path / 'count.yaml'
+def _commander_scenario(tmp_path, sync, timeout):
+    # The S-curve commander driving the caster robot in lockstep on ``sync`` (a YAML flow list);
+    # ``timeout``: the driver's timeout key and value
+    path = tmp_path / 'commander.yaml'
     path.write_text(textwrap.dedent(f"""\
         world: {{}}
         robots: [{{name: diff_robot, model: caster_robot}}]
@@ -319,14 +320,20 @@ def test_runner_lockstep_short_of_a_sync_count_ends_the_run_naming_it(tmp_path):
         driver:
           processes: ['python {ROOT / 'examples' / 's_curve_commander.py'}']
           clock_subscribers: 1
-          sync: [{{topic: /control/command/control_cmd, type: autoware_control_msgs/msg/Control,
-                  count: 2}}]
+          sync: {sync}
           sync_period: 0.02
-          sync_timeout: 1.0
+          {timeout}
           real_time_factor: 0.0
         criteria: [{{kind: max_speed, limit: 1.0}}]
         """), encoding='utf-8')
-    result = run_scenario(path)
+    return path
+
+
+def test_runner_lockstep_short_of_a_sync_count_ends_the_run_naming_it(tmp_path):
+    # The commander publishes one command per 20 ms of /clock: a count of 2 is never met.
+    result = run_scenario(_commander_scenario(
+        tmp_path, '[{topic: /control/command/control_cmd, '
+        'type: autoware_control_msgs/msg/Control, count: 2}]', 'sync_timeout: 1.0'))
     assert not result.passed
     # at the first sync (0.02 s), or at the second when the command of the first /clock (0.01 s)
     # came in late enough to count for the first
@@ -413,21 +420,9 @@ def test_runner_waits_for_the_sync_topics_publishers_before_time_starts(tmp_path
     # The commander listens to /clock but never publishes the sync topic: time does not start
     # (an answer written before the runner matched its writer would be lost), and the start-up
     # timeout names the topic.
-    path = tmp_path / 'unmatched.yaml'
-    path.write_text(textwrap.dedent(f"""\
-        world: {{}}
-        robots: [{{name: diff_robot, model: caster_robot}}]
-        duration: 1.0
-        driver:
-          processes: ['python {ROOT / 'examples' / 's_curve_commander.py'}']
-          clock_subscribers: 1
-          startup_timeout: 3.0
-          sync: [{{topic: /nobody/publishes, type: std_msgs/msg/String}}]
-          sync_period: 0.02
-          real_time_factor: 0.0
-        criteria: [{{kind: max_speed, limit: 1.0}}]
-        """), encoding='utf-8')
-    result = run_scenario(path)
+    result = run_scenario(_commander_scenario(
+        tmp_path, '[{topic: /nobody/publishes, type: std_msgs/msg/String}]',
+        'startup_timeout: 3.0'))
     assert not result.passed
     assert result.error.startswith('1 of 1 /clock subscriber(s), no publisher of '
                                    '/nobody/publishes after 3 s: the processes did not come up'
