@@ -28,6 +28,7 @@ import time
 from typing import Any, Callable, Dict, Iterable, List, Optional, Tuple
 
 from vehicle_sim.transport.fast_cdr import leading_stamp_ns
+from vehicle_sim.transport.first_call import call_until_answered
 
 # Bound for a reply or a message that the simulation is known to produce.
 DEFAULT_TIMEOUT_S = 10.0
@@ -298,6 +299,7 @@ class AutomobileClient:
             client = self.node.create_client(spec.srv_type, full)
             if not client.wait_for_service(timeout_s):
                 raise TimeoutError(f'service {full} is not available')
+            self._await_node_match(timeout_s)
             self._clients[full] = client
         request = self.node.srv(spec.srv_type).Request()
         if value is not None:
@@ -307,6 +309,16 @@ class AutomobileClient:
                 raise ValueError(f'{full} request has fields {fields}: build it yourself')
             setattr(request, fields[0], type(getattr(request, fields[0]))(value))
         return client.call(request, timeout_s)
+
+    def _await_node_match(self, timeout_s: float) -> None:
+        # A request written before the node has matched the client's request writer is lost
+        # (docs/transport.md, "A service just discovered"). The answer to a getter of a client
+        # made after it, sent again until answered, says the node has matched it.
+        spec, full = self._find('robot/get_time', self._itf.NODE_SERVICES, 'service')
+        probe = self.node.create_client(spec.srv_type, full)
+        if not probe.wait_for_service(timeout_s):
+            raise TimeoutError(f'service {full} is not available')
+        call_until_answered(probe, self.node.srv(spec.srv_type).Request(), timeout_s)
 
     def sim_time(self) -> float:
         """Return the simulated time [s] (robot/get_time)."""
