@@ -29,6 +29,7 @@ from automobile_helpers import (
     stamp_of,
     VehicleClient,
     wait_for,
+    wait_node_matched,
     WAIT_S,
 )
 import pytest
@@ -50,9 +51,12 @@ def tester():
     node.shutdown()
 
 
-def _time_step_client(node, name):
+def _time_step_client(node, name, node_fqn):
+    # Returned once the node ``node_fqn`` (just started) has matched the client: a request
+    # written before would be lost (docs/transport.md, "A service just discovered")
     client = node.create_client(SET_INT, name)
     assert client.wait_for_service(WAIT_S), name
+    wait_node_matched(node, f'{node_fqn}/get_parameters', 'rcl_interfaces/srv/GetParameters')
     return client, node.srv(SET_INT).Request
 
 
@@ -62,7 +66,7 @@ def test_automobile_serves_setters_and_getters_while_a_huge_time_step_runs(teste
     process = NodeProcess('--ros-args', '-r', f'__ns:=/{ns}', '-p', 'synchronous:=true')
     try:
         car = VehicleClient(tester, ns)
-        step, request = _time_step_client(tester, f'/{ns}/robot/time_step')
+        step, request = _time_step_client(tester, f'/{ns}/robot/time_step', f'/{ns}/automobile')
         car.subscribe('automobile/current_speed')
         huge = step.call_async(request(value=HUGE_MS))
         # The steps are running: sim time advances, and the node answers meanwhile.
@@ -89,7 +93,8 @@ def test_automobile_serves_setters_and_getters_while_a_huge_time_step_runs(teste
 def test_automobile_answers_queued_time_steps_in_order_after_their_own_steps(tester):
     process = NodeProcess('--ros-args', '-r', '__ns:=/ts_fifo', '-p', 'synchronous:=true')
     try:
-        step, request = _time_step_client(tester, '/ts_fifo/robot/time_step')
+        step, request = _time_step_client(tester, '/ts_fifo/robot/time_step',
+                                          '/ts_fifo/automobile')
         getter = tester.create_client('vehicle_msgs/srv/GetFloat', '/ts_fifo/robot/get_time')
         assert getter.wait_for_service(WAIT_S)
         get_time = tester.srv('vehicle_msgs/srv/GetFloat').Request
@@ -124,7 +129,8 @@ def test_diff_robot_serves_and_stops_while_a_huge_time_step_runs(tester):
         tester.create_subscription(ri.ROBOT_JOINT_STATES.ros_type,
                                    '/ts_robot/diff_robot/joint_states', joint_states.append,
                                    ri.ROBOT_JOINT_STATES.qos)
-        step, request = _time_step_client(tester, '/ts_robot/diff_robot/robot/time_step')
+        step, request = _time_step_client(tester, '/ts_robot/diff_robot/robot/time_step',
+                                          '/ts_robot/diff_robot')
         huge = step.call_async(request(value=HUGE_MS))
         assert wait_for(lambda: joint_states and stamp_of(joint_states[-1]) > 0.5,
                         spin=tester), process.text()

@@ -24,7 +24,7 @@ loopback); the others are checked as text and as well-formed XML.
 import os
 from xml.etree import ElementTree
 
-from automobile_helpers import make_client_node, NodeProcess, WAIT_S
+from automobile_helpers import make_client_node, NodeProcess, wait_node_matched, WAIT_S
 from conftest import peer_env
 import pytest
 
@@ -172,6 +172,10 @@ def test_node_starts_and_serves_with_a_user_uri_selecting_loopback(user_uri, nam
         client = node.create_client('vehicle_msgs/srv/SetInt',
                                     f'{namespace}/' + itf.service('robot/time_step').name)
         assert client.wait_for_service(WAIT_S), process.text()
+        # the node just started: its match of the client first (docs/transport.md, "A service
+        # just discovered")
+        wait_node_matched(node, f'{namespace}/automobile/get_parameters',
+                          'rcl_interfaces/srv/GetParameters')
         request = node.srv('vehicle_msgs/srv/SetInt').Request(value=30)
         assert client.call(request, WAIT_S).success is True
         assert process.proc.poll() is None

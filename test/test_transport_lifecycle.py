@@ -39,6 +39,7 @@ from vehicle_sim.transport import dds
 from vehicle_sim.transport.dds import cyclone_private
 from vehicle_sim.transport.dds.domain_config import domain_id
 from vehicle_sim.transport.dds.graph import GraphView
+from vehicle_sim.transport.first_call import call_until_answered
 
 pytestmark = pytest.mark.transport
 
@@ -144,7 +145,8 @@ def test_sigterm_after_clients_died_ends_the_process_and_leaves_the_graph(tmp_pa
         for name in services:
             caller = node.create_client('vehicle_msgs/srv/GetFloat', name)
             assert caller.wait_for_service(WAIT_S)
-            caller.call(node.srv('vehicle_msgs/srv/GetFloat').Request(), WAIT_S)
+            # a getter, sent again if lost (docs/transport.md, "A service just discovered")
+            call_until_answered(caller, node.srv('vehicle_msgs/srv/GetFloat').Request(), WAIT_S)
         with GraphView() as view:
             assert view.wait_until(lambda: view.find_node('/dying/automobile'), WAIT_S)
             process.proc.send_signal(signal.SIGTERM)
