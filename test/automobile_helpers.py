@@ -32,7 +32,7 @@ import pytest
 from vehicle_sim.core.specs.units import stamp_to_seconds
 from vehicle_sim.ros import automobile_interfaces as itf
 from vehicle_sim.transport.dds import DdsNode
-from vehicle_sim.transport.errors import ServiceTimeoutError
+from vehicle_sim.transport.first_call import call_until_answered
 from vehicle_sim.transport.qos import QOS_TF_STATIC_LISTENER
 
 WAIT_S = 60.0
@@ -76,15 +76,7 @@ def wait_node_matched(node, service, srv_type):
     """
     client = node.create_client(srv_type, service)
     assert client.wait_for_service(WAIT_S), f'{service} not available'
-    request = node.srv(srv_type).Request()
-    deadline = time.monotonic() + WAIT_S
-    while True:
-        try:
-            client.call(request, max(0.0, min(RESEND_S, deadline - time.monotonic())))
-            return
-        except ServiceTimeoutError:
-            if time.monotonic() >= deadline:
-                raise
+    call_until_answered(client, node.srv(srv_type).Request(), WAIT_S, RESEND_S)
 
 
 class NodeProcess:

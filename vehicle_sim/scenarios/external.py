@@ -64,13 +64,13 @@ class TopicWatcher:
                     self._callback(criterion), qos))
         self.sync_counts = []
         self.sync_wanted = [count for _, _, count in sync]
-        self._sync, self._sync_subs = tuple(sync), []
+        self._sync_subs = []            # (topic, its subscription)
         for topic, ros_type, _ in sync:
             index = len(self.sync_counts)
             self.sync_counts.append(0)
-            self._sync_subs.append(self.node.create_subscription(ros_type, topic,
-                                                                 self._counter(index)))
-        self._subs += self._sync_subs
+            sub = self.node.create_subscription(ros_type, topic, self._counter(index))
+            self._sync_subs.append((topic, sub))
+            self._subs.append(sub)
         # Never publishes: it matches the /clock subscribers, to count them.
         self._clock = self.node.create_publisher('rosgraph_msgs/msg/Clock', '/clock',
                                                  QOS_CLOCK)
@@ -114,8 +114,7 @@ class TopicWatcher:
 
     def sync_unmatched(self):
         """Return the sync topics whose subscription has matched no publisher yet."""
-        return [topic for (topic, _, _), sub in zip(self._sync, self._sync_subs)
-                if sub.get_publisher_count() < 1]
+        return [topic for topic, sub in self._sync_subs if sub.get_publisher_count() < 1]
 
     def spin(self):
         self.sim.spin()
