@@ -230,10 +230,14 @@ def test_rclpy_automobile_time_step_is_answered_after_its_steps(context):
 
 # A node main whose destroy_node takes a second, so that a second SIGINT lands inside it; after
 # run_node returned it waits a second more (standing for the process's exit) before a last line.
+# Its 'ready' line comes once the node exists; with a second argument 'announce' the node is
+# made ready first (as a node's ready announcement does), so a signal after the line finds it
+# ready; without it, the start-up goes on for argv[1] seconds after the line.
 SLOW_SHUTDOWN_MAIN = textwrap.dedent("""
     import sys
     import time
     from vehicle_sim.transport.rclpy_adapter import RclpyNode, run_rclpy_node
+    from vehicle_sim.transport.stop_signals import mark_ready
 
     def factory(args):
         node = RclpyNode('slow_shutdown', '/rt_sigint')
@@ -245,6 +249,8 @@ SLOW_SHUTDOWN_MAIN = textwrap.dedent("""
             destroy()
             print('destroyed', flush=True)
         node.shutdown = slow_shutdown
+        if sys.argv[2:] == ['announce']:
+            mark_ready()
         print('ready', flush=True)
         time.sleep(float(sys.argv[1]))   # the rest of a start-up, after the node exists
         return node
@@ -262,7 +268,9 @@ def _wait_for_line(lines, text, event, timeout_s=30.0):
 
 def test_sigint_during_and_after_shutdown_is_ignored_and_the_node_exits_0():
     # Under `ros2 launch`, Ctrl-C reaches a node twice: from the terminal and from launch.
-    proc = subprocess.Popen([sys.executable, '-c', SLOW_SHUTDOWN_MAIN, '0'], env=peer_env(),
+    # (the node made ready before its line: a signal after the line is one after ready)
+    proc = subprocess.Popen([sys.executable, '-c', SLOW_SHUTDOWN_MAIN, '0', 'announce'],
+                            env=peer_env(),
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     lines = []
     seen = {text: threading.Event() for text in ('ready', 'shutting down', 'returned 0')}
@@ -311,6 +319,29 @@ def test_sigint_after_the_node_exists_during_start_up_still_shuts_it_down():
         if proc.poll() is None:
             proc.kill()
             proc.wait()
+
+def test_a_node_the_rmw_refuses_exits_2_with_a_line_of_ours_below_the_rmws_and_no_traceback():
+    # lo selected twice: Cyclone DDS refuses the domain and rmw_cyclonedds prints why; rcl's
+    # error says only 'error creating node'. The embedded transport's line:
+    # test_transport_discovery_config.py
+    from rclpy.utilities import get_rmw_implementation_identifier
+    rmw = get_rmw_implementation_identifier()
+    if rmw != 'rmw_cyclonedds_cpp':
+        pytest.skip(f"the refusal is Cyclone DDS's: RMW_IMPLEMENTATION is {rmw}")
+    lo = ('<CycloneDDS><Domain><General><Interfaces><NetworkInterface name="lo"/>'
+          '</Interfaces></General></Domain></CycloneDDS>')
+    env = dict(peer_env(), VEHICLE_SIM_TRANSPORT='rclpy', CYCLONEDDS_URI=f'{lo},{lo}')
+    done = subprocess.run([sys.executable, '-m', 'vehicle_sim.ros.automobile_node',
+                           '--ros-args', '-r', '__ns:=/refused'],
+                          env=env, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2, done.stdout + done.stderr
+    assert 'Traceback' not in done.stdout + done.stderr, done.stderr
+    lines = done.stderr.strip().splitlines()
+    assert lines[-1].startswith("automobile: rclpy could not create node 'automobile' ("), lines
+    assert lines[-1].endswith('): the lines of rmw_cyclonedds_cpp above say why'), lines
+    assert any('the same interface may not be selected twice' in line
+               for line in lines[:-1]), lines
+
 
 def test_rclpy_rows_publish_fast_cdr_bytes_and_a_raw_subscription_decodes_them(context):
     from types import SimpleNamespace

@@ -52,10 +52,12 @@ from rclpy.executors import (
     SingleThreadedExecutor,
     TimeoutException,
 )
+from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
 from rclpy.node import Node
 from rclpy.parameter import Parameter as RclpyParameter
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.task import Future as RclpyFuture
+from rclpy.utilities import get_rmw_implementation_identifier
 
 from vehicle_sim.transport import fast_cdr, port
 from vehicle_sim.transport.errors import ServiceTimeoutError, TransportError
@@ -217,10 +219,17 @@ class RclpyNode(port.NodePort):
         elif args:
             cli_args = list(args)
         self._context = context
-        self.node = Node(
-            name, namespace=namespace or None, context=context, cli_args=cli_args,
-            parameter_overrides=[RclpyParameter(k, value=v)
-                                 for k, v in (parameter_overrides or {}).items()])
+        try:
+            self.node = Node(
+                name, namespace=namespace or None, context=context, cli_args=cli_args,
+                parameter_overrides=[RclpyParameter(k, value=v)
+                                     for k, v in (parameter_overrides or {}).items()])
+        except _rclpy.RCLError as error:
+            # rcl says only 'error creating node'; the RMW printed its reason (a DDS
+            # configuration it refused, say) on stderr just before
+            raise TransportError(
+                f'rclpy could not create node {name!r} ({error}): the lines of '
+                f'{get_rmw_implementation_identifier()} above say why') from None
         self._name = self.node.get_name()
         self._namespace = self.node.get_namespace()
         self._declaring = False
