@@ -67,6 +67,25 @@ def scaled_s(seconds):
     return seconds * TIME_FACTOR
 
 
+@pytest.fixture(autouse=True)
+def _rclpy_default_context_left_initialised():
+    """
+    Shut rclpy's default context down after a test that initialised it and left it so.
+
+    Where ROS 2 is sourced, a node built in this process on rclpy (transport auto) initialises
+    the default context and leaves it initialised, as ``rclpy.create_node`` after ``rclpy.init``
+    does; a later test's own ``rclpy.init()``, or a node main called in process (its
+    ``rclpy.init`` comes first), then fails with 'Context.init() must only be called once'. A
+    context already initialised when the test started (a module fixture's) is left alone.
+    """
+    rclpy = sys.modules.get('rclpy')
+    initialised = rclpy is not None and rclpy.ok()
+    yield
+    rclpy = sys.modules.get('rclpy')
+    if not initialised and rclpy is not None and rclpy.ok():
+        rclpy.try_shutdown()
+
+
 def pytest_configure(config):
     config.addinivalue_line(
         'markers', 'transport: cross-process tests over the embedded Cyclone DDS transport')

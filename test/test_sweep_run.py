@@ -146,6 +146,8 @@ def test_sweep_of_a_served_scenario_gives_each_running_case_a_domain_of_its_own(
     # the base up; this test's base keeps clear of the domains the test configuration picks.
     base = 120 + int(os.environ['ROS_DOMAIN_ID']) % 100
     monkeypatch.setenv('VEHICLE_SIM_SWEEP_DOMAIN_BASE', str(base))
+    # (the embedded transport's start line names the domain, also where rclpy is importable)
+    monkeypatch.setenv('VEHICLE_SIM_TRANSPORT', 'dds')
     served = str(REPO / 'test' / 'scenarios' / 'served_topic.yaml')
     result = run_sweep(served, ['driver.commands.0.cruising_speed=10,30'], out_dir=str(tmp_path),
                        workers=2, timeout_s=120.0)
