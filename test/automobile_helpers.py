@@ -285,9 +285,14 @@ def car_fixture(topics, namespace='', scope='module', node='sim', tester='tester
     """
     @pytest.fixture(scope=scope, name=name)
     def car(request):
-        request.getfixturevalue(node)
+        process = request.getfixturevalue(node)
         client = VehicleClient(request.getfixturevalue(tester), namespace)
-        client.wait_matched(list(topics))
+        try:
+            client.wait_matched(list(topics))
+        except AssertionError:
+            # (a node that refused to start says why: a ROS type not installed, say)
+            raise AssertionError(f'the node did not serve {list(topics)}; it printed:\n'
+                                 f'{process.text()}') from None
         return client
     return car
 
