@@ -67,23 +67,34 @@ def scaled_s(seconds):
     return seconds * TIME_FACTOR
 
 
-@pytest.fixture(autouse=True)
-def _rclpy_default_context_left_initialised():
-    """
-    Shut rclpy's default context down after a test that initialised it and left it so.
+def _rclpy_initialised():
+    rclpy = sys.modules.get('rclpy')
+    return rclpy is not None and rclpy.ok()
 
-    Where ROS 2 is sourced, a node built in this process on rclpy (transport auto) initialises
-    the default context and leaves it initialised, as ``rclpy.create_node`` after ``rclpy.init``
-    does; a later test's own ``rclpy.init()``, or a node main called in process (its
-    ``rclpy.init`` comes first), then fails with 'Context.init() must only be called once'. A
-    context already initialised when the test started (a module fixture's) is left alone.
-    """
-    rclpy = sys.modules.get('rclpy')
-    initialised = rclpy is not None and rclpy.ok()
+
+def _shut_rclpy_down_unless(initialised):
+    if not initialised and _rclpy_initialised():
+        sys.modules['rclpy'].try_shutdown()
+
+
+# Where ROS 2 is sourced, a node built in this process on rclpy (transport auto) initialises
+# rclpy's default context and leaves it initialised, as ``rclpy.create_node`` after
+# ``rclpy.init`` does; a later test's own ``rclpy.init()``, or a node main called in process (its
+# ``rclpy.init`` comes first), then fails with 'Context.init() must only be called once'. So a
+# test, and a module (its fixtures), that initialised it has it shut down after; one initialised
+# before is left alone.
+@pytest.fixture(autouse=True, scope='module')
+def _rclpy_default_context_left_by_a_module():
+    initialised = _rclpy_initialised()
     yield
-    rclpy = sys.modules.get('rclpy')
-    if not initialised and rclpy is not None and rclpy.ok():
-        rclpy.try_shutdown()
+    _shut_rclpy_down_unless(initialised)
+
+
+@pytest.fixture(autouse=True)
+def _rclpy_default_context_left_by_a_test():
+    initialised = _rclpy_initialised()
+    yield
+    _shut_rclpy_down_unless(initialised)
 
 
 def pytest_configure(config):
