@@ -42,18 +42,32 @@ def _beside_a_checkout(tmp_path, *python_flags):
                           capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
 
 
+def _installed_package_file(tmp_path):
+    # what this environment imports from a folder with no checkout in it: the editable install
+    # of this checkout here, a colcon-installed copy first on PYTHONPATH in a sourced workspace
+    elsewhere = tmp_path / 'elsewhere'
+    elsewhere.mkdir()
+    result = subprocess.run(
+        [sys.executable, '-c', 'import vehicle_sim; print(vehicle_sim.__file__)'],
+        cwd=elsewhere, capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
+    assert result.returncode == 0, result.stderr
+    return result.stdout.strip()
+
+
 def test_a_script_beside_the_checkout_imports_the_installed_package(tmp_path):
+    installed = _installed_package_file(tmp_path)
     result = _beside_a_checkout(tmp_path)
     assert result.returncode == 0, result.stderr
     package_file, module = result.stdout.splitlines()
-    assert os.path.realpath(package_file) == os.path.join(
-        os.path.realpath(REPO_ROOT), 'vehicle_sim', '__init__.py')
+    assert os.path.realpath(package_file) == os.path.realpath(installed)
+    assert installed.endswith(os.path.join('vehicle_sim', '__init__.py'))
     assert module == 'vehicle_sim.config'
 
 
 def test_without_an_installed_package_the_error_says_what_happened_and_what_to_do(tmp_path):
-    # -S: no site-packages, so no vehicle_sim installed (nor anything else).
-    result = _beside_a_checkout(tmp_path, '-S')
+    # -S: no site-packages, -E: no PYTHONPATH (a sourced ROS workspace's), so no vehicle_sim
+    # installed (nor anything else); the script's folder still comes first.
+    result = _beside_a_checkout(tmp_path, '-S', '-E')
     assert result.returncode == 1
     checkout = tmp_path / 'vehicle_sim'
     assert result.stderr.strip().splitlines()[-1] == (
