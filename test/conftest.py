@@ -116,9 +116,16 @@ def pytest_collection_modifyitems(config, items):
             item.add_marker(pytest.mark.timeout(float(own) * TIME_FACTOR), append=False)
 
 
-def peer_env():
-    """Return the environment for a peer subprocess: this run's DDS settings, the repo first."""
+def peer_env(transport=None):
+    """
+    Return the environment for a peer subprocess: this run's DDS settings, the repo first.
+
+    :param transport: its nodes' transport (``VEHICLE_SIM_TRANSPORT``: 'dds' for a test of the
+        embedded transport's own behaviour, also where rclpy is importable); None: the run's.
+    """
     env = dict(os.environ)
+    if transport is not None:
+        env['VEHICLE_SIM_TRANSPORT'] = transport
     env['PYTHONPATH'] = REPO_ROOT + os.pathsep + env.get('PYTHONPATH', '')
     env['PYTHONUNBUFFERED'] = '1'
     return env

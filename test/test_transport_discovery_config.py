@@ -192,7 +192,7 @@ def test_node_starts_and_serves_with_a_user_uri_selecting_loopback(user_uri, nam
 def test_node_refused_by_cyclone_exits_with_one_line_and_no_traceback(module, program):
     # The embedded transport's own line (on rclpy Cyclone prints its reason itself:
     # test_transport_rclpy.py)
-    env = dict(peer_env(), VEHICLE_SIM_TRANSPORT='dds')
+    env = peer_env(transport='dds')
     env['CYCLONEDDS_URI'] = USER_LO_NAME + ',' + USER_LO_NAME   # the user selects lo twice
     process = NodeProcess('--ros-args', '-r', '__ns:=/refused', module=module, env=env)
     try:

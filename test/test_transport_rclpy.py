@@ -320,6 +320,7 @@ def test_sigint_after_the_node_exists_during_start_up_still_shuts_it_down():
             proc.kill()
             proc.wait()
 
+
 def test_a_node_the_rmw_refuses_exits_2_with_a_line_of_ours_below_the_rmws_and_no_traceback():
     # lo selected twice: Cyclone DDS refuses the domain and rmw_cyclonedds prints why; rcl's
     # error says only 'error creating node'. The embedded transport's line:
@@ -330,7 +331,7 @@ def test_a_node_the_rmw_refuses_exits_2_with_a_line_of_ours_below_the_rmws_and_n
         pytest.skip(f"the refusal is Cyclone DDS's: RMW_IMPLEMENTATION is {rmw}")
     lo = ('<CycloneDDS><Domain><General><Interfaces><NetworkInterface name="lo"/>'
           '</Interfaces></General></Domain></CycloneDDS>')
-    env = dict(peer_env(), VEHICLE_SIM_TRANSPORT='rclpy', CYCLONEDDS_URI=f'{lo},{lo}')
+    env = dict(peer_env(transport='rclpy'), CYCLONEDDS_URI=f'{lo},{lo}')
     done = subprocess.run([sys.executable, '-m', 'vehicle_sim.ros.automobile_node',
                            '--ros-args', '-r', '__ns:=/refused'],
                           env=env, capture_output=True, text=True, timeout=120)

@@ -45,10 +45,6 @@ from vehicle_sim.transport.qos import (
 pytestmark = pytest.mark.transport
 
 NOT_UTF8 = b'\xff\xfe\xc3'
-# The nodes on the embedded transport, whose decoding this is, also where rclpy is importable:
-# on rclpy, rosidl's conversion decodes such a string with replacement characters and the
-# request is answered.
-EMBEDDED = {'VEHICLE_SIM_TRANSPORT': 'dds'}
 GET_PARAMETERS = 'rcl_interfaces/srv/GetParameters'
 CLIENT_TOKEN = 'undecodable-test-client'
 
@@ -87,8 +83,10 @@ def _raw_client(raw, service):
 
 
 def test_automobile_node_drops_a_request_that_is_not_utf8_and_answers_the_next(raw, tester):
+    # (the nodes on the embedded transport, whose decoding this is: on rclpy, rosidl's
+    # conversion decodes such a string with replacement characters and answers the request)
     process = NodeProcess('--ros-args', '-r', '__ns:=/undecodable', '-p', 'synchronous:=true',
-                          env=dict(peer_env(), **EMBEDDED))
+                          env=peer_env(transport='dds'))
     try:
         service = '/undecodable/automobile/get_parameters'
         types, writer, reader = _raw_client(raw, service)
@@ -122,7 +120,7 @@ def test_automobile_node_drops_a_request_that_is_not_utf8_and_answers_the_next(r
 def test_bridge_node_drops_a_joint_state_that_is_not_utf8_and_serves_on(raw, tester):
     process = NodeProcess('--ros-args', '-r', '__node:=undecodable_bridge',
                           '-r', f'{bi.JOINT_STATES_IN.name}:=/undecodable/joint_states',
-                          module='vehicle_sim.ros.bridge_node', env=dict(peer_env(), **EMBEDDED))
+                          module='vehicle_sim.ros.bridge_node', env=peer_env(transport='dds'))
     try:
         joint_state = msg_types.message_type(bi.JOINT_STATES_IN.ros_type)
         writer = DataWriter(raw, Topic(raw, 'rt/undecodable/joint_states', joint_state),
