@@ -72,29 +72,32 @@ def _rclpy_initialised():
     return rclpy is not None and rclpy.ok()
 
 
-def _shut_rclpy_down_unless(initialised):
+def _check_rclpy_left_alone(initialised, what):
     if not initialised and _rclpy_initialised():
-        sys.modules['rclpy'].try_shutdown()
+        sys.modules['rclpy'].try_shutdown()     # so that the tests after it are not failed too
+        pytest.fail(f"{what} left rclpy's default context initialised: a later rclpy.init() in "
+                    'this process would fail with "Context.init() must only be called once"; '
+                    'shut it down (rclpy.try_shutdown()), or build the node without initialising '
+                    'it (RclpyNode runs on a context of its own where rclpy is not initialised)')
 
 
-# Where ROS 2 is sourced, a node built in this process on rclpy (transport auto) initialises
-# rclpy's default context and leaves it initialised, as ``rclpy.create_node`` after
-# ``rclpy.init`` does; a later test's own ``rclpy.init()``, or a node main called in process (its
-# ``rclpy.init`` comes first), then fails with 'Context.init() must only be called once'. So a
-# test, and a module (its fixtures), that initialised it has it shut down after; one initialised
-# before is left alone.
+# Where ROS 2 is sourced, nodes run on rclpy (transport auto). The default context belongs to a
+# process's node main and to the user's own rclpy.init(): a node built in process runs on a
+# context of its own where rclpy is not initialised (docs/transport.md), and a node main called in
+# process shuts the default context down when it returns. A test, or a module's fixtures, that
+# leave it initialised fail here, naming it.
 @pytest.fixture(autouse=True, scope='module')
 def _rclpy_default_context_left_by_a_module():
     initialised = _rclpy_initialised()
     yield
-    _shut_rclpy_down_unless(initialised)
+    _check_rclpy_left_alone(initialised, 'this module (its fixtures)')
 
 
 @pytest.fixture(autouse=True)
 def _rclpy_default_context_left_by_a_test():
     initialised = _rclpy_initialised()
     yield
-    _shut_rclpy_down_unless(initialised)
+    _check_rclpy_left_alone(initialised, 'this test')
 
 
 def pytest_configure(config):

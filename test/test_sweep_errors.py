@@ -160,7 +160,7 @@ def test_sweep_command_ctrl_c_keeps_the_finished_cases(controllers, tmp_path):
             if line.startswith('[2/3]'):
                 break
         process.send_signal(signal.SIGINT)  # the third case hangs: stop the sweep there
-        stdout, stderr = process.communicate(timeout=60)
+        stdout, stderr = process.communicate(timeout=EVENT_BOUND_S)
     finally:
         if process.poll() is None:
             process.kill()

@@ -32,7 +32,12 @@ from vehicle_sim.transport.qos import (
     QosProfile,
     TRANSIENT_LOCAL,
 )
-from vehicle_sim.transport.ros_args import params_file_overrides, parse_ros_args
+from vehicle_sim.transport.ros_args import (
+    params_file_overrides,
+    parse_ros_args,
+    rosout_wanted,
+    without_rosout_flags,
+)
 
 
 def test_ros_args_param_values_are_read_as_yaml_like_rcl():
@@ -50,6 +55,21 @@ def test_ros_args_later_sources_win_and_node_prefix_limits_scope():
     assert args.parameter_overrides('me', '/') == {'a': 2, 'b': 3}
     assert args.parameter_overrides('other', '/') == {'a': 2}
     assert args.non_ros_args == ['tail']
+
+
+def test_ros_args_rosout_flag_is_read_inside_ros_args_only_and_the_last_wins():
+    assert rosout_wanted(None) and rosout_wanted(['pytest', '-q'])
+    assert not rosout_wanted(['--ros-args', '--disable-rosout-logs'])
+    assert rosout_wanted(['--ros-args', '--disable-rosout-logs', '--enable-rosout-logs'])
+    assert not rosout_wanted(['--ros-args', '--log-level', 'warn', '--disable-rosout-logs',
+                              '-p', 'a:=1'])
+    # outside --ros-args it is the program's own argument, as rcl reads it
+    assert rosout_wanted(['prog', '--disable-rosout-logs'])
+    assert rosout_wanted(['prog', '--ros-args', '--disable-rosout-logs', '--', '--x']) is False
+    # a command line the parser refuses: the transport reports it, in its own words
+    assert rosout_wanted(['--ros-args', '-p'])
+    assert without_rosout_flags(['--ros-args', '--disable-rosout-logs', '--log-level', 'warn']) \
+        == ['--ros-args', '--log-level', 'warn']
 
 
 def test_ros_args_node_and_namespace_remaps_apply():

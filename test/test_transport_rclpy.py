@@ -18,6 +18,7 @@ rclpy adapter tests: the same node behaviour on a real rclpy Node.
 Run where ROS 2 Jazzy is sourced; elsewhere the module is skipped with the reason printed.
 """
 
+import json
 import signal
 import subprocess
 import sys
@@ -110,6 +111,59 @@ def test_rclpy_node_logger_reaches_rosout_as_rclpy_does_by_default(context):
     finally:
         listener.shutdown()
         talker.shutdown()
+
+
+# A helper node built where nothing initialised rclpy (vehicle_sim.testing's client, with
+# --disable-rosout-logs), then the user's own rclpy.init() and nodes, in one fresh process: its
+# logging state is rclpy's per process (the first context configures it), so no other test's
+# context can change the outcome.
+OWN_CONTEXT_SCRIPT = textwrap.dedent("""
+    import json
+    import rclpy
+    from vehicle_sim.transport.qos import QOS_ROSOUT
+    from vehicle_sim.transport.rclpy_adapter import RclpyNode
+
+    helper = RclpyNode('helper', '/ctx', args=['--ros-args', '--disable-rosout-logs'])
+    found = {'default_free': not rclpy.ok()}
+    rclpy.init()                        # the user's own, after the helper
+    talker = RclpyNode('talker', '/ctx')
+    listener = RclpyNode('listener', '/ctx')
+    records = []
+    listener.create_subscription('rcl_interfaces/msg/Log', '/rosout', records.append, QOS_ROSOUT)
+    talker.get_logger().warn('heard on rosout')
+    helper.get_logger().warn('not on rosout')
+    for _ in range(500):
+        if any(r.name == 'ctx.talker' for r in records):
+            break
+        for node in (talker, listener, helper):
+            node.spin_once(0.01)
+    found['rosout'] = sorted({r.name for r in records if r.name.startswith('ctx.')})
+    found['rosout_publishers'] = sorted(
+        info.node_name for info in listener.node.get_publishers_info_by_topic('/rosout')
+        if info.node_namespace == '/ctx')
+    helper_context = helper.node.context
+    helper.shutdown()
+    found['helper_context_shut'] = not helper_context.ok()
+    found['default_still_ok'] = rclpy.ok()
+    for node in (talker, listener):
+        node.shutdown()
+    rclpy.shutdown()
+    print(json.dumps(found), flush=True)
+""")
+
+
+def test_rclpy_helper_node_leaves_the_default_context_and_rosout_to_the_user():
+    done = subprocess.run([sys.executable, '-c', OWN_CONTEXT_SCRIPT], env=peer_env(),
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stdout + done.stderr
+    found = json.loads(done.stdout.strip().splitlines()[-1])
+    assert found == {
+        'default_free': True,           # the helper did not initialise the default context
+        'rosout': ['ctx.talker'],       # the user's node on /rosout; the helper kept off it
+        'rosout_publishers': ['listener', 'talker'],
+        'helper_context_shut': True,    # its own context ended with it
+        'default_still_ok': True,       # and the user's with the user
+    }
 
 
 def test_rclpy_node_warns_once_about_an_override_it_does_not_declare(context, capfd):

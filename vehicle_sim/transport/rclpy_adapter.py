@@ -35,6 +35,7 @@ group a waiting callback would stop the timer that completes it (and every other
 import collections
 import importlib
 import signal
+import sys
 import threading
 from typing import Any, Dict, List, Optional
 
@@ -44,6 +45,7 @@ from rcl_interfaces.msg import SetParametersResult as RclSetParametersResult
 import rclpy
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.clock import Clock, ClockType
+from rclpy.context import Context
 from rclpy.duration import Duration
 from rclpy.exceptions import ParameterException
 from rclpy.executors import (
@@ -71,7 +73,11 @@ from vehicle_sim.transport.parameter_types import (
     wrong_type_reason,
 )
 from vehicle_sim.transport.qos import as_qos, KEEP_ALL, QOS_SERVICES, RELIABLE, TRANSIENT_LOCAL
-from vehicle_sim.transport.ros_args import unknown_overrides_warning
+from vehicle_sim.transport.ros_args import (
+    rosout_wanted,
+    unknown_overrides_warning,
+    without_rosout_flags,
+)
 from vehicle_sim.transport.ros_time import Time
 from vehicle_sim.transport.stop_signals import StopSignals
 
@@ -205,16 +211,32 @@ class RclpyNode(port.NodePort):
 
     :param name: node name.
     :param namespace: node namespace.
-    :param args: the command line; initialises rclpy with it when rclpy is not yet initialised,
-        else it is given to the node as ``cli_args``.
+    :param args: the command line (None: ``sys.argv``, as rclpy reads it). Given to the node as
+        ``cli_args`` where its context is initialised already, else the arguments the node's
+        own context is initialised with (below); ``--disable-rosout-logs`` keeps this node off
+        /rosout either way (rclpy's ``enable_rosout=False``), as on the embedded transport.
     :param parameter_overrides: parameter values that win over the command line.
+    :param context: the rclpy Context to run on; None = rclpy's default context where it is
+        initialised (a node main: :func:`run_rclpy_node`, or the user's ``rclpy.init()``), else a
+        Context of this node's own, initialised here and shut down with the node. So a node
+        built where nothing initialised rclpy (vehicle_sim.testing's client, a scenario run over
+        the wire, a node built in a script) leaves the default context to the user's own
+        ``rclpy.init()``, and its arguments never become the process's global ROS arguments.
     """
 
     def __init__(self, name: str, namespace: str = '', args=None,
                  parameter_overrides: Optional[Dict[str, Any]] = None, context=None):
         cli_args = None
         self._shutdown_requested = False
-        if not rclpy.ok(context=context):
+        self._own_context = None
+        rosout = rosout_wanted(sys.argv if args is None else args)
+        if context is None and not rclpy.ok():
+            context = self._own_context = Context()
+            # rclpy configures the process's logging from the first context initialised (until
+            # every context is shut down): without the rosout flags, so that a helper keeping
+            # itself off /rosout does not keep the user's nodes off it too
+            context.init(without_rosout_flags(sys.argv if args is None else args))
+        elif not rclpy.ok(context=context):
             rclpy.init(args=args, context=context)
         elif args:
             cli_args = list(args)
@@ -223,8 +245,10 @@ class RclpyNode(port.NodePort):
             self.node = Node(
                 name, namespace=namespace or None, context=context, cli_args=cli_args,
                 parameter_overrides=[RclpyParameter(k, value=v)
-                                     for k, v in (parameter_overrides or {}).items()])
+                                     for k, v in (parameter_overrides or {}).items()],
+                enable_rosout=rosout)
         except _rclpy.RCLError as error:
+            self._shut_own_context()
             # rcl says only 'error creating node'; the RMW printed its reason (a DDS
             # configuration it refused, say) on stderr just before
             raise TransportError(
@@ -453,6 +477,14 @@ class RclpyNode(port.NodePort):
             self.executor.remove_node(self.node)
             self.node.destroy_node()
             self.node = None
+            if self._own_context is not None:
+                self.executor.shutdown()
+            self._shut_own_context()
+
+    def _shut_own_context(self) -> None:
+        if self._own_context is not None:
+            self._own_context.try_shutdown()
+            self._own_context = None
 
 
 def _complete(waiting: RclpyFuture, done: Future) -> None:

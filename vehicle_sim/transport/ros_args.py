@@ -37,8 +37,9 @@ from vehicle_sim.transport.names import normalize_namespace, resolve_name
 from vehicle_sim.transport.parameter_types import normalize_parameter_value, parameter_type_of
 
 LOG_LEVELS = {'debug': 10, 'info': 20, 'warn': 30, 'warning': 30, 'error': 40, 'fatal': 50}
+ROSOUT_FLAGS = ('--enable-rosout-logs', '--disable-rosout-logs')
 _FLAGS_WITHOUT_VALUE = {
-    '--enable-rosout-logs', '--disable-rosout-logs', '--enable-stdout-logs',
+    *ROSOUT_FLAGS, '--enable-stdout-logs',
     '--disable-stdout-logs', '--enable-external-lib-logs', '--disable-external-lib-logs',
 }
 
@@ -127,6 +128,23 @@ def _split_assignment(text: str, flag: str) -> Tuple[Optional[str], str, str]:
     if not left:
         raise TransportError(f'{flag} expects [node:]name:=value, got {text!r}')
     return node, left, value
+
+
+def rosout_wanted(args: Optional[Sequence[str]]) -> bool:
+    """
+    Return whether a command line leaves its node on /rosout (the last rosout flag wins).
+
+    True for a command line :func:`parse_ros_args` refuses: the transport reports it.
+    """
+    try:
+        return parse_ros_args(args).rosout_logs
+    except TransportError:
+        return True
+
+
+def without_rosout_flags(args: Sequence[str]) -> List[str]:
+    """Return a command line without its ``--enable-rosout-logs``/``--disable-rosout-logs``."""
+    return [arg for arg in args if arg not in ROSOUT_FLAGS]
 
 
 def parse_ros_args(args: Optional[Sequence[str]]) -> RosArguments:
