@@ -166,6 +166,20 @@ def test_rclpy_helper_node_leaves_the_default_context_and_rosout_to_the_user():
     }
 
 
+def test_a_node_main_returning_by_itself_leaves_ctrl_c_to_the_caller_and_its_children():
+    # A node main called in process (a test, a script) that returns without a signal (here:
+    # exit 2 on a bad parameter) restores the caller's SIGINT handler; it used to leave SIGINT
+    # ignored, which every child started later inherited (a sweep's Ctrl-C then hung).
+    from vehicle_sim.ros.diff_robot_node import main
+    before = signal.getsignal(signal.SIGINT)
+    assert main(['node', '--ros-args', '-r', '__ns:=/main_returns', '-p', 'x:=.nan']) == 2
+    assert signal.getsignal(signal.SIGINT) is before
+    child = subprocess.run(
+        [sys.executable, '-c', 'import signal; print(signal.getsignal(signal.SIGINT).__name__)'],
+        capture_output=True, text=True, timeout=60)
+    assert child.stdout.strip() == 'default_int_handler', child.stderr
+
+
 def test_rclpy_node_warns_once_about_an_override_it_does_not_declare(context, capfd):
     node = RclpyNode('override_user', context=context,
                      parameter_overrides={'gian': 2.0, 'gain': 3.0})

@@ -574,5 +574,11 @@ def run_rclpy_node(node_factory, args=None) -> int:
             rclpy.try_shutdown()
             if previous:
                 restore()
-                signal.signal(signal.SIGINT, signal.SIG_IGN)   # the process is ending
+                if stop.signum is not None:
+                    # A signal ended the node: the process is ending, and under ros2 launch a
+                    # second Ctrl-C follows the first, which must not raise into its exit. A
+                    # main that returned by itself (exit 2, say) leaves the caller's handlers as
+                    # they were: SIG_IGN would stay in force, in the process and in every child
+                    # it starts later.
+                    signal.signal(signal.SIGINT, signal.SIG_IGN)
     return stop.exit_status
