@@ -167,22 +167,28 @@ def test_client_calls_every_service_the_node_serves_sim_reset_and_sim_pause_too(
         # Reached the node: a synchronous simulation refuses to pause (its clients step it).
         assert car.call('/sim/pause', True).success is False
         # One table: every service the node announces (its own, not rcl_interfaces' parameter
-        # services) is a name the client takes.
-        with GraphView() as graph:
-            assert graph.wait_until(lambda: '/sim/pause' in graph.services(), 30.0)
-            # the request readers of the node's process (the one serving /sim/pause)
+        # services) is a name the client takes. Every ROS 2 node's own services: the
+        # rcl_interfaces parameter services, and on rclpy (Jazzy) type_description_interfaces'
+        # get_type_description.
+        node_services = {'/automobile/' + name for name in (
+            'describe_parameters', 'get_parameters', 'get_parameter_types', 'list_parameters',
+            'set_parameters', 'set_parameters_atomically', 'get_type_description')}
+        expected = node_services - {'/automobile/get_type_description'}
+
+        def served_by_the_node(graph):
+            # the request readers of the node's process (the one serving /sim/pause); the
+            # client's request writers are on the graph too, and may be discovered first
             readers = [e for e in graph.endpoints()
                        if not e.is_writer and e.dds_topic.startswith('rq/')]
             node = {e.participant for e in readers
                     if demangle_service(e.dds_topic) == '/sim/pause'}
-            served = {demangle_service(e.dds_topic) for e in readers
-                      if e.participant in node} - {None}
-        # Every ROS 2 node's own services: the rcl_interfaces parameter services, and on rclpy
-        # (Jazzy) type_description_interfaces' get_type_description.
-        node_services = {'/automobile/' + name for name in (
-            'describe_parameters', 'get_parameters', 'get_parameter_types', 'list_parameters',
-            'set_parameters', 'set_parameters_atomically', 'get_type_description')}
-        assert node_services - {'/automobile/get_type_description'} <= served
+            return {demangle_service(e.dds_topic) for e in readers
+                    if e.participant in node} - {None}
+
+        with GraphView() as graph:
+            graph.wait_until(lambda: expected <= served_by_the_node(graph), 30.0)
+            served = served_by_the_node(graph)
+        assert expected <= served
         served -= node_services
         assert '/sim/reset' in served and '/automobile/set_gear' in served
         for name in served:
