@@ -24,6 +24,8 @@ once; the ``build`` it returns makes one message from a stamp and a core value
 (core/map/lane_state.LaneState, core/map/lane_invasion.LaneInvasion, a LaneGraph).
 """
 
+from typing import NamedTuple
+
 import numpy as np
 
 from vehicle_sim.core.map.lane_geometry import (
@@ -102,9 +104,27 @@ def lane_invasion_builder(msg, frame_id: str):
     return build
 
 
-def lane_markers_builder(msg, frame_id: str):
+class MarkerPart(NamedTuple):
     """
-    Return ``build(stamp, graph)``: visualization_msgs/MarkerArray of a LaneGraph (/map/lanes).
+    One marker of ``/map/lanes``, what its message and its bytes are made from.
+
+    :param ns: the marker's namespace; ``marker_id``: its id; ``kind``: its type (LINE_STRIP,
+        LINE_LIST or TRIANGLE_LIST).
+    :param points: float64 array (N, 3) of its points [m].
+    :param rgba: its colour; ``scale``: its scale (x, y, z).
+    """
+
+    ns: str
+    marker_id: int
+    kind: int
+    points: np.ndarray
+    rgba: tuple
+    scale: tuple
+
+
+def lane_marker_parts(graph):
+    """
+    Return the markers of a LaneGraph's ``/map/lanes`` as :class:`MarkerPart` rows, in order.
 
     Namespaces: ``road_surface`` (one triangle list), ``lane_boundaries`` (one marker per
     boundary, its id the boundary's modulo 2^31: a line strip, dashes as a line list, coloured by
@@ -115,69 +135,89 @@ def lane_markers_builder(msg, frame_id: str):
     triangle list per other area in its kind's colour, core/map/lane_geometry.py's
     ``area_color``, its id the area's) and ``traffic_lights`` (the lamps' housings, id 0, and
     their poles, id 1: triangle lists of the boxes the physics builds; the bulbs change with
-    the signals: :func:`traffic_light_markers_builder`).
+    the signals: :func:`traffic_light_markers_builder`). A line's scale is (width, 0, 0), a
+    triangle list's (1, 1, 1).
+    """
+    def line(ns, marker_id, kind, xy, z, rgba, width):
+        return MarkerPart(ns, marker_id, kind, _at_height(xy, z), rgba, (width, 0.0, 0.0))
+
+    def mesh(ns, marker_id, points, rgba):
+        return MarkerPart(ns, marker_id, TRIANGLE_LIST, points, rgba, (1.0, 1.0, 1.0))
+
+    parts = [mesh('road_surface', 0, _triangles(surface_mesh(graph), 0.0), SURFACE_COLOR)]
+    for boundary in graph.boundaries():
+        rgba = LINE_COLORS[boundary.line_type]
+        if 'dashed' in boundary.line_type:
+            xy, kind = _dash_ends(boundary.points), LINE_LIST
+        else:
+            xy, kind = boundary.points, LINE_STRIP
+        parts.append(line('lane_boundaries', boundary.id % 2 ** 31, kind, xy, 0.01, rgba, 0.15))
+    for index, lane in enumerate(graph.lanes.values()):
+        parts.append(line('centrelines', index, LINE_STRIP, lane.centerline, 0.02,
+                          CENTRELINE_COLOR, 0.05))
+    rules = graph.rules
+    for stop_line in rules.stop_lines:
+        parts.append(line('stop_lines', stop_line.id % 2 ** 31, LINE_STRIP, stop_line.points,
+                          0.015, PAINT_COLOR, STOP_LINE_WIDTH_M))
+    found = lamps(graph)
+    for index, (corners, rgba) in enumerate((
+            (housing_corners(found), HOUSING_COLOR),
+            (pole_corners(poles(graph, found)), POLE_COLOR))):
+        if len(corners):
+            parts.append(mesh('traffic_lights', index, _triangles(box_mesh(corners)), rgba))
+    for area in rules.areas:
+        if area.kind in ROAD_AREA_KINDS:        # in the road surface
+            continue
+        if area.kind == 'crosswalk':
+            stripes = [_triangles(polygon_mesh(stripe), 0.012)
+                       for stripe in zebra_stripes(area.polygon)]
+            points = np.concatenate(stripes) if stripes else np.empty((0, 3))
+            ns = 'crosswalks'
+        else:
+            points, ns = _triangles(polygon_mesh(area.polygon), 0.005), 'areas'
+        if len(points):
+            parts.append(mesh(ns, area.id % 2 ** 31, points, area_color(area.kind)))
+    return parts
+
+
+def _at_height(xy, z):
+    """Return the points (x, y) of ``xy`` at height ``z`` as a float64 array (N, 3)."""
+    xy = np.asarray(xy, dtype=float).reshape(-1, 2)
+    return np.column_stack((xy, np.full(len(xy), float(z))))
+
+
+def _triangles(mesh, z=None):
+    """Return a mesh's triangles' corners (N, 3): at height ``z`` [m] (flat), or its own."""
+    corners = np.asarray(mesh.vertices, dtype=float)[np.asarray(mesh.triangles).reshape(-1)]
+    corners = corners.reshape(-1, 3).copy()
+    if z is not None:
+        corners[:, 2] = z
+    return corners
+
+
+def lane_markers_builder(msg, frame_id: str):
+    """
+    Return ``build(stamp, graph)``: visualization_msgs/MarkerArray of a LaneGraph (/map/lanes).
+
+    The markers of :func:`lane_marker_parts`, in ``frame_id``; ros/lane_cdr.py's
+    ``lane_markers_serializer`` gives the same message's bytes.
     """
     marker_type, array_type = msg(MARKER), msg(MARKER_ARRAY)
     header_type, point_type, color_type = msg(HEADER), msg(POINT), msg(COLOR)
 
-    def points(xy, z=0.01):
-        return [point_type(x=float(x), y=float(y), z=z) for x, y in xy]
-
-    def marker(stamp, ns, marker_id, kind, pts, rgba, width):
-        r, g, b, a = rgba
-        item = marker_type(header=header_type(stamp=stamp, frame_id=frame_id), ns=ns,
-                           id=marker_id, type=kind, action=0, points=pts,
+    def marker(stamp, part):
+        r, g, b, a = part.rgba
+        item = marker_type(header=header_type(stamp=stamp, frame_id=frame_id), ns=part.ns,
+                           id=part.marker_id, type=part.kind, action=0,
+                           points=[point_type(x=x, y=y, z=z)
+                                   for x, y, z in part.points.tolist()],
                            color=color_type(r=r, g=g, b=b, a=a))
         item.pose.orientation.w = 1.0
-        item.scale.x = width
-        if kind == TRIANGLE_LIST:
-            item.scale.x = item.scale.y = item.scale.z = 1.0
+        item.scale.x, item.scale.y, item.scale.z = part.scale
         return item
 
-    def triangles(mesh, z=None):
-        """Return a mesh's triangles' corners: at height ``z`` [m] (flat), or its own."""
-        return [point_type(x=float(v[0]), y=float(v[1]), z=float(v[2]) if z is None else z)
-                for v in mesh.vertices[mesh.triangles.reshape(-1)]]
-
     def build(stamp, graph):
-        markers = [marker(stamp, 'road_surface', 0, TRIANGLE_LIST,
-                          triangles(surface_mesh(graph), 0.0), SURFACE_COLOR, 1.0)]
-        for boundary in graph.boundaries():
-            rgba = LINE_COLORS[boundary.line_type]
-            if 'dashed' in boundary.line_type:
-                pts = points(_dash_ends(boundary.points))
-                kind = LINE_LIST
-            else:
-                pts, kind = points(boundary.points), LINE_STRIP
-            markers.append(marker(stamp, 'lane_boundaries', boundary.id % 2 ** 31, kind, pts,
-                                  rgba, 0.15))
-        for index, lane in enumerate(graph.lanes.values()):
-            markers.append(marker(stamp, 'centrelines', index, LINE_STRIP,
-                                  points(lane.centerline, 0.02), CENTRELINE_COLOR, 0.05))
-        rules = graph.rules
-        for line in rules.stop_lines:
-            markers.append(marker(stamp, 'stop_lines', line.id % 2 ** 31, LINE_STRIP,
-                                  points(line.points, 0.015), PAINT_COLOR, STOP_LINE_WIDTH_M))
-        found = lamps(graph)
-        for index, (corners, rgba) in enumerate((
-                (housing_corners(found), HOUSING_COLOR),
-                (pole_corners(poles(graph, found)), POLE_COLOR))):
-            if len(corners):
-                markers.append(marker(stamp, 'traffic_lights', index, TRIANGLE_LIST,
-                                      triangles(box_mesh(corners)), rgba, 1.0))
-        for area in rules.areas:
-            if area.kind in ROAD_AREA_KINDS:        # in the road surface
-                continue
-            if area.kind == 'crosswalk':
-                stripes = [polygon_mesh(stripe) for stripe in zebra_stripes(area.polygon)]
-                pts = [p for stripe in stripes for p in triangles(stripe, 0.012)]
-                ns = 'crosswalks'
-            else:
-                pts, ns = triangles(polygon_mesh(area.polygon), 0.005), 'areas'
-            if pts:
-                markers.append(marker(stamp, ns, area.id % 2 ** 31, TRIANGLE_LIST, pts,
-                                      area_color(area.kind), 1.0))
-        return array_type(markers=markers)
+        return array_type(markers=[marker(stamp, part) for part in lane_marker_parts(graph)])
     return build
 
 

@@ -36,6 +36,7 @@ from vehicle_sim.core.geometry.frames import quaternion_from_yaw
 from vehicle_sim.core.map.kinds import is_lane_map
 from vehicle_sim.ros import messages as m
 from vehicle_sim.ros.endpoints import converter, ONCE_LATCHED, Outputs, Topic
+from vehicle_sim.ros.lane_cdr import lane_markers_serializer
 from vehicle_sim.ros.lane_messages import lane_markers_builder, MARKER_ARRAY
 from vehicle_sim.transport.qos import QOS_LATCHED
 
@@ -53,7 +54,7 @@ MAP_METADATA = Topic('/map_metadata', m.MAP_META_DATA, QOS_LATCHED, ONCE_LATCHED
 
 MAP_LANES = Topic('/map/lanes', MARKER_ARRAY, QOS_LATCHED, ONCE_LATCHED,
                   converter(lane_markers_builder, lambda ctx: (ctx.stamp, ctx.lanes),
-                            lambda w: (w.lanes_frame,)),
+                            lambda w: (w.lanes_frame,), serializer=lane_markers_serializer),
                   unit='m', doc='the lane map for RViz: road surface (triangle list), lane '
                                 'boundaries by line type, centrelines, and the stop lines, '
                                 'crosswalks, areas and traffic light heads and poles of its '

@@ -113,9 +113,13 @@ def predicted_objects_serializer(frame_id: str):
     return serialize
 
 
-def _marker_tail() -> bytes:
-    # What follows frame_locked in a Marker without points, texture, text or mesh: constant
-    # bytes from a 4-aligned offset (every field in it is 4-aligned or a byte).
+def marker_tail() -> bytes:
+    """
+    Return what follows frame_locked in a Marker without points, texture, text or mesh.
+
+    Constant bytes from a 4-aligned offset (every field in it is 4-aligned or a byte): the
+    points' count, the colours' count, and the empty rest.
+    """
     out = CdrWriter()
     empty = cdr_string('')
     for part in (_U32.pack(0), _U32.pack(0), empty,          # points, colors, texture_resource
@@ -129,7 +133,7 @@ def _marker_tail() -> bytes:
 
 def traffic_markers_serializer(frame_id: str, colours=()):
     """Return ``serialize(stamp, objects)``: the traffic MarkerArray's bytes (see its builder)."""
-    frame, ns, tail = cdr_string(frame_id), cdr_string('traffic'), _marker_tail()
+    frame, ns, tail = cdr_string(frame_id), cdr_string('traffic'), marker_tail()
     shown = set()
     markers = tm.MARKER_OF_SHAPE
 
