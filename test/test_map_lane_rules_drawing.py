@@ -111,6 +111,39 @@ def test_areas_are_their_polygons_flat_in_their_kinds_colour_and_concave_ones_to
     assert len(polygon_triangles([(0, 0), (1, 1), (2, 2)])) == 0       # no area, no triangle
 
 
+def test_the_first_try_ears_are_the_general_loops_triangles_or_none():
+    # polygon_triangles takes the ears of a small polygon in plain floats where each is found at
+    # its first try: the same triangles, index for index, as the general loop's, or it defers.
+    from vehicle_sim.core.map import lane_geometry
+    rng = np.random.default_rng(3)
+    taken = deferred = 0
+    for trial in range(3000):
+        n = int(rng.integers(3, 13))
+        angles = np.sort(rng.uniform(0.0, 2.0 * np.pi, n))
+        radius = rng.uniform(0.5, 2.0, n) if trial % 3 == 1 else np.ones(n)     # star-shaped
+        points = np.column_stack((radius * np.cos(angles), radius * np.sin(angles)))
+        points *= rng.uniform(0.01, 100.0)
+        if trial % 3 == 2:      # a rectangle with a collinear corner, clockwise or not, rounded
+            w, h = rng.uniform(0.1, 5.0, 2)
+            points = np.round([(0, 0), (w / 2, 0), (w, 0), (w, h), (0, h)],
+                              int(rng.integers(0, 4)))[::int(rng.choice((1, -1)))]
+        x, y = points.T
+        area = 0.5 * (x @ np.roll(y, -1) - y @ np.roll(x, -1))
+        if abs(area) < 1e-9:
+            continue
+        order = list(range(n if trial % 3 != 2 else 5))
+        order = order if area > 0 else order[::-1]
+        first = lane_geometry._first_try_ears(points.tolist(), order)
+        general = lane_geometry._clip_ears(points, order)
+        assert np.array_equal(polygon_triangles(points), np.array(general).reshape(-1, 3))
+        if first is None:
+            deferred += 1
+        else:
+            taken += 1
+            assert first == general, points
+    assert taken > 1000 and deferred > 500        # both ways were tried
+
+
 # ------------------------------------------------------------------------------ physics
 
 TOP_PX, TOP_FOV_DEG, TOP_HEIGHT_M = 400, 60.0, 30.0

@@ -55,7 +55,7 @@ from vehicle_sim.core.map.signal_lamps import (
 from vehicle_sim.physics.lane_layer import (
     inside_boxes,
     visual_bodies,
-    visual_body,
+    visual_body_copies,
 )
 
 LAMPS_BODY_NAME = 'signal_lamps'
@@ -92,8 +92,8 @@ class SignalLamps:
             pybullet.GEOM_MESH, vertices=sphere.vertices.tolist(),
             indices=sphere.triangles.reshape(-1).tolist(),
             rgbaColor=list(lamp_color('red', 'off')), physicsClientId=cid)
-        self.lamp_ids = tuple(visual_body(world, sphere, (lamp.bulb.x_m, lamp.bulb.y_m,
-                                                          lamp.bulb.z_m)) for lamp in self.lamps)
+        self.lamp_ids = visual_body_copies(world, sphere, [
+            (lamp.bulb.x_m, lamp.bulb.y_m, lamp.bulb.z_m) for lamp in self.lamps])
         for body_id in self.housing_ids + self.pole_ids:
             world.labels.set(body_id, 'traffic_light')
         # a group's lamps are one object (recognition, instance images): its signal

@@ -249,6 +249,48 @@ def polygon_triangles(points) -> np.ndarray:
     if abs(area) < 1e-9:
         return np.zeros((0, 3), dtype=np.int64)
     order = list(range(n)) if area > 0 else list(range(n - 1, -1, -1))
+    found = _first_try_ears(points.tolist(), order) if n <= _FIRST_TRY_MAX else None
+    if found is None:
+        found = _clip_ears(points, order)
+    return np.array(found, dtype=np.int64).reshape(-1, 3)
+
+
+# Polygons of up to this many corners try _first_try_ears first (a crosswalk's stripes, a
+# junction's corners): a loop in plain floats, without the general loop's numpy per ear.
+_FIRST_TRY_MAX = 12
+
+
+def _first_try_ears(points, order):
+    """
+    Return :func:`_clip_ears`' triangles where every ear is found at its first try, else None.
+
+    That is where each corner the clipping visits, (last, order[j], order[j + 1]), turns left by
+    more than the collinear tolerance and holds none of the corners still to clip (a convex
+    polygon without collinear corners): the clipping then takes the fan of ``order[-1]``, and
+    its last triangle as the general loop writes it. The same tests, in the same arithmetic, as
+    :func:`_clip_ears`: the same triangles where it answers.
+    """
+    corners = [points[k] for k in order]
+    n = len(order)
+    last = corners[-1]
+    found = []
+    for j in range(n - 3):
+        pb, pc = corners[j], corners[j + 1]
+        if not _cross(last, pb, pc) > 1e-12:
+            return None
+        for q in corners[j + 2:n - 1]:
+            if (_cross(last, pb, q) >= 0.0 and _cross(pb, pc, q) >= 0.0
+                    and _cross(pc, last, q) >= 0.0):
+                return None
+        found.append((order[-1], order[j], order[j + 1]))
+    if _cross(corners[n - 3], corners[n - 2], last) > 1e-12:
+        found.append((order[n - 3], order[n - 2], order[-1]))
+    return found
+
+
+def _clip_ears(points, order):
+    """Return the ears of the polygon ``points[order]`` (counter-clockwise), clipped in turn."""
+    order = list(order)
     found: List[Tuple[int, int, int]] = []
     i, misses = 0, 0
     while len(order) > 3 and misses < len(order):   # a full round without an ear: stop
@@ -276,7 +318,7 @@ def polygon_triangles(points) -> np.ndarray:
         misses += 1
     if len(order) == 3 and _cross(*(points[k] for k in order)) > 1e-12:
         found.append(tuple(order))
-    return np.array(found, dtype=np.int64).reshape(-1, 3)
+    return found
 
 
 def polygon_mesh(polygon, z_m=0.0) -> Mesh:

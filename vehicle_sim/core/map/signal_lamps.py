@@ -105,10 +105,9 @@ def lamp_color(bulb_color: str, state: str):
     return LAMP_COLORS[bulb_color] if lit(bulb_color, state) else DARK_LAMP_COLOR
 
 
-def _facing(graph, group) -> float:
-    # The lamps look against the traffic of the group's first stop line's lane (or first lane).
-    rules = graph.rules
-    lines = {line.id: line for line in rules.stop_lines}
+def _facing(graph, group, lines) -> float:
+    # The lamps look against the traffic of the group's first stop line's lane (or first lane);
+    # ``lines``: {id: StopLine} of the rules.
     for line_id in group.stop_lines:
         line = lines.get(line_id)
         if line is not None:
@@ -120,9 +119,10 @@ def _facing(graph, group) -> float:
 def lamps(graph) -> Tuple[Lamp, ...]:
     """Return every bulb of the lane map's traffic light groups as a Lamp, in group order."""
     found = []
+    lines = {line.id: line for line in graph.rules.stop_lines}
     for group in graph.rules.groups:
         if group.bulbs:
-            yaw = wrap_angle_rad(_facing(graph, group))
+            yaw = wrap_angle_rad(_facing(graph, group, lines))
             found.extend(Lamp(group.id, bulb, yaw) for bulb in group.bulbs)
     return tuple(found)
 
