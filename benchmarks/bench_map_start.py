@@ -28,7 +28,10 @@ junctions). For each:
   (``build_scene`` of that spec: bodies, traffic, lamps), and the latched
   ``/map/lanes`` MarkerArray (every point of the map's surface, lines and areas) two ways, in
   the same run: its builder's message serialized by cyclonedds-python's generic serializer (what
-  the node did before ros/lane_cdr.py), and the fast serializer the node uses now.
+  the node did before ros/lane_cdr.py), and the fast serializer the node uses now;
+- a basic step of the world (CPU time, the car at rest, no traffic stepping apart from the
+  world's own) before anything draws it and after (``World.prepare_render``, what a camera does
+  first: the signal lamps are made then, each a body Bullet's step walks over).
 
 Run: ``.venv/bin/python benchmarks/bench_map_start.py [--quick] [--repeats N]``.
 """
@@ -51,6 +54,7 @@ sys.path.insert(0, str(REPO / 'config' / 'maps'))
 WORLDS = REPO / 'config' / 'worlds'
 BIG_GRID = 12            # junctions a side of the generated city
 READY = 'automobile ready'
+STEPS = 1000           # basic steps timed, before and after the world is first drawn
 
 
 def _have(module):
@@ -110,6 +114,16 @@ def node_start_s(world, repeats):
     return statistics.median(times)
 
 
+def _step_us(world, steps=STEPS):
+    """Return the CPU time of a basic step of the world [us] (the car at rest)."""
+    for _ in range(50):
+        world.step()
+    start = time.process_time()
+    for _ in range(steps):
+        world.step()
+    return (time.process_time() - start) / steps * 1e6
+
+
 def in_process(world):
     """Return the map's parts of the start [s] and the size of /map/lanes [MB]."""
     from vehicle_msgs_py import message_type
@@ -123,7 +137,11 @@ def in_process(world):
     loaded = time.perf_counter()
     scene = build_scene(spec)
     built = time.perf_counter()
-    scene.world.close()
+    world = scene.world
+    undrawn_us = _step_us(world)
+    world.prepare_render()              # what a camera does first: the lamps are made
+    drawn_us = _step_us(world)
+    world.close()
     stamp = message_type('builtin_interfaces/msg/Time')(sec=1, nanosec=0)
     graph = spec.lanes
     start_generic = time.perf_counter()
@@ -133,7 +151,8 @@ def in_process(world):
     end = time.perf_counter()
     if fast != generic:
         raise RuntimeError(f'{world}: the fast /map/lanes bytes differ from the generic ones')
-    return {'load_s': loaded - start, 'build_s': built - loaded,
+    return {'load_s': loaded - start, 'build_s': built - loaded, 'step_us': undrawn_us,
+            'drawn_step_us': drawn_us,
             'generic_s': start_fast - start_generic, 'fast_s': end - start_fast,
             'lanes_mb': len(fast) / 1e6}
 
@@ -159,10 +178,11 @@ def main(argv=None):
     rows = figures(args.quick, args.repeats)
     print(f'load average {os.getloadavg()[0]:.1f}')
     print(f"{'world':28} {'node ready':>10} {'map load':>9} {'scene':>7} "
-          f"{'/map/lanes':>10} {'generic':>8} {'fast':>7}")
+          f"{'/map/lanes':>10} {'generic':>8} {'fast':>7} {'step':>8} {'drawn':>8}")
     for name, f in rows:
         print(f"{name:28} {f['node_start_s']:9.2f}s {f['load_s']:8.2f}s {f['build_s']:6.2f}s "
-              f"{f['lanes_mb']:8.2f}MB {f['generic_s']:7.3f}s {f['fast_s']:6.3f}s")
+              f"{f['lanes_mb']:8.2f}MB {f['generic_s']:7.3f}s {f['fast_s']:6.3f}s "
+              f"{f['step_us']:6.0f}us {f['drawn_step_us']:6.0f}us")
     return 0
 
 

@@ -23,11 +23,12 @@ without sensors for the steps, with a camera (320 x 240) for the frames. Printed
 
 - the bodies the rules' drawing adds to the lane layer (one per area kind: all white paint is
   one mesh) and those of the lamps (one per lamp, the housings' and the poles' meshes), and the
-  time to build the lamps;
+  time to build the lamps (their bodies made, as when the world is first drawn);
 - a lamp update when no state changed (what every step pays: a dict of states compared), and
   per lamp recoloured when the states change (PyBullet's changeVisualShape);
 - ``World.step`` with the lamps over without, interleaved blocks, CPU time (the plan runs:
-  states change at their times);
+  states change at their times), the lamps' world drawn once first (``World.prepare_render``:
+  a world that nothing draws has no lamp bodies);
 - a camera frame with the lamps over without (the renderer draws their spheres and boxes).
 
 Run: ``.venv/bin/python benchmarks/bench_signal_lamps.py [--world NAME] [--quick]``.
@@ -89,6 +90,7 @@ def main(argv=None):
     start = time.perf_counter()
     lit = build_scene(spec)
     build_s = time.perf_counter() - start
+    lit.world.prepare_render()      # the lamp bodies are made when the world is first drawn
     dark = build_scene(spec, parts=(NoLamps(),))
     seen = [build_scene(world_spec(args.world, camera=True), mount=mount_suite, parts=parts)
             for parts in ((), (NoLamps(),))]
@@ -102,7 +104,8 @@ def main(argv=None):
               f'{len(rules.areas)} areas')
         with World() as alone:
             start = time.perf_counter()
-            SignalLampsPart(lamps.controller).build(alone, lit.spec)   # the lamps alone
+            part = SignalLampsPart(lamps.controller).build(alone, lit.spec)  # the lamps alone
+            part.make_lamp_bodies()     # (made when first drawn)
             lamps_build_ms = (time.perf_counter() - start) * 1e3
         print('| figure | value |\n|---|---|')
         print(f'| lane layer bodies (surface, areas, paint) | {len(roads.visual_ids)} |')

@@ -152,6 +152,7 @@ TOP_CENTRE = (-2.0, -3.0)
 
 def _top_view(world, centre=TOP_CENTRE, height_m=TOP_HEIGHT_M):
     """Render the ground from ``height_m`` above ``centre``; return ``pixel(x, y)`` -> RGB."""
+    world.prepare_render()          # the lamps are made when the world is first drawn
     cid = world.client_id
     cx, cy = centre
     view = pybullet.computeViewMatrix((cx, cy, height_m), (cx, cy, 0.0), (0.0, 1.0, 0.0),

@@ -33,6 +33,7 @@ import pytest
 from vehicle_sim.config import read_yaml, world_from_data, world_path
 from vehicle_sim.core.map.signal_lamps import DARK_LAMP_COLOR, HOUSING_DEPTH_M, LAMP_COLORS
 from vehicle_sim.core.map.signal_plan import FixedTimePlan, SignalController
+from vehicle_sim.core.sensors.labels import LABEL_IDS
 from vehicle_sim.physics import World
 from vehicle_sim.physics.scene import build_scene, mount_suite
 from vehicle_sim.physics.signal_lamps import LAMPS_BODY_NAME, SignalLamps, SignalLampsPart
@@ -147,9 +148,10 @@ def test_with_a_gui_window_the_lamps_follow_each_step_without_a_reader():
 def test_the_pole_is_solid_and_named_the_housings_and_lamps_are_not(scene):
     world = scene(sensors=())
     lamps = world.parts['signal_lamps']
-    # a lamp per bulb, a pole per light, the housings one mesh
-    assert len(lamps.lamp_ids) == 6 and len(lamps.pole_ids) == 2 and len(lamps.housing_ids) == 1
-    assert lamps.visual_shape_count == 9
+    # a pole per light, the housings one mesh; a lamp per bulb once the world is drawn
+    assert len(lamps.lamp_ids) == 0 and len(lamps.pole_ids) == 2 and len(lamps.housing_ids) == 1
+    world.world.prepare_render()
+    assert len(lamps.lamp_ids) == 6 and lamps.visual_shape_count == 9
     cid = world.world.client_id
     pole = lamps.poles[0]
     assert (pole.x_m, pole.y_m) == pytest.approx(
@@ -165,6 +167,43 @@ def test_the_pole_is_solid_and_named_the_housings_and_lamps_are_not(scene):
     # the lamps face the traffic of lane 1 (west), the pole stands behind them
     assert {round(lamp.yaw_rad, 6) for lamp in lamps.lamps if lamp.group_id == 11} == {
         round(math.pi, 6)}
+
+
+def lamp_rgba(world, body_id):
+    """Return the colour a lamp body is drawn in (PyBullet's visual shape data)."""
+    (shape,) = pybullet.getVisualShapeData(body_id, physicsClientId=world.client_id)
+    return tuple(round(c, 6) for c in shape[7])
+
+
+def test_the_lamps_are_made_when_the_world_is_first_drawn_in_the_states_of_then(scene):
+    # A world nothing draws has no lamp body (Bullet's step walks over every body it has); the
+    # first image makes them, lit as the groups are then, each labelled as its group's light.
+    world = scene()
+    lamps, controller = world.parts['signal_lamps'], world.parts['signals'].controller
+    bodies = pybullet.getNumBodies(physicsClientId=world.world.client_id)
+    for _ in range(250):                # 2.5 s: group 11 goes from green to yellow
+        world.world.step()
+        world.world.sync_bodies()       # rays and overlap checks read the world: no lamps made
+    assert lamps.lamp_ids == () and lamps.shown == controller.states() == {11: 'yellow',
+                                                                           12: 'red'}
+    assert pybullet.getNumBodies(physicsClientId=world.world.client_id) == bodies
+    assert _is_lit(_lamp_rgb(world, 'yellow'), 'yellow')      # a camera image makes them
+    assert _is_dark(_lamp_rgb(world, 'green')) and _is_dark(_lamp_rgb(world, 'red'))
+    assert len(lamps.lamp_ids) == 6
+    assert pybullet.getNumBodies(physicsClientId=world.world.client_id) == bodies + 6
+    drawn = {(lamp.group_id, lamp.bulb.color): lamp_rgba(world.world, body)
+             for lamp, body in zip(lamps.lamps, lamps.lamp_ids)}
+    assert drawn == {(group, color): tuple(round(c, 6) for c in (
+        LAMP_COLORS[color] if color == state else DARK_LAMP_COLOR))
+        for group, state in controller.states().items() for color in BULB_Z}
+    labels = world.world.labels
+    instances = {lamp.group_id: labels.instance(f'traffic_light_{lamp.group_id}')
+                 for lamp in lamps.lamps}
+    assert [labels.of(body) for body in lamps.lamp_ids] == [
+        (LABEL_IDS['traffic_light'], instances[lamp.group_id]) for lamp in lamps.lamps]
+    ids = lamps.lamp_ids
+    world.world.prepare_render()        # made once
+    assert lamps.lamp_ids == ids
 
 
 def test_a_car_pushed_into_a_pole_touches_it_and_is_stopped(scene):
@@ -203,9 +242,12 @@ def test_without_a_signal_controller_every_lamp_is_dark(scene):
     lamps = world.parts['signal_lamps']
     assert all(_is_dark(_lamp_rgb(world, color)) for color in BULB_Z)
     assert lamps.controller is None and lamps.changes == 0
-    with World() as alone:              # no controller, no parts: not even a hook
+    with World() as alone:              # no controller, no parts: drawn dark, never recoloured
         lamps = SignalLamps(alone, signal_crossing())
-        assert lamps not in alone.bodies
+        assert lamps.lamp_ids == () and lamps.refresh() == 0
+        alone.prepare_render()
+        assert len(lamps.lamp_ids) == 6 and lamps.changes == 0
+        assert {lamp_rgba(alone, body) for body in lamps.lamp_ids} == {DARK_LAMP_COLOR}
 
 
 def test_the_lamps_row_shows_the_world_signals_part_or_a_callers_own(scene):

@@ -66,7 +66,7 @@ class ChaseImage:
         if not all(math.isfinite(v) for v in eye):
             return np.zeros((self.height, self.width, 3), dtype=np.uint8)
         cid = self.world.client_id
-        self.world.sync_bodies()          # placed bodies (traffic) where they are now
+        self.world.prepare_render()       # lamps made, placed bodies (traffic) where they are
         matrix = pybullet.computeViewMatrix(list(eye), list(view.target_m), [0.0, 0.0, 1.0],
                                             physicsClientId=cid)
         _, _, rgba, _, _ = pybullet.getCameraImage(

@@ -125,30 +125,12 @@ def visual_body(world, visual, position=(0.0, 0.0, 0.0)) -> int:
     Nothing collides with it and rays pass it. It is a Bullet rigid body put to sleep (a
     multibody, PyBullet's default, costs every step about 1 us, even static and shapeless).
     """
-    return visual_body_copies(world, visual, [position])[0]
-
-
-def visual_body_copies(world, visual, positions) -> Tuple[int, ...]:
-    """
-    Return one :func:`visual_body` of the visual shape at each position, made in one call.
-
-    PyBullet's ``batchPositions``: each body is its own (moved, recoloured, removed alone); a
-    city's thousands of lamps are made in about half the time of one call each.
-    """
     cid = world.client_id
-    positions = [list(map(float, position)) for position in positions]
-    if not positions:
-        return ()
-    if len(positions) == 1:
-        ids = (pybullet.createMultiBody(0.0, -1, visual, basePosition=positions[0],
-                                        useMaximalCoordinates=True, physicsClientId=cid),)
-    else:
-        ids = tuple(pybullet.createMultiBody(0.0, -1, visual, batchPositions=positions,
-                                             useMaximalCoordinates=True, physicsClientId=cid))
-    for body_id in ids:
-        pybullet.changeDynamics(body_id, -1, activationState=pybullet.ACTIVATION_STATE_SLEEP,
-                                physicsClientId=cid)
-    return ids
+    body_id = pybullet.createMultiBody(0.0, -1, visual, basePosition=list(position),
+                                       useMaximalCoordinates=True, physicsClientId=cid)
+    pybullet.changeDynamics(body_id, -1, activationState=pybullet.ACTIVATION_STATE_SLEEP,
+                            physicsClientId=cid)
+    return body_id
 
 
 def visual_bodies(world, mesh: Mesh, rgba) -> Tuple[int, ...]:

@@ -20,7 +20,10 @@ The scene part ``signal_lamps`` (physics/scene.py) of a world whose lane map has
 groups with bulbs (``graph.rules``) draws what core/map/signal_lamps.py lays out:
 
 - each bulb a lamp, a visual-only sphere body of its own (its colour changes alone; a sleeping
-  rigid body, which the physics step does not visit: 60 lamps cost a step nothing measurable);
+  rigid body), made the first time the world is drawn (``World.prepare_render``: a camera, the
+  chase image) or at once with a GUI window. Rays pass the lamps, so a world that is never
+  drawn needs none, and Bullet's step still walks over every body it has, asleep or not: about
+  20 ns a body, 150 us a step for the 6 912 lamps of a city of 144 signalised junctions;
 - the housings, one visual-only mesh (a box behind each bulb);
 - the poles of the lights that stand off every lane, solid: a static box each, named
   ``signal_lamps`` (``World.add_static``), so that lidars and distance sensors see them,
@@ -47,6 +50,7 @@ from vehicle_sim.core.map.signal_lamps import (
     lamp_color,
     lamp_mesh,
     lamps,
+    lit,
     POLE_COLOR,
     pole_corners,
     POLE_WIDTH_M,
@@ -55,7 +59,7 @@ from vehicle_sim.core.map.signal_lamps import (
 from vehicle_sim.physics.lane_layer import (
     inside_boxes,
     visual_bodies,
-    visual_body_copies,
+    visual_body,
 )
 
 LAMPS_BODY_NAME = 'signal_lamps'
@@ -80,37 +84,72 @@ class SignalLamps:
         self._parts = parts
         self.lamps = lamps(graph)
         self.poles = poles(graph, self.lamps)
-        cid = self._cid = world.client_id
+        self._cid = world.client_id
         self.housing_ids = visual_bodies(world, box_mesh(housing_corners(self.lamps)),
                                          HOUSING_COLOR)
         self.pole_ids = tuple(self._pole_body(pole) for pole in self.poles)
         if self.pole_ids:
             world.add_static(LAMPS_BODY_NAME, self.pole_ids, inside_boxes(
                 pole_corners(self.poles)))
+        for body_id in self.housing_ids + self.pole_ids:
+            world.labels.set(body_id, 'traffic_light')
+        self.lamp_ids: Tuple[int, ...] = ()     # made when first drawn (make_lamp_bodies)
+        self._by_group: Dict[int, Tuple[int, ...]] = {}
+        for index, lamp in enumerate(self.lamps):
+            self._by_group[lamp.group_id] = self._by_group.get(lamp.group_id, ()) + (index,)
+        self.shown: Dict[int, str] = {group: 'off' for group in self._by_group}
+        self.changes = 0            # lamp colours changed so far (as the states changed)
+        self._states = None         # every group's state when the lamps were last coloured
+        self.refresh()
+        world.add_body(self)        # before_render; the hooks below with a controller
+        if world.gui:       # the window draws every frame: the lamps follow after each step
+            self.make_lamp_bodies()
+            if controller is not None or parts is not None:
+                world.add_body(_AfterEachStep(self.refresh))
+
+    def make_lamp_bodies(self) -> Tuple[int, ...]:
+        """
+        Make the lamps' bodies, in the colours shown now, if they are not made yet; return them.
+
+        Only images show the lamps (rays pass them), so they are made the first time the world
+        is drawn (``World.prepare_render``) or at once with a GUI window: a world that is never
+        drawn does not pay Bullet's pass over each of them at every step (about 20 ns a body,
+        150 us a step for a city of 144 signalised junctions).
+        """
+        if self.lamp_ids or not self.lamps:
+            return self.lamp_ids
+        world, cid = self.world, self._cid
         sphere = lamp_mesh()
         sphere = pybullet.createVisualShape(
             pybullet.GEOM_MESH, vertices=sphere.vertices.tolist(),
             indices=sphere.triangles.reshape(-1).tolist(),
             rgbaColor=list(lamp_color('red', 'off')), physicsClientId=cid)
-        self.lamp_ids = visual_body_copies(world, sphere, [
-            (lamp.bulb.x_m, lamp.bulb.y_m, lamp.bulb.z_m) for lamp in self.lamps])
-        for body_id in self.housing_ids + self.pole_ids:
-            world.labels.set(body_id, 'traffic_light')
+        self.lamp_ids = tuple(visual_body(world, sphere, (lamp.bulb.x_m, lamp.bulb.y_m,
+                                                          lamp.bulb.z_m)) for lamp in self.lamps)
         # a group's lamps are one object (recognition, instance images): its signal
         for lamp, body_id in zip(self.lamps, self.lamp_ids):
             world.labels.set(body_id, 'traffic_light',
                              world.labels.instance(f'traffic_light_{lamp.group_id}'))
-        self._by_group: Dict[int, Tuple[int, ...]] = {}
-        for index, lamp in enumerate(self.lamps):
-            self._by_group[lamp.group_id] = self._by_group.get(lamp.group_id, ()) + (index,)
-        self.shown: Dict[int, str] = {group: 'off' for group in self._by_group}
-        self.changes = 0            # lamp colours changed so far (changeVisualShape calls)
-        self._states = None         # every group's state when the lamps were last coloured
+        for group, indices in self._by_group.items():     # made dark: the lit ones lit
+            state = self.shown[group]
+            self._colour([i for i in indices if lit(self.lamps[i].bulb.color, state)], state)
+        world.mark_redrawn()
+        return self.lamp_ids
+
+    def before_render(self):
+        """World hook (``World.prepare_render``): the lamps made, in the states of now."""
+        self.make_lamp_bodies()
         self.refresh()
-        if controller is not None or parts is not None:
-            world.add_body(self)
-            if world.gui:   # the window draws every frame: the lamps follow after each step
-                world.add_body(_AfterEachStep(self.refresh))
+
+    def _colour(self, indices, state):
+        # The lamps ``indices`` in a group state's colours (nothing before they are made).
+        if not self.lamp_ids:
+            return
+        for index in indices:
+            pybullet.changeVisualShape(
+                self.lamp_ids[index], -1,
+                rgbaColor=list(lamp_color(self.lamps[index].bulb.color, state)),
+                physicsClientId=self._cid)
 
     def _pole_body(self, pole) -> int:
         # A static box of its own (a small bounding box: a vehicle is near few poles), a
@@ -130,7 +169,7 @@ class SignalLamps:
 
     @property
     def visual_shape_count(self) -> int:
-        """The bodies it added: one per lamp and per pole, the housings' mesh."""
+        """The bodies it added: one per lamp (once drawn) and per pole, the housings' mesh."""
         return len(self.lamp_ids) + len(self.housing_ids) + len(self.pole_ids)
 
     def refresh(self) -> int:
@@ -154,11 +193,7 @@ class SignalLamps:
             if shown[group] == state:
                 continue
             shown[group] = state
-            for index in indices:
-                pybullet.changeVisualShape(
-                    self.lamp_ids[index], -1,
-                    rgbaColor=list(lamp_color(self.lamps[index].bulb.color, state)),
-                    physicsClientId=self._cid)
+            self._colour(indices, state)
             changed += len(indices)
         self.changes += changed
         if changed:

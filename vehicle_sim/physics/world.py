@@ -158,6 +158,7 @@ class World:
         self._pre_substep = []
         self._post_step = []
         self._before_query = []
+        self._before_render = []
         self._names = {}              # body id -> name (obstacles)
         self.obstacles = {}           # obstacle name -> body id
         self._obstacle_specs = {}     # obstacle name -> its ObstacleSpec (reset_obstacles)
@@ -284,8 +285,10 @@ class World:
         between steps: rays, cameras, overlap checks, body states; bodies that are only placed
         now and then, as traffic, are put where they are now), ``before_query_in(region)``
         (with it, called instead when the reading is confined to a region, rays: only the
-        bodies there need to be where they are), and ``on_close()`` (called by
-        :meth:`close`: what the body runs beside the world, e.g. SUMO, ends).
+        bodies there need to be where they are), ``before_render()`` (called by
+        :meth:`prepare_render` before an image is drawn: bodies that only images show, made
+        on first need) and ``on_close()`` (called by :meth:`close`: what the body runs beside
+        the world, e.g. SUMO, ends).
         """
         if body in self._bodies:
             return body
@@ -693,6 +696,19 @@ class World:
             else:
                 hook_in(region)
 
+    def prepare_render(self):
+        """
+        Make the world ready to be drawn: what only images show, then :meth:`sync_bodies`.
+
+        Cameras, the chase image and any ``getCameraImage`` of the world's client call it first:
+        the registered bodies' ``before_render()`` hooks make the bodies that nothing but an
+        image shows (the signal lamps: thousands in a city, which Bullet would walk over at
+        every step) the first time an image is drawn.
+        """
+        for hook in self._before_render:
+            hook()
+        self.sync_bodies()
+
     def contact_points(self, body_id):
         """
         Return Bullet's contact points of a body now (``getContactPoints(bodyA=body_id)``).
@@ -795,6 +811,8 @@ class World:
         self._post_step = [b.post_step for b in self._bodies if hasattr(b, 'post_step')]
         self._before_query = [(b.before_query, getattr(b, 'before_query_in', None))
                               for b in self._bodies if hasattr(b, 'before_query')]
+        self._before_render = [b.before_render for b in self._bodies
+                               if hasattr(b, 'before_render')]
 
     def step(self):
         """Advance the world by one basic time step; return the new time [s]."""

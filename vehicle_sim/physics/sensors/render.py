@@ -121,7 +121,7 @@ class Renderer:
             self._masked.add(view)
         mask = mask or view in self._masked
         world = self.world
-        world.sync_bodies()          # placed bodies (traffic) where they are now
+        world.prepare_render()       # lamps made, placed bodies (traffic) where they are now
         step = world.revision          # a step, or bodies moved between steps
         if step != self._step:
             self._step, self._frames = step, {}
