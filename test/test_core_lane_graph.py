@@ -25,7 +25,7 @@ import math
 import numpy as np
 import pytest
 
-from vehicle_sim.core.map.lane_graph import Boundary, Lane, LaneGraph
+from vehicle_sim.core.map.lane_graph import Boundary, Lane, LaneGraph, LOCATE_CELL_M
 from vehicle_sim.core.map.lane_invasion import LaneInvasionDetector
 from vehicle_sim.core.map.lane_state import LaneTracker, OFF_LANE
 from vehicle_sim.core.map.road_segments import lane_graph_from_roads, roads_from_list
@@ -111,6 +111,44 @@ def test_pose_at_and_locate_are_inverse():
         found = graph.locate(x, y, yaw)
         assert (found.lane_id, round(found.s_m, 6), round(found.offset_m, 6)) == \
             (lane_id, pytest.approx(s_m), pytest.approx(offset_m))
+
+
+def whole_map_locate(graph, x, y, yaw=None):
+    """LaneGraph.locate over every segment of the map (its grid of cells set aside)."""
+    cells, graph._cells = graph._cells, None
+    try:
+        return graph.locate(x, y, yaw)
+    finally:
+        graph._cells = cells
+
+
+@pytest.mark.parametrize('make', [straight_then_left, lambda: graph_of(
+    {'lanes': 3, 'backward_lanes': 2, 'segments': [
+        {'type': 'arc', 'radius': 30.0, 'angle': 270.0}, {'type': 'straight', 'length': 70.0},
+        {'type': 'arc', 'radius': 12.0, 'angle': -120.0}]})])
+def test_locate_in_its_grid_cell_is_locate_over_the_whole_map_bit_for_bit(make):
+    # locate looks only at the segments whose reach meets the point's cell (LOCATE_CELL_M):
+    # the same LanePosition, to the last bit, as over every segment, on lanes, between them,
+    # at their ends, off them, with and without a heading; points off every cell: None.
+    graph = make()
+    rng = np.random.default_rng(7)
+    xs = np.concatenate([lane.xs for lane in graph.lanes.values()])
+    ys = np.concatenate([lane.ys for lane in graph.lanes.values()])
+    picked = rng.integers(0, len(xs), 4000)
+    points = np.column_stack((xs[picked], ys[picked])) + rng.normal(0.0, 4.0, (4000, 2))
+    located = 0
+    for index, (x, y) in enumerate(points.tolist()):
+        yaw = None if index % 3 == 0 else float(rng.uniform(-4.0, 4.0))
+        found = graph.locate(x, y, yaw)
+        assert found == whole_map_locate(graph, x, y, yaw), (x, y, yaw)
+        located += found is not None
+    assert 2000 < located < 4000          # on lanes and off them
+    # cell edges: points exactly on the lines of the grid, across the map
+    for x in np.arange(-32.0, 160.0, LOCATE_CELL_M):
+        for y in np.arange(-48.0, 160.0, LOCATE_CELL_M / 2):
+            assert graph.locate(x, y) == whole_map_locate(graph, x, y)
+    assert graph.locate(1e6, 1e6) is None and graph.locate(math.nan, 0.0) is None
+    assert graph.locate(-math.inf, 3.0) is None and graph.locate(0.0, math.inf, 0.5) is None
 
 
 def test_centre_pose_is_pose_at_on_the_centreline_bit_for_bit():

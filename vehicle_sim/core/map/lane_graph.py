@@ -57,6 +57,12 @@ SOLID_TYPES = ('solid', 'solid_solid', 'dashed_solid', 'solid_dashed', 'curbston
                'road_border', 'wall')
 
 _ON_LINE_M = 1e-6
+# LaneGraph.locate looks only at the segments near a point: those whose reach meets the point's
+# cell of a grid this fine [m] (a city of 8 000 segments: some 40 in a cell).
+LOCATE_CELL_M = 16.0
+# What a segment's reach adds to half its widest width: the on-line tolerance and more, so
+# that rounding cannot leave out a segment whose lane holds the point [m].
+_REACH_SLACK_M = 1e-3
 # Lane subtypes the traffic drives on (Lanelet2's lanelet subtypes; roads: 'road').
 TRAFFIC_SUBTYPES = ('road', 'highway')
 
@@ -334,6 +340,25 @@ class LaneGraph:
         self._first = self._seg == 0
         self._last = self._seg == cat([np.full(lane.segment_count, lane.segment_count - 1)
                                        for lane in lanes])
+        # The grid of LOCATE_CELL_M cells: cell -> the segments whose reach (the points within
+        # half their widest width of them, and the tolerance) meets it, ascending.
+        reach = 0.5 * np.maximum(self._w0, self._w1) + _REACH_SLACK_M
+        bx, by = self._ax + self._ux * self._len, self._ay + self._uy * self._len
+        low_i = np.floor((np.minimum(self._ax, bx) - reach) / LOCATE_CELL_M)
+        high_i = np.floor((np.maximum(self._ax, bx) + reach) / LOCATE_CELL_M)
+        low_j = np.floor((np.minimum(self._ay, by) - reach) / LOCATE_CELL_M)
+        high_j = np.floor((np.maximum(self._ay, by) + reach) / LOCATE_CELL_M)
+        cells: Dict[Tuple[int, int], list] = {}
+        boxes = np.column_stack((low_i, high_i, low_j, high_j))
+        if np.all(np.isfinite(boxes)):
+            for index, (i0, i1, j0, j1) in enumerate(boxes.astype(np.int64).tolist()):
+                for i in range(i0, i1 + 1):
+                    for j in range(j0, j1 + 1):
+                        cells.setdefault((i, j), []).append(index)
+            self._cells = {key: np.array(found, dtype=np.int64) for key, found in cells.items()}
+        else:
+            self._cells = None          # (a lane with a non-finite point: every segment looked at)
+        self._cell_arrays = {}
 
     def lane(self, lane_id) -> Lane:
         """Return a lane by id; InvalidParameterError naming the id when there is none."""
@@ -377,28 +402,57 @@ class LaneGraph:
         Among the lanes the point is on, the one whose direction is nearest ``yaw_rad`` (when
         given) wins, then the one whose centreline is nearest relative to its width.
         """
-        dx = x_m - self._ax
-        dy = y_m - self._ay
-        t = dx * self._ux + dy * self._uy
-        tc = np.clip(t, 0.0, self._len)
-        gx, gy = dx - tc * self._ux, dy - tc * self._uy
+        found = self._segments_near(x_m, y_m)
+        if found is None:
+            return None
+        index, ax, ay, ux, uy, length, w0, w1, heading, first, last = found
+        dx = x_m - ax
+        dy = y_m - ay
+        t = dx * ux + dy * uy
+        tc = np.clip(t, 0.0, length)
+        gx, gy = dx - tc * ux, dy - tc * uy
         dist = np.sqrt(gx * gx + gy * gy)
-        half = 0.5 * (self._w0 + (self._w1 - self._w0) * (tc / self._len))
-        inside = (dist <= half + _ON_LINE_M) & ~(self._first & (t < -_ON_LINE_M)) \
-            & ~(self._last & (t > self._len + _ON_LINE_M))
+        half = 0.5 * (w0 + (w1 - w0) * (tc / length))
+        inside = (dist <= half + _ON_LINE_M) & ~(first & (t < -_ON_LINE_M)) \
+            & ~(last & (t > length + _ON_LINE_M))
         candidates = np.flatnonzero(inside)
         if not len(candidates):
             return None
         # a taper's zero-width end: a point on it scores 0 (on the centreline), not 0 / 0
         score = dist[candidates] / np.maximum(half[candidates], _ON_LINE_M)
         if yaw_rad is not None:
-            turn = np.abs(np.angle(np.exp(1j * (yaw_rad - self._heading[candidates]))))
+            turn = np.abs(np.angle(np.exp(1j * (yaw_rad - heading[candidates]))))
             score = score + 4.0 * turn / math.pi
-        best = candidates[int(np.argmin(score))]
+        best = index[candidates[int(np.argmin(score))]]
         lane = self._lane_list[int(self._lane_of_segment[best])]
         k = int(self._seg[best])
         k, t_k, offset = lane.walk(x_m, y_m, k)
         return lane.position(k, t_k, offset, yaw_rad)
+
+    def _segments_near(self, x_m, y_m):
+        """
+        Return the segments that may hold a point, as arrays (their indices first), or None.
+
+        The segments of the point's grid cell (all of them for a map with a point that is not
+        finite; None for such a point); each array in ascending segment order, as over the whole map, so the same
+        segment wins a tie. A cell's arrays are cut out once, when first asked for.
+        """
+        if not (math.isfinite(x_m) and math.isfinite(y_m)):
+            return None                 # on no lane (over the whole map too)
+        if self._cells is None:
+            key = None
+        else:
+            key = (math.floor(x_m / LOCATE_CELL_M), math.floor(y_m / LOCATE_CELL_M))
+            if key not in self._cells:
+                return None
+        found = self._cell_arrays.get(key)
+        if found is None:
+            index = (np.arange(len(self._ax)) if key is None else self._cells[key])
+            found = self._cell_arrays[key] = (index,) + tuple(
+                values[index] for values in (self._ax, self._ay, self._ux, self._uy, self._len,
+                                             self._w0, self._w1, self._heading, self._first,
+                                             self._last))
+        return found
 
     def locate_on(self, lane_id, x_m, y_m, yaw_rad=None, near_s_m=None):
         """
