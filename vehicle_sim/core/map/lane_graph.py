@@ -434,8 +434,9 @@ class LaneGraph:
         Return the segments that may hold a point, as arrays (their indices first), or None.
 
         The segments of the point's grid cell (all of them for a map with a point that is not
-        finite; None for such a point); each array in ascending segment order, as over the whole map, so the same
-        segment wins a tie. A cell's arrays are cut out once, when first asked for.
+        finite; None for such a point); each array in ascending segment order, as over the
+        whole map, so the same segment wins a tie. A cell's arrays are cut out once, when first
+        asked for.
         """
         if not (math.isfinite(x_m) and math.isfinite(y_m)):
             return None                 # on no lane (over the whole map too)
